@@ -1,0 +1,1 @@
+//! Host-side support for abtrack: what needs `std`.

@@ -1,0 +1,22 @@
+//! abtrack: αβ / αβγ target tracking for Cortex-M, without a heap.
+//!
+//! The layers, each using only those above it:
+//!
+//! | module | what it owns |
+//! |---|---|
+//! | [`num`] | the [`num::Scalar`] abstraction over `f64`, `f32` and Q32.32 fixed point |
+//! | [`filter`] | single-target αβ / αβγ filters, one axis and composed into 2-D/3-D |
+//! | [`design`] | closed-form analysis: stability, noise ratio, steady-state and transient errors |
+//!
+//! The specification is five papers, cited in the doc comments by author and
+//! equation number (see README.md, "The papers").
+#![no_std]
+#![forbid(unsafe_code)]
+#![warn(missing_debug_implementations)]
+
+pub mod design;
+pub mod filter;
+pub mod num;
+
+pub use filter::{AlphaBeta, AlphaBetaGamma, Cartesian, FilterError, GainError, Gains};
+pub use num::{Fix, NumError, Scalar};

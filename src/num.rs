@@ -1,0 +1,450 @@
+//! The numeric representations: one [`Scalar`] abstraction over `f64`, `f32`
+//! and the fixed-point type [`Fix`]. This is the only module that knows how a
+//! number is stored; every filter, schedule and tracker is generic over it.
+//!
+//! # Invalid values
+//!
+//! Every representation has values that mean "this computation left the
+//! representable range": NaN and ±∞ for the floats, the two saturation
+//! sentinels [`Fix::MAX`]/[`Fix::MIN`] for fixed point. [`Scalar::is_valid`]
+//! tells them apart from ordinary numbers, and both kinds are *sticky*: any
+//! arithmetic with an invalid operand gives an invalid result, so a filter
+//! checks its outputs once instead of every intermediate product. Filters refuse
+//! (and count) an update whose result is invalid, so the stored state is never
+//! an invalid value.
+//!
+//! # The fixed-point format: Q32.32 ([`Fix`])
+//!
+//! `Fix` is [`fixed::types::I32F32`]: a signed 64-bit word, 32 integer bits and
+//! 32 fractional bits. Range ±2 147 483 648, resolution 2⁻³² ≈ 2.3·10⁻¹⁰.
+//!
+//! Why one 64-bit format rather than several 32-bit ones: the envelope asked of
+//! the filters is positions ±400 km, velocities ±1500 m/s, accelerations
+//! ±200 m/s², intervals 0.05–20 s, and every gain of the stability regions.
+//! A 32-bit word cannot hold both ends at once: positions need 20 integer bits
+//! (±524 288 m) leaving 11 fractional bits (0.5 mm), while the velocity gain
+//! β/T of a slow filter (Benedict–Bordner with α = 0.01 gives β = 5·10⁻⁵, over
+//! T = 20 s: 2.5·10⁻⁶) needs at least 25 fractional bits to keep three
+//! significant digits. Q32.32 holds every quantity of the envelope with at
+//! least 10⁴ of headroom for intermediates (the largest is the velocity
+//! correction β·e/T with β < 4, e ≤ 800 km, T ≥ 0.05 s: 6.4·10⁷ < 2.1·10⁹) and
+//! keeps the smallest gain to 10⁻⁴ relative. The cost is 64-bit multiplies
+//! (four 32×32 partial products on a Cortex-M3, a library call on an M0),
+//! measured by the firmware benchmark in the README.
+//!
+//! Arithmetic on `Fix` saturates, never wraps and never panics: an overflow,
+//! a division by zero or the square root of a negative number gives a sentinel.
+//! A legitimate result can only equal a sentinel if it is exactly ±2³¹, far
+//! outside the envelope.
+
+use core::fmt;
+use core::ops::{Add, Div, Mul, Neg, Sub};
+
+use fixed::types::I32F32;
+
+/// Why a value from outside could not be converted into a [`Scalar`].
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+#[cfg_attr(feature = "defmt", derive(defmt::Format))]
+pub enum NumError {
+    /// NaN or infinite.
+    NotFinite,
+    /// Finite, but outside the representation's range.
+    OutOfRange,
+}
+
+impl fmt::Display for NumError {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        match self {
+            NumError::NotFinite => f.write_str("value is NaN or infinite"),
+            NumError::OutOfRange => f.write_str("value is outside the representable range"),
+        }
+    }
+}
+
+/// A number type the filters can run in: `f64`, `f32` or [`Fix`].
+///
+/// The arithmetic operators never panic. Results that leave the representable
+/// range are invalid values (see the module docs) that propagate through later
+/// operations and are detected with [`Scalar::is_valid`].
+pub trait Scalar:
+    Copy
+    + Default
+    + PartialEq
+    + PartialOrd
+    + fmt::Debug
+    + Add<Output = Self>
+    + Sub<Output = Self>
+    + Mul<Output = Self>
+    + Div<Output = Self>
+    + Neg<Output = Self>
+    + Send
+    + Sync
+    + 'static
+{
+    /// Short name for reports: "f64", "f32", "fixed".
+    const NAME: &'static str;
+    const ZERO: Self;
+    const ONE: Self;
+
+    /// Converts an outside value, refusing NaN, infinities and values beyond
+    /// the representable range. Use this at the edges (wire, CSV, constructors).
+    fn try_from_f64(v: f64) -> Result<Self, NumError>;
+
+    /// Converts a constant: rounds to nearest, out-of-range values become
+    /// invalid values. Meant for literals such as 0.5 in generic code.
+    fn from_f64_lossy(v: f64) -> Self;
+
+    fn to_f64(self) -> f64;
+
+    /// False for NaN, ±∞ and the fixed-point saturation sentinels.
+    fn is_valid(self) -> bool;
+
+    fn abs(self) -> Self;
+
+    /// Square root; invalid for a negative argument.
+    fn sqrt(self) -> Self;
+
+    /// (sin θ, cos θ) for θ in radians.
+    fn sin_cos(self) -> (Self, Self);
+
+    /// Four-quadrant arctangent of `self / x`, in (−π, π].
+    fn atan2(self, x: Self) -> Self;
+
+    /// The smaller of two valid values.
+    #[inline]
+    fn min_of(self, other: Self) -> Self {
+        if other < self {
+            other
+        } else {
+            self
+        }
+    }
+
+    /// The larger of two valid values.
+    #[inline]
+    fn max_of(self, other: Self) -> Self {
+        if other > self {
+            other
+        } else {
+            self
+        }
+    }
+}
+
+impl Scalar for f64 {
+    const NAME: &'static str = "f64";
+    const ZERO: Self = 0.0;
+    const ONE: Self = 1.0;
+
+    fn try_from_f64(v: f64) -> Result<Self, NumError> {
+        if v.is_finite() {
+            Ok(v)
+        } else {
+            Err(NumError::NotFinite)
+        }
+    }
+    #[inline]
+    fn from_f64_lossy(v: f64) -> Self {
+        v
+    }
+    #[inline]
+    fn to_f64(self) -> f64 {
+        self
+    }
+    #[inline]
+    fn is_valid(self) -> bool {
+        self.is_finite()
+    }
+    #[inline]
+    fn abs(self) -> Self {
+        libm::fabs(self)
+    }
+    #[inline]
+    fn sqrt(self) -> Self {
+        libm::sqrt(self)
+    }
+    #[inline]
+    fn sin_cos(self) -> (Self, Self) {
+        libm::sincos(self)
+    }
+    #[inline]
+    fn atan2(self, x: Self) -> Self {
+        libm::atan2(self, x)
+    }
+}
+
+impl Scalar for f32 {
+    const NAME: &'static str = "f32";
+    const ZERO: Self = 0.0;
+    const ONE: Self = 1.0;
+
+    fn try_from_f64(v: f64) -> Result<Self, NumError> {
+        if !v.is_finite() {
+            return Err(NumError::NotFinite);
+        }
+        let r = v as f32;
+        if r.is_finite() {
+            Ok(r)
+        } else {
+            Err(NumError::OutOfRange)
+        }
+    }
+    #[inline]
+    fn from_f64_lossy(v: f64) -> Self {
+        v as f32
+    }
+    #[inline]
+    fn to_f64(self) -> f64 {
+        self as f64
+    }
+    #[inline]
+    fn is_valid(self) -> bool {
+        self.is_finite()
+    }
+    #[inline]
+    fn abs(self) -> Self {
+        libm::fabsf(self)
+    }
+    #[inline]
+    fn sqrt(self) -> Self {
+        libm::sqrtf(self)
+    }
+    #[inline]
+    fn sin_cos(self) -> (Self, Self) {
+        libm::sincosf(self)
+    }
+    #[inline]
+    fn atan2(self, x: Self) -> Self {
+        libm::atan2f(self, x)
+    }
+}
+
+/// Q32.32 saturating fixed point with sticky saturation (see the module docs).
+#[derive(Clone, Copy, Default, PartialEq, Eq, PartialOrd, Ord, Hash)]
+pub struct Fix(I32F32);
+
+impl Fix {
+    /// Positive saturation sentinel (invalid).
+    pub const MAX: Fix = Fix(I32F32::MAX);
+    /// Negative saturation sentinel (invalid).
+    pub const MIN: Fix = Fix(I32F32::MIN);
+    /// Number of fractional bits.
+    pub const FRAC_BITS: u32 = 32;
+    /// The smallest positive step, 2⁻³².
+    pub const DELTA: Fix = Fix(I32F32::DELTA);
+
+    /// Wraps a raw `fixed` value. A value equal to `I32F32::MIN`/`MAX` is a
+    /// saturation sentinel.
+    pub const fn from_fixed(v: I32F32) -> Self {
+        Fix(v)
+    }
+
+    pub const fn to_fixed(self) -> I32F32 {
+        self.0
+    }
+
+    /// The raw two's-complement word (value × 2³²).
+    pub const fn to_bits(self) -> i64 {
+        self.0.to_bits()
+    }
+
+    pub const fn from_bits(bits: i64) -> Self {
+        Fix(I32F32::from_bits(bits))
+    }
+
+    #[inline]
+    const fn is_sentinel(self) -> bool {
+        let b = self.0.to_bits();
+        b == i64::MAX || b == i64::MIN
+    }
+
+    /// The sentinel carrying the sign a saturated result would have had.
+    #[inline]
+    const fn saturated(negative: bool) -> Self {
+        if negative {
+            Fix::MIN
+        } else {
+            Fix::MAX
+        }
+    }
+
+    #[inline]
+    fn binary(self, rhs: Fix, checked: Option<I32F32>, negative_if_overflow: bool) -> Fix {
+        if self.is_sentinel() || rhs.is_sentinel() {
+            return Fix::saturated(negative_if_overflow);
+        }
+        match checked {
+            Some(v) => Fix(v),
+            None => Fix::saturated(negative_if_overflow),
+        }
+    }
+}
+
+impl fmt::Debug for Fix {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        if self.is_sentinel() {
+            f.write_str(if self.0.is_negative() {
+                "Fix(-SAT)"
+            } else {
+                "Fix(+SAT)"
+            })
+        } else {
+            write!(f, "Fix({})", self.0)
+        }
+    }
+}
+
+impl fmt::Display for Fix {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        fmt::Display::fmt(&self.0, f)
+    }
+}
+
+#[cfg(feature = "defmt")]
+impl defmt::Format for Fix {
+    fn format(&self, f: defmt::Formatter) {
+        if self.is_sentinel() {
+            defmt::write!(f, "SAT")
+        } else {
+            // Q32.32 printed as a decimal with six places, without floats.
+            let bits = self.0.to_bits();
+            let neg = bits < 0;
+            let mag = bits.unsigned_abs();
+            let int = mag >> 32;
+            let frac = ((mag & 0xFFFF_FFFF) * 1_000_000 + (1 << 31)) >> 32;
+            let sign = if neg { "-" } else { "" };
+            defmt::write!(f, "{=str}{=u64}.{=u64:06}", sign, int, frac)
+        }
+    }
+}
+
+impl Add for Fix {
+    type Output = Fix;
+    #[inline]
+    fn add(self, rhs: Fix) -> Fix {
+        // A sum overflows only when both terms have the same sign.
+        let neg = self.0.is_negative() && rhs.0.is_negative();
+        self.binary(rhs, self.0.checked_add(rhs.0), neg)
+    }
+}
+
+impl Sub for Fix {
+    type Output = Fix;
+    #[inline]
+    fn sub(self, rhs: Fix) -> Fix {
+        // A difference overflows only when the signs differ: it takes self's.
+        let neg = self.0.is_negative();
+        self.binary(rhs, self.0.checked_sub(rhs.0), neg)
+    }
+}
+
+impl Mul for Fix {
+    type Output = Fix;
+    #[inline]
+    fn mul(self, rhs: Fix) -> Fix {
+        let neg = self.0.is_negative() != rhs.0.is_negative();
+        self.binary(rhs, self.0.checked_mul(rhs.0), neg)
+    }
+}
+
+impl Div for Fix {
+    type Output = Fix;
+    /// Division by zero saturates with the numerator's sign.
+    #[inline]
+    fn div(self, rhs: Fix) -> Fix {
+        let neg = self.0.is_negative() != rhs.0.is_negative();
+        self.binary(rhs, self.0.checked_div(rhs.0), neg)
+    }
+}
+
+impl Neg for Fix {
+    type Output = Fix;
+    #[inline]
+    fn neg(self) -> Fix {
+        if self.is_sentinel() {
+            Fix::saturated(!self.0.is_negative())
+        } else {
+            Fix(-self.0)
+        }
+    }
+}
+
+impl Scalar for Fix {
+    const NAME: &'static str = "fixed";
+    const ZERO: Self = Fix(I32F32::ZERO);
+    const ONE: Self = Fix(I32F32::ONE);
+
+    fn try_from_f64(v: f64) -> Result<Self, NumError> {
+        if !v.is_finite() {
+            return Err(NumError::NotFinite);
+        }
+        match I32F32::checked_from_num(v) {
+            Some(x) if !Fix(x).is_sentinel() => Ok(Fix(x)),
+            _ => Err(NumError::OutOfRange),
+        }
+    }
+
+    fn from_f64_lossy(v: f64) -> Self {
+        if v.is_nan() {
+            return Fix::MAX;
+        }
+        match I32F32::checked_from_num(v) {
+            Some(x) => Fix(x),
+            None => Fix::saturated(v < 0.0),
+        }
+    }
+
+    #[inline]
+    fn to_f64(self) -> f64 {
+        if self.is_sentinel() {
+            if self.0.is_negative() {
+                f64::NEG_INFINITY
+            } else {
+                f64::INFINITY
+            }
+        } else {
+            self.0.to_num::<f64>()
+        }
+    }
+
+    #[inline]
+    fn is_valid(self) -> bool {
+        !self.is_sentinel()
+    }
+
+    #[inline]
+    fn abs(self) -> Self {
+        if self.is_sentinel() {
+            Fix::MAX
+        } else {
+            Fix(self.0.abs())
+        }
+    }
+
+    fn sqrt(self) -> Self {
+        if self.is_sentinel() {
+            return Fix::MAX;
+        }
+        match self.0.checked_sqrt() {
+            Some(r) => Fix(r),
+            None => Fix::MAX,
+        }
+    }
+
+    // Placeholder-free but slow: via f64 libm. To be replaced by CORDIC
+    // (issue 4), which must state its error bound.
+    fn sin_cos(self) -> (Self, Self) {
+        if self.is_sentinel() {
+            return (Fix::MAX, Fix::MAX);
+        }
+        let (s, c) = libm::sincos(self.to_f64());
+        (Fix::from_f64_lossy(s), Fix::from_f64_lossy(c))
+    }
+
+    fn atan2(self, x: Self) -> Self {
+        if self.is_sentinel() || x.is_sentinel() {
+            return Fix::MAX;
+        }
+        Fix::from_f64_lossy(libm::atan2(self.to_f64(), x.to_f64()))
+    }
+}
