@@ -36,6 +36,7 @@
 //! Numbers are written in Rust's shortest round-trip form, so a file read back
 //! gives the same `f64` values.
 
+use crate::metrics::TruthPoint;
 use crate::noise::{
     bernoulli, derive_seed, poisson, rng_from_seed, shuffle, uniform, NoiseError, NoiseModel,
     NoiseProcess, SimRng,
@@ -351,6 +352,20 @@ pub struct ScenarioRun {
     pub scans: Vec<Scan>,
 }
 
+impl Scan {
+    /// The truth as the metrics module takes it.
+    pub fn truth_points(&self) -> Vec<TruthPoint> {
+        self.truth
+            .iter()
+            .map(|s| TruthPoint {
+                id: s.target,
+                x: s.x,
+                y: s.y,
+            })
+            .collect()
+    }
+}
+
 impl ScenarioRun {
     /// Every truth row, scan by scan.
     pub fn truth(&self) -> impl Iterator<Item = &TruthState> {
@@ -558,7 +573,7 @@ const LIU_SIGMA: f64 = 5.0;
 /// frame's y axis, so the azimuth is also the relative bearing from the own
 /// aircraft's nose. Relative position at t = 0: (280 sin 30°, 280 cos 30°) km
 /// = (140, 242.487) km; relative velocity (0, −55.556) m/s. After 500 s the
-/// range is ≈ 257.6 km and the azimuth ≈ 33.1°.
+/// range is ≈ 256.3 km and the azimuth ≈ 33.1°.
 ///
 /// Azimuth noise: the paper's cross-range variance VAR = R²·7.569e−3 (eq. 9–10)
 /// is R²σ_B² with σ_B² = 7.569e−3 rad², σ_B = 0.087 rad = 4.98° — the usual
@@ -1347,7 +1362,7 @@ mod tests {
             1e-9
         ));
         let s = truth[499][0];
-        // y = 242487.1 − 55.556·499 = 214764.9; R = √(140000² + y²) = 256370.
+        // y = 242487.1 − 55.556·499 = 214764.9; R = √(140000² + y²) = 256366.8.
         let y = 280_000.0 * 0.75f64.sqrt() - 200.0 / 3.6 * 499.0;
         assert!(close(s.range(), 140_000f64.hypot(y), 1e-6));
         assert!(s.azimuth().to_degrees() > 33.0 && s.azimuth().to_degrees() < 33.2);
@@ -1521,6 +1536,10 @@ mod tests {
     fn crossing_and_parallel_geometry() {
         let c = truth("two-crossing").unwrap();
         let at30 = &c[30];
+        let run = generate("two-crossing", 0).unwrap();
+        let points = run.scans[30].truth_points();
+        assert_eq!(points.iter().map(|p| p.id).collect::<Vec<_>>(), vec![1, 2]);
+        assert!(points.iter().all(|p| p.x.abs() < 1e-9 && p.y.abs() < 1e-9));
         assert_eq!(at30.len(), 2);
         for s in at30 {
             assert!(close(s.x, 0.0, 1e-9) && close(s.y, 0.0, 1e-9));
