@@ -1,1 +1,6 @@
 //! Host-side support for abtrack: what needs `std`.
+
+pub mod kalman;
+pub mod metrics;
+pub mod noise;
+pub mod scenario;
