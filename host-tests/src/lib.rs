@@ -1,1 +1,3 @@
 //! Host-side support for abtrack: what needs `std`.
+
+pub mod reference_ra;
