@@ -483,9 +483,9 @@ fn cross_range_sigma_floor_keeps_a_target_through_the_sensor_finite() {
     assert_eq!(noise.cross_range_sigma(Fix::from_f64_lossy(2.0)), Fix::ONE);
     let mut f = RangeAzimuthFilter::new(noise);
     for k in 0..40 {
-        let (x, y) = (2.0, 100.0 - 5.0 * k as f64);
-        let r = Fix::from_f64_lossy((x as f64).hypot(y));
-        let b = Fix::from_f64_lossy((x as f64).atan2(y).rem_euclid(TAU));
+        let (x, y): (f64, f64) = (2.0, 100.0 - 5.0 * k as f64);
+        let r = Fix::from_f64_lossy(x.hypot(y));
+        let b = Fix::from_f64_lossy(x.atan2(y).rem_euclid(TAU));
         f.update(r, b, Fix::ONE).unwrap();
     }
     assert_eq!(f.saturations(), 0);

@@ -89,15 +89,15 @@
 //!   with a hypot that never squares its arguments;
 //! * eqs. (9)–(10) and the update P⁺ = (I − KD)·PCOV become, with
 //!   u = a/σ (a = √PCOV₁₁, σ the direction's measurement standard
-//!   deviation): gains u²/(1 + u²) and (b/σ)·u/(1 + u²), factor
-//!   (a, b, c) → (a, b, c)/√(1 + u²) for the first two entries, c
-//!   unchanged — written with the ratio ≤ 1 of a and σ so no square
-//!   exceeds 1.
+//!   deviation): gains u²/(1 + u²) and (b/σ)·u/(1 + u²); a and b divided
+//!   by √(1 + u²), c unchanged — written with the ratio ≤ 1 of a and σ so
+//!   no square exceeds 1.
 //!
 //! Magnitudes: a ≤ √5·σ after initialisation and < σ after an update (a few
 //! 10⁴ m across range at 400 km); b ≈ σ/T up to 7·10⁵ m/s for the worst
-//! initialisation (35 km over 0.05 s), c similar; coasting grows a linearly,
-//! saturation would take 10⁴ s. Positions (±400 km), velocities and the
+//! initialisation (35 km over 0.05 s), c similar; coasting grows a
+//! linearly (a ≈ c·t), so saturation (a > 2.1·10⁹ m) takes 3·10³ s of
+//! coasting even from that worst start. Positions (±400 km), velocities and the
 //! products R·sin B stay within the ranges of the αβ filter. A saturated
 //! step is refused and counted like [`crate::filter::KinematicFilter`].
 //!
@@ -113,7 +113,7 @@ use crate::num::Scalar;
 pub const PAPER_BEARING_VARIANCE: f64 = 7.569e-3;
 
 /// Smallest cross-range standard deviation used, in metres (see the module
-/// docs: keeps the normalisation by VAR bounded as R → 0).
+/// docs: keeps the cross-range gains defined as R → 0).
 pub const CROSS_RANGE_SIGMA_FLOOR: f64 = 1.0;
 
 /// Why a noise configuration was refused.
