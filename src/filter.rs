@@ -25,6 +25,9 @@
 
 use crate::num::Scalar;
 
+pub mod altitude;
+pub mod range_azimuth;
+
 /// Why a filter refused a call. The filter's state is unchanged.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 #[cfg_attr(feature = "defmt", derive(defmt::Format))]

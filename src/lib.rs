@@ -17,6 +17,7 @@
 pub mod design;
 pub mod filter;
 pub mod num;
+pub mod tcas;
 
 pub use filter::{AlphaBeta, AlphaBetaGamma, Cartesian, FilterError, GainError, Gains};
 pub use num::{Fix, NumError, Scalar};

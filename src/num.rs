@@ -42,6 +42,8 @@ use core::ops::{Add, Div, Mul, Neg, Sub};
 
 use fixed::types::I32F32;
 
+pub mod cordic;
+
 /// Why a value from outside could not be converted into a [`Scalar`].
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 #[cfg_attr(feature = "defmt", derive(defmt::Format))]
@@ -431,20 +433,23 @@ impl Scalar for Fix {
         }
     }
 
-    // Placeholder-free but slow: via f64 libm. To be replaced by CORDIC
-    // (issue 4), which must state its error bound.
+    /// CORDIC in integer arithmetic ([`cordic`]): any angle, error at most
+    /// [`cordic::SIN_COS_MAX_ERROR`] (2⁻³²). A sentinel gives sentinels.
     fn sin_cos(self) -> (Self, Self) {
         if self.is_sentinel() {
             return (Fix::MAX, Fix::MAX);
         }
-        let (s, c) = libm::sincos(self.to_f64());
-        (Fix::from_f64_lossy(s), Fix::from_f64_lossy(c))
+        let (s, c) = cordic::sin_cos_bits(self.to_bits());
+        (Fix::from_bits(s), Fix::from_bits(c))
     }
 
+    /// CORDIC in integer arithmetic ([`cordic`]): result in (−π, π],
+    /// atan2(0, 0) = 0, error at most [`cordic::ATAN2_MAX_ERROR`] (2⁻³² rad).
+    /// A sentinel operand gives a sentinel.
     fn atan2(self, x: Self) -> Self {
         if self.is_sentinel() || x.is_sentinel() {
             return Fix::MAX;
         }
-        Fix::from_f64_lossy(libm::atan2(self.to_f64(), x.to_f64()))
+        Fix::from_bits(cordic::atan2_bits(self.to_bits(), x.to_bits()))
     }
 }

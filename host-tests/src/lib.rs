@@ -3,4 +3,5 @@
 pub mod kalman;
 pub mod metrics;
 pub mod noise;
+pub mod reference_ra;
 pub mod scenario;

@@ -1,0 +1,697 @@
+//! The range–azimuth projection filter of He, Peng, Ling & Quan ("A Distance
+//! Azimuth Tracking Algorithm Based on Alpha-beta Filtering"), for TCAS-style
+//! inputs: slant range R (m) and azimuth B (rad, clockwise from the y axis,
+//! x = R sin B, y = R cos B).
+//!
+//! The state is a constant-velocity track in x/y. Every measurement is split
+//! into the direction along the line of sight (range, measured with variance
+//! σ_R²) and the direction across it (cross-range, measured with variance
+//! VAR = R²·σ_B² because a bearing error δB moves the point by R·δB). Each
+//! direction has its own gains from its own covariance: α, β along range
+//! (He et al. eq. 9), W1, W2 across (eq. 10). The residuals along and across
+//! (eq. 11) are projected back onto x and y (eqs. 12–13).
+//!
+//! # Readings of the paper
+//!
+//! The paper's notation slips in four places. This module implements the
+//! reading that is mathematically consistent, and the host tests check it
+//! against an independent f64 implementation of the same reading
+//! (`host-tests/src/reference_ra.rs`):
+//!
+//! 1. **Eq. (11) uses the predicted position.** The paper writes
+//!    RESID_R = R − (X_k sin B + Y_k cos B) and RESID_CR = X_k cos B − Y_k sin B
+//!    right after defining X_k = R sin B, Y_k = R cos B as the *measured*
+//!    projections; with those both residuals are identically zero. The
+//!    residuals are only meaningful with the *predicted* position
+//!    (X_k|k−1, Y_k|k−1) and the *measured* R, B: RESID_R is then the
+//!    measurement-minus-prediction along the line of sight u = (sin B, cos B),
+//!    and RESID_CR = p·v with v = (cos B, −sin B) is the
+//!    prediction-minus-measurement across it (the measurement has no v
+//!    component). That sign is why eq. (12) *subtracts* the W terms.
+//! 2. **Eqs. (12)–(13) start from the prediction.** They write X_{k−1},
+//!    Ẋ_{k−1} on the right-hand side; without the prediction step
+//!    X_k|k−1 = X_{k−1} + T·Ẋ_{k−1} (the paper's own eq. 4) the position
+//!    would lag by T·Ẋ every scan. The velocity prediction is Ẋ_{k−1}.
+//! 3. **Eq. (9) uses the range variance.** The paper divides by
+//!    PCOV₁₁ + VAR in both eq. (9) and eq. (10). With the same variance the
+//!    gains coincide (α = W1, β/T = W2) and eqs. (12)–(13) collapse to
+//!    x += α·(z_x − x_p): a plain per-axis filter, contradicting the paper's
+//!    premise that range and cross-range residuals are treated differently.
+//!    Along the line of sight the measurement variance is the range variance
+//!    σ_R² (the paper's "Navr = 100 m" range noise), so eq. (9) uses
+//!    PCOV₁₁ + σ_R².
+//! 4. **Two covariances, and their update.** Eqs. (7)–(8) predict one matrix
+//!    P, but eqs. (9) and (10) need the covariance *along* and *across* the
+//!    line of sight, which differ because the measurement variances do. The
+//!    filter keeps one 2×2 position/velocity covariance per direction
+//!    (P_R along, P_C across), predicts each with eq. (8), and — the paper
+//!    gives no update — applies the Kalman update that eq. (7)'s P_{k−1}
+//!    ("the variance matrix of the estimated error") presupposes:
+//!    P⁺ = (I − K·D)·PCOV with K = (α, β/T) or (W1, W2) and D = (1, 0).
+//!    This is exactly the Kalman filter on the converted measurement when
+//!    the covariance is aligned with the line of sight; the only
+//!    approximation left is that the line of sight's rotation between scans
+//!    is not carried into the covariances (it is small: the azimuth changes
+//!    by (cross-range speed)·T/R per scan).
+//!
+//! VAR uses the *measured* range of the current scan (as the paper writes
+//! it). Its square root σ_C = R·σ_B has a floor of 1 m
+//! ([`CROSS_RANGE_SIGMA_FLOOR`], active only below R = 11.5 m with the
+//! default σ_B²) so the gains stay defined for a target passing through the
+//! sensor.
+//!
+//! Initialisation is two-point, as the αβ filter (Al-Wagih & Abdulla eqs.
+//! 9–10): position from the first measurement, velocity from the difference
+//! of the first two; the covariances start at the two-point differencing
+//! values P = [σ², σ²/T; σ²/T, (σ₁² + σ²)/T²] (σ₁, σ the first and second
+//! points' standard deviations in that direction), and filtering with eqs.
+//! (7)–(13) starts at the third measurement.
+//!
+//! # Fixed point: covariances as square-root factors
+//!
+//! In m² the covariances do not fit Q32.32 (range ±2.1·10⁹) in the paper's
+//! own scenario: at R = 280 km, VAR = 280 000²·7.569·10⁻³ = 5.93·10⁸ m², and
+//! the first prediction across range is PCOV₁₁ = VAR + 2VAR + 2VAR =
+//! 2.97·10⁹ m² (T = 1 s), already saturated; at 400 km VAR alone is 1.2·10⁹.
+//! Dividing by VAR fixes the range but not the resolution: the steady-state
+//! velocity variance across range (≈ 1 m²/s²) over VAR is ≈ 2·10⁻⁹, seven
+//! Q32.32 steps, and a first version built that way drifted 17 m from the
+//! f64 reference over the paper's 500 s.
+//!
+//! So each covariance is kept as its Cholesky factor L (P = L·Lᵀ, see
+//! [`CovarianceFactor`]) in physical units: standard deviations in m and
+//! m/s, which Q32.32 holds from 2.3·10⁻¹⁰ to 2.1·10⁹ — a variance range of
+//! 10⁻¹⁹ to 4·10¹⁸. Nothing of size R² is ever formed (√VAR = R·σ_B is
+//! used, and σ_B = √σ_B² is taken once). The algebra is the same filter:
+//!
+//! * eq. (8) becomes L⁻ = the triangularisation of [Φ·L | Γ·√Q] by two
+//!   Givens rotations (L⁻L⁻ᵀ = ΦPΦᵀ + ΓQΓᵀ exactly), every length taken
+//!   with a hypot that never squares its arguments;
+//! * eqs. (9)–(10) and the update P⁺ = (I − KD)·PCOV become, with
+//!   u = a/σ (a = √PCOV₁₁, σ the direction's measurement standard
+//!   deviation): gains u²/(1 + u²) and (b/σ)·u/(1 + u²); a and b divided
+//!   by √(1 + u²), c unchanged — written with the ratio ≤ 1 of a and σ so
+//!   no square exceeds 1.
+//!
+//! Magnitudes: a ≤ √5·σ after initialisation and < σ after an update (a few
+//! 10⁴ m across range at 400 km); b ≈ σ/T up to 7·10⁵ m/s for the worst
+//! initialisation (35 km over 0.05 s), c similar; coasting grows a
+//! linearly (a ≈ c·t), so saturation (a > 2.1·10⁹ m) takes 3·10³ s of
+//! coasting even from that worst start. Positions (±400 km), velocities and the
+//! products R·sin B stay within the ranges of the αβ filter. A saturated
+//! step is refused and counted like [`crate::filter::KinematicFilter`].
+//!
+//! Accuracy against the independent f64 reference (host-tests
+//! `range_azimuth.rs`, the paper's 280 km scenario over 500 scans and a
+//! TCAS encounter with coasts): f32 within 0.11 m and 0.03 m/s, Q32.32
+//! within 3 mm and 6.3·10⁻⁵ m/s, gains within 5·10⁻⁹.
+
+use crate::filter::{FilterError, Phase};
+use crate::num::Scalar;
+
+/// σ_B² used by He et al. (VAR = R²·7.569·10⁻³, about 5° RMS).
+pub const PAPER_BEARING_VARIANCE: f64 = 7.569e-3;
+
+/// Smallest cross-range standard deviation used, in metres (see the module
+/// docs: keeps the cross-range gains defined as R → 0).
+pub const CROSS_RANGE_SIGMA_FLOOR: f64 = 1.0;
+
+/// Why a noise configuration was refused.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+#[cfg_attr(feature = "defmt", derive(defmt::Format))]
+pub enum NoiseError {
+    /// A variance is NaN, infinite or not representable.
+    NotFinite,
+    /// A measurement variance is ≤ 0, or the process noise is < 0.
+    OutOfRange,
+}
+
+impl core::fmt::Display for NoiseError {
+    fn fmt(&self, f: &mut core::fmt::Formatter<'_>) -> core::fmt::Result {
+        f.write_str(match self {
+            NoiseError::NotFinite => "noise variance is not a finite number",
+            NoiseError::OutOfRange => {
+                "measurement variances must be > 0 and the process noise >= 0"
+            }
+        })
+    }
+}
+
+/// Measurement and process noise of a [`RangeAzimuthFilter`].
+#[derive(Debug, Clone, Copy, PartialEq)]
+#[cfg_attr(feature = "defmt", derive(defmt::Format))]
+pub struct RangeAzimuthNoise<S> {
+    range_variance: S,
+    bearing_variance: S,
+    process_noise: S,
+    /// σ_R, m.
+    range_sigma: S,
+    /// σ_B, rad.
+    bearing_sigma: S,
+    /// √Q, m/s².
+    process_sigma: S,
+}
+
+impl<S: Scalar> RangeAzimuthNoise<S> {
+    /// * `range_variance` σ_R², m², > 0: the along-range measurement
+    ///   variance (reading 3 of the module docs).
+    /// * `bearing_variance` σ_B², rad², > 0: VAR = R²·σ_B² (He et al. use
+    ///   [`PAPER_BEARING_VARIANCE`]).
+    /// * `process_noise` Q, m²/s⁴, ≥ 0: the variance of the white
+    ///   acceleration u_k of eq. (1), the Q of eqs. (7)–(8), the same along
+    ///   and across range.
+    pub fn new(
+        range_variance: S,
+        bearing_variance: S,
+        process_noise: S,
+    ) -> Result<Self, NoiseError> {
+        if !(range_variance.is_valid() && bearing_variance.is_valid() && process_noise.is_valid()) {
+            return Err(NoiseError::NotFinite);
+        }
+        if range_variance <= S::ZERO || bearing_variance <= S::ZERO || process_noise < S::ZERO {
+            return Err(NoiseError::OutOfRange);
+        }
+        let range_sigma = range_variance.sqrt();
+        let bearing_sigma = bearing_variance.sqrt();
+        let process_sigma = process_noise.sqrt();
+        if !(range_sigma.is_valid() && bearing_sigma.is_valid() && process_sigma.is_valid())
+            || range_sigma == S::ZERO
+            || bearing_sigma == S::ZERO
+        {
+            // A variance below the representation's resolution.
+            return Err(NoiseError::OutOfRange);
+        }
+        Ok(RangeAzimuthNoise {
+            range_variance,
+            bearing_variance,
+            process_noise,
+            range_sigma,
+            bearing_sigma,
+            process_sigma,
+        })
+    }
+
+    /// [`Self::new`] from `f64` values (configuration, tools).
+    pub fn new_f64(
+        range_variance: f64,
+        bearing_variance: f64,
+        process_noise: f64,
+    ) -> Result<Self, NoiseError> {
+        let c = |v| S::try_from_f64(v).map_err(|_| NoiseError::NotFinite);
+        Self::new(c(range_variance)?, c(bearing_variance)?, c(process_noise)?)
+    }
+
+    /// The paper's bearing variance ([`PAPER_BEARING_VARIANCE`]) with the
+    /// given range variance (m²) and process noise (m²/s⁴).
+    pub fn paper_bearing_f64(range_variance: f64, process_noise: f64) -> Result<Self, NoiseError> {
+        Self::new_f64(range_variance, PAPER_BEARING_VARIANCE, process_noise)
+    }
+
+    /// σ_R², m².
+    pub fn range_variance(&self) -> S {
+        self.range_variance
+    }
+    /// σ_B², rad².
+    pub fn bearing_variance(&self) -> S {
+        self.bearing_variance
+    }
+    /// Q, m²/s⁴.
+    pub fn process_noise(&self) -> S {
+        self.process_noise
+    }
+
+    /// Cross-range standard deviation √VAR = R·σ_B at range R (m), floored
+    /// at [`CROSS_RANGE_SIGMA_FLOOR`].
+    pub fn cross_range_sigma(&self, range: S) -> S {
+        (range * self.bearing_sigma).max_of(S::from_f64_lossy(CROSS_RANGE_SIGMA_FLOOR))
+    }
+}
+
+/// √(a² + b²) without forming a² (positions up to 4·10⁵ m would overflow
+/// Q32.32 when squared): the larger magnitude times √(1 + k²), k ≤ 1.
+pub fn hypot<S: Scalar>(a: S, b: S) -> S {
+    let (a, b) = (a.abs(), b.abs());
+    let (large, small) = if a >= b { (a, b) } else { (b, a) };
+    if large == S::ZERO {
+        return small; // zero, or an invalid value that propagates
+    }
+    let k = small / large;
+    large * (S::ONE + k * k).sqrt()
+}
+
+/// A Givens rotation of two columns of a two-row array that zeroes the
+/// first row's second entry: returns the first row's new first entry (its
+/// length, ≥ 0) and the second row's two new entries.
+fn givens<S: Scalar>(r0p: S, r0q: S, r1p: S, r1q: S) -> (S, S, S) {
+    let r = hypot(r0p, r0q);
+    if r == S::ZERO {
+        return (r, r1p, r1q);
+    }
+    let (cos, sin) = (r0p / r, r0q / r);
+    (r, cos * r1p + sin * r1q, cos * r1q - sin * r1p)
+}
+
+/// A position/velocity covariance along one direction, as its lower
+/// Cholesky factor L = [a 0; b c] (P = L·Lᵀ): P₁₁ = a² (m²),
+/// P₁₂ = a·b (m²/s), P₂₂ = b² + c² (m²/s²); a, c ≥ 0 in m and m/s.
+#[derive(Debug, Clone, Copy, PartialEq)]
+#[cfg_attr(feature = "defmt", derive(defmt::Format))]
+pub struct CovarianceFactor<S> {
+    pub a: S,
+    pub b: S,
+    pub c: S,
+}
+
+impl<S: Scalar> CovarianceFactor<S> {
+    const ZERO: Self = CovarianceFactor {
+        a: S::ZERO,
+        b: S::ZERO,
+        c: S::ZERO,
+    };
+
+    /// The covariance [P₁₁, P₁₂, P₂₂] in f64 (for tools and tests; in m²
+    /// units it may exceed what `S` can hold).
+    pub fn covariance_f64(&self) -> [f64; 3] {
+        let (a, b, c) = (self.a.to_f64(), self.b.to_f64(), self.c.to_f64());
+        [a * a, a * b, b * b + c * c]
+    }
+
+    /// Two-point differencing: P = [σ², σ²/T; σ²/T, (σ₁² + σ²)/T²], whose
+    /// factor is a = σ, b = σ/T, c = σ₁/T.
+    fn two_point(sigma: S, first_sigma: S, elapsed: S) -> Self {
+        CovarianceFactor {
+            a: sigma,
+            b: sigma / elapsed,
+            c: first_sigma / elapsed,
+        }
+    }
+
+    /// He et al. eq. (8), PCOV = Φ P Φᵀ + Γ Q Γᵀ with Φ = [1 T; 0 1],
+    /// Γ = [T²/2; T], in factor form: [Φ·L | Γ·√Q] =
+    /// [a + T b, T c, T² √Q/2; b, c, T √Q] triangularised by two Givens
+    /// rotations (which leave M·Mᵀ = PCOV unchanged).
+    fn predict(&self, dt: S, process_sigma: S) -> Self {
+        let half = S::from_f64_lossy(0.5);
+        let m00 = self.a + dt * self.b;
+        let m01 = dt * self.c;
+        let m02 = dt * dt * process_sigma * half;
+        let m12 = dt * process_sigma;
+        let (r0, r10, r11) = givens(m00, m01, self.b, self.c);
+        let (a, b, r12) = givens(r0, m02, r10, m12);
+        CovarianceFactor {
+            a,
+            b,
+            c: hypot(r11, r12),
+        }
+    }
+
+    /// Position and velocity gains K = PCOV·Dᵀ/(PCOV₁₁ + σ²) for a position
+    /// measurement of standard deviation `sigma` (eq. 9: α and β/T; eq. 10:
+    /// W1 and W2), and the factor of the updated covariance (I − K D)·PCOV:
+    /// with s = 1 + (a/σ)², a and b shrink by √s and c is unchanged. The
+    /// branch keeps the ratio of a and σ at most 1 so no square exceeds 1.
+    fn update(&self, sigma: S) -> (S, S, Self) {
+        let CovarianceFactor { a, b, c } = *self;
+        if a <= sigma {
+            let u = a / sigma;
+            let s = S::ONE + u * u;
+            let root = s.sqrt();
+            let kp = u * u / s;
+            let kv = b * (u / s) / sigma;
+            (
+                kp,
+                kv,
+                CovarianceFactor {
+                    a: a / root,
+                    b: b / root,
+                    c,
+                },
+            )
+        } else {
+            let w = sigma / a;
+            let s = S::ONE + w * w;
+            let root = s.sqrt();
+            let b_over_a = b / a;
+            let kp = S::ONE / s;
+            let kv = b_over_a / s;
+            let shrunk = CovarianceFactor {
+                a: sigma / root,
+                b: b_over_a * sigma / root,
+                c,
+            };
+            (kp, kv, shrunk)
+        }
+    }
+
+    fn is_valid(&self) -> bool {
+        self.a.is_valid() && self.b.is_valid() && self.c.is_valid()
+    }
+}
+
+/// The gains an update used.
+#[derive(Debug, Clone, Copy, PartialEq)]
+#[cfg_attr(feature = "defmt", derive(defmt::Format))]
+pub struct RangeAzimuthGains<S> {
+    /// α along range (eq. 9).
+    pub alpha: S,
+    /// β along range (eq. 9: T·PCOV₁₂/(PCOV₁₁ + σ_R²); the velocity gain is β/T).
+    pub beta: S,
+    /// W1, position gain across range (eq. 10).
+    pub w1: S,
+    /// W2, velocity gain across range (eq. 10), in 1/s.
+    pub w2: S,
+}
+
+/// The prediction an update corrected and its residuals.
+#[derive(Debug, Clone, Copy, PartialEq)]
+#[cfg_attr(feature = "defmt", derive(defmt::Format))]
+pub struct RangeAzimuthInnovation<S> {
+    /// Predicted position (x, y), m.
+    pub predicted: [S; 2],
+    /// RESID_R = R − (x_p sin B + y_p cos B), m (eq. 11, reading 1).
+    pub range_residual: S,
+    /// RESID_CR = x_p cos B − y_p sin B, m (eq. 11, reading 1): prediction
+    /// minus measurement across the line of sight.
+    pub cross_range_residual: S,
+    pub gains: RangeAzimuthGains<S>,
+}
+
+/// What an update did.
+#[derive(Debug, Clone, Copy, PartialEq)]
+#[cfg_attr(feature = "defmt", derive(defmt::Format))]
+pub enum RangeAzimuthOutcome<S> {
+    /// First measurement: position only.
+    FirstPoint,
+    /// Second measurement: velocity from the difference, covariances set.
+    SecondPoint,
+    /// A filtered update (eqs. 7–13).
+    Filtered(RangeAzimuthInnovation<S>),
+}
+
+/// Predicted position and velocity after an interval.
+#[derive(Debug, Clone, Copy, PartialEq)]
+#[cfg_attr(feature = "defmt", derive(defmt::Format))]
+pub struct PlanarPrediction<S> {
+    /// (x, y), m.
+    pub position: [S; 2],
+    /// (ẋ, ẏ), m/s.
+    pub velocity: [S; 2],
+}
+
+/// The range–azimuth projection filter (He, Peng, Ling & Quan, eqs. 7–13).
+/// See the module docs for the readings implemented.
+#[derive(Debug, Clone, Copy, PartialEq)]
+#[cfg_attr(feature = "defmt", derive(defmt::Format))]
+pub struct RangeAzimuthFilter<S> {
+    noise: RangeAzimuthNoise<S>,
+    phase: Phase,
+    position: [S; 2],
+    velocity: [S; 2],
+    /// While `OnePoint`: time since the first measurement (coasts add to it).
+    since_first: S,
+    /// While `OnePoint`: √VAR of the first measurement.
+    first_cross_sigma: S,
+    range_factor: CovarianceFactor<S>,
+    cross_factor: CovarianceFactor<S>,
+    last: Option<RangeAzimuthInnovation<S>>,
+    saturations: u32,
+}
+
+#[inline]
+fn check_interval<S: Scalar>(dt: S) -> Result<(), FilterError> {
+    if dt.is_valid() && dt > S::ZERO {
+        Ok(())
+    } else {
+        Err(FilterError::InvalidInterval)
+    }
+}
+
+/// Azimuth of (x, y), clockwise from the y axis, in [0, 2π).
+pub fn azimuth_of<S: Scalar>(x: S, y: S) -> S {
+    let two_pi = S::from_f64_lossy(core::f64::consts::TAU);
+    let a = x.atan2(y);
+    if a < S::ZERO {
+        let wrapped = a + two_pi;
+        // A tiny negative angle plus 2π can round to 2π in f32/f64: that
+        // direction is azimuth 0.
+        if wrapped >= two_pi {
+            S::ZERO
+        } else {
+            wrapped
+        }
+    } else {
+        a
+    }
+}
+
+impl<S: Scalar> RangeAzimuthFilter<S> {
+    /// An empty filter, waiting for its first measurement.
+    pub fn new(noise: RangeAzimuthNoise<S>) -> Self {
+        RangeAzimuthFilter {
+            noise,
+            phase: Phase::Empty,
+            position: [S::ZERO; 2],
+            velocity: [S::ZERO; 2],
+            since_first: S::ZERO,
+            first_cross_sigma: S::ZERO,
+            range_factor: CovarianceFactor::ZERO,
+            cross_factor: CovarianceFactor::ZERO,
+            last: None,
+            saturations: 0,
+        }
+    }
+
+    pub fn noise(&self) -> &RangeAzimuthNoise<S> {
+        &self.noise
+    }
+    pub fn phase(&self) -> Phase {
+        self.phase
+    }
+    /// Estimated (x, y), m (x = R sin B, y = R cos B).
+    pub fn position(&self) -> [S; 2] {
+        self.position
+    }
+    /// Estimated (ẋ, ẏ), m/s (zero before the second measurement).
+    pub fn velocity(&self) -> [S; 2] {
+        self.velocity
+    }
+    /// Estimated range √(x² + y²), m: the re-synthesis of He et al. §3.
+    /// Invalid only if the position is beyond 1.5·10⁹ m (fixed point).
+    pub fn range(&self) -> S {
+        let [x, y] = self.position;
+        hypot(x, y)
+    }
+    /// Estimated azimuth atan2(x, y) in [0, 2π), rad.
+    pub fn azimuth(&self) -> S {
+        let [x, y] = self.position;
+        azimuth_of(x, y)
+    }
+    /// Estimated range rate ṙ = (x ẋ + y ẏ)/r, m/s (negative when closing),
+    /// computed as the velocity's component along the unit line of sight so
+    /// no product of a position and a velocity is formed. Zero at r = 0.
+    pub fn range_rate(&self) -> S {
+        let [x, y] = self.position;
+        let [vx, vy] = self.velocity;
+        let r = hypot(x, y);
+        if r == S::ZERO {
+            return S::ZERO;
+        }
+        (x / r) * vx + (y / r) * vy
+    }
+    /// Covariance factor along range (zero before tracking).
+    pub fn range_covariance(&self) -> CovarianceFactor<S> {
+        self.range_factor
+    }
+    /// Covariance factor across range (zero before tracking).
+    pub fn cross_range_covariance(&self) -> CovarianceFactor<S> {
+        self.cross_factor
+    }
+    /// Prediction, residuals and gains of the last filtered update.
+    pub fn last_innovation(&self) -> Option<RangeAzimuthInnovation<S>> {
+        self.last
+    }
+    /// How many updates or coasts were discarded because they saturated.
+    pub fn saturations(&self) -> u32 {
+        self.saturations
+    }
+
+    fn saturated(&mut self) -> FilterError {
+        self.saturations = self.saturations.saturating_add(1);
+        FilterError::Saturated
+    }
+
+    /// The position and velocity predicted `dt` ahead, without changing the
+    /// filter (constant velocity, eq. 4).
+    pub fn predict(&self, dt: S) -> Result<PlanarPrediction<S>, FilterError> {
+        check_interval(dt)?;
+        let [x, y] = self.position;
+        let [vx, vy] = self.velocity;
+        let p = PlanarPrediction {
+            position: [x + dt * vx, y + dt * vy],
+            velocity: self.velocity,
+        };
+        if p.position[0].is_valid() && p.position[1].is_valid() {
+            Ok(p)
+        } else {
+            Err(FilterError::Saturated)
+        }
+    }
+
+    /// Incorporates range `range` (m, > 0) and azimuth `azimuth` (rad, any
+    /// finite value: it is used through sin and cos only, so B + 2π and
+    /// B − 2π are the same measurement as B), taken `dt` after the previous
+    /// call.
+    ///
+    /// A non-finite range or azimuth, a range ≤ 0, an interval that is not
+    /// a finite number > 0, or an update whose arithmetic saturates, is
+    /// refused and leaves the filter unchanged (the last is counted).
+    pub fn update(
+        &mut self,
+        range: S,
+        azimuth: S,
+        dt: S,
+    ) -> Result<RangeAzimuthOutcome<S>, FilterError> {
+        if !(range.is_valid() && azimuth.is_valid()) || range <= S::ZERO {
+            return Err(FilterError::InvalidMeasurement);
+        }
+        check_interval(dt)?;
+        let (sin_b, cos_b) = azimuth.sin_cos();
+        let measured = [range * sin_b, range * cos_b];
+        let cross_sigma = self.noise.cross_range_sigma(range);
+        if !(measured[0].is_valid() && measured[1].is_valid() && cross_sigma.is_valid()) {
+            return Err(self.saturated());
+        }
+        match self.phase {
+            Phase::Empty => {
+                self.position = measured;
+                self.velocity = [S::ZERO; 2];
+                self.since_first = S::ZERO;
+                self.first_cross_sigma = cross_sigma;
+                self.phase = Phase::OnePoint;
+                Ok(RangeAzimuthOutcome::FirstPoint)
+            }
+            Phase::OnePoint => {
+                let elapsed = self.since_first + dt;
+                let velocity = [
+                    (measured[0] - self.position[0]) / elapsed,
+                    (measured[1] - self.position[1]) / elapsed,
+                ];
+                let sigma_r = self.noise.range_sigma;
+                let range_factor = CovarianceFactor::two_point(sigma_r, sigma_r, elapsed);
+                let cross_factor =
+                    CovarianceFactor::two_point(cross_sigma, self.first_cross_sigma, elapsed);
+                if !(velocity[0].is_valid()
+                    && velocity[1].is_valid()
+                    && range_factor.is_valid()
+                    && cross_factor.is_valid())
+                {
+                    return Err(self.saturated());
+                }
+                self.position = measured;
+                self.velocity = velocity;
+                self.range_factor = range_factor;
+                self.cross_factor = cross_factor;
+                self.phase = Phase::Tracking;
+                Ok(RangeAzimuthOutcome::SecondPoint)
+            }
+            Phase::Tracking => self.filter(range, sin_b, cos_b, cross_sigma, dt),
+        }
+    }
+
+    fn filter(
+        &mut self,
+        range: S,
+        sin_b: S,
+        cos_b: S,
+        cross_sigma: S,
+        dt: S,
+    ) -> Result<RangeAzimuthOutcome<S>, FilterError> {
+        let [x, y] = self.position;
+        let [vx, vy] = self.velocity;
+        // Prediction (eq. 4 of the paper's αβ section; reading 2).
+        let (xp, yp) = (x + dt * vx, y + dt * vy);
+        // Eqs. (7)–(8), then eq. (9) with σ_R (reading 3) and eq. (10) with
+        // √VAR, and the covariance update (reading 4).
+        let q = self.noise.process_sigma;
+        let (alpha, range_velocity_gain, range_factor) = self
+            .range_factor
+            .predict(dt, q)
+            .update(self.noise.range_sigma);
+        let (w1, w2, cross_factor) = self.cross_factor.predict(dt, q).update(cross_sigma);
+        // Eq. (11) with the predicted position (reading 1).
+        let range_residual = range - (xp * sin_b + yp * cos_b);
+        let cross_residual = xp * cos_b - yp * sin_b;
+        // Eqs. (12)–(13).
+        let along_x = range_residual * sin_b;
+        let along_y = range_residual * cos_b;
+        let across_x = cross_residual * cos_b;
+        let across_y = cross_residual * sin_b;
+        let position = [
+            xp + alpha * along_x - w1 * across_x,
+            yp + alpha * along_y + w1 * across_y,
+        ];
+        let velocity = [
+            vx + range_velocity_gain * along_x - w2 * across_x,
+            vy + range_velocity_gain * along_y + w2 * across_y,
+        ];
+        let innovation = RangeAzimuthInnovation {
+            predicted: [xp, yp],
+            range_residual,
+            cross_range_residual: cross_residual,
+            gains: RangeAzimuthGains {
+                alpha,
+                beta: range_velocity_gain * dt,
+                w1,
+                w2,
+            },
+        };
+        // Invalid values are sticky: checking the results covers every
+        // intermediate.
+        if !(position.iter().chain(velocity.iter()).all(|v| v.is_valid())
+            && range_factor.is_valid()
+            && cross_factor.is_valid()
+            && innovation.gains.beta.is_valid())
+        {
+            return Err(self.saturated());
+        }
+        self.position = position;
+        self.velocity = velocity;
+        self.range_factor = range_factor;
+        self.cross_factor = cross_factor;
+        self.last = Some(innovation);
+        Ok(RangeAzimuthOutcome::Filtered(innovation))
+    }
+
+    /// No measurement this scan: advance the state and both covariances by
+    /// `dt` (eqs. 4 and 8). Before the second measurement the position holds
+    /// and the interval is remembered for the velocity difference.
+    pub fn coast(&mut self, dt: S) -> Result<(), FilterError> {
+        check_interval(dt)?;
+        match self.phase {
+            Phase::Empty => Ok(()),
+            Phase::OnePoint => {
+                let since_first = self.since_first + dt;
+                if !since_first.is_valid() {
+                    return Err(self.saturated());
+                }
+                self.since_first = since_first;
+                Ok(())
+            }
+            Phase::Tracking => {
+                let q = self.noise.process_sigma;
+                let range_factor = self.range_factor.predict(dt, q);
+                let cross_factor = self.cross_factor.predict(dt, q);
+                let position = self.predict(dt).map(|p| p.position);
+                match position {
+                    Ok(position) if range_factor.is_valid() && cross_factor.is_valid() => {
+                        self.position = position;
+                        self.range_factor = range_factor;
+                        self.cross_factor = cross_factor;
+                        Ok(())
+                    }
+                    _ => Err(self.saturated()),
+                }
+            }
+        }
+    }
+}
