@@ -1,5 +1,6 @@
 //! Host-side support for abtrack: what needs `std`.
 
+pub mod experiments;
 pub mod kalman;
 pub mod metrics;
 pub mod noise;
