@@ -7,6 +7,7 @@
 //! | [`num`] | the [`num::Scalar`] abstraction over `f64`, `f32` and Q32.32 fixed point |
 //! | [`filter`] | single-target αβ / αβγ filters, one axis and composed into 2-D/3-D |
 //! | [`design`] | closed-form analysis: stability, noise ratio, steady-state and transient errors |
+//! | [`track`] | the fixed-capacity multi-target track table: gating, assignment, lifecycle |
 //!
 //! The specification is five papers, cited in the doc comments by author and
 //! equation number (see README.md, "The papers").
@@ -18,6 +19,7 @@ pub mod design;
 pub mod filter;
 pub mod num;
 pub mod tcas;
+pub mod track;
 
 pub use filter::{AlphaBeta, AlphaBetaGamma, Cartesian, FilterError, GainError, Gains};
 pub use num::{Fix, NumError, Scalar};

@@ -1,0 +1,200 @@
+//! The assignment solver against brute force, plus hand-checked cases.
+
+#![allow(clippy::needless_range_loop)]
+
+mod track_support;
+
+use abtrack::track::assign::{AssignmentSolver, FORBIDDEN, MAX_COST};
+use proptest::prelude::*;
+use track_support::Lcg;
+
+/// Best (most pairs, then least cost) over every partial matching.
+fn brute_force(cost: &[Vec<u16>], n_cols: usize) -> (u32, u64) {
+    fn go(cost: &[Vec<u16>], row: usize, used: u32, n_cols: usize) -> (u32, u64) {
+        if row == cost.len() {
+            return (0, 0);
+        }
+        // Row left unassigned.
+        let mut best = go(cost, row + 1, used, n_cols);
+        for c in 0..n_cols {
+            let v = cost[row][c];
+            if v == FORBIDDEN || used & (1 << c) != 0 {
+                continue;
+            }
+            let (k, t) = go(cost, row + 1, used | (1 << c), n_cols);
+            let cand = (k + 1, t + v as u64);
+            if cand.0 > best.0 || (cand.0 == best.0 && cand.1 < best.1) {
+                best = cand;
+            }
+        }
+        best
+    }
+    go(cost, 0, 0, n_cols)
+}
+
+/// Runs the solver and checks the matching it reports is consistent:
+/// inverse maps agree, no forbidden pair, the sum matches `total_cost`, and
+/// the step count is within m·n(n+1)/2.
+fn solve_checked(cost: &[Vec<u16>], n_cols: usize) -> (u32, u64) {
+    let n_rows = cost.len();
+    let mut solver: AssignmentSolver<8, 8> = AssignmentSolver::new();
+    let sol = solver.solve(n_rows, n_cols, |r, c| cost[r][c]).unwrap();
+    let mut count = 0;
+    let mut total = 0u64;
+    for r in 0..n_rows {
+        if let Some(c) = solver.col_for_row(r) {
+            assert!(c < n_cols);
+            assert_eq!(solver.row_for_col(c), Some(r));
+            assert_ne!(cost[r][c], FORBIDDEN, "forbidden pair assigned");
+            count += 1;
+            total += cost[r][c] as u64;
+        }
+    }
+    for c in 0..n_cols {
+        if let Some(r) = solver.row_for_col(c) {
+            assert_eq!(solver.col_for_row(r), Some(c));
+        }
+    }
+    assert_eq!((sol.assigned, sol.total_cost), (count, total));
+    let n = n_rows.min(n_cols) as u32;
+    let m = n_rows.max(n_cols) as u32;
+    assert!(
+        sol.steps <= m * n * (n + 1) / 2,
+        "steps {} > bound {}",
+        sol.steps,
+        m * n * (n + 1) / 2
+    );
+    (count, total)
+}
+
+fn matrix() -> impl Strategy<Value = (Vec<Vec<u16>>, usize)> {
+    (0usize..=7, 0usize..=7).prop_flat_map(|(n, m)| {
+        // Forbidden pairs, small costs (many ties) and full-range costs.
+        let entry = prop_oneof![
+            3 => Just(FORBIDDEN),
+            3 => 0u16..=4,
+            3 => 0u16..=MAX_COST,
+        ];
+        (
+            proptest::collection::vec(proptest::collection::vec(entry, m), n),
+            Just(m),
+        )
+    })
+}
+
+proptest! {
+    #![proptest_config(ProptestConfig::with_cases(3000))]
+
+    #[test]
+    fn matches_brute_force((cost, n_cols) in matrix()) {
+        let expected = brute_force(&cost, n_cols);
+        let got = solve_checked(&cost, n_cols);
+        prop_assert_eq!(got, expected);
+    }
+}
+
+#[test]
+fn hand_checked_square() {
+    // Rows/cols 0..3. The six permutations cost
+    // (0,1,2): 4+0+2 = 6   (0,2,1): 4+5+2 = 11  (1,0,2): 1+2+2 = 5
+    // (1,2,0): 1+5+3 = 9   (2,0,1): 3+2+2 = 7   (2,1,0): 3+0+3 = 6
+    // so the optimum is row0→col1, row1→col0, row2→col2 with cost 5.
+    let cost = [[4u16, 1, 3], [2, 0, 5], [3, 2, 2]];
+    let mut solver: AssignmentSolver<3, 3> = AssignmentSolver::new();
+    let sol = solver.solve(3, 3, |r, c| cost[r][c]).unwrap();
+    assert_eq!((sol.assigned, sol.total_cost), (3, 5));
+    assert_eq!(solver.col_for_row(0), Some(1));
+    assert_eq!(solver.col_for_row(1), Some(0));
+    assert_eq!(solver.col_for_row(2), Some(2));
+}
+
+#[test]
+fn more_pairs_beat_lower_cost() {
+    // Track 0 gates measurement 0 (cost 0) and 1 (cost 10); track 1 gates
+    // only measurement 0 (cost 1). Least cost alone would give track 0 its
+    // perfect match and leave track 1 empty (total 0); GNN assigns both:
+    // 0→1, 1→0, total 11.
+    let cost = [[0u16, 10], [1, FORBIDDEN]];
+    let mut solver: AssignmentSolver<2, 2> = AssignmentSolver::new();
+    let sol = solver.solve(2, 2, |r, c| cost[r][c]).unwrap();
+    assert_eq!((sol.assigned, sol.total_cost), (2, 11));
+    assert_eq!(solver.col_for_row(0), Some(1));
+    assert_eq!(solver.col_for_row(1), Some(0));
+}
+
+#[test]
+fn more_rows_than_columns() {
+    // Two tracks compete for one measurement: the closer (cost 1) wins.
+    let cost = [[5u16], [1], [FORBIDDEN]];
+    let mut solver: AssignmentSolver<3, 1> = AssignmentSolver::new();
+    let sol = solver.solve(3, 1, |r, c| cost[r][c]).unwrap();
+    assert_eq!((sol.assigned, sol.total_cost), (1, 1));
+    assert_eq!(solver.col_for_row(1), Some(0));
+    assert_eq!(solver.col_for_row(0), None);
+    assert_eq!(solver.row_for_col(0), Some(1));
+}
+
+#[test]
+fn all_forbidden_and_empty() {
+    let mut solver: AssignmentSolver<4, 4> = AssignmentSolver::new();
+    let sol = solver.solve(3, 4, |_, _| FORBIDDEN).unwrap();
+    assert_eq!((sol.assigned, sol.total_cost), (0, 0));
+    assert!((0..3).all(|r| solver.col_for_row(r).is_none()));
+    let sol = solver.solve(0, 4, |_, _| 0).unwrap();
+    assert_eq!(sol.assigned, 0);
+    let sol = solver.solve(4, 0, |_, _| 0).unwrap();
+    assert_eq!(sol.assigned, 0);
+}
+
+#[test]
+fn too_large_is_an_error() {
+    let mut solver: AssignmentSolver<2, 2> = AssignmentSolver::new();
+    assert!(solver.solve(3, 2, |_, _| 0).is_err());
+    assert!(solver.solve(2, 3, |_, _| 0).is_err());
+}
+
+/// Steps on dense 32×32 problems (the firmware's table size) stay under the
+/// bound m·n(n+1)/2 = 16 896; prints the largest seen.
+#[test]
+fn dense_32_by_32_steps() {
+    let mut rng = Lcg(7);
+    let mut solver: AssignmentSolver<32, 32> = AssignmentSolver::new();
+    let mut worst = 0;
+    for trial in 0..200 {
+        let mut cost = [[0u16; 32]; 32];
+        for row in cost.iter_mut() {
+            for c in row.iter_mut() {
+                let u = (rng.next_signed() + 1.0) / 2.0;
+                *c = match trial % 3 {
+                    // Dense, distinct costs.
+                    0 => (u * MAX_COST as f64) as u16,
+                    // Heavy ties.
+                    1 => (u * 3.0) as u16,
+                    // Sparse gates.
+                    _ => {
+                        if u < 0.8 {
+                            FORBIDDEN
+                        } else {
+                            (u * 1000.0) as u16
+                        }
+                    }
+                };
+            }
+        }
+        let sol = solver.solve(32, 32, |r, c| cost[r][c]).unwrap();
+        assert!(sol.steps <= 16_896);
+        worst = worst.max(sol.steps);
+        // Costs on the anti-diagonal-free structure are arbitrary; the
+        // optimum must at least match a greedy row-by-row matching in size.
+        let mut used = [false; 32];
+        let mut greedy = 0;
+        for row in cost.iter() {
+            if let Some(c) = (0..32).find(|&c| !used[c] && row[c] != FORBIDDEN) {
+                used[c] = true;
+                greedy += 1;
+            }
+        }
+        assert!(sol.assigned >= greedy);
+    }
+    println!("32x32: worst solver steps seen {worst} (bound 16896)");
+}

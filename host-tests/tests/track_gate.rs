@@ -1,0 +1,192 @@
+//! Gate sizes and the error covariance behind them: hand-computed values and
+//! Tenne & Singh's noise ratio.
+
+mod track_support;
+
+use abtrack::track::assign::MAX_COST;
+use abtrack::track::{
+    hypot, ErrorVariance, FixedGainTrack, Gate, GateRegion, Measurement, Observation, TrackFilter,
+};
+use abtrack::{Fix, Gains, Scalar};
+use track_support::s;
+
+fn close(a: f64, b: f64, tol: f64) -> bool {
+    (a - b).abs() <= tol
+}
+
+#[test]
+fn two_point_covariance_by_hand() {
+    // x = z₂, v = z₂ − z₁ over T = 1: predicted x = 2z₂ − z₁ has variance
+    // 4 + 1 = 5 (in units of σ²).
+    let p = ErrorVariance::<f64>::after_two_points(1.0);
+    assert_eq!((p.p11, p.p12, p.p22), (1.0, 1.0, 2.0));
+    let q = p.predicted(1.0);
+    assert_eq!((q.p11, q.p12, q.p22), (5.0, 3.0, 2.0));
+    // Update with α = 0.5, β = 0.2, T = 1 (k1 = 0.5, k2 = 0.2):
+    // p11 = (1−k1)²·5 + k1² = 1.25 + 0.25 = 1.5
+    // p12 = (1−k1)(3 − k2·5) + k1·k2 = 0.5·2 + 0.1 = 1.1
+    // p22 = 2 − 2·k2·3 + k2²·(5 + 1) = 2 − 1.2 + 0.24 = 1.04
+    let u = q.updated(0.5, 0.2, 1.0);
+    assert!(close(u.p11, 1.5, 1e-12));
+    assert!(close(u.p12, 1.1, 1e-12));
+    assert!(close(u.p22, 1.04, 1e-12));
+    // α = β = 1 reproduces the two-point estimator exactly: a fixed point.
+    let w = q.updated(1.0, 1.0, 1.0);
+    assert!(close(w.p11, 1.0, 1e-12) && close(w.p12, 1.0, 1e-12) && close(w.p22, 2.0, 1e-12));
+}
+
+/// Tenne & Singh eq. (13): ρ² = (2α² + αβ + 2β) / (α(4 − β − 2α)).
+fn tenne_singh_13(a: f64, b: f64) -> f64 {
+    (2.0 * a * a + a * b + 2.0 * b) / (a * (4.0 - b - 2.0 * a))
+}
+
+#[test]
+fn steady_state_matches_tenne_singh_eq13() {
+    // Hand value for α = 0.5, β = 0.2: (0.5 + 0.1 + 0.4)/(0.5·2.8) = 1/1.4.
+    assert!(close(tenne_singh_13(0.5, 0.2), 1.0 / 1.4, 1e-15));
+    for &(a, b) in &[
+        (0.5, 0.2),
+        (0.3, 0.05),
+        (1.0, 1.0),
+        (0.8, 0.4),
+        (0.1, 0.0053),
+    ] {
+        for &t in &[1.0, 0.5, 4.0] {
+            let mut p = ErrorVariance::<f64>::after_two_points(t);
+            for _ in 0..20_000 {
+                p = p.predicted(t).updated(a, b, t);
+            }
+            let predicted = p.predicted(t).p11;
+            assert!(
+                close(predicted, tenne_singh_13(a, b), 1e-9),
+                "α={a} β={b} T={t}: {predicted} vs {}",
+                tenne_singh_13(a, b)
+            );
+        }
+    }
+}
+
+/// A stationary fixed-gain track at (3000, 4000) started from two points 1 s
+/// apart, plus its prediction 1 s ahead.
+fn stationary<S: Scalar>(
+    gains: &Gains<S>,
+) -> (FixedGainTrack<S>, abtrack::track::PredictedState<S>) {
+    let z = Observation::new(Measurement::Cartesian {
+        x: s::<S>(3000.0),
+        y: s(4000.0),
+    })
+    .unwrap();
+    let mut f = FixedGainTrack::empty(gains);
+    f.update(gains, &z, s(1.0)).unwrap();
+    f.update(gains, &z, s(1.0)).unwrap();
+    let p = f.predict(gains, s(1.0)).unwrap();
+    (f, p)
+}
+
+#[test]
+fn uncertainty_gate_radius_by_hand() {
+    let gains = Gains::<f64>::alpha_beta(0.5, 0.2).unwrap();
+    let (mut f, p) = stationary(&gains);
+    // p = 5 one second after initiation; σ = 5, G = 6, a_max = 4:
+    // r = 5·√(6·(5 + 1)) + ½·4·1² = 30 + 2 = 32.
+    let gate = Gate::uncertainty(5.0, 6.0, 4.0).unwrap();
+    let region = f.gate_region(&gains, &p, 1.0, &gate).unwrap();
+    assert_eq!(region.radius(), 32.0);
+    // After one filtered update p⁻ = 1.5 + 2·1.1 + 1.04 = 4.74 (see above):
+    // r = 5·√(6·5.74) = 5·√34.44 = 29.3428...
+    let z = Observation::new(Measurement::Cartesian {
+        x: 3000.0,
+        y: 4000.0,
+    })
+    .unwrap();
+    f.update(&gains, &z, 1.0).unwrap();
+    let gate = Gate::uncertainty(5.0, 6.0, 0.0).unwrap();
+    let p = f.predict(&gains, 1.0).unwrap();
+    let r = f.gate_region(&gains, &p, 1.0, &gate).unwrap().radius();
+    assert!(close(r, 5.0 * 34.44f64.sqrt(), 1e-9), "{r}");
+    // Coasting widens it: one coast of 1 s, then predict 1 s:
+    // P after update (1.5, 1.1, 1.04) → coast → (4.74, 2.14, 1.04)
+    // → predicted p11 = 4.74 + 2·2.14 + 1.04 = 10.06; r = 5·√(6·11.06).
+    f.coast(&gains, 1.0).unwrap();
+    let p = f.predict(&gains, 1.0).unwrap();
+    let r = f.gate_region(&gains, &p, 1.0, &gate).unwrap().radius();
+    assert!(close(r, 5.0 * (6.0f64 * 11.06).sqrt(), 1e-9), "{r}");
+}
+
+#[test]
+fn wave_gate_radius_by_hand() {
+    // Li et al. eqs. (11)–(12): ρ = |(3000, 4000)| = 5000 m, Δρ = 30 m,
+    // Δθ = 0.008 rad → ρΔθ = 40, √(30² + 40²) = 50; α = 0.5 → λ = √0.5;
+    // κ = 2: r = 2·√0.5·50 = 70.7107 m.
+    let expected = 2.0 * 0.5f64.sqrt() * 50.0;
+    let gains = Gains::<f64>::alpha_beta(0.5, 0.2).unwrap();
+    let (f, p) = stationary(&gains);
+    let gate = Gate::wave(30.0, 0.008, 2.0).unwrap();
+    let r = f.gate_region(&gains, &p, 1.0, &gate).unwrap().radius();
+    assert!(close(r, expected, 1e-9), "{r}");
+    // The same in Q32.32 and f32.
+    let gains = Gains::<Fix>::alpha_beta_f64(0.5, 0.2).unwrap();
+    let (f, p) = stationary(&gains);
+    let gate = Gate::wave(s(30.0), s(0.008), s(2.0)).unwrap();
+    let r = f.gate_region(&gains, &p, s(1.0), &gate).unwrap().radius();
+    assert!(close(r.to_f64(), expected, 1e-6), "{r:?}");
+    let gains = Gains::<f32>::alpha_beta_f64(0.5, 0.2).unwrap();
+    let (f, p) = stationary(&gains);
+    let gate = Gate::wave(30.0f32, 0.008, 2.0).unwrap();
+    let r = f.gate_region(&gains, &p, 1.0, &gate).unwrap().radius();
+    assert!(close(r as f64, expected, 1e-3), "{r}");
+}
+
+#[test]
+fn gate_costs_and_edges() {
+    // Radius 8: its inverse 0.125 is exact in binary, so the edge is exact.
+    let region = GateRegion::circle([100.0, 200.0], 8.0).unwrap();
+    let at =
+        |x: f64, y: f64| region.cost(&Observation::new(Measurement::Cartesian { x, y }).unwrap());
+    assert_eq!(at(100.0, 200.0), Some(0));
+    // d = r/2: (1/2)²·65534 = 16383.5 → rounds to 16384.
+    assert_eq!(at(104.0, 200.0), Some(16384));
+    assert_eq!(at(100.0, 196.0), Some(16384));
+    // On the edge: cost MAX_COST; just beyond: outside.
+    assert_eq!(at(108.0, 200.0), Some(MAX_COST));
+    assert_eq!(at(108.001, 200.0), None);
+    assert_eq!(at(100.0, 191.999), None);
+    // Inside the bounding box but outside the circle: (6, 6) has d = 8.49.
+    assert_eq!(at(106.0, 206.0), None);
+    assert!(GateRegion::circle([0.0, 0.0], 0.0).is_none());
+    assert!(GateRegion::circle([0.0, 0.0], f64::NAN).is_none());
+    assert!(GateRegion::circle([f64::INFINITY, 0.0], 1.0).is_none());
+}
+
+#[test]
+fn far_measurements_do_not_saturate_fixed_point() {
+    // 800 km apart: squaring would exceed Q32.32's 2.1e9; the gate test
+    // compares per axis first.
+    let region = GateRegion::<Fix>::circle([s(-400_000.0), s(0.0)], s(100.0)).unwrap();
+    let far = Observation::new(Measurement::Cartesian {
+        x: s(400_000.0),
+        y: s(0.0),
+    })
+    .unwrap();
+    assert_eq!(region.cost(&far), None);
+    let h = hypot(s::<Fix>(400_000.0), s(300_000.0));
+    assert!(h.is_valid());
+    assert!(close(h.to_f64(), 500_000.0, 1e-3));
+}
+
+#[test]
+fn bad_gates_refused() {
+    assert!(Gate::uncertainty(0.0, 9.0, 0.0).is_err());
+    assert!(Gate::uncertainty(5.0, -1.0, 0.0).is_err());
+    assert!(Gate::uncertainty(5.0, 9.0, -1.0).is_err());
+    assert!(Gate::uncertainty(f64::NAN, 9.0, 0.0).is_err());
+    assert!(Gate::wave(0.0, 0.0, 2.0).is_err());
+    assert!(Gate::wave(1.0, 0.0, 0.0).is_err());
+    assert!(Gate::Wave {
+        range_sigma: -1.0,
+        bearing_sigma: 0.1,
+        multiple: 1.0
+    }
+    .validated()
+    .is_err());
+}

@@ -1,0 +1,167 @@
+//! Tracker configuration: filter parameters, gate, initiation, confirmation,
+//! deletion and surveillance volume.
+
+use super::gate::{ConfigError, Gate};
+use crate::num::Scalar;
+
+/// Axis-aligned surveillance region (m). Tracks whose position leaves it are
+/// deleted; measurements outside it do not start tracks.
+#[derive(Debug, Clone, Copy, PartialEq)]
+#[cfg_attr(feature = "defmt", derive(defmt::Format))]
+pub struct Volume<S> {
+    min: [S; 2],
+    max: [S; 2],
+}
+
+impl<S: Scalar> Volume<S> {
+    /// The box `min ..= max` on each axis; needs min < max.
+    pub fn new(min: [S; 2], max: [S; 2]) -> Result<Self, ConfigError> {
+        for (lo, hi) in min.iter().zip(max.iter()) {
+            if !(lo.is_valid() && hi.is_valid()) {
+                return Err(ConfigError::NotFinite);
+            }
+            if lo >= hi {
+                return Err(ConfigError::EmptyVolume);
+            }
+        }
+        Ok(Volume { min, max })
+    }
+
+    pub fn min(&self) -> [S; 2] {
+        self.min
+    }
+    pub fn max(&self) -> [S; 2] {
+        self.max
+    }
+
+    /// Inside or on the boundary (false for invalid coordinates).
+    pub fn contains(&self, p: [S; 2]) -> bool {
+        p.iter()
+            .zip(self.min.iter().zip(self.max.iter()))
+            .all(|(v, (lo, hi))| v >= lo && v <= hi)
+    }
+}
+
+/// Everything a [`TrackTable`](super::TrackTable) scan needs besides the
+/// measurements. `P` is the filter's
+/// [`TrackFilter::Params`](super::TrackFilter::Params) (for
+/// [`FixedGainTrack`](super::FixedGainTrack): the `Gains`).
+///
+/// Defaults (from [`TrackerConfig::new`]):
+/// * confirmation 2 of 3 (M-of-N over the first N scans of a tentative track,
+///   the scan that started it counting as the first hit);
+/// * deletion after 3 consecutive misses for a confirmed track, 2 for a
+///   tentative one;
+/// * no initiation margin, no surveillance volume.
+///
+/// Kept outside the table and passed to every scan, so that the table itself
+/// can be built by a `const fn` in a `static` (the checked constructors here
+/// cannot be `const`).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct TrackerConfig<S, P> {
+    params: P,
+    gate: Gate<S>,
+    max_speed: S,
+    initiation_margin: S,
+    confirm_hits: u8,
+    confirm_window: u8,
+    delete_confirmed_misses: u8,
+    delete_tentative_misses: u8,
+    volume: Option<Volume<S>>,
+}
+
+impl<S: Scalar, P: Copy> TrackerConfig<S, P> {
+    /// `params` for the filters, the gate rule, and the largest target speed
+    /// (m/s) for two-point initiation: a measurement pairs with one of the
+    /// previous scan only if they are at most `max_speed·T` apart.
+    pub fn new(params: P, gate: Gate<S>, max_speed: S) -> Result<Self, ConfigError> {
+        let gate = gate.validated()?;
+        if !max_speed.is_valid() {
+            return Err(ConfigError::NotFinite);
+        }
+        if max_speed <= S::ZERO {
+            return Err(ConfigError::OutOfRange);
+        }
+        Ok(TrackerConfig {
+            params,
+            gate,
+            max_speed,
+            initiation_margin: S::ZERO,
+            confirm_hits: 2,
+            confirm_window: 3,
+            delete_confirmed_misses: 3,
+            delete_tentative_misses: 2,
+            volume: None,
+        })
+    }
+
+    /// Adds `margin` (m, ≥ 0) to the initiation radius `max_speed·T`, for
+    /// measurement noise on the two points.
+    pub fn with_initiation_margin(mut self, margin: S) -> Result<Self, ConfigError> {
+        if !margin.is_valid() {
+            return Err(ConfigError::NotFinite);
+        }
+        if margin < S::ZERO {
+            return Err(ConfigError::OutOfRange);
+        }
+        self.initiation_margin = margin;
+        Ok(self)
+    }
+
+    /// Confirm a tentative track when `hits` of its first `window` scans had a
+    /// measurement (1 ≤ hits ≤ window ≤ 32). A tentative track that can no
+    /// longer reach `hits` within `window` scans is deleted.
+    pub fn with_confirmation(mut self, hits: u8, window: u8) -> Result<Self, ConfigError> {
+        if hits == 0 || hits > window || window > 32 {
+            return Err(ConfigError::Confirmation);
+        }
+        self.confirm_hits = hits;
+        self.confirm_window = window;
+        Ok(self)
+    }
+
+    /// Delete a confirmed track after `confirmed` consecutive misses and a
+    /// tentative one after `tentative` (both ≥ 1).
+    pub fn with_deletion(mut self, confirmed: u8, tentative: u8) -> Result<Self, ConfigError> {
+        if confirmed == 0 || tentative == 0 {
+            return Err(ConfigError::Deletion);
+        }
+        self.delete_confirmed_misses = confirmed;
+        self.delete_tentative_misses = tentative;
+        Ok(self)
+    }
+
+    /// Delete tracks that leave `volume`; start none outside it.
+    pub fn with_volume(mut self, volume: Volume<S>) -> Self {
+        self.volume = Some(volume);
+        self
+    }
+
+    pub fn params(&self) -> &P {
+        &self.params
+    }
+    pub fn gate(&self) -> &Gate<S> {
+        &self.gate
+    }
+    pub fn max_speed(&self) -> S {
+        self.max_speed
+    }
+    pub fn initiation_margin(&self) -> S {
+        self.initiation_margin
+    }
+    /// (M, N) of M-of-N confirmation.
+    pub fn confirmation(&self) -> (u8, u8) {
+        (self.confirm_hits, self.confirm_window)
+    }
+    /// (confirmed, tentative) consecutive misses before deletion.
+    pub fn deletion(&self) -> (u8, u8) {
+        (self.delete_confirmed_misses, self.delete_tentative_misses)
+    }
+    pub fn volume(&self) -> Option<&Volume<S>> {
+        self.volume.as_ref()
+    }
+
+    pub(crate) fn in_volume(&self, p: [S; 2]) -> bool {
+        self.volume.as_ref().is_none_or(|v| v.contains(p))
+    }
+}

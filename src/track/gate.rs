@@ -1,0 +1,259 @@
+//! Validation regions (gates): which measurements may belong to a track, and
+//! how far inside the gate each one lies.
+//!
+//! A gate is built once per track and scan ([`GateRegion`]) from the track's
+//! prediction and the configured [`Gate`] rule, then tested against every
+//! measurement. The test returns a normalised cost in `0 ..= MAX_COST`
+//! (0 = at the predicted position, `MAX_COST` = on the gate's edge), the
+//! currency of the assignment solver. Normalising by the gate size makes the
+//! cost the squared distance in units of the track's own uncertainty, the
+//! statistical distance of global nearest neighbour, rather than metres
+//! (which would favour the tracks with the smallest gates).
+//!
+//! Only circular Cartesian regions exist now. A range/azimuth region (a
+//! window in range and bearing around the predicted polar position, for the
+//! range–azimuth filter of He et al.) is meant to be another [`GateRegion`]
+//! variant with its own cost; a filter chooses its region in
+//! [`TrackFilter::gate_region`](super::TrackFilter::gate_region).
+
+use super::Observation;
+use crate::num::Scalar;
+use crate::track::assign::MAX_COST;
+
+/// The rule that sizes each track's gate.
+#[derive(Debug, Clone, Copy, PartialEq)]
+#[cfg_attr(feature = "defmt", derive(defmt::Format))]
+pub enum Gate<S> {
+    /// A circle around the predicted position whose radius follows the
+    /// filter's predicted uncertainty:
+    ///
+    /// r = σ·√(G·(p + 1)) + ½·a_max·T²
+    ///
+    /// * σ: measurement noise standard deviation per axis (m).
+    /// * p: predicted position error variance of the filter in units of σ²
+    ///   ([`TrackFilter::predicted_variance_ratio`](super::TrackFilter::predicted_variance_ratio));
+    ///   the innovation z − x_p then has variance σ²(p + 1) per axis, because
+    ///   the new measurement's noise is independent of the prediction error.
+    /// * G: gate threshold on the squared normalised distance, which is χ²
+    ///   with 2 degrees of freedom for a target that moves as the filter
+    ///   assumes, so a true measurement falls outside with probability
+    ///   e^(−G/2): G = 9.21 keeps 99 %, G = 13.8 keeps 99.9 %.
+    /// * a_max: manoeuvre allowance (m/s²). The αβ model has no process
+    ///   noise, so an accelerating target drifts from the prediction by up to
+    ///   ½·a·T² over the interval T; the gate is widened by that much.
+    Uncertainty {
+        measurement_sigma: S,
+        threshold: S,
+        max_acceleration: S,
+    },
+    /// The wave gate of Li, Zhao, Liang & Zhang: a circle around the
+    /// predicted position of radius
+    ///
+    /// r = κ·λ·√(Δρ² + ρ²Δθ²),  λ = √α  (eqs. 11–12)
+    ///
+    /// * Δρ, Δθ: the radar's range error (m) and bearing error (rad).
+    /// * ρ: range of the predicted position from the sensor at the origin.
+    /// * α: the position gain the track's next update will use
+    ///   ([`TrackFilter::gate_alpha`](super::TrackFilter::gate_alpha)).
+    /// * κ: multiple of the distance error Δd (eq. 11) accepted.
+    ///
+    /// Reading of the paper: its Fig. 1 draws the gate as a box
+    /// Δx × Δy scaled by λ, but the quantities it then tests are the
+    /// Euclidean distance d (eq. 10) against Δd (eq. 11) through the ratio
+    /// r_k = d/Δd (eq. 13), which it lets grow up to a limit R. We take the
+    /// consistent reading: a circular gate d ≤ κ·Δd, with κ playing the role
+    /// of R. The paper gives no value for R; κ is the caller's choice.
+    Wave {
+        range_sigma: S,
+        bearing_sigma: S,
+        multiple: S,
+    },
+}
+
+/// Why a configuration value was refused.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+#[cfg_attr(feature = "defmt", derive(defmt::Format))]
+pub enum ConfigError {
+    /// A value is NaN, infinite or not representable.
+    NotFinite,
+    /// A value that must be > 0 (or ≥ 0 for allowances) is not.
+    OutOfRange,
+    /// M-of-N confirmation needs 1 ≤ M ≤ N ≤ 32.
+    Confirmation,
+    /// Deletion thresholds must be ≥ 1.
+    Deletion,
+    /// The surveillance volume's minimum is not below its maximum.
+    EmptyVolume,
+}
+
+impl core::fmt::Display for ConfigError {
+    fn fmt(&self, f: &mut core::fmt::Formatter<'_>) -> core::fmt::Result {
+        f.write_str(match self {
+            ConfigError::NotFinite => "configuration value is not a finite number",
+            ConfigError::OutOfRange => "configuration value is out of range",
+            ConfigError::Confirmation => "M-of-N confirmation needs 1 <= M <= N <= 32",
+            ConfigError::Deletion => "deletion thresholds must be at least 1 miss",
+            ConfigError::EmptyVolume => "surveillance volume minimum must be below its maximum",
+        })
+    }
+}
+
+fn positive<S: Scalar>(v: S) -> Result<S, ConfigError> {
+    if !v.is_valid() {
+        Err(ConfigError::NotFinite)
+    } else if v <= S::ZERO {
+        Err(ConfigError::OutOfRange)
+    } else {
+        Ok(v)
+    }
+}
+
+fn non_negative<S: Scalar>(v: S) -> Result<S, ConfigError> {
+    if !v.is_valid() {
+        Err(ConfigError::NotFinite)
+    } else if v < S::ZERO {
+        Err(ConfigError::OutOfRange)
+    } else {
+        Ok(v)
+    }
+}
+
+impl<S: Scalar> Gate<S> {
+    /// [`Gate::Uncertainty`], checked: σ > 0, G > 0, a_max ≥ 0.
+    pub fn uncertainty(
+        measurement_sigma: S,
+        threshold: S,
+        max_acceleration: S,
+    ) -> Result<Self, ConfigError> {
+        Ok(Gate::Uncertainty {
+            measurement_sigma: positive(measurement_sigma)?,
+            threshold: positive(threshold)?,
+            max_acceleration: non_negative(max_acceleration)?,
+        })
+    }
+
+    /// [`Gate::Wave`], checked: Δρ ≥ 0, Δθ ≥ 0, not both 0, κ > 0.
+    pub fn wave(range_sigma: S, bearing_sigma: S, multiple: S) -> Result<Self, ConfigError> {
+        let range_sigma = non_negative(range_sigma)?;
+        let bearing_sigma = non_negative(bearing_sigma)?;
+        if range_sigma == S::ZERO && bearing_sigma == S::ZERO {
+            return Err(ConfigError::OutOfRange);
+        }
+        Ok(Gate::Wave {
+            range_sigma,
+            bearing_sigma,
+            multiple: positive(multiple)?,
+        })
+    }
+
+    /// Re-checks a gate built directly from the enum's public fields.
+    pub fn validated(self) -> Result<Self, ConfigError> {
+        match self {
+            Gate::Uncertainty {
+                measurement_sigma,
+                threshold,
+                max_acceleration,
+            } => Self::uncertainty(measurement_sigma, threshold, max_acceleration),
+            Gate::Wave {
+                range_sigma,
+                bearing_sigma,
+                multiple,
+            } => Self::wave(range_sigma, bearing_sigma, multiple),
+        }
+    }
+}
+
+/// √(a² + b²) without squaring large values (Q32.32 would saturate at
+/// 46 km): the larger magnitude is factored out first.
+pub fn hypot<S: Scalar>(a: S, b: S) -> S {
+    let a = a.abs();
+    let b = b.abs();
+    let big = a.max_of(b);
+    if big == S::ZERO {
+        return S::ZERO;
+    }
+    let small = a.min_of(b) / big;
+    big * (S::ONE + small * small).sqrt()
+}
+
+/// One track's validation region for one scan.
+#[derive(Debug, Clone, Copy, PartialEq)]
+#[cfg_attr(feature = "defmt", derive(defmt::Format))]
+pub enum GateRegion<S> {
+    /// Points within `radius` of `center` (Cartesian, metres).
+    Circle {
+        center: [S; 2],
+        radius: S,
+        /// 1/radius, so testing a measurement needs no division.
+        inverse_radius: S,
+    },
+}
+
+impl<S: Scalar> GateRegion<S> {
+    /// A circle; `None` if the radius is not a valid number > 0 or its
+    /// inverse is not representable.
+    pub fn circle(center: [S; 2], radius: S) -> Option<Self> {
+        if !(radius.is_valid() && radius > S::ZERO && center[0].is_valid() && center[1].is_valid())
+        {
+            return None;
+        }
+        let inverse_radius = S::ONE / radius;
+        if !(inverse_radius.is_valid() && inverse_radius > S::ZERO) {
+            return None;
+        }
+        Some(GateRegion::Circle {
+            center,
+            radius,
+            inverse_radius,
+        })
+    }
+
+    /// Radius of a circular region.
+    pub fn radius(&self) -> S {
+        match *self {
+            GateRegion::Circle { radius, .. } => radius,
+        }
+    }
+
+    /// The normalised cost `(d/r)²·MAX_COST`, rounded, if the observation
+    /// lies inside the region (d ≤ r); `None` if outside.
+    ///
+    /// Each axis offset is first compared with r, so the squares are of
+    /// numbers ≤ 1 and cannot saturate in fixed point.
+    pub fn cost(&self, observation: &Observation<S>) -> Option<u16> {
+        match *self {
+            GateRegion::Circle {
+                center,
+                radius,
+                inverse_radius,
+            } => {
+                let z = observation.xy();
+                let dx = z[0] - center[0];
+                let dy = z[1] - center[1];
+                // `!(a <= b)` is also true for NaN.
+                if !(dx.abs() <= radius && dy.abs() <= radius) {
+                    return None;
+                }
+                let nx = dx * inverse_radius;
+                let ny = dy * inverse_radius;
+                let d2 = nx * nx + ny * ny;
+                if !(d2.is_valid() && d2 <= S::ONE) {
+                    return None;
+                }
+                Some(quantise_unit(d2))
+            }
+        }
+    }
+}
+
+/// A value in [0, 1] to `0 ..= MAX_COST`, rounded to nearest.
+fn quantise_unit<S: Scalar>(v: S) -> u16 {
+    let scaled = v.to_f64() * MAX_COST as f64 + 0.5;
+    // `as` saturates (and maps NaN to 0); the caller checked 0 ≤ v ≤ 1.
+    let q = scaled as u32;
+    if q > MAX_COST as u32 {
+        MAX_COST
+    } else {
+        q as u16
+    }
+}

@@ -1,0 +1,118 @@
+//! Multi-target tracking in fixed memory: a [`TrackTable`] of at most `N`
+//! tracks that takes at most `M` measurements per scan.
+//!
+//! # One scan
+//!
+//! [`TrackTable::scan`] runs the stages in order and counts each in the
+//! [`ScanReport`]; every measurement gets an [`Association`] code.
+//!
+//! 1. **Intake.** Each measurement is checked and projected to x, y once
+//!    ([`Observation`]). Bad numbers (and negative ranges) are
+//!    [`Rejected`](Association::Rejected) and touch nothing; measurements
+//!    beyond the `M`th are [`Dropped`](Association::Dropped) and counted.
+//! 2. **Predict** every track to the scan time (the interval may change from
+//!    scan to scan).
+//! 3. **Gate.** Each track builds a validation region from its prediction
+//!    ([`TrackFilter::gate_region`]): sized from the filter's predicted
+//!    uncertainty, or Li et al.'s wave gate λ = √α ([`Gate`]). Each
+//!    (track, measurement) pair inside it gets a cost, the squared distance
+//!    normalised by the gate radius, quantised to `u16`.
+//! 4. **Associate** by global nearest neighbour, solved exactly
+//!    ([`assign`]): the assignment with the most gated pairs and, among
+//!    those, the least total cost. Only tracks and measurements that appear
+//!    in some gate enter the solver.
+//! 5. **Update** each assigned track; **coast** every other one.
+//! 6. **Manage.** Confirm a tentative track when M of its first N scans had a
+//!    measurement (default 2 of 3, the starting scan counting as the first
+//!    hit); delete a confirmed track after K consecutive misses (default 3), a
+//!    tentative one after fewer (default 2) or once M-of-N is out of reach,
+//!    and any track that leaves the surveillance [`Volume`].
+//! 7. **Initiate** (two-point method, Al-Wagih & Abdulla eqs. 9–10): a
+//!    measurement outside every gate pairs with an unused measurement of the
+//!    previous scan at most `v_max·T` (+ margin) away and starts a tentative
+//!    track. When the table is full the candidate is refused and counted —
+//!    no track is evicted, confirmed or tentative. Unpaired measurements
+//!    outside every gate become the first points for the next scan.
+//!
+//! # Time
+//!
+//! `scan` takes a timestamp, not an interval: `now_ms`, a `u32` millisecond
+//! monotonic clock (the usual hardware timer width). Intervals are computed
+//! in integers by wrapping subtraction, so the clock may wrap (every 49.7
+//! days) as long as scans are less than 2³¹ ms (24.8 days) apart; a
+//! timestamp that is not after the previous one is refused
+//! ([`ScanError::TimeNotIncreasing`]). Integer time keeps 1 ms resolution
+//! forever, where an `f32` seconds clock has 8 ms steps after 2¹⁶ s
+//! (18 hours) and 1 s steps after 2²³ s (97 days). Each interval is converted
+//! once to seconds in the filter's number type. The table keeps each track's
+//! start time and last update time.
+//!
+//! # Initiation pairing: why not optimal
+//!
+//! Pairing first points with second points is done by sequential nearest
+//! neighbour (P·L distance tests) instead of a second optimal assignment: an
+//! optimal solve would need a second workspace of M × M, and a wrong pairing
+//! among new candidates is corrected by M-of-N (its velocity is wrong, so its
+//! next gate misses and it is deleted) at the cost of one scan of latency.
+//!
+//! # Memory
+//!
+//! Measured with `core::mem::size_of` by `host-tests/tests/track_static.rs`
+//! (which asserts these numbers) and confirmed on thumbv6m-none-eabi (a
+//! `static` table of each kind, symbol sizes read with `llvm-nm`; the
+//! records hold no pointer or `usize`, so x86-64 and Cortex-M agree).
+//!
+//! Bytes per track slot, `size_of::<Option<Track<S, F>>>()` (the `Option`
+//! costs nothing: it uses a niche of [`TrackStatus`]):
+//!
+//! | filter `F` | `S = f64` | `S = f32` | `S = Fix` (Q32.32) |
+//! |---|---|---|---|
+//! | [`FixedGainTrack`] (2-D αβ, fixed gains) | 184 | 112 | 184 |
+//!
+//! of which the record header (id, status, counters, history, two times) is
+//! 24 bytes, the filter [`Cartesian<S, 2, 2>`] 128 (f64/Fix) or 72 (f32), and
+//! the error covariance ([`Uncertainty`]) 32 or 16. Fixed gains live once in
+//! [`TrackerConfig`], not per track.
+//!
+//! The whole table, `size_of::<TrackTable<S, FixedGainTrack<S>, N, M>>()`, is
+//!
+//! * f64 and Fix: 48 + N·(212 + 2M) + 114·M bytes — 12 528 for N = M = 32;
+//! * f32:         48 + N·(140 + 2M) + 74·M bytes — 8 944 for N = M = 32.
+//!
+//! Per track slot beyond the record: 24 bytes of solver workspace, one row of
+//! the `u16` cost matrix (2M), 4 bytes of indices. Per measurement slot: 24
+//! bytes of solver workspace, two [`Observation`]s (the scan's and the
+//! pending first points: 2 × 40 for f64/Fix, 2 × 20 for f32), an 8-byte
+//! [`Association`] and a 2-byte index.
+//!
+//! Stack: all per-scan workspace is in the table, so the stack use of
+//! [`TrackTable::scan`] does not grow with N or M. On thumbv6m (release,
+//! `opt-level = "s"`) its own frame is about 850 bytes for Fix and 560 for
+//! f32 (read from the function prologues), and the deepest call below it,
+//! the filter update, adds under 1 KB: budget 2 KB.
+//!
+//! [`Cartesian<S, 2, 2>`]: crate::filter::Cartesian
+//!
+//! # Extending
+//!
+//! A filter joins by implementing [`TrackFilter`] (a gain schedule's
+//! per-track state goes inside the same `Copy` record, its constants in
+//! [`TrackFilter::Params`]). Range/azimuth gating is a new [`GateRegion`]
+//! variant returned from an overridden [`TrackFilter::gate_region`].
+
+pub mod assign;
+mod config;
+mod gate;
+mod model;
+mod table;
+
+pub use config::{TrackerConfig, Volume};
+pub use gate::{hypot, ConfigError, Gate, GateRegion};
+pub use model::{
+    ErrorVariance, FixedGainTrack, Measurement, Observation, PredictedState, RejectReason,
+    TrackFilter, Uncertainty,
+};
+pub use table::{
+    Association, DropReason, ScanError, ScanReport, TableStats, Track, TrackId, TrackStatus,
+    TrackTable,
+};
