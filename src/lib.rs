@@ -14,8 +14,10 @@
 #![forbid(unsafe_code)]
 #![warn(missing_debug_implementations)]
 
+pub mod bank;
 pub mod design;
 pub mod filter;
+pub mod gain;
 pub mod num;
 
 pub use filter::{AlphaBeta, AlphaBetaGamma, Cartesian, FilterError, GainError, Gains};
