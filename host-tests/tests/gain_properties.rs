@@ -239,3 +239,29 @@ fn invalid_context_is_refused() {
     };
     assert!(GainContext::new(3, 1.0, [f64::INFINITY, 0.0], &[p, p]).is_err());
 }
+
+/// An update whose prediction overflows Q32.32 is refused and counted by
+/// the filter, and the schedule does not learn from it.
+#[test]
+fn overflowing_prediction_is_refused_and_counted() {
+    use abtrack::gain::{al_wagih::MovingWindowConfig, MovingWindowGains};
+    let m4 = MovingWindowGains::<Fix, 1, 8>::new(&MovingWindowConfig::DEFAULT).unwrap();
+    let mut track: ScheduledFilter<Fix, _, 2, 1> = ScheduledFilter::new(m4);
+    let f = Fix::from_f64_lossy;
+    // Velocity 1e8 m/s from two points; a 20 s prediction is 2e9 + 2e9.
+    track.update([f(0.0)], f(1.0)).unwrap();
+    track.update([f(1.0e8)], f(1.0)).unwrap();
+    track.update([f(2.0e8)], f(1.0)).unwrap();
+    let before = track;
+    assert_eq!(
+        track.update([f(2.1e9)], f(20.0)),
+        Err(ScheduledError::Filter(FilterError::Saturated))
+    );
+    assert_eq!(
+        track.filter().saturations(),
+        before.filter().saturations() + 1
+    );
+    assert_eq!(track.filter().position(), before.filter().position());
+    assert_eq!(track.schedule(), before.schedule());
+    assert_eq!(track.measurements(), 3);
+}

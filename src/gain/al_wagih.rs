@@ -277,8 +277,9 @@ impl LinearCombinationConfig {
 /// w ∈ {0, …, 1} is re-run over the last L measurements (from the tracker's
 /// own prediction at the window's start, with α̂(n) and β_LC(w, n) at each
 /// step), and the w with the least sum of squared innovations is used from
-/// the next update on. Until the window first fills, and if every candidate
-/// overflows, the weight in use stays. With `steps = 0` w is fixed.
+/// the next update on (on equal sums, the smaller w). Until the window
+/// first fills, and if every candidate overflows, the weight in use stays.
+/// With `steps = 0` w is fixed.
 ///
 /// Every gain lies in the stability triangle: α̂(n) ≤ 5/6 and β_LC lies
 /// between β̃ ≤ 1 and β̂(n) ≤ 1/2, both > 0, so 2α + β < 4.
@@ -425,8 +426,9 @@ impl MovingWindowConfig {
 /// measurement), each α of the grid is re-run over the last L measurements,
 /// starting from the tracker's own prediction for the oldest one, with
 /// β = α²/(2 − α); the α whose innovations have the least sum of squares is
-/// used from the next update on. Until the window first fills (and if every
-/// candidate overflows) the gains in use stay. The paper's suggestion to
+/// used from the next update on (on equal sums, the smaller α). Until the
+/// window first fills (and if every candidate overflows) the gains in use
+/// stay. The paper's suggestion to
 /// evaluate candidates "in parallel" is a speed-up; the result is the same.
 ///
 /// Cost per update: `steps` × (L − 1) αβ steps per axis (20 × 7 × 2 = 280

@@ -25,12 +25,12 @@ pub fn li_beta<S: Scalar>(alpha: S) -> S {
 #[cfg_attr(feature = "defmt", derive(defmt::Format))]
 pub struct LiImprovedConfig {
     /// R, the largest motion-stability ratio d/Δd still taken as steady
-    /// motion (eq. 13–14), > 0. Default 3 (a three-"sigma" gate).
+    /// motion (eq. 13–14), in (0, 10⁶]. Default 3 (a three-"sigma" gate).
     pub max_ratio: f64,
-    /// Δρ, the range (radius) error in metres (eq. 11), > 0. Default 1 m,
+    /// Δρ, the range (radius) error in metres (eq. 11), in (0, 10⁶]. Default 1 m,
     /// the noise standard deviation of the paper's simulation.
     pub range_error: f64,
-    /// Δθ, the bearing error in radians (eq. 11), ≥ 0. Default 0: the
+    /// Δθ, the bearing error in radians (eq. 11), in [0, 1]. Default 0: the
     /// paper's simulation adds Cartesian noise, whose error is covered by Δρ.
     pub bearing_error: f64,
     /// Upper bound of the effective scan count (not in the paper), 3..=10 000,

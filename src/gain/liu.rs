@@ -26,7 +26,8 @@ use crate::num::Scalar;
 #[derive(Debug, Clone, Copy, PartialEq)]
 #[cfg_attr(feature = "defmt", derive(defmt::Format))]
 pub struct ScanCountAdjustedConfig {
-    /// The innovation threshold in metres on each axis, > 0 (70 m in §3.2.2).
+    /// The innovation threshold in metres on each axis, in (0, 10⁹]
+    /// (70 m in §3.2.2).
     pub threshold: f64,
     /// Upper bound of k (not in the paper), 3..=10 000. Default 1000.
     pub k_max: u32,
@@ -120,7 +121,8 @@ pub struct ResidualAccumulationConfig {
     /// n, the number of innovations averaged, 1 ≤ n ≤ the type's capacity
     /// (3 in §2.1.4).
     pub n: u16,
-    /// σ_m², the measurement-error variance in m² (25 in §2.1.4), > 0.
+    /// σ_m², the measurement-error variance in m² (25 in §2.1.4), in
+    /// (0, 10¹²].
     pub sigma_m2: f64,
     /// Lower bound of α (not in the paper), in (0, 0.5]. Default 0.01; it
     /// binds only when the mean squared innovation is below
@@ -290,7 +292,7 @@ impl<S: Scalar, const D: usize, const N: usize> GainSchedule<S, D>
 #[cfg_attr(feature = "defmt", derive(defmt::Format))]
 pub struct AdaptiveSwitchConfig {
     /// limitX = limitY, the innovation threshold in metres (19 m in
-    /// §2.1.5), > 0.
+    /// §2.1.5), in (0, 10⁹].
     pub limit: f64,
     /// The fixed gains of the steady branch (§2.1.3: 0.5, 0.3).
     pub alpha: f64,

@@ -56,7 +56,16 @@
 //!
 //! Spec strings such as `m1:alpha=0.05` or `bank:k=8` are parsed without
 //! allocation by [`spec::ScheduleSpec`]; [`AnySchedule`] holds any schedule a
-//! spec names, so a replay tool or firmware can pick one at run time.
+//! spec names, so a replay tool or firmware can pick one at run time:
+//!
+//! ```rust,ignore
+//! // (Not compiled as a doctest: the crate's default target is a thumb
+//! // target; host-tests/tests/gain_*.rs run the same calls.)
+//! let spec = ScheduleSpec::parse("liu-adaptive:limit=19")?;
+//! let schedule = AnySchedule::<f32, 2, 8>::from_spec(&spec)?;
+//! let mut track: ScheduledFilter<f32, _, 2, 2> = ScheduledFilter::new(schedule);
+//! let update = track.update([x, y], dt)?; // update.gains: Some([gx, gy]) once filtering
+//! ```
 
 use core::fmt;
 
@@ -334,6 +343,10 @@ pub struct ScheduledUpdate<S, const D: usize> {
 }
 
 /// A [`Cartesian`] filter driven by a gain schedule: what a track holds.
+///
+/// With an αβγ filter (`ORDER = 3`), schedules that give αβ gains (γ = 0)
+/// leave the acceleration at its initial zero, i.e. the filter behaves as
+/// αβ; with an αβ filter the γ of αβγ gains (TCAS) is ignored.
 #[derive(Debug, Clone, Copy, PartialEq)]
 #[cfg_attr(feature = "defmt", derive(defmt::Format))]
 pub struct ScheduledFilter<S, G, const ORDER: usize, const D: usize> {
@@ -356,6 +369,21 @@ where
         }
     }
 
+    /// A track from its parts, e.g. a filter handed over already tracking
+    /// with `measurements` counted so far (schedules that count treat
+    /// n < 3 as 3).
+    pub const fn from_parts(
+        filter: Cartesian<S, ORDER, D>,
+        schedule: G,
+        measurements: u32,
+    ) -> Self {
+        ScheduledFilter {
+            filter,
+            schedule,
+            measurements,
+        }
+    }
+
     pub fn filter(&self) -> &Cartesian<S, ORDER, D> {
         &self.filter
     }
@@ -370,6 +398,15 @@ where
     }
 
     /// Incorporates measurement `z`, taken `dt` after the previous call.
+    ///
+    /// If the schedule requires a restart, the filter is emptied first and
+    /// `z` becomes the first point of the restarted track. The first two
+    /// measurements initialise the filter (no gains). Later ones: each axis
+    /// predicts, the [`GainContext`] is built, the schedule gives the gains,
+    /// the filter updates every axis with them (all or none) and the
+    /// schedule hears that the update was [accepted](GainSchedule::accepted).
+    /// A refused update changes neither the filter (but for its saturation
+    /// count) nor the schedule.
     pub fn update(&mut self, z: [S; D], dt: S) -> Result<ScheduledUpdate<S, D>, ScheduledError> {
         let restarted = self.schedule.restart_required(self.filter.phase());
         let mut filter = if restarted {

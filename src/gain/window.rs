@@ -5,13 +5,33 @@
 use super::{AxisObservation, GainContext};
 use crate::num::Scalar;
 
+/// One axis of a remembered update: z, and the tracker's predicted position
+/// and velocity for it (the innovation is z − x_p again when needed).
+#[derive(Debug, Clone, Copy, PartialEq)]
+#[cfg_attr(feature = "defmt", derive(defmt::Format))]
+pub(crate) struct WindowAxis<S> {
+    pub measurement: S,
+    pub predicted: S,
+    pub predicted_velocity: S,
+}
+
+impl<S: Copy> From<&AxisObservation<S>> for WindowAxis<S> {
+    fn from(a: &AxisObservation<S>) -> Self {
+        WindowAxis {
+            measurement: a.measurement,
+            predicted: a.predicted,
+            predicted_velocity: a.predicted_velocity,
+        }
+    }
+}
+
 /// One filtered update as the window remembers it.
 #[derive(Debug, Clone, Copy, PartialEq)]
 #[cfg_attr(feature = "defmt", derive(defmt::Format))]
 pub(crate) struct WindowEntry<S, const D: usize> {
     pub n: u32,
     pub dt: S,
-    pub axes: [AxisObservation<S>; D],
+    pub axes: [WindowAxis<S>; D],
 }
 
 /// A ring of the last `len` ≤ `length` ≤ `W` entries.
@@ -34,7 +54,11 @@ impl<S: Scalar, const D: usize, const W: usize> Window<S, D, W> {
             entries: [WindowEntry {
                 n: 0,
                 dt: S::ONE,
-                axes: [AxisObservation::default(); D],
+                axes: [WindowAxis {
+                    measurement: S::ZERO,
+                    predicted: S::ZERO,
+                    predicted_velocity: S::ZERO,
+                }; D],
             }; W],
             start: 0,
             len: 0,
@@ -55,7 +79,7 @@ impl<S: Scalar, const D: usize, const W: usize> Window<S, D, W> {
         let entry = WindowEntry {
             n: ctx.n,
             dt: ctx.dt,
-            axes: ctx.axes,
+            axes: ctx.axes.each_ref().map(WindowAxis::from),
         };
         if self.len < self.length {
             let slot = (self.start + self.len) % self.length;
@@ -93,7 +117,7 @@ impl<S: Scalar, const D: usize, const W: usize> Window<S, D, W> {
             return S::ZERO;
         };
         let (alpha, beta) = gains_at(first.n);
-        let e0 = a0.innovation;
+        let e0 = a0.measurement - a0.predicted;
         let mut x = a0.predicted + alpha * e0;
         let mut v = a0.predicted_velocity + beta * e0 / first.dt;
         let mut sum = S::ZERO;
