@@ -15,8 +15,10 @@
 #![forbid(unsafe_code)]
 #![warn(missing_debug_implementations)]
 
+pub mod bank;
 pub mod design;
 pub mod filter;
+pub mod gain;
 pub mod num;
 pub mod tcas;
 pub mod track;

@@ -1,0 +1,349 @@
+//! Al-Wagih & Abdulla's M5, parallel αβ tracking (Algorithm 3, Figure 4):
+//! K fixed-gain αβ trackers run on every measurement and the prediction with
+//! the lowest absolute innovation is taken.
+//!
+//! # Why this is not a gain schedule
+//!
+//! A [`crate::gain::GainSchedule`] chooses the gains of *one* filter and
+//! keeps no filter state. M5 never changes any tracker's gains: it keeps K
+//! complete filter states and chooses among their *outputs*. So it is an
+//! estimator built from filters, beside [`crate::filter::Cartesian`], and it
+//! uses the gain layer only for its members' gains (M1's β, eq. 23b).
+//!
+//! # Reading of Algorithm 3
+//!
+//! Step 1 prepares K trackers "with different α's and β's"; we space the α's
+//! evenly on [min, max] ⊂ (0, 1] and give each β = α²/(2 − α) (eq. 23b), the
+//! M1 relation, since the paper gives no values. Step 2 tracks with all K,
+//! independently: no member is ever reset to another's state (the paper
+//! describes none). Step 3 "at each time step, consider the prediction value
+//! with the lowest absolute error as optimal one": among the members'
+//! predictions x_p,k of measurement z, the one with the least |z − x_p,k|
+//! (ties to the lowest index) is the bank's output for that step
+//! ([`BankSelection`]), and that member's smoothed state is the bank's
+//! estimate until the next measurement ([`ParallelBank::position`],
+//! [`ParallelBank::predict`]).
+//!
+//! Note what step 3 implies, for whoever reads the paper's RMSE tables: the
+//! selected "prediction" is chosen *after* seeing the measurement it
+//! predicts, so it is not a one-step-ahead prediction in the causal sense;
+//! with many members it tends to the measurement itself. The causal
+//! alternative is [`ParallelBank::predict`] before the update (the member
+//! that won the previous step); experiments should report both.
+//!
+//! Selection is per axis: [`CartesianBank`] runs one bank per axis (the
+//! paper evaluates X and Y separately, Tables 1–2).
+
+use core::fmt;
+
+use crate::filter::{AlphaBeta, FilterError, Gains, Phase, Prediction};
+use crate::gain::al_wagih::beta_from_alpha;
+use crate::gain::{check_range, config_scalar, ConfigError};
+use crate::num::Scalar;
+
+/// Configuration of a bank (`bank:k=8,min=0.05,max=1`).
+#[derive(Debug, Clone, Copy, PartialEq)]
+#[cfg_attr(feature = "defmt", derive(defmt::Format))]
+pub struct BankConfig {
+    /// K, the number of members, 1 ≤ k ≤ the type's capacity. Default 8.
+    pub k: u16,
+    /// The members' α, evenly spaced from `alpha_min` to `alpha_max`,
+    /// 0 < min ≤ max ≤ 1 (eq. 23a); β from eq. (23b). Default 0.05 to 1.
+    pub alpha_min: f64,
+    pub alpha_max: f64,
+}
+
+impl BankConfig {
+    pub const DEFAULT: Self = BankConfig {
+        k: 8,
+        alpha_min: 0.05,
+        alpha_max: 1.0,
+    };
+
+    pub fn validate(&self) -> Result<(), ConfigError> {
+        if self.k == 0 {
+            return Err(ConfigError::OutOfRange { parameter: "k" });
+        }
+        check_range(self.alpha_min, 0.0, 1.0, false, "min")?;
+        check_range(self.alpha_max, self.alpha_min, 1.0, true, "max")?;
+        if self.k > 1 && self.alpha_max <= self.alpha_min {
+            return Err(ConfigError::OutOfRange { parameter: "max" });
+        }
+        Ok(())
+    }
+}
+
+/// Why a bank could not be built.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+#[cfg_attr(feature = "defmt", derive(defmt::Format))]
+pub enum BankError {
+    /// No members, or more than the capacity K.
+    MemberCount,
+}
+
+impl fmt::Display for BankError {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        f.write_str("a bank needs between 1 and K members")
+    }
+}
+
+/// The member chosen for one measurement (Algorithm 3, step 3).
+#[derive(Debug, Clone, Copy, PartialEq)]
+#[cfg_attr(feature = "defmt", derive(defmt::Format))]
+pub struct BankSelection<S> {
+    /// Index of the member with the least |innovation|.
+    pub member: usize,
+    /// Its prediction x_p of the measurement: the bank's output.
+    pub predicted: S,
+    /// Its innovation z − x_p.
+    pub residual: S,
+}
+
+/// What a bank update did.
+#[derive(Debug, Clone, Copy, PartialEq)]
+#[cfg_attr(feature = "defmt", derive(defmt::Format))]
+pub enum BankOutcome<S> {
+    FirstPoint,
+    SecondPoint,
+    Filtered(BankSelection<S>),
+}
+
+/// M5 on one axis: up to K fixed-gain αβ trackers (storage for K, `len`
+/// in use).
+#[derive(Debug, Clone, Copy, PartialEq)]
+#[cfg_attr(feature = "defmt", derive(defmt::Format))]
+pub struct ParallelBank<S, const K: usize> {
+    members: [AlphaBeta<S>; K],
+    gains: [Gains<S>; K],
+    len: usize,
+    selected: usize,
+    last: Option<BankSelection<S>>,
+    saturations: u32,
+}
+
+impl<S: Scalar, const K: usize> ParallelBank<S, K> {
+    /// A bank whose members have `gains` (1 ≤ len ≤ K).
+    pub fn new(gains: &[Gains<S>]) -> Result<Self, BankError> {
+        let first = *gains.first().ok_or(BankError::MemberCount)?;
+        if gains.len() > K {
+            return Err(BankError::MemberCount);
+        }
+        let mut all = [first; K];
+        for (slot, g) in all.iter_mut().zip(gains) {
+            *slot = *g;
+        }
+        Ok(ParallelBank {
+            members: [AlphaBeta::new(); K],
+            gains: all,
+            len: gains.len(),
+            selected: 0,
+            last: None,
+            saturations: 0,
+        })
+    }
+
+    /// The bank a [`BankConfig`] describes.
+    pub fn from_config(c: &BankConfig) -> Result<Self, ConfigError> {
+        c.validate()?;
+        let k = usize::from(c.k);
+        if k > K {
+            return Err(ConfigError::ExceedsCapacity {
+                parameter: "k",
+                capacity: K,
+            });
+        }
+        let lo: S = config_scalar(c.alpha_min, "min")?;
+        let hi: S = config_scalar(c.alpha_max, "max")?;
+        let mut gains = [Gains::alpha_beta(S::ONE, S::ONE)
+            .map_err(|_| ConfigError::NotRepresentable { parameter: "min" })?;
+            K];
+        for (i, g) in gains.iter_mut().take(k).enumerate() {
+            let a = crate::gain::window_grid_point(lo, hi, i, k);
+            *g = Gains::alpha_beta(a, beta_from_alpha(a))
+                .map_err(|_| ConfigError::NotRepresentable { parameter: "min" })?;
+        }
+        Self::new(gains.get(..k).unwrap_or(&[]))
+            .map_err(|_| ConfigError::OutOfRange { parameter: "k" })
+    }
+
+    /// Members in use.
+    pub fn len(&self) -> usize {
+        self.len
+    }
+
+    pub fn is_empty(&self) -> bool {
+        self.len == 0
+    }
+
+    pub fn member(&self, i: usize) -> Option<&AlphaBeta<S>> {
+        self.members.get(..self.len)?.get(i)
+    }
+
+    pub fn member_gains(&self, i: usize) -> Option<&Gains<S>> {
+        self.gains.get(..self.len)?.get(i)
+    }
+
+    /// The member chosen at the last filtered update (0 before).
+    pub fn selected(&self) -> usize {
+        self.selected
+    }
+
+    pub fn last_selection(&self) -> Option<BankSelection<S>> {
+        self.last
+    }
+
+    pub fn phase(&self) -> Phase {
+        self.members.first().map_or(Phase::Empty, |m| m.phase())
+    }
+
+    /// The selected member's smoothed position.
+    pub fn position(&self) -> S {
+        self.current().map_or(S::ZERO, |m| m.position())
+    }
+
+    /// The selected member's smoothed velocity.
+    pub fn velocity(&self) -> S {
+        self.current().map_or(S::ZERO, |m| m.velocity())
+    }
+
+    /// Updates or coasts refused because a member's arithmetic saturated.
+    pub fn saturations(&self) -> u32 {
+        self.saturations
+    }
+
+    fn current(&self) -> Option<&AlphaBeta<S>> {
+        self.members.get(self.selected)
+    }
+
+    /// The selected member's prediction `dt` ahead (causal: chosen at the
+    /// previous measurement).
+    pub fn predict(&self, dt: S) -> Result<Prediction<S>, FilterError> {
+        self.current()
+            .ok_or(FilterError::InvalidInterval)?
+            .predict(dt)
+    }
+
+    /// Runs every member on `z` (all or none) and selects the member with the
+    /// least |innovation| (Algorithm 3, steps 2–3).
+    pub fn update(&mut self, z: S, dt: S) -> Result<BankOutcome<S>, FilterError> {
+        let mut next = self.members;
+        let mut best: Option<(BankSelection<S>, S)> = None;
+        let mut outcome = BankOutcome::FirstPoint;
+        let active = next.iter_mut().zip(&self.gains).take(self.len);
+        for (i, (member, gains)) in active.enumerate() {
+            match member.update(z, dt, gains) {
+                Ok(crate::filter::UpdateOutcome::FirstPoint) => outcome = BankOutcome::FirstPoint,
+                Ok(crate::filter::UpdateOutcome::SecondPoint) => outcome = BankOutcome::SecondPoint,
+                Ok(crate::filter::UpdateOutcome::Filtered(inn)) => {
+                    let size = inn.residual.abs();
+                    if best.is_none_or(|(_, b)| size < b) {
+                        best = Some((
+                            BankSelection {
+                                member: i,
+                                predicted: inn.predicted,
+                                residual: inn.residual,
+                            },
+                            size,
+                        ));
+                    }
+                }
+                Err(e) => {
+                    if e == FilterError::Saturated {
+                        self.saturations = self.saturations.saturating_add(1);
+                    }
+                    return Err(e);
+                }
+            }
+        }
+        self.members = next;
+        if let Some((sel, _)) = best {
+            self.selected = sel.member;
+            self.last = Some(sel);
+            outcome = BankOutcome::Filtered(sel);
+        }
+        Ok(outcome)
+    }
+
+    /// No measurement: every member coasts (all or none).
+    pub fn coast(&mut self, dt: S) -> Result<(), FilterError> {
+        let mut next = self.members;
+        for m in next.iter_mut().take(self.len) {
+            if let Err(e) = m.coast(dt) {
+                if e == FilterError::Saturated {
+                    self.saturations = self.saturations.saturating_add(1);
+                }
+                return Err(e);
+            }
+        }
+        self.members = next;
+        Ok(())
+    }
+}
+
+/// One [`ParallelBank`] per axis, updated all or none, each selecting its
+/// own member.
+#[derive(Debug, Clone, Copy, PartialEq)]
+#[cfg_attr(feature = "defmt", derive(defmt::Format))]
+pub struct CartesianBank<S, const K: usize, const D: usize> {
+    axes: [ParallelBank<S, K>; D],
+}
+
+impl<S: Scalar, const K: usize, const D: usize> CartesianBank<S, K, D> {
+    /// Every axis with the same members.
+    pub fn new(bank: ParallelBank<S, K>) -> Self {
+        CartesianBank { axes: [bank; D] }
+    }
+
+    pub fn from_config(c: &BankConfig) -> Result<Self, ConfigError> {
+        Ok(Self::new(ParallelBank::from_config(c)?))
+    }
+
+    pub fn axes(&self) -> &[ParallelBank<S, K>; D] {
+        &self.axes
+    }
+
+    pub fn phase(&self) -> Phase {
+        self.axes.first().map_or(Phase::Empty, |a| a.phase())
+    }
+
+    pub fn position(&self) -> [S; D] {
+        self.axes.map(|a| a.position())
+    }
+
+    pub fn velocity(&self) -> [S; D] {
+        self.axes.map(|a| a.velocity())
+    }
+
+    pub fn update(&mut self, z: [S; D], dt: S) -> Result<[BankOutcome<S>; D], FilterError> {
+        let mut next = self.axes;
+        let mut out = [BankOutcome::FirstPoint; D];
+        for ((axis, o), z) in next.iter_mut().zip(out.iter_mut()).zip(z) {
+            match axis.update(z, dt) {
+                Ok(r) => *o = r,
+                Err(e) => {
+                    // Keep the saturation counts of the refused update.
+                    for (mine, tried) in self.axes.iter_mut().zip(&next) {
+                        mine.saturations = tried.saturations;
+                    }
+                    return Err(e);
+                }
+            }
+        }
+        self.axes = next;
+        Ok(out)
+    }
+
+    pub fn coast(&mut self, dt: S) -> Result<(), FilterError> {
+        let mut next = self.axes;
+        for axis in next.iter_mut() {
+            if let Err(e) = axis.coast(dt) {
+                for (mine, tried) in self.axes.iter_mut().zip(&next) {
+                    mine.saturations = tried.saturations;
+                }
+                return Err(e);
+            }
+        }
+        self.axes = next;
+        Ok(())
+    }
+}

@@ -1,0 +1,405 @@
+//! Liu, Wang & Yang, "Accuracy analysis and improvement of different
+//! alpha-beta filtering algorithms" (in Chinese), §2.1.1–2.1.5.
+//!
+//! * 2.1.1, gains by scan count (eq. 5): [`super::LeastSquaresGains`], the
+//!   same formula as Al-Wagih & Abdulla's eq. (24).
+//! * 2.1.2, scan count adjusted by an innovation threshold:
+//!   [`ScanCountAdjustedGains`].
+//! * 2.1.3, fixed α = 0.5, β = 0.3: [`super::FixedGains::liu`].
+//! * 2.1.4, residual accumulation (eqs. 6–11): [`ResidualAccumulationGains`].
+//! * 2.1.5, adaptive switch between 2.1.3 and 2.1.4 (eqs. 12–15):
+//!   [`AdaptiveSwitchGains`].
+//!
+//! The paper computes the innovation V(k+1) (eq. 3) before it applies the
+//! gain K(k+1) (eq. 4), and 2.1.5 switches on the current |V_x(k)|, |V_y(k)|;
+//! so all three adaptive methods here use the innovation of the measurement
+//! being incorporated (see the [module docs](super)).
+
+use super::al_wagih::{beta_from_alpha, least_squares_alpha, least_squares_beta};
+use super::{
+    check_range, config_scalar, ConfigError, FixedGains, GainContext, GainSchedule, ScheduleError,
+};
+use crate::filter::Gains;
+use crate::num::Scalar;
+
+/// Configuration of [`ScanCountAdjustedGains`] (`liu-count-adjusted`).
+#[derive(Debug, Clone, Copy, PartialEq)]
+#[cfg_attr(feature = "defmt", derive(defmt::Format))]
+pub struct ScanCountAdjustedConfig {
+    /// The innovation threshold in metres on each axis, in (0, 10⁹]
+    /// (70 m in §3.2.2).
+    pub threshold: f64,
+    /// Upper bound of k (not in the paper), 3..=10 000. Default 1000.
+    pub k_max: u32,
+}
+
+impl ScanCountAdjustedConfig {
+    pub const DEFAULT: Self = ScanCountAdjustedConfig {
+        threshold: 70.0,
+        k_max: 1000,
+    };
+
+    pub fn validate(&self) -> Result<(), ConfigError> {
+        check_range(self.threshold, 0.0, 1.0e9, false, "threshold")?;
+        if !(3..=10_000).contains(&self.k_max) {
+            return Err(ConfigError::OutOfRange { parameter: "k-max" });
+        }
+        Ok(())
+    }
+}
+
+/// Liu, Wang & Yang §2.1.2: the gains of eq. (5) with a scan count k that is
+/// "no longer determined by the radar scan count alone": +1 when the
+/// measurement–prediction differences on both axes are within range, −1
+/// otherwise. §3.2.2 gives the range: a difference above 70 m on the x *or*
+/// the y axis means a manoeuvre and k is decreased by 1.
+///
+/// Reading: the count after two-point initialisation is 2; each filtered
+/// measurement moves it by ±1 according to its own innovation, and the
+/// gains of that measurement use the moved count. Without threshold
+/// crossings this is exactly §2.1.1 (k = 3 at the third scan). k is kept in
+/// 3..=k_max: filtering starts at k = 3 (§2.1.1) and k = 1 would give
+/// α = 1, β = 3, outside the stability triangle (2α + β = 5 > 4). A scan
+/// without a measurement leaves k unchanged.
+#[derive(Debug, Clone, Copy, PartialEq)]
+#[cfg_attr(feature = "defmt", derive(defmt::Format))]
+pub struct ScanCountAdjustedGains<S> {
+    threshold: S,
+    k_max: u32,
+    /// k of the last filtered update (2 before the first).
+    k: u32,
+}
+
+impl<S: Scalar> ScanCountAdjustedGains<S> {
+    pub fn new(c: &ScanCountAdjustedConfig) -> Result<Self, ConfigError> {
+        c.validate()?;
+        Ok(ScanCountAdjustedGains {
+            threshold: config_scalar(c.threshold, "threshold")?,
+            k_max: c.k_max,
+            k: 2,
+        })
+    }
+
+    /// k of the last filtered update (2 before the first).
+    pub fn count(&self) -> u32 {
+        self.k
+    }
+
+    fn next_count<const D: usize>(&self, ctx: &GainContext<S, D>) -> u32 {
+        let manoeuvre = ctx.axes.iter().any(|a| {
+            let e = a.innovation.abs();
+            // An invalid innovation is no evidence of steady motion.
+            !e.is_valid() || e > self.threshold
+        });
+        if manoeuvre {
+            self.k.saturating_sub(1).max(3)
+        } else {
+            self.k.saturating_add(1).clamp(3, self.k_max)
+        }
+    }
+}
+
+impl<S: Scalar, const D: usize> GainSchedule<S, D> for ScanCountAdjustedGains<S> {
+    fn gains(&self, ctx: &GainContext<S, D>) -> Result<[Gains<S>; D], ScheduleError> {
+        let k = self.next_count(ctx);
+        Ok([Gains::alpha_beta(least_squares_alpha(k), least_squares_beta(k))?; D])
+    }
+
+    fn accepted(&mut self, ctx: &GainContext<S, D>, _used: &[Gains<S>; D]) {
+        self.k = self.next_count(ctx);
+    }
+
+    fn reset(&mut self) {
+        self.k = 2;
+    }
+}
+
+/// Configuration of [`ResidualAccumulationGains`] (`liu-residual`).
+#[derive(Debug, Clone, Copy, PartialEq)]
+#[cfg_attr(feature = "defmt", derive(defmt::Format))]
+pub struct ResidualAccumulationConfig {
+    /// n, the number of innovations averaged, 1 ≤ n ≤ the type's capacity
+    /// (3 in §2.1.4).
+    pub n: u16,
+    /// σ_m², the measurement-error variance in m² (25 in §2.1.4), in
+    /// (0, 10¹²].
+    pub sigma_m2: f64,
+    /// Lower bound of α (not in the paper), in (0, 0.5]. Default 0.01; it
+    /// binds only when the mean squared innovation is below
+    /// σ_m²·0.01/0.99 (0.5 m RMS for σ_m = 5 m), i.e. for noise-free data,
+    /// where eq. (8) would give α → 0 and β → 0, the edge of the stability
+    /// triangle that fixed point rounds onto.
+    pub alpha_min: f64,
+}
+
+impl ResidualAccumulationConfig {
+    pub const DEFAULT: Self = ResidualAccumulationConfig {
+        n: 3,
+        sigma_m2: 25.0,
+        alpha_min: 0.01,
+    };
+
+    pub fn validate(&self) -> Result<(), ConfigError> {
+        if self.n == 0 {
+            return Err(ConfigError::OutOfRange { parameter: "n" });
+        }
+        check_range(self.sigma_m2, 0.0, 1.0e12, false, "sigma-m2")?;
+        check_range(self.alpha_min, 0.0, 0.5, false, "alpha-min")
+    }
+}
+
+/// Liu, Wang & Yang §2.1.4, residual accumulation, per axis:
+/// σ_p²(k) = (1/n) Σ_{i=1..n} V(k − i + 1)² (eqs. 6–7),
+/// α(k) = σ_p²/(σ_p² + σ_m²) (eqs. 8–9), β = α²/(2 − α) (eqs. 10–11).
+///
+/// # Reading
+///
+/// Eqs. (6)–(7) print the summand as [x_{k−i+1} − x_{k−i}]², a difference of
+/// consecutive positions; the text defines it as "the mean of the squared
+/// differences between measurement and prediction" over the last n scans,
+/// and §3.2.1 reasons the same way ("if one of the last three
+/// measurement–prediction differences is ≥ 5√3, α > 0.5": 75/3 = 25 = σ_m²).
+/// We read x_{k−i+1} − x_{k−i} as the measurement at k − i + 1 minus its
+/// prediction made at k − i, i.e. the innovation V(k − i + 1); i = 1 is the
+/// current innovation. Until n innovations exist the mean is over those
+/// there are (one at the first filtered scan).
+///
+/// α lies in [α_min, 1]: eq. (8) is < 1 for finite σ_p² (and reaches 1 only
+/// when a squared innovation overflows, its limit), so β ≤ 1 and every pair
+/// is strictly stable (2α + β ≤ 3 < 4). To keep fixed point from overflowing,
+/// innovations are divided by σ_m before squaring: α = s/(s + 1) with
+/// s = mean((V/σ_m)²), which is eq. (8) rearranged.
+#[derive(Debug, Clone, Copy, PartialEq)]
+#[cfg_attr(feature = "defmt", derive(defmt::Format))]
+pub struct ResidualAccumulationGains<S, const D: usize, const N: usize> {
+    sigma_m: S,
+    alpha_min: S,
+    n: usize,
+    /// (V/σ_m)² of past accepted updates, per axis, oldest at `start`.
+    history: [[S; D]; N],
+    start: usize,
+    len: usize,
+}
+
+impl<S: Scalar, const D: usize, const N: usize> ResidualAccumulationGains<S, D, N> {
+    pub fn new(c: &ResidualAccumulationConfig) -> Result<Self, ConfigError> {
+        c.validate()?;
+        if usize::from(c.n) > N {
+            return Err(ConfigError::ExceedsCapacity {
+                parameter: "n",
+                capacity: N,
+            });
+        }
+        let sigma_m2: S = config_scalar(c.sigma_m2, "sigma-m2")?;
+        let sigma_m = sigma_m2.sqrt();
+        if !(sigma_m.is_valid() && sigma_m > S::ZERO) {
+            return Err(ConfigError::NotRepresentable {
+                parameter: "sigma-m2",
+            });
+        }
+        Ok(ResidualAccumulationGains {
+            sigma_m,
+            alpha_min: config_scalar(c.alpha_min, "alpha-min")?,
+            n: usize::from(c.n),
+            history: [[S::ZERO; D]; N],
+            start: 0,
+            len: 0,
+        })
+    }
+
+    /// The n − 1 most recent stored terms of `axis`, newest first.
+    fn recent(&self, axis: usize) -> impl Iterator<Item = S> + '_ {
+        let keep = self.len.min(self.n.saturating_sub(1));
+        (0..keep).filter_map(move |back| {
+            let slot = (self.start + self.len - 1 - back) % self.n.max(1);
+            self.history.get(slot).and_then(|h| h.get(axis)).copied()
+        })
+    }
+
+    fn normalised_square(&self, innovation: S) -> S {
+        let u = innovation / self.sigma_m;
+        u * u
+    }
+
+    /// α, β of eqs. (8), (10) for one axis with current innovation `v`.
+    fn axis_gains(&self, axis: usize, v: S) -> Result<Gains<S>, ScheduleError> {
+        let mut sum = self.normalised_square(v);
+        let mut count = 1u32;
+        for term in self.recent(axis) {
+            sum = sum + term;
+            count += 1;
+        }
+        let s = sum / S::from_f64_lossy(f64::from(count));
+        let alpha = if s.is_valid() {
+            (s / (s + S::ONE)).max_of(self.alpha_min).min_of(S::ONE)
+        } else {
+            // A squared innovation overflowed: eq. (8) at its limit.
+            S::ONE
+        };
+        Ok(Gains::alpha_beta(alpha, beta_from_alpha(alpha))?)
+    }
+
+    fn gains_for(&self, ctx: &GainContext<S, D>) -> Result<[Gains<S>; D], ScheduleError> {
+        let mut out = [Gains::alpha_beta(S::ONE, S::ONE)?; D];
+        for (axis, g) in out.iter_mut().enumerate() {
+            let v = ctx
+                .axes
+                .get(axis)
+                .map(|a| a.innovation)
+                .ok_or(ScheduleError::InvalidContext)?;
+            *g = self.axis_gains(axis, v)?;
+        }
+        Ok(out)
+    }
+
+    fn push(&mut self, innovations: &[S]) {
+        let mut terms = [S::ZERO; D];
+        for (t, v) in terms.iter_mut().zip(innovations) {
+            *t = self.normalised_square(*v);
+        }
+        let cap = self.n.max(1);
+        if self.len < cap {
+            if let Some(h) = self.history.get_mut((self.start + self.len) % cap) {
+                *h = terms;
+                self.len += 1;
+            }
+        } else if let Some(h) = self.history.get_mut(self.start) {
+            *h = terms;
+            self.start = (self.start + 1) % cap;
+        }
+    }
+}
+
+impl<S: Scalar, const D: usize, const N: usize> GainSchedule<S, D>
+    for ResidualAccumulationGains<S, D, N>
+{
+    fn gains(&self, ctx: &GainContext<S, D>) -> Result<[Gains<S>; D], ScheduleError> {
+        self.gains_for(ctx)
+    }
+
+    fn accepted(&mut self, ctx: &GainContext<S, D>, _used: &[Gains<S>; D]) {
+        self.push(&ctx.innovations());
+    }
+
+    fn reset(&mut self) {
+        self.start = 0;
+        self.len = 0;
+    }
+}
+
+/// Configuration of [`AdaptiveSwitchGains`] (`liu-adaptive`).
+#[derive(Debug, Clone, Copy, PartialEq)]
+#[cfg_attr(feature = "defmt", derive(defmt::Format))]
+pub struct AdaptiveSwitchConfig {
+    /// limitX = limitY, the innovation threshold in metres (19 m in
+    /// §2.1.5), in (0, 10⁹].
+    pub limit: f64,
+    /// The fixed gains of the steady branch (§2.1.3: 0.5, 0.3).
+    pub alpha: f64,
+    pub beta: f64,
+    /// The residual-accumulation branch (§2.1.4).
+    pub residual: ResidualAccumulationConfig,
+}
+
+impl AdaptiveSwitchConfig {
+    pub const DEFAULT: Self = AdaptiveSwitchConfig {
+        limit: 19.0,
+        alpha: 0.5,
+        beta: 0.3,
+        residual: ResidualAccumulationConfig::DEFAULT,
+    };
+
+    pub fn validate(&self) -> Result<(), ConfigError> {
+        check_range(self.limit, 0.0, 1.0e9, false, "limit")?;
+        super::al_wagih::FixedConfig {
+            alpha: self.alpha,
+            beta: self.beta,
+            gamma: None,
+        }
+        .validate()?;
+        self.residual.validate()
+    }
+}
+
+/// Which branch of Liu, Wang & Yang's adaptive switch gave the gains.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+#[cfg_attr(feature = "defmt", derive(defmt::Format))]
+pub enum SwitchMode {
+    /// Both |innovations| ≤ their limits: fixed gains (§2.1.3).
+    Steady,
+    /// Some |innovation| > its limit: residual accumulation (§2.1.4).
+    Manoeuvre,
+}
+
+/// Liu, Wang & Yang §2.1.5 (eqs. 12–15): if |V_x(k)| > limitX or
+/// |V_y(k)| > limitY, both axes take the residual-accumulation gains of
+/// §2.1.4 (each its own α_x, α_y); if both are ≤ their limits, both take the
+/// fixed α = 0.5, β = 0.3. Limits 19 m (§2.1.5), the same on every axis.
+///
+/// The residual window is fed on every accepted update, whichever branch
+/// gave the gains: eqs. (6)–(7) average the last n innovations, not the last
+/// n manoeuvring ones. The text says "both less than the threshold" for the
+/// fixed branch; eqs. (12)–(15) use ≤, which we follow.
+#[derive(Debug, Clone, Copy, PartialEq)]
+#[cfg_attr(feature = "defmt", derive(defmt::Format))]
+pub struct AdaptiveSwitchGains<S, const D: usize, const N: usize> {
+    limit: S,
+    fixed: FixedGains<S>,
+    residual: ResidualAccumulationGains<S, D, N>,
+    last_mode: Option<SwitchMode>,
+}
+
+impl<S: Scalar, const D: usize, const N: usize> AdaptiveSwitchGains<S, D, N> {
+    pub fn new(c: &AdaptiveSwitchConfig) -> Result<Self, ConfigError> {
+        c.validate()?;
+        Ok(AdaptiveSwitchGains {
+            limit: config_scalar(c.limit, "limit")?,
+            fixed: FixedGains::from_config(&super::al_wagih::FixedConfig {
+                alpha: c.alpha,
+                beta: c.beta,
+                gamma: None,
+            })?,
+            residual: ResidualAccumulationGains::new(&c.residual)?,
+            last_mode: None,
+        })
+    }
+
+    /// The branch that gave the gains of the last accepted update.
+    pub fn last_mode(&self) -> Option<SwitchMode> {
+        self.last_mode
+    }
+
+    /// The branch eqs. (12)–(15) choose for `ctx`.
+    pub fn mode(&self, ctx: &GainContext<S, D>) -> SwitchMode {
+        let over = ctx.axes.iter().any(|a| {
+            let e = a.innovation.abs();
+            !e.is_valid() || e > self.limit
+        });
+        if over {
+            SwitchMode::Manoeuvre
+        } else {
+            SwitchMode::Steady
+        }
+    }
+}
+
+impl<S: Scalar, const D: usize, const N: usize> GainSchedule<S, D>
+    for AdaptiveSwitchGains<S, D, N>
+{
+    fn gains(&self, ctx: &GainContext<S, D>) -> Result<[Gains<S>; D], ScheduleError> {
+        match self.mode(ctx) {
+            SwitchMode::Steady => Ok([self.fixed.fixed(); D]),
+            SwitchMode::Manoeuvre => self.residual.gains_for(ctx),
+        }
+    }
+
+    fn accepted(&mut self, ctx: &GainContext<S, D>, used: &[Gains<S>; D]) {
+        self.last_mode = Some(self.mode(ctx));
+        self.residual.accepted(ctx, used);
+    }
+
+    fn reset(&mut self) {
+        self.residual.reset();
+        self.last_mode = None;
+    }
+}

@@ -1,0 +1,624 @@
+//! Gain schedules: how α, β (and γ) are chosen while tracking.
+//!
+//! The papers' main contribution is the choice of gains. Each method is a
+//! *schedule*: a small `Copy` state machine that, given the context of the
+//! next measurement ([`GainContext`]: its number since initialisation, the
+//! interval, and per axis the measurement, the filter's prediction and the
+//! innovation), produces the gains for that update ([`GainSchedule`]). A
+//! schedule never owns the filter it schedules; it keeps only its own state
+//! (counters, windows of past innovations), sized by const generics.
+//!
+//! | family (file) | schedule | paper |
+//! |---|---|---|
+//! | [`al_wagih`] | [`FixedGains`] (M1: [`FixedGains::m1`]) | Al-Wagih & Abdulla eq. (23) |
+//! | | [`LeastSquaresGains`] (M2) | Al-Wagih & Abdulla eq. (24) |
+//! | | [`LinearCombinationGains`] (M3) | Al-Wagih & Abdulla eq. (25), Algorithm 1 |
+//! | | [`MovingWindowGains`] (M4) | Al-Wagih & Abdulla Algorithm 2 |
+//! | [`li`] | [`LiImprovedGains`] | Li, Zhao, Liang & Zhang eqs. (4), (7)–(15) |
+//! | [`liu`] | 2.1.1 = [`LeastSquaresGains`], 2.1.3 = [`FixedGains::liu`] | Liu, Wang & Yang eq. (5), §2.1.3 |
+//! | | [`ScanCountAdjustedGains`] | Liu, Wang & Yang §2.1.2 |
+//! | | [`ResidualAccumulationGains`] | Liu, Wang & Yang eqs. (6)–(11) |
+//! | | [`AdaptiveSwitchGains`] | Liu, Wang & Yang eqs. (12)–(15) |
+//! | [`tcas`] | [`FirmnessGains`] | TCAS range tracker (DO-185B firmness table) |
+//!
+//! Al-Wagih & Abdulla's M5 (a bank of K fixed-gain trackers) is not a
+//! schedule: it owns K filter states and outputs one of their predictions, so
+//! it lives with the estimators in [`crate::bank`].
+//!
+//! # When a schedule sees an innovation
+//!
+//! [`GainSchedule::gains`] receives the context of the measurement about to be
+//! incorporated, *including its innovation* e = z − x_p: the innovation needs
+//! only the prediction, which exists before the update. Liu, Wang & Yang
+//! compute the innovation (their eq. 3) before the gain is applied (eq. 4) and
+//! switch on the current |V_x(k)|, |V_y(k)| (eqs. 12–15), so their schedules
+//! use it. Al-Wagih & Abdulla (M3, M4: "employed for the next stage of
+//! tracking") and Li et al. (§4: gains first, then d and r_k) adapt from past
+//! innovations only; their schedules ignore the current one in `gains` and
+//! learn from it in [`GainSchedule::accepted`].
+//!
+//! # Axes
+//!
+//! `gains` returns one [`Gains`] per axis. Schedules whose paper gives one
+//! gain for the whole track (M1, M2, Li, TCAS) return the same gains on every
+//! axis; Li's ratio r_k uses the Euclidean innovation distance over all axes
+//! (eq. 10). Schedules whose paper works per coordinate (Al-Wagih's M3/M4 are
+//! evaluated per coordinate in their Tables 1–2; Liu's residual accumulation
+//! has α_x and α_y, eqs. 8–9) keep per-axis state. Liu's adaptive switch is
+//! joint: either axis over its threshold switches both (eqs. 12–15).
+//!
+//! # Using a schedule
+//!
+//! [`ScheduledFilter`] holds a [`Cartesian`] filter, a schedule and the
+//! measurement count, and runs the protocol: two-point initialisation (gains
+//! unused), then predict → context → `gains` → update → `accepted`; coasts
+//! call [`GainSchedule::missed`]. A tracker keeps one per track.
+//!
+//! Spec strings such as `m1:alpha=0.05` or `bank:k=8` are parsed without
+//! allocation by [`spec::ScheduleSpec`]; [`AnySchedule`] holds any schedule a
+//! spec names, so a replay tool or firmware can pick one at run time:
+//!
+//! ```rust,ignore
+//! // (Not compiled as a doctest: the crate's default target is a thumb
+//! // target; host-tests/tests/gain_*.rs run the same calls.)
+//! let spec = ScheduleSpec::parse("liu-adaptive:limit=19")?;
+//! let schedule = AnySchedule::<f32, 2, 8>::from_spec(&spec)?;
+//! let mut track: ScheduledFilter<f32, _, 2, 2> = ScheduledFilter::new(schedule);
+//! let update = track.update([x, y], dt)?; // update.gains: Some([gx, gy]) once filtering
+//! ```
+
+use core::fmt;
+
+use crate::filter::{Cartesian, FilterError, GainError, Gains, Phase, Prediction, UpdateOutcome};
+use crate::num::Scalar;
+
+pub mod al_wagih;
+pub mod li;
+pub mod liu;
+pub mod spec;
+pub mod tcas;
+mod window;
+
+pub(crate) use window::grid_point as window_grid_point;
+
+pub use al_wagih::{FixedGains, LeastSquaresGains, LinearCombinationGains, MovingWindowGains};
+pub use li::LiImprovedGains;
+pub use liu::{AdaptiveSwitchGains, ResidualAccumulationGains, ScanCountAdjustedGains, SwitchMode};
+pub use spec::{ScheduleSpec, SpecError, SpecErrorKind};
+pub use tcas::FirmnessGains;
+
+/// What one axis of the filter knows about the measurement about to be
+/// incorporated.
+#[derive(Debug, Clone, Copy, PartialEq, Default)]
+#[cfg_attr(feature = "defmt", derive(defmt::Format))]
+pub struct AxisObservation<S> {
+    /// z, the measurement.
+    pub measurement: S,
+    /// x_p, the predicted position for this measurement (Al-Wagih eq. 3).
+    pub predicted: S,
+    /// v_p, the predicted velocity (the smoothed velocity carried forward).
+    pub predicted_velocity: S,
+    /// e = z − x_p (Al-Wagih eq. 4; Liu eq. 3).
+    pub innovation: S,
+}
+
+/// The context of one filtered update, given to [`GainSchedule::gains`].
+#[derive(Debug, Clone, Copy, PartialEq)]
+#[cfg_attr(feature = "defmt", derive(defmt::Format))]
+pub struct GainContext<S, const D: usize> {
+    /// The number of this measurement since the track was (re)initialised,
+    /// counting from 1: the first filtered update after two-point
+    /// initialisation has n = 3 (Al-Wagih eq. 24, "n > 2").
+    pub n: u32,
+    /// T, the interval since the previous update or coast.
+    pub dt: S,
+    pub axes: [AxisObservation<S>; D],
+}
+
+impl<S: Scalar, const D: usize> GainContext<S, D> {
+    /// The context of measurement `z` against the filter's `predictions`
+    /// (from [`crate::filter::KinematicFilter::predict`]).
+    pub fn new(
+        n: u32,
+        dt: S,
+        z: [S; D],
+        predictions: &[Prediction<S>; D],
+    ) -> Result<Self, ScheduleError> {
+        let mut axes = [AxisObservation {
+            measurement: S::ZERO,
+            predicted: S::ZERO,
+            predicted_velocity: S::ZERO,
+            innovation: S::ZERO,
+        }; D];
+        for ((axis, z), p) in axes.iter_mut().zip(z).zip(predictions) {
+            *axis = AxisObservation {
+                measurement: z,
+                predicted: p.position,
+                predicted_velocity: p.velocity,
+                innovation: z - p.position,
+            };
+        }
+        let ctx = GainContext { n, dt, axes };
+        ctx.check()?;
+        Ok(ctx)
+    }
+
+    /// e per axis.
+    pub fn innovations(&self) -> [S; D] {
+        self.axes.map(|a| a.innovation)
+    }
+
+    /// x_p per axis.
+    pub fn predicted_positions(&self) -> [S; D] {
+        self.axes.map(|a| a.predicted)
+    }
+
+    /// Refuses a context with an invalid number or an interval ≤ 0, which a
+    /// schedule could otherwise learn from.
+    pub fn check(&self) -> Result<(), ScheduleError> {
+        if !(self.dt.is_valid() && self.dt > S::ZERO) {
+            return Err(ScheduleError::InvalidContext);
+        }
+        for a in &self.axes {
+            if !(a.measurement.is_valid()
+                && a.predicted.is_valid()
+                && a.predicted_velocity.is_valid()
+                && a.innovation.is_valid())
+            {
+                return Err(ScheduleError::InvalidContext);
+            }
+        }
+        Ok(())
+    }
+}
+
+/// Why a schedule produced no gains.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+#[cfg_attr(feature = "defmt", derive(defmt::Format))]
+pub enum ScheduleError {
+    /// The context holds an invalid number or an interval ≤ 0.
+    InvalidContext,
+    /// The computed gains fell outside the stability region (a rounding
+    /// failure the schedule could not absorb; the tests show none occur).
+    Gain(GainError),
+    /// The schedule needs the track restarted before it can give gains
+    /// ([`GainSchedule::restart_required`]); [`ScheduledFilter`] does that.
+    RestartRequired,
+}
+
+impl From<GainError> for ScheduleError {
+    fn from(e: GainError) -> Self {
+        ScheduleError::Gain(e)
+    }
+}
+
+impl fmt::Display for ScheduleError {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        match self {
+            ScheduleError::InvalidContext => f.write_str("gain context holds an invalid number"),
+            ScheduleError::Gain(e) => write!(f, "scheduled gains rejected: {e}"),
+            ScheduleError::RestartRequired => f.write_str("schedule requires a track restart"),
+        }
+    }
+}
+
+/// Why a schedule's configuration was refused.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+#[cfg_attr(feature = "defmt", derive(defmt::Format))]
+pub enum ConfigError {
+    /// The parameter is outside its documented range (or not a number).
+    OutOfRange { parameter: &'static str },
+    /// The parameter cannot be represented in the chosen number type.
+    NotRepresentable { parameter: &'static str },
+    /// The parameter asks for more storage than the type's const capacity.
+    ExceedsCapacity {
+        parameter: &'static str,
+        capacity: usize,
+    },
+    /// The spec names a bank of filters, not a schedule
+    /// (build it with [`crate::bank`]).
+    NotASchedule,
+}
+
+impl fmt::Display for ConfigError {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        match self {
+            ConfigError::OutOfRange { parameter } => {
+                write!(f, "parameter `{parameter}` is out of range")
+            }
+            ConfigError::NotRepresentable { parameter } => {
+                write!(f, "parameter `{parameter}` is not representable")
+            }
+            ConfigError::ExceedsCapacity {
+                parameter,
+                capacity,
+            } => write!(f, "parameter `{parameter}` exceeds the capacity {capacity}"),
+            ConfigError::NotASchedule => {
+                f.write_str("a filter bank is an estimator, not a gain schedule")
+            }
+        }
+    }
+}
+
+/// Converts a configuration value into the schedule's number type.
+pub(crate) fn config_scalar<S: Scalar>(v: f64, parameter: &'static str) -> Result<S, ConfigError> {
+    S::try_from_f64(v).map_err(|_| ConfigError::NotRepresentable { parameter })
+}
+
+/// Checks lo < v ≤ hi (or lo ≤ v ≤ hi when `closed_low`), refusing NaN.
+pub(crate) fn check_range(
+    v: f64,
+    lo: f64,
+    hi: f64,
+    closed_low: bool,
+    parameter: &'static str,
+) -> Result<(), ConfigError> {
+    let low_ok = if closed_low { v >= lo } else { v > lo };
+    if low_ok && v <= hi {
+        Ok(())
+    } else {
+        Err(ConfigError::OutOfRange { parameter })
+    }
+}
+
+/// A gain schedule: a small state machine that gives the gains of each
+/// filtered update.
+///
+/// Protocol (what [`ScheduledFilter`] does): for the first two measurements
+/// of a track the filter initialises itself (Al-Wagih eqs. 9–10) and ignores
+/// gains, and the schedule is told with [`initialised`](Self::initialised);
+/// for every later measurement the caller builds the [`GainContext`], asks
+/// [`gains`](Self::gains), updates the filter with them and, if the filter
+/// accepted the update, reports it with [`accepted`](Self::accepted). A scan
+/// without a measurement is reported with [`missed`](Self::missed).
+///
+/// `gains` does not change the schedule, so a refused update leaves it as it
+/// was. Schedules are `Copy`: a track table stores them by value.
+pub trait GainSchedule<S: Scalar, const D: usize>: Copy {
+    /// The gains, one per axis, for the update described by `ctx`.
+    fn gains(&self, ctx: &GainContext<S, D>) -> Result<[Gains<S>; D], ScheduleError>;
+
+    /// The filter applied the update described by `ctx` with `used` (the
+    /// gains `gains` returned).
+    fn accepted(&mut self, ctx: &GainContext<S, D>, used: &[Gains<S>; D]);
+
+    /// Measurement `n` (1 or 2) initialised the filter; no gains were used.
+    fn initialised(&mut self, _n: u32) {}
+
+    /// A scan passed without a measurement for this track.
+    fn missed(&mut self) {}
+
+    /// Whether the track must be restarted (filter emptied, schedule
+    /// [`reset`](Self::reset)) before the next measurement, given the
+    /// filter's phase. Only track-firmness schedules use it.
+    fn restart_required(&self, _phase: Phase) -> bool {
+        false
+    }
+
+    /// Back to the state of a freshly configured schedule.
+    fn reset(&mut self);
+}
+
+/// Why a [`ScheduledFilter`] refused a measurement. Nothing changed (except
+/// the filter's saturation counter for a saturated update).
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+#[cfg_attr(feature = "defmt", derive(defmt::Format))]
+pub enum ScheduledError {
+    Filter(FilterError),
+    Schedule(ScheduleError),
+}
+
+impl From<FilterError> for ScheduledError {
+    fn from(e: FilterError) -> Self {
+        ScheduledError::Filter(e)
+    }
+}
+
+impl From<ScheduleError> for ScheduledError {
+    fn from(e: ScheduleError) -> Self {
+        ScheduledError::Schedule(e)
+    }
+}
+
+impl fmt::Display for ScheduledError {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        match self {
+            ScheduledError::Filter(e) => fmt::Display::fmt(e, f),
+            ScheduledError::Schedule(e) => fmt::Display::fmt(e, f),
+        }
+    }
+}
+
+/// What a [`ScheduledFilter::update`] did.
+#[derive(Debug, Clone, Copy, PartialEq)]
+#[cfg_attr(feature = "defmt", derive(defmt::Format))]
+pub struct ScheduledUpdate<S, const D: usize> {
+    /// The filter's outcome per axis.
+    pub outcome: [UpdateOutcome<S>; D],
+    /// The gains applied; `None` during two-point initialisation.
+    pub gains: Option<[Gains<S>; D]>,
+    /// The schedule restarted the track before this measurement, which
+    /// became its first point.
+    pub restarted: bool,
+}
+
+/// A [`Cartesian`] filter driven by a gain schedule: what a track holds.
+///
+/// With an αβγ filter (`ORDER = 3`), schedules that give αβ gains (γ = 0)
+/// leave the acceleration at its initial zero, i.e. the filter behaves as
+/// αβ; with an αβ filter the γ of αβγ gains (TCAS) is ignored.
+#[derive(Debug, Clone, Copy, PartialEq)]
+#[cfg_attr(feature = "defmt", derive(defmt::Format))]
+pub struct ScheduledFilter<S, G, const ORDER: usize, const D: usize> {
+    filter: Cartesian<S, ORDER, D>,
+    schedule: G,
+    measurements: u32,
+}
+
+impl<S, G, const ORDER: usize, const D: usize> ScheduledFilter<S, G, ORDER, D>
+where
+    S: Scalar,
+    G: GainSchedule<S, D>,
+{
+    /// An empty track driven by `schedule`.
+    pub const fn new(schedule: G) -> Self {
+        ScheduledFilter {
+            filter: Cartesian::new(),
+            schedule,
+            measurements: 0,
+        }
+    }
+
+    /// A track from its parts, e.g. a filter handed over already tracking
+    /// with `measurements` counted so far (schedules that count treat
+    /// n < 3 as 3).
+    pub const fn from_parts(
+        filter: Cartesian<S, ORDER, D>,
+        schedule: G,
+        measurements: u32,
+    ) -> Self {
+        ScheduledFilter {
+            filter,
+            schedule,
+            measurements,
+        }
+    }
+
+    pub fn filter(&self) -> &Cartesian<S, ORDER, D> {
+        &self.filter
+    }
+
+    pub fn schedule(&self) -> &G {
+        &self.schedule
+    }
+
+    /// Measurements incorporated since the track was (re)started.
+    pub fn measurements(&self) -> u32 {
+        self.measurements
+    }
+
+    /// Incorporates measurement `z`, taken `dt` after the previous call.
+    ///
+    /// If the schedule requires a restart, the filter is emptied first and
+    /// `z` becomes the first point of the restarted track. The first two
+    /// measurements initialise the filter (no gains). Later ones: each axis
+    /// predicts, the [`GainContext`] is built, the schedule gives the gains,
+    /// the filter updates every axis with them (all or none) and the
+    /// schedule hears that the update was [accepted](GainSchedule::accepted).
+    /// A refused update changes neither the filter (but for its saturation
+    /// count) nor the schedule.
+    pub fn update(&mut self, z: [S; D], dt: S) -> Result<ScheduledUpdate<S, D>, ScheduledError> {
+        let restarted = self.schedule.restart_required(self.filter.phase());
+        let mut filter = if restarted {
+            Cartesian::new()
+        } else {
+            self.filter
+        };
+        let n = if restarted {
+            1
+        } else {
+            self.measurements.saturating_add(1)
+        };
+
+        if filter.phase() != Phase::Tracking {
+            // Two-point initialisation ignores gains; any valid pair will do.
+            let unused = Gains::alpha_beta(S::ONE, S::ONE).map_err(ScheduleError::Gain)?;
+            match filter.update(z, dt, &unused) {
+                Ok(outcome) => {
+                    self.filter = filter;
+                    self.measurements = n;
+                    if restarted {
+                        self.schedule.reset();
+                    }
+                    self.schedule.initialised(n);
+                    Ok(ScheduledUpdate {
+                        outcome,
+                        gains: None,
+                        restarted,
+                    })
+                }
+                Err(e) => {
+                    if e == FilterError::Saturated && !restarted {
+                        self.filter = filter;
+                    }
+                    Err(e.into())
+                }
+            }
+        } else {
+            let mut predictions = [Prediction {
+                position: S::ZERO,
+                velocity: S::ZERO,
+                acceleration: S::ZERO,
+            }; D];
+            for (p, axis) in predictions.iter_mut().zip(filter.axes()) {
+                match axis.predict(dt) {
+                    Ok(q) => *p = q,
+                    Err(FilterError::Saturated) => return self.refuse_overflow(filter, z, dt),
+                    Err(e) => return Err(e.into()),
+                }
+            }
+            if z.iter().any(|v| !v.is_valid()) {
+                return Err(FilterError::InvalidMeasurement.into());
+            }
+            let ctx = match GainContext::new(n, dt, z, &predictions) {
+                Ok(c) => c,
+                // z and the predictions are valid, so the innovation
+                // overflowed.
+                Err(_) => return self.refuse_overflow(filter, z, dt),
+            };
+            let gains = self.schedule.gains(&ctx)?;
+            match filter.update_per_axis(z, dt, &gains) {
+                Ok(outcome) => {
+                    self.filter = filter;
+                    self.measurements = n;
+                    self.schedule.accepted(&ctx, &gains);
+                    Ok(ScheduledUpdate {
+                        outcome,
+                        gains: Some(gains),
+                        restarted: false,
+                    })
+                }
+                Err(e) => {
+                    if e == FilterError::Saturated {
+                        self.filter = filter;
+                    }
+                    Err(e.into())
+                }
+            }
+        }
+    }
+
+    /// The prediction or innovation of this update overflowed: let the
+    /// filter refuse (and count) the update, as it would without a schedule.
+    /// Its arithmetic is the same, so it refuses; should it not, the result
+    /// is discarded all the same.
+    fn refuse_overflow(
+        &mut self,
+        mut filter: Cartesian<S, ORDER, D>,
+        z: [S; D],
+        dt: S,
+    ) -> Result<ScheduledUpdate<S, D>, ScheduledError> {
+        let unused = Gains::alpha_beta(S::ONE, S::ONE).map_err(ScheduleError::Gain)?;
+        match filter.update(z, dt, &unused) {
+            Err(e) => {
+                if e == FilterError::Saturated {
+                    self.filter = filter;
+                }
+                Err(e.into())
+            }
+            Ok(_) => Err(FilterError::Saturated.into()),
+        }
+    }
+
+    /// No measurement this scan: the filter coasts and the schedule hears of
+    /// the miss.
+    pub fn coast(&mut self, dt: S) -> Result<(), FilterError> {
+        self.filter.coast(dt)?;
+        self.schedule.missed();
+        Ok(())
+    }
+}
+
+/// Euclidean norm of a vector, scaled by its largest component so that
+/// squaring cannot overflow Q32.32 (|x| up to 2³¹ rather than 46 341).
+pub(crate) fn norm<S: Scalar>(v: &[S]) -> S {
+    let mut largest = S::ZERO;
+    for x in v {
+        let a = x.abs();
+        if !a.is_valid() {
+            return a;
+        }
+        largest = largest.max_of(a);
+    }
+    if largest == S::ZERO {
+        return S::ZERO;
+    }
+    let mut sum = S::ZERO;
+    for x in v {
+        let q = *x / largest;
+        sum = sum + q * q;
+    }
+    largest * sum.sqrt()
+}
+
+/// Any schedule a [`ScheduleSpec`] can name, in one `Copy` type, so a tool or
+/// firmware can choose the schedule at run time. `W` is the capacity of the
+/// windows of M3, M4 and Liu's residual accumulation.
+#[derive(Debug, Clone, Copy, PartialEq)]
+#[cfg_attr(feature = "defmt", derive(defmt::Format))]
+pub enum AnySchedule<S, const D: usize, const W: usize> {
+    Fixed(FixedGains<S>),
+    LeastSquares(LeastSquaresGains),
+    LinearCombination(LinearCombinationGains<S, D, W>),
+    MovingWindow(MovingWindowGains<S, D, W>),
+    LiImproved(LiImprovedGains<S>),
+    ScanCountAdjusted(ScanCountAdjustedGains<S>),
+    ResidualAccumulation(ResidualAccumulationGains<S, D, W>),
+    AdaptiveSwitch(AdaptiveSwitchGains<S, D, W>),
+    Firmness(FirmnessGains),
+}
+
+impl<S: Scalar, const D: usize, const W: usize> AnySchedule<S, D, W> {
+    /// The schedule `spec` names, configured as it says.
+    /// [`ScheduleSpec::Bank`] is refused with [`ConfigError::NotASchedule`].
+    pub fn from_spec(spec: &ScheduleSpec) -> Result<Self, ConfigError> {
+        Ok(match spec {
+            ScheduleSpec::Fixed(c) => AnySchedule::Fixed(FixedGains::from_config(c)?),
+            ScheduleSpec::FixedAlpha(c) => AnySchedule::Fixed(FixedGains::from_m1_config(c)?),
+            ScheduleSpec::LeastSquares(c) => AnySchedule::LeastSquares(LeastSquaresGains::new(c)?),
+            ScheduleSpec::LinearCombination(c) => {
+                AnySchedule::LinearCombination(LinearCombinationGains::new(c)?)
+            }
+            ScheduleSpec::MovingWindow(c) => AnySchedule::MovingWindow(MovingWindowGains::new(c)?),
+            ScheduleSpec::LiImproved(c) => AnySchedule::LiImproved(LiImprovedGains::new(c)?),
+            ScheduleSpec::ScanCountAdjusted(c) => {
+                AnySchedule::ScanCountAdjusted(ScanCountAdjustedGains::new(c)?)
+            }
+            ScheduleSpec::ResidualAccumulation(c) => {
+                AnySchedule::ResidualAccumulation(ResidualAccumulationGains::new(c)?)
+            }
+            ScheduleSpec::AdaptiveSwitch(c) => {
+                AnySchedule::AdaptiveSwitch(AdaptiveSwitchGains::new(c)?)
+            }
+            ScheduleSpec::Firmness => AnySchedule::Firmness(FirmnessGains::new()),
+            ScheduleSpec::Bank(_) => return Err(ConfigError::NotASchedule),
+        })
+    }
+}
+
+macro_rules! dispatch {
+    ($self:expr, $s:ident => $e:expr) => {
+        match $self {
+            AnySchedule::Fixed($s) => $e,
+            AnySchedule::LeastSquares($s) => $e,
+            AnySchedule::LinearCombination($s) => $e,
+            AnySchedule::MovingWindow($s) => $e,
+            AnySchedule::LiImproved($s) => $e,
+            AnySchedule::ScanCountAdjusted($s) => $e,
+            AnySchedule::ResidualAccumulation($s) => $e,
+            AnySchedule::AdaptiveSwitch($s) => $e,
+            AnySchedule::Firmness($s) => $e,
+        }
+    };
+}
+
+impl<S: Scalar, const D: usize, const W: usize> GainSchedule<S, D> for AnySchedule<S, D, W> {
+    fn gains(&self, ctx: &GainContext<S, D>) -> Result<[Gains<S>; D], ScheduleError> {
+        dispatch!(self, s => s.gains(ctx))
+    }
+    fn accepted(&mut self, ctx: &GainContext<S, D>, used: &[Gains<S>; D]) {
+        dispatch!(self, s => s.accepted(ctx, used))
+    }
+    fn initialised(&mut self, n: u32) {
+        dispatch!(self, s => GainSchedule::<S, D>::initialised(s, n))
+    }
+    fn missed(&mut self) {
+        dispatch!(self, s => GainSchedule::<S, D>::missed(s))
+    }
+    fn restart_required(&self, phase: Phase) -> bool {
+        dispatch!(self, s => GainSchedule::<S, D>::restart_required(s, phase))
+    }
+    fn reset(&mut self) {
+        dispatch!(self, s => GainSchedule::<S, D>::reset(s))
+    }
+}
