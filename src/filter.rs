@@ -522,14 +522,13 @@ impl<S: Scalar, const ORDER: usize, const D: usize> Cartesian<S, ORDER, D> {
     ) -> Result<[UpdateOutcome<S>; D], FilterError> {
         let mut next = self.axes;
         let mut out = [UpdateOutcome::FirstPoint; D];
-        for i in 0..D {
-            match next[i].update(z[i], dt, &gains[i]) {
-                Ok(o) => out[i] = o,
+        let axes = self.axes.iter_mut().zip(next.iter_mut()).zip(out.iter_mut());
+        for (((current, candidate), outcome), (z, gains)) in axes.zip(z.iter().zip(gains)) {
+            match candidate.update(*z, dt, gains) {
+                Ok(o) => *outcome = o,
                 Err(e) => {
                     // Keep the saturation count of the refused update.
-                    if e == FilterError::Saturated {
-                        self.axes[i].saturations = next[i].saturations;
-                    }
+                    current.saturations = candidate.saturations;
                     return Err(e);
                 }
             }
@@ -541,11 +540,10 @@ impl<S: Scalar, const ORDER: usize, const D: usize> Cartesian<S, ORDER, D> {
     /// Coasts every axis (no measurement this scan).
     pub fn coast(&mut self, dt: S) -> Result<(), FilterError> {
         let mut next = self.axes;
-        for i in 0..D {
-            if let Err(e) = next[i].coast(dt) {
-                if e == FilterError::Saturated {
-                    self.axes[i].saturations = next[i].saturations;
-                }
+        for (current, candidate) in self.axes.iter_mut().zip(next.iter_mut()) {
+            if let Err(e) = candidate.coast(dt) {
+                // Keep the saturation count of the refused coast.
+                current.saturations = candidate.saturations;
                 return Err(e);
             }
         }
