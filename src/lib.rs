@@ -6,6 +6,7 @@
 //! |---|---|
 //! | [`num`] | the [`num::Scalar`] abstraction over `f64`, `f32` and Q32.32 fixed point |
 //! | [`filter`] | single-target αβ / αβγ filters, one axis and composed into 2-D/3-D |
+//! | [`budget`] | the error budget: bound on the deviation of an f32 / fixed-point run from f64 |
 //! | [`design`] | closed-form analysis: stability, noise ratio, steady-state and transient errors |
 //!
 //! The specification is five papers, cited in the doc comments by author and
@@ -14,6 +15,7 @@
 #![forbid(unsafe_code)]
 #![warn(missing_debug_implementations)]
 
+pub mod budget;
 pub mod design;
 pub mod filter;
 pub mod num;
