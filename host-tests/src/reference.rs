@@ -35,7 +35,9 @@ pub enum RefStep {
 enum Stage {
     NoMeasurement,
     /// One measurement; the time since it (coasts included).
-    OneMeasurement { since: f64 },
+    OneMeasurement {
+        since: f64,
+    },
     Tracking,
 }
 

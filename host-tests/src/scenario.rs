@@ -156,7 +156,8 @@ fn advance(axis: &mut AxisTruth, motion: &Motion, t: f64, dt: f64, rng: &mut Cha
             {
                 axis.acceleration = -axis.position.signum() * max_acceleration;
             }
-            let v_next = (axis.velocity + axis.acceleration * dt).clamp(-max_velocity, max_velocity);
+            let v_next =
+                (axis.velocity + axis.acceleration * dt).clamp(-max_velocity, max_velocity);
             axis.position += 0.5 * (axis.velocity + v_next) * dt;
             axis.velocity = v_next;
             axis.position = axis.position.clamp(-limit_position, limit_position);

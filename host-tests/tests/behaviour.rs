@@ -18,8 +18,10 @@ fn snapshot<S: Scalar, const O: usize>(f: &KinematicFilter<S, O>) -> String {
         f.position().to_f64().to_bits(),
         f.velocity().to_f64().to_bits(),
         f.acceleration().to_f64().to_bits(),
-        f.last_innovation()
-            .map(|i| (i.predicted.to_f64().to_bits(), i.residual.to_f64().to_bits())),
+        f.last_innovation().map(|i| (
+            i.predicted.to_f64().to_bits(),
+            i.residual.to_f64().to_bits()
+        )),
         without_counter
     )
 }
@@ -44,7 +46,10 @@ fn refuses_bad_input<S: Scalar, const O: usize>(g: Gains<S>, bad_values: &[S]) {
         let count = f.saturations();
         for &bad in bad_values {
             let mut t = f;
-            assert_eq!(t.update(bad, c(1.0), &g), Err(FilterError::InvalidMeasurement));
+            assert_eq!(
+                t.update(bad, c(1.0), &g),
+                Err(FilterError::InvalidMeasurement)
+            );
             assert_eq!(snapshot(&t), before);
             assert_eq!(t.update(c(1.0), bad, &g), Err(FilterError::InvalidInterval));
             assert_eq!(snapshot(&t), before);
@@ -98,14 +103,23 @@ fn saturating_update_is_refused_and_counted() {
     let mut f = KinematicFilter::<Fix, 3>::new();
     let g3 = Gains::<Fix>::alpha_beta_gamma_f64(0.5, 0.3, 0.1).unwrap();
     f.update(c(-2.0e9), c(1.0), &g3).unwrap();
-    assert_eq!(f.update(c(2.0e9), c(0.001), &g3), Err(FilterError::Saturated));
-    assert_eq!((f.phase(), f.saturations(), f.position()), (Phase::OnePoint, 1, c(-2.0e9)));
+    assert_eq!(
+        f.update(c(2.0e9), c(0.001), &g3),
+        Err(FilterError::Saturated)
+    );
+    assert_eq!(
+        (f.phase(), f.saturations(), f.position()),
+        (Phase::OnePoint, 1, c(-2.0e9))
+    );
 
     // f32 overflows to infinity: refused and counted the same way.
     let g32 = Gains::<f32>::alpha_beta(0.5, 0.3).unwrap();
     let mut f = KinematicFilter::<f32, 2>::from_state(3.0e38, 1.0e38, 0.0).unwrap();
     assert_eq!(f.update(3.0e38, 20.0, &g32), Err(FilterError::Saturated));
-    assert_eq!((f.saturations(), f.position(), f.velocity()), (1, 3.0e38, 1.0e38));
+    assert_eq!(
+        (f.saturations(), f.position(), f.velocity()),
+        (1, 3.0e38, 1.0e38)
+    );
 }
 
 #[test]
@@ -121,7 +135,10 @@ fn cartesian_update_is_all_or_nothing() {
         Err(FilterError::InvalidMeasurement)
     );
     assert_eq!(t, before);
-    assert_eq!(t.update([3.0, 6.0, 9.0], -1.0, &g), Err(FilterError::InvalidInterval));
+    assert_eq!(
+        t.update([3.0, 6.0, 9.0], -1.0, &g),
+        Err(FilterError::InvalidInterval)
+    );
     assert_eq!(t, before);
     assert_eq!(t.coast(f64::NAN), Err(FilterError::InvalidInterval));
     assert_eq!(t, before);

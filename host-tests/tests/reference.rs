@@ -95,7 +95,10 @@ fn alpha_beta_gamma_by_hand() {
     for ((z, t), (x, v, a)) in steps.iter().zip(expect) {
         r.update(*z, *t, &g);
         f.update(*z, *t, &lib_g).unwrap();
-        assert!(close(r.x_s, x) && close(r.v_s, v) && close(r.a_s, a), "{r:?}");
+        assert!(
+            close(r.x_s, x) && close(r.v_s, v) && close(r.a_s, a),
+            "{r:?}"
+        );
         assert!(close(f.position(), x) && close(f.velocity(), v) && close(f.acceleration(), a));
     }
     r.coast(1.0);
@@ -213,7 +216,11 @@ fn run_pair<const ORDER: usize, const D: usize>(steps: &[Step<D>], g: &RefGains)
                     scales.see(zi, 0.0, 0.0);
                 }
             }
-            diffs.push([axis.position() - x, axis.velocity() - v, axis.acceleration() - a]);
+            diffs.push([
+                axis.position() - x,
+                axis.velocity() - v,
+                axis.acceleration() - a,
+            ]);
         }
     }
     diffs
@@ -317,7 +324,10 @@ fn check_many<const ORDER: usize, const D: usize>(seed: u64, runs: usize) {
         );
         worst.0 = worst.0.max(rel);
     }
-    println!("order {ORDER}, {D}-D: largest relative difference {:e}", worst.0);
+    println!(
+        "order {ORDER}, {D}-D: largest relative difference {:e}",
+        worst.0
+    );
 }
 
 #[test]

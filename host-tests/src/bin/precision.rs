@@ -54,7 +54,9 @@ fn row<S: Scalar>(run: &DocumentedRun) -> Result<bool, String> {
 
 fn main() -> ExitCode {
     println!("Deviation from the f64 reference over 10 000 updates (max, RMS), error budget and budget/max.");
-    println!("x in m, v in m/s, a in m/s². Budget: abtrack::budget::error_budget_around_reference.\n");
+    println!(
+        "x in m, v in m/s, a in m/s². Budget: abtrack::budget::error_budget_around_reference.\n"
+    );
     let runs = documented_runs();
     for run in &runs {
         println!("* {}: {}", run.name, run.description);
