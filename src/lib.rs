@@ -6,6 +6,7 @@
 //! |---|---|
 //! | [`num`] | the [`num::Scalar`] abstraction over `f64`, `f32` and Q32.32 fixed point |
 //! | [`filter`] | single-target αβ / αβγ filters, one axis and composed into 2-D/3-D |
+//! | [`budget`] | the error budget: bound on the deviation of an f32 / fixed-point run from f64 |
 //! | [`design`] | closed-form analysis: stability, noise ratio, steady-state and transient errors |
 //! | [`track`] | the fixed-capacity multi-target track table: gating, assignment, lifecycle |
 //!
@@ -16,6 +17,7 @@
 #![warn(missing_debug_implementations)]
 
 pub mod bank;
+pub mod budget;
 pub mod design;
 pub mod filter;
 pub mod gain;

@@ -88,6 +88,16 @@ pub trait Scalar:
     const ZERO: Self;
     const ONE: Self;
 
+    /// Rounding model, used by the error budget ([`crate::budget`]): a rounded
+    /// `+` or `−` errs by at most `UNIT_ROUNDOFF·|exact result|`; a rounded `×`
+    /// or `÷` by at most `UNIT_ROUNDOFF·|exact result| + ABS_RESOLUTION`; a
+    /// conversion from `f64` by at most `UNIT_ROUNDOFF·|v| + ABS_RESOLUTION/2`.
+    /// Floats: unit roundoff 2⁻ᵖ (p = significand bits) and the smallest
+    /// subnormal (underflow). Fixed point: exact `+ −`, 2⁻³² per `× ÷`.
+    const UNIT_ROUNDOFF: f64;
+    /// See [`Scalar::UNIT_ROUNDOFF`].
+    const ABS_RESOLUTION: f64;
+
     /// Converts an outside value, refusing NaN, infinities and values beyond
     /// the representable range. Use this at the edges (wire, CSV, constructors).
     fn try_from_f64(v: f64) -> Result<Self, NumError>;
@@ -137,6 +147,8 @@ impl Scalar for f64 {
     const NAME: &'static str = "f64";
     const ZERO: Self = 0.0;
     const ONE: Self = 1.0;
+    const UNIT_ROUNDOFF: f64 = f64::EPSILON / 2.0; // 2⁻⁵³
+    const ABS_RESOLUTION: f64 = f64::from_bits(1); // 2⁻¹⁰⁷⁴
 
     fn try_from_f64(v: f64) -> Result<Self, NumError> {
         if v.is_finite() {
@@ -179,6 +191,8 @@ impl Scalar for f32 {
     const NAME: &'static str = "f32";
     const ZERO: Self = 0.0;
     const ONE: Self = 1.0;
+    const UNIT_ROUNDOFF: f64 = f32::EPSILON as f64 / 2.0; // 2⁻²⁴
+    const ABS_RESOLUTION: f64 = f32::from_bits(1) as f64; // 2⁻¹⁴⁹
 
     fn try_from_f64(v: f64) -> Result<Self, NumError> {
         if !v.is_finite() {
@@ -375,6 +389,11 @@ impl Scalar for Fix {
     const NAME: &'static str = "fixed";
     const ZERO: Self = Fix(I32F32::ZERO);
     const ONE: Self = Fix(I32F32::ONE);
+    // `fixed` multiplies with an arithmetic shift (rounds toward −∞) and
+    // divides with truncation: either way the error is below one step 2⁻³².
+    // Conversions from f64 round to nearest (half a step).
+    const UNIT_ROUNDOFF: f64 = 0.0;
+    const ABS_RESOLUTION: f64 = 1.0 / 4_294_967_296.0; // 2⁻³²
 
     fn try_from_f64(v: f64) -> Result<Self, NumError> {
         if !v.is_finite() {

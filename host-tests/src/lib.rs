@@ -1,8 +1,27 @@
 //! Host-side support for abtrack: what needs `std`.
+//!
+//! * [`reference`]: the independent `f64` reference filters, written straight
+//!   from the papers; [`reference_ra`] the same for He et al.'s range-azimuth
+//!   filter.
+//! * [`trajectory`]: seeded random trajectories for the precision checks.
+//! * [`scenario`], [`noise`]: the papers' scenarios and measurement noise.
+//! * [`kalman`]: the Kalman-filter baselines; [`metrics`]: RMSE, confidence
+//!   intervals, OSPA and track metrics.
+//! * [`csv_input`], [`replay`], [`cli`]: the `replay` tool's CSV reader,
+//!   runner and command line.
+//! * [`precision`]: runs a representation next to the reference and measures
+//!   the deviation and the run's magnitudes; the documented runs.
+//! * [`experiments`]: the `experiments` tool's groups and output helpers.
 
+pub mod cli;
+pub mod csv_input;
 pub mod experiments;
 pub mod kalman;
 pub mod metrics;
 pub mod noise;
+pub mod precision;
+pub mod reference;
 pub mod reference_ra;
+pub mod replay;
 pub mod scenario;
+pub mod trajectory;

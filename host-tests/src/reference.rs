@@ -1,0 +1,238 @@
+//! The independent `f64` reference: the αβ and αβγ filters written straight
+//! from the papers' equations, in plain `f64`, sharing no code with the
+//! library's generic filter (no `Scalar`, no `KinematicFilter`).
+//!
+//! * αβ: Al-Wagih & Abdulla, eqs. (3)–(8), two-point initialisation (9)–(10).
+//! * αβγ: Tenne & Singh, eqs. (1)–(5), with their γ/(2T²).
+//!
+//! What the papers leave open, taken from the library's documented contract so
+//! that the two can be compared: the interval `T` is the time since the
+//! previous call and may change on every call; a coast (no measurement)
+//! replaces the smoothed state by the prediction; before the second
+//! measurement a coast only adds to the time since the first one, which is the
+//! `T` of eq. (9); the αβγ filter's acceleration starts at zero.
+
+/// Smoothing gains in the papers' notation; `gamma` is unused by αβ.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct RefGains {
+    pub alpha: f64,
+    pub beta: f64,
+    pub gamma: f64,
+}
+
+/// What one reference update produced.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum RefStep {
+    /// First measurement: x_s = x_m(1).
+    First,
+    /// Second: v_s(2) from eq. (9), x_s = x_m(2).
+    Second,
+    /// Filtered: the prediction x_p and the innovation e = x_m − x_p (eq. 4).
+    Filtered { predicted: f64, innovation: f64 },
+}
+
+#[derive(Debug, Clone, Copy, PartialEq)]
+enum Stage {
+    NoMeasurement,
+    /// One measurement; the time since it (coasts included).
+    OneMeasurement {
+        since: f64,
+    },
+    Tracking,
+}
+
+/// αβ tracker, Al-Wagih & Abdulla eqs. (3)–(10).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct RefAlphaBeta {
+    /// x_s, smoothed position.
+    pub x_s: f64,
+    /// v_s, smoothed velocity.
+    pub v_s: f64,
+    stage: Stage,
+}
+
+impl Default for RefAlphaBeta {
+    fn default() -> Self {
+        Self::new()
+    }
+}
+
+impl RefAlphaBeta {
+    pub fn new() -> Self {
+        RefAlphaBeta {
+            x_s: 0.0,
+            v_s: 0.0,
+            stage: Stage::NoMeasurement,
+        }
+    }
+
+    /// Measurement x_m taken T seconds after the previous call.
+    pub fn update(&mut self, x_m: f64, t: f64, g: &RefGains) -> RefStep {
+        match self.stage {
+            Stage::NoMeasurement => {
+                // "The measured position is considered to be the initial
+                // predicted target position till the second time step" (§3).
+                self.x_s = x_m;
+                self.v_s = 0.0;
+                self.stage = Stage::OneMeasurement { since: 0.0 };
+                RefStep::First
+            }
+            Stage::OneMeasurement { since } => {
+                let t_total = since + t;
+                // eq. (9): v_s(2) = (x_m(2) − x_m(1)) / T
+                self.v_s = (x_m - self.x_s) / t_total;
+                self.x_s = x_m;
+                self.stage = Stage::Tracking;
+                RefStep::Second
+            }
+            Stage::Tracking => {
+                // eq. (3) (eq. (10) on the third step, since x_s(2) = x_m(2)):
+                let x_p = self.x_s + t * self.v_s;
+                // eq. (4)
+                let e = x_m - x_p;
+                // eq. (6)
+                self.x_s = x_p + g.alpha * e;
+                // eq. (8): v_s(t) = v_s(t−1) + β/T·e(t)
+                self.v_s += (g.beta / t) * e;
+                RefStep::Filtered {
+                    predicted: x_p,
+                    innovation: e,
+                }
+            }
+        }
+    }
+
+    /// No measurement for T seconds: the state becomes the prediction, eq. (3).
+    pub fn coast(&mut self, t: f64) {
+        match self.stage {
+            Stage::NoMeasurement => {}
+            Stage::OneMeasurement { since } => {
+                self.stage = Stage::OneMeasurement { since: since + t };
+            }
+            Stage::Tracking => {
+                self.x_s += t * self.v_s;
+            }
+        }
+    }
+}
+
+/// αβγ filter, Tenne & Singh eqs. (1)–(5), initialised by two points as the αβ
+/// tracker (Al-Wagih eqs. (9)–(10)) with zero initial acceleration.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct RefAlphaBetaGamma {
+    pub x_s: f64,
+    pub v_s: f64,
+    pub a_s: f64,
+    stage: Stage,
+}
+
+impl Default for RefAlphaBetaGamma {
+    fn default() -> Self {
+        Self::new()
+    }
+}
+
+impl RefAlphaBetaGamma {
+    pub fn new() -> Self {
+        RefAlphaBetaGamma {
+            x_s: 0.0,
+            v_s: 0.0,
+            a_s: 0.0,
+            stage: Stage::NoMeasurement,
+        }
+    }
+
+    /// Observation x_o taken T seconds after the previous call.
+    pub fn update(&mut self, x_o: f64, t: f64, g: &RefGains) -> RefStep {
+        match self.stage {
+            Stage::NoMeasurement => {
+                self.x_s = x_o;
+                self.v_s = 0.0;
+                self.a_s = 0.0;
+                self.stage = Stage::OneMeasurement { since: 0.0 };
+                RefStep::First
+            }
+            Stage::OneMeasurement { since } => {
+                self.v_s = (x_o - self.x_s) / (since + t);
+                self.x_s = x_o;
+                self.a_s = 0.0;
+                self.stage = Stage::Tracking;
+                RefStep::Second
+            }
+            Stage::Tracking => {
+                // eq. (1): x_p(k+1) = x_s(k) + T v_s(k) + ½T² a_s(k)
+                let x_p = self.x_s + t * self.v_s + 0.5 * t * t * self.a_s;
+                // eq. (2): v_p(k+1) = v_s(k) + T a_s(k)
+                let v_p = self.v_s + t * self.a_s;
+                let innovation = x_o - x_p;
+                // eq. (3)
+                self.x_s = x_p + g.alpha * innovation;
+                // eq. (4)
+                self.v_s = v_p + (g.beta / t) * innovation;
+                // eq. (5): a_s(k) = a_s(k−1) + γ/(2T²)·(x_o − x_p)
+                self.a_s += g.gamma / (2.0 * t * t) * innovation;
+                RefStep::Filtered {
+                    predicted: x_p,
+                    innovation,
+                }
+            }
+        }
+    }
+
+    /// No observation for T seconds: the state becomes the prediction,
+    /// eqs. (1)–(2); the acceleration is held.
+    pub fn coast(&mut self, t: f64) {
+        match self.stage {
+            Stage::NoMeasurement => {}
+            Stage::OneMeasurement { since } => {
+                self.stage = Stage::OneMeasurement { since: since + t };
+            }
+            Stage::Tracking => {
+                let x_p = self.x_s + t * self.v_s + 0.5 * t * t * self.a_s;
+                let v_p = self.v_s + t * self.a_s;
+                self.x_s = x_p;
+                self.v_s = v_p;
+            }
+        }
+    }
+}
+
+/// Either reference filter, so that runs can be written once for both orders.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum RefFilter {
+    AlphaBeta(RefAlphaBeta),
+    AlphaBetaGamma(RefAlphaBetaGamma),
+}
+
+impl RefFilter {
+    /// An empty αβ (`order` 2) or αβγ (`order` 3) reference.
+    pub fn new(order: usize) -> Self {
+        if order == 3 {
+            RefFilter::AlphaBetaGamma(RefAlphaBetaGamma::new())
+        } else {
+            RefFilter::AlphaBeta(RefAlphaBeta::new())
+        }
+    }
+
+    pub fn update(&mut self, z: f64, t: f64, g: &RefGains) -> RefStep {
+        match self {
+            RefFilter::AlphaBeta(f) => f.update(z, t, g),
+            RefFilter::AlphaBetaGamma(f) => f.update(z, t, g),
+        }
+    }
+
+    pub fn coast(&mut self, t: f64) {
+        match self {
+            RefFilter::AlphaBeta(f) => f.coast(t),
+            RefFilter::AlphaBetaGamma(f) => f.coast(t),
+        }
+    }
+
+    /// (x_s, v_s, a_s); a_s = 0 for αβ.
+    pub fn state(&self) -> (f64, f64, f64) {
+        match self {
+            RefFilter::AlphaBeta(f) => (f.x_s, f.v_s, 0.0),
+            RefFilter::AlphaBetaGamma(f) => (f.x_s, f.v_s, f.a_s),
+        }
+    }
+}
