@@ -108,6 +108,7 @@ ensure_rustfmt() {
 ensure_host_linker() {
     command -v cc >/dev/null && return 0
     install_packages_or_die "a C compiler (cc, needed to link host programs)" gcc libc6-dev
+    command -v cc >/dev/null || die "gcc was installed but there is no 'cc' on PATH; fix that, then re-run"
 }
 
 # qemu-system-arm with the three boards.
@@ -126,16 +127,20 @@ ensure_qemu() {
 }
 
 # defmt-print that decodes the defmt wire format of defmt 1.x (version "4").
+defmt_print_ok() {
+    command -v defmt-print >/dev/null &&
+        defmt-print --version 2>/dev/null | grep -Eq 'supported defmt versions:.*\b4\b'
+}
+
 ensure_defmt_print() {
-    if command -v defmt-print >/dev/null &&
-        defmt-print --version 2>/dev/null | grep -Eq 'supported defmt versions:.*\b4\b'; then
-        return 0
-    fi
+    defmt_print_ok && return 0
     ensure_cargo
     ensure_host_linker
     say "cargo install defmt-print --locked (a few minutes, once)"
     cargo install defmt-print --version '^1' --locked ||
         die "installing defmt-print failed; install it with 'cargo install defmt-print --locked', then re-run"
-    command -v defmt-print >/dev/null ||
-        die "defmt-print was installed but is not on PATH; add $CARGO_BIN_DIR to PATH, then re-run"
+    # An older defmt-print elsewhere on PATH must not shadow the new one.
+    defmt_print_ok || PATH="$CARGO_BIN_DIR:$PATH"
+    defmt_print_ok ||
+        die "defmt-print was installed in $CARGO_BIN_DIR but does not run from there; put that directory first on PATH, then re-run"
 }

@@ -881,15 +881,18 @@ struct Deviation {
     velocity: f64,
     /// Largest deviation / tolerance ratio over every component and step.
     worst_ratio: f64,
+    /// Largest residual the runs saw (m).
+    residual: f64,
     updates: u32,
 }
 
 impl Deviation {
     fn report(&self, what: &str) {
         defmt::println!(
-            "       {=str}: {=u32} updates, max |dx| {=f64} m, max |dv| {=f64} m/s, worst deviation/bound {=f32}",
+            "       {=str}: {=u32} updates, residuals up to {=f32} m: max |dx| {=f64} m, max |dv| {=f64} m/s, worst deviation/bound {=f32}",
             what,
             self.updates,
+            self.residual as f32,
             self.position,
             self.velocity,
             self.worst_ratio as f32
@@ -1014,6 +1017,7 @@ fn compare_run<S: TestScalar, const ORDER: usize>(
         .max(worst.position / tol.position)
         .max(worst.velocity / tol.velocity)
         .max(worst.acceleration / tol.acceleration);
+    deviation.residual = deviation.residual.max(m.residual);
     deviation.updates += updates;
     Ok(())
 }
