@@ -230,12 +230,13 @@ fn run<S: Scalar + defmt::Format>() -> bool {
         ("ab", ab_errors),
         ("abg", abg_errors),
     ] {
+        // f32 for display only: a few significant digits are what matters.
         defmt::println!(
-            "  {=str}: all {=f64}, straight {=f64}, turning {=f64}",
+            "  {=str}: all {=f32}, straight {=f32}, turning {=f32}",
             name,
-            e.all.rms(),
-            e.straight.rms(),
-            e.turning.rms()
+            e.all.rms() as f32,
+            e.straight.rms() as f32,
+            e.turning.rms() as f32
         );
     }
     if refused > 0 {
