@@ -1,0 +1,146 @@
+# Shared set-up for the scripts in this directory (sourced, not run).
+#
+# Each `ensure_*` function checks for one prerequisite and installs it when it
+# can (rustup targets and components, `cargo install defmt-print`, apt-get
+# packages when running as root); otherwise it stops with one line saying what
+# to install. Nothing here is needed by the library itself.
+
+# The firmware targets and the QEMU board each one runs on.
+ABTRACK_TARGETS=(thumbv7em-none-eabihf thumbv7m-none-eabi thumbv6m-none-eabi)
+
+board_for_target() {
+    case "$1" in
+        thumbv7em-none-eabihf) echo mps2-an386 ;;
+        thumbv7m-none-eabi) echo mps2-an385 ;;
+        thumbv6m-none-eabi) echo microbit ;;
+        *) return 1 ;;
+    esac
+}
+
+# Accepts a target triple, a QEMU board name or a core name; prints the triple.
+target_for() {
+    case "$1" in
+        thumbv7em-none-eabihf | mps2-an386 | m4f | M4F | cortex-m4f) echo thumbv7em-none-eabihf ;;
+        thumbv7m-none-eabi | mps2-an385 | m3 | M3 | cortex-m3) echo thumbv7m-none-eabi ;;
+        thumbv6m-none-eabi | microbit | m0 | M0 | cortex-m0) echo thumbv6m-none-eabi ;;
+        *) return 1 ;;
+    esac
+}
+
+say() { echo "[abtrack] $*" >&2; }
+die() {
+    echo "abtrack: $*" >&2
+    exit 1
+}
+
+# cargo-installed tools (defmt-print) live here; a non-login shell may lack it.
+CARGO_BIN_DIR="${CARGO_HOME:-$HOME/.cargo}/bin"
+case ":$PATH:" in
+    *":$CARGO_BIN_DIR:"*) ;;
+    *) PATH="$PATH:$CARGO_BIN_DIR" ;;
+esac
+export PATH
+
+is_root() { [ "$(id -u)" -eq 0 ]; }
+
+# apt-get update runs at most once per script.
+_apt_updated=
+apt_install() {
+    if [ -z "$_apt_updated" ]; then
+        say "apt-get update"
+        apt-get update -qq
+        _apt_updated=1
+    fi
+    say "apt-get install $*"
+    DEBIAN_FRONTEND=noninteractive apt-get install -y -qq --no-install-recommends "$@"
+}
+
+# Installs Debian packages if we are root on an apt system; otherwise stops
+# with one line naming them. $1: what is missing (for the message).
+install_packages_or_die() {
+    local what=$1
+    shift
+    if is_root && command -v apt-get >/dev/null; then
+        apt_install "$@"
+    elif command -v apt-get >/dev/null; then
+        die "$what is missing: run 'sudo apt-get install $*' (or run this script as root), then re-run"
+    else
+        die "$what is missing: install the package(s) '$*' with your system's package manager, then re-run"
+    fi
+}
+
+ensure_cargo() {
+    command -v cargo >/dev/null && command -v rustc >/dev/null ||
+        die "cargo/rustc not found: install Rust with rustup (https://rustup.rs), then re-run"
+}
+
+# Rust targets, given as arguments (default: all three firmware targets).
+ensure_targets() {
+    ensure_cargo
+    local wanted=("$@")
+    [ ${#wanted[@]} -gt 0 ] || wanted=("${ABTRACK_TARGETS[@]}")
+    local missing=() t
+    for t in "${wanted[@]}"; do
+        # The target's core library is what a build needs.
+        if ! ls "$(rustc --print target-libdir --target "$t" 2>/dev/null)"/libcore-*.rlib >/dev/null 2>&1; then
+            missing+=("$t")
+        fi
+    done
+    [ ${#missing[@]} -eq 0 ] && return 0
+    command -v rustup >/dev/null ||
+        die "Rust targets ${missing[*]} are missing and rustup is not installed: add them to your toolchain, then re-run"
+    say "rustup target add ${missing[*]}"
+    rustup target add "${missing[@]}"
+}
+
+# rustfmt, for `cargo fmt --check`.
+ensure_rustfmt() {
+    ensure_cargo
+    cargo fmt --version >/dev/null 2>&1 && return 0
+    command -v rustup >/dev/null ||
+        die "rustfmt is missing and rustup is not installed: install rustfmt for your toolchain, then re-run"
+    say "rustup component add rustfmt"
+    rustup component add rustfmt
+}
+
+# A C compiler/linker: Rust links host programs (host-tests, defmt-print)
+# with `cc`.
+ensure_host_linker() {
+    command -v cc >/dev/null && return 0
+    install_packages_or_die "a C compiler (cc, needed to link host programs)" gcc libc6-dev
+    command -v cc >/dev/null || die "gcc was installed but there is no 'cc' on PATH; fix that, then re-run"
+}
+
+# qemu-system-arm with the three boards.
+ensure_qemu() {
+    if ! command -v qemu-system-arm >/dev/null; then
+        install_packages_or_die "qemu-system-arm" qemu-system-arm
+    fi
+    local machines
+    machines=$(qemu-system-arm -machine help 2>/dev/null) ||
+        die "qemu-system-arm does not run; reinstall it (apt-get install qemu-system-arm), then re-run"
+    local board
+    for board in mps2-an386 mps2-an385 microbit; do
+        grep -q "^$board " <<<"$machines" ||
+            die "qemu-system-arm ($(qemu-system-arm --version | head -n1)) has no '$board' board; install QEMU 6.0 or later, then re-run"
+    done
+}
+
+# defmt-print that decodes the defmt wire format of defmt 1.x (version "4").
+defmt_print_ok() {
+    command -v defmt-print >/dev/null &&
+        defmt-print --version 2>/dev/null | grep -Eq 'supported defmt versions:.*\b4\b'
+}
+
+ensure_defmt_print() {
+    defmt_print_ok && return 0
+    ensure_cargo
+    ensure_host_linker
+    say "cargo install defmt-print --locked (a few minutes, once)"
+    cargo install defmt-print --version '^1' --locked ||
+        die "installing defmt-print failed; install it with 'cargo install defmt-print --locked', then re-run"
+    # An older defmt-print elsewhere on PATH must not shadow the new one.
+    defmt_print_ok || PATH="$CARGO_BIN_DIR:$PATH"
+    defmt_print_ok ||
+        die "defmt-print was installed in $CARGO_BIN_DIR but does not run from there; put that directory first on PATH, then re-run"
+}

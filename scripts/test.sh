@@ -1,0 +1,84 @@
+#!/usr/bin/env bash
+# Runs every test of the project:
+#   1. formatting (cargo fmt --check, root crate and host-tests),
+#   2. host tests (cd host-tests && cargo test --release),
+#   3. the library alone for the three thumb targets (no firmware feature),
+#   4. the firmware (demo, self-test, benchmark) for the three targets,
+#   5. the demo and the on-target self-test under QEMU on the three boards
+#      (mps2-an386 / Cortex-M4F, mps2-an385 / Cortex-M3, microbit / Cortex-M0).
+#
+#   scripts/test.sh
+#
+# Installs what is missing (Rust targets, rustfmt, qemu-system-arm and a C
+# compiler when root, defmt-print). Every step runs even if an earlier one
+# failed; the summary lists them and the exit status is non-zero if any
+# failed. `.ci/run` calls this.
+set -euo pipefail
+cd "$(dirname "$0")/.."
+# shellcheck source=scripts/setup.sh
+. scripts/setup.sh
+
+ensure_targets "${ABTRACK_TARGETS[@]}"
+ensure_rustfmt
+ensure_host_linker
+ensure_qemu
+ensure_defmt_print
+
+results=()
+failures=0
+log_dir=$(mktemp -d "${TMPDIR:-/tmp}/abtrack-test.XXXXXX")
+trap 'rm -rf "$log_dir"' EXIT
+
+# step <name> <command...>: runs one step, records PASS/FAIL.
+step() {
+    local name=$1
+    shift
+    say "== $name"
+    local status=0
+    "$@" || status=$?
+    if [ "$status" -eq 0 ]; then
+        results+=("PASS  $name")
+    else
+        results+=("FAIL  $name (exit status $status)")
+        failures=$((failures + 1))
+    fi
+}
+
+in_host_tests() { (cd host-tests && "$@"); }
+
+# The self-test's own verdict is its exit status (through QEMU and the
+# pipe); its last line must also be the summary with no failures, so a run
+# that stopped early cannot pass.
+run_selftest() {
+    local target=$1 log="$log_dir/selftest-$1.log"
+    cargo run --release --target "$target" --bin selftest | tee "$log" || return
+    tail -n 1 "$log" | grep -Eq '^[0-9]+ passed, 0 failed$' || {
+        echo "self-test on $target: no '<N> passed, 0 failed' line at the end" >&2
+        return 1
+    }
+}
+
+step "cargo fmt --check" cargo fmt --check
+step "cargo fmt --check (host-tests)" in_host_tests cargo fmt --check
+step "host tests (cargo test --release)" in_host_tests cargo test --release
+for t in "${ABTRACK_TARGETS[@]}"; do
+    step "library alone for $t" cargo build --release --lib --no-default-features --target "$t"
+done
+for t in "${ABTRACK_TARGETS[@]}"; do
+    step "firmware build for $t" cargo build --release --target "$t"
+done
+for t in "${ABTRACK_TARGETS[@]}"; do
+    step "demo on $(board_for_target "$t")" cargo run --release --target "$t" --bin abtrack-firmware
+done
+for t in "${ABTRACK_TARGETS[@]}"; do
+    step "self-test on $(board_for_target "$t")" run_selftest "$t"
+done
+
+echo
+echo "abtrack test summary:"
+printf '  %s\n' "${results[@]}"
+if [ "$failures" -ne 0 ]; then
+    echo "$failures step(s) failed"
+    exit 1
+fi
+echo "all ${#results[@]} steps passed"
