@@ -6,3 +6,4 @@ pub mod metrics;
 pub mod noise;
 pub mod reference_ra;
 pub mod scenario;
+pub mod tracking;

@@ -8,6 +8,7 @@
 //! the README's results section quotes the generated `summary.md` files.
 
 pub mod common;
+pub mod multi_target;
 
 use common::Context;
 
@@ -20,4 +21,8 @@ pub struct Group {
 }
 
 /// Every group, in the order `experiments` runs them.
-pub const GROUPS: &[Group] = &[];
+pub const GROUPS: &[Group] = &[Group {
+    name: multi_target::NAME,
+    about: multi_target::ABOUT,
+    run: multi_target::run,
+}];
