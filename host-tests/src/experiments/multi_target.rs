@@ -629,7 +629,9 @@ pub fn run(ctx: &Context) -> Result<(), String> {
          `RangeAzimuthTrack<S>` on the polar measurements with the range/azimuth window gate. \
          Base seed {BASE_SEED:#x}; OSPA order p = {OSPA_ORDER}, cut-off c per scenario below \
          (also the track-to-truth gate of the track metrics). Intervals are 95 % (Student t \
-         for means, Wilson for proportions).\n"
+         for means, Wilson for proportions). Identity switches follow the CLEAR-MOT continuity \
+         rule (`tracking::identity_switches`); the per-scan-assignment id changes of \
+         `metrics::track_metrics` are listed too. Discussion: `results/README-issue5.md`.\n"
     );
     for l in &summary_lines {
         let _ = writeln!(s, "{l}");
@@ -663,7 +665,8 @@ fn scenario_summary(plan: &Plan, results: &[RunResult]) -> String {
     let kept = results.iter().filter(|r| f(r).ids_kept).count();
     let no_false = results.iter().filter(|r| f(r).false_tracks == 0).count();
     format!(
-        "- **{}** (c = {} m, {} runs, f64): OSPA {} m; all ids kept in {}; no false track in {}.",
+        "- **{}** (c = {} m, {} runs, f64): OSPA {} m; no identity switch in {} of the runs; \
+         no false track in {}.",
         plan.label,
         plan.ospa_cutoff,
         n,
