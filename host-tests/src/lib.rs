@@ -11,6 +11,8 @@
 //!   runner and command line.
 //! * [`precision`]: runs a representation next to the reference and measures
 //!   the deviation and the run's magnitudes; the documented runs.
+//! * [`tracking`]: runs the track table over the multi-target scenarios for
+//!   the metrics and experiments.
 //! * [`experiments`]: the `experiments` tool's groups and output helpers.
 
 pub mod cli;
@@ -24,4 +26,5 @@ pub mod reference;
 pub mod reference_ra;
 pub mod replay;
 pub mod scenario;
+pub mod tracking;
 pub mod trajectory;

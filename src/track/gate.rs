@@ -10,13 +10,13 @@
 //! statistical distance of global nearest neighbour, rather than metres
 //! (which would favour the tracks with the smallest gates).
 //!
-//! Only circular Cartesian regions exist now. A range/azimuth region (a
-//! window in range and bearing around the predicted polar position, for the
-//! range–azimuth filter of He et al.) is meant to be another [`GateRegion`]
-//! variant with its own cost; a filter chooses its region in
-//! [`TrackFilter::gate_region`](super::TrackFilter::gate_region).
+//! Two shapes exist: a circle in x, y (isotropic Cartesian uncertainty, the
+//! αβ filters) and a window in range and azimuth around the predicted polar
+//! position ([`GateRegion::polar`], for the range–azimuth filter of He et
+//! al., whose uncertainty differs along and across range). A filter chooses
+//! its region in [`TrackFilter::gate_region`](super::TrackFilter::gate_region).
 
-use super::Observation;
+use super::{Measurement, Observation};
 use crate::num::Scalar;
 use crate::track::assign::MAX_COST;
 
@@ -187,6 +187,18 @@ pub enum GateRegion<S> {
         /// 1/radius, so testing a measurement needs no division.
         inverse_radius: S,
     },
+    /// A window in range and azimuth around a predicted position at
+    /// distance `range` from the sensor, in direction `unit`
+    /// ([`GateRegion::polar`]). Its cost is the normalised squared distance
+    /// (ΔR/half_range)² + (ΔB·inverse_half_azimuth)², as for the circle.
+    Polar {
+        range: S,
+        unit: [S; 2],
+        half_range: S,
+        inverse_half_range: S,
+        /// R_p / half_cross: 1 over the azimuth half-width (rad⁻¹).
+        inverse_half_azimuth: S,
+    },
 }
 
 impl<S: Scalar> GateRegion<S> {
@@ -208,18 +220,67 @@ impl<S: Scalar> GateRegion<S> {
         })
     }
 
-    /// Radius of a circular region.
+    /// A range/azimuth window around the predicted position `center` (from
+    /// a sensor at the origin): measurements whose range R and azimuth B
+    /// satisfy ((R − R_p)/`half_range`)² + (R_p·ΔB/`half_cross`)² ≤ 1, with
+    /// R_p = |center|, ΔB the angle between the measurement's and the
+    /// prediction's directions (in [−π, π]) and `half_cross` in metres of
+    /// arc at R_p (the cross-range half-width).
+    ///
+    /// Why not an ellipse in x, y aligned with the line of sight: the circle
+    /// of constant range bends away from the tangent by v²/(2R) at a lateral
+    /// offset v, and with a 5° bearing error the gate's lateral half-width
+    /// (several σ_B·R) makes that bend (hundreds of metres at 14 km) many
+    /// times the range half-width (a few σ_R, tens of metres): a Cartesian
+    /// ellipse rejects true measurements well off the line of sight. The
+    /// window is exact for any angular width.
+    ///
+    /// At R_p = 0 there is no direction: the circle of the larger
+    /// half-width. `None` if a half-width is not a valid number > 0 or
+    /// its inverse is not representable.
+    pub fn polar(center: [S; 2], half_range: S, half_cross: S) -> Option<Self> {
+        let range = hypot(center[0], center[1]);
+        if !range.is_valid() {
+            return None;
+        }
+        if range == S::ZERO {
+            return Self::circle(center, half_range.max_of(half_cross));
+        }
+        let valid = |v: S| v.is_valid() && v > S::ZERO;
+        if !(valid(half_range) && valid(half_cross)) {
+            return None;
+        }
+        let inverse_half_range = S::ONE / half_range;
+        // 1/ΔB_max = R_p / half_cross (rad⁻¹).
+        let inverse_half_azimuth = range / half_cross;
+        if !(valid(inverse_half_range) && valid(inverse_half_azimuth)) {
+            return None;
+        }
+        Some(GateRegion::Polar {
+            range,
+            unit: [center[0] / range, center[1] / range],
+            half_range,
+            inverse_half_range,
+            inverse_half_azimuth,
+        })
+    }
+
+    /// Radius of a circular region; for a range/azimuth window, its range
+    /// half-width.
     pub fn radius(&self) -> S {
         match *self {
             GateRegion::Circle { radius, .. } => radius,
+            GateRegion::Polar { half_range, .. } => half_range,
         }
     }
 
-    /// The normalised cost `(d/r)²·MAX_COST`, rounded, if the observation
-    /// lies inside the region (d ≤ r); `None` if outside.
+    /// The normalised cost `(d/r)²·MAX_COST` (circle) or
+    /// `((ΔR/half_range)² + (ΔB/ΔB_max)²)·MAX_COST` (range/azimuth window),
+    /// rounded, if the observation lies inside the region; `None` if
+    /// outside.
     ///
-    /// Each axis offset is first compared with r, so the squares are of
-    /// numbers ≤ 1 and cannot saturate in fixed point.
+    /// Each offset is first compared with its half-width, so the squares are
+    /// of numbers ≤ 1 and cannot saturate in fixed point.
     pub fn cost(&self, observation: &Observation<S>) -> Option<u16> {
         match *self {
             GateRegion::Circle {
@@ -237,6 +298,42 @@ impl<S: Scalar> GateRegion<S> {
                 let nx = dx * inverse_radius;
                 let ny = dy * inverse_radius;
                 let d2 = nx * nx + ny * ny;
+                if !(d2.is_valid() && d2 <= S::ONE) {
+                    return None;
+                }
+                Some(quantise_unit(d2))
+            }
+            GateRegion::Polar {
+                range,
+                unit,
+                half_range,
+                inverse_half_range,
+                inverse_half_azimuth,
+            } => {
+                let z = observation.xy();
+                let measured_range = match observation.measurement() {
+                    Measurement::Polar { range, .. } => range,
+                    Measurement::Cartesian { .. } => hypot(z[0], z[1]),
+                };
+                // The range test first: it is cheap and rejects most pairs.
+                let dr = measured_range - range;
+                // `!(a <= b)` is also true for NaN.
+                if !(dr.abs() <= half_range && measured_range != S::ZERO) {
+                    return None;
+                }
+                // Angle between the directions, from unit vectors (no
+                // product of two positions is formed, so Q32.32 cannot
+                // overflow) and one arctangent: exact for any width.
+                let m = [z[0] / measured_range, z[1] / measured_range];
+                let cross = unit[0] * m[1] - unit[1] * m[0];
+                let dot = unit[0] * m[0] + unit[1] * m[1];
+                let db = cross.atan2(dot);
+                let nr = dr * inverse_half_range;
+                let nb = db * inverse_half_azimuth;
+                if !(nb.abs() <= S::ONE && nr.abs() <= S::ONE) {
+                    return None;
+                }
+                let d2 = nr * nr + nb * nb;
                 if !(d2.is_valid() && d2 <= S::ONE) {
                     return None;
                 }

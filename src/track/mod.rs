@@ -97,15 +97,21 @@
 //!
 //! A filter joins by implementing [`TrackFilter`] (a gain schedule's
 //! per-track state goes inside the same `Copy` record, its constants in
-//! [`TrackFilter::Params`]). Range/azimuth gating is a new [`GateRegion`]
-//! variant returned from an overridden [`TrackFilter::gate_region`].
+//! [`TrackFilter::Params`]). [`ScheduledTrack`] (any gain schedule) and
+//! [`RangeAzimuthTrack`] (He et al., gated by a range/azimuth window) do
+//! this for the filters of the earlier issues, with their bytes per track;
+//! [`defaults`] derives the documented default configuration from the
+//! sensor's figures.
 
+mod adapters;
 pub mod assign;
 mod config;
+pub mod defaults;
 mod gate;
 mod model;
 mod table;
 
+pub use adapters::{RangeAzimuthTrack, ScheduledTrack};
 pub use config::{TrackerConfig, Volume};
 pub use gate::{hypot, ConfigError, Gate, GateRegion};
 pub use model::{
