@@ -87,6 +87,8 @@ impl fmt::Display for BankError {
     }
 }
 
+impl core::error::Error for BankError {}
+
 /// The member chosen for one measurement (Algorithm 3, step 3).
 #[derive(Debug, Clone, Copy, PartialEq)]
 #[cfg_attr(feature = "defmt", derive(defmt::Format))]

@@ -294,6 +294,8 @@ impl core::fmt::Display for BudgetError {
     }
 }
 
+impl core::error::Error for BudgetError {}
+
 /// Bound on `|estimate_S − estimate_f64|` for a run with fixed gains (module
 /// docs, steps 1–4). `ORDER` is 2 (αβ) or 3 (αβγ); `envelope` must bound the
 /// `S` run's values.

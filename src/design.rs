@@ -88,6 +88,8 @@ impl core::fmt::Display for DesignError {
     }
 }
 
+impl core::error::Error for DesignError {}
+
 /// A root of a characteristic polynomial: a pole of the filter's error
 /// dynamics, as a complex number.
 #[derive(Debug, Clone, Copy, PartialEq)]

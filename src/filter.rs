@@ -51,6 +51,8 @@ impl core::fmt::Display for FilterError {
     }
 }
 
+impl core::error::Error for FilterError {}
+
 /// Why a set of gains was refused.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 #[cfg_attr(feature = "defmt", derive(defmt::Format))]
@@ -81,6 +83,8 @@ impl core::fmt::Display for GainError {
         })
     }
 }
+
+impl core::error::Error for GainError {}
 
 /// Smoothing gains (α, β, γ) that lie inside a stability region.
 ///

@@ -63,6 +63,8 @@ impl fmt::Display for NumError {
     }
 }
 
+impl core::error::Error for NumError {}
+
 /// A number type the filters can run in: `f64`, `f32` or [`Fix`].
 ///
 /// The arithmetic operators never panic. Results that leave the representable

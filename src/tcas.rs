@@ -103,6 +103,8 @@ impl core::fmt::Display for TcasError {
     }
 }
 
+impl core::error::Error for TcasError {}
+
 /// TCAS II sensitivity level (2–7).
 #[derive(Debug, Clone, Copy, PartialEq, Eq, PartialOrd, Ord)]
 #[cfg_attr(feature = "defmt", derive(defmt::Format))]

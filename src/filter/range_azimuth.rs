@@ -137,6 +137,8 @@ impl core::fmt::Display for NoiseError {
     }
 }
 
+impl core::error::Error for NoiseError {}
+
 /// Measurement and process noise of a [`RangeAzimuthFilter`].
 #[derive(Debug, Clone, Copy, PartialEq)]
 #[cfg_attr(feature = "defmt", derive(defmt::Format))]

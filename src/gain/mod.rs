@@ -202,6 +202,8 @@ impl fmt::Display for ScheduleError {
     }
 }
 
+impl core::error::Error for ScheduleError {}
+
 /// Why a schedule's configuration was refused.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 #[cfg_attr(feature = "defmt", derive(defmt::Format))]
@@ -239,6 +241,8 @@ impl fmt::Display for ConfigError {
         }
     }
 }
+
+impl core::error::Error for ConfigError {}
 
 /// Converts a configuration value into the schedule's number type.
 pub(crate) fn config_scalar<S: Scalar>(v: f64, parameter: &'static str) -> Result<S, ConfigError> {
@@ -328,6 +332,8 @@ impl fmt::Display for ScheduledError {
         }
     }
 }
+
+impl core::error::Error for ScheduledError {}
 
 /// What a [`ScheduledFilter::update`] did.
 #[derive(Debug, Clone, Copy, PartialEq)]

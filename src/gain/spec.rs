@@ -189,6 +189,8 @@ impl fmt::Display for SpecError {
     }
 }
 
+impl core::error::Error for SpecError {}
+
 fn number(v: &str) -> Result<f64, SpecErrorKind> {
     v.parse::<f64>().map_err(|_| SpecErrorKind::InvalidNumber)
 }

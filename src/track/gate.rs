@@ -98,6 +98,8 @@ impl core::fmt::Display for ConfigError {
     }
 }
 
+impl core::error::Error for ConfigError {}
+
 fn positive<S: Scalar>(v: S) -> Result<S, ConfigError> {
     if !v.is_valid() {
         Err(ConfigError::NotFinite)

@@ -205,6 +205,8 @@ impl core::fmt::Display for ScanError {
     }
 }
 
+impl core::error::Error for ScanError {}
+
 /// Per-stage counts of one scan (for logs and benchmarks).
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
 #[cfg_attr(feature = "defmt", derive(defmt::Format))]

@@ -1,0 +1,63 @@
+//! The library example of README.md ("Using the library"), compiled and run
+//! so the README cannot drift from the API. Keep the two in step.
+
+use abtrack::filter::UpdateOutcome;
+use abtrack::gain::{AnySchedule, ScheduleSpec, ScheduledFilter};
+use abtrack::{Cartesian, FilterError, Fix, GainError, Gains, Scalar};
+
+#[test]
+fn readme_example() -> Result<(), Box<dyn std::error::Error>> {
+    // --- README example begins ---
+    // Gains are checked against the stability triangle when they are made
+    // (Al-Wagih & Abdulla eqs. 12-14): 2α + β < 4 fails here.
+    assert_eq!(
+        Gains::<Fix>::alpha_beta_f64(1.5, 1.2),
+        Err(GainError::BetaTooLarge)
+    );
+    let gains = Gains::<Fix>::alpha_beta_f64(0.5, 0.3)?;
+
+    // A 2-D αβ filter in Q32.32 fixed point (no FPU needed); 2 kinematic
+    // states per axis, 2 axes. Two-point initialisation, then filtering.
+    let mut filter: Cartesian<Fix, 2, 2> = Cartesian::new();
+    let one_second = Fix::try_from_f64(1.0)?;
+    for z in [[0.0, 0.0], [10.0, 5.0], [20.5, 9.8]] {
+        let z = [Fix::try_from_f64(z[0])?, Fix::try_from_f64(z[1])?];
+        if let [UpdateOutcome::Filtered(x), _] = filter.update(z, one_second, &gains)? {
+            // Prediction 20 m, residual 0.5 m: x = 20 + 0.5·0.5, v = 10 + 0.3·0.5/1
+            // (Al-Wagih & Abdulla eqs. 3-8).
+            assert_eq!(x.predicted.to_f64(), 20.0);
+            assert_eq!(x.residual.to_f64(), 0.5);
+        }
+    }
+    assert_eq!(filter.position()[0].to_f64(), 20.25);
+    // 0.3 is not exact in Q32.32: β was rounded to a multiple of 2⁻³².
+    assert!((filter.velocity()[0].to_f64() - 10.15).abs() < 1e-9);
+
+    // Bad input is refused and leaves the state untouched.
+    let before = filter;
+    let nan = Fix::from_f64_lossy(f64::NAN); // a saturation sentinel, like NaN
+    assert_eq!(
+        filter.update([nan, nan], one_second, &gains),
+        Err(FilterError::InvalidMeasurement)
+    );
+    assert_eq!(filter, before);
+
+    // A gain schedule from the same spec strings `replay --schedule` takes:
+    // least squares, Al-Wagih & Abdulla eq. (24), in f32.
+    let spec = ScheduleSpec::parse("least-squares").map_err(|e| format!("{e:?}"))?;
+    let schedule = AnySchedule::<f32, 2, 8>::from_spec(&spec).map_err(|e| format!("{e:?}"))?;
+    let mut scheduled = ScheduledFilter::<f32, _, 2, 2>::new(schedule);
+    for (k, z) in [[0.0f32, 0.0], [10.0, 5.0], [20.5, 9.8]]
+        .into_iter()
+        .enumerate()
+    {
+        let update = scheduled.update(z, 1.0).map_err(|e| format!("{e:?}"))?;
+        if k == 2 {
+            // n = 3: α = 2(2n−1)/(n(n+1)) = 5/6, β = 6/(n(n+1)) = 1/2.
+            let used = update.gains.ok_or("no gains on the third update")?;
+            assert_eq!((used[0].alpha(), used[0].beta()), (5.0 / 6.0, 0.5));
+        }
+    }
+    // --- README example ends ---
+    Ok(())
+}
