@@ -8,6 +8,8 @@
 //! the README's results section quotes the generated `summary.md` files.
 
 pub mod common;
+pub mod he_tcas;
+pub mod tcas_advisory;
 
 use common::Context;
 
@@ -20,4 +22,15 @@ pub struct Group {
 }
 
 /// Every group, in the order `experiments` runs them.
-pub const GROUPS: &[Group] = &[];
+pub const GROUPS: &[Group] = &[
+    Group {
+        name: he_tcas::NAME,
+        about: "He et al. s4: range-azimuth filter vs per-axis alpha-beta, 200 runs (seed 003)",
+        run: he_tcas::run,
+    },
+    Group {
+        name: tcas_advisory::NAME,
+        about: "TCAS converging encounter: estimated vs true tau and advisory timeline (issue 4)",
+        run: tcas_advisory::run,
+    },
+];
