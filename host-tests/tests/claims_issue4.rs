@@ -245,6 +245,12 @@ fn groups_write_their_documented_files() {
                 assert!(text.starts_with("<svg"), "{name}/{f}");
             } else if f.ends_with(".md") && !f.starts_with("summary") {
                 assert!(text.starts_with("| "), "{name}/{f}");
+                // A '|' inside a cell would shift the columns.
+                let columns: Vec<usize> = text.lines().map(|l| l.matches('|').count()).collect();
+                assert!(
+                    columns.iter().all(|&c| c == columns[0]),
+                    "{name}/{f}: {columns:?}"
+                );
             }
         }
         let summary = std::fs::read_to_string(dir.join(name).join("summary.md")).unwrap();

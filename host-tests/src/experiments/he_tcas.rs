@@ -148,7 +148,7 @@ impl Method {
             Method::RangeAzimuthF64 => "range-azimuth (f64)",
             Method::RangeAzimuthF32 => "range-azimuth (f32)",
             Method::RangeAzimuthFix => "range-azimuth (Q32.32)",
-            Method::RangeAzimuthRangeResidual => "range-azimuth, RESID_R = R - |p| (variant)",
+            Method::RangeAzimuthRangeResidual => "range-azimuth, RESID_R = R - r_pred (variant)",
             Method::AlphaBetaM2 => "alpha-beta M2 (eq. 6 gains)",
             Method::AlphaBetaM2Debiased => "alpha-beta M2, debiased conversion",
             Method::AlphaBetaKalata => "alpha-beta Kalata steady-state only",
@@ -1123,9 +1123,9 @@ fn write_outputs(dir: &Path, out: &HeTcasOutcome, elapsed_s: f64) -> Result<(), 
         "arithmetic",
         "position RMSE overall (m)",
         "position RMSE late (m)",
-        "max |p - p_f64| (m)",
-        "RMS |p - p_f64| (m)",
-        "max |v - v_f64| (m/s)",
+        "max dist to f64 position (m)",
+        "RMS dist to f64 position (m)",
+        "max dist to f64 velocity (m/s)",
         "refused updates",
     ]);
     for (m, d) in [
@@ -1317,8 +1317,10 @@ fn write_outputs(dir: &Path, out: &HeTcasOutcome, elapsed_s: f64) -> Result<(), 
 
 /// Host time per update (ns) of the range–azimuth filter and of the αβ M2
 /// baseline including its polar-to-x/y conversion, in arithmetic `S`, over
-/// run 0's 500 measurements repeated `reps` times. Only the ratio means
-/// anything for a target; the firmware benchmarks measure cycles.
+/// run 0's 500 measurements: the fastest of [`COST_BATCHES`] batches of
+/// `reps` passes each (the machine is shared; the minimum is the least
+/// disturbed). Only the ratio means anything for a target; the firmware
+/// benchmarks measure cycles.
 pub fn cost_per_update_ns<S: Scalar>(reps: usize) -> Result<(f64, f64), String> {
     let data = scenario::generate(SCENARIO, scenario::monte_carlo_seed(BASE_SEED, 0))
         .map_err(|e| e.to_string())?;
@@ -1340,17 +1342,25 @@ pub fn cost_per_update_ns<S: Scalar>(reps: usize) -> Result<(f64, f64), String> 
     )
     .map_err(|e| e.to_string())?;
     let n = (reps * meas.len()).max(1) as f64;
-    let start = std::time::Instant::now();
-    for _ in 0..reps {
+    let time = |pass: &dyn Fn()| {
+        (0..COST_BATCHES)
+            .map(|_| {
+                let start = std::time::Instant::now();
+                for _ in 0..reps {
+                    pass();
+                }
+                start.elapsed().as_secs_f64() * 1e9 / n
+            })
+            .fold(f64::INFINITY, f64::min)
+    };
+    let ra = time(&|| {
         let mut f = RangeAzimuthFilter::<S>::new(noise);
         for &(r, b) in &meas {
             let _ = std::hint::black_box(f.update(std::hint::black_box(r), b, dt));
         }
         std::hint::black_box(f.position());
-    }
-    let ra = start.elapsed().as_secs_f64() * 1e9 / n;
-    let start = std::time::Instant::now();
-    for _ in 0..reps {
+    });
+    let ab = time(&|| {
         let mut f: ScheduledFilter<S, LeastSquaresGains, 2, 2> =
             ScheduledFilter::new(LeastSquaresGains::default());
         for &(r, b) in &meas {
@@ -1358,10 +1368,12 @@ pub fn cost_per_update_ns<S: Scalar>(reps: usize) -> Result<(f64, f64), String> 
             let _ = std::hint::black_box(f.update([r * sin_b, r * cos_b], dt));
         }
         std::hint::black_box(f.filter().position());
-    }
-    let ab = start.elapsed().as_secs_f64() * 1e9 / n;
+    });
     Ok((ra, ab))
 }
+
+/// Batches of [`cost_per_update_ns`].
+pub const COST_BATCHES: usize = 7;
 
 fn summary(out: &HeTcasOutcome, elapsed_s: f64) -> Result<String, String> {
     let get = |m: Method| out.method(m).ok_or_else(|| format!("{m:?} missing"));
@@ -1610,7 +1622,7 @@ fn summary(out: &HeTcasOutcome, elapsed_s: f64) -> Result<String, String> {
         s,
         "- **Claim 4 (αβ cost): partly.** Both are O(1) per update with no matrix inversion, but the range–azimuth \
          update also propagates and updates two 2×2 covariances (square-root form here: hypot, square roots, \
-         divisions). Host timing of one update (this machine, indicative only): f64 {:.0} ns vs {:.0} ns for \
+         divisions). Host timing of one update (fastest of 7 batches on this shared machine; indicative only): f64 {:.0} ns vs {:.0} ns for \
          αβ M2 including its sin/cos conversion (×{:.1}); Q32.32 {:.0} ns vs {:.0} ns (×{:.1}).",
         costs.0 .0,
         costs.0 .1,

@@ -113,7 +113,7 @@ impl Arithmetic {
             Arithmetic::F64 => "f64",
             Arithmetic::F32 => "f32",
             Arithmetic::Fix => "Q32.32",
-            Arithmetic::VariantF64 => "f64, variant RESID_R = R - |p|",
+            Arithmetic::VariantF64 => "f64, variant RESID_R = R - r_pred",
         }
     }
     fn index(self) -> usize {
@@ -793,9 +793,9 @@ fn write_outputs(
         "arithmetic",
         "scans with the f64 advisory (%)",
         "runs with an identical timeline",
-        "max |tau - tau_f64| while tau_f64 <= 60 s (s)",
-        "max |tau - tau_f64| (s)",
-        "max |d_cpa - d_cpa_f64| (m)",
+        "max tau deviation from f64 while tau_f64 <= 60 s (s)",
+        "max tau deviation from f64 (s)",
+        "max d_cpa deviation from f64 (m)",
         "agreement with truth (% of scans)",
         "refused updates",
     ]);
