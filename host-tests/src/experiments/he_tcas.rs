@@ -1075,7 +1075,7 @@ fn write_outputs(dir: &Path, out: &HeTcasOutcome, elapsed_s: f64) -> Result<(), 
         "cross-range late (m)",
         "range bias overall (m)",
         "range bias late (m)",
-        "refused updates",
+        "refused updates (batch ML: unconverged solves)",
     ]);
     for m in &out.methods {
         let mut row = vec![m.method.label().to_string()];
