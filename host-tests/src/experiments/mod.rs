@@ -9,10 +9,12 @@
 
 pub mod alwagih;
 pub mod common;
+pub mod he_tcas;
 pub mod li;
 pub mod liu;
 pub mod monte_carlo;
 pub mod multi_target;
+pub mod tcas_advisory;
 
 use common::Context;
 
@@ -46,5 +48,15 @@ pub const GROUPS: &[Group] = &[
         name: multi_target::NAME,
         about: multi_target::ABOUT,
         run: multi_target::run,
+    },
+    Group {
+        name: he_tcas::NAME,
+        about: "He et al. s4: range-azimuth filter vs per-axis alpha-beta, 200 runs (seed 003)",
+        run: he_tcas::run,
+    },
+    Group {
+        name: tcas_advisory::NAME,
+        about: "TCAS converging encounter: estimated vs true tau and advisory timeline (issue 4)",
+        run: tcas_advisory::run,
     },
 ];
