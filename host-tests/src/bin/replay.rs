@@ -1,7 +1,7 @@
 //! `replay`: runs the library's filters, in f64, f32 or Q32.32 fixed point,
 //! over a CSV recording, so that gains can be tuned on recorded data before
 //! flashing. See `replay --help`, `abtrack_host_tests::replay` and
-//! `results/README-replay.md`.
+//! `docs/replay.md`.
 //!
 //! From the repository root (the root `.cargo/config.toml` selects a thumb
 //! target, and cargo reads configuration from the current directory, not from

@@ -631,7 +631,7 @@ pub fn run(ctx: &Context) -> Result<(), String> {
          (also the track-to-truth gate of the track metrics). Intervals are 95 % (Student t \
          for means, Wilson for proportions). Identity switches follow the CLEAR-MOT continuity \
          rule (`tracking::identity_switches`); the per-scan-assignment id changes of \
-         `metrics::track_metrics` are listed too. Discussion: `results/README-issue5.md`.\n"
+         `metrics::track_metrics` are listed too. Discussion: `results/multi-target.md`.\n"
     );
     for l in &summary_lines {
         let _ = writeln!(s, "{l}");
