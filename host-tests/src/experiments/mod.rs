@@ -42,5 +42,9 @@ pub const GROUPS: &[Group] = &[
             "Liu et al. s3: gain methods 2.1.1-2.1.5 (+ Kalman, f32/Q32.32) on the turning target",
         run: liu::run,
     },
-    Group { name: multi_target::NAME, about: multi_target::ABOUT, run: multi_target::run },
+    Group {
+        name: multi_target::NAME,
+        about: multi_target::ABOUT,
+        run: multi_target::run,
+    },
 ];
