@@ -6,10 +6,10 @@
 //! ([`accepted_options`]) and the code that reads it; a new filter kind is
 //! one arm of [`filter_kind`].
 //!
-//! A multi-target `--tracker` would be one more filter-independent row of
-//! the table and a [`Command`] of its own, reading scans (rows sharing a
-//! `t`, [`crate::csv_input::TimeOrder::Scans`]) instead of single-target
-//! rows.
+//! The multi-target `--tracker` (with the flag `--verbose`) is a
+//! [`Command`] of its own ([`Command::Tracker`], run by
+//! [`crate::replay_tracker`]): it takes no `--filter` and accepts the
+//! options of [`accepted_options`]`("tracker")`.
 //!
 //! Both `--name value` and `--name=value` are accepted; `-` as the input means
 //! standard input.
@@ -27,6 +27,7 @@ use crate::replay::{
     FilterKind, Numeric, Order, RangeAzimuthOptions, ReplayBank, ReplayConfig, ReplaySchedule,
     BANK_CAPACITY, WINDOW_CAPACITY,
 };
+use crate::replay_tracker::{TrackerOptions, CAPACITIES, DEFAULT_CAPACITY};
 
 /// The options that take a value, with their help text.
 pub const REPLAY_OPTIONS: &[(&str, &str)] = &[
@@ -37,7 +38,8 @@ pub const REPLAY_OPTIONS: &[(&str, &str)] = &[
     ),
     (
         "--schedule",
-        "ab, abg: NAME[:key=value,...], the gain schedule (list below)",
+        "ab, abg, tracker: NAME[:key=value,...], the gain schedule (list below); with\n\
+         --tracker, t,x,y input only and not bank",
     ),
     (
         "--alpha",
@@ -73,7 +75,23 @@ pub const REPLAY_OPTIONS: &[(&str, &str)] = &[
     ),
     (
         "--own-alt",
-        "range-azimuth: own pressure altitude in feet; adds the threat columns",
+        "range-azimuth, tracker: own pressure altitude in feet; adds the threat columns",
+    ),
+    (
+        "--capacity",
+        "tracker: track table capacity N, 16 | 64 | 256 (default 64); up to 256\n\
+         measurements per scan",
+    ),
+    (
+        "--confirm",
+        "tracker: M/N, confirm a tentative track when M of its first N scans had a\n\
+         measurement (1 <= M <= N <= 32; tentative deletion becomes N - M + 1 misses);\n\
+         default from the design (3/4 for both nominal sensors)",
+    ),
+    (
+        "--delete",
+        "tracker: K, delete a confirmed track after K consecutive misses (1..=255);\n\
+         default from the design (4)",
     ),
     ("--numeric", "f64 | f32 | fixed (Q32.32); default f64"),
 ];
@@ -89,6 +107,13 @@ pub fn accepted_options(filter: &str) -> &'static [&'static str] {
             "--process-noise",
             "--alt-quantum",
             "--own-alt",
+        ],
+        "tracker" => &[
+            "--schedule",
+            "--own-alt",
+            "--capacity",
+            "--confirm",
+            "--delete",
         ],
         _ => &[],
     }
@@ -116,7 +141,9 @@ pub fn replay_usage() -> String {
            replay --filter ab|abg --schedule NAME[:key=value,...] [--numeric N] <FILE | ->\n  \
            replay --filter ab|abg --alpha A --beta B [--gamma G] [--numeric N] <FILE | ->\n  \
            replay --filter range-azimuth [--range-sigma M] [--bearing-variance V] [--process-noise Q]\n         \
-                  [--alt-quantum 100|25] [--own-alt FEET] [--numeric N] <FILE | ->\n\
+                  [--alt-quantum 100|25] [--own-alt FEET] [--numeric N] <FILE | ->\n  \
+           replay --tracker [--schedule SPEC] [--capacity 16|64|256] [--confirm M/N] [--delete K]\n         \
+                  [--own-alt FEET] [--numeric N] [--verbose] <FILE | ->\n\
          \n\
          options (--name value or --name=value; the filters an option applies to come first):\n",
     );
@@ -130,6 +157,14 @@ pub fn replay_usage() -> String {
         let help = help.replace('\n', &format!("\n{indent}"));
         s.push_str(&format!("  {name:<width$} {help}\n"));
     }
+    s.push_str(&format!(
+        "  {:<width$} multi-target track table (flag; see below)\n",
+        "--tracker"
+    ));
+    s.push_str(&format!(
+        "  {:<width$} tracker: per-scan association counts to stderr (flag)\n",
+        "--verbose"
+    ));
     s.push_str(&format!("  {:<width$} show this text\n", "-h, --help"));
     s.push_str(&format!(
         "\nschedules (--schedule NAME[:key=value,...]; keys not given take the defaults shown):\n\
@@ -183,6 +218,21 @@ pub fn replay_usage() -> String {
          Nothing is written unless the whole file runs; errors name the line and column.\n\
          exit status: 0 success, 1 bad input file or refused row, 2 bad arguments.\n",
     );
+    s.push_str(
+        "\n--tracker (abtrack::track::TrackTable, issue 5):\n  \
+           input   t,x,y or t,range,azimuth[,alt] (the header chooses); rows sharing a t are one\n          \
+                   scan, a decreasing t is refused naming its line. alt is not used.\n  \
+           config  default: abtrack::track::defaults::default_cartesian (t,x,y: M2 gains, n_max 9,\n          \
+                   uncertainty gate, 3 of 4, deletion 4/2 misses, 10 km square) or default_polar\n          \
+                   (He et al.'s filter, range/azimuth window, 3 of 4, 4/2, 14 NM disc); options\n          \
+                   replace one part each.\n  \
+           time    scan at round((t - t_first) * 1000) ms on the table's u32 clock: at most\n          \
+                   2^32 - 1 ms (49.7 days) after the first scan, scans >= 1 ms apart.\n  \
+           output  t,track_id,status,x,y,vx,vy: one row per live track per scan, by id; status\n          \
+                   tentative|confirmed|coasting. With --own-alt the threat columns above follow\n          \
+                   (tau,tau_mod,t_cpa,d_cpa,advisory,tau_mod_ra); the table keeps no altitude, so\n          \
+                   every track counts as not reporting altitude: horizontal only, at most a TA.\n",
+    );
     s
 }
 
@@ -197,7 +247,16 @@ pub enum Input {
 #[derive(Debug, Clone, PartialEq)]
 pub enum Command {
     Help,
-    Replay { config: ReplayConfig, input: Input },
+    Replay {
+        config: ReplayConfig,
+        input: Input,
+    },
+    /// `--tracker`; `verbose`: print the per-scan summary to stderr.
+    Tracker {
+        options: TrackerOptions,
+        input: Input,
+        verbose: bool,
+    },
 }
 
 /// Why the arguments were refused.
@@ -239,6 +298,10 @@ pub enum UsageError {
     /// `--schedule bank` with `--filter abg`.
     BankNeedsAlphaBeta,
     Gains(GainError),
+    /// An option that `--tracker` does not take (or `--schedule bank`).
+    NotForTracker(&'static str),
+    /// A flag that needs `--tracker`.
+    TrackerOnly(&'static str),
     NoInput,
     ExtraInput(String),
 }
@@ -294,6 +357,8 @@ impl fmt::Display for UsageError {
                 "--schedule bank: the M5 bank is made of αβ filters; use --filter ab"
             ),
             UsageError::Gains(e) => write!(f, "gains outside the stability region: {e}"),
+            UsageError::NotForTracker(o) => write!(f, "{o} does not apply to --tracker"),
+            UsageError::TrackerOnly(o) => write!(f, "{o} needs --tracker"),
             UsageError::NoInput => write!(f, "no input file (give a path, or - for stdin)"),
             UsageError::ExtraInput(p) => write!(f, "more than one input file ({p})"),
         }
@@ -353,6 +418,8 @@ pub fn parse_replay_args<I: IntoIterator<Item = String>>(args: I) -> Result<Comm
     let mut raw = RawOptions::default();
     let mut input: Option<Input> = None;
     let mut only_positional = false;
+    let mut tracker = false;
+    let mut verbose = false;
     let mut args = args.into_iter();
     while let Some(arg) = args.next() {
         let positional = only_positional || arg == "-" || !arg.starts_with('-');
@@ -374,6 +441,21 @@ pub fn parse_replay_args<I: IntoIterator<Item = String>>(args: I) -> Result<Comm
         if arg == "-h" || arg == "--help" {
             return Ok(Command::Help);
         }
+        if arg == "--tracker" || arg == "--verbose" {
+            let flag = if arg == "--tracker" {
+                &mut tracker
+            } else {
+                &mut verbose
+            };
+            if std::mem::replace(flag, true) {
+                return Err(UsageError::Repeated(if arg == "--tracker" {
+                    "--tracker"
+                } else {
+                    "--verbose"
+                }));
+            }
+            continue;
+        }
         let (name, inline) = match arg.split_once('=') {
             Some((n, v)) => (n.to_string(), Some(v.to_string())),
             None => (arg.clone(), None),
@@ -394,6 +476,18 @@ pub fn parse_replay_args<I: IntoIterator<Item = String>>(args: I) -> Result<Comm
         None => Numeric::default(),
         Some(n) => Numeric::from_name(n.trim()).ok_or(UsageError::UnknownNumeric(n))?,
     };
+    if tracker {
+        let options = tracker_options(&mut raw, numeric)?;
+        let input = input.ok_or(UsageError::NoInput)?;
+        return Ok(Command::Tracker {
+            options,
+            input,
+            verbose,
+        });
+    }
+    if verbose {
+        return Err(UsageError::TrackerOnly("--verbose"));
+    }
     let filter = filter_kind(&mut raw)?;
     let input = input.ok_or(UsageError::NoInput)?;
     Ok(Command::Replay {
@@ -472,24 +566,7 @@ fn kinematic(raw: &mut RawOptions, order: Order) -> Result<FilterKind, UsageErro
             with,
         });
     }
-    let spec_error = |error: SpecError| UsageError::Spec {
-        text: text.clone(),
-        error,
-    };
-    let spec = ScheduleSpec::parse(&text).map_err(spec_error)?;
-    // Capacities are checked when a schedule is built, not by the parser:
-    // build it once here so that an oversized window or bank is an argument
-    // error pointing at its key.
-    let built = match spec {
-        ScheduleSpec::Bank(c) => ReplayBank::<f64, 1>::from_config(&c).map(|_| ()),
-        _ => ReplaySchedule::<f64, 1>::from_spec(&spec).map(|_| ()),
-    };
-    built.map_err(|e| {
-        spec_error(SpecError {
-            kind: SpecErrorKind::Config(e),
-            offset: parameter_offset(&text, e),
-        })
-    })?;
+    let spec = parse_schedule(&text)?;
     match (spec, order) {
         (ScheduleSpec::Bank(c), Order::AlphaBeta) => Ok(FilterKind::Bank(c)),
         (ScheduleSpec::Bank(_), Order::AlphaBetaGamma) => Err(UsageError::BankNeedsAlphaBeta),
@@ -501,6 +578,98 @@ fn kinematic(raw: &mut RawOptions, order: Order) -> Result<FilterKind, UsageErro
         }
         _ => Ok(FilterKind::Scheduled { order, spec }),
     }
+}
+
+/// A `--schedule` spec, parsed and built once in `f64`: capacities are
+/// checked when a schedule is built, not by the parser, so building it here
+/// makes an oversized window or bank an argument error pointing at its key.
+fn parse_schedule(text: &str) -> Result<ScheduleSpec, UsageError> {
+    let spec_error = |error: SpecError| UsageError::Spec {
+        text: text.to_string(),
+        error,
+    };
+    let spec = ScheduleSpec::parse(text).map_err(spec_error)?;
+    let built = match spec {
+        ScheduleSpec::Bank(c) => ReplayBank::<f64, 1>::from_config(&c).map(|_| ()),
+        _ => ReplaySchedule::<f64, 1>::from_spec(&spec).map(|_| ()),
+    };
+    built.map_err(|e| {
+        spec_error(SpecError {
+            kind: SpecErrorKind::Config(e),
+            offset: parameter_offset(text, e),
+        })
+    })?;
+    Ok(spec)
+}
+
+/// `--tracker`: the options of [`accepted_options`]`("tracker")`.
+fn tracker_options(raw: &mut RawOptions, numeric: Numeric) -> Result<TrackerOptions, UsageError> {
+    let accepted = accepted_options("tracker");
+    if let Some(&option) = raw.values.keys().find(|o| !accepted.contains(o)) {
+        return Err(UsageError::NotForTracker(option));
+    }
+    let schedule = match raw.take("--schedule") {
+        None => None,
+        Some(text) => match parse_schedule(&text)? {
+            ScheduleSpec::Bank(_) => return Err(UsageError::NotForTracker("--schedule bank")),
+            spec => Some(spec),
+        },
+    };
+    let capacity = match raw.take("--capacity") {
+        None => DEFAULT_CAPACITY,
+        Some(text) => match text.trim().parse::<usize>() {
+            Ok(n) if CAPACITIES.contains(&n) => n,
+            _ => {
+                return Err(UsageError::OutOfRange {
+                    option: "--capacity",
+                    text,
+                    requirement: "16, 64 or 256",
+                })
+            }
+        },
+    };
+    let confirmation = match raw.take("--confirm") {
+        None => None,
+        Some(text) => {
+            let parsed = text
+                .split_once('/')
+                .and_then(|(m, n)| {
+                    Some((m.trim().parse::<u8>().ok()?, n.trim().parse::<u8>().ok()?))
+                })
+                .filter(|&(m, n)| m >= 1 && m <= n && n <= 32);
+            match parsed {
+                Some(mn) => Some(mn),
+                None => {
+                    return Err(UsageError::OutOfRange {
+                        option: "--confirm",
+                        text,
+                        requirement: "M/N with 1 <= M <= N <= 32",
+                    })
+                }
+            }
+        }
+    };
+    let delete_confirmed = match raw.take("--delete") {
+        None => None,
+        Some(text) => match text.trim().parse::<u8>() {
+            Ok(k) if k >= 1 => Some(k),
+            _ => {
+                return Err(UsageError::OutOfRange {
+                    option: "--delete",
+                    text,
+                    requirement: "an integer in 1..=255",
+                })
+            }
+        },
+    };
+    Ok(TrackerOptions {
+        numeric,
+        schedule,
+        capacity,
+        confirmation,
+        delete_confirmed,
+        own_altitude_ft: raw.number("--own-alt")?,
+    })
 }
 
 /// The byte offset of the `key=value` part that `error` is about in spec

@@ -77,6 +77,17 @@ impl InputFormat {
     }
 }
 
+/// The layout of `text`'s header (its first non-blank line), for a reader
+/// that takes either (`replay --tracker`); `None` if it is neither.
+pub fn sniff_format(text: &str) -> Option<InputFormat> {
+    let line = text
+        .trim_start_matches('\u{feff}')
+        .lines()
+        .map(|l| l.trim_end_matches('\r'))
+        .find(|l| !l.trim().is_empty())?;
+    InputFormat::of_header(line)
+}
+
 /// Whether rows may share a time.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
 pub enum TimeOrder {

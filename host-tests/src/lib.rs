@@ -25,6 +25,7 @@ pub mod precision;
 pub mod reference;
 pub mod reference_ra;
 pub mod replay;
+pub mod replay_tracker;
 pub mod scenario;
 pub mod tracking;
 pub mod trajectory;

@@ -58,6 +58,7 @@ use abtrack::filter::{Cartesian, Gains, Phase, UpdateOutcome};
 use abtrack::gain::spec::ScheduleSpec;
 use abtrack::gain::{AnySchedule, ConfigError, ScheduleError, ScheduledError, ScheduledFilter};
 use abtrack::tcas::{assess, Intruder, OwnAircraft, TcasError};
+use abtrack::track::{ConfigError as TrackConfigError, ScanError};
 use abtrack::{FilterError, Fix, GainError, NumError, Scalar};
 
 use crate::csv_input::{
@@ -257,6 +258,25 @@ pub enum ReplayError {
     /// The data are in the other layout (a caller error: the binary reads
     /// the layout the filter needs).
     WrongLayout { expected: InputFormat },
+    /// `--tracker` on a Cartesian file with other than two axes (the table
+    /// tracks in the x/y plane).
+    TrackerAxes { dims: usize },
+    /// `--tracker`: the configuration (`--confirm`, `--delete`, or the
+    /// default design in this representation) was refused.
+    TrackerConfig(TrackConfigError),
+    /// `--tracker --schedule` on a `t,range,azimuth` file: the polar
+    /// tracker is He et al.'s filter, which takes no schedule.
+    TrackerScheduleNeedsCartesian,
+    /// `--tracker`: a scan time beyond the table's u32 millisecond clock
+    /// (more than 2³² − 1 ms after the first scan).
+    ScanTime { line: usize, t: String },
+    /// `--tracker`: the table refused the scan starting on `line` (e.g. two
+    /// scan times that round to the same millisecond).
+    Scan {
+        line: usize,
+        t: String,
+        error: ScanError,
+    },
 }
 
 impl fmt::Display for ReplayError {
@@ -291,6 +311,28 @@ impl fmt::Display for ReplayError {
                 "this filter reads a file with the header {}",
                 expected.headers()
             ),
+            ReplayError::TrackerAxes { dims } => write!(
+                f,
+                "line 1: --tracker reads t,x,y or t,range,azimuth[,alt]; this file has {dims} \
+                 axis column(s) (the track table works in the x/y plane)"
+            ),
+            ReplayError::TrackerConfig(e) => write!(f, "tracker configuration refused: {e}"),
+            ReplayError::TrackerScheduleNeedsCartesian => write!(
+                f,
+                "--schedule applies to t,x,y input only (the polar tracker is He et al.'s \
+                 range-azimuth filter, which takes no schedule)"
+            ),
+            ReplayError::ScanTime { line, t } => write!(
+                f,
+                "line {line}, column 1 (t): time {t} is more than 2^32 - 1 ms (49.7 days) after \
+                 the first scan, beyond the track table's u32 millisecond clock"
+            ),
+            ReplayError::Scan { line, t, error } => {
+                write!(
+                    f,
+                    "line {line}: the track table refused the scan at t = {t}: {error}"
+                )
+            }
         }
     }
 }
@@ -340,7 +382,7 @@ impl CsvValue for Fix {
 }
 
 /// `,value`.
-fn cell<S: CsvValue>(out: &mut String, v: S) {
+pub(crate) fn cell<S: CsvValue>(out: &mut String, v: S) {
     out.push(',');
     v.write_csv(out);
 }
@@ -459,7 +501,7 @@ fn interval<S: Scalar>(previous_t: Option<f64>, t: f64, line: usize) -> Result<S
 }
 
 /// A value of the file in `S`, or an error naming where it is.
-fn value<S: Scalar>(
+pub(crate) fn value<S: Scalar>(
     v: f64,
     line: usize,
     column: usize,
@@ -621,9 +663,54 @@ pub fn range_azimuth_header(has_alt: bool, threat: bool) -> String {
         h.push_str(",alt,alt_rate");
     }
     if threat {
-        h.push_str(",tau,tau_mod,t_cpa,d_cpa,advisory,tau_mod_ra");
+        h.push(',');
+        h.push_str(THREAT_COLUMNS);
     }
     h
+}
+
+/// The threat columns (`--own-alt`), shared by `--filter range-azimuth` and
+/// `--tracker`; see [`range_azimuth_header`] for their meaning.
+pub const THREAT_COLUMNS: &str = "tau,tau_mod,t_cpa,d_cpa,advisory,tau_mod_ra";
+
+/// The own aircraft of `--own-alt` in `S`: at the origin, level at `feet`
+/// over terrain at sea level (see [`run_range_azimuth_in`]); `None` without
+/// an own altitude.
+pub(crate) fn own_aircraft<S: Scalar>(
+    feet: Option<f64>,
+) -> Result<Option<OwnAircraft<S>>, ReplayError> {
+    match feet {
+        None => Ok(None),
+        Some(feet) => {
+            let feet = S::try_from_f64(feet).map_err(ReplayError::OwnAltitude)?;
+            Ok(Some(OwnAircraft::over_sea_level(feet, S::ZERO)))
+        }
+    }
+}
+
+/// The cells of [`THREAT_COLUMNS`] for `intruder` seen from `own`
+/// ([`abtrack::tcas::assess`]), each preceded by a comma; all empty when
+/// there is no intruder state yet (no velocity). `line` names the input line
+/// in an error.
+pub(crate) fn write_threat_cells<S: CsvValue>(
+    out: &mut String,
+    own: &OwnAircraft<S>,
+    intruder: Option<&Intruder<S>>,
+    line: usize,
+) -> Result<(), ReplayError> {
+    let Some(intruder) = intruder else {
+        out.push_str(",,,,,,");
+        return Ok(());
+    };
+    let a = assess(own, intruder).map_err(|error| ReplayError::Threat { line, error })?;
+    optional_cell(out, a.range_tau_s);
+    optional_cell(out, a.ta_modified_tau_s);
+    optional_cell(out, a.closest_approach.map(|c| c.time_s));
+    optional_cell(out, a.closest_approach.map(|c| c.distance_m));
+    out.push(',');
+    out.push_str(a.advisory.name());
+    optional_cell(out, a.ra_modified_tau_s);
+    Ok(())
 }
 
 /// Runs a range–azimuth file and returns the output CSV, or the first error
@@ -659,13 +746,7 @@ pub fn run_range_azimuth_in<S: CsvValue>(
     let altitude_config = AltitudeTrackerConfig::<S>::default_for(options.altitude_quantum)
         .map_err(ReplayError::AltitudeGains)?;
     let mut altitude = AltitudeTracker::new(altitude_config);
-    let own = match options.own_altitude_ft {
-        None => None,
-        Some(feet) => {
-            let feet = S::try_from_f64(feet).map_err(ReplayError::OwnAltitude)?;
-            Some(OwnAircraft::over_sea_level(feet, S::ZERO))
-        }
-    };
+    let own = own_aircraft::<S>(options.own_altitude_ft)?;
     let mut out = range_azimuth_header(data.has_alt, own.is_some());
     out.push('\n');
     let mut previous_t: Option<f64> = None;
@@ -716,19 +797,9 @@ pub fn run_range_azimuth_in<S: CsvValue>(
             optional_cell(&mut out, estimate.map(|e| e.vertical_rate_ft_per_s));
         }
         if let Some(own) = own {
-            if filter.phase() == Phase::Tracking {
-                let a = assess(&own, &Intruder::from_track(&filter, estimate))
-                    .map_err(|error| ReplayError::Threat { line, error })?;
-                optional_cell(&mut out, a.range_tau_s);
-                optional_cell(&mut out, a.ta_modified_tau_s);
-                optional_cell(&mut out, a.closest_approach.map(|c| c.time_s));
-                optional_cell(&mut out, a.closest_approach.map(|c| c.distance_m));
-                out.push(',');
-                out.push_str(a.advisory.name());
-                optional_cell(&mut out, a.ra_modified_tau_s);
-            } else {
-                out.push_str(",,,,,,");
-            }
+            let intruder = (filter.phase() == Phase::Tracking)
+                .then(|| Intruder::from_track(&filter, estimate));
+            write_threat_cells(&mut out, &own, intruder.as_ref(), line)?;
         }
         out.push('\n');
     }
