@@ -545,6 +545,20 @@ impl<S: Scalar, const ORDER: usize, const D: usize> Cartesian<S, ORDER, D> {
         Ok(out)
     }
 
+    /// The state of every axis predicted `dt` ahead, without changing the
+    /// filter ([`KinematicFilter::predict`] per axis).
+    pub fn predict(&self, dt: S) -> Result<[Prediction<S>; D], FilterError> {
+        let mut out = [Prediction {
+            position: S::ZERO,
+            velocity: S::ZERO,
+            acceleration: S::ZERO,
+        }; D];
+        for (axis, prediction) in self.axes.iter().zip(out.iter_mut()) {
+            *prediction = axis.predict(dt)?;
+        }
+        Ok(out)
+    }
+
     /// Coasts every axis (no measurement this scan).
     pub fn coast(&mut self, dt: S) -> Result<(), FilterError> {
         let mut next = self.axes;

@@ -221,9 +221,7 @@ impl<S: Scalar, G: GainSchedule<S, 2>> TrackFilter<S> for ScheduledTrack<S, G> {
     }
 
     fn predict(&self, _: &G, dt: S) -> Result<PredictedState<S>, FilterError> {
-        let [ax, ay] = self.filter.filter().axes();
-        let px = ax.predict(dt)?;
-        let py = ay.predict(dt)?;
+        let [px, py] = self.filter.filter().predict(dt)?;
         Ok(PredictedState {
             position: [px.position, py.position],
             velocity: [px.velocity, py.velocity],

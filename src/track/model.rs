@@ -361,9 +361,7 @@ impl<S: Scalar> TrackFilter<S> for FixedGainTrack<S> {
     }
 
     fn predict(&self, _: &Gains<S>, dt: S) -> Result<PredictedState<S>, FilterError> {
-        let [ax, ay] = self.filter.axes();
-        let px = ax.predict(dt)?;
-        let py = ay.predict(dt)?;
+        let [px, py] = self.filter.predict(dt)?;
         Ok(PredictedState {
             position: [px.position, py.position],
             velocity: [px.velocity, py.velocity],
