@@ -27,15 +27,22 @@
 
 #[path = "../firmware/board.rs"]
 mod board;
+#[path = "../firmware/propagation.rs"]
+mod propagation;
 #[path = "../firmware/synth.rs"]
 mod synth;
 
-use abtrack::budget::{error_budget_around_reference, ErrorBound, GainSpread, RunEnvelope};
+use abtrack::bank::{BankOutcome, CartesianBank};
+use abtrack::budget::{
+    error_budget_around_reference, BudgetError, ErrorBound, GainSpread, RunEnvelope,
+};
 use abtrack::filter::{
     Cartesian, FilterError, GainError, Gains, Innovation, KinematicFilter, Phase, UpdateOutcome,
 };
+use abtrack::gain::{AnySchedule, ScheduleSpec, ScheduledFilter};
 use abtrack::{Fix, Scalar};
 use board::Native;
+use propagation::{kinematic_prediction, kinematic_update, ErrorPropagation};
 use synth::Lcg;
 
 /// A failed check. What failed is logged (defmt::error!) where it is detected.
@@ -90,6 +97,21 @@ const TESTS: &[Test] = &[
         "native_vs_f64_long_run_10000_updates",
         native_vs_f64_long_run_10000_updates,
     ),
+    (
+        "schedule_least_squares_vs_f64",
+        schedule_least_squares_vs_f64,
+    ),
+    ("schedule_liu_adaptive_vs_f64", schedule_liu_adaptive_vs_f64),
+    ("schedule_li_improved_vs_f64", schedule_li_improved_vs_f64),
+    (
+        "schedule_m4_moving_window_vs_f64",
+        schedule_m4_moving_window_vs_f64,
+    ),
+    (
+        "schedule_tcas_firmness_vs_f64",
+        schedule_tcas_firmness_vs_f64,
+    ),
+    ("bank_m5_vs_f64", bank_m5_vs_f64),
 ];
 
 #[cortex_m_rt::entry]
@@ -1154,4 +1176,688 @@ fn native_vs_f64_long_run_10000_updates() -> TestResult {
     )?;
     deviation.report(Native::NAME);
     Ok(())
+}
+
+// ---------------------------------------------------------------------------
+// Gain schedules driving the filter, and the M5 bank
+// ---------------------------------------------------------------------------
+
+/// Window capacity of the schedules that keep one (M3, M4, Liu's residual
+/// accumulation); their defaults use 3 to 8.
+const SCHEDULE_WINDOW: usize = 8;
+
+type Schedule<S> = AnySchedule<S, 2, SCHEDULE_WINDOW>;
+type ScheduledTrack<S, const ORDER: usize> = ScheduledFilter<S, Schedule<S>, ORDER, 2>;
+
+/// Lags kept exactly by the error propagation of the schedule runs: with
+/// the gains these runs reach (α ≥ 0.04) the closed loop forgets an error by
+/// e⁻¹ within about 25 steps (`firmware/propagation.rs`).
+const SCHEDULE_LAGS: usize = 32;
+
+/// A target in the plane for the schedule and bank tests, after Liu, Wang &
+/// Yang's turn scenario (start (533, 389) m, 150 m/s at heading 45°, 30 scans
+/// straight, a 9000 m radius turn for 15 scans of 2 s, then straight; σ = 5 m
+/// per axis): every schedule sees a steady stretch and a manoeuvre.
+/// `miss(k)` drops scan k (the track coasts).
+#[derive(Clone, Copy)]
+struct PlaneScenario {
+    target: synth::TurningTarget,
+    turn_end: f64,
+    dt: f64,
+    scans: u32,
+    noise_sigma: f64,
+    seed: u64,
+    miss: fn(u32) -> bool,
+}
+
+fn never(_: u32) -> bool {
+    false
+}
+
+impl PlaneScenario {
+    fn liu_turn(dt: f64, scans: u32, seed: u64, miss: fn(u32) -> bool) -> Self {
+        let speed = 150.0;
+        let (s, c) = libm::sincos(core::f64::consts::FRAC_PI_4);
+        PlaneScenario {
+            target: synth::TurningTarget {
+                start: [533.0, 389.0],
+                velocity: [speed * c, speed * s],
+                turn_start: 60.0,
+                turn_rate: -speed / 9000.0,
+            },
+            turn_end: 90.0,
+            dt,
+            scans,
+            noise_sigma: 5.0,
+            seed,
+            miss,
+        }
+    }
+
+    /// The truth at time t: straight, the turn from `turn_start` to
+    /// `turn_end`, straight again.
+    fn truth(&self, t: f64) -> [f64; 2] {
+        let turned = self.target.at(t.min(self.turn_end));
+        let after = (t - self.turn_end).max(0.0);
+        [
+            turned.position[0] + turned.velocity[0] * after,
+            turned.position[1] + turned.velocity[1] * after,
+        ]
+    }
+
+    /// Scan k's measurement, `None` for a missed scan; the same sequence on
+    /// every call.
+    fn measurements(&self) -> impl Iterator<Item = Option<[f64; 2]>> + '_ {
+        let mut rng = Lcg::new(self.seed);
+        (0..self.scans).map(move |k| {
+            let p = self.truth(k as f64 * self.dt);
+            let z = [
+                p[0] + rng.noise(self.noise_sigma),
+                p[1] + rng.noise(self.noise_sigma),
+            ];
+            if (self.miss)(k) {
+                None
+            } else {
+                Some(z)
+            }
+        })
+    }
+}
+
+/// What a step did to one axis.
+#[derive(Clone, Copy, PartialEq, Eq, defmt::Format)]
+enum StepKind {
+    /// Two-point initialisation, first or second point (also a restart).
+    Initialisation,
+    Filtered,
+    Coast,
+}
+
+/// One step of a run in both representations, for one axis.
+#[derive(Clone, Copy)]
+struct PairStep {
+    kind: StepKind,
+    dt: f64,
+    /// Gains (α, β, γ) the f64 and the native run used (zero when none).
+    gains_64: [f64; 3],
+    gains_s: [f64; 3],
+    /// The larger |residual| of the two runs (0 when none).
+    residual: f64,
+    /// |native − f64| of (x, v, a) after the step.
+    deviation: [f64; 3],
+}
+
+fn gain_values<S: Scalar>(g: &Gains<S>) -> [f64; 3] {
+    [g.alpha().to_f64(), g.beta().to_f64(), g.gamma().to_f64()]
+}
+
+fn axis_state<S: Scalar, const ORDER: usize>(f: &KinematicFilter<S, ORDER>) -> [f64; 3] {
+    [
+        f.position().to_f64(),
+        f.velocity().to_f64(),
+        f.acceleration().to_f64(),
+    ]
+}
+
+fn step_kind<S>(o: &UpdateOutcome<S>) -> StepKind {
+    match o {
+        UpdateOutcome::Filtered(_) => StepKind::Filtered,
+        _ => StepKind::Initialisation,
+    }
+}
+
+fn schedule_for<S: Scalar>(spec: &str) -> Result<Schedule<S>, Failure> {
+    let parsed = match ScheduleSpec::parse(spec) {
+        Ok(p) => p,
+        Err(e) => {
+            defmt::error!("spec {=str} refused: {}", spec, e);
+            return Err(Failure);
+        }
+    };
+    match Schedule::<S>::from_spec(&parsed) {
+        Ok(s) => Ok(s),
+        Err(e) => {
+            defmt::error!("{=str}: schedule {=str} refused: {}", S::NAME, spec, e);
+            Err(Failure)
+        }
+    }
+}
+
+/// Runs `spec` on `scenario` in `S` and in f64, calling `visit(k, axis,
+/// step, magnitudes)` for every scan and axis; the two runs must accept,
+/// refuse and restart alike.
+fn run_schedule<S: TestScalar, const ORDER: usize>(
+    spec: &str,
+    scenario: &PlaneScenario,
+    mut visit: impl FnMut(u32, usize, &PairStep, &Magnitudes) -> TestResult,
+) -> TestResult {
+    let mut ts = ScheduledTrack::<S, ORDER>::new(schedule_for::<S>(spec)?);
+    let mut tf = ScheduledTrack::<f64, ORDER>::new(schedule_for::<f64>(spec)?);
+    let dt = scenario.dt;
+    let dt_s = value::<S>(dt)?;
+    for (k, z) in (0u32..).zip(scenario.measurements()) {
+        let before_s = ts.filter().axes().map(|a| axis_state(&a));
+        let before_64 = tf.filter().axes().map(|a| axis_state(&a));
+        let mut kinds = [StepKind::Coast; 2];
+        let mut gains_s = [[0.0; 3]; 2];
+        let mut gains_64 = [[0.0; 3]; 2];
+        let mut residuals = [0.0f64; 2];
+        let mut predicted = [0.0f64; 2];
+        let mut z_abs = [0.0f64; 2];
+        match z {
+            Some(z) => {
+                let zs = [value::<S>(z[0])?, value::<S>(z[1])?];
+                let (us, uf) = match (ts.update(zs, dt_s), tf.update(z, dt)) {
+                    (Ok(us), Ok(uf)) => (us, uf),
+                    (a, b) => {
+                        defmt::error!(
+                            "{=str} {=str} scan {=u32}: native {}, f64 {}",
+                            S::NAME,
+                            spec,
+                            k,
+                            a.err(),
+                            b.err()
+                        );
+                        return Err(Failure);
+                    }
+                };
+                ensure!(
+                    us.restarted == uf.restarted,
+                    "{=str} {=str} scan {=u32}: restart differs",
+                    S::NAME,
+                    spec,
+                    k
+                );
+                for i in 0..2 {
+                    let (os, of) = (us.outcome[i], uf.outcome[i]);
+                    kinds[i] = step_kind(&of);
+                    ensure!(
+                        step_kind(&os) == kinds[i],
+                        "{=str} {=str} scan {=u32}: native {}, f64 {}",
+                        S::NAME,
+                        spec,
+                        k,
+                        os,
+                        of
+                    );
+                    if let (UpdateOutcome::Filtered(a), UpdateOutcome::Filtered(b)) = (os, of) {
+                        residuals[i] = libm::fabs(a.residual.to_f64()).max(libm::fabs(b.residual));
+                        predicted[i] =
+                            libm::fabs(a.predicted.to_f64()).max(libm::fabs(b.predicted));
+                    }
+                    if let (Some(gs), Some(gf)) = (us.gains, uf.gains) {
+                        gains_s[i] = gain_values(&gs[i]);
+                        gains_64[i] = gain_values(&gf[i]);
+                    }
+                    z_abs[i] = libm::fabs(z[i]);
+                }
+            }
+            None => {
+                let (a, b) = (ts.coast(dt_s), tf.coast(dt));
+                ensure!(
+                    a.is_ok() && b.is_ok(),
+                    "{=str} {=str} scan {=u32}: coast native {}, f64 {}",
+                    S::NAME,
+                    spec,
+                    k,
+                    a.err(),
+                    b.err()
+                );
+            }
+        }
+        let after_s = ts.filter().axes().map(|a| axis_state(&a));
+        let after_64 = tf.filter().axes().map(|a| axis_state(&a));
+        for i in 0..2 {
+            let mut m = Magnitudes::default();
+            for (before, after) in [(before_s[i], after_s[i]), (before_64[i], after_64[i])] {
+                m.position(before[0]);
+                m.velocity(before[1] + dt * before[2]);
+                m.position(after[0]);
+                m.velocity(after[1]);
+                m.acceleration(after[2]);
+            }
+            m.position(z_abs[i]);
+            m.position(predicted[i]);
+            m.residual(residuals[i]);
+            let step = PairStep {
+                kind: kinds[i],
+                dt,
+                gains_64: gains_64[i],
+                gains_s: gains_s[i],
+                residual: residuals[i],
+                deviation: [0, 1, 2].map(|j| libm::fabs(after_s[i][j] - after_64[i][j])),
+            };
+            visit(k, i, &step, &m)?;
+        }
+    }
+    Ok(())
+}
+
+/// Componentwise maximum of `m` into `into`.
+fn merge(into: &mut Magnitudes, m: &Magnitudes) {
+    into.position(m.position);
+    into.velocity(m.velocity);
+    into.acceleration(m.acceleration);
+    into.residual(m.residual);
+}
+
+/// A gain schedule in `S` against the same schedule in f64, both driving a
+/// 2-D filter of order `ORDER` over `scenario`.
+///
+/// Checked: both runs take the same decisions (their gains agree to 10⁻⁴
+/// at every update: the schedules' thresholds, counters and argmins came
+/// out alike) and at every update |native − f64| stays within a bound for
+/// this run:
+///
+/// * The library's budget for the schedule's gain spread
+///   ([`error_budget_varying_gains`], nominal and spread spanning every gain
+///   the run used) is computed and printed, but these schedules sweep wide
+///   ranges (least squares from α = 5/6 down, Liu's switch between 0.5 and
+///   residual gains near 1, Li's counter falling back on a manoeuvre, TCAS
+///   firmness from 0.83 to 0.4), which its small-gain argument cannot
+///   certify: it answers `NotContractive`. Besides, gains computed in `S`
+///   differ from the f64 run's by more than one conversion, which the
+///   budget does not model.
+/// * Fallback (`firmware/propagation.rs`): the exact error recursion
+///   d ← A·d + w along the gains the f64 run actually used, with |w| at most
+///   the library's per-update error budget at the largest gains of the run
+///   ([`error_budget_around_reference`] with fixed gains bounds the local
+///   error of every update with smaller gains: the local error grows with
+///   each gain, and the budget is L·η ≥ η) plus |K_native − K_f64|·|e| for
+///   the difference of the two runs' gains; two-point initialisation and
+///   restarts inject the budget's initial error, coasts propagate by Φ(T).
+fn compare_schedule<S: TestScalar, const ORDER: usize>(
+    spec: &str,
+    scenario: &PlaneScenario,
+) -> TestResult {
+    // Pass 1: magnitudes, gain ranges, decisions.
+    let mut env = Magnitudes::default();
+    let mut g_max = [0.0f64; 3];
+    let mut g_min = [f64::INFINITY; 3];
+    let mut differing = 0u32;
+    let mut filtered = 0u32;
+    let mut largest_gain_difference = 0.0f64;
+    run_schedule::<S, ORDER>(spec, scenario, |_, _, step, m| {
+        merge(&mut env, m);
+        if step.kind == StepKind::Filtered {
+            filtered += 1;
+            let mut differs = false;
+            for j in 0..3 {
+                let (a, b) = (step.gains_64[j], step.gains_s[j]);
+                g_max[j] = g_max[j].max(a).max(b);
+                g_min[j] = g_min[j].min(a).min(b);
+                let d = libm::fabs(a - b);
+                largest_gain_difference = largest_gain_difference.max(d);
+                differs |= d > 1e-4 * (1.0 + libm::fabs(a));
+            }
+            if differs {
+                differing += 1;
+            }
+        }
+        Ok(())
+    })?;
+    ensure!(
+        differing == 0,
+        "{=str} {=str}: the gains of {=u32} of {=u32} updates differ from f64 by more than rounding (a threshold or argmin decided differently)",
+        S::NAME,
+        spec,
+        differing,
+        filtered
+    );
+    let envelope = env.envelope(scenario.dt, scenario.dt);
+    let gains_of = |g: [f64; 3]| {
+        if ORDER == 3 {
+            Gains::<f64>::alpha_beta_gamma(g[0], g[1], g[2])
+        } else {
+            Gains::<f64>::alpha_beta(g[0], g[1])
+        }
+    };
+    // What the library's budget says about the whole gain spread.
+    let mid = [0, 1, 2].map(|j| 0.5 * (g_max[j] + g_min[j]));
+    let verdict = match gains_of(mid) {
+        Ok(nominal) => {
+            let spread = GainSpread {
+                alpha: 0.5 * (g_max[0] - g_min[0]),
+                beta: 0.5 * (g_max[1] - g_min[1]),
+                gamma: if ORDER == 3 {
+                    0.5 * (g_max[2] - g_min[2])
+                } else {
+                    0.0
+                },
+            };
+            error_budget_around_reference::<S, ORDER>(&nominal, &spread, &envelope)
+        }
+        Err(_) => Err(BudgetError::InvalidEnvelope),
+    };
+    let local = match gains_of(g_max) {
+        Ok(g) => fixed_gain_budget::<S, ORDER>(&g, &envelope)?,
+        Err(e) => {
+            defmt::error!(
+                "{=str} {=str}: largest gains ({=f64}, {=f64}, {=f64}) unstable: {}",
+                S::NAME,
+                spec,
+                g_max[0],
+                g_max[1],
+                g_max[2],
+                e
+            );
+            return Err(Failure);
+        }
+    };
+    let local_error = [local.position, local.velocity, local.acceleration];
+
+    // Pass 2, one axis at a time (one propagation in memory at a time).
+    let mut worst_ratio = 0.0f64;
+    let mut worst = [0.0f64; 3];
+    for axis in 0..2 {
+        let mut propagation = ErrorPropagation::<ORDER, SCHEDULE_LAGS>::new([0.0; ORDER]);
+        run_schedule::<S, ORDER>(spec, scenario, |k, i, step, _| {
+            if i != axis {
+                return Ok(());
+            }
+            let dt = step.dt;
+            let mut injection = [0.0; ORDER];
+            injection.copy_from_slice(&local_error[..ORDER]);
+            let a = match step.kind {
+                StepKind::Initialisation => [[0.0; ORDER]; ORDER],
+                StepKind::Coast => kinematic_prediction::<ORDER>(dt),
+                StepKind::Filtered => {
+                    let [a64, b64, c64] = step.gains_64;
+                    let d = [0, 1, 2].map(|j| libm::fabs(step.gains_s[j] - step.gains_64[j]));
+                    let dk = [d[0], d[1] / dt, d[2] / (2.0 * dt * dt)];
+                    let e = step.residual * (1.0 + 1e-6);
+                    for (w, dk) in injection.iter_mut().zip(dk) {
+                        *w += dk * e;
+                    }
+                    kinematic_update::<ORDER>(a64, b64, c64, dt)
+                }
+            };
+            let bound = propagation.step(&a, injection);
+            for j in 0..ORDER {
+                let d = step.deviation[j];
+                worst[j] = worst[j].max(d);
+                if bound[j] > 0.0 {
+                    worst_ratio = worst_ratio.max(d / bound[j]);
+                }
+                ensure!(
+                    d <= bound[j],
+                    "{=str} {=str} scan {=u32} axis {=usize}: |d{=usize}| = {=f64} > bound {=f64}",
+                    S::NAME,
+                    spec,
+                    k,
+                    axis,
+                    j,
+                    d,
+                    bound[j]
+                );
+            }
+            Ok(())
+        })?;
+    }
+    match verdict {
+        Ok(b) => defmt::println!(
+            "       {=str} {=str}: library budget for the gain spread: {=f64} m (not used: gains computed in S)",
+            S::NAME,
+            spec,
+            b.position
+        ),
+        Err(e) => defmt::println!(
+            "       {=str} {=str}: library budget for the gain spread alpha {=f64}..{=f64}: refused ({}); fallback used",
+            S::NAME,
+            spec,
+            g_min[0],
+            g_max[0],
+            e
+        ),
+    }
+    defmt::println!(
+        "       {=str} {=str}: {=u32} filtered updates x 2 axes, same decisions, gains within {=f64}; max |dx| {=f64} m, |dv| {=f64} m/s, |da| {=f64} m/s2; worst deviation = {=f32} of the propagated bound",
+        S::NAME,
+        spec,
+        filtered / 2,
+        largest_gain_difference,
+        worst[0],
+        worst[1],
+        worst[2],
+        worst_ratio as f32
+    );
+    Ok(())
+}
+
+fn schedule_least_squares_vs_f64() -> TestResult {
+    let s = PlaneScenario::liu_turn(2.0, 80, 0x5c4e_0001, never);
+    compare_schedule::<Native, 2>("least-squares", &s)
+}
+
+fn schedule_liu_adaptive_vs_f64() -> TestResult {
+    let s = PlaneScenario::liu_turn(2.0, 80, 0x5c4e_0002, never);
+    compare_schedule::<Native, 2>("liu-adaptive", &s)
+}
+
+fn schedule_li_improved_vs_f64() -> TestResult {
+    // Δρ = σ = 5 m, the scenario's noise (the paper's simulation has σ = 1 m
+    // and Δρ = 1 m).
+    let s = PlaneScenario::liu_turn(2.0, 80, 0x5c4e_0003, never);
+    compare_schedule::<Native, 2>("li-improved:range-error=5", &s)
+}
+
+fn schedule_m4_moving_window_vs_f64() -> TestResult {
+    let s = PlaneScenario::liu_turn(2.0, 80, 0x5c4e_0004, never);
+    compare_schedule::<Native, 2>("m4", &s)
+}
+
+/// Misses: three in a row at scans 20–22 (firmness 8 → 5) and every 11th
+/// scan after 30.
+fn firmness_misses(k: u32) -> bool {
+    (20..23).contains(&k) || (k > 30 && k % 11 == 0)
+}
+
+fn schedule_tcas_firmness_vs_f64() -> TestResult {
+    let s = PlaneScenario::liu_turn(1.0, 120, 0x5c4e_0005, firmness_misses);
+    compare_schedule::<Native, 3>("tcas-firmness", &s)
+}
+
+/// The library's budget for a fixed-gain run whose gains were computed in
+/// `S` (`gains_s`, their exact values) rather than converted from the f64
+/// run's (`gains_s − delta` up to sign): |S − f64| ≤ |S − exact(g_S)| +
+/// |exact(g_S) − exact(g_64)| + |exact(g_64) − f64|. The first and last terms
+/// are the budget at g_S (its f64 term, doubled, covers the 10⁻⁷-relative
+/// change of gains). The middle one is two exact filters differing only in
+/// their gains: d ← A(g_S)·d + ΔK·e, so in the budget's scaled coordinates
+/// (x, vT, aT²), where W·ΔK = (Δα, Δβ, Δγ/2), each component is at most
+/// ‖L‖∞·max(|Δα|, |Δβ|, |Δγ|/2)·max|e| (`amplification` is ‖L‖∞).
+fn fixed_gain_budget_computed_gains<S: TestScalar, const ORDER: usize>(
+    gains_s: &Gains<f64>,
+    delta: [f64; 3],
+    envelope: &RunEnvelope,
+) -> Result<ErrorBound, Failure> {
+    let mut b = fixed_gain_budget::<S, ORDER>(gains_s, envelope)?;
+    let t = envelope.dt_max;
+    let scaled = libm::fabs(delta[0])
+        .max(libm::fabs(delta[1]))
+        .max(0.5 * libm::fabs(delta[2]));
+    let extra = b.amplification * scaled * envelope.max_residual;
+    b.position += extra;
+    b.velocity += extra / t;
+    if ORDER == 3 {
+        b.acceleration += extra / (t * t);
+    }
+    Ok(b)
+}
+
+const BANK_MEMBERS: usize = 8;
+
+fn bank_for<S: Scalar>(spec: &str) -> Result<CartesianBank<S, BANK_MEMBERS, 2>, Failure> {
+    let config = match ScheduleSpec::parse(spec) {
+        Ok(ScheduleSpec::Bank(c)) => c,
+        _ => {
+            defmt::error!("{=str} is not a bank spec", spec);
+            return Err(Failure);
+        }
+    };
+    match CartesianBank::from_config(&config) {
+        Ok(b) => Ok(b),
+        Err(e) => {
+            defmt::error!("{=str}: bank {=str} refused: {}", S::NAME, spec, e);
+            Err(Failure)
+        }
+    }
+}
+
+/// Al-Wagih & Abdulla's M5 (Algorithm 3) in `S` against f64: K fixed-gain
+/// members per axis, the least |innovation| selected. Both banks must select
+/// the same member at every update, and every member must stay within the
+/// library's budget for its gains (computed in `S` by the bank's
+/// configuration: [`fixed_gain_budget_computed_gains`]).
+fn compare_bank<S: TestScalar>(spec: &str, scenario: &PlaneScenario) -> TestResult {
+    let mut bs = bank_for::<S>(spec)?;
+    let mut bf = bank_for::<f64>(spec)?;
+    let dt = scenario.dt;
+    let dt_s = value::<S>(dt)?;
+    let mut magnitudes = [[Magnitudes::default(); BANK_MEMBERS]; 2];
+    let mut deviation = [[[0.0f64; 2]; BANK_MEMBERS]; 2];
+    let mut selections = 0u32;
+    let mut switches = 0u32;
+    let mut last_selected = [usize::MAX; 2];
+    for (k, z) in (0u32..).zip(scenario.measurements()) {
+        let Some(z) = z else {
+            continue;
+        };
+        let before: [[(f64, f64); BANK_MEMBERS]; 2] = [0, 1].map(|i| {
+            core::array::from_fn(|m| {
+                bf.axes()[i]
+                    .member(m)
+                    .map_or((0.0, 0.0), |f| (f.position(), f.velocity()))
+            })
+        });
+        let zs = [value::<S>(z[0])?, value::<S>(z[1])?];
+        let (os, of) = match (bs.update(zs, dt_s), bf.update(z, dt)) {
+            (Ok(a), Ok(b)) => (a, b),
+            (a, b) => {
+                defmt::error!(
+                    "{=str} bank scan {=u32}: native {}, f64 {}",
+                    S::NAME,
+                    k,
+                    a.err(),
+                    b.err()
+                );
+                return Err(Failure);
+            }
+        };
+        for i in 0..2 {
+            match (os[i], of[i]) {
+                (BankOutcome::Filtered(a), BankOutcome::Filtered(b)) => {
+                    ensure!(
+                        a.member == b.member,
+                        "{=str} bank scan {=u32} axis {=usize}: native selects member {=usize} (residual {}), f64 member {=usize} (residual {=f64})",
+                        S::NAME,
+                        k,
+                        i,
+                        a.member,
+                        a.residual,
+                        b.member,
+                        b.residual
+                    );
+                    selections += 1;
+                    if last_selected[i] != b.member {
+                        switches += 1;
+                    }
+                    last_selected[i] = b.member;
+                }
+                (BankOutcome::FirstPoint, BankOutcome::FirstPoint)
+                | (BankOutcome::SecondPoint, BankOutcome::SecondPoint) => {}
+                (a, b) => {
+                    defmt::error!(
+                        "{=str} bank scan {=u32}: native {}, f64 {}",
+                        S::NAME,
+                        k,
+                        a,
+                        b
+                    );
+                    return Err(Failure);
+                }
+            }
+            for m in 0..BANK_MEMBERS {
+                let (Some(ms), Some(mf)) = (bs.axes()[i].member(m), bf.axes()[i].member(m)) else {
+                    continue;
+                };
+                let mag = &mut magnitudes[i][m];
+                mag.position(z[i]);
+                mag.position(before[i][m].0);
+                mag.velocity(before[i][m].1);
+                for f in [axis_state(ms), axis_state(mf)] {
+                    mag.position(f[0]);
+                    mag.velocity(f[1]);
+                }
+                for inn in [
+                    ms.last_innovation()
+                        .map(|v| (v.predicted.to_f64(), v.residual.to_f64())),
+                    mf.last_innovation().map(|v| (v.predicted, v.residual)),
+                ]
+                .into_iter()
+                .flatten()
+                {
+                    mag.position(inn.0);
+                    mag.residual(inn.1);
+                }
+                let d = &mut deviation[i][m];
+                d[0] = d[0].max(libm::fabs(ms.position().to_f64() - mf.position()));
+                d[1] = d[1].max(libm::fabs(ms.velocity().to_f64() - mf.velocity()));
+            }
+        }
+    }
+    let mut worst_ratio = 0.0f64;
+    let mut worst = [0.0f64; 2];
+    for i in 0..2 {
+        for m in 0..BANK_MEMBERS {
+            let (Some(gs), Some(gf)) = (bs.axes()[i].member_gains(m), bf.axes()[i].member_gains(m))
+            else {
+                defmt::error!("{=str}: bank member {=usize} missing", S::NAME, m);
+                return Err(Failure);
+            };
+            let (gs, gf) = (gain_values(gs), gain_values(gf));
+            let exact_s = match Gains::<f64>::alpha_beta(gs[0], gs[1]) {
+                Ok(g) => g,
+                Err(e) => {
+                    defmt::error!("{=str}: member gains refused: {}", S::NAME, e);
+                    return Err(Failure);
+                }
+            };
+            let delta = [gs[0] - gf[0], gs[1] - gf[1], 0.0];
+            let env = magnitudes[i][m].envelope(dt, dt);
+            let b = fixed_gain_budget_computed_gains::<S, 2>(&exact_s, delta, &env)?;
+            let d = deviation[i][m];
+            ensure!(
+                b.covers(d[0], d[1], 0.0),
+                "{=str} bank axis {=usize} member {=usize} (alpha {=f64}): |dx| {=f64} |dv| {=f64} beyond the budget {=f64} m, {=f64} m/s",
+                S::NAME,
+                i,
+                m,
+                gf[0],
+                d[0],
+                d[1],
+                b.position,
+                b.velocity
+            );
+            worst[0] = worst[0].max(d[0]);
+            worst[1] = worst[1].max(d[1]);
+            worst_ratio = worst_ratio.max(d[0] / b.position).max(d[1] / b.velocity);
+        }
+    }
+    defmt::println!(
+        "       {=str} {=str}: {=u32} selections on 2 axes, all the same as f64 ({=u32} changes of member); members: max |dx| {=f64} m, |dv| {=f64} m/s; worst deviation = {=f32} of the budget",
+        S::NAME,
+        spec,
+        selections,
+        switches,
+        worst[0],
+        worst[1],
+        worst_ratio as f32
+    );
+    Ok(())
+}
+
+fn bank_m5_vs_f64() -> TestResult {
+    let s = PlaneScenario::liu_turn(2.0, 80, 0x5c4e_0006, never);
+    compare_bank::<Native>("bank:k=8", &s)
 }
