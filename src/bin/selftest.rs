@@ -1,17 +1,22 @@
-//! On-target self-test: the filter checks of issue 2 run on the emulated core
-//! itself, in the core's natural numeric type (`f32` on the Cortex-M4F, Q32.32
-//! fixed point on the Cortex-M3 and M0) against the same generic filter in
-//! `f64` (software floating point on all three cores).
+//! On-target self-test, first image: the filters (issue 2), the gain
+//! schedules and the M5 bank (issue 3) run on the emulated core itself, in
+//! the core's natural numeric type (`f32` on the Cortex-M4F, Q32.32 fixed
+//! point on the Cortex-M3 and M0) against the same generic code in `f64`
+//! (software floating point on all three cores). The TCAS inputs and the
+//! track table are in the second image, `selftest-tracking` (both together
+//! do not fit the micro:bit's 256 KiB of flash).
 //!
-//! A tiny harness: named test functions returning `Result`, a line per test,
-//! then `N passed, M failed` alone on the last line; QEMU exits with status 1
-//! if any test failed (scripts/test.sh runs it on the three boards).
+//! The harness (`firmware/selftest_support.rs`): named test functions
+//! returning `Result`, a line per test with its stack high-water mark, then
+//! `N passed, M failed` alone on the last line; QEMU exits with status 1 if
+//! any test failed (scripts/test.sh runs both images on the three boards).
 //!
 //! What is checked:
 //! * native vs f64 on seeded pseudo-random trajectories, on the corners of the
 //!   envelope (positions ±400 km, velocities ±1500 m/s, accelerations
 //!   ±200 m/s², intervals 0.05 s and 20 s) and over a 10,000-update run, within
-//!   the library's error budget ([`abtrack::budget`]);
+//!   the library's error budget ([`abtrack::budget`]), the deviation printed
+//!   as a fraction of it;
 //! * invalid inputs (invalid measurement, interval ≤ 0 or invalid) are refused
 //!   with the right [`FilterError`] and leave the state bit-identical;
 //! * gains outside the stability regions are refused with the right
@@ -21,47 +26,41 @@
 //!   untouched;
 //! * two-point initialisation and the first filtered update against values
 //!   computed by hand;
-//! * a 2-D [`Cartesian`] filter is exactly its axes' one-axis filters.
+//! * a 2-D [`Cartesian`] filter is exactly its axes' one-axis filters;
+//! * gain schedules (least squares, Liu's adaptive switch, Li's improved
+//!   filter, M4, TCAS firmness) driving a 2-D filter through a manoeuvre: the
+//!   same decisions as f64 and a deviation within a bound propagated from
+//!   the library's budget ([`compare_schedule`] says why the budget alone
+//!   cannot be used);
+//! * the M5 bank: the same member selected as in f64 at every update, every
+//!   member within the library's budget for its gains.
 #![no_std]
 #![no_main]
 
 #[path = "../firmware/board.rs"]
 mod board;
+#[macro_use]
+#[path = "../firmware/selftest_support.rs"]
+mod support;
 #[path = "../firmware/propagation.rs"]
 mod propagation;
 #[path = "../firmware/synth.rs"]
 mod synth;
 
 use abtrack::bank::{BankOutcome, CartesianBank};
-use abtrack::budget::{
-    error_budget_around_reference, BudgetError, ErrorBound, GainSpread, RunEnvelope,
-};
+use abtrack::budget::{error_budget_around_reference, BudgetError, ErrorBound, GainSpread};
 use abtrack::filter::{
     Cartesian, FilterError, GainError, Gains, Innovation, KinematicFilter, Phase, UpdateOutcome,
 };
 use abtrack::gain::{AnySchedule, ScheduleSpec, ScheduledFilter};
 use abtrack::{Fix, Scalar};
 use board::Native;
-use propagation::{kinematic_prediction, kinematic_update, ErrorPropagation};
+use propagation::{kinematic_prediction, kinematic_update, ErrorPropagation, Lag};
+use support::{
+    fixed_gain_budget, fixed_gain_budget_computed_gains, gain_values, merge, never, value, Failure,
+    Magnitudes, Test, TestResult, TestScalar,
+};
 use synth::Lcg;
-
-/// A failed check. What failed is logged (defmt::error!) where it is detected.
-struct Failure;
-
-type TestResult = Result<(), Failure>;
-
-/// Fails the current test, logging the message, unless the condition holds.
-macro_rules! ensure {
-    ($cond:expr, $($msg:tt)+) => {
-        if !$cond {
-            defmt::error!($($msg)+);
-            return Err(Failure);
-        }
-    };
-}
-
-/// A named test.
-type Test = (&'static str, fn() -> TestResult);
 
 const TESTS: &[Test] = &[
     (
@@ -117,66 +116,7 @@ const TESTS: &[Test] = &[
 #[cortex_m_rt::entry]
 fn main() -> ! {
     board::paint_stack();
-    defmt::println!(
-        "abtrack self-test on {=str} ({=str}): native type {=str} vs f64",
-        board::BOARD,
-        board::CORE,
-        Native::NAME
-    );
-    let mut passed = 0u32;
-    let mut failed = 0u32;
-    for (name, test) in TESTS {
-        match test() {
-            Ok(()) => {
-                passed += 1;
-                defmt::println!("ok     {=str}", name);
-            }
-            Err(Failure) => {
-                failed += 1;
-                defmt::println!("FAILED {=str}", name);
-            }
-        }
-    }
-    board::report_stack();
-    defmt::println!("{=u32} passed, {=u32} failed", passed, failed);
-    board::exit(failed == 0)
-}
-
-// ---------------------------------------------------------------------------
-// The numeric types under test
-// ---------------------------------------------------------------------------
-
-/// What the tests need to know about a representation beyond [`Scalar`]
-/// (whose rounding model, `UNIT_ROUNDOFF` and `ABS_RESOLUTION`, the error
-/// budget uses).
-trait TestScalar: Scalar + defmt::Format {
-    /// A representable measurement large enough that the αβ velocity
-    /// correction β·e/T (β = 0.25, T = 0.05 s) overflows.
-    const HUGE: f64;
-    /// The stored bit pattern, for "bit-identical" checks.
-    fn bits(self) -> u64;
-}
-
-impl TestScalar for f64 {
-    const HUGE: f64 = 1.7e308;
-    fn bits(self) -> u64 {
-        self.to_bits()
-    }
-}
-
-impl TestScalar for f32 {
-    const HUGE: f64 = 3.0e38;
-    fn bits(self) -> u64 {
-        self.to_bits() as u64
-    }
-}
-
-impl TestScalar for Fix {
-    // Representable (< 2³¹), but 0.25·1e9/0.05 = 5e9 is not.
-    const HUGE: f64 = 1.0e9;
-    fn bits(self) -> u64 {
-        self.to_bits() as u64
-    }
+    support::run("self-test (filters, gain schedules, M5 bank)", TESTS)
 }
 
 /// Everything observable of a one-axis filter, as bit patterns.
@@ -226,16 +166,6 @@ fn gains_for<S: TestScalar, const ORDER: usize>(
                 gamma,
                 e
             );
-            Err(Failure)
-        }
-    }
-}
-
-fn value<S: TestScalar>(v: f64) -> Result<S, Failure> {
-    match S::try_from_f64(v) {
-        Ok(x) => Ok(x),
-        Err(e) => {
-            defmt::error!("{=str}: {=f64} not representable: {}", S::NAME, v, e);
             Err(Failure)
         }
     }
@@ -732,65 +662,6 @@ fn cartesian_vs_axes<S: TestScalar, const ORDER: usize>() -> TestResult {
 // Native vs f64, against the library's error budget
 // ---------------------------------------------------------------------------
 
-/// The largest magnitudes one run reached, as the budget's envelope wants
-/// them ([`RunEnvelope`]): measurements, predictions and estimates for the
-/// position, predicted and smoothed velocities (the two-point velocity
-/// included), accelerations and residuals.
-#[derive(Clone, Copy, Default)]
-struct Magnitudes {
-    position: f64,
-    velocity: f64,
-    acceleration: f64,
-    residual: f64,
-}
-
-impl Magnitudes {
-    fn position(&mut self, v: f64) {
-        self.position = self.position.max(libm::fabs(v));
-    }
-    fn velocity(&mut self, v: f64) {
-        self.velocity = self.velocity.max(libm::fabs(v));
-    }
-    fn acceleration(&mut self, v: f64) {
-        self.acceleration = self.acceleration.max(libm::fabs(v));
-    }
-    fn residual(&mut self, v: f64) {
-        self.residual = self.residual.max(libm::fabs(v));
-    }
-
-    /// One f64 update from state (x, v, a) before it to the filter after it.
-    fn record<const ORDER: usize>(
-        &mut self,
-        z: f64,
-        dt: f64,
-        before: (f64, f64, f64),
-        after: &KinematicFilter<f64, ORDER>,
-    ) {
-        self.position(z);
-        self.position(before.0);
-        if let (Phase::Tracking, Some(i)) = (after.phase(), after.last_innovation()) {
-            self.position(i.predicted);
-            self.residual(i.residual);
-        }
-        // The predicted velocity v + T·a of the update.
-        self.velocity(before.1 + dt * before.2);
-        self.position(after.position());
-        self.velocity(after.velocity());
-        self.acceleration(after.acceleration());
-    }
-
-    fn envelope(&self, dt_min: f64, dt_max: f64) -> RunEnvelope {
-        RunEnvelope {
-            max_position: self.position,
-            max_velocity: self.velocity,
-            max_acceleration: self.acceleration,
-            max_residual: self.residual,
-            dt_min,
-            dt_max,
-        }
-    }
-}
-
 /// Worst deviations over the runs of one test, and how close they came to
 /// their budgets.
 #[derive(Default)]
@@ -831,37 +702,6 @@ impl Deviation {
             self.velocity,
             self.worst_ratio as f32
         );
-    }
-}
-
-/// The library's error budget ([`abtrack::budget`]) for a fixed-gain run of
-/// `S` whose f64 twin reached the magnitudes `m`: the envelope is widened
-/// around the f64 run and the bound re-checked
-/// ([`error_budget_around_reference`]), so it bounds |S − f64| at every
-/// update of the run. A run the budget refuses fails the test: every
-/// fixed-gain run here has a constant interval, which the budget covers
-/// (it refuses only interval or gain spreads it cannot certify, gains
-/// within about 10⁻⁴ of the stability boundary, and runs that may
-/// overflow).
-fn fixed_gain_budget<S: TestScalar, const ORDER: usize>(
-    gains: &Gains<f64>,
-    envelope: &RunEnvelope,
-) -> Result<ErrorBound, Failure> {
-    match error_budget_around_reference::<S, ORDER>(gains, &GainSpread::default(), envelope) {
-        Ok(b) => Ok(b),
-        Err(e) => {
-            defmt::error!(
-                "{=str}/{=usize}: the error budget refused gains ({=f64}, {=f64}, {=f64}), envelope {}: {}",
-                S::NAME,
-                ORDER,
-                gains.alpha(),
-                gains.beta(),
-                gains.gamma(),
-                envelope,
-                e
-            );
-            Err(Failure)
-        }
     }
 }
 
@@ -1210,10 +1050,6 @@ struct PlaneScenario {
     miss: fn(u32) -> bool,
 }
 
-fn never(_: u32) -> bool {
-    false
-}
-
 impl PlaneScenario {
     fn liu_turn(dt: f64, scans: u32, seed: u64, miss: fn(u32) -> bool) -> Self {
         let speed = 150.0;
@@ -1285,10 +1121,6 @@ struct PairStep {
     residual: f64,
     /// |native − f64| of (x, v, a) after the step.
     deviation: [f64; 3],
-}
-
-fn gain_values<S: Scalar>(g: &Gains<S>) -> [f64; 3] {
-    [g.alpha().to_f64(), g.beta().to_f64(), g.gamma().to_f64()]
 }
 
 fn axis_state<S: Scalar, const ORDER: usize>(f: &KinematicFilter<S, ORDER>) -> [f64; 3] {
@@ -1433,14 +1265,6 @@ fn run_schedule<S: TestScalar, const ORDER: usize>(
     Ok(())
 }
 
-/// Componentwise maximum of `m` into `into`.
-fn merge(into: &mut Magnitudes, m: &Magnitudes) {
-    into.position(m.position);
-    into.velocity(m.velocity);
-    into.acceleration(m.acceleration);
-    into.residual(m.residual);
-}
-
 /// A gain schedule in `S` against the same schedule in f64, both driving a
 /// 2-D filter of order `ORDER` over `scenario`.
 ///
@@ -1550,7 +1374,8 @@ fn compare_schedule<S: TestScalar, const ORDER: usize>(
     let mut worst_ratio = 0.0f64;
     let mut worst = [0.0f64; 3];
     for axis in 0..2 {
-        let mut propagation = ErrorPropagation::<ORDER, SCHEDULE_LAGS>::new([0.0; ORDER]);
+        let mut window = [Lag::<ORDER>::EMPTY; SCHEDULE_LAGS];
+        let mut propagation = ErrorPropagation::new(&mut window, [0.0; ORDER]);
         run_schedule::<S, ORDER>(spec, scenario, |k, i, step, _| {
             if i != axis {
                 return Ok(());
@@ -1655,34 +1480,6 @@ fn firmness_misses(k: u32) -> bool {
 fn schedule_tcas_firmness_vs_f64() -> TestResult {
     let s = PlaneScenario::liu_turn(1.0, 120, 0x5c4e_0005, firmness_misses);
     compare_schedule::<Native, 3>("tcas-firmness", &s)
-}
-
-/// The library's budget for a fixed-gain run whose gains were computed in
-/// `S` (`gains_s`, their exact values) rather than converted from the f64
-/// run's (`gains_s − delta` up to sign): |S − f64| ≤ |S − exact(g_S)| +
-/// |exact(g_S) − exact(g_64)| + |exact(g_64) − f64|. The first and last terms
-/// are the budget at g_S (its f64 term, doubled, covers the 10⁻⁷-relative
-/// change of gains). The middle one is two exact filters differing only in
-/// their gains: d ← A(g_S)·d + ΔK·e, so in the budget's scaled coordinates
-/// (x, vT, aT²), where W·ΔK = (Δα, Δβ, Δγ/2), each component is at most
-/// ‖L‖∞·max(|Δα|, |Δβ|, |Δγ|/2)·max|e| (`amplification` is ‖L‖∞).
-fn fixed_gain_budget_computed_gains<S: TestScalar, const ORDER: usize>(
-    gains_s: &Gains<f64>,
-    delta: [f64; 3],
-    envelope: &RunEnvelope,
-) -> Result<ErrorBound, Failure> {
-    let mut b = fixed_gain_budget::<S, ORDER>(gains_s, envelope)?;
-    let t = envelope.dt_max;
-    let scaled = libm::fabs(delta[0])
-        .max(libm::fabs(delta[1]))
-        .max(0.5 * libm::fabs(delta[2]));
-    let extra = b.amplification * scaled * envelope.max_residual;
-    b.position += extra;
-    b.velocity += extra / t;
-    if ORDER == 3 {
-        b.acceleration += extra / (t * t);
-    }
-    Ok(b)
 }
 
 const BANK_MEMBERS: usize = 8;

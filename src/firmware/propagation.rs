@@ -86,16 +86,29 @@ fn add_abs_product<const N: usize>(acc: &mut [f64; N], m: &Matrix<N>, v: &[f64; 
 /// `Φ(now, now − l)`, the injection bound `η_{now−l}` and the bound
 /// `Y_{now−l}`.
 #[derive(Clone, Copy)]
-struct Lag<const N: usize> {
+pub struct Lag<const N: usize> {
     product: Matrix<N>,
     injection: [f64; N],
     bound: [f64; N],
 }
 
+impl<const N: usize> Lag<N> {
+    pub const EMPTY: Self = Lag {
+        product: [[0.0; N]; N],
+        injection: [0.0; N],
+        bound: [0.0; N],
+    };
+}
+
+/// The window's storage, kept by the caller (`[Lag::EMPTY; M]` in its own
+/// frame): built in place, where a kilobytes-large value returned by a
+/// constructor would be copied, and doubled on the stack.
+pub type Window<const N: usize, const M: usize> = [Lag<N>; M];
+
 /// The windowed bound of the module docs: `N` state components, a window of
 /// `M` steps.
-pub struct ErrorPropagation<const N: usize, const M: usize> {
-    lags: [Lag<N>; M],
+pub struct ErrorPropagation<'w, const N: usize, const M: usize> {
+    lags: &'w mut Window<N, M>,
     /// Slot the next step is written to; lag `l` is at `head − l` (mod M).
     head: usize,
     /// Lags stored (≤ M).
@@ -104,15 +117,12 @@ pub struct ErrorPropagation<const N: usize, const M: usize> {
     steps: u32,
 }
 
-impl<const N: usize, const M: usize> ErrorPropagation<N, M> {
-    /// Starts from `|d_0| ≤ initial` (componentwise).
-    pub fn new(initial: [f64; N]) -> Self {
+impl<'w, const N: usize, const M: usize> ErrorPropagation<'w, N, M> {
+    /// Starts from `|d_0| ≤ initial` (componentwise), using `window` (its
+    /// previous contents are ignored).
+    pub fn new(window: &'w mut Window<N, M>, initial: [f64; N]) -> Self {
         ErrorPropagation {
-            lags: [Lag {
-                product: [[0.0; N]; N],
-                injection: [0.0; N],
-                bound: [0.0; N],
-            }; M],
+            lags: window,
             head: 0,
             len: 0,
             current: initial,
