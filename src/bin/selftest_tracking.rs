@@ -1210,7 +1210,10 @@ fn non_reporting<S: TestScalar>() -> TestResult {
 /// Table capacity used on target: 8 tracks, 8 measurements per scan. The
 /// micro:bit has 16 KiB of RAM; the tests below hold a table in `S` and
 /// one in f64 at once (2.8 KB each for Q32.32, documented formula in
-/// [`track_table_sizes_match_documentation`]).
+/// [`track_table_sizes_match_documentation`]). Tables are made as
+/// constants (`const { Table::new() }`, copied into place): `new()` called
+/// at run time builds the table in its own frame first, twice the table on
+/// the stack.
 const TRACKS: usize = 8;
 const PER_SCAN: usize = 8;
 
@@ -1358,8 +1361,8 @@ fn scan_table<S: TestScalar>(
 }
 
 fn track_crossing_targets_keep_ids() -> TestResult {
-    let mut native = Table::<Native>::new();
-    let mut reference = Table::<f64>::new();
+    let mut native = const { Table::<Native>::new() };
+    let mut reference = const { Table::<f64>::new() };
     crossing_keeps_ids(&mut native, &mut reference)
 }
 
@@ -1432,8 +1435,8 @@ fn crossing_keeps_ids(native: &mut Table<Native>, reference: &mut Table<f64>) ->
 }
 
 fn track_cluttered_scans_same_codes_as_f64() -> TestResult {
-    let mut native = Table::<Native>::new();
-    let mut reference = Table::<f64>::new();
+    let mut native = const { Table::<Native>::new() };
+    let mut reference = const { Table::<f64>::new() };
     cluttered_same_codes(&mut native, &mut reference)
 }
 
@@ -1513,7 +1516,7 @@ fn cluttered_same_codes(native: &mut Table<Native>, reference: &mut Table<f64>) 
 }
 
 fn track_full_table_refuses_and_counts() -> TestResult {
-    let mut table = SmallTable::<Native>::new();
+    let mut table = const { SmallTable::<Native>::new() };
     full_table(&mut table)
 }
 
@@ -1593,7 +1596,7 @@ fn full_table(table: &mut SmallTable<Native>) -> TestResult {
 }
 
 fn track_bad_measurements_rejected() -> TestResult {
-    let mut table = Table::<Native>::new();
+    let mut table = const { Table::<Native>::new() };
     bad_measurements(&mut table)
 }
 
