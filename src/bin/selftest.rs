@@ -1474,7 +1474,7 @@ fn schedule_m4_moving_window_vs_f64() -> TestResult {
 /// Misses: three in a row at scans 20–22 (firmness 8 → 5) and every 11th
 /// scan after 30.
 fn firmness_misses(k: u32) -> bool {
-    (20..23).contains(&k) || (k > 30 && k % 11 == 0)
+    (20..23).contains(&k) || (k > 30 && k.is_multiple_of(11))
 }
 
 fn schedule_tcas_firmness_vs_f64() -> TestResult {

@@ -14,9 +14,11 @@ use abtrack::{Fix, Scalar};
 use crate::board;
 
 /// Fails the current test, logging the message, unless the condition holds.
+/// (A comparison with NaN does not hold, so a NaN deviation fails.)
 macro_rules! ensure {
     ($cond:expr, $($msg:tt)+) => {
-        if !$cond {
+        let holds: bool = $cond;
+        if !holds {
             defmt::error!($($msg)+);
             return Err($crate::support::Failure);
         }
