@@ -4,7 +4,8 @@
 #   2. host tests (cd host-tests && cargo test --release),
 #   3. the library alone for the three thumb targets (no firmware feature),
 #   4. the firmware (demo, self-test, benchmark) for the three targets,
-#   5. the demo and the on-target self-test under QEMU on the three boards
+#   5. the demo and the on-target self-tests (selftest, selftest-tracking)
+#      under QEMU on the three boards
 #      (mps2-an386 / Cortex-M4F, mps2-an385 / Cortex-M3, microbit / Cortex-M0).
 #
 #   scripts/test.sh
@@ -50,10 +51,10 @@ in_host_tests() { (cd host-tests && "$@"); }
 # pipe); its last line must also be the summary with no failures, so a run
 # that stopped early cannot pass.
 run_selftest() {
-    local target=$1 log="$log_dir/selftest-$1.log"
-    cargo run --release --target "$target" --bin selftest | tee "$log" || return
+    local target=$1 bin=$2 log="$log_dir/$2-$1.log"
+    cargo run --release --target "$target" --bin "$bin" | tee "$log" || return
     tail -n 1 "$log" | grep -Eq '^[0-9]+ passed, 0 failed$' || {
-        echo "self-test on $target: no '<N> passed, 0 failed' line at the end" >&2
+        echo "$bin on $target: no '<N> passed, 0 failed' line at the end" >&2
         return 1
     }
 }
@@ -70,8 +71,11 @@ done
 for t in "${ABTRACK_TARGETS[@]}"; do
     step "demo on $(board_for_target "$t")" cargo run --release --target "$t" --bin abtrack-firmware
 done
+# Two self-test images (together they do not fit the micro:bit's flash).
 for t in "${ABTRACK_TARGETS[@]}"; do
-    step "self-test on $(board_for_target "$t")" run_selftest "$t"
+    for bin in selftest selftest-tracking; do
+        step "$bin on $(board_for_target "$t")" run_selftest "$t" "$bin"
+    done
 done
 
 echo

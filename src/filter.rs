@@ -220,6 +220,23 @@ pub enum Phase {
     Tracking,
 }
 
+/// What one accepted update writes into a [`KinematicFilter`]: the result
+/// of its first half, before anything is written.
+#[derive(Debug, Clone, Copy)]
+enum PendingUpdate<S> {
+    /// The first measurement becomes the position.
+    First(S),
+    /// Two-point initialisation (Al-Wagih eq. 9).
+    Second { position: S, velocity: S },
+    /// A filtered update.
+    Filtered {
+        position: S,
+        velocity: S,
+        acceleration: S,
+        innovation: Innovation<S>,
+    },
+}
+
 /// A one-axis kinematic filter: αβ for `ORDER = 2`, αβγ for `ORDER = 3`.
 ///
 /// Use the aliases [`AlphaBeta`] and [`AlphaBetaGamma`].
@@ -368,30 +385,44 @@ impl<S: Scalar, const ORDER: usize> KinematicFilter<S, ORDER> {
         dt: S,
         gains: &Gains<S>,
     ) -> Result<UpdateOutcome<S>, FilterError> {
+        match self.prepare(z, dt, gains) {
+            Ok(pending) => Ok(self.commit(pending)),
+            Err(e) => {
+                if e == FilterError::Saturated {
+                    self.count_saturation();
+                }
+                Err(e)
+            }
+        }
+    }
+
+    fn count_saturation(&mut self) {
+        self.saturations = self.saturations.saturating_add(1);
+    }
+
+    /// The first half of [`Self::update`]: everything it will write, or why
+    /// it refuses, computed without changing the filter (a saturation is
+    /// not counted here). [`Cartesian`] prepares every axis before it
+    /// commits any, which is how it stays all-or-nothing without copying
+    /// its axes.
+    #[inline]
+    fn prepare(&self, z: S, dt: S, gains: &Gains<S>) -> Result<PendingUpdate<S>, FilterError> {
         if !z.is_valid() {
             return Err(FilterError::InvalidMeasurement);
         }
         check_interval(dt)?;
         match self.phase {
-            Phase::Empty => {
-                self.position = z;
-                self.velocity = S::ZERO;
-                self.acceleration = S::ZERO;
-                self.since_first = S::ZERO;
-                self.phase = Phase::OnePoint;
-                Ok(UpdateOutcome::FirstPoint)
-            }
+            Phase::Empty => Ok(PendingUpdate::First(z)),
             Phase::OnePoint => {
                 let elapsed = self.since_first + dt;
                 let velocity = (z - self.position) / elapsed;
                 if !velocity.is_valid() {
-                    self.saturations = self.saturations.saturating_add(1);
                     return Err(FilterError::Saturated);
                 }
-                self.position = z;
-                self.velocity = velocity;
-                self.phase = Phase::Tracking;
-                Ok(UpdateOutcome::SecondPoint)
+                Ok(PendingUpdate::Second {
+                    position: z,
+                    velocity,
+                })
             }
             Phase::Tracking => {
                 let p = self.extrapolate(dt);
@@ -411,18 +442,51 @@ impl<S: Scalar, const ORDER: usize> KinematicFilter<S, ORDER> {
                     && acceleration.is_valid()
                     && residual.is_valid())
                 {
-                    self.saturations = self.saturations.saturating_add(1);
                     return Err(FilterError::Saturated);
                 }
+                Ok(PendingUpdate::Filtered {
+                    position,
+                    velocity,
+                    acceleration,
+                    innovation: Innovation {
+                        predicted: p.position,
+                        residual,
+                    },
+                })
+            }
+        }
+    }
+
+    /// The second half of [`Self::update`]: writes what [`Self::prepare`]
+    /// computed.
+    #[inline]
+    fn commit(&mut self, pending: PendingUpdate<S>) -> UpdateOutcome<S> {
+        match pending {
+            PendingUpdate::First(z) => {
+                self.position = z;
+                self.velocity = S::ZERO;
+                self.acceleration = S::ZERO;
+                self.since_first = S::ZERO;
+                self.phase = Phase::OnePoint;
+                UpdateOutcome::FirstPoint
+            }
+            PendingUpdate::Second { position, velocity } => {
+                self.position = position;
+                self.velocity = velocity;
+                self.phase = Phase::Tracking;
+                UpdateOutcome::SecondPoint
+            }
+            PendingUpdate::Filtered {
+                position,
+                velocity,
+                acceleration,
+                innovation,
+            } => {
                 self.position = position;
                 self.velocity = velocity;
                 self.acceleration = acceleration;
-                let innovation = Innovation {
-                    predicted: p.position,
-                    residual,
-                };
                 self.last = Some(innovation);
-                Ok(UpdateOutcome::Filtered(innovation))
+                UpdateOutcome::Filtered(innovation)
             }
         }
     }
@@ -514,7 +578,7 @@ impl<S: Scalar, const ORDER: usize, const D: usize> Cartesian<S, ORDER, D> {
         dt: S,
         gains: &Gains<S>,
     ) -> Result<[UpdateOutcome<S>; D], FilterError> {
-        self.update_per_axis(z, dt, &[*gains; D])
+        self.update_axes(z, dt, core::iter::repeat(gains))
     }
 
     /// Updates each axis with its own gains (schedules that adapt per axis).
@@ -524,24 +588,40 @@ impl<S: Scalar, const ORDER: usize, const D: usize> Cartesian<S, ORDER, D> {
         dt: S,
         gains: &[Gains<S>; D],
     ) -> Result<[UpdateOutcome<S>; D], FilterError> {
-        let mut next = self.axes;
-        let mut out = [UpdateOutcome::FirstPoint; D];
-        let axes = self
-            .axes
-            .iter_mut()
-            .zip(next.iter_mut())
-            .zip(out.iter_mut());
-        for (((current, candidate), outcome), (z, gains)) in axes.zip(z.iter().zip(gains)) {
-            match candidate.update(*z, dt, gains) {
-                Ok(o) => *outcome = o,
+        self.update_axes(z, dt, gains.iter())
+    }
+
+    /// All or nothing, without copying the axes: every axis computes its
+    /// update first ([`KinematicFilter::prepare`], which writes nothing), and
+    /// only if all of them succeed are the results written. A refusal by
+    /// axis i leaves every axis as it was, except that a saturation is
+    /// counted on axis i (as a one-axis update counts it).
+    fn update_axes<'g>(
+        &mut self,
+        z: [S; D],
+        dt: S,
+        gains: impl Iterator<Item = &'g Gains<S>>,
+    ) -> Result<[UpdateOutcome<S>; D], FilterError>
+    where
+        S: 'g,
+    {
+        let mut pending = [PendingUpdate::First(S::ZERO); D];
+        let axes = self.axes.iter_mut().zip(pending.iter_mut());
+        for ((axis, slot), (z, gains)) in axes.zip(z.iter().zip(gains)) {
+            match axis.prepare(*z, dt, gains) {
+                Ok(p) => *slot = p,
                 Err(e) => {
-                    // Keep the saturation count of the refused update.
-                    current.saturations = candidate.saturations;
+                    if e == FilterError::Saturated {
+                        axis.count_saturation();
+                    }
                     return Err(e);
                 }
             }
         }
-        self.axes = next;
+        let mut out = [UpdateOutcome::FirstPoint; D];
+        for ((axis, p), o) in self.axes.iter_mut().zip(pending).zip(out.iter_mut()) {
+            *o = axis.commit(p);
+        }
         Ok(out)
     }
 

@@ -139,6 +139,7 @@ pub fn stack_usage() -> (u32, u32) {
 }
 
 /// Logs the stack high-water mark.
+#[allow(dead_code)] // the self-tests report per test instead
 pub fn report_stack() {
     let (used, available) = stack_usage();
     defmt::println!(
