@@ -31,6 +31,9 @@
 //! keeps the smallest gain to 10⁻⁴ relative. The cost is 64-bit multiplies
 //! (four 32×32 partial products on a Cortex-M3, a library call on an M0),
 //! measured by the firmware benchmark in the README.
+//! Measured there: on the M3 and M0 software `f64` is faster than Q32.32
+//! (its products need 128-bit intermediates), so this format buys
+//! saturation semantics and a fixed absolute resolution, not speed.
 //!
 //! Arithmetic on `Fix` saturates, never wraps and never panics: an overflow,
 //! a division by zero or the square root of a negative number gives a sentinel.
