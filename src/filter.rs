@@ -264,8 +264,10 @@ impl<S: Scalar, const ORDER: usize> Default for KinematicFilter<S, ORDER> {
     }
 }
 
+/// Refuses an interval that is not a valid number or is ≤ 0 (every
+/// filter's contract).
 #[inline]
-fn check_interval<S: Scalar>(dt: S) -> Result<(), FilterError> {
+pub(crate) fn check_interval<S: Scalar>(dt: S) -> Result<(), FilterError> {
     if dt.is_valid() && dt > S::ZERO {
         Ok(())
     } else {

@@ -240,6 +240,20 @@ impl Scalar for f32 {
     }
 }
 
+/// √(a² + b²) without forming a² (positions up to 4·10⁵ m would overflow
+/// Q32.32 when squared): the larger magnitude times √(1 + k²), k ≤ 1. An
+/// invalid argument gives an invalid result (the comparisons below are
+/// arranged so NaN and the saturation sentinels propagate).
+pub fn hypot<S: Scalar>(a: S, b: S) -> S {
+    let (a, b) = (a.abs(), b.abs());
+    let (large, small) = if a >= b { (a, b) } else { (b, a) };
+    if large == S::ZERO {
+        return small; // zero, or an invalid value that propagates
+    }
+    let k = small / large;
+    large * (S::ONE + k * k).sqrt()
+}
+
 /// Q32.32 saturating fixed point with sticky saturation (see the module docs).
 #[derive(Clone, Copy, Default, PartialEq, Eq, PartialOrd, Ord, Hash)]
 pub struct Fix(I32F32);

@@ -237,7 +237,7 @@ pub enum ReplayError {
     /// The range–azimuth noise settings are not representable.
     Noise(NoiseError),
     /// The altitude tracker's gains cannot be built in this representation.
-    AltitudeGains(GainError),
+    AltitudeGains(abtrack::filter::altitude::AltitudeConfigError),
     /// The own altitude is not representable.
     OwnAltitude(NumError),
     /// A value of the file does not fit the representation.

@@ -212,3 +212,25 @@ fn missing_altitude_is_a_valid_state() {
     missing_altitude::<f32>();
     missing_altitude::<Fix>();
 }
+
+#[test]
+fn configuration_refuses_bad_interval_manoeuvre_and_coast() {
+    use abtrack::filter::altitude::AltitudeConfigError;
+    let q = AltitudeQuantum::ModeC;
+    // A negative interval would give a valid λ (T² > 0); it must be refused.
+    assert_eq!(
+        AltitudeTrackerConfig::<f64>::new(q, 3.22, -1.0, 6.0),
+        Err(AltitudeConfigError::IntervalNotPositive)
+    );
+    assert_eq!(AltitudeTrackerConfig::<f64>::new(q, 3.22, 0.0, 6.0), Err(AltitudeConfigError::IntervalNotPositive));
+    assert_eq!(
+        AltitudeTrackerConfig::<f64>::new(q, -3.22, 1.0, 6.0),
+        Err(AltitudeConfigError::ManoeuvreNotPositive)
+    );
+    assert_eq!(
+        AltitudeTrackerConfig::<Fix>::new(q, f64::NAN, 1.0, 6.0),
+        Err(AltitudeConfigError::ManoeuvreNotPositive)
+    );
+    assert_eq!(AltitudeTrackerConfig::<f32>::new(q, 3.22, 1.0, -1.0), Err(AltitudeConfigError::InvalidCoast));
+    assert!(AltitudeTrackerConfig::<Fix>::new(q, 3.22, 1.0, 0.0).is_ok());
+}

@@ -96,6 +96,39 @@ pub fn kalata_gains<S: Scalar>(tracking_index: S) -> Result<Gains<S>, GainError>
     Gains::alpha_beta(alpha, beta)
 }
 
+/// Why an altitude-tracker configuration was refused.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+#[cfg_attr(feature = "defmt", derive(defmt::Format))]
+pub enum AltitudeConfigError {
+    /// The design interval is not a finite number > 0.
+    IntervalNotPositive,
+    /// The manoeuvre level σ_a is not a finite number > 0.
+    ManoeuvreNotPositive,
+    /// The longest coast is not a finite number ≥ 0, or not representable.
+    InvalidCoast,
+    /// The derived gains were refused (tracking index out of range).
+    Gains(GainError),
+}
+
+impl core::fmt::Display for AltitudeConfigError {
+    fn fmt(&self, f: &mut core::fmt::Formatter<'_>) -> core::fmt::Result {
+        match self {
+            AltitudeConfigError::IntervalNotPositive => {
+                f.write_str("design interval must be a finite number > 0 s")
+            }
+            AltitudeConfigError::ManoeuvreNotPositive => {
+                f.write_str("manoeuvre level must be a finite number > 0 ft/s²")
+            }
+            AltitudeConfigError::InvalidCoast => {
+                f.write_str("longest coast must be a finite number >= 0 s")
+            }
+            AltitudeConfigError::Gains(e) => write!(f, "derived gains refused: {e}"),
+        }
+    }
+}
+
+impl core::error::Error for AltitudeConfigError {}
+
 /// Configuration of an [`AltitudeTracker`]: its gains and how long it
 /// coasts through missing reports.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -116,16 +149,25 @@ impl<S: Scalar> AltitudeTrackerConfig<S> {
         manoeuvre_ft_per_s2: f64,
         interval_s: f64,
         max_coast_s: f64,
-    ) -> Result<Self, GainError> {
+    ) -> Result<Self, AltitudeConfigError> {
+        // λ uses T², so a negative interval would pass unnoticed: check it.
+        if !(interval_s.is_finite() && interval_s > 0.0) {
+            return Err(AltitudeConfigError::IntervalNotPositive);
+        }
+        if !(manoeuvre_ft_per_s2.is_finite() && manoeuvre_ft_per_s2 > 0.0) {
+            return Err(AltitudeConfigError::ManoeuvreNotPositive);
+        }
+        if !(max_coast_s.is_finite() && max_coast_s >= 0.0) {
+            return Err(AltitudeConfigError::InvalidCoast);
+        }
         let sigma_v = quantum.feet() / libm::sqrt(12.0);
         let lambda = manoeuvre_ft_per_s2 * interval_s * interval_s / sigma_v;
-        if !(lambda.is_finite() && max_coast_s.is_finite()) || max_coast_s < 0.0 {
-            return Err(GainError::NotFinite);
-        }
-        let tracking_index = S::try_from_f64(lambda).map_err(|_| GainError::NotFinite)?;
-        let max_coast = S::try_from_f64(max_coast_s).map_err(|_| GainError::NotFinite)?;
+        let tracking_index = S::try_from_f64(lambda)
+            .map_err(|_| AltitudeConfigError::Gains(GainError::NotFinite))?;
+        let max_coast =
+            S::try_from_f64(max_coast_s).map_err(|_| AltitudeConfigError::InvalidCoast)?;
         Ok(AltitudeTrackerConfig {
-            gains: kalata_gains(tracking_index)?,
+            gains: kalata_gains(tracking_index).map_err(AltitudeConfigError::Gains)?,
             tracking_index,
             max_coast,
         })
@@ -133,7 +175,7 @@ impl<S: Scalar> AltitudeTrackerConfig<S> {
 
     /// The documented defaults for a quantum: σ_a = 0.1 g, T = 1 s, coast
     /// up to 6 s.
-    pub fn default_for(quantum: AltitudeQuantum) -> Result<Self, GainError> {
+    pub fn default_for(quantum: AltitudeQuantum) -> Result<Self, AltitudeConfigError> {
         Self::new(
             quantum,
             DEFAULT_MANOEUVRE_G * STANDARD_GRAVITY_FT_PER_S2,

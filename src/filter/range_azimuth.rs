@@ -106,7 +106,7 @@
 //! TCAS encounter with coasts): f32 within 0.11 m and 0.03 m/s, Q32.32
 //! within 3 mm and 6.3·10⁻⁵ m/s, gains within 5·10⁻⁹.
 
-use crate::filter::{FilterError, Phase};
+use crate::filter::{check_interval, FilterError, Phase};
 use crate::num::Scalar;
 
 /// σ_B² used by He et al. (VAR = R²·7.569·10⁻³, about 5° RMS).
@@ -229,17 +229,7 @@ impl<S: Scalar> RangeAzimuthNoise<S> {
     }
 }
 
-/// √(a² + b²) without forming a² (positions up to 4·10⁵ m would overflow
-/// Q32.32 when squared): the larger magnitude times √(1 + k²), k ≤ 1.
-pub fn hypot<S: Scalar>(a: S, b: S) -> S {
-    let (a, b) = (a.abs(), b.abs());
-    let (large, small) = if a >= b { (a, b) } else { (b, a) };
-    if large == S::ZERO {
-        return small; // zero, or an invalid value that propagates
-    }
-    let k = small / large;
-    large * (S::ONE + k * k).sqrt()
-}
+pub use crate::num::hypot;
 
 /// A Givens rotation of two columns of a two-row array that zeroes the
 /// first row's second entry: returns the first row's new first entry (its
@@ -417,15 +407,6 @@ pub struct RangeAzimuthFilter<S> {
     cross_factor: CovarianceFactor<S>,
     last: Option<RangeAzimuthInnovation<S>>,
     saturations: u32,
-}
-
-#[inline]
-fn check_interval<S: Scalar>(dt: S) -> Result<(), FilterError> {
-    if dt.is_valid() && dt > S::ZERO {
-        Ok(())
-    } else {
-        Err(FilterError::InvalidInterval)
-    }
 }
 
 /// Azimuth of (x, y), clockwise from the y axis, in [0, 2π).

@@ -165,18 +165,7 @@ impl<S: Scalar> Gate<S> {
     }
 }
 
-/// √(a² + b²) without squaring large values (Q32.32 would saturate at
-/// 46 km): the larger magnitude is factored out first.
-pub fn hypot<S: Scalar>(a: S, b: S) -> S {
-    let a = a.abs();
-    let b = b.abs();
-    let big = a.max_of(b);
-    if big == S::ZERO {
-        return S::ZERO;
-    }
-    let small = a.min_of(b) / big;
-    big * (S::ONE + small * small).sqrt()
-}
+pub use crate::num::hypot;
 
 /// One track's validation region for one scan.
 #[derive(Debug, Clone, Copy, PartialEq)]

@@ -337,7 +337,15 @@ impl<S: Scalar> TrackFilter<S> for FixedGainTrack<S> {
 
     fn update(&mut self, gains: &Gains<S>, z: &Observation<S>, dt: S) -> Result<(), FilterError> {
         let mut filter = self.filter;
-        let outcome = filter.update(z.xy(), dt, gains)?;
+        let outcome = match filter.update(z.xy(), dt, gains) {
+            Ok(outcome) => outcome,
+            Err(e) => {
+                // A refused update leaves the filter as it was but for the
+                // saturation it counted: keep that count.
+                self.filter = filter;
+                return Err(e);
+            }
+        };
         // Both axes pass through the same phases, so axis 0 speaks for both.
         let uncertainty = self
             .uncertainty
@@ -350,7 +358,10 @@ impl<S: Scalar> TrackFilter<S> for FixedGainTrack<S> {
 
     fn coast(&mut self, _: &Gains<S>, dt: S) -> Result<(), FilterError> {
         let mut filter = self.filter;
-        filter.coast(dt)?;
+        if let Err(e) = filter.coast(dt) {
+            self.filter = filter; // unchanged but for the saturation count
+            return Err(e);
+        }
         let uncertainty = self
             .uncertainty
             .after_coast(dt)
