@@ -522,7 +522,11 @@ impl<S: Scalar, const ORDER: usize, const D: usize> Cartesian<S, ORDER, D> {
     ) -> Result<[UpdateOutcome<S>; D], FilterError> {
         let mut next = self.axes;
         let mut out = [UpdateOutcome::FirstPoint; D];
-        let axes = self.axes.iter_mut().zip(next.iter_mut()).zip(out.iter_mut());
+        let axes = self
+            .axes
+            .iter_mut()
+            .zip(next.iter_mut())
+            .zip(out.iter_mut());
         for (((current, candidate), outcome), (z, gains)) in axes.zip(z.iter().zip(gains)) {
             match candidate.update(*z, dt, gains) {
                 Ok(o) => *outcome = o,

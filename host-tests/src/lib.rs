@@ -12,10 +12,12 @@
 //! * [`precision`]: runs a representation next to the reference and measures
 //!   the deviation and the run's magnitudes; the documented runs.
 //! * [`experiments`]: the `experiments` tool's groups and output helpers.
+//! * [`frames`]: wire frames for the demo firmware's UART (the `frames` tool).
 
 pub mod cli;
 pub mod csv_input;
 pub mod experiments;
+pub mod frames;
 pub mod kalman;
 pub mod metrics;
 pub mod noise;
