@@ -2,6 +2,8 @@
 //! representation, over recorded measurements ([`crate::csv_input`]), with the
 //! output as CSV text.
 //!
+//! # Cartesian filters (`--filter ab|abg`)
+//!
 //! Output: a header, then one row per input row: `t` (echoed as written),
 //! then for each axis `a` (`x`, `y`, `z`) the columns `a`, `va`, `res_a`, and
 //! for αβγ also `aa`: the smoothed position and velocity after the update, the
@@ -10,38 +12,186 @@
 //! acceleration. Values are written in the representation's own shortest
 //! exact form (`f32` values as `f32`, fixed point in decimal).
 //!
-//! The first row's interval is not used by the filter (two-point
+//! The gains are fixed ([`FilterKind::AlphaBeta`],
+//! [`FilterKind::AlphaBetaGamma`]: `--alpha/--beta/--gamma`, run by
+//! [`Cartesian`] directly), scheduled ([`FilterKind::Scheduled`]: any
+//! `--schedule` spec of [`abtrack::gain::spec::SCHEDULES`], run by
+//! [`ScheduledFilter`] with [`AnySchedule`]), or the M5 bank
+//! ([`FilterKind::Bank`], run by [`CartesianBank`]).
+//!
+//! The bank's output per axis is that of the member selected at the row
+//! (Al-Wagih & Abdulla Algorithm 3 step 3, as [`abtrack::bank`] reads it):
+//! the member whose prediction of this row's measurement had the least
+//! |z − x_p| (ties to the lowest index). `a`, `va` are that member's smoothed
+//! position and velocity after the update, `res_a` its innovation, and an
+//! extra column `member_a` its index i (0-based; α_i evenly spaced from `min`
+//! to `max`, β_i = α_i²/(2 − α_i)). On the two initialisation rows all
+//! members hold the same state; `res_a` and `member_a` are empty.
+//!
+//! # Range–azimuth filter (`--filter range-azimuth`)
+//!
+//! He, Peng, Ling & Quan's filter ([`RangeAzimuthFilter`]) on `t,range,azimuth`
+//! rows. Output: `t,x,vx,res_x,y,vy,res_y,range,azimuth`, then `alt,alt_rate`
+//! when the input has an `alt` column, then
+//! `tau,tau_mod,t_cpa,d_cpa,advisory,tau_mod_ra` with an own altitude. See
+//! [`range_azimuth_header`] for each column's meaning.
+//!
+//! # Intervals
+//!
+//! The first row's interval is not used by the filters (two-point
 //! initialisation takes the position only), so it is given as 1 s. Each later
 //! interval is the difference of consecutive times, computed in `f64` and then
 //! converted to the representation.
 //!
-//! Adding a filter kind: a variant of [`FilterKind`], its arm in [`run`], and
-//! its option names in [`crate::cli`].
+//! Adding a filter kind: a variant of [`FilterKind`], its arm in [`run_in`]
+//! (or its own runner, as range–azimuth), and its options in [`crate::cli`].
 
 use std::fmt::{self, Write as _};
+use std::io::BufRead;
 
-use abtrack::filter::{Cartesian, Gains, UpdateOutcome};
+use abtrack::bank::{BankConfig, BankOutcome, CartesianBank};
+use abtrack::filter::altitude::{AltitudeQuantum, AltitudeTracker, AltitudeTrackerConfig};
+use abtrack::filter::range_azimuth::{
+    NoiseError, RangeAzimuthFilter, RangeAzimuthNoise, RangeAzimuthOutcome, PAPER_BEARING_VARIANCE,
+};
+use abtrack::filter::{Cartesian, Gains, Phase, UpdateOutcome};
+use abtrack::gain::spec::ScheduleSpec;
+use abtrack::gain::{AnySchedule, ConfigError, ScheduleError, ScheduledError, ScheduledFilter};
+use abtrack::tcas::{assess, Intruder, OwnAircraft, TcasError};
 use abtrack::{FilterError, Fix, GainError, NumError, Scalar};
 
-use crate::csv_input::Measurements;
+use crate::csv_input::{
+    read_measurements, read_range_azimuth, CsvError, InputFormat, Measurements,
+    RangeAzimuthMeasurements, Row, AXIS_NAMES,
+};
 
-/// Which filter to run, with its fixed gains.
+/// Capacity of the windows of `m3`, `m4`, `liu-residual` and `liu-adaptive`
+/// (their `window` / `n` parameter).
+pub const WINDOW_CAPACITY: usize = 64;
+/// Capacity of the M5 bank (its `k` parameter).
+pub const BANK_CAPACITY: usize = 64;
+
+/// The schedule type `replay` runs.
+pub type ReplaySchedule<S, const D: usize> = AnySchedule<S, D, WINDOW_CAPACITY>;
+/// The bank type `replay` runs.
+pub type ReplayBank<S, const D: usize> = CartesianBank<S, BANK_CAPACITY, D>;
+
+/// αβ or αβγ.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Order {
+    /// αβ (ORDER 2).
+    AlphaBeta,
+    /// αβγ (ORDER 3).
+    AlphaBetaGamma,
+}
+
+impl Order {
+    /// The filter's ORDER: 2 or 3.
+    pub const fn value(self) -> usize {
+        match self {
+            Order::AlphaBeta => 2,
+            Order::AlphaBetaGamma => 3,
+        }
+    }
+
+    /// The `--filter` name.
+    pub const fn name(self) -> &'static str {
+        match self {
+            Order::AlphaBeta => "ab",
+            Order::AlphaBetaGamma => "abg",
+        }
+    }
+}
+
+/// Settings of the range–azimuth run.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct RangeAzimuthOptions {
+    /// σ_R, m (`--range-sigma`): the along-range measurement standard
+    /// deviation, σ_R² in He et al. eq. (9) (reading 3 of
+    /// [`abtrack::filter::range_azimuth`]).
+    pub range_sigma_m: f64,
+    /// σ_B², rad² (`--bearing-variance`): VAR = R²·σ_B² (eq. 10).
+    pub bearing_variance_rad2: f64,
+    /// Q, m²/s⁴ (`--process-noise`): the white acceleration's variance
+    /// (eqs. 1, 7–8), the same along and across range.
+    pub process_noise: f64,
+    /// The `alt` column's quantum (`--alt-quantum`): sets the altitude
+    /// tracker's gains ([`abtrack::filter::altitude`]).
+    pub altitude_quantum: AltitudeQuantum,
+    /// The own aircraft's pressure altitude, ft (`--own-alt`): enables the
+    /// threat columns.
+    pub own_altitude_ft: Option<f64>,
+}
+
+impl RangeAzimuthOptions {
+    /// He et al.'s range noise ("Navr = 100 m", §4).
+    pub const DEFAULT_RANGE_SIGMA_M: f64 = 100.0;
+    /// He et al.'s σ_B² (VAR = R²·7.569·10⁻³, about 5° RMS).
+    pub const DEFAULT_BEARING_VARIANCE_RAD2: f64 = PAPER_BEARING_VARIANCE;
+    /// The paper gives no Q; 1 m²/s⁴ (σ_a = 1 m/s², 0.1 g) lets the track
+    /// follow gentle manoeuvres without giving up the smoothing.
+    pub const DEFAULT_PROCESS_NOISE: f64 = 1.0;
+
+    pub const DEFAULT: Self = RangeAzimuthOptions {
+        range_sigma_m: Self::DEFAULT_RANGE_SIGMA_M,
+        bearing_variance_rad2: Self::DEFAULT_BEARING_VARIANCE_RAD2,
+        process_noise: Self::DEFAULT_PROCESS_NOISE,
+        altitude_quantum: AltitudeQuantum::ModeC,
+        own_altitude_ft: None,
+    };
+
+    /// The measurement and process noise in representation `S`.
+    pub fn noise<S: Scalar>(&self) -> Result<RangeAzimuthNoise<S>, NoiseError> {
+        RangeAzimuthNoise::new_f64(
+            self.range_sigma_m * self.range_sigma_m,
+            self.bearing_variance_rad2,
+            self.process_noise,
+        )
+    }
+}
+
+impl Default for RangeAzimuthOptions {
+    fn default() -> Self {
+        Self::DEFAULT
+    }
+}
+
+/// Which filter to run, with its gains.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub enum FilterKind {
-    /// αβ, Al-Wagih & Abdulla eqs. (3)–(10).
+    /// αβ with fixed gains, Al-Wagih & Abdulla eqs. (3)–(10)
+    /// (`--alpha/--beta`).
     AlphaBeta { alpha: f64, beta: f64 },
-    /// αβγ, Tenne & Singh eqs. (1)–(5), γ in their γ/(2T²) convention.
+    /// αβγ with fixed gains, Tenne & Singh eqs. (1)–(5), γ in their γ/(2T²)
+    /// convention (`--alpha/--beta/--gamma`).
     AlphaBetaGamma { alpha: f64, beta: f64, gamma: f64 },
+    /// αβ or αβγ driven by a gain schedule (`--schedule`; any spec but
+    /// `bank`).
+    Scheduled { order: Order, spec: ScheduleSpec },
+    /// Al-Wagih & Abdulla's M5 bank of αβ filters (`--schedule bank`).
+    Bank(BankConfig),
+    /// He et al.'s range–azimuth projection filter.
+    RangeAzimuth(RangeAzimuthOptions),
 }
 
 impl FilterKind {
-    /// The gains as `Gains<S>`, checked against the stability region.
-    pub fn gains<S: Scalar>(&self) -> Result<Gains<S>, GainError> {
+    /// The fixed gains as `Gains<S>`, checked against the stability region;
+    /// `None` for the kinds whose gains are not fixed.
+    pub fn fixed_gains<S: Scalar>(&self) -> Option<Result<Gains<S>, GainError>> {
         match *self {
-            FilterKind::AlphaBeta { alpha, beta } => Gains::alpha_beta_f64(alpha, beta),
+            FilterKind::AlphaBeta { alpha, beta } => Some(Gains::alpha_beta_f64(alpha, beta)),
             FilterKind::AlphaBetaGamma { alpha, beta, gamma } => {
-                Gains::alpha_beta_gamma_f64(alpha, beta, gamma)
+                Some(Gains::alpha_beta_gamma_f64(alpha, beta, gamma))
             }
+            _ => None,
+        }
+    }
+
+    /// The input layout this filter reads.
+    pub fn input_format(&self) -> InputFormat {
+        match self {
+            FilterKind::RangeAzimuth(_) => InputFormat::RangeAzimuth,
+            _ => InputFormat::Cartesian,
         }
     }
 }
@@ -81,6 +231,14 @@ pub struct ReplayConfig {
 pub enum ReplayError {
     /// The gains are outside the stability region (or not representable).
     Gains(GainError),
+    /// The schedule or bank cannot be built in this representation.
+    Schedule(ConfigError),
+    /// The range–azimuth noise settings are not representable.
+    Noise(NoiseError),
+    /// The altitude tracker's gains cannot be built in this representation.
+    AltitudeGains(GainError),
+    /// The own altitude is not representable.
+    OwnAltitude(NumError),
     /// A value of the file does not fit the representation.
     Value {
         line: usize,
@@ -90,12 +248,25 @@ pub enum ReplayError {
     },
     /// The filter refused a row (e.g. fixed-point saturation).
     Filter { line: usize, error: FilterError },
+    /// The schedule gave no gains for a row.
+    ScheduledGains { line: usize, error: ScheduleError },
+    /// The altitude tracker refused the row's `alt` (column 4).
+    Altitude { line: usize, error: FilterError },
+    /// The threat assessment failed (e.g. fixed-point saturation).
+    Threat { line: usize, error: TcasError },
+    /// The data are in the other layout (a caller error: the binary reads
+    /// the layout the filter needs).
+    WrongLayout { expected: InputFormat },
 }
 
 impl fmt::Display for ReplayError {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
         match self {
             ReplayError::Gains(e) => write!(f, "gains outside the stability region: {e}"),
+            ReplayError::Schedule(e) => write!(f, "schedule: {e}"),
+            ReplayError::Noise(e) => write!(f, "range-azimuth noise settings: {e}"),
+            ReplayError::AltitudeGains(e) => write!(f, "altitude tracker gains: {e}"),
+            ReplayError::OwnAltitude(e) => write!(f, "--own-alt: {e}"),
             ReplayError::Value {
                 line,
                 column,
@@ -105,11 +276,45 @@ impl fmt::Display for ReplayError {
             ReplayError::Filter { line, error } => {
                 write!(f, "line {line}: the filter refused the row: {error}")
             }
+            ReplayError::ScheduledGains { line, error } => {
+                write!(f, "line {line}: the schedule gave no gains: {error}")
+            }
+            ReplayError::Altitude { line, error } => write!(
+                f,
+                "line {line}, column 4 (alt): the altitude tracker refused the report: {error}"
+            ),
+            ReplayError::Threat { line, error } => {
+                write!(f, "line {line}: threat assessment failed: {error}")
+            }
+            ReplayError::WrongLayout { expected } => write!(
+                f,
+                "this filter reads a file with the header {}",
+                expected.headers()
+            ),
         }
     }
 }
 
 impl std::error::Error for ReplayError {}
+
+/// Why [`replay_reader`] produced no output: the input could not be read, or
+/// the run stopped.
+#[derive(Debug, Clone, PartialEq)]
+pub enum Failure {
+    Input(CsvError),
+    Replay(ReplayError),
+}
+
+impl fmt::Display for Failure {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        match self {
+            Failure::Input(e) => fmt::Display::fmt(e, f),
+            Failure::Replay(e) => fmt::Display::fmt(e, f),
+        }
+    }
+}
+
+impl std::error::Error for Failure {}
 
 /// A [`Scalar`] that can be written to the output CSV.
 pub trait CsvValue: Scalar {
@@ -134,7 +339,36 @@ impl CsvValue for Fix {
     }
 }
 
-/// Runs the whole file and returns the output CSV, or the first error (no
+/// `,value`.
+fn cell<S: CsvValue>(out: &mut String, v: S) {
+    out.push(',');
+    v.write_csv(out);
+}
+
+/// `,value` or `,` (an undefined value is an empty cell).
+fn optional_cell<S: CsvValue>(out: &mut String, v: Option<S>) {
+    out.push(',');
+    if let Some(v) = v {
+        v.write_csv(out);
+    }
+}
+
+/// Reads the layout `config`'s filter needs from `input` and runs it: the
+/// whole output CSV, or the first error (no partial output).
+pub fn replay_reader<R: BufRead>(config: &ReplayConfig, input: R) -> Result<String, Failure> {
+    match config.filter {
+        FilterKind::RangeAzimuth(options) => {
+            let data = read_range_azimuth(input).map_err(Failure::Input)?;
+            run_range_azimuth(&options, config.numeric, &data).map_err(Failure::Replay)
+        }
+        _ => {
+            let data = read_measurements(input).map_err(Failure::Input)?;
+            run(config, &data).map_err(Failure::Replay)
+        }
+    }
+}
+
+/// Runs a Cartesian file and returns the output CSV, or the first error (no
 /// partial output).
 pub fn run(config: &ReplayConfig, data: &Measurements) -> Result<String, ReplayError> {
     match config.numeric {
@@ -149,27 +383,129 @@ pub fn run_in<S: CsvValue>(
     filter: &FilterKind,
     data: &Measurements,
 ) -> Result<String, ReplayError> {
-    let gains = filter.gains::<S>().map_err(ReplayError::Gains)?;
-    match (filter, data.dims) {
-        (FilterKind::AlphaBeta { .. }, 1) => run_cartesian::<S, 2, 1>(&gains, data),
-        (FilterKind::AlphaBeta { .. }, 2) => run_cartesian::<S, 2, 2>(&gains, data),
-        (FilterKind::AlphaBeta { .. }, _) => run_cartesian::<S, 2, 3>(&gains, data),
-        (FilterKind::AlphaBetaGamma { .. }, 1) => run_cartesian::<S, 3, 1>(&gains, data),
-        (FilterKind::AlphaBetaGamma { .. }, 2) => run_cartesian::<S, 3, 2>(&gains, data),
-        (FilterKind::AlphaBetaGamma { .. }, _) => run_cartesian::<S, 3, 3>(&gains, data),
+    match filter {
+        FilterKind::AlphaBeta { .. } | FilterKind::AlphaBetaGamma { .. } => {
+            let gains = filter
+                .fixed_gains::<S>()
+                .unwrap_or(Err(GainError::NotFinite))
+                .map_err(ReplayError::Gains)?;
+            let order = if matches!(filter, FilterKind::AlphaBeta { .. }) {
+                Order::AlphaBeta
+            } else {
+                Order::AlphaBetaGamma
+            };
+            match (order, data.dims) {
+                (Order::AlphaBeta, 1) => run_cartesian::<S, 2, 1>(&gains, data),
+                (Order::AlphaBeta, 2) => run_cartesian::<S, 2, 2>(&gains, data),
+                (Order::AlphaBeta, _) => run_cartesian::<S, 2, 3>(&gains, data),
+                (Order::AlphaBetaGamma, 1) => run_cartesian::<S, 3, 1>(&gains, data),
+                (Order::AlphaBetaGamma, 2) => run_cartesian::<S, 3, 2>(&gains, data),
+                (Order::AlphaBetaGamma, _) => run_cartesian::<S, 3, 3>(&gains, data),
+            }
+        }
+        FilterKind::Scheduled { order, spec } => match (order, data.dims) {
+            (Order::AlphaBeta, 1) => run_scheduled::<S, 2, 1>(spec, data),
+            (Order::AlphaBeta, 2) => run_scheduled::<S, 2, 2>(spec, data),
+            (Order::AlphaBeta, _) => run_scheduled::<S, 2, 3>(spec, data),
+            (Order::AlphaBetaGamma, 1) => run_scheduled::<S, 3, 1>(spec, data),
+            (Order::AlphaBetaGamma, 2) => run_scheduled::<S, 3, 2>(spec, data),
+            (Order::AlphaBetaGamma, _) => run_scheduled::<S, 3, 3>(spec, data),
+        },
+        FilterKind::Bank(config) => match data.dims {
+            1 => run_bank::<S, 1>(config, data),
+            2 => run_bank::<S, 2>(config, data),
+            _ => run_bank::<S, 3>(config, data),
+        },
+        FilterKind::RangeAzimuth(_) => Err(ReplayError::WrongLayout {
+            expected: InputFormat::RangeAzimuth,
+        }),
     }
 }
 
-/// The output header for `dims` axes.
+/// The output header of a Cartesian filter of `order` (2 or 3) on `dims`
+/// axes.
 pub fn header(order: usize, dims: usize) -> String {
     let mut h = String::from("t");
-    for a in crate::csv_input::AXIS_NAMES.iter().take(dims) {
+    for a in AXIS_NAMES.iter().take(dims) {
         let _ = write!(h, ",{a},v{a},res_{a}");
         if order == 3 {
             let _ = write!(h, ",a{a}");
         }
     }
     h
+}
+
+/// The output header of the M5 bank on `dims` axes.
+pub fn bank_header(dims: usize) -> String {
+    let mut h = String::from("t");
+    for a in AXIS_NAMES.iter().take(dims) {
+        let _ = write!(h, ",{a},v{a},res_{a},member_{a}");
+    }
+    h
+}
+
+/// The interval since the previous row (1 s for the first row, see the
+/// module docs) in `S`.
+fn interval<S: Scalar>(previous_t: Option<f64>, t: f64, line: usize) -> Result<S, ReplayError> {
+    match previous_t {
+        None => Ok(S::ONE),
+        Some(p) => S::try_from_f64(t - p).map_err(|error| ReplayError::Value {
+            line,
+            column: 1,
+            name: "t",
+            error,
+        }),
+    }
+}
+
+/// A value of the file in `S`, or an error naming where it is.
+fn value<S: Scalar>(
+    v: f64,
+    line: usize,
+    column: usize,
+    name: &'static str,
+) -> Result<S, ReplayError> {
+    S::try_from_f64(v).map_err(|error| ReplayError::Value {
+        line,
+        column,
+        name,
+        error,
+    })
+}
+
+/// The row's positions in `S`.
+fn positions<S: Scalar, const D: usize>(row: &Row) -> Result<[S; D], ReplayError> {
+    let mut z = [S::ZERO; D];
+    for (i, (zi, name)) in z.iter_mut().zip(AXIS_NAMES).enumerate() {
+        *zi = value(row.z[i], row.line, i + 2, name)?;
+    }
+    Ok(z)
+}
+
+/// Per axis: position, velocity, residual (empty before filtering) and, for
+/// αβγ, acceleration.
+fn write_kinematic_row<S: CsvValue, const ORDER: usize, const D: usize>(
+    out: &mut String,
+    t_text: &str,
+    filter: &Cartesian<S, ORDER, D>,
+    outcomes: &[UpdateOutcome<S>; D],
+) {
+    out.push_str(t_text);
+    for (axis, outcome) in filter.axes().iter().zip(outcomes) {
+        cell(out, axis.position());
+        cell(out, axis.velocity());
+        optional_cell(
+            out,
+            match outcome {
+                UpdateOutcome::Filtered(innovation) => Some(innovation.residual),
+                _ => None,
+            },
+        );
+        if ORDER == 3 {
+            cell(out, axis.acceleration());
+        }
+    }
+    out.push('\n');
 }
 
 fn run_cartesian<S: CsvValue, const ORDER: usize, const D: usize>(
@@ -181,24 +517,8 @@ fn run_cartesian<S: CsvValue, const ORDER: usize, const D: usize>(
     let mut tracker = Cartesian::<S, ORDER, D>::new();
     let mut previous_t: Option<f64> = None;
     for row in &data.rows {
-        let dt = match previous_t {
-            None => S::ONE,
-            Some(p) => S::try_from_f64(row.t - p).map_err(|error| ReplayError::Value {
-                line: row.line,
-                column: 1,
-                name: "t",
-                error,
-            })?,
-        };
-        let mut z = [S::ZERO; D];
-        for (i, zi) in z.iter_mut().enumerate() {
-            *zi = S::try_from_f64(row.z[i]).map_err(|error| ReplayError::Value {
-                line: row.line,
-                column: i + 2,
-                name: crate::csv_input::AXIS_NAMES[i],
-                error,
-            })?;
-        }
+        let dt = interval::<S>(previous_t, row.t, row.line)?;
+        let z = positions::<S, D>(row)?;
         let outcomes = tracker
             .update(z, dt, gains)
             .map_err(|error| ReplayError::Filter {
@@ -206,20 +526,208 @@ fn run_cartesian<S: CsvValue, const ORDER: usize, const D: usize>(
                 error,
             })?;
         previous_t = Some(row.t);
+        write_kinematic_row(&mut out, &row.t_text, &tracker, &outcomes);
+    }
+    Ok(out)
+}
+
+fn run_scheduled<S: CsvValue, const ORDER: usize, const D: usize>(
+    spec: &ScheduleSpec,
+    data: &Measurements,
+) -> Result<String, ReplayError> {
+    let schedule = ReplaySchedule::<S, D>::from_spec(spec).map_err(ReplayError::Schedule)?;
+    let mut track = ScheduledFilter::<S, _, ORDER, D>::new(schedule);
+    let mut out = header(ORDER, D);
+    out.push('\n');
+    let mut previous_t: Option<f64> = None;
+    for row in &data.rows {
+        let dt = interval::<S>(previous_t, row.t, row.line)?;
+        let z = positions::<S, D>(row)?;
+        let update = track.update(z, dt).map_err(|e| match e {
+            ScheduledError::Filter(error) => ReplayError::Filter {
+                line: row.line,
+                error,
+            },
+            ScheduledError::Schedule(error) => ReplayError::ScheduledGains {
+                line: row.line,
+                error,
+            },
+        })?;
+        previous_t = Some(row.t);
+        write_kinematic_row(&mut out, &row.t_text, track.filter(), &update.outcome);
+    }
+    Ok(out)
+}
+
+fn run_bank<S: CsvValue, const D: usize>(
+    config: &BankConfig,
+    data: &Measurements,
+) -> Result<String, ReplayError> {
+    let mut bank = ReplayBank::<S, D>::from_config(config).map_err(ReplayError::Schedule)?;
+    let mut out = bank_header(D);
+    out.push('\n');
+    let mut previous_t: Option<f64> = None;
+    for row in &data.rows {
+        let dt = interval::<S>(previous_t, row.t, row.line)?;
+        let z = positions::<S, D>(row)?;
+        let outcomes = bank.update(z, dt).map_err(|error| ReplayError::Filter {
+            line: row.line,
+            error,
+        })?;
+        previous_t = Some(row.t);
+        out.push_str(&row.t_text);
+        for (axis, outcome) in bank.axes().iter().zip(&outcomes) {
+            cell(&mut out, axis.position());
+            cell(&mut out, axis.velocity());
+            match outcome {
+                BankOutcome::Filtered(selection) => {
+                    cell(&mut out, selection.residual);
+                    let _ = write!(out, ",{}", selection.member);
+                }
+                _ => out.push_str(",,"),
+            }
+        }
+        out.push('\n');
+    }
+    Ok(out)
+}
+
+/// The output header of the range–azimuth filter: with `has_alt` (the input
+/// has an `alt` column) and `threat` (an own altitude was given).
+///
+/// * `x,vx,res_x,y,vy,res_y`: the estimated relative position (m) and
+///   velocity (m/s) in the sensor's x/y frame (x = R sin B, y = R cos B), and
+///   the residual of the update on each axis, z − x_p with the measurement
+///   converted as z = (R sin B, R cos B) and x_p the filter's prediction:
+///   the vector He et al.'s range and cross-range residuals (eq. 11) are the
+///   components of, RESID_R·(sin B, cos B) − RESID_CR·(cos B, −sin B).
+///   Empty on the two initialisation rows.
+/// * `range` (m), `azimuth` (rad in [0, 2π)): the estimate re-synthesised as
+///   range and azimuth.
+/// * `alt` (ft), `alt_rate` (ft/s): the altitude tracker's estimate of the
+///   intruder; empty while it is not reporting (no report yet, or none for
+///   more than 6 s).
+/// * `tau` (range tau, s), `tau_mod` (modified tau with the TA DMOD, s),
+///   `t_cpa` (s from now), `d_cpa` (m), `advisory` (none, proximate, ta,
+///   ra), `tau_mod_ra` (modified tau with the RA DMOD, s) from
+///   [`abtrack::tcas::assess`]. Empty where undefined: `tau` when the range
+///   is opening, `tau_mod` and `tau_mod_ra` when it is opening outside the
+///   DMOD, `tau_mod_ra` at SL 2 (no RAs), `t_cpa`/`d_cpa` when the time is
+///   beyond the representation, and every threat column on the first row
+///   (no velocity yet).
+pub fn range_azimuth_header(has_alt: bool, threat: bool) -> String {
+    let mut h = String::from("t,x,vx,res_x,y,vy,res_y,range,azimuth");
+    if has_alt {
+        h.push_str(",alt,alt_rate");
+    }
+    if threat {
+        h.push_str(",tau,tau_mod,t_cpa,d_cpa,advisory,tau_mod_ra");
+    }
+    h
+}
+
+/// Runs a range–azimuth file and returns the output CSV, or the first error
+/// (no partial output).
+pub fn run_range_azimuth(
+    options: &RangeAzimuthOptions,
+    numeric: Numeric,
+    data: &RangeAzimuthMeasurements,
+) -> Result<String, ReplayError> {
+    match numeric {
+        Numeric::F64 => run_range_azimuth_in::<f64>(options, data),
+        Numeric::F32 => run_range_azimuth_in::<f32>(options, data),
+        Numeric::Fixed => run_range_azimuth_in::<Fix>(options, data),
+    }
+}
+
+/// [`run_range_azimuth`] in representation `S`.
+///
+/// The own aircraft (`--own-alt`) is at the origin of the x/y frame, level
+/// at the given pressure altitude, over terrain at sea level (so its radio
+/// altitude is the same number, which selects SL 2 and 3 below 2350 ft). The
+/// filter's state is the intruder *relative* to it, so the own velocity is
+/// implicitly zero: the range rate, taus and CPA are those of the relative
+/// motion. Without an `alt` column, or while the altitude tracker has no
+/// altitude, the intruder counts as not reporting altitude: at most a
+/// traffic advisory (TCAS never issues RAs against such intruders).
+pub fn run_range_azimuth_in<S: CsvValue>(
+    options: &RangeAzimuthOptions,
+    data: &RangeAzimuthMeasurements,
+) -> Result<String, ReplayError> {
+    let noise = options.noise::<S>().map_err(ReplayError::Noise)?;
+    let mut filter = RangeAzimuthFilter::new(noise);
+    let altitude_config = AltitudeTrackerConfig::<S>::default_for(options.altitude_quantum)
+        .map_err(ReplayError::AltitudeGains)?;
+    let mut altitude = AltitudeTracker::new(altitude_config);
+    let own = match options.own_altitude_ft {
+        None => None,
+        Some(feet) => {
+            let feet = S::try_from_f64(feet).map_err(ReplayError::OwnAltitude)?;
+            Some(OwnAircraft::over_sea_level(feet, S::ZERO))
+        }
+    };
+    let mut out = range_azimuth_header(data.has_alt, own.is_some());
+    out.push('\n');
+    let mut previous_t: Option<f64> = None;
+    for row in &data.rows {
+        let line = row.line;
+        let dt = interval::<S>(previous_t, row.t, line)?;
+        let range: S = value(row.range, line, 2, "range")?;
+        let azimuth: S = value(row.azimuth, line, 3, "azimuth")?;
+        let report = match row.alt {
+            Some(a) => Some(value::<S>(a, line, 4, "alt")?),
+            None => None,
+        };
+        let outcome = filter
+            .update(range, azimuth, dt)
+            .map_err(|error| ReplayError::Filter { line, error })?;
+        if data.has_alt {
+            altitude
+                .scan(report, dt)
+                .map_err(|error| ReplayError::Altitude { line, error })?;
+        }
+        previous_t = Some(row.t);
 
         out.push_str(&row.t_text);
-        for (axis, outcome) in tracker.axes().iter().zip(outcomes.iter()) {
-            out.push(',');
-            axis.position().write_csv(&mut out);
-            out.push(',');
-            axis.velocity().write_csv(&mut out);
-            out.push(',');
-            if let UpdateOutcome::Filtered(innovation) = outcome {
-                innovation.residual.write_csv(&mut out);
+        let residual = match outcome {
+            RangeAzimuthOutcome::Filtered(innovation) => {
+                // The same products the filter formed for its measurement.
+                let (sin_b, cos_b) = azimuth.sin_cos();
+                let measured = [range * sin_b, range * cos_b];
+                Some([
+                    measured[0] - innovation.predicted[0],
+                    measured[1] - innovation.predicted[1],
+                ])
             }
-            if ORDER == 3 {
+            _ => None,
+        };
+        let position = filter.position();
+        let velocity = filter.velocity();
+        for axis in 0..2 {
+            cell(&mut out, position[axis]);
+            cell(&mut out, velocity[axis]);
+            optional_cell(&mut out, residual.map(|r| r[axis]));
+        }
+        cell(&mut out, filter.range());
+        cell(&mut out, filter.azimuth());
+        let estimate = altitude.estimate();
+        if data.has_alt {
+            optional_cell(&mut out, estimate.map(|e| e.altitude_ft));
+            optional_cell(&mut out, estimate.map(|e| e.vertical_rate_ft_per_s));
+        }
+        if let Some(own) = own {
+            if filter.phase() == Phase::Tracking {
+                let a = assess(&own, &Intruder::from_track(&filter, estimate))
+                    .map_err(|error| ReplayError::Threat { line, error })?;
+                optional_cell(&mut out, a.range_tau_s);
+                optional_cell(&mut out, a.ta_modified_tau_s);
+                optional_cell(&mut out, a.closest_approach.map(|c| c.time_s));
+                optional_cell(&mut out, a.closest_approach.map(|c| c.distance_m));
                 out.push(',');
-                axis.acceleration().write_csv(&mut out);
+                out.push_str(a.advisory.name());
+                optional_cell(&mut out, a.ra_modified_tau_s);
+            } else {
+                out.push_str(",,,,,,");
             }
         }
         out.push('\n');

@@ -855,8 +855,19 @@ fn comparison_tolerance<S: TestScalar>(
 
     let a = closed_loop(g, order);
     let gain = error_gain(&a, updates.saturating_add(1));
-    let delta = injection(S::UNIT_ROUNDOFF, S::RESOLUTION, g, dt, m)
-        + injection(f64::UNIT_ROUNDOFF, f64::RESOLUTION, g, dt, m);
+    let delta = injection(
+        <S as TestScalar>::UNIT_ROUNDOFF,
+        <S as TestScalar>::RESOLUTION,
+        g,
+        dt,
+        m,
+    ) + injection(
+        <f64 as TestScalar>::UNIT_ROUNDOFF,
+        <f64 as TestScalar>::RESOLUTION,
+        g,
+        dt,
+        m,
+    );
     let scaled = 2.0 * gain * delta;
     Tolerance {
         position: scaled,

@@ -1,6 +1,7 @@
 //! `replay`: runs the library's filters, in f64, f32 or Q32.32 fixed point,
 //! over a CSV recording, so that gains can be tuned on recorded data before
-//! flashing. See `replay --help` and `abtrack_host_tests::replay`.
+//! flashing. See `replay --help`, `abtrack_host_tests::replay` and
+//! `results/README-replay.md`.
 //!
 //! From the repository root (the root `.cargo/config.toml` selects a thumb
 //! target, and cargo reads configuration from the current directory, not from
@@ -8,7 +9,7 @@
 //!
 //! ```text
 //! cargo run --release --manifest-path host-tests/Cargo.toml --target host-tuple \
-//!     --bin replay -- --filter ab --alpha 0.5 --beta 0.3 --numeric f64 data.csv
+//!     --bin replay -- --filter ab --schedule least-squares --numeric f64 data.csv
 //! ```
 //!
 //! or, inside `host-tests/`, `cargo run --release --bin replay -- ...`.
@@ -22,8 +23,7 @@ use std::io::{self, BufReader, Read, Write};
 use std::process::ExitCode;
 
 use abtrack_host_tests::cli::{parse_replay_args, replay_usage, Command, Input};
-use abtrack_host_tests::csv_input::read_measurements;
-use abtrack_host_tests::replay::run;
+use abtrack_host_tests::replay::replay_reader;
 
 fn main() -> ExitCode {
     let (config, input) = match parse_replay_args(std::env::args().skip(1)) {
@@ -37,22 +37,22 @@ fn main() -> ExitCode {
             return ExitCode::from(2);
         }
     };
-    let (name, parsed) = match &input {
+    let (name, result) = match &input {
         Input::Stdin => {
             let mut text = String::new();
-            let parsed = match io::stdin().lock().read_to_string(&mut text) {
-                Ok(_) => read_measurements(text.as_bytes()),
+            let result = match io::stdin().lock().read_to_string(&mut text) {
+                Ok(_) => replay_reader(&config, text.as_bytes()),
                 Err(e) => {
                     eprintln!("replay: <stdin>: cannot read: {e}");
                     return ExitCode::FAILURE;
                 }
             };
-            ("<stdin>".to_string(), parsed)
+            ("<stdin>".to_string(), result)
         }
         Input::Path(path) => match std::fs::File::open(path) {
             Ok(f) => (
                 path.display().to_string(),
-                read_measurements(BufReader::new(f)),
+                replay_reader(&config, BufReader::new(f)),
             ),
             Err(e) => {
                 eprintln!("replay: {}: {e}", path.display());
@@ -60,14 +60,7 @@ fn main() -> ExitCode {
             }
         },
     };
-    let data = match parsed {
-        Ok(d) => d,
-        Err(e) => {
-            eprintln!("replay: {name}: {e}");
-            return ExitCode::FAILURE;
-        }
-    };
-    let output = match run(&config, &data) {
+    let output = match result {
         Ok(o) => o,
         Err(e) => {
             eprintln!("replay: {name}: {e}");

@@ -7,7 +7,11 @@
 //! `cd host-tests && cargo run --release --bin experiments -- --only <group>`;
 //! the README's results section quotes the generated `summary.md` files.
 
+pub mod alwagih;
 pub mod common;
+pub mod li;
+pub mod liu;
+pub mod monte_carlo;
 
 use common::Context;
 
@@ -20,4 +24,21 @@ pub struct Group {
 }
 
 /// Every group, in the order `experiments` runs them.
-pub const GROUPS: &[Group] = &[];
+pub const GROUPS: &[Group] = &[
+    Group {
+        name: alwagih::GROUP,
+        about: "Al-Wagih & Abdulla s6: M1-M5 (+ Kalman) on white and coloured noise, Tables 1-6",
+        run: alwagih::run,
+    },
+    Group {
+        name: li::GROUP,
+        about: "Li et al. s5: improved vs standard alpha-beta (+ Kalman) on the manoeuvring target",
+        run: li::run,
+    },
+    Group {
+        name: liu::GROUP,
+        about:
+            "Liu et al. s3: gain methods 2.1.1-2.1.5 (+ Kalman, f32/Q32.32) on the turning target",
+        run: liu::run,
+    },
+];
