@@ -189,7 +189,11 @@ struct TrackSeen {
 
 /// Where the scan loop's reports go: defmt lines, frames on UART TX, and a
 /// record of the confirmed tracks for the summary.
+///
+/// On the wire a scan's track reports come first and its summary closes it;
+/// the log prints the summary line first, so the track lines wait here.
 struct Reporter {
+    tracks_of_scan: heapless::Vec<TrackReport, TRACKS>,
     seen: heapless::Vec<TrackSeen, MAX_TRACKS_SEEN>,
     not_remembered: u32,
     frames_sent: u32,
@@ -209,10 +213,18 @@ impl Reporter {
     fn report(&mut self, message: &Message) {
         match message {
             Message::Track(t) => {
-                log_track(t);
                 self.remember(t);
+                if self.tracks_of_scan.push(*t).is_err() {
+                    log_track(t);
+                }
             }
-            Message::Scan(s) => log_scan(s),
+            Message::Scan(s) => {
+                log_scan(s);
+                for t in self.tracks_of_scan.iter() {
+                    log_track(t);
+                }
+                self.tracks_of_scan.clear();
+            }
             _ => {}
         }
         self.send(message);
@@ -380,6 +392,7 @@ fn main() -> ! {
     let scan_loop: &mut DemoLoop = SCAN_LOOP;
     let mut lines = AdvisoryLines::new(io::AdvisoryPin::traffic(), io::AdvisoryPin::resolution());
     let mut reporter = Reporter {
+        tracks_of_scan: heapless::Vec::new(),
         seen: heapless::Vec::new(),
         not_remembered: 0,
         frames_sent: 0,

@@ -18,7 +18,7 @@
 //! ```
 //!
 //! * [`Intake`] is the producer half, run in the receive interrupt: bytes
-//!   into the [`Decoder`](crate::wire::Decoder), measurement frames into a
+//!   into the [`Decoder`], measurement frames into a
 //!   `heapless::spsc` queue. A full queue drops the measurement and counts
 //!   it ([`LinkStatus::queue_full`]); it never blocks or panics.
 //! * [`ScanLoop`] is the consumer half, run from the main loop on each tick.

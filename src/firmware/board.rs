@@ -87,13 +87,16 @@ unsafe fn HardFault(frame: &ExceptionFrame) -> ! {
 /// crate, cortex-m-rt sends every device interrupt to `DefaultHandler`;
 /// binaries that enable one route it here. It returns false for an
 /// interrupt it does not handle.
-static INTERRUPT_HANDLER: cortex_m::interrupt::Mutex<Cell<Option<fn(i16) -> bool>>> =
+static INTERRUPT_HANDLER: cortex_m::interrupt::Mutex<Cell<Option<InterruptHandler>>> =
     cortex_m::interrupt::Mutex::new(Cell::new(None));
+
+/// Takes the IRQ number; true if it handled the interrupt.
+pub type InterruptHandler = fn(i16) -> bool;
 
 /// Installs the handler of the binary's device interrupts (`irqn` = IRQ
 /// number, exception number − 16). Install it before unmasking them.
 #[allow(dead_code)] // the self-test and the benchmark use no interrupt
-pub fn set_interrupt_handler(handler: fn(i16) -> bool) {
+pub fn set_interrupt_handler(handler: InterruptHandler) {
     cortex_m::interrupt::free(|cs| INTERRUPT_HANDLER.borrow(cs).set(Some(handler)));
 }
 

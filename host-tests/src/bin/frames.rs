@@ -4,7 +4,7 @@
 //! ```text
 //! frames encode (--scenario NAME [--seed N] | --csv FILE) [--sensor ID]
 //!               [--corrupt-every K] [--garbage-every K] --out FILE
-//! frames decode FILE [--messages]
+//! frames decode FILE [--messages] [--check]
 //! frames --help
 //! ```
 //!
@@ -22,7 +22,7 @@ frames: abtrack wire frames for the demo firmware's UART (format: abtrack::wire)
 USAGE:
     frames encode (--scenario NAME [--seed N] | --csv FILE) [--sensor ID]
                   [--corrupt-every K] [--garbage-every K] --out FILE
-    frames decode FILE [--messages]
+    frames decode FILE [--messages] [--check]
     frames --help
 
 encode writes one measurement frame per measurement, in time order:
@@ -41,7 +41,9 @@ encode writes one measurement frame per measurement, in time order:
 
 decode reads a byte stream (e.g. the demo's UART output) and prints a
 summary of the frames in it: scans, tracks, advisories, receiver counters;
---messages prints every message, one per line, instead.
+--messages prints every message, one per line, instead. With --check the exit
+status is 1 if the stream is not clean frames only (a CRC error, a skipped
+or left-over byte): a firmware's report output must be.
 ";
 
 #[derive(Debug, PartialEq)]
@@ -62,6 +64,7 @@ enum Command {
     Decode {
         file: PathBuf,
         messages: bool,
+        check: bool,
     },
 }
 
@@ -85,6 +88,7 @@ fn parse(args: &[String]) -> Result<Command, String> {
     let mut out = None;
     let mut file = None;
     let mut messages = false;
+    let mut check = false;
     let mut it = args.iter().skip(1);
     while let Some(arg) = it.next() {
         let mut value = |name: &str| -> Result<String, String> {
@@ -103,6 +107,7 @@ fn parse(args: &[String]) -> Result<Command, String> {
             "--fault-seed" => faults.seed = parse_number(arg, &value(arg)?)?,
             "--out" => out = Some(PathBuf::from(value(arg)?)),
             "--messages" => messages = true,
+            "--check" => check = true,
             other if !other.starts_with('-') && file.is_none() => file = Some(PathBuf::from(other)),
             other => return Err(format!("unknown argument '{other}' (try --help)")),
         }
@@ -133,6 +138,7 @@ fn parse(args: &[String]) -> Result<Command, String> {
         "decode" => Ok(Command::Decode {
             file: file.ok_or("decode needs a FILE")?,
             messages,
+            check,
         }),
         other => Err(format!(
             "unknown command '{other}': encode or decode (try --help)"
@@ -181,7 +187,11 @@ fn run(command: Command) -> Result<(), String> {
                 out.display()
             );
         }
-        Command::Decode { file, messages } => {
+        Command::Decode {
+            file,
+            messages,
+            check,
+        } => {
             let bytes =
                 std::fs::read(&file).map_err(|e| format!("cannot read {}: {e}", file.display()))?;
             let text = if messages {
@@ -196,6 +206,20 @@ fn run(command: Command) -> Result<(), String> {
             // A closed pipe (`| head`) ends the output quietly.
             let mut out = std::io::stdout().lock();
             let _ = out.write_all(text.as_bytes()).and_then(|()| out.flush());
+            if check {
+                let (messages, stats) = frames::decode_all(&bytes);
+                let in_frames: usize = messages.iter().map(|m| m.buffer_len()).sum();
+                if stats.crc_errors > 0 || stats.bytes_skipped > 0 || in_frames != bytes.len() {
+                    return Err(format!(
+                        "{}: not clean frames: {} CRC errors, {} bytes skipped, {} of {} bytes in frames",
+                        file.display(),
+                        stats.crc_errors,
+                        stats.bytes_skipped,
+                        in_frames,
+                        bytes.len()
+                    ));
+                }
+            }
         }
     }
     Ok(())
@@ -255,7 +279,8 @@ mod tests {
             parse(&args(&["decode", "r.bin", "--messages"])),
             Ok(Command::Decode {
                 file: PathBuf::from("r.bin"),
-                messages: true
+                messages: true,
+                check: false
             })
         );
     }
