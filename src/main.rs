@@ -106,7 +106,11 @@ fn on_interrupt(irqn: i16) -> bool {
         return false;
     }
     free(|cs| {
-        let mut rx = RX.borrow(cs).borrow_mut();
+        // `try_`: no borrow is ever held across an interrupt, and this way no
+        // panic path exists for one.
+        let Ok(mut rx) = RX.borrow(cs).try_borrow_mut() else {
+            return;
+        };
         let Some(intake) = rx.as_mut() else {
             NVIC::mask(io::UartRxIrq);
             return;
@@ -138,9 +142,8 @@ fn resume_receiver() {
     }
     let room = free(|cs| {
         RX.borrow(cs)
-            .borrow()
-            .as_ref()
-            .is_some_and(|i| i.can_take_byte())
+            .try_borrow()
+            .is_ok_and(|rx| rx.as_ref().is_some_and(|i| i.can_take_byte()))
     });
     if room {
         RX_PAUSED.store(false, Relaxed);
@@ -154,9 +157,9 @@ fn resume_receiver() {
 fn link_status(time_ms: u32) -> LinkStatus {
     free(|cs| {
         RX.borrow(cs)
-            .borrow()
-            .as_ref()
-            .map(|i| i.status(time_ms))
+            .try_borrow()
+            .ok()
+            .and_then(|rx| rx.as_ref().map(|i| i.status(time_ms)))
             .unwrap_or_default()
     })
 }
@@ -388,7 +391,11 @@ fn main() -> ! {
     };
 
     let (producer, mut consumer) = QUEUE.split();
-    free(|cs| RX.borrow(cs).replace(Some(Intake::new(producer))));
+    free(|cs| {
+        if let Ok(mut rx) = RX.borrow(cs).try_borrow_mut() {
+            *rx = Some(Intake::new(producer));
+        }
+    });
     let scan_loop: &mut DemoLoop = SCAN_LOOP;
     let mut lines = AdvisoryLines::new(io::AdvisoryPin::traffic(), io::AdvisoryPin::resolution());
     let mut reporter = Reporter {
@@ -431,8 +438,10 @@ fn main() -> ! {
         }
         if idle {
             free(|cs| {
-                if let Some(intake) = RX.borrow(cs).borrow_mut().as_mut() {
-                    intake.line_idle();
+                if let Ok(mut rx) = RX.borrow(cs).try_borrow_mut() {
+                    if let Some(intake) = rx.as_mut() {
+                        intake.line_idle();
+                    }
                 }
             });
         }

@@ -239,7 +239,11 @@ pub fn crc16(data: &[u8]) -> u16 {
 fn get_array<const K: usize>(bytes: &[u8], at: usize) -> [u8; K] {
     let mut out = [0u8; K];
     if let Some(src) = bytes.get(at..at.saturating_add(K)) {
-        out.copy_from_slice(src);
+        // Element by element: `copy_from_slice` would keep a length-check
+        // panic path the compiler cannot remove.
+        for (o, b) in out.iter_mut().zip(src) {
+            *o = *b;
+        }
     }
     out
 }
@@ -271,7 +275,9 @@ impl PayloadWriter<'_> {
     fn put(&mut self, src: &[u8]) {
         let end = self.at.saturating_add(src.len());
         if let Some(dst) = self.bytes.get_mut(self.at..end) {
-            dst.copy_from_slice(src);
+            for (d, b) in dst.iter_mut().zip(src) {
+                *d = *b;
+            }
         }
         self.at = end;
     }
