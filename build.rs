@@ -56,6 +56,11 @@ fn main() -> ExitCode {
     println!("cargo:rerun-if-changed=build.rs");
     println!("cargo:rerun-if-changed=memory.x");
     println!("cargo:rerun-if-changed=boards/microbit/nrf51.x");
+    // `cfg(abtrack_board = "...")` picks the board's peripherals in the
+    // firmware (src/firmware/io.rs).
+    println!(
+        "cargo::rustc-check-cfg=cfg(abtrack_board, values(\"mps2-an386\", \"mps2-an385\", \"microbit\"))"
+    );
 
     let target = env::var("TARGET").unwrap_or_default();
     let is_bare_metal_arm = target.starts_with("thumbv")
@@ -104,5 +109,6 @@ fn main() -> ExitCode {
     // Read by src/firmware/board.rs (`env!`), for the firmware's reports.
     println!("cargo:rustc-env=ABTRACK_BOARD={}", board.qemu_machine);
     println!("cargo:rustc-env=ABTRACK_CORE={}", board.core);
+    println!("cargo:rustc-cfg=abtrack_board=\"{}\"", board.qemu_machine);
     ExitCode::SUCCESS
 }

@@ -1,14 +1,18 @@
 #!/usr/bin/env bash
-# The main job: the demo firmware (αβ and αβγ filters tracking a synthetic
-# target) under qemu-system-arm, its defmt log decoded on the terminal.
+# The main job: the scan-loop demo firmware under qemu-system-arm. Measurement
+# frames go in on the board's UART, the firmware tracks, assesses and logs
+# through defmt (decoded on the terminal), and sends report frames back on
+# the UART; those are decoded on the host at the end.
 #
-#   scripts/demo.sh [target | board | core]
+#   scripts/demo.sh [target | board | core] [frames file]
 #
 # Default: thumbv7em-none-eabihf on mps2-an386 (Cortex-M4F, f32). Also:
 # thumbv7m-none-eabi / mps2-an385 / m3 (Cortex-M3, fixed point) and
 # thumbv6m-none-eabi / microbit / m0 (Cortex-M0, fixed point).
-# Installs what is missing (the Rust target, qemu-system-arm when root,
-# defmt-print). The exit status is the firmware's.
+# Input: the given frames file, or by default the two-crossing scenario
+# written by scripts/demo-input.sh (make your own with the `frames` tool:
+# see README.md). Installs what is missing (the Rust target, qemu-system-arm
+# when root, defmt-print). The exit status is the firmware's.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 # shellcheck source=scripts/setup.sh
@@ -16,10 +20,26 @@ cd "$(dirname "$0")/.."
 
 target=$(target_for "${1:-thumbv7em-none-eabihf}") ||
     die "unknown target '$1'; use one of: ${ABTRACK_TARGETS[*]} (or mps2-an386, mps2-an385, microbit)"
+board=$(board_for_target "$target")
+if [ $# -ge 2 ]; then
+    [ -f "$2" ] || die "no such frames file: $2"
+    export ABTRACK_UART_INPUT=$2
+fi
+export ABTRACK_UART_OUTPUT="$PWD/target/demo/uart-$board.out"
 
 ensure_targets "$target"
+ensure_host_linker
 ensure_qemu
 ensure_defmt_print
 
-say "demo firmware on $(board_for_target "$target") ($target)"
-cargo run --release --target "$target" --bin abtrack-firmware
+say "demo firmware on $board ($target)"
+status=0
+cargo run --release --target "$target" --bin abtrack-firmware || status=$?
+if [ -s "$ABTRACK_UART_OUTPUT" ]; then
+    say "the firmware's UART output ($ABTRACK_UART_OUTPUT), decoded on the host:"
+    if ! (cd host-tests && cargo run --release --quiet --bin frames -- decode --check "$ABTRACK_UART_OUTPUT") &&
+        [ "$status" -eq 0 ]; then
+        status=1
+    fi
+fi
+exit "$status"

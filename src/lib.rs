@@ -9,6 +9,9 @@
 //! | [`budget`] | the error budget: bound on the deviation of an f32 / fixed-point run from f64 |
 //! | [`design`] | closed-form analysis: stability, noise ratio, steady-state and transient errors |
 //! | [`track`] | the fixed-capacity multi-target track table: gating, assignment, lifecycle |
+//! | [`tcas`] | threat measures and advisory levels |
+//! | [`wire`] | the serial frame codec: measurement frames in, report frames out (sans-IO) |
+//! | [`scan`] | the scan loop's core: received bytes and timer ticks to tracks, advisories and reports |
 //!
 //! The specification is five papers, cited in the doc comments by author and
 //! equation number (see README.md, "The papers").
@@ -22,8 +25,10 @@ pub mod design;
 pub mod filter;
 pub mod gain;
 pub mod num;
+pub mod scan;
 pub mod tcas;
 pub mod track;
+pub mod wire;
 
 pub use filter::{AlphaBeta, AlphaBetaGamma, Cartesian, FilterError, GainError, Gains};
 pub use num::{Fix, NumError, Scalar};

@@ -14,10 +14,12 @@
 //! * [`tracking`]: runs the track table over the multi-target scenarios for
 //!   the metrics and experiments.
 //! * [`experiments`]: the `experiments` tool's groups and output helpers.
+//! * [`frames`]: wire frames for the demo firmware's UART (the `frames` tool).
 
 pub mod cli;
 pub mod csv_input;
 pub mod experiments;
+pub mod frames;
 pub mod kalman;
 pub mod metrics;
 pub mod noise;

@@ -1,0 +1,703 @@
+//! The scan loop's core on the host, fed with encoded frames as the firmware
+//! is: bytes → `Intake` (decoder + spsc queue) → `ScanLoop::on_tick` →
+//! report frames, decoded again and checked.
+
+#![allow(clippy::needless_range_loop)]
+
+#[path = "../../src/firmware/demo_config.rs"]
+mod demo_config;
+
+use abtrack::filter::altitude::{AltitudeQuantum, AltitudeTrackerConfig};
+use abtrack::scan::{AdvisoryLines, Intake, ScanConfig, ScanLoop, TickReport};
+use abtrack::tcas::{Advisory, OwnAircraft};
+use abtrack::track::{FixedGainTrack, Gate, TrackStatus, TrackerConfig};
+use abtrack::wire::{
+    Decoder, LinkStatus, MeasuredPosition, MeasurementReport, Message, ScanSummary, TrackReport,
+    MAX_FRAME_LEN,
+};
+use abtrack::{Fix, Gains, Scalar};
+use abtrack_host_tests::frames::{self, Faults};
+use abtrack_host_tests::scenario;
+use heapless::spsc::{Consumer, Queue};
+use std::collections::{BTreeMap, BTreeSet};
+
+type Loop<S, const N: usize, const M: usize> = ScanLoop<S, FixedGainTrack<S>, N, M>;
+
+/// Deterministic pseudo-random numbers (64-bit LCG, Knuth's MMIX constants).
+struct Lcg(u64);
+impl Lcg {
+    fn next_u64(&mut self) -> u64 {
+        self.0 = self
+            .0
+            .wrapping_mul(6364136223846793005)
+            .wrapping_add(1442695040888963407);
+        self.0 >> 11
+    }
+    /// Uniform in [-1, 1).
+    fn signed(&mut self) -> f64 {
+        (self.next_u64() as f64 / (1u64 << 53) as f64) * 2.0 - 1.0
+    }
+    fn below(&mut self, n: usize) -> usize {
+        (self.next_u64() % n as u64) as usize
+    }
+}
+
+fn frame(m: &Message) -> Vec<u8> {
+    let mut buf = [0u8; MAX_FRAME_LEN];
+    let n = m.emit(&mut buf).unwrap();
+    buf[..n].to_vec()
+}
+
+fn measurement_frame(r: MeasurementReport) -> Vec<u8> {
+    frame(&Message::Measurement(r))
+}
+
+/// Everything the loop emitted, decoded back from the bytes.
+#[derive(Default)]
+struct Output {
+    bytes: Vec<u8>,
+}
+
+impl Output {
+    fn sink(&mut self) -> impl FnMut(&Message) + '_ {
+        |m: &Message| {
+            let mut buf = [0u8; MAX_FRAME_LEN];
+            let n = m.emit(&mut buf).unwrap();
+            self.bytes.extend_from_slice(&buf[..n]);
+        }
+    }
+    fn decode(&self) -> Vec<Message> {
+        let (messages, stats) = frames::decode_all(&self.bytes);
+        assert_eq!(stats.crc_errors + stats.bytes_skipped, 0);
+        messages
+    }
+    fn tracks(&self) -> Vec<TrackReport> {
+        self.decode()
+            .into_iter()
+            .filter_map(|m| match m {
+                Message::Track(t) => Some(t),
+                _ => None,
+            })
+            .collect()
+    }
+    fn scans(&self) -> Vec<ScanSummary> {
+        self.decode()
+            .into_iter()
+            .filter_map(|m| match m {
+                Message::Scan(s) => Some(s),
+                _ => None,
+            })
+            .collect()
+    }
+}
+
+/// Drives a loop like the firmware: all bytes of scan k are received, then
+/// the tick at the scan's time.
+struct Rig<'q, S: Scalar, const N: usize, const M: usize> {
+    intake: Intake<'q>,
+    consumer: Consumer<'q, MeasurementReport>,
+    scan_loop: Box<Loop<S, N, M>>,
+    config: ScanConfig<S, Gains<S>>,
+    out: Output,
+    ticks: Vec<TickReport>,
+}
+
+impl<'q, S: Scalar, const N: usize, const M: usize> Rig<'q, S, N, M> {
+    fn new(queue: &'q mut Queue<MeasurementReport, 64>, config: ScanConfig<S, Gains<S>>) -> Self {
+        let (producer, consumer) = queue.split();
+        Rig {
+            intake: Intake::new(producer),
+            consumer,
+            scan_loop: Box::new(Loop::new()),
+            config,
+            out: Output::default(),
+            ticks: Vec::new(),
+        }
+    }
+    fn receive(&mut self, bytes: &[u8]) {
+        for &b in bytes {
+            self.intake.push(b);
+        }
+    }
+    fn tick(&mut self, now_ms: u32) {
+        let report = self
+            .scan_loop
+            .on_tick(&self.config, now_ms, &mut self.consumer, self.out.sink())
+            .unwrap();
+        self.ticks.push(report);
+    }
+}
+
+/// Two targets on an X through the own aircraft at the origin, both at
+/// 111.8 m/s: A from (−3000, −1500) m moving (100, 50) m/s, B from
+/// (−3000, 1500) m moving (100, −50) m/s; they cross at the origin at
+/// t = 30 s. Noise uniform ±15 m per axis.
+fn crossing_truth(t: f64) -> [[f64; 2]; 2] {
+    [
+        [-3000.0 + 100.0 * t, -1500.0 + 50.0 * t],
+        [-3000.0 + 100.0 * t, 1500.0 - 50.0 * t],
+    ]
+}
+
+/// Runs the crossing through the loop in `S`; returns the rig's output and
+/// the number of garbage bytes inserted.
+fn run_crossing<S: Scalar>() -> (Output, Vec<TickReport>, LinkStatus, usize) {
+    let mut queue = Queue::new();
+    let mut rig: Rig<S, 8, 16> = Rig::new(&mut queue, demo_config::demo_config::<S>().unwrap());
+    let mut rng = Lcg(0x5CA1_AB1E);
+    let mut garbage = 0;
+    for k in 0..60u32 {
+        let t = k as f64;
+        let truth = crossing_truth(t);
+        // The targets in random order, and two clutter points.
+        let mut points: Vec<[f64; 2]> = truth
+            .iter()
+            .map(|p| [p[0] + 15.0 * rng.signed(), p[1] + 15.0 * rng.signed()])
+            .collect();
+        for _ in 0..2 {
+            points.push([4500.0 * rng.signed(), 4500.0 * rng.signed()]);
+        }
+        if rng.below(2) == 0 {
+            points.swap(0, 1);
+        }
+        let mut bytes = Vec::new();
+        for p in points {
+            // Garbage on the line before some frames, sync bytes included.
+            if rng.below(4) == 0 {
+                let g = [0x00, 0xAB, 0x13, 0xAB, 0xAB, 0x7E];
+                let n = 1 + rng.below(g.len());
+                bytes.extend_from_slice(&g[..n]);
+                garbage += n;
+            }
+            let r =
+                MeasurementReport::cartesian_from_metres(k * 1000, 1, p[0], p[1], None).unwrap();
+            bytes.extend(measurement_frame(r));
+        }
+        rig.receive(&bytes);
+        rig.tick(k * 1000);
+    }
+    let link = rig.intake.status(59_000);
+    (rig.out, rig.ticks, link, garbage)
+}
+
+/// Distance (m) from a report to each target's truth at its time.
+fn distances(report: &TrackReport) -> [f64; 2] {
+    let truth = crossing_truth(report.time_ms as f64 / 1000.0);
+    let (x, y) = (report.x_cm as f64 / 100.0, report.y_cm as f64 / 100.0);
+    [
+        (truth[0][0] - x).hypot(truth[0][1] - y),
+        (truth[1][0] - x).hypot(truth[1][1] - y),
+    ]
+}
+
+fn crossing_targets_keep_their_ids<S: Scalar>() {
+    let (out, ticks, link, garbage) = run_crossing::<S>();
+    // Garbage skipped and counted, every frame decoded: 4 per scan.
+    assert_eq!(link.frames, 240, "{link:?}");
+    assert_eq!(link.queue_full, 0);
+    assert!(
+        link.bytes_skipped as usize >= garbage,
+        "{link:?} vs {garbage}"
+    );
+    let taken: u32 = ticks.iter().map(|t| t.summary.measurements as u32).sum();
+    assert_eq!(taken, 240);
+
+    // The tracks that follow the targets: every report of the id within
+    // 100 m of the same target.
+    let reports = out.tracks();
+    let mut by_id: BTreeMap<u32, Vec<TrackReport>> = BTreeMap::new();
+    for r in &reports {
+        by_id.entry(r.track_id).or_default().push(*r);
+    }
+    // An id follows a target when every one of its reports is within 100 m
+    // of that target's truth (near the crossing, of both).
+    let mut target_ids: [BTreeSet<u32>; 2] = [BTreeSet::new(), BTreeSet::new()];
+    for (id, rs) in &by_id {
+        for target in 0..2 {
+            if rs.iter().all(|r| distances(r)[target] < 100.0) {
+                target_ids[target].insert(*id);
+            }
+        }
+    }
+    for target in 0..2 {
+        assert_eq!(
+            target_ids[target].len(),
+            1,
+            "target {target}: ids {:?} ({} reports)",
+            target_ids[target],
+            reports.len()
+        );
+        let id = *target_ids[target].iter().next().unwrap();
+        let rs = &by_id[&id];
+        // Confirmed by t = 3 s (two-point start at 1 s, 2 of 3), reported in
+        // every scan from then on, through the crossing at 30 s.
+        assert!(rs[0].time_ms <= 3000, "first report at {}", rs[0].time_ms);
+        assert_eq!(rs.len() as u32, 60 - rs[0].time_ms / 1000);
+        // Closing on the own aircraft until the crossing: a traffic
+        // advisory (non-altitude-reporting intruder: never a resolution
+        // advisory), sensitivity level 5 at 8000 ft.
+        for r in rs
+            .iter()
+            .filter(|r| r.time_ms >= 5000 && r.time_ms <= 25_000)
+        {
+            assert_eq!(r.advisory, Advisory::Traffic, "{r:?}");
+            assert_eq!(r.sensitivity.map(|l| l.number()), Some(5));
+            assert!(r.range_tau_ds.is_some());
+            assert_eq!(r.altitude, None);
+        }
+        // 20 s after the crossing, 2.2 km away and opening: proximate only.
+        let late = rs.iter().find(|r| r.time_ms == 50_000).unwrap();
+        assert_eq!(late.advisory, Advisory::ProximateTraffic, "{late:?}");
+        assert_eq!(late.range_tau_ds, None);
+        assert!(rs.iter().all(|r| r.advisory != Advisory::Resolution));
+    }
+    // The scan summaries agree with the tracker's reports.
+    let scans = out.scans();
+    assert_eq!(scans.len(), 60);
+    for (s, t) in scans.iter().zip(&ticks) {
+        assert_eq!(*s, t.summary);
+        assert_eq!(s.updated as u32, t.scan.updated);
+        assert_eq!(s.tracks as u32, t.scan.tracks);
+    }
+    assert!(scans
+        .iter()
+        .any(|s| s.highest_advisory == Advisory::Traffic));
+}
+
+#[test]
+fn crossing_targets_keep_their_ids_f64() {
+    crossing_targets_keep_their_ids::<f64>();
+}
+
+#[test]
+fn crossing_targets_keep_their_ids_f32() {
+    crossing_targets_keep_their_ids::<f32>();
+}
+
+#[test]
+fn crossing_targets_keep_their_ids_fixed() {
+    crossing_targets_keep_their_ids::<Fix>();
+}
+
+#[test]
+fn representations_report_the_same_tracks() {
+    let ids = |out: &Output| -> Vec<(u32, u32, TrackStatus, Advisory)> {
+        out.tracks()
+            .iter()
+            .map(|r| (r.time_ms, r.track_id, r.status, r.advisory))
+            .collect()
+    };
+    let (a, ..) = run_crossing::<f64>();
+    let (b, ..) = run_crossing::<f32>();
+    let (c, ..) = run_crossing::<Fix>();
+    assert_eq!(ids(&a), ids(&b));
+    assert_eq!(ids(&a), ids(&c));
+}
+
+#[test]
+fn queue_overflow_is_counted() {
+    // Capacity 3 (heapless keeps one slot free).
+    let mut queue: Queue<MeasurementReport, 4> = Queue::new();
+    let (producer, mut consumer) = queue.split();
+    let mut intake = Intake::new(producer);
+    let mut bytes = Vec::new();
+    for k in 0..10 {
+        bytes.extend(measurement_frame(
+            MeasurementReport::cartesian_from_metres(0, 1, 100.0 * k as f64, 0.0, None).unwrap(),
+        ));
+    }
+    let mut queued = 0;
+    for &b in &bytes {
+        queued += intake.push(b);
+    }
+    assert_eq!(queued, 3);
+    assert_eq!(intake.queue_full(), 7);
+    let link = intake.status(0);
+    assert_eq!((link.frames, link.queue_full), (10, 7));
+    assert_eq!(intake.free_slots(), 0);
+    assert!(!intake.can_take_byte());
+
+    // The three queued ones reach the scan, in order.
+    let mut scan_loop: Box<Loop<f64, 4, 8>> = Box::new(Loop::new());
+    let config = demo_config::demo_config::<f64>().unwrap();
+    let mut out = Output::default();
+    let tick = scan_loop
+        .on_tick(&config, 0, &mut consumer, out.sink())
+        .unwrap();
+    assert_eq!(tick.summary.measurements, 3);
+    assert_eq!(scan_loop.counters().taken, 3);
+    assert!(intake.can_take_byte());
+}
+
+#[test]
+fn later_measurements_wait_and_late_ones_are_counted() {
+    let mut queue: Queue<MeasurementReport, 16> = Queue::new();
+    let (producer, mut consumer) = queue.split();
+    let mut intake = Intake::new(producer);
+    let at = |t: u32, x: f64| {
+        measurement_frame(MeasurementReport::cartesian_from_metres(t, 1, x, 0.0, None).unwrap())
+    };
+    let mut scan_loop: Box<Loop<f32, 4, 8>> = Box::new(Loop::new());
+    let config = demo_config::demo_config::<f32>().unwrap();
+    let mut out = Output::default();
+    for f in [at(900, 0.0), at(1000, 10.0), at(1500, 20.0), at(2000, 30.0)] {
+        for b in f {
+            intake.push(b);
+        }
+    }
+    // The scan at 1000 ms takes the two measurements up to 1000 ms; the
+    // later ones stay queued.
+    let t = scan_loop
+        .on_tick(&config, 1000, &mut consumer, out.sink())
+        .unwrap();
+    assert_eq!(t.summary.measurements, 2);
+    assert_eq!(consumer.len(), 2);
+    // A measurement of 1000 ms arriving after that scan is late.
+    for b in at(1000, 40.0) {
+        intake.push(b);
+    }
+    let t = scan_loop
+        .on_tick(&config, 2000, &mut consumer, out.sink())
+        .unwrap();
+    assert_eq!((t.summary.measurements, t.summary.late), (3, 1));
+    assert_eq!(t.scan.measurements, 2);
+    assert_eq!(scan_loop.counters().late, 1);
+    // A scan time that does not advance is refused, nothing emitted.
+    let before = out.bytes.len();
+    assert!(scan_loop
+        .on_tick(&config, 2000, &mut consumer, out.sink())
+        .is_err());
+    assert_eq!(out.bytes.len(), before);
+}
+
+#[test]
+fn out_of_range_measurements_are_refused_and_counted() {
+    let mut queue: Queue<MeasurementReport, 16> = Queue::new();
+    let (mut producer, mut consumer) = queue.split();
+    let reports = [
+        MeasurementReport {
+            time_ms: 0,
+            sensor: 1,
+            position: MeasuredPosition::Cartesian {
+                x_cm: 50_000_000, // 500 km
+                y_cm: 0,
+            },
+            altitude_ft: None,
+        },
+        MeasurementReport {
+            time_ms: 0,
+            sensor: 1,
+            position: MeasuredPosition::Polar {
+                range_cm: 40_000_001,
+                azimuth_bam: 0,
+            },
+            altitude_ft: None,
+        },
+        MeasurementReport {
+            time_ms: 0,
+            sensor: 1,
+            position: MeasuredPosition::Cartesian { x_cm: 0, y_cm: 0 },
+            altitude_ft: Some(200_000),
+        },
+        MeasurementReport {
+            time_ms: 0,
+            sensor: 1,
+            position: MeasuredPosition::Cartesian { x_cm: 100, y_cm: 0 },
+            altitude_ft: Some(5_000),
+        },
+    ];
+    for r in reports {
+        producer.enqueue(r).unwrap();
+    }
+    let mut scan_loop: Box<Loop<Fix, 4, 8>> = Box::new(Loop::new());
+    let config = demo_config::demo_config::<Fix>().unwrap();
+    let mut out = Output::default();
+    let t = scan_loop
+        .on_tick(&config, 0, &mut consumer, out.sink())
+        .unwrap();
+    assert_eq!((t.summary.measurements, t.summary.invalid), (4, 3));
+    assert_eq!(t.scan.measurements, 1);
+    let c = scan_loop.counters();
+    assert_eq!((c.position_out_of_range, c.altitude_out_of_range), (2, 1));
+}
+
+#[test]
+fn scan_overflow_is_counted() {
+    let mut queue: Queue<MeasurementReport, 16> = Queue::new();
+    let (mut producer, mut consumer) = queue.split();
+    for k in 0..7 {
+        producer
+            .enqueue(
+                MeasurementReport::cartesian_from_metres(0, 1, 100.0 * k as f64, 0.0, None)
+                    .unwrap(),
+            )
+            .unwrap();
+    }
+    let mut scan_loop: Box<Loop<f64, 4, 5>> = Box::new(Loop::new());
+    let config = demo_config::demo_config::<f64>().unwrap();
+    let mut out = Output::default();
+    let t = scan_loop
+        .on_tick(&config, 0, &mut consumer, out.sink())
+        .unwrap();
+    assert_eq!((t.summary.measurements, t.summary.dropped), (7, 2));
+    assert_eq!(t.scan.measurements, 5);
+    assert!(consumer.is_empty());
+}
+
+/// The demo's own input (what scripts/demo.sh feeds the firmware: the
+/// `two-crossing` scenario, seed 1, a corrupted frame every 97 and garbage
+/// before every 41st) through the demo's configuration, in the three number
+/// types: the two targets are tracked under one id each from early on to
+/// the end, the clutter confirms at most short-lived tracks, and the faults
+/// are counted exactly.
+fn demo_input_is_tracked<S: Scalar>() -> Vec<(u32, u32)> {
+    const SEED: u64 = 1;
+    let faults = Faults {
+        corrupt_every: Some(97),
+        garbage_every: Some(41),
+        seed: 0,
+    };
+    let reports = frames::scenario_reports("two-crossing", SEED, 1).unwrap();
+    let encoded = frames::encode(&reports, faults);
+    assert!(encoded.corrupted > 0 && encoded.garbage_bytes > 0);
+    let run = scenario::generate("two-crossing", SEED).unwrap();
+
+    let mut queue = Queue::new();
+    let mut rig: Rig<S, 16, 32> = Rig::new(&mut queue, demo_config::demo_config::<S>().unwrap());
+    // The bytes in order, paced as the firmware paces them: a scan runs
+    // once the input has moved past its time; then the idle line.
+    let mut now = 0u32;
+    for &b in &encoded.bytes {
+        rig.intake.push(b);
+        rig.scan_loop.collect(&mut rig.consumer, now);
+        while rig.consumer.peek().is_some_and(|h| h.time_ms > now) {
+            rig.tick(now);
+            now += demo_config::SCAN_PERIOD_MS;
+            rig.scan_loop.collect(&mut rig.consumer, now);
+        }
+    }
+    rig.intake.line_idle();
+    rig.tick(now);
+    let link = rig.intake.status(now);
+    assert_eq!(link.frames as usize, encoded.frames - encoded.corrupted);
+    assert_eq!(link.crc_errors as usize, encoded.corrupted);
+    assert_eq!(link.queue_full, 0);
+
+    let reports = rig.out.tracks();
+    let mut by_id: BTreeMap<u32, Vec<TrackReport>> = BTreeMap::new();
+    for r in &reports {
+        by_id.entry(r.track_id).or_default().push(*r);
+    }
+    // The targets within 150 m of a report's position at its time.
+    let targets_near = |r: &TrackReport| -> BTreeSet<u32> {
+        let Some(scan) = run
+            .scans
+            .iter()
+            .find(|s| frames::time_ms(s.t).unwrap() == r.time_ms)
+        else {
+            return BTreeSet::new();
+        };
+        scan.truth
+            .iter()
+            .filter(|tr| (tr.x - r.x_cm as f64 / 100.0).hypot(tr.y - r.y_cm as f64 / 100.0) < 150.0)
+            .map(|tr| tr.target)
+            .collect()
+    };
+    let mut long_lived = Vec::new();
+    for (id, rs) in &by_id {
+        if rs.len() >= 10 {
+            // Every long-lived track follows one target throughout.
+            let mut common = targets_near(&rs[0]);
+            for r in rs {
+                common = common.intersection(&targets_near(r)).copied().collect();
+            }
+            assert_eq!(common.len(), 1, "track {id} follows {common:?}");
+            long_lived.push((common.into_iter().next().unwrap(), *id));
+        } else {
+            // Clutter tracks: few and short.
+            assert!(rs.len() <= 4, "track {id}: {} reports", rs.len());
+        }
+    }
+    long_lived.sort();
+    let targets: Vec<u32> = long_lived.iter().map(|(t, _)| *t).collect();
+    assert_eq!(targets, vec![1, 2], "{long_lived:?}");
+    for (_, id) in &long_lived {
+        let rs = &by_id[id];
+        assert!(
+            rs[0].time_ms <= 5000,
+            "track {id} confirmed at {}",
+            rs[0].time_ms
+        );
+        assert!(rs.last().unwrap().time_ms >= 55_000);
+    }
+    long_lived
+}
+
+#[test]
+fn demo_input_is_tracked_f64() {
+    let f64_ids = demo_input_is_tracked::<f64>();
+    assert_eq!(demo_input_is_tracked::<f32>(), f64_ids);
+    assert_eq!(demo_input_is_tracked::<Fix>(), f64_ids);
+}
+
+/// A TCAS encounter (`tcas-converging`: range/bearing with Mode C altitude,
+/// bearing σ 5°) through the loop with a configuration for that sensor: the
+/// altitude tracker follows the intruder's reports and the threat logic
+/// raises a resolution advisory before the closest approach (t = 100.8 s)
+/// and clears it after.
+fn run_tcas<S: Scalar>() -> Output {
+    let v = |x: f64| S::try_from_f64(x).unwrap();
+    let gains = Gains::alpha_beta_f64(0.5, 0.5 * 0.5 / 1.5).unwrap();
+    // Li et al.'s wave gate sized from the sensor: range σ 15 m, bearing σ
+    // 0.087 rad, 6 σ (with 4 σ the track is lost once near the closest
+    // approach, where the bearing swings fastest, and restarted).
+    let gate = Gate::wave(v(15.24), v(5f64.to_radians()), v(6.0)).unwrap();
+    // Initiation: 300 m/s closure plus 2 × 3σ of cross-range noise at 14 NM.
+    let tracker = TrackerConfig::new(gains, gate, v(300.0))
+        .unwrap()
+        .with_initiation_margin(v(14_000.0))
+        .unwrap();
+    let config = ScanConfig {
+        tracker,
+        own: OwnAircraft::over_sea_level(v(scenario::TCAS_OWN_ALTITUDE_FT), S::ZERO),
+        altitude: AltitudeTrackerConfig::default_for(AltitudeQuantum::ModeC).unwrap(),
+    };
+    let reports = frames::scenario_reports("tcas-converging", 3, 2).unwrap();
+    let mut queue = Queue::new();
+    let mut rig: Rig<S, 8, 8> = Rig::new(&mut queue, config);
+    for (k, r) in reports.iter().enumerate() {
+        rig.receive(&measurement_frame(*r));
+        rig.tick(k as u32 * 1000);
+    }
+    rig.out
+}
+
+fn tcas_encounter_raises_a_resolution_advisory<S: Scalar>() {
+    let tracks = run_tcas::<S>().tracks();
+    let ids: BTreeSet<u32> = tracks.iter().map(|t| t.track_id).collect();
+    assert_eq!(ids.len(), 1, "{ids:?}");
+    let ra: Vec<u32> = tracks
+        .iter()
+        .filter(|t| t.advisory == Advisory::Resolution)
+        .map(|t| t.time_ms)
+        .collect();
+    assert!(!ra.is_empty());
+    let first_ra = ra[0];
+    assert!(
+        (60_000..100_000).contains(&first_ra),
+        "first RA at {first_ra} ms"
+    );
+    assert!(tracks
+        .iter()
+        .filter(|t| t.time_ms >= 120_000)
+        .all(|t| t.advisory < Advisory::Traffic));
+    // The tracked altitude: the truth climbs 5 ft/s (300 ft/min) from
+    // 7500 ft; Mode C reports are quantised to 100 ft, one step every 20 s,
+    // so the rate estimate swings around the truth from step to step (the
+    // gains are Kalata's for σ_a = 0.1 g): its mean is checked, not each
+    // value.
+    let later: Vec<&TrackReport> = tracks.iter().filter(|t| t.time_ms >= 30_000).collect();
+    let mut rate_sum = 0.0;
+    for t in &later {
+        let truth = 7500.0 + 5.0 * t.time_ms as f64 / 1000.0;
+        let (alt, rate) = t.altitude.expect("altitude tracked");
+        assert!((alt as f64 - truth).abs() < 100.0, "{t:?}");
+        rate_sum += rate as f64;
+        assert_eq!(t.sensitivity.map(|l| l.number()), Some(5));
+    }
+    let mean_rate = rate_sum / later.len() as f64;
+    assert!(
+        (mean_rate - 300.0).abs() < 60.0,
+        "mean rate {mean_rate} ft/min"
+    );
+}
+
+#[test]
+fn tcas_encounter_raises_a_resolution_advisory_f64() {
+    tcas_encounter_raises_a_resolution_advisory::<f64>();
+}
+
+#[test]
+fn tcas_encounter_raises_a_resolution_advisory_f32() {
+    tcas_encounter_raises_a_resolution_advisory::<f32>();
+}
+
+#[test]
+fn tcas_encounter_raises_a_resolution_advisory_fixed() {
+    tcas_encounter_raises_a_resolution_advisory::<Fix>();
+}
+
+/// An embedded-hal pin that records its level changes.
+#[derive(Default)]
+struct RecordingPin {
+    high: Option<bool>,
+    changes: Vec<bool>,
+}
+impl embedded_hal::digital::ErrorType for RecordingPin {
+    type Error = core::convert::Infallible;
+}
+impl embedded_hal::digital::OutputPin for RecordingPin {
+    fn set_low(&mut self) -> Result<(), Self::Error> {
+        if self.high != Some(false) {
+            self.changes.push(false);
+        }
+        self.high = Some(false);
+        Ok(())
+    }
+    fn set_high(&mut self) -> Result<(), Self::Error> {
+        if self.high != Some(true) {
+            self.changes.push(true);
+        }
+        self.high = Some(true);
+        Ok(())
+    }
+}
+
+#[test]
+fn advisory_lines_follow_the_highest_advisory() {
+    let mut lines = AdvisoryLines::new(RecordingPin::default(), RecordingPin::default());
+    let sequence = [
+        Advisory::None,
+        Advisory::ProximateTraffic,
+        Advisory::Traffic,
+        Advisory::Traffic,
+        Advisory::Resolution,
+        Advisory::Traffic,
+        Advisory::None,
+    ];
+    let changed: Vec<bool> = sequence.iter().map(|a| lines.show(*a).unwrap()).collect();
+    assert_eq!(changed, [true, false, true, false, true, true, true]);
+    assert_eq!(lines.changes(), 4);
+    let (ta, ra) = lines.release();
+    assert_eq!(ta.changes, [false, true, false]);
+    assert_eq!(ra.changes, [false, true, false]);
+}
+
+#[test]
+fn print_memory_sizes() {
+    // Host (x86-64) sizes; the firmware prints its own at start-up (heapless
+    // lengths are usize, 4 bytes there).
+    for (name, size) in [
+        (
+            "ScanLoop<f32, 16, 32>",
+            std::mem::size_of::<Loop<f32, 16, 32>>(),
+        ),
+        (
+            "ScanLoop<Fix, 16, 32>",
+            std::mem::size_of::<Loop<Fix, 16, 32>>(),
+        ),
+        (
+            "ScanLoop<Fix, 8, 24>",
+            std::mem::size_of::<Loop<Fix, 8, 24>>(),
+        ),
+        ("Intake", std::mem::size_of::<Intake<'static>>()),
+        (
+            "MeasurementReport",
+            std::mem::size_of::<MeasurementReport>(),
+        ),
+        ("Decoder", std::mem::size_of::<Decoder>()),
+    ] {
+        eprintln!("{name}: {size} bytes");
+    }
+    assert!(std::mem::size_of::<Loop<Fix, 8, 24>>() < 8 * 1024);
+}

@@ -1,0 +1,66 @@
+//! The demo's scan-loop configuration: the tracker tuned for the 20 m-class
+//! Cartesian radar of the multi-target scenarios (`two-crossing`,
+//! `parallel-200m`: σ = 20 m per axis, T = 1 s, targets up to ~150 m/s,
+//! clutter over a 10 km × 10 km square), and the own aircraft at the origin.
+//!
+//! Depends on the library only: the firmware includes it (`#[path]`), and so
+//! does `host-tests/tests/scan_loop.rs`, which runs this exact configuration
+//! on the demo's input on the host.
+
+use abtrack::filter::altitude::{AltitudeQuantum, AltitudeTrackerConfig};
+use abtrack::scan::ScanConfig;
+use abtrack::tcas::OwnAircraft;
+use abtrack::track::{Gate, TrackerConfig, Volume};
+use abtrack::{Gains, Scalar};
+
+/// The scan period, ms: the sensor's (one scan per second).
+pub const SCAN_PERIOD_MS: u32 = 1000;
+
+/// The own aircraft: level at 8000 ft over the sea (TCAS sensitivity level
+/// 5: TA tau 40 s, DMOD 0.75 NM).
+pub const OWN_ALTITUDE_FT: f64 = 8000.0;
+
+/// αβ gains: α = 0.5 with the Benedict–Bordner β = α²/(2 − α) = 1/6
+/// (Al-Wagih & Abdulla, method M1).
+pub const ALPHA: f64 = 0.5;
+pub const BETA: f64 = ALPHA * ALPHA / (2.0 - ALPHA);
+
+/// Uncertainty gate: the sensor's σ (m), the χ² threshold G = 13.8 (99.9 %
+/// for two degrees of freedom) and a manoeuvre allowance of 5 m/s².
+pub const MEASUREMENT_SIGMA_M: f64 = 20.0;
+pub const GATE_THRESHOLD: f64 = 13.8;
+pub const MAX_ACCELERATION_M_PER_S2: f64 = 5.0;
+
+/// Two-point initiation: targets up to 300 m/s, plus 100 m for the noise on
+/// the two points (3σ√2 = 85 m).
+pub const MAX_SPEED_M_PER_S: f64 = 300.0;
+pub const INITIATION_MARGIN_M: f64 = 100.0;
+
+/// The surveillance square, ±5 km around the own aircraft.
+pub const SURVEILLANCE_HALF_WIDTH_M: f64 = 5000.0;
+
+/// The configuration in the number type `S`; `Err` names what was refused.
+pub fn demo_config<S: Scalar>() -> Result<ScanConfig<S, Gains<S>>, &'static str> {
+    let s = |v: f64| S::try_from_f64(v).map_err(|_| "a constant is not representable");
+    let gains = Gains::alpha_beta_f64(ALPHA, BETA).map_err(|_| "gains refused")?;
+    let gate = Gate::uncertainty(
+        s(MEASUREMENT_SIGMA_M)?,
+        s(GATE_THRESHOLD)?,
+        s(MAX_ACCELERATION_M_PER_S2)?,
+    )
+    .map_err(|_| "gate refused")?;
+    let half = s(SURVEILLANCE_HALF_WIDTH_M)?;
+    let volume = Volume::new([-half, -half], [half, half]).map_err(|_| "volume refused")?;
+    let margin = s(INITIATION_MARGIN_M)?;
+    let tracker = TrackerConfig::new(gains, gate, s(MAX_SPEED_M_PER_S)?)
+        .and_then(|c| c.with_initiation_margin(margin))
+        .map_err(|_| "tracker configuration refused")?
+        .with_volume(volume);
+    let altitude = AltitudeTrackerConfig::default_for(AltitudeQuantum::ModeC)
+        .map_err(|_| "altitude tracker refused")?;
+    Ok(ScanConfig {
+        tracker,
+        own: OwnAircraft::over_sea_level(s(OWN_ALTITUDE_FT)?, S::ZERO),
+        altitude,
+    })
+}
