@@ -222,7 +222,10 @@ fn configuration_refuses_bad_interval_manoeuvre_and_coast() {
         AltitudeTrackerConfig::<f64>::new(q, 3.22, -1.0, 6.0),
         Err(AltitudeConfigError::IntervalNotPositive)
     );
-    assert_eq!(AltitudeTrackerConfig::<f64>::new(q, 3.22, 0.0, 6.0), Err(AltitudeConfigError::IntervalNotPositive));
+    assert_eq!(
+        AltitudeTrackerConfig::<f64>::new(q, 3.22, 0.0, 6.0),
+        Err(AltitudeConfigError::IntervalNotPositive)
+    );
     assert_eq!(
         AltitudeTrackerConfig::<f64>::new(q, -3.22, 1.0, 6.0),
         Err(AltitudeConfigError::ManoeuvreNotPositive)
@@ -231,6 +234,9 @@ fn configuration_refuses_bad_interval_manoeuvre_and_coast() {
         AltitudeTrackerConfig::<Fix>::new(q, f64::NAN, 1.0, 6.0),
         Err(AltitudeConfigError::ManoeuvreNotPositive)
     );
-    assert_eq!(AltitudeTrackerConfig::<f32>::new(q, 3.22, 1.0, -1.0), Err(AltitudeConfigError::InvalidCoast));
+    assert_eq!(
+        AltitudeTrackerConfig::<f32>::new(q, 3.22, 1.0, -1.0),
+        Err(AltitudeConfigError::InvalidCoast)
+    );
     assert!(AltitudeTrackerConfig::<Fix>::new(q, 3.22, 1.0, 0.0).is_ok());
 }

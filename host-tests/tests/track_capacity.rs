@@ -277,7 +277,11 @@ fn fixed_gain_track_counts_a_refused_saturating_update() {
     use abtrack::Gains;
     let gains = Gains::<Fix>::alpha_beta_f64(0.5, 0.3).unwrap();
     let at = |x: f64| {
-        Observation::new(Measurement::Cartesian { x: Fix::from_f64_lossy(x), y: Fix::ZERO }).unwrap()
+        Observation::new(Measurement::Cartesian {
+            x: Fix::from_f64_lossy(x),
+            y: Fix::ZERO,
+        })
+        .unwrap()
     };
     let one = Fix::ONE;
     let mut track = FixedGainTrack::<Fix>::empty(&gains);
@@ -286,7 +290,10 @@ fn fixed_gain_track_counts_a_refused_saturating_update() {
     let before = track;
     // β·e/dt = 0.3 · 2e9 / 2⁻²⁰ leaves Q32.32: refused and counted.
     let tiny = Fix::from_f64_lossy(1.0 / 1_048_576.0);
-    assert_eq!(track.update(&gains, &at(2.0e9), tiny), Err(abtrack::FilterError::Saturated));
+    assert_eq!(
+        track.update(&gains, &at(2.0e9), tiny),
+        Err(abtrack::FilterError::Saturated)
+    );
     assert_eq!(track.filter().saturations(), 1);
     assert_eq!(track.filter().position(), before.filter().position());
     assert_eq!(track.filter().velocity(), before.filter().velocity());
