@@ -438,7 +438,7 @@ pub fn benedict_bordner_beta(alpha: f64) -> Result<f64, DesignError> {
     if !(alpha > 0.0 && alpha <= 1.0) {
         return Err(DesignError::AlphaOutOfRange);
     }
-    Ok(alpha * alpha / (2.0 - alpha))
+    Ok(crate::gain::al_wagih::beta_from_alpha(alpha))
 }
 
 /// Least-squares ("growing memory") gains for the n-th measurement:
@@ -457,9 +457,8 @@ pub fn least_squares_gains(n: u32) -> Result<Gains<f64>, DesignError> {
     if n <= 2 {
         return Err(DesignError::TooFewMeasurements);
     }
-    let n = f64::from(n);
-    let denominator = n * (n + 1.0);
-    Gains::alpha_beta(2.0 * (2.0 * n - 1.0) / denominator, 6.0 / denominator).map_err(gain_error)
+    use crate::gain::al_wagih::{least_squares_alpha, least_squares_beta};
+    Gains::alpha_beta(least_squares_alpha(n), least_squares_beta(n)).map_err(gain_error)
 }
 
 /// Kalata's relation β = 2(2 − α) − 4√(1 − α) = 2(1 − √(1 − α))² (Li et al.
@@ -480,8 +479,11 @@ pub fn least_squares_gains(n: u32) -> Result<Gains<f64>, DesignError> {
 ///
 /// Errors: [`DesignError::AlphaOutOfRange`] outside 0 < α ≤ 1.
 pub fn kalata_beta(alpha: f64) -> Result<f64, DesignError> {
-    let critical = critically_damped_betas(alpha)?;
-    Ok(2.0 * critical.monotone)
+    finite(&[alpha])?;
+    if !(alpha > 0.0 && alpha <= 1.0) {
+        return Err(DesignError::AlphaOutOfRange);
+    }
+    Ok(crate::gain::li::li_beta(alpha))
 }
 
 /// Kalata's tracking index Λ = σ_w T²/σ_v (Kalata 1984, not in the five

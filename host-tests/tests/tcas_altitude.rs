@@ -2,9 +2,10 @@
 //! the quantisation noise, tracking quantised Mode C / Mode S reports, and
 //! non-reporting intruders, in f64, f32 and Q32.32.
 
+use abtrack::design::kalata_gains;
 use abtrack::filter::altitude::{
-    kalata_gains, AltitudeQuantum, AltitudeStatus, AltitudeTracker, AltitudeTrackerConfig,
-    DEFAULT_MANOEUVRE_G, STANDARD_GRAVITY_FT_PER_S2,
+    AltitudeQuantum, AltitudeStatus, AltitudeTracker, AltitudeTrackerConfig, DEFAULT_MANOEUVRE_G,
+    STANDARD_GRAVITY_FT_PER_S2,
 };
 use abtrack::{FilterError, Fix, Scalar};
 
@@ -55,7 +56,7 @@ fn kalata_gains_satisfy_the_tracking_index_identity() {
     // stability triangle (checked by Gains::alpha_beta itself).
     let mut l = 1e-3;
     while l < 30.0 {
-        let g = kalata_gains::<f64>(l).unwrap();
+        let g = kalata_gains(l).unwrap();
         let (a, b) = (g.alpha(), g.beta());
         // Forming 1 − α here costs ε/(1 − α) of relative accuracy (1 − α is
         // 0.005 at λ = 24); the gains themselves have no cancellation.
@@ -64,9 +65,9 @@ fn kalata_gains_satisfy_the_tracking_index_identity() {
         assert!(a > 0.0 && a < 1.0 && b > 0.0);
         l *= 1.37;
     }
-    assert!(kalata_gains::<f64>(0.0).is_err());
-    assert!(kalata_gains::<f64>(-1.0).is_err());
-    assert!(kalata_gains::<f64>(f64::NAN).is_err());
+    assert!(kalata_gains(0.0).is_err());
+    assert!(kalata_gains(-1.0).is_err());
+    assert!(kalata_gains(f64::NAN).is_err());
 }
 
 /// Reported altitude: the true altitude rounded to the nearest quantum.

@@ -19,7 +19,9 @@
 //!   0.1 g = 3.22 ft/s² by default ([`DEFAULT_MANOEUVRE_G`]): a level-off or
 //!   the start of a climb, and less than the 0.25 g of an RA response, so
 //!   the tracker smooths hard and lags such a response by a few seconds;
-//! * λ = σ_a·T²/σ_v, and the Kalman steady state of the αβ filter
+//! * λ = σ_a·T²/σ_v ([`crate::design::tracking_index`]), and the Kalman
+//!   steady state of the αβ filter ([`crate::design::kalata_gains`], computed
+//!   once in f64 and rounded to the tracker's type):
 //!   α = −(λ² + 8λ − (λ + 4)·√(λ² + 8λ))/8,
 //!   β = (λ² + 4λ − λ·√(λ² + 8λ))/4, which satisfy λ² = β²/(1 − α).
 //!
@@ -41,7 +43,8 @@
 //! reporting. A tracked intruder whose reports stop is coasted for at most
 //! `max_coast` seconds, then reverts to that state.
 
-use crate::filter::{AlphaBeta, FilterError, GainError, Gains, Phase};
+use crate::design;
+use crate::filter::{check_interval, AlphaBeta, FilterError, GainError, Gains, Phase};
 use crate::num::Scalar;
 
 /// Standard gravity in ft/s² (9.80665 m/s² / 0.3048 m/ft).
@@ -71,29 +74,6 @@ impl AltitudeQuantum {
             AltitudeQuantum::ModeS25 => 25.0,
         }
     }
-}
-
-/// Kalata's steady-state αβ gains for tracking index λ = σ_a·T²/σ_v (see the
-/// module docs). Any λ > 0 gives gains inside the stability triangle.
-pub fn kalata_gains<S: Scalar>(tracking_index: S) -> Result<Gains<S>, GainError> {
-    let l = tracking_index;
-    if !l.is_valid() {
-        return Err(GainError::NotFinite);
-    }
-    if l <= S::ZERO {
-        return Err(GainError::AlphaOutOfRange);
-    }
-    // Kalata's α = −(λ² + 8λ − (λ + 4)·r)/8 = r·((λ + 4) − r)/8 and
-    // β = λ·((λ + 4) − r)/4 with r = √(λ² + 8λ) subtract nearly equal terms
-    // for large λ; since ((λ + 4) − r)·((λ + 4) + r) = 16 they are, exactly,
-    // α = 2r/((λ + 4) + r) and β = 4λ/((λ + 4) + r), which do not.
-    let two = S::ONE + S::ONE;
-    let four = two * two;
-    let root = (l * l + four * two * l).sqrt();
-    let denominator = l + four + root;
-    let alpha = two * root / denominator;
-    let beta = four * l / denominator;
-    Gains::alpha_beta(alpha, beta)
 }
 
 /// Why an altitude-tracker configuration was refused.
@@ -142,7 +122,7 @@ pub struct AltitudeTrackerConfig<S> {
 impl<S: Scalar> AltitudeTrackerConfig<S> {
     /// Gains from the quantisation noise σ_v = q/√12 and the manoeuvre level
     /// `manoeuvre_ft_per_s2` (σ_a) at the design interval `interval_s`, via
-    /// [`kalata_gains`]; `max_coast_s` (≥ 0) is the longest run of missing
+    /// [`design::kalata_gains`]; `max_coast_s` (≥ 0) is the longest run of missing
     /// reports that is coasted through.
     pub fn new(
         quantum: AltitudeQuantum,
@@ -160,14 +140,23 @@ impl<S: Scalar> AltitudeTrackerConfig<S> {
         if !(max_coast_s.is_finite() && max_coast_s >= 0.0) {
             return Err(AltitudeConfigError::InvalidCoast);
         }
+        // The inputs are checked above, so the design functions can only
+        // fail by overflow; the gains are computed once, in f64, and rounded
+        // to S (design::kalata_gains, Kalata 1984).
+        let overflow = |_| AltitudeConfigError::Gains(GainError::NotFinite);
         let sigma_v = quantum.feet() / libm::sqrt(12.0);
-        let lambda = manoeuvre_ft_per_s2 * interval_s * interval_s / sigma_v;
+        let lambda =
+            design::tracking_index(manoeuvre_ft_per_s2, sigma_v, interval_s).map_err(overflow)?;
+        let gains = design::kalata_gains(lambda)
+            .map_err(overflow)?
+            .convert::<S>()
+            .map_err(AltitudeConfigError::Gains)?;
         let tracking_index = S::try_from_f64(lambda)
             .map_err(|_| AltitudeConfigError::Gains(GainError::NotFinite))?;
         let max_coast =
             S::try_from_f64(max_coast_s).map_err(|_| AltitudeConfigError::InvalidCoast)?;
         Ok(AltitudeTrackerConfig {
-            gains: kalata_gains(tracking_index).map_err(AltitudeConfigError::Gains)?,
+            gains,
             tracking_index,
             max_coast,
         })
@@ -291,9 +280,7 @@ impl<S: Scalar> AltitudeTracker<S> {
                 self.coasted = S::ZERO;
             }
             None => {
-                if !(dt.is_valid() && dt > S::ZERO) {
-                    return Err(FilterError::InvalidInterval);
-                }
+                check_interval(dt)?;
                 if self.filter.phase() == Phase::Empty {
                     return Ok(AltitudeStatus::NotReporting);
                 }

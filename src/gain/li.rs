@@ -2,7 +2,7 @@
 //! Tracking": gains from an effective scan count that a motion-stability
 //! ratio raises while the target moves steadily and cuts when it manoeuvres.
 
-use super::al_wagih::least_squares_alpha;
+use super::al_wagih::{least_squares_alpha, LeastSquaresConfig};
 use super::{
     check_range, config_scalar, norm, ConfigError, GainContext, GainSchedule, ScheduleError,
 };
@@ -50,7 +50,7 @@ impl LiImprovedConfig {
         check_range(self.max_ratio, 0.0, 1.0e6, false, "r")?;
         check_range(self.range_error, 0.0, 1.0e6, false, "range-error")?;
         check_range(self.bearing_error, 0.0, 1.0, true, "bearing-error")?;
-        if !(3..=10_000).contains(&self.k_max) {
+        if !(3..=LeastSquaresConfig::N_MAX_LIMIT).contains(&self.k_max) {
             return Err(ConfigError::OutOfRange { parameter: "k-max" });
         }
         Ok(())

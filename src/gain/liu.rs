@@ -15,7 +15,9 @@
 //! so all three adaptive methods here use the innovation of the measurement
 //! being incorporated (see the [module docs](super)).
 
-use super::al_wagih::{beta_from_alpha, least_squares_alpha, least_squares_beta};
+use super::al_wagih::{
+    beta_from_alpha, least_squares_alpha, least_squares_beta, LeastSquaresConfig,
+};
 use super::{
     check_range, config_scalar, ConfigError, FixedGains, GainContext, GainSchedule, ScheduleError,
 };
@@ -41,7 +43,7 @@ impl ScanCountAdjustedConfig {
 
     pub fn validate(&self) -> Result<(), ConfigError> {
         check_range(self.threshold, 0.0, 1.0e9, false, "threshold")?;
-        if !(3..=10_000).contains(&self.k_max) {
+        if !(3..=LeastSquaresConfig::N_MAX_LIMIT).contains(&self.k_max) {
             return Err(ConfigError::OutOfRange { parameter: "k-max" });
         }
         Ok(())

@@ -156,9 +156,7 @@ impl<S: Scalar, const D: usize> GainContext<S, D> {
     /// Refuses a context with an invalid number or an interval ≤ 0, which a
     /// schedule could otherwise learn from.
     pub fn check(&self) -> Result<(), ScheduleError> {
-        if !(self.dt.is_valid() && self.dt > S::ZERO) {
-            return Err(ScheduleError::InvalidContext);
-        }
+        crate::filter::check_interval(self.dt).map_err(|_| ScheduleError::InvalidContext)?;
         for a in &self.axes {
             if !(a.measurement.is_valid()
                 && a.predicted.is_valid()
