@@ -46,7 +46,7 @@ fn stream() -> Option<([u8; FRAMES * MAX_FRAME_LEN], usize)> {
                 t,
                 2,
                 rng.uniform(100.0, 50_000.0),
-                rng.uniform(0.0, 6.28),
+                rng.uniform(0.0, core::f64::consts::TAU),
                 Some(rng.uniform(1_000.0, 30_000.0)),
             ),
         }

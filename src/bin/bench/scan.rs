@@ -23,8 +23,8 @@ pub const TIMED_SCANS: u32 = 16;
 const WARM_UP_SCANS: u32 = 5;
 /// Distance between separated targets, and between crowded clusters, m.
 const APART_M: f64 = 2_000.0;
-/// Distance between neighbours in a crowded cluster, m: well inside a
-/// steady-state gate (about 30 m in radius here), so neighbours' gates
+/// Distance between neighbours in a crowded cluster, m: inside a
+/// steady-state gate (about 24 m in radius here), so neighbours' gates
 /// overlap, and six times the noise bound, so the nearest measurement is
 /// still each track's own.
 const CROWDED_SPACING_M: f64 = 12.0;
@@ -33,9 +33,12 @@ const NOISE_M: f64 = 2.0;
 /// Ground speed of every target, m/s (along x).
 const SPEED_M_PER_S: f64 = 100.0;
 
+/// Reads one count of a [`ScanReport`].
+type ReportField = fn(&ScanReport) -> u32;
+
 /// The scan's counts reported per scene, by name (the fields of
 /// [`ScanReport`] of the last timed scan).
-const REPORT_COUNTS: &[(&str, fn(&ScanReport) -> u32)] = &[
+const REPORT_COUNTS: &[(&str, ReportField)] = &[
     ("measurements", |r| r.measurements),
     ("predicted", |r| r.predicted),
     ("gated_pairs", |r| r.gated_pairs),
