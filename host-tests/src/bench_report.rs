@@ -749,40 +749,50 @@ fn method(s: &mut String, report: &Report, qemu_version: &str, rustc_version: &s
         ]));
     }
     s.push('\n');
-    s.push_str("Numeric types (column `numeric` of results.csv):\n\n");
-    s.push_str(&header(&["label", "meaning"]));
-    let used = ordered(
-        report
-            .runs
-            .iter()
-            .flat_map(|r| r.figures.iter().map(|f| f.numeric.as_str())),
+    let numerics = report
+        .runs
+        .iter()
+        .flat_map(|r| r.figures.iter().map(|f| f.numeric.as_str()));
+    legend(
+        s,
+        "Numeric types (column `numeric` of results.csv):",
+        ["label", "meaning"],
+        ordered(numerics, NUMERICS),
         NUMERICS,
     );
-    for n in &used {
-        let meaning = NUMERICS
-            .iter()
-            .find(|(k, _)| k == n)
-            .map_or("(not described)", |(_, v)| v);
-        s.push_str(&row(&[format!("`{n}`"), meaning.to_string()]));
-    }
-    s.push('\n');
-    s.push_str("Operations (column `operation`):\n\n");
-    s.push_str(&header(&["operation", "one call"]));
-    let ops = ordered(
-        report
-            .runs
-            .iter()
-            .flat_map(|r| r.figures.iter())
-            .filter(|f| !f.operation.contains('/'))
-            .map(|f| f.operation.as_str()),
+    let operations = report
+        .runs
+        .iter()
+        .flat_map(|r| r.figures.iter())
+        .filter(|f| !f.operation.contains('/'))
+        .map(|f| f.operation.as_str());
+    legend(
+        s,
+        "Operations (column `operation`):",
+        ["operation", "one call"],
+        ordered(operations, OPERATIONS),
         OPERATIONS,
     );
-    for o in &ops {
-        let what = OPERATIONS
+}
+
+/// A two-column table of the names used, each with its description from
+/// `known`.
+fn legend(
+    s: &mut String,
+    intro: &str,
+    columns: [&str; 2],
+    used: Vec<String>,
+    known: &[(&str, &str)],
+) {
+    s.push_str(intro);
+    s.push_str("\n\n");
+    s.push_str(&header(&columns));
+    for name in &used {
+        let what = known
             .iter()
-            .find(|(k, _)| k == o)
+            .find(|(k, _)| k == name)
             .map_or("(not described)", |(_, v)| v);
-        s.push_str(&row(&[format!("`{o}`"), what.to_string()]));
+        s.push_str(&row(&[format!("`{name}`"), what.to_string()]));
     }
     s.push('\n');
 }

@@ -8,7 +8,7 @@ use core::hint::black_box;
 use abtrack::Scalar;
 
 use crate::counter::Bench;
-use crate::data::{at, ring, RING};
+use crate::data::{at, PlaneRing};
 use crate::numeric::Numeric;
 
 /// Position error, m, beyond which an anchor counts as diverged: the inputs
@@ -16,18 +16,37 @@ use crate::numeric::Numeric;
 /// of the last one.
 const DIVERGED_M: f64 = 150.0;
 
-/// The same measurements as the `ab2d_update` row
-/// ([`crate::filters`]), from the same seeds.
-fn plane_ring<S: Scalar>() -> ([S; RING], [S; RING]) {
-    (ring::<S>(1, 180.0, 25.0), ring::<S>(2, -120.0, 25.0))
+/// The 2-D anchors' target: the `ab2d_update` row's (σ = 25 m).
+fn target<S: Scalar>() -> PlaneRing<S> {
+    PlaneRing::new(25.0)
 }
 
-/// Whether `estimate` ended within [`DIVERGED_M`] of the last measurement
-/// the loop gave it (call `CALLS − 1`).
-fn followed<S: Scalar>(estimate: [S; 2], xs: &[S; RING], ys: &[S; RING]) -> bool {
+/// Times `update` of `filter` on `target`, then checks that the anchor
+/// followed it: its `position` must end within [`DIVERGED_M`] of the last
+/// measurement it was given (call `CALLS − 1`).
+fn per_anchor_call<S: Scalar, F>(
+    bench: &mut Bench,
+    (numeric, operation): (&'static str, &'static str),
+    target: &PlaneRing<S>,
+    filter: &mut F,
+    update: impl Fn(&mut F, [S; 2]),
+    position: impl Fn(&F) -> [S; 2],
+) {
+    bench.per_call(
+        numeric,
+        operation,
+        |k| update(filter, target.get(k)),
+        |k| target.fetch(k),
+    );
     let last = at(crate::CALLS - 1);
     let near = |e: S, z: S| libm::fabs(e.to_f64() - z.to_f64()) < DIVERGED_M;
-    near(estimate[0], xs[last]) && near(estimate[1], ys[last])
+    let [x, y] = position(filter);
+    bench.check(
+        near(x, target.xs[last]) && near(y, target.ys[last]),
+        numeric,
+        operation,
+        "diverged",
+    );
 }
 
 // ---------------------------------------------------------------------------
@@ -86,34 +105,21 @@ pub fn floor<S: Numeric>(bench: &mut Bench) {
         beta_over_interval: gains.beta() / interval,
         interval,
     };
-    let (xs, ys) = plane_ring::<S>();
+    let target = target::<S>();
     let mut filter = FloorAlphaBeta {
-        x: xs[0],
-        y: ys[0],
+        x: target.xs[0],
+        y: target.ys[0],
         vx: S::ZERO,
         vy: S::ZERO,
     };
     let constants = black_box(constants);
-    bench.per_call(
-        numeric,
-        OPERATION,
-        |k| {
-            floor_update(
-                &mut filter,
-                black_box(xs[at(k)]),
-                black_box(ys[at(k)]),
-                &constants,
-            )
-        },
-        |k| {
-            black_box([black_box(xs[at(k)]), black_box(ys[at(k)])]);
-        },
-    );
-    bench.check(
-        followed([filter.x, filter.y], &xs, &ys),
-        numeric,
-        OPERATION,
-        "diverged",
+    per_anchor_call(
+        bench,
+        (numeric, OPERATION),
+        &target,
+        &mut filter,
+        |f, [x, y]| floor_update(f, x, y, &constants),
+        |f| [f.x, f.y],
     );
 }
 
@@ -197,7 +203,7 @@ pub fn axis_kalman<S: Numeric>(bench: &mut Bench) {
         q_velocity: c(q * t),
         measurement_variance: c(25.0 * 25.0),
     });
-    let (xs, ys) = plane_ring::<S>();
+    let target = target::<S>();
     let start = |z: S| AxisKalman {
         position: z,
         velocity: S::ZERO,
@@ -205,22 +211,13 @@ pub fn axis_kalman<S: Numeric>(bench: &mut Bench) {
         p_xv: S::ZERO,
         p_vv: c(10_000.0),
     };
-    let (mut x, mut y) = (start(xs[0]), start(ys[0]));
-    bench.per_call(
-        numeric,
-        OPERATION,
-        |k| {
-            let (zx, zy) = (black_box(xs[at(k)]), black_box(ys[at(k)]));
-            axis_kalman_update(&mut x, &mut y, zx, zy, &model);
-        },
-        |k| {
-            black_box([black_box(xs[at(k)]), black_box(ys[at(k)])]);
-        },
-    );
-    bench.check(
-        followed([x.position, y.position], &xs, &ys),
-        numeric,
-        OPERATION,
-        "diverged",
+    let mut filter = [start(target.xs[0]), start(target.ys[0])];
+    per_anchor_call(
+        bench,
+        (numeric, OPERATION),
+        &target,
+        &mut filter,
+        |[x, y], [zx, zy]| axis_kalman_update(x, y, zx, zy, &model),
+        |[x, y]| [x.position, y.position],
     );
 }

@@ -194,6 +194,26 @@ impl Bench {
         }
     }
 
+    /// [`Bench::per_call`] for a call that says whether it was accepted
+    /// (`work` returns false for a refused update): a refusal fails the
+    /// figure, which would otherwise time the refusal path.
+    pub fn per_accepted_call(
+        &mut self,
+        numeric: &'static str,
+        operation: &'static str,
+        mut work: impl FnMut(u32) -> bool,
+        baseline: impl FnMut(u32),
+    ) {
+        let mut refused = 0u32;
+        self.per_call(
+            numeric,
+            operation,
+            |k| refused += u32::from(!work(k)),
+            baseline,
+        );
+        self.check(refused == 0, numeric, operation, "calls refused");
+    }
+
     /// Reports one figure (instructions per call).
     pub fn figure(
         &mut self,

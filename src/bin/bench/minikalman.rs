@@ -13,7 +13,7 @@ use minikalman::prelude::*;
 use minikalman::regular::{RegularKalmanBuilder, RegularObservationBuilder};
 
 use crate::counter::Bench;
-use crate::data::{at, ring, RING};
+use crate::data::{at, PlaneRing, RING};
 
 const STATES: usize = 4;
 const OBSERVATIONS: usize = 2;
@@ -66,8 +66,10 @@ fn cv2d<T: MatrixDataType + Default>(bench: &mut Bench, numeric: &'static str) {
         return;
     };
     let lossy = |v: f64| constant::<T>(v).unwrap_or_default();
-    let xs: [T; RING] = ring::<f64>(1, 180.0, 25.0).map(lossy);
-    let ys: [T; RING] = ring::<f64>(2, -120.0, 25.0).map(lossy);
+    // The `ab2d_update` row's target (σ = 25 m), converted.
+    let target = PlaneRing::<f64>::new(25.0);
+    let xs: [T; RING] = target.xs.map(lossy);
+    let ys: [T; RING] = target.ys.map(lossy);
 
     impl_buffer_x!(mut x, STATES, T, T::zero());
     impl_buffer_A!(mut A, STATES, T, T::zero());
