@@ -10,8 +10,8 @@
 //! 1. assigns the **largest number** of allowed pairs, and among those
 //! 2. has the **smallest total cost**
 //!
-//! (the global-nearest-neighbour criterion; ties broken deterministically by
-//! index). Criterion 1 first means a track is never left without a
+//! (the global-nearest-neighbour criterion), with ties broken by the rule
+//! below. Criterion 1 first means a track is never left without a
 //! measurement only to give a neighbour a slightly closer one.
 //!
 //! # Algorithm
@@ -23,35 +23,54 @@
 //! over reduced costs; the potentials keep every reduced cost ≥ 0, so after
 //! row k the partial assignment is optimal for rows 0..=k.
 //!
-//! Forbidden pairs are given the cost `BIG = (min(n, m) + 1)·65535`, larger
-//! than the total of any set of allowed pairs; the search then runs on a
-//! complete matrix, and pairs of cost `BIG` are removed afterwards. Because one
-//! more forbidden pair always costs more than any combination of allowed
-//! costs, the optimum on the complete matrix is exactly the lexicographic
-//! optimum (most allowed pairs, then least cost) stated above.
+//! A forbidden pair is no edge at all (Crouse's infinite cost: the search
+//! never crosses it). Each row also has a column of its own, "unassigned",
+//! of cost `BIG = (min(n, m) + 1)·65536`, larger than the total of any set of
+//! allowed pairs, so every row can be placed and leaving one more row
+//! unassigned always costs more than any combination of allowed costs: the
+//! optimum is exactly the lexicographic optimum (most allowed pairs, then
+//! least cost) stated above.
 //!
 //! All arithmetic is on `i64` (costs are `u16`), so the result is exact and
 //! identical whatever number type produced the costs.
 //!
+//! # Ties, and solving the independent parts apart
+//!
+//! Rows are added in index order. A search settles, among the columns of
+//! least tentative distance, a free one before an assigned one, and among
+//! those the one of lowest index (the measurement columns in index order,
+//! then the rows' own "unassigned" columns in row order). No other order
+//! enters the computation.
+//!
+//! Consequence: the search from a row only reaches the columns joined to it
+//! by allowed pairs, the rows assigned to those, their columns, and so on
+//! (one connected component of the allowed pairs, with the "unassigned"
+//! columns of its rows), and every choice it makes compares only those.
+//! So the solution restricted to a component is, pair for pair, the
+//! solution of that component solved alone with its rows and columns in the
+//! same relative order. The track table relies on this to solve each
+//! cluster of overlapping gates apart (`TrackTable` in `super`);
+//! `host-tests/tests/track_clusters.rs` checks it, ties included, against
+//! this solver on the whole table and against a brute force.
+//!
 //! # Cost
 //!
-//! With `n = min(rows, cols)` and `m = max(rows, cols)` (the solver
-//! transposes so the shorter side is the row side): the search for row k
-//! visits at most k + 1 columns before reaching a free one, and each visit
-//! scans at most `m` remaining columns, so the inner step (one reduced cost,
-//! two comparisons) runs at most `m·n(n+1)/2` times. For 32 tracks × 32
-//! measurements that is 16 896 steps. [`Solution::steps`] reports the count
+//! With `n` rows and `m` columns: the search for row k visits at most k + 1
+//! rows before it reaches a free column, and each visit scans the `m + n`
+//! columns once, so the inner step (one reduced cost, two comparisons) runs
+//! at most `(m + n)·n(n+1)/2` times. [`Solution::steps`] reports the count
 //! actually taken; the property tests check it against this bound.
 //!
-//! Memory: 24 bytes per row and per column of capacity ([`AssignmentSolver`]),
-//! no heap, no recursion.
+//! Memory: 16 bytes per row and 24 per column of capacity, plus 24 per row
+//! for its "unassigned" column ([`AssignmentSolver`]); no heap, no
+//! recursion.
 
 /// Cost of a pair that must not be assigned (outside the gate).
 pub const FORBIDDEN: u16 = u16::MAX;
 /// Largest cost of an allowed pair.
 pub const MAX_COST: u16 = u16::MAX - 1;
 
-/// Sentinel for "no index" in the workspaces (so capacities are < 65535).
+/// Sentinel for "no index" in the workspaces (so `rows + columns < 65535`).
 const NONE: u16 = u16::MAX;
 const INF: i64 = i64::MAX;
 
@@ -79,42 +98,61 @@ pub struct Solution {
     pub steps: u32,
 }
 
-/// Per-row / per-column workspace entry.
+/// Per-row workspace entry.
 #[derive(Debug, Clone, Copy)]
-struct Node {
-    /// Dual potential (u for a row, v for a column).
+struct RowNode {
+    /// Dual potential u.
     dual: i64,
-    /// Column side: shortest reduced path length found in this search.
-    shortest: i64,
-    /// Column side: the row the shortest path arrived from.
-    path: u16,
-    /// The index assigned on the other side, or `NONE`.
+    /// The column assigned (measurement columns first, then the rows' own
+    /// "unassigned" columns), or `NONE`.
     mate: u16,
-    /// Column side: the list of columns not yet settled in this search
-    /// (position i holds a column index).
-    remaining: u16,
-    /// Settled / visited in this search.
+    /// Reached in this search.
     visited: bool,
 }
 
-impl Node {
-    const EMPTY: Node = Node {
+/// Per-column workspace entry (a measurement column, or a row's own
+/// "unassigned" column).
+#[derive(Debug, Clone, Copy)]
+struct ColumnNode {
+    /// Dual potential v.
+    dual: i64,
+    /// Shortest reduced path length found in this search.
+    shortest: i64,
+    /// The row the shortest path arrived from.
+    path: u16,
+    /// The row assigned, or `NONE`.
+    mate: u16,
+    /// Settled in this search.
+    visited: bool,
+}
+
+impl RowNode {
+    const EMPTY: RowNode = RowNode {
         dual: 0,
-        shortest: INF,
-        path: NONE,
         mate: NONE,
-        remaining: NONE,
         visited: false,
     };
 }
 
-/// Workspace for problems up to `R` rows × `C` columns (`R, C < 65535`).
+impl ColumnNode {
+    const EMPTY: ColumnNode = ColumnNode {
+        dual: 0,
+        shortest: INF,
+        path: NONE,
+        mate: NONE,
+        visited: false,
+    };
+}
+
+/// Workspace for problems up to `R` rows × `C` columns (`R + C < 65535`).
 ///
 /// `const fn new` so it can live inside a `static` track table.
 #[derive(Debug, Clone)]
 pub struct AssignmentSolver<const R: usize, const C: usize> {
-    rows: [Node; R],
-    cols: [Node; C],
+    rows: [RowNode; R],
+    cols: [ColumnNode; C],
+    /// Row i's own "unassigned" column.
+    unassigned: [ColumnNode; R],
     n_rows: u16,
     n_cols: u16,
 }
@@ -125,26 +163,19 @@ impl<const R: usize, const C: usize> Default for AssignmentSolver<R, C> {
     }
 }
 
-fn node(s: &[Node], i: usize) -> Result<&Node, AssignError> {
-    s.get(i).ok_or(AssignError::Internal)
-}
-
-fn node_mut(s: &mut [Node], i: usize) -> Result<&mut Node, AssignError> {
-    s.get_mut(i).ok_or(AssignError::Internal)
-}
-
 impl<const R: usize, const C: usize> AssignmentSolver<R, C> {
     const CAPACITY_OK: () = assert!(
-        R < NONE as usize && C < NONE as usize,
-        "assignment capacities must be below 65535"
+        R < NONE as usize && C < NONE as usize && R + C < NONE as usize,
+        "assignment capacities must be below 65535 together"
     );
 
     pub const fn new() -> Self {
         #[allow(clippy::let_unit_value)]
         let () = Self::CAPACITY_OK;
         AssignmentSolver {
-            rows: [Node::EMPTY; R],
-            cols: [Node::EMPTY; C],
+            rows: [RowNode::EMPTY; R],
+            cols: [ColumnNode::EMPTY; C],
+            unassigned: [ColumnNode::EMPTY; R],
             n_rows: 0,
             n_cols: 0,
         }
@@ -153,8 +184,8 @@ impl<const R: usize, const C: usize> AssignmentSolver<R, C> {
     /// Solves the `n_rows × n_cols` problem whose pair costs `cost(row, col)`
     /// returns ([`FORBIDDEN`] for a pair that must not be assigned).
     ///
-    /// `cost` is called O(n²m) times (see the module docs); it should be a
-    /// table lookup.
+    /// `cost` is called O(n²(n + m)) times at most (see the module docs); it
+    /// should be a table lookup.
     pub fn solve(
         &mut self,
         n_rows: usize,
@@ -164,19 +195,18 @@ impl<const R: usize, const C: usize> AssignmentSolver<R, C> {
         if n_rows > R || n_cols > C {
             return Err(AssignError::TooLarge);
         }
-        // Both fit in u16 because R, C < 65535 (CAPACITY_OK).
+        // Both fit in u16 because R + C < 65535 (CAPACITY_OK).
         self.n_rows = n_rows as u16;
         self.n_cols = n_cols as u16;
-        let rows = self.rows.get_mut(..n_rows).ok_or(AssignError::Internal)?;
-        let cols = self.cols.get_mut(..n_cols).ok_or(AssignError::Internal)?;
-        // The search needs rows ≤ columns; otherwise the roles are swapped.
-        // Original row r keeps its node in `rows` either way and its `mate`
-        // is always an original column index (and vice versa).
-        let result = if n_rows <= n_cols {
-            solve_core(rows, cols, &cost)
-        } else {
-            solve_core(cols, rows, &|i, j| cost(j, i))
+        let problem = Problem {
+            rows: self.rows.get_mut(..n_rows).ok_or(AssignError::Internal)?,
+            cols: self.cols.get_mut(..n_cols).ok_or(AssignError::Internal)?,
+            unassigned: self
+                .unassigned
+                .get_mut(..n_rows)
+                .ok_or(AssignError::Internal)?,
         };
+        let result = problem.solve(&cost);
         if result.is_err() {
             // Leave no half-built assignment behind.
             self.n_rows = 0;
@@ -190,10 +220,8 @@ impl<const R: usize, const C: usize> AssignmentSolver<R, C> {
         if row >= self.n_rows as usize {
             return None;
         }
-        match self.rows.get(row)?.mate {
-            NONE => None,
-            c => Some(c as usize),
-        }
+        let c = self.rows.get(row)?.mate as usize;
+        (c < self.n_cols as usize).then_some(c)
     }
 
     /// The row assigned to `col` in the last solution, if any.
@@ -208,141 +236,172 @@ impl<const R: usize, const C: usize> AssignmentSolver<R, C> {
     }
 }
 
-/// Crouse 2016, Alg. 4, on `row.len() ≤ col.len()`. `cost(i, j)` is indexed
-/// in this orientation.
-fn solve_core(
-    row: &mut [Node],
-    col: &mut [Node],
-    cost: &dyn Fn(usize, usize) -> u16,
-) -> Result<Solution, AssignError> {
-    let n = row.len();
-    let m = col.len();
-    row.fill(Node::EMPTY);
-    col.fill(Node::EMPTY);
-    let mut solution = Solution::default();
-    if n == 0 {
-        return Ok(solution);
-    }
-    // BIG > n·MAX_COST, the largest total of allowed pairs (module docs).
-    let big = (n as i64 + 1) * (MAX_COST as i64 + 1);
-    let cost_of = |i: usize, j: usize| -> i64 {
-        match cost(i, j) {
-            FORBIDDEN => big,
-            c => c as i64,
-        }
-    };
+/// One problem's slices of the workspace. Column index `j` is measurement
+/// column `j` for `j < cols.len()`, else row `j − cols.len()`'s
+/// "unassigned" column.
+struct Problem<'w> {
+    rows: &'w mut [RowNode],
+    cols: &'w mut [ColumnNode],
+    unassigned: &'w mut [ColumnNode],
+}
 
-    for cur in 0..n {
-        for (k, c) in col.iter_mut().enumerate() {
+impl Problem<'_> {
+    fn row(&mut self, i: usize) -> Result<&mut RowNode, AssignError> {
+        self.rows.get_mut(i).ok_or(AssignError::Internal)
+    }
+
+    fn column(&mut self, j: usize) -> Result<&mut ColumnNode, AssignError> {
+        match j.checked_sub(self.cols.len()) {
+            None => self.cols.get_mut(j),
+            Some(d) => self.unassigned.get_mut(d),
+        }
+        .ok_or(AssignError::Internal)
+    }
+
+    /// Crouse 2016, Alg. 4, with forbidden pairs as missing edges and one
+    /// "unassigned" column per row (module docs).
+    fn solve(mut self, cost: &dyn Fn(usize, usize) -> u16) -> Result<Solution, AssignError> {
+        let n = self.rows.len();
+        let m = self.cols.len();
+        self.rows.fill(RowNode::EMPTY);
+        self.cols.fill(ColumnNode::EMPTY);
+        self.unassigned.fill(ColumnNode::EMPTY);
+        let mut solution = Solution::default();
+        // BIG = (min(n, m) + 1)·65536 > min(n, m)·MAX_COST, the largest
+        // total of allowed pairs (n, m < 65535: no overflow in i64).
+        let big = (n.min(m) as i64).saturating_add(1).saturating_mul(1 << 16);
+        for cur in 0..n {
+            let (sink, min_val) = self.search(cur, big, cost, &mut solution.steps)?;
+            self.update_duals(cur, min_val)?;
+            self.augment(cur, sink)?;
+        }
+        for i in 0..n {
+            let j = self.row(i)?.mate as usize;
+            if j < m {
+                solution.assigned = solution.assigned.saturating_add(1);
+                solution.total_cost = solution.total_cost.saturating_add(cost(i, j) as u64);
+            }
+        }
+        Ok(solution)
+    }
+
+    /// The shortest augmenting path from row `cur` (Crouse Alg. 4, lines
+    /// 6–19): the free column it ends at, and its reduced length.
+    fn search(
+        &mut self,
+        cur: usize,
+        big: i64,
+        cost: &dyn Fn(usize, usize) -> u16,
+        steps: &mut u32,
+    ) -> Result<(usize, i64), AssignError> {
+        let m = self.cols.len();
+        for c in self.cols.iter_mut().chain(self.unassigned.iter_mut()) {
             c.shortest = INF;
             c.path = NONE;
             c.visited = false;
-            // k < m ≤ 65534.
-            c.remaining = k as u16;
         }
-        for r in row.iter_mut() {
+        for r in self.rows.iter_mut() {
             r.visited = false;
         }
-        let mut num_remaining = m;
         let mut min_val: i64 = 0;
         let mut i = cur;
-        let sink = loop {
+        loop {
             let u_i = {
-                let r = node_mut(row, i)?;
+                let r = self.row(i)?;
                 r.visited = true;
                 r.dual
             };
-            let mut lowest = INF;
-            let mut best_pos = usize::MAX;
-            for pos in 0..num_remaining {
-                let j = node(col, pos)?.remaining as usize;
-                let c_ij = cost_of(i, j);
-                let cj = node_mut(col, j)?;
-                let reduced = min_val
-                    .saturating_add(c_ij)
-                    .saturating_sub(u_i)
-                    .saturating_sub(cj.dual);
-                if reduced < cj.shortest {
-                    // i < n ≤ 65534.
-                    cj.path = i as u16;
-                    cj.shortest = reduced;
+            // Least tentative distance; a free column first; lowest index.
+            let mut best: Option<(i64, bool, usize)> = None;
+            let columns = self.cols.iter_mut().chain(self.unassigned.iter_mut());
+            for (j, cj) in columns.enumerate() {
+                if cj.visited {
+                    continue;
                 }
-                // Prefer a free column on ties: it ends the search sooner.
-                if cj.shortest < lowest || (cj.shortest == lowest && cj.mate == NONE) {
-                    lowest = cj.shortest;
-                    best_pos = pos;
+                *steps = steps.saturating_add(1);
+                let c_ij = if j < m {
+                    match cost(i, j) {
+                        FORBIDDEN => None,
+                        c => Some(c as i64),
+                    }
+                } else {
+                    (j.checked_sub(m) == Some(i)).then_some(big)
+                };
+                if let Some(c_ij) = c_ij {
+                    let reduced = min_val
+                        .saturating_add(c_ij)
+                        .saturating_sub(u_i)
+                        .saturating_sub(cj.dual);
+                    if reduced < cj.shortest {
+                        // i < n < 65535.
+                        cj.path = i as u16;
+                        cj.shortest = reduced;
+                    }
                 }
-                solution.steps = solution.steps.saturating_add(1);
+                if cj.shortest == INF {
+                    continue;
+                }
+                let free = cj.mate == NONE;
+                let better = best.is_none_or(|(lowest, best_free, _)| {
+                    cj.shortest < lowest || (cj.shortest == lowest && free && !best_free)
+                });
+                if better {
+                    best = Some((cj.shortest, free, j));
+                }
             }
-            if lowest == INF {
-                // Cannot happen on a complete matrix (forbidden = BIG).
-                return Err(AssignError::Internal);
-            }
+            // Row `cur`'s own "unassigned" column is always reachable.
+            let (lowest, free, j) = best.ok_or(AssignError::Internal)?;
             min_val = lowest;
-            let j = node(col, best_pos)?.remaining as usize;
-            num_remaining -= 1;
-            let last = node(col, num_remaining)?.remaining;
-            node_mut(col, best_pos)?.remaining = last;
-            let cj = node_mut(col, j)?;
+            let cj = self.column(j)?;
             cj.visited = true;
-            if cj.mate == NONE {
-                break j;
+            if free {
+                return Ok((j, min_val));
             }
             i = cj.mate as usize;
-        };
+        }
+    }
 
-        // Update the potentials (Crouse Alg. 4, lines 20–26).
-        for k in 0..n {
-            let r = node(row, k)?;
-            if !r.visited {
+    /// Crouse Alg. 4, lines 20–26.
+    fn update_duals(&mut self, cur: usize, min_val: i64) -> Result<(), AssignError> {
+        for k in 0..self.rows.len() {
+            let (visited, mate) = {
+                let r = self.row(k)?;
+                (r.visited, r.mate as usize)
+            };
+            if !visited {
                 continue;
             }
             let delta = if k == cur {
                 min_val
             } else {
-                let shortest = node(col, r.mate as usize)?.shortest;
-                min_val.saturating_sub(shortest)
+                min_val.saturating_sub(self.column(mate)?.shortest)
             };
-            let r = node_mut(row, k)?;
+            let r = self.row(k)?;
             r.dual = r.dual.saturating_add(delta);
         }
-        for c in col.iter_mut() {
+        for c in self.cols.iter_mut().chain(self.unassigned.iter_mut()) {
             if c.visited {
                 c.dual = c.dual.saturating_sub(min_val.saturating_sub(c.shortest));
             }
         }
+        Ok(())
+    }
 
-        // Augment along the path back to `cur`.
+    /// Flips the path from column `sink` back to row `cur`.
+    fn augment(&mut self, cur: usize, sink: usize) -> Result<(), AssignError> {
         let mut j = sink;
         loop {
-            let i = node(col, j)?.path as usize;
-            // i < n ≤ 65534.
-            node_mut(col, j)?.mate = i as u16;
-            let r = node_mut(row, i)?;
+            let i = self.column(j)?.path as usize;
+            // i < n < 65535.
+            self.column(j)?.mate = i as u16;
+            let r = self.row(i)?;
             let previous = r.mate;
-            // j < m ≤ 65534.
+            // j < m + n < 65535.
             r.mate = j as u16;
             if i == cur {
-                break;
+                return Ok(());
             }
             j = previous as usize;
         }
     }
-
-    // Drop the forbidden pairs the complete-matrix search had to use.
-    for i in 0..n {
-        let j = node(row, i)?.mate;
-        if j == NONE {
-            continue;
-        }
-        let c = cost(i, j as usize);
-        if c == FORBIDDEN {
-            node_mut(row, i)?.mate = NONE;
-            node_mut(col, j as usize)?.mate = NONE;
-        } else {
-            solution.assigned += 1;
-            solution.total_cost += c as u64;
-        }
-    }
-    Ok(solution)
 }

@@ -167,6 +167,21 @@ impl<S: Scalar> Gate<S> {
 
 pub use crate::num::hypot;
 
+/// An axis-aligned box in x, y (m), boundaries included.
+#[derive(Debug, Clone, Copy, PartialEq)]
+#[cfg_attr(feature = "defmt", derive(defmt::Format))]
+pub struct BoundingBox<S> {
+    pub min: [S; 2],
+    pub max: [S; 2],
+}
+
+impl<S: Scalar> BoundingBox<S> {
+    /// Inside or on the boundary.
+    pub fn contains(&self, p: [S; 2]) -> bool {
+        p[0] >= self.min[0] && p[0] <= self.max[0] && p[1] >= self.min[1] && p[1] <= self.max[1]
+    }
+}
+
 /// One track's validation region for one scan.
 #[derive(Debug, Clone, Copy, PartialEq)]
 #[cfg_attr(feature = "defmt", derive(defmt::Format))]
@@ -254,6 +269,47 @@ impl<S: Scalar> GateRegion<S> {
             inverse_half_range,
             inverse_half_azimuth,
         })
+    }
+
+    /// An axis-aligned box that contains every observation [`Self::cost`]
+    /// accepts: the spatial pre-gate looks up the measurements inside it and
+    /// tests only those exactly.
+    ///
+    /// * Circle: the centre ± r·(1 + 2⁻⁸). The exact test accepts z when the
+    ///   rounded z − c is ≤ r; one rounding errs by less than 2⁻²³ of the
+    ///   result in f32 (fixed point subtracts exactly), so z − c < r·(1 + 2⁻⁸)
+    ///   and, rounding being monotone, z lies inside the rounded bounds.
+    /// * Range/azimuth window (half-widths h_R along and h_C across range at
+    ///   predicted range R_p): a point at range R and angle ΔB ≤ h_C/R_p from
+    ///   the prediction lies within √(h_R² + R·R_p·ΔB²) ≤
+    ///   h_R + h_C·(1 + h_R/R_p) of it; the box is the centre ± twice that
+    ///   plus (R_p + h_R)/256, room for the rounding of the projection, the
+    ///   square roots and the arctangent.
+    pub fn bounds(&self) -> BoundingBox<S> {
+        let (center, half) = match *self {
+            GateRegion::Circle { center, radius, .. } => {
+                (center, radius + radius * S::from_f64_lossy(1.0 / 256.0))
+            }
+            GateRegion::Polar {
+                range,
+                unit,
+                half_range,
+                inverse_half_range: _,
+                inverse_half_azimuth,
+            } => {
+                let half_cross = range / inverse_half_azimuth;
+                let spread = half_range + half_cross * (S::ONE + half_range / range);
+                let rounding = (range + half_range) * S::from_f64_lossy(1.0 / 256.0);
+                (
+                    [unit[0] * range, unit[1] * range],
+                    spread + spread + rounding,
+                )
+            }
+        };
+        BoundingBox {
+            min: [center[0] - half, center[1] - half],
+            max: [center[0] + half, center[1] + half],
+        }
     }
 
     /// Radius of a circular region; for a range/azimuth window, its range

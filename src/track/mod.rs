@@ -12,22 +12,28 @@
 //!    beyond the `M`th are [`Dropped`](Association::Dropped) and counted.
 //! 2. **Predict** every track to the scan time (the interval may change from
 //!    scan to scan).
-//! 3. **Gate.** Each track builds a validation region from its prediction
-//!    ([`TrackFilter::gate_region`]): sized from the filter's predicted
-//!    uncertainty, or Li et al.'s wave gate λ = √α ([`Gate`]). Each
-//!    (track, measurement) pair inside it gets a cost, the squared distance
-//!    normalised by the gate radius, quantised to `u16`.
-//! 4. **Associate** by global nearest neighbour, solved exactly
+//! 3. **Pre-gate and gate.** Each track builds a validation region from its
+//!    prediction ([`TrackFilter::gate_region`]): sized from the filter's
+//!    predicted uncertainty, or Li et al.'s wave gate λ = √α ([`Gate`]). The
+//!    measurements inside the region's bounding box are found in an index of
+//!    the scan's measurements (sorted in strips, O(log M) per track,
+//!    [`GateRegion::bounds`]), and only those are tested exactly. Each pair
+//!    inside the gate gets a cost, the squared distance normalised by the
+//!    gate radius, quantised to `u16`.
+//! 4. **Cluster.** Gated pairs join their tracks and measurements into
+//!    clusters that share no gated pair (union–find).
+//! 5. **Associate** by global nearest neighbour, solved exactly per cluster
 //!    ([`assign`]): the assignment with the most gated pairs and, among
-//!    those, the least total cost. Only tracks and measurements that appear
-//!    in some gate enter the solver.
-//! 5. **Update** each assigned track; **coast** every other one.
-//! 6. **Manage.** Confirm a tentative track when M of its first N scans had a
+//!    those, the least total cost; a cluster of one track and one
+//!    measurement is assigned directly. The result is the whole table's
+//!    solve, pair for pair, ties included ([`assign`], "Ties").
+//! 6. **Update** each assigned track; **coast** every other one.
+//! 7. **Manage.** Confirm a tentative track when M of its first N scans had a
 //!    measurement (default 2 of 3, the starting scan counting as the first
 //!    hit); delete a confirmed track after K consecutive misses (default 3), a
 //!    tentative one after fewer (default 2) or once M-of-N is out of reach,
 //!    and any track that leaves the surveillance [`Volume`].
-//! 7. **Initiate** (two-point method, Al-Wagih & Abdulla eqs. 9–10): a
+//! 8. **Initiate** (two-point method, Al-Wagih & Abdulla eqs. 9–10): a
 //!    measurement outside every gate pairs with an unused measurement of the
 //!    previous scan at most `v_max·T` (+ margin) away and starts a tentative
 //!    track. When the table is full the candidate is refused and counted —
@@ -50,8 +56,10 @@
 //! # Initiation pairing: why not optimal
 //!
 //! Pairing first points with second points is done by sequential nearest
-//! neighbour (P·L distance tests) instead of a second optimal assignment: an
-//! optimal solve would need a second workspace of M × M, and a wrong pairing
+//! neighbour (each first point looks up the unused measurements in its
+//! circle's bounding box through the pre-gate's index; ties go to the lowest
+//! index) instead of a second optimal assignment: an optimal solve would need
+//! a second workspace, and a wrong pairing
 //! among new candidates is corrected by M-of-N (its velocity is wrong, so its
 //! next gate misses and it is deleted) at the cost of one scan of latency.
 //!
@@ -74,16 +82,18 @@
 //! the error covariance ([`Uncertainty`]) 32 or 16. Fixed gains live once in
 //! [`TrackerConfig`], not per track.
 //!
-//! The whole table, `size_of::<TrackTable<S, FixedGainTrack<S>, N, M>>()`, is
+//! The whole table, `size_of::<TrackTable<S, FixedGainTrack<S>, N, M>>()`,
+//! rounded up to a multiple of 8, is
 //!
-//! * f64 and Fix: 48 + N·(212 + 2M) + 114·M bytes — 12 528 for N = M = 32;
-//! * f32:         48 + N·(140 + 2M) + 74·M bytes — 8 944 for N = M = 32.
+//! * f64 and Fix: 56 + 239·N + 154·M bytes — 12 640 for N = M = 32;
+//! * f32:         56 + 167·N + 114·M bytes — 9 056 for N = M = 32.
 //!
-//! Per track slot beyond the record: 24 bytes of solver workspace, one row of
-//! the `u16` cost matrix (2M), 4 bytes of indices. Per measurement slot: 24
-//! bytes of solver workspace, two [`Observation`]s (the scan's and the
-//! pending first points: 2 × 40 for f64/Fix, 2 × 20 for f32), an 8-byte
-//! [`Association`] and a 2-byte index.
+//! Per track slot beyond the record: 40 bytes of solver workspace, 12 of
+//! cluster links, 3 of indices and outcome. Per measurement slot: 24 bytes
+//! of solver workspace, 8 cached gated pairs (32 bytes), two
+//! [`Observation`]s (the scan's and the pending first points: 2 × 40 for
+//! f64/Fix, 2 × 20 for f32), an 8-byte [`Association`], 4 bytes of pre-gate
+//! index and 6 of links and indices. Nothing grows with N·M.
 //!
 //! Stack: all per-scan workspace is in the table, so the stack use of
 //! [`TrackTable::scan`] does not grow with N or M. On thumbv6m (release,
@@ -105,20 +115,23 @@
 
 mod adapters;
 pub mod assign;
+mod cluster;
 mod config;
 pub mod defaults;
 mod gate;
 mod model;
+mod pregate;
 mod table;
 
 pub use adapters::{RangeAzimuthTrack, ScheduledTrack};
+pub use cluster::PAIRS_PER_MEASUREMENT;
 pub use config::{TrackerConfig, Volume};
-pub use gate::{hypot, ConfigError, Gate, GateRegion};
+pub use gate::{hypot, BoundingBox, ConfigError, Gate, GateRegion};
 pub use model::{
     ErrorVariance, FixedGainTrack, Measurement, Observation, PredictedState, RejectReason,
     TrackFilter, Uncertainty,
 };
 pub use table::{
-    Association, DropReason, ScanError, ScanReport, TableStats, Track, TrackId, TrackStatus,
-    TrackTable,
+    Association, DropReason, ScanError, ScanReport, ScanStage, TableStats, Track, TrackId,
+    TrackStatus, TrackTable,
 };

@@ -3,9 +3,11 @@
 use core::marker::PhantomData;
 
 use super::assign::{AssignError, AssignmentSolver, FORBIDDEN};
+use super::cluster::{CachedCost, Clusters, NONE};
 use super::config::TrackerConfig;
 use super::gate::GateRegion;
 use super::model::{Measurement, Observation, RejectReason, TrackFilter};
+use super::pregate::MeasurementIndex;
 use crate::num::Scalar;
 
 /// A track's identity, unique over the lifetime of its table: ids are issued
@@ -221,14 +223,28 @@ pub struct ScanReport {
     pub rejected: u32,
     /// Beyond the table's `M` per scan; dropped.
     pub dropped_overflow: u32,
-    // --- predict, gate, associate
+    // --- predict, pre-gate, gate
     /// Tracks predicted to the scan time.
     pub predicted: u32,
+    /// (track, measurement) pairs inside a gate's bounding box: the exact
+    /// gate tests made (the spatial pre-gate's output).
+    pub candidates: u32,
     /// (track, measurement) pairs inside a gate.
     pub gated_pairs: u32,
+    /// Tracks whose gated pairs did not fit the pair cache: their costs
+    /// were recomputed for the solver.
+    pub uncached_tracks: u32,
+    // --- cluster, assign
+    /// Groups of tracks and measurements sharing no gated pair.
+    pub clusters: u32,
+    /// Clusters of one track and one measurement, assigned without the
+    /// solver.
+    pub single_pairs: u32,
+    /// Tracks in the largest cluster.
+    pub largest_cluster: u32,
     /// Pairs chosen by the assignment.
     pub assigned: u32,
-    /// Inner steps of the assignment solver.
+    /// Inner steps of the assignment solver, over all clusters.
     pub solver_steps: u32,
     // --- update
     /// Tracks updated with their measurement.
@@ -279,7 +295,43 @@ pub struct TableStats {
     pub rejected: u32,
 }
 
-const NONE: u16 = u16::MAX;
+/// The stages of [`TrackTable::scan`], in order: what
+/// [`TrackTable::scan_with_probe`] reports as each one ends.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+#[cfg_attr(feature = "defmt", derive(defmt::Format))]
+pub enum ScanStage {
+    /// Measurements checked and projected to x, y.
+    Intake,
+    /// The spatial pre-gate's index of the measurements built.
+    Index,
+    /// Every track predicted, its gate formed, the measurements in the
+    /// gate's bounding box tested exactly, the gated pairs cached and
+    /// joined into clusters.
+    Gate,
+    /// Each cluster's tracks and measurements listed.
+    Cluster,
+    /// Each cluster's optimal assignment.
+    Assign,
+    /// Each track updated with its measurement, or coasted.
+    Update,
+    /// Confirmation, deletion.
+    Manage,
+    /// Two-point initiation, the next scan's first points, the codes.
+    Initiate,
+}
+
+/// What the update stage did to one track.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+enum Outcome {
+    /// No track in the slot.
+    Empty,
+    /// Updated with a measurement.
+    Hit,
+    /// Coasted.
+    Miss,
+    /// Could not advance (arithmetic saturated): to be deleted.
+    Failed,
+}
 
 /// A fixed-capacity multi-target tracker: at most `N` tracks and `M`
 /// measurements per scan, no heap, `const fn new` (fits in a `static`).
@@ -295,11 +347,13 @@ pub struct TrackTable<S, F, const N: usize, const M: usize> {
     /// initiation.
     pending: [Option<Observation<S>>; M],
     stats: TableStats,
-    // --- per-scan workspace (kept here, not on the stack: N×M can be large)
-    cost: [[u16; M]; N],
+    // --- per-scan workspace (kept here, not on the stack)
     observations: [Option<Observation<S>>; M],
     codes: [Association; M],
-    slot_measurement: [u16; N],
+    index: MeasurementIndex<M>,
+    clusters: Clusters<N, M>,
+    outcomes: [Outcome; N],
+    /// The cluster being solved: its tracks' slots and measurements.
     row_slot: [u16; N],
     col_measurement: [u16; M],
     solver: AssignmentSolver<N, M>,
@@ -315,8 +369,8 @@ impl<S: Scalar, F: TrackFilter<S>, const N: usize, const M: usize> Default
 
 impl<S: Scalar, F: TrackFilter<S>, const N: usize, const M: usize> TrackTable<S, F, N, M> {
     const CAPACITY_OK: () = assert!(
-        N < NONE as usize && M < NONE as usize,
-        "track table capacities must be below 65535"
+        N < NONE as usize && M < NONE as usize && N + M < NONE as usize,
+        "track table capacities must be below 65535 together"
     );
 
     /// An empty table whose first track gets id 1.
@@ -343,10 +397,11 @@ impl<S: Scalar, F: TrackFilter<S>, const N: usize, const M: usize> TrackTable<S,
                 dropped_overflow: 0,
                 rejected: 0,
             },
-            cost: [[FORBIDDEN; M]; N],
             observations: [const { None }; M],
             codes: [Association::OutsideGates; M],
-            slot_measurement: [NONE; N],
+            index: MeasurementIndex::new(),
+            clusters: Clusters::new(),
+            outcomes: [Outcome::Empty; N],
             row_slot: [NONE; N],
             col_measurement: [NONE; M],
             solver: AssignmentSolver::new(),
@@ -441,25 +496,22 @@ impl<S: Scalar, F: TrackFilter<S>, const N: usize, const M: usize> TrackTable<S,
         measurements: &[Measurement<S>],
         codes: &mut [Association],
     ) -> Result<ScanReport, ScanError> {
-        let (interval_ms, dt) = match self.last_scan_ms {
-            None => (0, None),
-            Some(previous_ms) => {
-                let interval = now_ms.wrapping_sub(previous_ms);
-                if interval == 0 || interval > i32::MAX as u32 {
-                    return Err(ScanError::TimeNotIncreasing {
-                        previous_ms,
-                        now_ms,
-                    });
-                }
-                let dt = S::try_from_f64(interval as f64 / 1000.0)
-                    .map_err(|_| ScanError::IntervalNotRepresentable)?;
-                if dt <= S::ZERO {
-                    return Err(ScanError::IntervalNotRepresentable);
-                }
-                (interval, Some(dt))
-            }
-        };
-        let params = config.params();
+        self.scan_with_probe(config, now_ms, measurements, codes, |_| {})
+    }
+
+    /// [`Self::scan`], calling `probe` as each [`ScanStage`] ends (for
+    /// per-stage timing: the benchmark reads a timer there). Stages that do
+    /// not run (the first scan has no tracks to gate) are not reported.
+    pub fn scan_with_probe(
+        &mut self,
+        config: &TrackerConfig<S, F::Params>,
+        now_ms: u32,
+        measurements: &[Measurement<S>],
+        codes: &mut [Association],
+        mut probe: impl FnMut(ScanStage),
+    ) -> Result<ScanReport, ScanError> {
+        let (interval_ms, dt) = self.interval_to(now_ms)?;
+        let used = measurements.len().min(M);
         let mut report = ScanReport {
             time_ms: now_ms,
             interval_ms,
@@ -467,11 +519,64 @@ impl<S: Scalar, F: TrackFilter<S>, const N: usize, const M: usize> TrackTable<S,
             dropped_overflow: sat_u32(measurements.len().saturating_sub(M)),
             ..ScanReport::default()
         };
+        self.intake(measurements, &mut report);
+        probe(ScanStage::Intake);
+        if let Some(dt) = dt {
+            self.index.build(&self.observations);
+            probe(ScanStage::Index);
+            self.gate(config, dt, &mut report);
+            probe(ScanStage::Gate);
+            self.clusters.link();
+            probe(ScanStage::Cluster);
+            self.assign(config, dt, &mut report)?;
+            probe(ScanStage::Assign);
+        }
+        // From here on the table changes: the scan is accepted.
+        self.last_scan_ms = Some(now_ms);
+        self.stats.scans = self.stats.scans.saturating_add(1);
+        if let Some(dt) = dt {
+            self.update(config, dt, &mut report);
+            probe(ScanStage::Update);
+            self.manage(config, now_ms, &mut report);
+            probe(ScanStage::Manage);
+            self.initiate(config, dt, now_ms, &mut report);
+        }
+        self.keep_pending(config, used, &mut report);
+        self.write_codes(codes, measurements.len());
+        self.count_lifetime(&mut report);
+        probe(ScanStage::Initiate);
+        Ok(report)
+    }
 
-        // Intake: validate and project every measurement once.
+    /// The interval since the last scan, in ms and in seconds of `S`
+    /// (`None` for the first scan).
+    fn interval_to(&self, now_ms: u32) -> Result<(u32, Option<S>), ScanError> {
+        let Some(previous_ms) = self.last_scan_ms else {
+            return Ok((0, None));
+        };
+        let interval = now_ms.wrapping_sub(previous_ms);
+        if interval == 0 || interval > i32::MAX as u32 {
+            return Err(ScanError::TimeNotIncreasing {
+                previous_ms,
+                now_ms,
+            });
+        }
+        let dt = S::try_from_f64(interval as f64 / 1000.0)
+            .map_err(|_| ScanError::IntervalNotRepresentable)?;
+        if dt <= S::ZERO {
+            return Err(ScanError::IntervalNotRepresentable);
+        }
+        Ok((interval, Some(dt)))
+    }
+
+    /// Intake: validate and project every measurement once, and forget the
+    /// previous scan's workspace.
+    fn intake(&mut self, measurements: &[Measurement<S>], report: &mut ScanReport) {
         // In place: a whole-array assignment may build the array on the stack.
         self.observations.fill(None);
         self.codes.fill(Association::OutsideGates);
+        self.clusters.reset();
+        self.outcomes.fill(Outcome::Empty);
         for ((m, obs), code) in measurements
             .iter()
             .zip(self.observations.iter_mut())
@@ -481,192 +586,368 @@ impl<S: Scalar, F: TrackFilter<S>, const N: usize, const M: usize> TrackTable<S,
                 Ok(o) => *obs = Some(o),
                 Err(reason) => {
                     *code = Association::Rejected(reason);
-                    report.rejected += 1;
+                    increment(&mut report.rejected);
                 }
             }
         }
+    }
 
-        // Predict and gate.
-        let mut n_rows = 0usize;
-        if let Some(dt) = dt {
-            for (slot_index, (slot, cost_row)) in
-                self.slots.iter().zip(self.cost.iter_mut()).enumerate()
-            {
-                cost_row.fill(FORBIDDEN);
-                let Some(track) = slot else { continue };
-                let region: Option<GateRegion<S>> = match track.filter.predict(params, dt) {
-                    Ok(predicted) => {
-                        report.predicted += 1;
-                        track
-                            .filter
-                            .gate_region(params, &predicted, dt, config.gate())
-                    }
-                    Err(_) => None,
-                };
-                let Some(region) = region else { continue };
-                let mut gated = false;
-                for ((cost, obs), code) in cost_row
-                    .iter_mut()
-                    .zip(self.observations.iter())
-                    .zip(self.codes.iter_mut())
-                {
-                    let Some(o) = obs else { continue };
-                    if let Some(c) = region.cost(o) {
-                        *cost = c;
-                        *code = Association::NotAssigned;
-                        report.gated_pairs += 1;
-                        gated = true;
-                    }
-                }
-                if gated {
-                    if let Some(r) = self.row_slot.get_mut(n_rows) {
-                        // slot_index < N < 65535.
-                        *r = slot_index as u16;
-                        n_rows += 1;
-                    }
-                }
-            }
-        }
-        let mut n_cols = 0usize;
-        for (k, code) in self.codes.iter().enumerate() {
-            if *code == Association::NotAssigned {
-                if let Some(c) = self.col_measurement.get_mut(n_cols) {
-                    // k < M < 65535.
-                    *c = k as u16;
-                    n_cols += 1;
-                }
-            }
-        }
-
-        // Associate: optimal global nearest neighbour on the gated sub-problem.
-        self.slot_measurement.fill(NONE);
-        {
-            let cost = &self.cost;
-            let row_slot = &self.row_slot;
-            let col_measurement = &self.col_measurement;
-            let lookup = |r: usize, c: usize| -> u16 {
-                let slot = row_slot.get(r).copied().unwrap_or(NONE) as usize;
-                let k = col_measurement.get(c).copied().unwrap_or(NONE) as usize;
-                cost.get(slot)
-                    .and_then(|row| row.get(k))
-                    .copied()
-                    .unwrap_or(FORBIDDEN)
+    /// Predict, pre-gate and gate: each track's region, the measurements in
+    /// its bounding box, the exact test on those; every gated pair is cached
+    /// and joins its track's cluster.
+    fn gate(&mut self, config: &TrackerConfig<S, F::Params>, dt: S, report: &mut ScanReport) {
+        let params = config.params();
+        for (t, slot) in self.slots.iter().enumerate() {
+            let Some(track) = slot else { continue };
+            let Ok(predicted) = track.filter.predict(params, dt) else {
+                continue;
             };
-            let solution = self
-                .solver
-                .solve(n_rows, n_cols, lookup)
-                .map_err(ScanError::Assignment)?;
-            report.assigned = solution.assigned;
-            report.solver_steps = solution.steps;
+            increment(&mut report.predicted);
+            let Some(region) = track
+                .filter
+                .gate_region(params, &predicted, dt, config.gate())
+            else {
+                continue;
+            };
+            let (observations, codes, clusters) =
+                (&self.observations, &mut self.codes, &mut self.clusters);
+            self.index.for_each_in(observations, &region.bounds(), |k| {
+                increment(&mut report.candidates);
+                let Some(Some(o)) = observations.get(k) else {
+                    return;
+                };
+                let Some(cost) = region.cost(o) else { return };
+                increment(&mut report.gated_pairs);
+                clusters.add_pair(t, k, cost);
+                if let Some(code) = codes.get_mut(k) {
+                    *code = Association::NotAssigned;
+                }
+            });
+            if self.clusters.is_uncached(t) {
+                increment(&mut report.uncached_tracks);
+            }
         }
-        for r in 0..n_rows {
+    }
+
+    /// Associate: the optimal global-nearest-neighbour assignment of each
+    /// cluster, solved apart (identical to solving the whole table: see
+    /// [`assign`](super::assign), "Ties"). A cluster of one track and one
+    /// measurement needs no solver.
+    fn assign(
+        &mut self,
+        config: &TrackerConfig<S, F::Params>,
+        dt: S,
+        report: &mut ScanReport,
+    ) -> Result<(), ScanError> {
+        for root in 0..N {
+            if !self.clusters.is_root(root) {
+                continue;
+            }
+            let (rows, cols) = self.list_cluster(root);
+            increment(&mut report.clusters);
+            report.largest_cluster = report.largest_cluster.max(sat_u32(rows));
+            if let (1, 1, Some(&k)) = (rows, cols, self.col_measurement.first()) {
+                increment(&mut report.single_pairs);
+                increment(&mut report.assigned);
+                self.clusters.assign(root, k as usize);
+                continue;
+            }
+            self.solve_cluster(config, dt, rows, cols, report)?;
+        }
+        Ok(())
+    }
+
+    /// Copies the cluster rooted at `root` into `row_slot` and
+    /// `col_measurement`; returns its numbers of tracks and measurements.
+    fn list_cluster(&mut self, root: usize) -> (usize, usize) {
+        let mut rows = 0usize;
+        for (t, r) in self.clusters.tracks_of(root).zip(self.row_slot.iter_mut()) {
+            // t < N < 65535.
+            *r = t as u16;
+            rows = rows.saturating_add(1);
+        }
+        let mut cols = 0usize;
+        for (k, c) in self
+            .clusters
+            .measurements_of(root)
+            .zip(self.col_measurement.iter_mut())
+        {
+            // k < M < 65535.
+            *c = k as u16;
+            cols = cols.saturating_add(1);
+        }
+        (rows, cols)
+    }
+
+    /// The solver on the listed cluster; its pairs into the clusters' links.
+    fn solve_cluster(
+        &mut self,
+        config: &TrackerConfig<S, F::Params>,
+        dt: S,
+        rows: usize,
+        cols: usize,
+        report: &mut ScanReport,
+    ) -> Result<(), ScanError> {
+        let (slots, observations, clusters) = (&self.slots, &self.observations, &self.clusters);
+        let (row_slot, col_measurement) = (&self.row_slot, &self.col_measurement);
+        let lookup = |r: usize, c: usize| -> u16 {
+            let t = row_slot.get(r).copied().unwrap_or(NONE) as usize;
+            let k = col_measurement.get(c).copied().unwrap_or(NONE) as usize;
+            match clusters.cost(t, k) {
+                CachedCost::Gated(cost) => cost,
+                CachedCost::NotGated => FORBIDDEN,
+                CachedCost::Uncached => {
+                    let track = slots.get(t).and_then(|s| s.as_ref());
+                    let obs = observations.get(k).and_then(|o| o.as_ref());
+                    match (track, obs) {
+                        (Some(track), Some(o)) => gate_cost(track, config, dt, o),
+                        _ => FORBIDDEN,
+                    }
+                }
+            }
+        };
+        let solution = self
+            .solver
+            .solve(rows, cols, lookup)
+            .map_err(ScanError::Assignment)?;
+        report.assigned = report.assigned.saturating_add(solution.assigned);
+        report.solver_steps = report.solver_steps.saturating_add(solution.steps);
+        for r in 0..rows {
             let Some(c) = self.solver.col_for_row(r) else {
                 continue;
             };
-            let slot = self.row_slot.get(r).copied().unwrap_or(NONE) as usize;
-            let k = self.col_measurement.get(c).copied().unwrap_or(NONE);
-            if let Some(s) = self.slot_measurement.get_mut(slot) {
-                *s = k;
-            }
+            let t = self.row_slot.get(r).copied().unwrap_or(NONE) as usize;
+            let k = self.col_measurement.get(c).copied().unwrap_or(NONE) as usize;
+            self.clusters.assign(t, k);
         }
+        Ok(())
+    }
 
-        // From here on the table changes: the scan is accepted.
-        self.last_scan_ms = Some(now_ms);
-        self.stats.scans = self.stats.scans.saturating_add(1);
-
-        // Update, coast, confirm, delete.
-        let (confirm_hits, confirm_window) = config.confirmation();
-        let (delete_confirmed, delete_tentative) = config.deletion();
-        if let Some(dt) = dt {
-            for (slot, &k) in self.slots.iter_mut().zip(self.slot_measurement.iter()) {
-                let Some(track) = slot else { continue };
-                let mut hit = false;
-                if let (Some(Some(o)), Some(code)) = (
-                    self.observations.get(k as usize),
-                    self.codes.get_mut(k as usize),
-                ) {
+    /// Update each assigned track; coast every other one.
+    fn update(&mut self, config: &TrackerConfig<S, F::Params>, dt: S, report: &mut ScanReport) {
+        let params = config.params();
+        for (t, (slot, outcome)) in self
+            .slots
+            .iter_mut()
+            .zip(self.outcomes.iter_mut())
+            .enumerate()
+        {
+            let Some(track) = slot else { continue };
+            *outcome = Outcome::Miss;
+            if let Some(k) = self.clusters.assigned(t) {
+                if let (Some(Some(o)), Some(code)) =
+                    (self.observations.get(k), self.codes.get_mut(k))
+                {
                     match track.filter.update(params, o, dt) {
                         Ok(()) => {
-                            hit = true;
+                            *outcome = Outcome::Hit;
                             *code = Association::Updated(track.id);
-                            report.updated += 1;
+                            increment(&mut report.updated);
                         }
                         Err(_) => {
                             *code = Association::Rejected(RejectReason::FilterRefused);
-                            report.filter_refused += 1;
+                            increment(&mut report.filter_refused);
                         }
                     }
                 }
-                let mut delete = None;
-                if !hit {
-                    report.coasted += 1;
-                    if track.filter.coast(params, dt).is_err() {
-                        delete = Some(Deletion::Numeric);
-                    }
-                }
-                track.record_scan(hit, now_ms);
-                if delete.is_none() {
-                    delete = manage(
-                        track,
-                        confirm_hits,
-                        confirm_window,
-                        delete_confirmed,
-                        delete_tentative,
-                        &mut report,
-                    );
-                }
-                if delete.is_none() && !config.in_volume(track.filter.position()) {
-                    delete = Some(Deletion::LeftVolume);
-                }
-                if let Some(reason) = delete {
-                    *slot = None;
-                    report.deleted += 1;
-                    match reason {
-                        Deletion::Misses => report.deleted_misses += 1,
-                        Deletion::Unconfirmed => report.deleted_unconfirmed += 1,
-                        Deletion::LeftVolume => report.deleted_left_volume += 1,
-                        Deletion::Numeric => report.deleted_numeric += 1,
-                    }
+            }
+            if *outcome == Outcome::Miss {
+                increment(&mut report.coasted);
+                if track.filter.coast(params, dt).is_err() {
+                    *outcome = Outcome::Failed;
                 }
             }
         }
+    }
 
-        // Initiate: pair the previous scan's unused measurements with this
-        // scan's measurements outside every gate (two-point initiation).
-        if let Some(dt) = dt {
-            self.initiate(config, dt, now_ms, &mut report);
+    /// Confirm, and delete (misses, M-of-N out of reach, left the volume,
+    /// arithmetic failed).
+    fn manage(
+        &mut self,
+        config: &TrackerConfig<S, F::Params>,
+        now_ms: u32,
+        report: &mut ScanReport,
+    ) {
+        for (slot, outcome) in self.slots.iter_mut().zip(self.outcomes.iter()) {
+            let Some(track) = slot else { continue };
+            let hit = *outcome == Outcome::Hit;
+            track.record_scan(hit, now_ms);
+            let delete = if *outcome == Outcome::Failed {
+                Some(Deletion::Numeric)
+            } else {
+                lifecycle(track, config, report).or_else(|| {
+                    (!config.in_volume(track.filter.position())).then_some(Deletion::LeftVolume)
+                })
+            };
+            if let Some(reason) = delete {
+                *slot = None;
+                increment(&mut report.deleted);
+                match reason {
+                    Deletion::Misses => increment(&mut report.deleted_misses),
+                    Deletion::Unconfirmed => increment(&mut report.deleted_unconfirmed),
+                    Deletion::LeftVolume => increment(&mut report.deleted_left_volume),
+                    Deletion::Numeric => increment(&mut report.deleted_numeric),
+                }
+            }
         }
+    }
 
-        // The measurements still unused become next scan's first points.
+    /// Two-point initiation. For each pending first point in turn, the nearest
+    /// unused measurement of this scan within `max_speed·T + margin` is its
+    /// second point (sequential nearest neighbour over the measurements the
+    /// pre-gate finds in the circle's bounding box; ties go to the lowest
+    /// measurement index; see the module docs for why not an optimal
+    /// assignment here).
+    fn initiate(
+        &mut self,
+        config: &TrackerConfig<S, F::Params>,
+        dt: S,
+        now_ms: u32,
+        report: &mut ScanReport,
+    ) {
+        let radius = config.max_speed() * dt + config.initiation_margin();
+        for p in 0..M {
+            let Some(Some(first)) = self.pending.get(p).copied() else {
+                continue;
+            };
+            let Some(region) = GateRegion::circle(first.xy(), radius) else {
+                continue;
+            };
+            let Some(k) = self.nearest_unused(config, &region) else {
+                continue;
+            };
+            let Some(Some(second)) = self.observations.get(k).copied() else {
+                continue;
+            };
+            let code = self.start_track(config, dt, now_ms, &first, &second, report);
+            if let Some(c) = self.codes.get_mut(k) {
+                *c = code;
+            }
+            if let Some(pending) = self.pending.get_mut(p) {
+                *pending = None;
+            }
+        }
+    }
+
+    /// The unused measurement (outside every gate, inside the volume) of
+    /// least cost in `region`; the lowest index among equal costs.
+    fn nearest_unused(
+        &self,
+        config: &TrackerConfig<S, F::Params>,
+        region: &GateRegion<S>,
+    ) -> Option<usize> {
+        let mut best: Option<(u16, usize)> = None;
+        let (observations, codes) = (&self.observations, &self.codes);
+        self.index.for_each_in(observations, &region.bounds(), |k| {
+            if codes.get(k) != Some(&Association::OutsideGates) {
+                return;
+            }
+            let Some(Some(o)) = observations.get(k) else {
+                return;
+            };
+            if !config.in_volume(o.xy()) {
+                return;
+            }
+            if let Some(c) = region.cost(o) {
+                if best.is_none_or(|b| (c, k) < b) {
+                    best = Some((c, k));
+                }
+            }
+        });
+        best.map(|(_, k)| k)
+    }
+
+    /// A tentative track from two points, in a free slot; the second point's
+    /// code.
+    fn start_track(
+        &mut self,
+        config: &TrackerConfig<S, F::Params>,
+        dt: S,
+        now_ms: u32,
+        first: &Observation<S>,
+        second: &Observation<S>,
+        report: &mut ScanReport,
+    ) -> Association {
+        let Some(free) = self.slots.iter().position(|s| s.is_none()) else {
+            increment(&mut report.refused_table_full);
+            return Association::Dropped(DropReason::TableFull);
+        };
+        let params = config.params();
+        let mut filter = F::empty(params);
+        let started = filter
+            .update(params, first, dt)
+            .and_then(|()| filter.update(params, second, dt));
+        if started.is_err() {
+            return Association::Rejected(RejectReason::FilterRefused);
+        }
+        let id = self.allocate_id();
+        let mut track = Track {
+            id,
+            status: TrackStatus::Tentative,
+            misses: 0,
+            hits: 2,
+            scans: 1,
+            history: 1,
+            created_ms: now_ms,
+            last_update_ms: now_ms,
+            filter,
+            _scalar: PhantomData,
+        };
+        increment(&mut report.started);
+        if config.confirmation().0 <= 1 {
+            track.status = TrackStatus::Confirmed;
+            increment(&mut report.confirmed);
+        }
+        if let Some(slot) = self.slots.get_mut(free) {
+            *slot = Some(track);
+        }
+        Association::Started(id)
+    }
+
+    /// The measurements of this scan still unused become the next scan's
+    /// first points (those inside the volume).
+    fn keep_pending(
+        &mut self,
+        config: &TrackerConfig<S, F::Params>,
+        used: usize,
+        report: &mut ScanReport,
+    ) {
         self.pending.fill(None);
         for ((pending, obs), code) in self
             .pending
             .iter_mut()
             .zip(self.observations.iter())
             .zip(self.codes.iter())
+            .take(used)
         {
-            if *code == Association::OutsideGates {
-                report.outside_gates += 1;
-                if let Some(o) = obs {
-                    if config.in_volume(o.xy()) {
-                        *pending = Some(*o);
+            match code {
+                Association::OutsideGates => {
+                    increment(&mut report.outside_gates);
+                    if let Some(o) = obs {
+                        if config.in_volume(o.xy()) {
+                            *pending = Some(*o);
+                        }
                     }
                 }
-            }
-            if *code == Association::NotAssigned {
-                report.not_assigned += 1;
+                Association::NotAssigned => increment(&mut report.not_assigned),
+                _ => {}
             }
         }
+    }
 
-        // Report codes; the measurements beyond M were dropped.
-        for (i, out) in codes.iter_mut().take(measurements.len()).enumerate() {
+    /// The codes out; the measurements beyond M were dropped.
+    fn write_codes(&self, codes: &mut [Association], measurements: usize) {
+        for (i, out) in codes.iter_mut().take(measurements).enumerate() {
             *out = self
                 .codes
                 .get(i)
                 .copied()
                 .unwrap_or(Association::Dropped(DropReason::ScanOverflow));
         }
+    }
 
+    /// The report's result and the lifetime counters.
+    fn count_lifetime(&mut self, report: &mut ScanReport) {
         report.tracks = sat_u32(self.len());
         let s = &mut self.stats;
         s.tracks_started = s.tracks_started.saturating_add(report.started);
@@ -677,93 +958,25 @@ impl<S: Scalar, F: TrackFilter<S>, const N: usize, const M: usize> TrackTable<S,
             .saturating_add(report.refused_table_full);
         s.dropped_overflow = s.dropped_overflow.saturating_add(report.dropped_overflow);
         s.rejected = s.rejected.saturating_add(report.rejected);
-        Ok(report)
     }
+}
 
-    /// Two-point initiation. For each pending first point in turn, the nearest
-    /// unused measurement of this scan within `max_speed·T + margin` is its
-    /// second point (sequential nearest neighbour, P·L distance tests for P
-    /// pending points and L unused measurements; see the module docs for why
-    /// not an optimal assignment here).
-    fn initiate(
-        &mut self,
-        config: &TrackerConfig<S, F::Params>,
-        dt: S,
-        now_ms: u32,
-        report: &mut ScanReport,
-    ) {
-        let params = config.params();
-        let radius = config.max_speed() * dt + config.initiation_margin();
-        let (confirm_hits, _) = config.confirmation();
-        for p in 0..M {
-            let Some(Some(first)) = self.pending.get(p).copied() else {
-                continue;
-            };
-            let Some(region) = GateRegion::circle(first.xy(), radius) else {
-                continue;
-            };
-            let mut best: Option<(u16, usize)> = None;
-            for (k, (obs, code)) in self.observations.iter().zip(self.codes.iter()).enumerate() {
-                if *code != Association::OutsideGates {
-                    continue;
-                }
-                let Some(o) = obs else { continue };
-                if !config.in_volume(o.xy()) {
-                    continue;
-                }
-                if let Some(c) = region.cost(o) {
-                    if best.is_none_or(|(b, _)| c < b) {
-                        best = Some((c, k));
-                    }
-                }
-            }
-            let Some((_, k)) = best else { continue };
-            let Some(Some(second)) = self.observations.get(k).copied() else {
-                continue;
-            };
-            let code = if let Some(free) = self.slots.iter().position(|s| s.is_none()) {
-                let mut filter = F::empty(params);
-                let started = filter
-                    .update(params, &first, dt)
-                    .and_then(|()| filter.update(params, &second, dt));
-                if started.is_ok() {
-                    let id = self.allocate_id();
-                    let mut track = Track {
-                        id,
-                        status: TrackStatus::Tentative,
-                        misses: 0,
-                        hits: 2,
-                        scans: 1,
-                        history: 1,
-                        created_ms: now_ms,
-                        last_update_ms: now_ms,
-                        filter,
-                        _scalar: PhantomData,
-                    };
-                    report.started += 1;
-                    if confirm_hits <= 1 {
-                        track.status = TrackStatus::Confirmed;
-                        report.confirmed += 1;
-                    }
-                    if let Some(slot) = self.slots.get_mut(free) {
-                        *slot = Some(track);
-                    }
-                    Association::Started(id)
-                } else {
-                    Association::Rejected(RejectReason::FilterRefused)
-                }
-            } else {
-                report.refused_table_full += 1;
-                Association::Dropped(DropReason::TableFull)
-            };
-            if let Some(c) = self.codes.get_mut(k) {
-                *c = code;
-            }
-            if let Some(pending) = self.pending.get_mut(p) {
-                *pending = None;
-            }
-        }
-    }
+/// The gate cost of `o` for `track` (predict, region, exact test), as the
+/// gate stage computes it; [`FORBIDDEN`] outside the gate.
+fn gate_cost<S: Scalar, F: TrackFilter<S>>(
+    track: &Track<S, F>,
+    config: &TrackerConfig<S, F::Params>,
+    dt: S,
+    o: &Observation<S>,
+) -> u16 {
+    let params = config.params();
+    track
+        .filter
+        .predict(params, dt)
+        .ok()
+        .and_then(|p| track.filter.gate_region(params, &p, dt, config.gate()))
+        .and_then(|region| region.cost(o))
+        .unwrap_or(FORBIDDEN)
 }
 
 #[derive(Clone, Copy)]
@@ -775,14 +988,13 @@ enum Deletion {
 }
 
 /// Confirmation and miss-count deletion after a track's scan was recorded.
-fn manage<S: Scalar, F: TrackFilter<S>>(
+fn lifecycle<S: Scalar, F: TrackFilter<S>>(
     track: &mut Track<S, F>,
-    confirm_hits: u8,
-    confirm_window: u8,
-    delete_confirmed: u8,
-    delete_tentative: u8,
+    config: &TrackerConfig<S, F::Params>,
     report: &mut ScanReport,
 ) -> Option<Deletion> {
+    let (confirm_hits, confirm_window) = config.confirmation();
+    let (delete_confirmed, delete_tentative) = config.deletion();
     if track.status == TrackStatus::Tentative {
         // M-of-N over the first N scans (the starting scan is scan 1).
         let mask = match confirm_window {
@@ -793,7 +1005,7 @@ fn manage<S: Scalar, F: TrackFilter<S>>(
         let remaining = (confirm_window as u32).saturating_sub(track.scans as u32);
         if hits_in_window >= confirm_hits as u32 {
             track.status = TrackStatus::Confirmed;
-            report.confirmed += 1;
+            increment(&mut report.confirmed);
             None
         } else if track.misses >= delete_tentative {
             Some(Deletion::Misses)
@@ -807,6 +1019,11 @@ fn manage<S: Scalar, F: TrackFilter<S>>(
     } else {
         None
     }
+}
+
+/// Counts one (saturating).
+fn increment(counter: &mut u32) {
+    *counter = counter.saturating_add(1);
 }
 
 fn sat_u32(n: usize) -> u32 {
