@@ -579,13 +579,16 @@ const FLOOR: &str = "floor_ab2d_update";
 const MINIKALMAN: &str = "kalman_cv2d_update";
 const MINIKALMAN_FIXED: &str = "i16f16";
 /// The scan's stages, in order (operation `<scan>/<stage>`).
-const STAGES: &[&str] = &["predict", "gate", "assign", "update"];
+const STAGES: &[&str] = &[
+    "intake", "index", "gate", "cluster", "assign", "update", "manage", "initiate",
+];
 /// The counts shown beside the scan figures.
 const SCAN_COUNTS: &[&str] = &[
+    "candidates",
     "gated_pairs",
     "solver_steps",
     "clusters",
-    "largest_cluster_tracks",
+    "largest_cluster",
 ];
 
 fn is_f32(numeric: &str) -> bool {
@@ -722,9 +725,11 @@ fn method(s: &mut String, report: &Report, qemu_version: &str, rustc_version: &s
          time (gains, interval) is opaque to the optimiser.\n\
          - A scan figure is the average of whole `TrackTable::scan` calls in steady \
          state (every target tracked, one measurement each), timed one by one; its \
-         stages (`predict`, `gate`, `assign`, `update`) are the same library calls timed \
-         once each, to the SysTick resolution; `rest` is the scan minus the stages \
-         (intake, bookkeeping, lifecycle).\n\
+         stages are timed inside the same scans (SysTick read as \
+         `TrackTable::scan_with_probe` reports each stage's end: `intake`, `index` the \
+         pre-gate's index, `gate` predict + pre-gate + exact gate, `cluster`, `assign`, \
+         `update`, `manage`, `initiate` with the codes and counters); `rest` is the scan \
+         minus the stages (the call, the probes).\n\
          - The figures are deterministic: the same code gives the same file.\n\n",
     );
     s.push_str(&header(&[
@@ -877,28 +882,15 @@ fn scans(s: &mut String, report: &Report) {
     s.push_str(
         "Instructions per scan, N tracks and M measurements per scan. `growth` is the \
          scan's figure over the previous size's, and `exponent` the power of N that \
-         growth corresponds to (1: linear, 2: quadratic). Gated pairs, solver steps and \
-         clusters are counted by the table and by the benchmark (clusters: groups of \
-         tracks joined by sharing a gated measurement; largest in tracks).\n\n",
+         growth corresponds to (1: linear, 2: quadratic). The counts (candidates of the \
+         pre-gate, gated pairs, solver steps, clusters, tracks in the largest) are the \
+         table's own, from the last scan timed.\n\n",
     );
-    s.push_str(&header(&[
-        "core",
-        "numeric",
-        "operation",
-        "N × M",
-        "scan",
-        "predict",
-        "gate",
-        "assign",
-        "update",
-        "rest",
-        "growth",
-        "exponent",
-        "gated pairs",
-        "solver steps",
-        "clusters",
-        "largest cluster",
-    ]));
+    let mut columns = vec!["core", "numeric", "operation", "N × M", "scan"];
+    columns.extend(STAGES.iter().copied());
+    columns.extend(["rest", "growth", "exponent"]);
+    columns.extend(SCAN_COUNTS.iter().copied());
+    s.push_str(&header(&columns));
     for run in &report.runs {
         for n in numerics(run) {
             let scans = ordered(
@@ -987,8 +979,10 @@ fn scan_counts(s: &mut String, report: &Report) {
     }
     s.push_str("### Every count of the scan rows\n\n");
     s.push_str(
-        "The table's `ScanReport` of the last scan timed, and the cluster structure of \
-         the scan whose stages were timed.\n\n",
+        "The table's `ScanReport` of the last scan timed, and the sizes of the clusters \
+         (tracks joined by a gated measurement) of the scan after it, counted by the \
+         benchmark: `clusters_of_1`, `clusters_of_2_3`, `clusters_of_4_8`, \
+         `clusters_of_9_up`.\n\n",
     );
     let mut cols = vec!["core", "numeric", "operation", "N × M"];
     cols.extend(counters.iter().copied());

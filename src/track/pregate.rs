@@ -8,7 +8,9 @@
 //! (one binary search). A query costs O(log L + s·log √L + k) for s strips
 //! crossed and k measurements returned, against L for testing all; building
 //! costs O(L log L) comparisons (heapsort: no recursion, no allocation, no
-//! panic path). Strips rather than one sort by x because targets aligned in
+//! panic path). The coordinates are copied next to the measurement slots (2
+//! numbers and 4 bytes per measurement slot) so that sorting and searching
+//! read one array. Strips rather than one sort by x because targets aligned in
 //! x (a grid, a column of aircraft on one airway) would otherwise all fall
 //! into every box of their column.
 //!
@@ -21,43 +23,54 @@ use super::gate::BoundingBox;
 use super::model::Observation;
 use crate::num::Scalar;
 
-/// "No measurement".
-const NONE: u16 = u16::MAX;
+/// One indexed measurement: a coordinate (x in `by_x`, y in `by_y`) and
+/// its slot.
+#[derive(Debug, Clone, Copy)]
+struct Entry<S> {
+    key: S,
+    slot: u16,
+}
 
-/// The scan's measurements in strips (see the module docs). Indices are
-/// measurement slots (< M < 65535).
+/// The scan's measurements in strips (see the module docs). Slots are
+/// measurement indices (< M < 65535). The keys are copied next to the slots
+/// so that sorting and searching read one array.
 #[derive(Debug, Clone)]
-pub(super) struct MeasurementIndex<const M: usize> {
+pub(super) struct MeasurementIndex<S, const M: usize> {
     /// The valid measurements sorted by (x, slot).
-    by_x: [u16; M],
+    by_x: [Entry<S>; M],
     /// `by_x` with each strip sorted by (y, slot).
-    by_y: [u16; M],
+    by_y: [Entry<S>; M],
     /// Valid measurements (the used prefix of both arrays).
     len: u16,
     /// Measurements per strip, ⌈√len⌉ (the last strip may hold fewer).
     strip: u16,
 }
 
-impl<const M: usize> MeasurementIndex<M> {
+impl<S: Scalar, const M: usize> MeasurementIndex<S, M> {
     pub(super) const fn new() -> Self {
+        let empty = Entry {
+            key: S::ZERO,
+            slot: u16::MAX,
+        };
         MeasurementIndex {
-            by_x: [NONE; M],
-            by_y: [NONE; M],
+            by_x: [empty; M],
+            by_y: [empty; M],
             len: 0,
             strip: 1,
         }
     }
 
     /// Indexes the valid entries of `observations`.
-    pub(super) fn build<S: Scalar>(&mut self, observations: &[Option<Observation<S>>; M]) {
+    pub(super) fn build(&mut self, observations: &[Option<Observation<S>>; M]) {
         let mut len = 0usize;
         for (k, obs) in observations.iter().enumerate() {
-            if obs.is_none() {
-                continue;
-            }
-            if let Some(slot) = self.by_x.get_mut(len) {
+            let Some(o) = obs else { continue };
+            if let Some(e) = self.by_x.get_mut(len) {
                 // k < M < 65535.
-                *slot = k as u16;
+                *e = Entry {
+                    key: o.xy()[0],
+                    slot: k as u16,
+                };
                 len = len.saturating_add(1);
             }
         }
@@ -65,26 +78,21 @@ impl<const M: usize> MeasurementIndex<M> {
         self.len = len as u16;
         let strip = ceil_sqrt(len).max(1);
         self.strip = strip as u16;
-        let key = |axis: usize| {
-            move |k: u16| {
-                observations
-                    .get(k as usize)
-                    .and_then(|o| o.as_ref())
-                    .and_then(|o| o.xy().get(axis).copied())
-            }
-        };
-        let Some(by_x) = self.by_x.get_mut(..len) else {
-            return;
-        };
-        heapsort(by_x, key(0));
+        if let Some(by_x) = self.by_x.get_mut(..len) {
+            heapsort(by_x);
+        }
         for (x, y) in self.by_x.iter().zip(self.by_y.iter_mut()).take(len) {
-            *y = *x;
+            let key = observations
+                .get(x.slot as usize)
+                .and_then(|o| o.as_ref())
+                .map_or(S::ZERO, |o| o.xy()[1]);
+            *y = Entry { key, slot: x.slot };
         }
         let mut start = 0;
         while start < len {
             let stop = start.saturating_add(strip).min(len);
             if let Some(run) = self.by_y.get_mut(start..stop) {
-                heapsort(run, key(1));
+                heapsort(run);
             }
             start = stop;
         }
@@ -93,26 +101,20 @@ impl<const M: usize> MeasurementIndex<M> {
     /// Calls `visit(k)` for every indexed measurement `k` inside `bounds`
     /// (boundaries included), strip by strip, in increasing y within a
     /// strip.
-    pub(super) fn for_each_in<S: Scalar>(
+    pub(super) fn for_each_in(
         &self,
         observations: &[Option<Observation<S>>; M],
         bounds: &BoundingBox<S>,
         mut visit: impl FnMut(usize),
     ) {
-        let xy = |k: u16| {
-            observations
-                .get(k as usize)
-                .and_then(|o| o.as_ref())
-                .map(|o| o.xy())
-        };
         let (len, strip) = (self.len as usize, self.strip as usize);
         let (Some(by_x), Some(by_y)) = (self.by_x.get(..len), self.by_y.get(..len)) else {
             return;
         };
         // Sorted positions [first, end) have x in [min, max]; the strips
         // holding them are the ones to visit.
-        let first = by_x.partition_point(|&k| xy(k).is_some_and(|p| p[0] < bounds.min[0]));
-        let end = by_x.partition_point(|&k| xy(k).is_some_and(|p| p[0] <= bounds.max[0]));
+        let first = by_x.partition_point(|e| e.key < bounds.min[0]);
+        let end = by_x.partition_point(|e| e.key <= bounds.max[0]);
         if first >= end {
             return;
         }
@@ -123,14 +125,18 @@ impl<const M: usize> MeasurementIndex<M> {
             let Some(run) = by_y.get(start..stop) else {
                 return;
             };
-            let from = run.partition_point(|&k| xy(k).is_some_and(|p| p[1] < bounds.min[1]));
-            for &k in run.iter().skip(from) {
-                let Some(p) = xy(k) else { continue };
-                if p[1] > bounds.max[1] {
+            let from = run.partition_point(|e| e.key < bounds.min[1]);
+            for e in run.iter().skip(from) {
+                if e.key > bounds.max[1] {
                     break;
                 }
-                if p[0] >= bounds.min[0] && p[0] <= bounds.max[0] {
-                    visit(k as usize);
+                let k = e.slot as usize;
+                let inside_x = observations
+                    .get(k)
+                    .and_then(|o| o.as_ref())
+                    .is_some_and(|o| o.xy()[0] >= bounds.min[0] && o.xy()[0] <= bounds.max[0]);
+                if inside_x {
+                    visit(k);
                 }
             }
             start = stop;
@@ -148,31 +154,25 @@ fn ceil_sqrt(n: usize) -> usize {
     }
 }
 
-/// Sorts measurement indices by (`key`, index): a total order, so the result
-/// does not depend on the input order. Values without a key sort last.
-fn heapsort<S: PartialOrd>(v: &mut [u16], key: impl Fn(u16) -> Option<S>) {
-    let less = |a: u16, b: u16| match (key(a), key(b)) {
-        (Some(ka), Some(kb)) => match ka.partial_cmp(&kb) {
-            Some(core::cmp::Ordering::Less) => true,
-            Some(core::cmp::Ordering::Greater) => false,
-            _ => a < b,
-        },
-        (Some(_), None) => true,
-        (None, Some(_)) => false,
-        (None, None) => a < b,
-    };
+/// Sorts entries by (key, slot): a total order (keys are valid numbers), so
+/// the result does not depend on the input order.
+fn heapsort<S: PartialOrd + Copy>(v: &mut [Entry<S>]) {
     let n = v.len();
     for root in (0..n / 2).rev() {
-        sift_down(v, root, n, &less);
+        sift_down(v, root, n);
     }
     for end in (1..n).rev() {
         swap(v, 0, end);
-        sift_down(v, 0, end, &less);
+        sift_down(v, 0, end);
     }
 }
 
+fn less<S: PartialOrd>(a: &Entry<S>, b: &Entry<S>) -> bool {
+    a.key < b.key || (a.key == b.key && a.slot < b.slot)
+}
+
 /// Restores the max-heap property of `v[..end]` below `root`.
-fn sift_down(v: &mut [u16], mut root: usize, end: usize, less: &impl Fn(u16, u16) -> bool) {
+fn sift_down<S: PartialOrd + Copy>(v: &mut [Entry<S>], mut root: usize, end: usize) {
     loop {
         let left = root.saturating_mul(2).saturating_add(1);
         if left >= end {
@@ -182,17 +182,15 @@ fn sift_down(v: &mut [u16], mut root: usize, end: usize, less: &impl Fn(u16, u16
         let (Some(&l), Some(&r)) = (v.get(left), v.get(root)) else {
             return;
         };
-        let mut child = left;
-        let mut child_value = l;
+        let (mut child, mut child_value) = (left, l);
         if right < end {
             if let Some(&rv) = v.get(right) {
-                if less(l, rv) {
-                    child = right;
-                    child_value = rv;
+                if less(&l, &rv) {
+                    (child, child_value) = (right, rv);
                 }
             }
         }
-        if !less(r, child_value) {
+        if !less(&r, &child_value) {
             return;
         }
         swap(v, root, child);
@@ -200,7 +198,7 @@ fn sift_down(v: &mut [u16], mut root: usize, end: usize, less: &impl Fn(u16, u16
     }
 }
 
-fn swap(v: &mut [u16], a: usize, b: usize) {
+fn swap<T: Copy>(v: &mut [T], a: usize, b: usize) {
     if let (Some(&x), Some(&y)) = (v.get(a), v.get(b)) {
         if let Some(p) = v.get_mut(a) {
             *p = y;

@@ -350,7 +350,7 @@ pub struct TrackTable<S, F, const N: usize, const M: usize> {
     // --- per-scan workspace (kept here, not on the stack)
     observations: [Option<Observation<S>>; M],
     codes: [Association; M],
-    index: MeasurementIndex<M>,
+    index: MeasurementIndex<S, M>,
     clusters: Clusters<N, M>,
     outcomes: [Outcome; N],
     /// The cluster being solved: its tracks' slots and measurements.

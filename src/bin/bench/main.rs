@@ -87,9 +87,18 @@ fn bench_numeric<S: Numeric>(bench: &mut Bench) {
     anchors::floor::<S>(bench);
     if scans_fit::<S>() {
         // The track table at N tracks = M measurements per scan, one line
-        // per size (each a table type of its own, with its own code).
+        // per size (each a table type of its own, with its own code). The
+        // micro:bit's 16 KiB of RAM hold the table (on the stack) up to the
+        // sizes below (`track/mod.rs` gives its bytes).
         scan::run::<S, 8, 8>(bench);
         scan::run::<S, 16, 16>(bench);
+        #[cfg(not(abtrack_board = "microbit"))]
+        {
+            scan::run::<S, 32, 32>(bench);
+            scan::run::<S, 64, 64>(bench);
+            scan::run::<S, 128, 128>(bench);
+            scan::run::<S, 256, 256>(bench);
+        }
     }
 }
 

@@ -1,17 +1,18 @@
 //! The track table's scan (issue 9's rows): `scan_separated` and
 //! `scan_crowded`, N confirmed tracks in steady state and M = N
-//! measurements per scan, with the scan's stages timed apart and the counts
-//! the table reports.
+//! measurements per scan, with the scan's stages timed inside the scan
+//! (`TrackTable::scan_with_probe`), the counts the table reports and the
+//! sizes of the clusters of the gated pairs.
 
 use core::hint::black_box;
 
 use abtrack::filter::Gains;
-use abtrack::track::assign::{AssignmentSolver, FORBIDDEN};
 use abtrack::track::{
-    Association, FixedGainTrack, Gate, Measurement, Observation, ScanReport, TrackFilter,
-    TrackTable, TrackerConfig,
+    Association, FixedGainTrack, Gate, Measurement, Observation, ScanReport, ScanStage,
+    TrackFilter, TrackTable, TrackerConfig,
 };
 use abtrack::Scalar;
+use cortex_m::peripheral::SYST;
 
 use crate::counter::{Bench, Size};
 use crate::numeric::Numeric;
@@ -41,7 +42,12 @@ type ReportField = fn(&ScanReport) -> u32;
 const REPORT_COUNTS: &[(&str, ReportField)] = &[
     ("measurements", |r| r.measurements),
     ("predicted", |r| r.predicted),
+    ("candidates", |r| r.candidates),
     ("gated_pairs", |r| r.gated_pairs),
+    ("uncached_tracks", |r| r.uncached_tracks),
+    ("clusters", |r| r.clusters),
+    ("single_pairs", |r| r.single_pairs),
+    ("largest_cluster", |r| r.largest_cluster),
     ("assigned", |r| r.assigned),
     ("solver_steps", |r| r.solver_steps),
     ("updated", |r| r.updated),
@@ -51,6 +57,56 @@ const REPORT_COUNTS: &[(&str, ReportField)] = &[
     ("started", |r| r.started),
     ("deleted", |r| r.deleted),
     ("tracks", |r| r.tracks),
+];
+
+/// The scan's stages in the order `scan_with_probe` reports them, with
+/// each scene's operation name for the stage's figure.
+const STAGES: [(ScanStage, &str, &str); 8] = [
+    (
+        ScanStage::Intake,
+        "scan_separated/intake",
+        "scan_crowded/intake",
+    ),
+    (
+        ScanStage::Index,
+        "scan_separated/index",
+        "scan_crowded/index",
+    ),
+    (ScanStage::Gate, "scan_separated/gate", "scan_crowded/gate"),
+    (
+        ScanStage::Cluster,
+        "scan_separated/cluster",
+        "scan_crowded/cluster",
+    ),
+    (
+        ScanStage::Assign,
+        "scan_separated/assign",
+        "scan_crowded/assign",
+    ),
+    (
+        ScanStage::Update,
+        "scan_separated/update",
+        "scan_crowded/update",
+    ),
+    (
+        ScanStage::Manage,
+        "scan_separated/manage",
+        "scan_crowded/manage",
+    ),
+    (
+        ScanStage::Initiate,
+        "scan_separated/initiate",
+        "scan_crowded/initiate",
+    ),
+];
+
+/// Cluster sizes counted (tracks per cluster): the bounds of each class
+/// and its counter's name.
+const CLUSTER_CLASSES: [(u32, u32, &str); 4] = [
+    (1, 1, "clusters_of_1"),
+    (2, 3, "clusters_of_2_3"),
+    (4, 8, "clusters_of_4_8"),
+    (9, u32::MAX, "clusters_of_9_up"),
 ];
 
 #[derive(Clone, Copy)]
@@ -70,17 +126,12 @@ impl Scene {
         }
     }
 
-    /// The stage rows' operations: `<scene>/<stage>`.
-    fn stage(self, stage: Stage) -> &'static str {
-        match (self, stage) {
-            (Scene::Separated, Stage::Predict) => "scan_separated/predict",
-            (Scene::Separated, Stage::Gate) => "scan_separated/gate",
-            (Scene::Separated, Stage::Assign) => "scan_separated/assign",
-            (Scene::Separated, Stage::Update) => "scan_separated/update",
-            (Scene::Crowded, Stage::Predict) => "scan_crowded/predict",
-            (Scene::Crowded, Stage::Gate) => "scan_crowded/gate",
-            (Scene::Crowded, Stage::Assign) => "scan_crowded/assign",
-            (Scene::Crowded, Stage::Update) => "scan_crowded/update",
+    /// The stage rows' operation: `<scene>/<stage>`.
+    fn stage(self, stage: usize) -> &'static str {
+        match (self, STAGES.get(stage)) {
+            (Scene::Separated, Some((_, separated, _))) => separated,
+            (Scene::Crowded, Some((_, _, crowded))) => crowded,
+            (_, None) => "scan/unknown",
         }
     }
 
@@ -151,16 +202,9 @@ fn crowded_cluster(i: usize, targets: usize) -> (usize, usize, usize) {
     (found.0, found.1, cluster)
 }
 
-#[derive(Clone, Copy)]
-enum Stage {
-    Predict,
-    Gate,
-    Assign,
-    Update,
-}
-
 type BenchTable<S, const N: usize, const M: usize> = TrackTable<S, FixedGainTrack<S>, N, M>;
 
+/// One scan; `marks[i]` gets SysTick's value as stage `STAGES[i]` ends.
 #[inline(never)]
 fn run_scan<S: Scalar, const N: usize, const M: usize>(
     table: &mut BenchTable<S, N, M>,
@@ -168,8 +212,15 @@ fn run_scan<S: Scalar, const N: usize, const M: usize>(
     now_ms: u32,
     measurements: &[Measurement<S>; M],
     codes: &mut [Association; M],
+    marks: &mut [u32; STAGES.len()],
 ) -> Option<ScanReport> {
-    table.scan(config, now_ms, measurements, codes).ok()
+    table
+        .scan_with_probe(config, now_ms, measurements, codes, |stage| {
+            if let Some(m) = marks.get_mut(stage as usize) {
+                *m = SYST::get_current();
+            }
+        })
+        .ok()
 }
 
 /// Both scenes at N tracks, M measurements per scan.
@@ -179,12 +230,10 @@ pub fn run<S: Numeric, const N: usize, const M: usize>(bench: &mut Bench) {
     scene::<S, N, M>(bench, Scene::Crowded);
 }
 
-/// One scene in steady state: the whole `scan`, averaged over
-/// [`TIMED_SCANS`] scans, then its stages timed apart by calling the same
-/// library functions the scan calls (the track filters' `predict`,
-/// `gate_region` and `GateRegion::cost`, the assignment solver, the
-/// filters' `update`) on the table's tracks. The scan's other work (intake,
-/// bookkeeping, lifecycle, initiation) is the difference.
+/// One scene in steady state: the whole `scan` and each of its stages,
+/// averaged over [`TIMED_SCANS`] scans timed one by one (each stage from
+/// SysTick read where the scan reports the stage's end); the counts of the
+/// last scan; the sizes of the clusters of the gated pairs.
 #[inline(never)]
 fn scene<S: Numeric, const N: usize, const M: usize>(bench: &mut Bench, scene: Scene) {
     let numeric = S::LABEL;
@@ -210,10 +259,11 @@ fn scene<S: Numeric, const N: usize, const M: usize>(bench: &mut Bench, scene: S
     let mut table = const { BenchTable::<S, N, M>::new() };
     let mut rng = Lcg::new(5);
     let mut codes = [Association::OutsideGates; M];
+    let mut marks = [0u32; STAGES.len()];
     let mut k = 0u32;
     while k < WARM_UP_SCANS {
         let m = scene.measurements::<S, M>(k, &mut rng);
-        if run_scan(&mut table, &config, 1000 * k, &m, &mut codes).is_none() {
+        if run_scan(&mut table, &config, 1000 * k, &m, &mut codes, &mut marks).is_none() {
             bench.fail(numeric, operation, "warm-up scan refused");
             return;
         }
@@ -227,19 +277,23 @@ fn scene<S: Numeric, const N: usize, const M: usize>(bench: &mut Bench, scene: S
 
     // Whole scans, timed one by one (the measurements made outside).
     let (mut scan_ticks, mut empty_ticks) = (0u32, 0u32);
+    let mut stage_ticks = [0u32; STAGES.len()];
     let mut last = ScanReport::default();
     for _ in 0..TIMED_SCANS {
         let m = scene.measurements::<S, M>(k, &mut rng);
         let now = 1000 * k;
         let mut report = None;
+        let mut start = 0u32;
         let (Some(t), Some(e)) = (
             bench.time(|| {
+                start = SYST::get_current();
                 report = black_box(run_scan(
                     &mut table,
                     &config,
                     now,
                     black_box(&m),
                     &mut codes,
+                    &mut marks,
                 ));
             }),
             bench.time(|| {
@@ -263,114 +317,40 @@ fn scene<S: Numeric, const N: usize, const M: usize>(bench: &mut Bench, scene: S
             bench.fail(numeric, operation, "not in steady state");
             return;
         }
+        // SysTick counts down: each stage is the previous mark minus its own.
+        let mut previous = start;
+        for (ticks, &mark) in stage_ticks.iter_mut().zip(marks.iter()) {
+            *ticks += previous.saturating_sub(mark);
+            previous = mark;
+        }
         scan_ticks += t;
         empty_ticks += e;
         last = report;
         k += 1;
     }
     let net = scan_ticks.saturating_sub(empty_ticks);
-    bench.figure(
-        numeric,
-        operation,
-        Some(size),
-        bench.instructions(net) / TIMED_SCANS as f64,
-    );
+    let per_scan = |ticks: u32| bench.instructions(ticks) / TIMED_SCANS as f64;
+    let (scan, stages) = (per_scan(net), stage_ticks.map(per_scan));
+    bench.figure(numeric, operation, Some(size), scan);
+    for (i, instructions) in stages.iter().enumerate() {
+        bench.figure(numeric, scene.stage(i), Some(size), *instructions);
+    }
     for (name, count) in REPORT_COUNTS {
         bench.count(numeric, operation, size, name, count(&last));
     }
 
-    // The stages on the table's tracks, at the next scan (predict and gate
-    // read them in place; update works on a copy of each track, made inside
-    // the timed loop).
-    let dt = S::from_f64_lossy(1.0);
+    // The clusters the next scan's gated pairs form, sized by the
+    // benchmark from the public API (every pair tested, untimed).
     let m = scene.measurements::<S, M>(k, &mut rng);
-    let observations: [Option<Observation<S>>; M] = m.map(|x| Observation::new(x).ok());
-    let mut predicted = [None; N];
-    let predict = bench.time(|| {
-        for (p, t) in predicted.iter_mut().zip(black_box(&table).tracks()) {
-            *p = t.filter().predict(&gains, dt).ok();
-        }
-        black_box(&predicted);
-    });
-    let mut cost = [[FORBIDDEN; M]; N];
-    let gate_ticks = bench.time(|| {
-        let tracks = black_box(&table).tracks();
-        for ((row, t), p) in cost.iter_mut().zip(tracks).zip(predicted.iter()) {
-            let f = t.filter();
-            let Some(region) = p.and_then(|p| f.gate_region(&gains, &p, dt, config.gate())) else {
-                continue;
-            };
-            for (c, o) in row.iter_mut().zip(black_box(&observations).iter()) {
-                if let Some(o) = o {
-                    *c = region.cost(o).unwrap_or(FORBIDDEN);
-                }
-            }
-        }
-        black_box(&cost);
-    });
-    let mut solver = const { AssignmentSolver::<N, M>::new() };
-    let mut solution = None;
-    let assign = bench.time(|| {
-        let c = black_box(&cost);
-        solution = solver
-            .solve(N, M, |r, col| {
-                c.get(r)
-                    .and_then(|row| row.get(col))
-                    .copied()
-                    .unwrap_or(FORBIDDEN)
-            })
-            .ok();
-    });
-    let assigned: [Option<usize>; N] = core::array::from_fn(|r| solver.col_for_row(r));
-    let mut accepted = 0usize;
-    let update = bench.time(|| {
-        for (t, a) in black_box(&table).tracks().zip(assigned.iter()) {
-            if let Some(Some(o)) = a.and_then(|c| observations.get(c)) {
-                let mut f = *t.filter();
-                if f.update(&gains, o, dt).is_ok() {
-                    accepted += 1;
-                }
-                black_box(&f);
-            }
-        }
-    });
-    let empty = bench.time(|| {
-        black_box(&table);
-    });
-    let (Some(p), Some(g), Some(a), Some(u), Some(e), Some(_)) =
-        (predict, gate_ticks, assign, update, empty, solution)
-    else {
-        bench.fail(numeric, operation, "stage timing failed");
-        return;
-    };
-    bench.check(
-        accepted == N.min(M),
-        numeric,
-        operation,
-        "stage updates refused",
-    );
-    for (stage, ticks) in [
-        (Stage::Predict, p),
-        (Stage::Gate, g),
-        (Stage::Assign, a),
-        (Stage::Update, u),
-    ] {
-        let instructions = bench.instructions(ticks.saturating_sub(e));
-        bench.figure(numeric, scene.stage(stage), Some(size), instructions);
-    }
-
-    let clusters = Clusters::of(&cost);
-    for (name, value) in [
-        ("clusters", clusters.count),
-        ("largest_cluster_tracks", clusters.largest),
-        ("single_track_clusters", clusters.single),
-    ] {
-        bench.count(numeric, operation, size, name, value);
+    let sizes = ClusterSizes::<N>::of(&table, &config, &m);
+    for (low, high, name) in CLUSTER_CLASSES {
+        let n = sizes.count(low, high);
+        bench.count(numeric, operation, size, name, n);
     }
     if let Scene::Crowded = scene {
         // The scene must be what it claims: overlapping gates.
         bench.check(
-            clusters.largest >= 4,
+            last.largest_cluster >= 4,
             numeric,
             operation,
             "gates do not overlap",
@@ -378,61 +358,78 @@ fn scene<S: Numeric, const N: usize, const M: usize>(bench: &mut Bench, scene: S
     }
 }
 
-/// The independent groups of the gated pairs: tracks joined when they
-/// gate a common measurement (the groups an assignment could be split
-/// into). Sizes in tracks.
-struct Clusters {
-    count: u32,
-    largest: u32,
-    single: u32,
+/// Tracks per cluster of one scan's gated pairs: tracks joined when they
+/// gate a common measurement (union–find, smallest slot the root).
+struct ClusterSizes<const N: usize> {
+    parent: [u16; N],
+    gated: [bool; N],
 }
 
-impl Clusters {
-    fn of<const N: usize, const M: usize>(cost: &[[u16; M]; N]) -> Self {
-        let gated = |r: usize, c: usize| {
-            cost.get(r)
-                .and_then(|row| row.get(c))
-                .is_some_and(|&v| v != FORBIDDEN)
+impl<const N: usize> ClusterSizes<N> {
+    fn of<S: Scalar, const M: usize>(
+        table: &BenchTable<S, N, M>,
+        config: &TrackerConfig<S, Gains<S>>,
+        measurements: &[Measurement<S>; M],
+    ) -> Self {
+        let mut sizes = ClusterSizes {
+            parent: core::array::from_fn(|t| t as u16),
+            gated: [false; N],
         };
-        // Label propagation: each track takes the smallest label of any
-        // track it shares a measurement with, until nothing changes.
-        let mut label: [usize; N] = core::array::from_fn(|r| r);
-        let mut changed = true;
-        while changed {
-            changed = false;
-            for c in 0..M {
-                let lowest = (0..N)
-                    .filter(|&r| gated(r, c))
-                    .filter_map(|r| label.get(r))
-                    .min();
-                let Some(&lowest) = lowest else { continue };
-                for r in (0..N).filter(|&r| gated(r, c)) {
-                    if let Some(l) = label.get_mut(r) {
-                        if *l != lowest {
-                            *l = lowest;
-                            changed = true;
-                        }
+        let mut owner = [u16::MAX; M];
+        let dt = S::ONE;
+        let observations = measurements.map(|z| Observation::new(z).ok());
+        for (t, track) in table.tracks().enumerate() {
+            let f = track.filter();
+            let Some(region) = f
+                .predict(config.params(), dt)
+                .ok()
+                .and_then(|p| f.gate_region(config.params(), &p, dt, config.gate()))
+            else {
+                continue;
+            };
+            for (o, first) in observations.iter().zip(owner.iter_mut()) {
+                let Some(o) = o else { continue };
+                if region.cost(o).is_none() {
+                    continue;
+                }
+                if let Some(g) = sizes.gated.get_mut(t) {
+                    *g = true;
+                }
+                if *first == u16::MAX {
+                    *first = t as u16;
+                } else {
+                    let (a, b) = (sizes.find(t), sizes.find(*first as usize));
+                    if let Some(p) = sizes.parent.get_mut(a.max(b)) {
+                        *p = a.min(b) as u16;
                     }
                 }
             }
         }
-        let mut clusters = Clusters {
-            count: 0,
-            largest: 0,
-            single: 0,
-        };
-        for root in 0..N {
-            let in_gates = |r: &usize| (0..M).any(|c| gated(*r, c));
-            let size = (0..N)
-                .filter(|r| label.get(*r) == Some(&root))
-                .filter(in_gates)
-                .count() as u32;
-            if size > 0 {
-                clusters.count += 1;
-                clusters.largest = clusters.largest.max(size);
-                clusters.single += u32::from(size == 1);
+        sizes
+    }
+
+    fn find(&self, mut t: usize) -> usize {
+        while let Some(&p) = self.parent.get(t) {
+            if p as usize == t {
+                break;
             }
+            t = p as usize;
         }
-        clusters
+        t
+    }
+
+    /// Clusters of `low ..= high` tracks.
+    fn count(&self, low: u32, high: u32) -> u32 {
+        let mut n = 0;
+        for root in 0..N {
+            if self.find(root) != root || !self.gated.get(root).copied().unwrap_or(false) {
+                continue;
+            }
+            let tracks = (0..N)
+                .filter(|&t| self.find(t) == root && self.gated.get(t).copied().unwrap_or(false))
+                .count() as u32;
+            n += u32::from(tracks >= low && tracks <= high);
+        }
+        n
     }
 }
