@@ -870,3 +870,16 @@ fn binary_rejects_bad_arguments_and_has_help() {
         assert!(text.contains(option), "--help lacks {option}");
     }
 }
+
+/// The host tools and the firmware's wire edge refuse the same values: the
+/// wire's limits are the library envelope's (one set of limits).
+#[test]
+fn the_envelope_is_the_wire_edge() {
+    use abtrack::{envelope, wire};
+    assert_eq!(
+        f64::from(wire::MAX_POSITION_CM) / 100.0,
+        envelope::MAX_POSITION_M
+    );
+    assert_eq!(f64::from(wire::MIN_ALTITUDE_FT), envelope::ALTITUDE_FT.min);
+    assert_eq!(f64::from(wire::MAX_ALTITUDE_FT), envelope::ALTITUDE_FT.max);
+}
