@@ -212,7 +212,7 @@ impl std::fmt::Display for DesignUsed {
                 ""
             },
             d.detection_probability,
-            d.clutter_density * 1e6,
+            short(d.clutter_density * 1e6),
             d.max_speed,
             d.max_acceleration,
         )?;
@@ -228,6 +228,12 @@ impl std::fmt::Display for DesignUsed {
             p.deletion.1
         )
     }
+}
+
+/// `v` with at most 6 decimals, trailing zeros dropped.
+fn short(v: f64) -> String {
+    let text = format!("{v:.6}");
+    text.trim_end_matches('0').trim_end_matches('.').to_string()
 }
 
 /// At most this many line numbers are listed per reason.

@@ -262,10 +262,13 @@ fn at_least(need: u32, trials: u32, p: f64) -> f64 {
     let mut binom = 1.0; // C(trials, k), built up from k = 0
     for k in 0..=trials {
         if k > 0 {
-            binom = binom * f64::from(trials - k + 1) / f64::from(k);
+            // k ≤ trials here, so these never saturate.
+            binom = binom * f64::from(trials.saturating_sub(k).saturating_add(1)) / f64::from(k);
         }
         if k >= need {
-            total += binom * libm::pow(p, f64::from(k)) * libm::pow(1.0 - p, f64::from(trials - k));
+            total += binom
+                * libm::pow(p, f64::from(k))
+                * libm::pow(1.0 - p, f64::from(trials.saturating_sub(k)));
         }
     }
     total.min(1.0)
@@ -382,7 +385,8 @@ impl TrackerDesign {
         while n_max < LeastSquaresConfig::N_MAX_LIMIT
             && least_squares_alpha::<f64>(n_max) > steady_state_alpha
         {
-            n_max += 1;
+            // Bounded by N_MAX_LIMIT.
+            n_max = n_max.saturating_add(1);
         }
         let process_noise = manoeuvre_sigma * manoeuvre_sigma;
 
@@ -407,8 +411,9 @@ impl TrackerDesign {
         let mut chosen = None;
         'search: for m in 2..=MAX_CONFIRMATION_WINDOW {
             for n in m..=MAX_CONFIRMATION_WINDOW {
-                let need = u32::from(m - 1);
-                let trials = u32::from(n - 1);
+                // m ≥ 2 and n ≥ m: no saturation.
+                let need = u32::from(m.saturating_sub(1));
+                let trials = u32::from(n.saturating_sub(1));
                 let p_true = at_least(need, trials, p_hit);
                 let p_false = false_starts * at_least(need, trials, q);
                 if p_true >= MIN_TRUE_CONFIRMATION && p_false <= MAX_FALSE_CONFIRMATIONS_PER_SCAN {
@@ -428,9 +433,17 @@ impl TrackerDesign {
             if k == u8::MAX {
                 return Err(ConfigError::Deletion);
             }
-            k += 1;
+            // k < u8::MAX here.
+            k = k.saturating_add(1);
         }
-        let deletion = (k, confirmation.1 - confirmation.0 + 1);
+        // N ≥ M ≥ 2: N − M + 1 is in 1..=7.
+        let deletion = (
+            k,
+            confirmation
+                .1
+                .saturating_sub(confirmation.0)
+                .saturating_add(1),
+        );
 
         Ok(DerivedParameters {
             gate_threshold,
