@@ -591,6 +591,12 @@ impl Cell<'_> {
         Ok(v)
     }
 
+    /// The row's `t` as written.
+    fn t_text(&self) -> String {
+        let index = self.header.index("t").unwrap_or(0);
+        self.record.get(index).unwrap_or("").to_string()
+    }
+
     /// `alt`, which may be empty.
     fn altitude(&self, v: Option<f64>) -> Result<Option<f64>, CsvError> {
         match v {
@@ -630,6 +636,52 @@ fn field_error(
 }
 
 const KNOWN_COLUMNS: [&str; 7] = ["t", "x", "y", "z", "range", "azimuth", "alt"];
+
+/// A row's time (and as written), for the order checks and scans.
+pub trait Timed {
+    fn time(&self) -> (f64, &str);
+}
+
+impl Timed for Row {
+    fn time(&self) -> (f64, &str) {
+        (self.t, &self.t_text)
+    }
+}
+
+impl Timed for RangeAzimuthRow {
+    fn time(&self) -> (f64, &str) {
+        (self.t, &self.t_text)
+    }
+}
+
+/// Every record after the header: deserialised by column name into `F`,
+/// checked and converted by `row`, then its time checked against the
+/// previous row's. Stops at the first error.
+fn read_rows<F: serde::de::DeserializeOwned, T: Timed>(
+    mut reader: Reader,
+    header: &Header,
+    times: TimeOrder,
+    row: impl Fn(&Cell<'_>, F) -> Result<T, CsvError>,
+) -> Result<Vec<T>, CsvError> {
+    let mut rows: Vec<T> = Vec::new();
+    for record in reader.records() {
+        let record = record.map_err(|e| csv_error(e, &header.lines))?;
+        let line = header.line_of(&record);
+        let fields: F = record
+            .deserialize(Some(&header.record))
+            .map_err(|e| field_error(e, line, header, &record))?;
+        let cell = Cell {
+            line,
+            header,
+            record: &record,
+        };
+        let parsed = row(&cell, fields)?;
+        let (t, t_text) = parsed.time();
+        check_time(times, line, t, t_text, rows.last().map(Timed::time))?;
+        rows.push(parsed);
+    }
+    Ok(rows)
+}
 
 /// Checks the time order (and interval) of a row after `previous`.
 fn check_time(
@@ -692,7 +744,7 @@ pub fn read_measurements<R: Read>(
 }
 
 fn cartesian_rows(
-    mut reader: Reader,
+    reader: Reader,
     header: Header,
     options: ReadOptions,
 ) -> Result<Measurements, CsvError> {
@@ -709,45 +761,30 @@ fn cartesian_rows(
         });
     }
     let dims = 1 + usize::from(header.has("y")) + usize::from(header.has("z"));
-    let mut rows: Vec<Row> = Vec::new();
-    for record in reader.records() {
-        let record = record.map_err(|e| csv_error(e, &header.lines))?;
-        let line = header.line_of(&record);
-        let fields: CartesianFields = record
-            .deserialize(Some(&header.record))
-            .map_err(|e| field_error(e, line, &header, &record))?;
-        let cell = Cell {
-            line,
-            header: &header,
-            record: &record,
-        };
-        let t = cell.value("t", fields.t, envelope::TIME_S, "s")?;
-        let mut z = [0.0; 3];
-        for ((zi, name), v) in z
-            .iter_mut()
-            .zip(AXIS_NAMES)
-            .zip([fields.x, fields.y, fields.z])
-            .take(dims)
-        {
-            *zi = cell.value(name, v, envelope::POSITION_M, "m")?;
-        }
-        let alt = cell.altitude(fields.alt)?;
-        let t_text = record.get(header.index("t").unwrap_or(0)).unwrap_or("");
-        check_time(
-            options.times,
-            line,
-            t,
-            t_text,
-            rows.last().map(|r| (r.t, r.t_text.as_str())),
-        )?;
-        rows.push(Row {
-            line,
-            t_text: t_text.to_string(),
-            t,
-            z,
-            alt,
-        });
-    }
+    let rows = read_rows(
+        reader,
+        &header,
+        options.times,
+        |cell, fields: CartesianFields| {
+            let t = cell.value("t", fields.t, envelope::TIME_S, "s")?;
+            let mut z = [0.0; 3];
+            for ((zi, name), v) in z
+                .iter_mut()
+                .zip(AXIS_NAMES)
+                .zip([fields.x, fields.y, fields.z])
+                .take(dims)
+            {
+                *zi = cell.value(name, v, envelope::POSITION_M, "m")?;
+            }
+            Ok(Row {
+                line: cell.line,
+                t_text: cell.t_text(),
+                t,
+                z,
+                alt: cell.altitude(fields.alt)?,
+            })
+        },
+    )?;
     Ok(Measurements { dims, rows })
 }
 
@@ -761,7 +798,7 @@ pub fn read_range_azimuth<R: Read>(
 }
 
 fn polar_rows(
-    mut reader: Reader,
+    reader: Reader,
     header: Header,
     options: ReadOptions,
 ) -> Result<RangeAzimuthMeasurements, CsvError> {
@@ -778,55 +815,40 @@ fn polar_rows(
             found: header.text(),
         });
     }
-    let mut rows: Vec<RangeAzimuthRow> = Vec::new();
-    for record in reader.records() {
-        let record = record.map_err(|e| csv_error(e, &header.lines))?;
-        let line = header.line_of(&record);
-        let fields: PolarFields = record
-            .deserialize(Some(&header.record))
-            .map_err(|e| field_error(e, line, &header, &record))?;
-        let cell = Cell {
-            line,
-            header: &header,
-            record: &record,
-        };
-        let t = cell.value("t", fields.t, envelope::TIME_S, "s")?;
-        let range = cell.value("range", fields.range, envelope::RANGE_M, "m")?;
-        if range <= 0.0 {
-            return Err(cell.refuse("range", Refusal::NotPositive));
-        }
-        let azimuth = match options.azimuth_unit {
-            AngleUnit::Radians => {
-                let b = fields
-                    .azimuth
-                    .ok_or_else(|| cell.refuse("azimuth", Refusal::NotANumber))?;
-                if b.is_finite() && !envelope::AZIMUTH_RAD.contains(b) {
-                    return Err(cell.refuse("azimuth", Refusal::LooksLikeDegrees));
-                }
-                cell.value("azimuth", Some(b), envelope::AZIMUTH_RAD, "rad")?
+    let rows = read_rows(
+        reader,
+        &header,
+        options.times,
+        |cell, fields: PolarFields| {
+            let t = cell.value("t", fields.t, envelope::TIME_S, "s")?;
+            let range = cell.value("range", fields.range, envelope::RANGE_M, "m")?;
+            if range <= 0.0 {
+                return Err(cell.refuse("range", Refusal::NotPositive));
             }
-            AngleUnit::Degrees => cell
-                .value("azimuth", fields.azimuth, envelope::AZIMUTH_DEG, "°")?
-                .to_radians(),
-        };
-        let alt = cell.altitude(fields.alt)?;
-        let t_text = record.get(header.index("t").unwrap_or(0)).unwrap_or("");
-        check_time(
-            options.times,
-            line,
-            t,
-            t_text,
-            rows.last().map(|r| (r.t, r.t_text.as_str())),
-        )?;
-        rows.push(RangeAzimuthRow {
-            line,
-            t_text: t_text.to_string(),
-            t,
-            range,
-            azimuth,
-            alt,
-        });
-    }
+            let azimuth = match options.azimuth_unit {
+                AngleUnit::Radians => {
+                    let b = fields
+                        .azimuth
+                        .ok_or_else(|| cell.refuse("azimuth", Refusal::NotANumber))?;
+                    if b.is_finite() && !envelope::AZIMUTH_RAD.contains(b) {
+                        return Err(cell.refuse("azimuth", Refusal::LooksLikeDegrees));
+                    }
+                    cell.value("azimuth", Some(b), envelope::AZIMUTH_RAD, "rad")?
+                }
+                AngleUnit::Degrees => cell
+                    .value("azimuth", fields.azimuth, envelope::AZIMUTH_DEG, "°")?
+                    .to_radians(),
+            };
+            Ok(RangeAzimuthRow {
+                line: cell.line,
+                t_text: cell.t_text(),
+                t,
+                range,
+                azimuth,
+                alt: cell.altitude(fields.alt)?,
+            })
+        },
+    )?;
     Ok(RangeAzimuthMeasurements {
         has_alt: header.has("alt"),
         rows,

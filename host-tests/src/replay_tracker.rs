@@ -65,7 +65,7 @@ use abtrack::track::{
 };
 use abtrack::{Fix, Scalar};
 
-use crate::csv_input::{read_recording, AngleUnit, ReadOptions, Recording, TimeOrder};
+use crate::csv_input::{read_recording, AngleUnit, ReadOptions, Recording, TimeOrder, Timed};
 use crate::replay::{
     cell, check_estimate, own_aircraft, value, write_threat_cells, CsvValue, Failure, Numeric,
     ReplayError, ReplaySchedule, FINITE, THREAT_COLUMNS,
@@ -420,58 +420,57 @@ struct FileScan<'a> {
     rows: Vec<(usize, Measurement<f64>)>,
 }
 
+/// A row of either layout as one measurement of a scan.
+trait ScanRow: Timed {
+    fn line(&self) -> usize;
+    fn measurement(&self) -> Measurement<f64>;
+}
+
+impl ScanRow for crate::csv_input::Row {
+    fn line(&self) -> usize {
+        self.line
+    }
+    fn measurement(&self) -> Measurement<f64> {
+        Measurement::Cartesian {
+            x: self.z[0],
+            y: self.z[1],
+        }
+    }
+}
+
+impl ScanRow for crate::csv_input::RangeAzimuthRow {
+    fn line(&self) -> usize {
+        self.line
+    }
+    fn measurement(&self) -> Measurement<f64> {
+        Measurement::Polar {
+            range: self.range,
+            azimuth: self.azimuth,
+        }
+    }
+}
+
+/// Scans of rows (consecutive rows sharing a `t`).
+fn scans_of<'a, R: ScanRow + 'a>(scans: impl Iterator<Item = &'a [R]>) -> Vec<FileScan<'a>> {
+    scans
+        .filter_map(|rows| {
+            let first = rows.first()?;
+            let (t, t_text) = first.time();
+            Some(FileScan {
+                line: first.line(),
+                t_text,
+                t,
+                rows: rows.iter().map(|r| (r.line(), r.measurement())).collect(),
+            })
+        })
+        .collect()
+}
+
 fn file_scans(data: &Recording) -> Result<Vec<FileScan<'_>>, ReplayError> {
     match data {
-        Recording::Cartesian(m) => {
-            if m.dims != 2 {
-                return Err(ReplayError::TrackerAxes { dims: m.dims });
-            }
-            Ok(m.scans()
-                .filter_map(|rows| {
-                    let first = rows.first()?;
-                    Some(FileScan {
-                        line: first.line,
-                        t_text: &first.t_text,
-                        t: first.t,
-                        rows: rows
-                            .iter()
-                            .map(|r| {
-                                (
-                                    r.line,
-                                    Measurement::Cartesian {
-                                        x: r.z[0],
-                                        y: r.z[1],
-                                    },
-                                )
-                            })
-                            .collect(),
-                    })
-                })
-                .collect())
-        }
-        Recording::RangeAzimuth(m) => Ok(m
-            .scans()
-            .filter_map(|rows| {
-                let first = rows.first()?;
-                Some(FileScan {
-                    line: first.line,
-                    t_text: &first.t_text,
-                    t: first.t,
-                    rows: rows
-                        .iter()
-                        .map(|r| {
-                            (
-                                r.line,
-                                Measurement::Polar {
-                                    range: r.range,
-                                    azimuth: r.azimuth,
-                                },
-                            )
-                        })
-                        .collect(),
-                })
-            })
-            .collect()),
+        Recording::Cartesian(m) if m.dims != 2 => Err(ReplayError::TrackerAxes { dims: m.dims }),
+        Recording::Cartesian(m) => Ok(scans_of(m.scans())),
+        Recording::RangeAzimuth(m) => Ok(scans_of(m.scans())),
     }
 }
 
