@@ -15,7 +15,7 @@
 //! | [`scan`] | the scan loop's core: received bytes and timer ticks to tracks, advisories and reports |
 //!
 //! The specification is five papers, cited in the doc comments by author and
-//! equation number (see README.md, "The papers").
+//! equation number (see docs/papers.md).
 #![no_std]
 #![forbid(unsafe_code)]
 #![warn(missing_debug_implementations)]
