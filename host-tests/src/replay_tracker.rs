@@ -402,7 +402,7 @@ impl std::fmt::Display for Unused {
 }
 
 /// One scan in the table's number type.
-struct ScanInput<'a, S> {
+struct ScanInput<'a, S: Scalar> {
     /// Line of the scan's first row (0 for an added empty scan).
     line: usize,
     /// The time as written (or, for an added empty scan, from the clock).

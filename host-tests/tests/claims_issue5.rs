@@ -17,8 +17,8 @@ use abtrack::track::defaults::{
 };
 use abtrack::track::{
     Association, DropReason, FixedGainTrack, Gate, GateRegion, Measurement, Observation,
-    PredictedState, RangeAzimuthTrack, ScheduledTrack, Track, TrackFilter, TrackTable,
-    TrackerConfig,
+    PolarWindow, PredictedState, RangeAzimuthTrack, ScanInterval, ScheduledTrack, Track,
+    TrackFilter, TrackTable, TrackerConfig,
 };
 use abtrack::{Fix, Gains, Scalar};
 use abtrack_host_tests::experiments::multi_target::{BASE_SEED, PLANS};
@@ -203,7 +203,7 @@ fn bytes_per_track() {
     assert_eq!(
         rows,
         [
-            ("FixedGainTrack", 184, 112, 184),
+            ("FixedGainTrack", 88, 56, 88),
             ("Scheduled<M2>", 224, 136, 224),
             ("Scheduled<M1>", 248, 144, 248),
             ("Scheduled<Li>", 272, 160, 272),
@@ -258,7 +258,8 @@ fn s<S: Scalar>(v: f64) -> S {
 #[test]
 fn polar_window_cost_by_hand() {
     fn check<S: Scalar>(tolerance: u16) {
-        let region = GateRegion::polar([s::<S>(0.0), s(10_000.0)], s(100.0), s(2000.0)).unwrap();
+        let region =
+            GateRegion::<S>::polar([s::<S>(0.0), s(10_000.0)], s(100.0), s(2000.0)).unwrap();
         let polar = Observation::new(Measurement::Polar {
             range: s::<S>(10_050.0),
             azimuth: s(0.1),
@@ -304,13 +305,18 @@ fn polar_window_cost_by_hand() {
             S::NAME
         );
         // At the sensor: the circle of the larger half-width.
-        let at_origin = GateRegion::polar([s::<S>(0.0), s(0.0)], s(100.0), s(2000.0)).unwrap();
+        let at_origin = GateRegion::<S>::polar([s::<S>(0.0), s(0.0)], s(100.0), s(2000.0)).unwrap();
         assert_eq!(at_origin.radius().to_f64(), 2000.0);
-        assert!(GateRegion::polar([s::<S>(0.0), s(1.0)], s(0.0), s(2000.0)).is_none());
+        assert!(GateRegion::<S>::polar([s::<S>(0.0), s(1.0)], s(0.0), s(2000.0)).is_none());
     }
     check::<f64>(0);
     check::<f32>(2);
     check::<Fix>(1);
+}
+
+/// A one-second step of the adapters (their step is the scan interval).
+fn second() -> ScanInterval<f64> {
+    ScanInterval::from_ms(1000).unwrap()
 }
 
 /// The range–azimuth adapter's window from the filter's public covariance
@@ -339,19 +345,20 @@ fn range_azimuth_window_from_its_covariances() {
         })
         .unwrap();
         track
-            .update(&noise, &z, 1.0)
+            .update(&noise, &z, &second())
             .unwrap_or_else(|e| panic!("{k}: {e}"));
     }
     let (g, a_max, dt) = (13.8, 5.0, 1.5);
     let gate = Gate::uncertainty(15.0, g, a_max).unwrap();
-    let p = track.predict(&noise, dt).unwrap();
-    let region = track.gate_region(&noise, &p, dt, &gate).unwrap();
-    let GateRegion::Polar {
+    let step = ScanInterval::from_ms(1500).unwrap();
+    let p = track.predict(&noise, &step).unwrap();
+    let region = track.gate_region(&noise, &p, &step, &gate).unwrap();
+    let GateRegion::Polar(PolarWindow {
         range,
         half_range,
         inverse_half_azimuth,
         ..
-    } = region
+    }) = region
     else {
         panic!("{region:?}")
     };
@@ -382,12 +389,12 @@ fn wave_gate_uses_the_next_scheduled_alpha() {
     let mut track = ScheduledTrack::empty(&li);
     for x in [1000.0, 1010.0] {
         let z = Observation::new(Measurement::Cartesian { x, y: 0.0 }).unwrap();
-        track.update(&li, &z, 1.0).unwrap();
+        track.update(&li, &z, &second()).unwrap();
     }
     let gate = Gate::wave(3.0, 0.002, 4.0).unwrap();
-    let p: PredictedState<f64> = track.predict(&li, 1.0).unwrap();
+    let p: PredictedState<f64> = track.predict(&li, &second()).unwrap();
     assert_eq!(p.position, [1020.0, 0.0]);
-    let region = track.gate_region(&li, &p, 1.0, &gate).unwrap();
+    let region = track.gate_region(&li, &p, &second(), &gate).unwrap();
     let expected = 4.0 * (5.0f64 / 6.0).sqrt() * (9.0f64 + (1020.0f64 * 0.002).powi(2)).sqrt();
     assert!(
         close(region.radius(), expected, 1e-9),
@@ -405,16 +412,16 @@ fn firmness_restart_gets_no_gate() {
     let mut track = ScheduledTrack::<f64, FirmnessGains>::empty(&f);
     for x in [0.0, 10.0] {
         let z = Observation::new(Measurement::Cartesian { x, y: 0.0 }).unwrap();
-        track.update(&f, &z, 1.0).unwrap();
+        track.update(&f, &z, &second()).unwrap();
     }
     let gate = Gate::uncertainty(5.0, 13.8, 5.0).unwrap();
-    let p = track.predict(&f, 1.0).unwrap();
-    assert!(track.gate_region(&f, &p, 1.0, &gate).is_some());
+    let p = track.predict(&f, &second()).unwrap();
+    assert!(track.gate_region(&f, &p, &second(), &gate).is_some());
     // Firmness 2 after two points; two misses bring it to 0.
-    track.coast(&f, 1.0).unwrap();
-    track.coast(&f, 1.0).unwrap();
-    let p = track.predict(&f, 1.0).unwrap();
-    assert!(track.gate_region(&f, &p, 1.0, &gate).is_none());
+    track.coast(&f, &second()).unwrap();
+    track.coast(&f, &second()).unwrap();
+    let p = track.predict(&f, &second()).unwrap();
+    assert!(track.gate_region(&f, &p, &second(), &gate).is_none());
 }
 
 // ---------------------------------------------------------------------------

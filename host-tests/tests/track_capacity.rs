@@ -269,11 +269,12 @@ fn invalid_measurements_rejected_fix() {
     ]);
 }
 
-/// A refused (saturating) update or coast of a `FixedGainTrack` leaves the
-/// state as it was and keeps the saturation count, like the bare filter.
+/// A refused (saturating) update of a `FixedGainTrack` leaves the track
+/// bit-identical; the table counts the refusal on the track
+/// (`Track::refusals`) and in the scan's report.
 #[test]
-fn fixed_gain_track_counts_a_refused_saturating_update() {
-    use abtrack::track::{FixedGainTrack, Observation, TrackFilter};
+fn fixed_gain_track_refuses_a_saturating_update_unchanged() {
+    use abtrack::track::{FixedGainTrack, Observation, ScanInterval, TrackFilter};
     use abtrack::Gains;
     let gains = Gains::<Fix>::alpha_beta_f64(0.5, 0.3).unwrap();
     let at = |x: f64| {
@@ -283,18 +284,113 @@ fn fixed_gain_track_counts_a_refused_saturating_update() {
         })
         .unwrap()
     };
-    let one = Fix::ONE;
+    let step = |ms| FixedGainTrack::step(&gains, &ScanInterval::from_ms(ms).unwrap()).unwrap();
     let mut track = FixedGainTrack::<Fix>::empty(&gains);
-    track.update(&gains, &at(0.0), one).unwrap();
-    track.update(&gains, &at(10.0), one).unwrap();
+    track.update(&gains, &at(0.0), &step(1000)).unwrap();
+    track.update(&gains, &at(10.0), &step(1000)).unwrap();
     let before = track;
-    // β·e/dt = 0.3 · 2e9 / 2⁻²⁰ leaves Q32.32: refused and counted.
-    let tiny = Fix::from_f64_lossy(1.0 / 1_048_576.0);
+    // β/T·e = 0.3/0.001 s · 2e9 m leaves Q32.32: refused, nothing changed.
     assert_eq!(
-        track.update(&gains, &at(2.0e9), tiny),
+        track.update(&gains, &at(2.0e9), &step(1)),
         Err(abtrack::FilterError::Saturated)
     );
-    assert_eq!(track.filter().saturations(), 1);
-    assert_eq!(track.filter().position(), before.filter().position());
-    assert_eq!(track.filter().velocity(), before.filter().velocity());
+    assert_eq!(track, before);
+}
+
+/// A filter that accepts the two initiation points and refuses every later
+/// update (as a saturating one would): the table codes the measurement
+/// `FilterRefused`, the track coasts, and the refusal is counted on it.
+#[derive(Debug, Clone, Copy, PartialEq)]
+struct Refuser {
+    points: u8,
+    position: [f64; 2],
+}
+
+impl abtrack::track::TrackFilter<f64> for Refuser {
+    type Params = ();
+    type Step = abtrack::track::ScanInterval<f64>;
+    fn step(
+        _: &(),
+        interval: &abtrack::track::ScanInterval<f64>,
+    ) -> Result<Self::Step, abtrack::FilterError> {
+        Ok(*interval)
+    }
+    fn interval_of(step: &Self::Step) -> &abtrack::track::ScanInterval<f64> {
+        step
+    }
+    fn empty(_: &()) -> Self {
+        Refuser {
+            points: 0,
+            position: [0.0; 2],
+        }
+    }
+    fn update(
+        &mut self,
+        _: &(),
+        z: &abtrack::track::Observation<f64>,
+        _: &Self::Step,
+    ) -> Result<(), abtrack::FilterError> {
+        if self.points >= 2 {
+            return Err(abtrack::FilterError::Saturated);
+        }
+        self.points += 1;
+        self.position = z.xy();
+        Ok(())
+    }
+    fn coast(&mut self, _: &(), _: &Self::Step) -> Result<(), abtrack::FilterError> {
+        Ok(())
+    }
+    fn predict(
+        &self,
+        _: &(),
+        _: &Self::Step,
+    ) -> Result<abtrack::track::PredictedState<f64>, abtrack::FilterError> {
+        Ok(abtrack::track::PredictedState {
+            position: self.position,
+            velocity: [0.0; 2],
+        })
+    }
+    fn position(&self) -> [f64; 2] {
+        self.position
+    }
+    fn velocity(&self) -> [f64; 2] {
+        [0.0; 2]
+    }
+    fn predicted_variance_ratio(&self, _: &(), _: &Self::Step) -> Option<f64> {
+        Some(1.0)
+    }
+    fn gate_alpha(&self, _: &()) -> f64 {
+        1.0
+    }
+}
+
+#[test]
+fn refused_updates_are_counted_on_the_track() {
+    let gate = abtrack::track::Gate::uncertainty(5.0, 13.8, 0.0).unwrap();
+    let config = abtrack::track::TrackerConfig::new((), gate, 300.0)
+        .unwrap()
+        .with_confirmation(1, 1)
+        .unwrap();
+    let mut table: abtrack::track::TrackTable<f64, Refuser, 2, 2> =
+        abtrack::track::TrackTable::new();
+    let mut codes = [Association::OutsideGates; 1];
+    for t in [0, 1000] {
+        table
+            .scan(&config, t, &[cart(100.0, 0.0)], &mut codes)
+            .unwrap();
+    }
+    assert_eq!(
+        codes[0],
+        Association::Started(table.tracks().next().unwrap().id())
+    );
+    for (k, t) in [2000, 3000].into_iter().enumerate() {
+        let r = table
+            .scan(&config, t, &[cart(101.0, 0.0)], &mut codes)
+            .unwrap();
+        assert_eq!((r.filter_refused, r.coasted, r.updated), (1, 1, 0));
+        assert_eq!(codes[0], Association::Rejected(RejectReason::FilterRefused));
+        let track = table.tracks().next().unwrap();
+        assert_eq!(track.refusals() as usize, k + 1);
+        assert_eq!(track.misses() as usize, k + 1);
+    }
 }

@@ -17,14 +17,16 @@
 mod track_support;
 
 use abtrack::filter::FilterError;
+use abtrack::num::fixed32::Fixed32;
 use abtrack::track::assign::{AssignmentSolver, FORBIDDEN, MAX_COST};
 use abtrack::track::{
     Association, FixedGainTrack, Gate, GateRegion, Measurement, Observation, PredictedState,
     ScanReport, TrackFilter, TrackId, TrackTable, TrackerConfig,
 };
-use abtrack::{Fix, Scalar};
+use abtrack::track::{ScanInterval, TrackNumeric};
+use abtrack::Fix;
 use proptest::prelude::*;
-use track_support::{default_config, s, Lcg};
+use track_support::{cart, default_config, q, Lcg};
 
 // ---------------------------------------------------------------------------
 // 1. The solver: components solved apart = the whole solved at once.
@@ -145,17 +147,14 @@ fn all_equal_costs_tie_the_same_way() {
 // 2. The pre-gate's boxes hold every gated observation.
 // ---------------------------------------------------------------------------
 
-fn region_holds_gated<S: Scalar>(
+fn region_holds_gated<S: TrackNumeric>(
     region: &GateRegion<S>,
     points: &[(f64, f64)],
 ) -> Result<usize, String> {
     let bounds = region.bounds();
     let mut inside = 0;
     for &(x, y) in points {
-        let Ok(o) = Observation::new(Measurement::Cartesian {
-            x: s::<S>(x),
-            y: s::<S>(y),
-        }) else {
+        let Ok(o) = Observation::new(cart::<S>(x, y)) else {
             continue;
         };
         if region.cost(&o).is_some() {
@@ -163,7 +162,7 @@ fn region_holds_gated<S: Scalar>(
             if !bounds.contains(o.xy()) {
                 return Err(format!(
                     "{}: ({x}, {y}) gated but outside {bounds:?} of {region:?}",
-                    S::NAME
+                    <S as abtrack::num::Numeric>::NAME
                 ));
             }
         }
@@ -191,31 +190,31 @@ fn points_around(center: (f64, f64), size: f64, rng: &mut Lcg, scale: f64) -> Ve
         .collect()
 }
 
-fn pregate_case<S: Scalar>(seed: u64) {
+fn pregate_case<S: TrackNumeric>(seed: u64) {
     let mut rng = Lcg(seed);
     let mut gated = 0;
     for _ in 0..40 {
         let center = (200_000.0 * rng.next_signed(), 200_000.0 * rng.next_signed());
         let radius = 10f64.powf(3.0 * rng.next_signed() + 1.5);
-        if let Some(region) =
-            GateRegion::circle([s::<S>(center.0), s::<S>(center.1)], s::<S>(radius))
-        {
+        if let Some(region) = GateRegion::<S>::circle([q(center.0), q(center.1)], q(radius)) {
             let pts = points_around(center, radius, &mut rng, 1.2);
             gated += region_holds_gated(&region, &pts).unwrap();
         }
         let along = 10f64.powf(2.0 * rng.next_signed() + 1.5);
         let across = 10f64.powf(2.5 * rng.next_signed() + 2.0);
-        if let Some(region) = GateRegion::polar(
-            [s::<S>(center.0), s::<S>(center.1)],
-            s::<S>(along),
-            s::<S>(across),
-        ) {
+        if let Some(region) =
+            GateRegion::<S>::polar([q(center.0), q(center.1)], q(along), q(across))
+        {
             let size = along + across * (1.0 + along / center.0.hypot(center.1));
             let pts = points_around(center, size, &mut rng, 1.2);
             gated += region_holds_gated(&region, &pts).unwrap();
         }
     }
-    assert!(gated > 100, "{}: only {gated} gated points tried", S::NAME);
+    assert!(
+        gated > 100,
+        "{}: only {gated} gated points tried",
+        <S as abtrack::num::Numeric>::NAME
+    );
 }
 
 #[test]
@@ -224,6 +223,7 @@ fn gated_observations_lie_in_the_bounding_box() {
         pregate_case::<f64>(seed);
         pregate_case::<f32>(seed);
         pregate_case::<Fix>(seed);
+        pregate_case::<Fixed32>(seed);
     }
 }
 
@@ -302,13 +302,15 @@ fn measurements(
 
 /// Cost matrix of the table's tracks (slot order) × the measurements, as the
 /// scan's gate stage defines it, computed through the public API.
-fn gated_costs<S: Scalar, F: TrackFilter<S>, const N: usize, const M: usize>(
+fn gated_costs<S: TrackNumeric, F: TrackFilter<S>, const N: usize, const M: usize>(
     table: &TrackTable<S, F, N, M>,
     config: &TrackerConfig<S, F::Params>,
-    dt: S,
+    interval_ms: u32,
     m: &[Measurement<S>],
 ) -> (Vec<TrackId>, Vec<Vec<u16>>) {
     let params = config.params();
+    let step = F::step(params, &ScanInterval::from_ms(interval_ms).unwrap()).unwrap();
+    let dt = &step;
     let mut ids = Vec::new();
     let mut cost = Vec::new();
     for track in table.tracks() {
@@ -368,7 +370,7 @@ struct Checked {
 /// Runs `scans` scans of a random scene through the table; from the third
 /// on, checks the table's assignment against the whole-table solve and, for
 /// small problems, a brute force.
-fn run_scene<S: Scalar, const N: usize, const M: usize>(
+fn run_scene<S: TrackNumeric, const N: usize, const M: usize>(
     seed: u64,
     targets: usize,
     crowded: bool,
@@ -382,11 +384,8 @@ fn run_scene<S: Scalar, const N: usize, const M: usize>(
     let mut reports = Vec::new();
     for k in 0..scans {
         let points = measurements(&mut rng, &scene, k, M);
-        let m: Vec<Measurement<S>> = points
-            .iter()
-            .map(|&(x, y)| Measurement::Cartesian { x: s(x), y: s(y) })
-            .collect();
-        let expected = (k >= 2).then(|| gated_costs(&table, &config, S::ONE, &m));
+        let m: Vec<Measurement<S>> = points.iter().map(|&(x, y)| cart::<S>(x, y)).collect();
+        let expected = (k >= 2).then(|| gated_costs(&table, &config, 1000, &m));
         let mut codes = vec![Association::OutsideGates; m.len()];
         let report = table.scan(&config, 1000 * k, &m, &mut codes).unwrap();
         reports.push(report);
@@ -494,6 +493,7 @@ fn scenes_cover_ties_and_clusters() {
         run_scene::<f64, 16, 24>(seed, 2 + seed as usize % 12, seed % 2 == 0, 6, &mut checked);
         run_scene::<f32, 16, 24>(seed, 2 + seed as usize % 12, seed % 2 == 0, 6, &mut checked);
         run_scene::<Fix, 16, 24>(seed, 2 + seed as usize % 12, seed % 2 == 0, 6, &mut checked);
+        run_scene::<Fixed32, 16, 24>(seed, 2 + seed as usize % 12, seed % 2 == 0, 6, &mut checked);
     }
     println!("{checked:?}");
     assert!(checked.scans >= 600, "{checked:?}");
@@ -517,17 +517,33 @@ struct GatesOn(bool);
 
 impl TrackFilter<f64> for Parked {
     type Params = GatesOn;
+    type Step = ScanInterval<f64>;
+    fn step(_: &GatesOn, interval: &ScanInterval<f64>) -> Result<ScanInterval<f64>, FilterError> {
+        Ok(*interval)
+    }
+    fn interval_of(step: &ScanInterval<f64>) -> &ScanInterval<f64> {
+        step
+    }
     fn empty(_: &GatesOn) -> Self {
         Parked { position: [0.0; 2] }
     }
-    fn update(&mut self, _: &GatesOn, z: &Observation<f64>, _: f64) -> Result<(), FilterError> {
+    fn update(
+        &mut self,
+        _: &GatesOn,
+        z: &Observation<f64>,
+        _: &ScanInterval<f64>,
+    ) -> Result<(), FilterError> {
         self.position = z.xy();
         Ok(())
     }
-    fn coast(&mut self, _: &GatesOn, _: f64) -> Result<(), FilterError> {
+    fn coast(&mut self, _: &GatesOn, _: &ScanInterval<f64>) -> Result<(), FilterError> {
         Ok(())
     }
-    fn predict(&self, _: &GatesOn, _: f64) -> Result<PredictedState<f64>, FilterError> {
+    fn predict(
+        &self,
+        _: &GatesOn,
+        _: &ScanInterval<f64>,
+    ) -> Result<PredictedState<f64>, FilterError> {
         Ok(PredictedState {
             position: self.position,
             velocity: [0.0; 2],
@@ -539,7 +555,7 @@ impl TrackFilter<f64> for Parked {
     fn velocity(&self) -> [f64; 2] {
         [0.0; 2]
     }
-    fn predicted_variance_ratio(&self, _: &GatesOn, _: f64) -> Option<f64> {
+    fn predicted_variance_ratio(&self, _: &GatesOn, _: &ScanInterval<f64>) -> Option<f64> {
         Some(0.0)
     }
     fn gate_alpha(&self, _: &GatesOn) -> f64 {
@@ -549,7 +565,7 @@ impl TrackFilter<f64> for Parked {
         &self,
         on: &GatesOn,
         _: &PredictedState<f64>,
-        _: f64,
+        _: &ScanInterval<f64>,
         _: &Gate<f64>,
     ) -> Option<GateRegion<f64>> {
         if on.0 {
@@ -606,7 +622,7 @@ fn overflowing_pair_cache_gives_the_same_assignment() {
             })
             .collect();
         let on = config(true);
-        let (ids, cost) = gated_costs(&table, &on, 1.0, &m);
+        let (ids, cost) = gated_costs(&table, &on, 1000, &m);
         let mut codes = vec![Association::OutsideGates; m.len()];
         let report = table.scan(&on, now, &m, &mut codes).unwrap();
         check_scan(&ids, &cost, &codes, &report, &mut checked);

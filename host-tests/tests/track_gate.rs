@@ -3,12 +3,14 @@
 
 mod track_support;
 
+use abtrack::num::fixed32::Fixed32;
 use abtrack::track::assign::MAX_COST;
 use abtrack::track::{
-    hypot, ErrorVariance, FixedGainTrack, Gate, GateRegion, Measurement, Observation, TrackFilter,
+    hypot, ErrorVariance, FixedGainStep, FixedGainTrack, Gate, GateRegion, Measurement,
+    Observation, ScanInterval, TrackFilter, TrackNumeric,
 };
 use abtrack::{Fix, Gains, Scalar};
-use track_support::s;
+use track_support::{cart, q, s};
 
 fn close(a: f64, b: f64, tol: f64) -> bool {
     (a - b).abs() <= tol
@@ -66,31 +68,34 @@ fn steady_state_matches_tenne_singh_eq13() {
     }
 }
 
+/// The fixed-gain tracks' step for an interval of `ms`.
+fn step<S: TrackNumeric>(gains: &Gains<S>, ms: u32) -> FixedGainStep<S> {
+    FixedGainTrack::step(gains, &ScanInterval::from_ms(ms).unwrap()).unwrap()
+}
+
 /// A stationary fixed-gain track at (3000, 4000) started from two points 1 s
 /// apart, plus its prediction 1 s ahead.
-fn stationary<S: Scalar>(
+fn stationary<S: TrackNumeric>(
     gains: &Gains<S>,
 ) -> (FixedGainTrack<S>, abtrack::track::PredictedState<S>) {
-    let z = Observation::new(Measurement::Cartesian {
-        x: s::<S>(3000.0),
-        y: s(4000.0),
-    })
-    .unwrap();
+    let z = Observation::new(cart::<S>(3000.0, 4000.0)).unwrap();
     let mut f = FixedGainTrack::empty(gains);
-    f.update(gains, &z, s(1.0)).unwrap();
-    f.update(gains, &z, s(1.0)).unwrap();
-    let p = f.predict(gains, s(1.0)).unwrap();
+    let second = step(gains, 1000);
+    f.update(gains, &z, &second).unwrap();
+    f.update(gains, &z, &second).unwrap();
+    let p = f.predict(gains, &second).unwrap();
     (f, p)
 }
 
 #[test]
 fn uncertainty_gate_radius_by_hand() {
     let gains = Gains::<f64>::alpha_beta(0.5, 0.2).unwrap();
+    let second = step(&gains, 1000);
     let (mut f, p) = stationary(&gains);
     // p = 5 one second after initiation; σ = 5, G = 6, a_max = 4:
     // r = 5·√(6·(5 + 1)) + ½·4·1² = 30 + 2 = 32.
     let gate = Gate::uncertainty(5.0, 6.0, 4.0).unwrap();
-    let region = f.gate_region(&gains, &p, 1.0, &gate).unwrap();
+    let region = f.gate_region(&gains, &p, &second, &gate).unwrap();
     assert_eq!(region.radius(), 32.0);
     // After one filtered update p⁻ = 1.5 + 2·1.1 + 1.04 = 4.74 (see above):
     // r = 5·√(6·5.74) = 5·√34.44 = 29.3428...
@@ -99,17 +104,17 @@ fn uncertainty_gate_radius_by_hand() {
         y: 4000.0,
     })
     .unwrap();
-    f.update(&gains, &z, 1.0).unwrap();
+    f.update(&gains, &z, &second).unwrap();
     let gate = Gate::uncertainty(5.0, 6.0, 0.0).unwrap();
-    let p = f.predict(&gains, 1.0).unwrap();
-    let r = f.gate_region(&gains, &p, 1.0, &gate).unwrap().radius();
+    let p = f.predict(&gains, &second).unwrap();
+    let r = f.gate_region(&gains, &p, &second, &gate).unwrap().radius();
     assert!(close(r, 5.0 * 34.44f64.sqrt(), 1e-9), "{r}");
     // Coasting widens it: one coast of 1 s, then predict 1 s:
     // P after update (1.5, 1.1, 1.04) → coast → (4.74, 2.14, 1.04)
     // → predicted p11 = 4.74 + 2·2.14 + 1.04 = 10.06; r = 5·√(6·11.06).
-    f.coast(&gains, 1.0).unwrap();
-    let p = f.predict(&gains, 1.0).unwrap();
-    let r = f.gate_region(&gains, &p, 1.0, &gate).unwrap().radius();
+    f.coast(&gains, &second).unwrap();
+    let p = f.predict(&gains, &second).unwrap();
+    let r = f.gate_region(&gains, &p, &second, &gate).unwrap().radius();
     assert!(close(r, 5.0 * (6.0f64 * 11.06).sqrt(), 1e-9), "{r}");
 }
 
@@ -122,25 +127,35 @@ fn wave_gate_radius_by_hand() {
     let gains = Gains::<f64>::alpha_beta(0.5, 0.2).unwrap();
     let (f, p) = stationary(&gains);
     let gate = Gate::wave(30.0, 0.008, 2.0).unwrap();
-    let r = f.gate_region(&gains, &p, 1.0, &gate).unwrap().radius();
+    let r = f
+        .gate_region(&gains, &p, &step(&gains, 1000), &gate)
+        .unwrap()
+        .radius();
     assert!(close(r, expected, 1e-9), "{r}");
-    // The same in Q32.32 and f32.
-    let gains = Gains::<Fix>::alpha_beta_f64(0.5, 0.2).unwrap();
-    let (f, p) = stationary(&gains);
-    let gate = Gate::wave(s(30.0), s(0.008), s(2.0)).unwrap();
-    let r = f.gate_region(&gains, &p, s(1.0), &gate).unwrap().radius();
-    assert!(close(r.to_f64(), expected, 1e-6), "{r:?}");
-    let gains = Gains::<f32>::alpha_beta_f64(0.5, 0.2).unwrap();
-    let (f, p) = stationary(&gains);
-    let gate = Gate::wave(30.0f32, 0.008, 2.0).unwrap();
-    let r = f.gate_region(&gains, &p, 1.0, &gate).unwrap().radius();
-    assert!(close(r as f64, expected, 1e-3), "{r}");
+    // The same in Q32.32, f32 and the fast fixed point.
+    fn wave<S: TrackNumeric>(tolerance: f64) {
+        let expected = 2.0 * 0.5f64.sqrt() * 50.0;
+        let gains = Gains::<S>::alpha_beta_f64(0.5, 0.2).unwrap();
+        let (f, p) = stationary(&gains);
+        let gate = Gate::<S>::wave(q(30.0), q(0.008), q(2.0)).unwrap();
+        let r = f
+            .gate_region(&gains, &p, &step(&gains, 1000), &gate)
+            .unwrap()
+            .radius();
+        assert!(
+            close(abtrack::num::Quantity::to_f64(r), expected, tolerance),
+            "{r:?}"
+        );
+    }
+    wave::<Fix>(1e-6);
+    wave::<f32>(1e-3);
+    wave::<Fixed32>(1e-3);
 }
 
 #[test]
 fn gate_costs_and_edges() {
     // Radius 8: its inverse 0.125 is exact in binary, so the edge is exact.
-    let region = GateRegion::circle([100.0, 200.0], 8.0).unwrap();
+    let region = GateRegion::<f64>::circle([100.0, 200.0], 8.0).unwrap();
     let at =
         |x: f64, y: f64| region.cost(&Observation::new(Measurement::Cartesian { x, y }).unwrap());
     assert_eq!(at(100.0, 200.0), Some(0));
@@ -153,9 +168,9 @@ fn gate_costs_and_edges() {
     assert_eq!(at(100.0, 191.999), None);
     // Inside the bounding box but outside the circle: (6, 6) has d = 8.49.
     assert_eq!(at(106.0, 206.0), None);
-    assert!(GateRegion::circle([0.0, 0.0], 0.0).is_none());
-    assert!(GateRegion::circle([0.0, 0.0], f64::NAN).is_none());
-    assert!(GateRegion::circle([f64::INFINITY, 0.0], 1.0).is_none());
+    assert!(GateRegion::<f64>::circle([0.0, 0.0], 0.0).is_none());
+    assert!(GateRegion::<f64>::circle([0.0, 0.0], f64::NAN).is_none());
+    assert!(GateRegion::<f64>::circle([f64::INFINITY, 0.0], 1.0).is_none());
 }
 
 #[test]
@@ -176,13 +191,14 @@ fn far_measurements_do_not_saturate_fixed_point() {
 
 #[test]
 fn bad_gates_refused() {
-    assert!(Gate::uncertainty(0.0, 9.0, 0.0).is_err());
-    assert!(Gate::uncertainty(5.0, -1.0, 0.0).is_err());
-    assert!(Gate::uncertainty(5.0, 9.0, -1.0).is_err());
-    assert!(Gate::uncertainty(f64::NAN, 9.0, 0.0).is_err());
-    assert!(Gate::wave(0.0, 0.0, 2.0).is_err());
-    assert!(Gate::wave(1.0, 0.0, 0.0).is_err());
-    assert!(Gate::Wave {
+    type G = Gate<f64>;
+    assert!(G::uncertainty(0.0, 9.0, 0.0).is_err());
+    assert!(G::uncertainty(5.0, -1.0, 0.0).is_err());
+    assert!(G::uncertainty(5.0, 9.0, -1.0).is_err());
+    assert!(G::uncertainty(f64::NAN, 9.0, 0.0).is_err());
+    assert!(G::wave(0.0, 0.0, 2.0).is_err());
+    assert!(G::wave(1.0, 0.0, 0.0).is_err());
+    assert!(G::Wave {
         range_sigma: -1.0,
         bearing_sigma: 0.1,
         multiple: 1.0

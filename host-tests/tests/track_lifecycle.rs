@@ -161,8 +161,8 @@ fn bad_configuration_refused() {
     assert!(c.with_deletion(0, 1).is_err());
     assert!(c.with_deletion(1, 0).is_err());
     assert!(c.with_initiation_margin(-1.0).is_err());
-    assert!(Volume::new([0.0, 0.0], [0.0, 1.0]).is_err());
-    assert!(Volume::new([0.0, f64::NAN], [1.0, 1.0]).is_err());
+    assert!(Volume::<f64>::new([0.0, 0.0], [0.0, 1.0]).is_err());
+    assert!(Volume::<f64>::new([0.0, f64::NAN], [1.0, 1.0]).is_err());
 }
 
 #[test]

@@ -5,8 +5,12 @@ mod track_support;
 use std::mem::size_of;
 use std::sync::Mutex;
 
-use abtrack::track::{Association, FixedGainTrack, Track, TrackStatus};
-use abtrack::Fix;
+use abtrack::num::fixed32::Fixed32;
+use abtrack::track::{
+    Association, FixedGainTrack, Observation, PredictedState, ScanInterval, Track, TrackFilter,
+    TrackStatus,
+};
+use abtrack::{FilterError, Fix};
 use track_support::{cart, default_config, Table};
 
 /// The firmware's shape: a table in a `static`, behind a lock.
@@ -44,39 +48,60 @@ fn const_table_is_empty() {
     assert_eq!(EMPTY.pending(), 0);
 }
 
+/// Bytes per track slot and per table as `docs/track-table.md` documents
+/// them (generated there by this test's output).
 #[test]
 fn bytes_per_track() {
     let per_track = [
         ("f64", size_of::<Option<Track<f64, FixedGainTrack<f64>>>>()),
         ("f32", size_of::<Option<Track<f32, FixedGainTrack<f32>>>>()),
+        ("q32", size_of::<Option<Track<Fix, FixedGainTrack<Fix>>>>()),
         (
             "fixed",
-            size_of::<Option<Track<Fix, FixedGainTrack<Fix>>>>(),
+            size_of::<Option<Track<Fixed32, FixedGainTrack<Fixed32>>>>(),
         ),
     ];
+    let filters = [
+        ("f64", size_of::<FixedGainTrack<f64>>()),
+        ("f32", size_of::<FixedGainTrack<f32>>()),
+        ("q32", size_of::<FixedGainTrack<Fix>>()),
+        ("fixed", size_of::<FixedGainTrack<Fixed32>>()),
+    ];
+    println!("bytes per track slot, Option<Track<_, FixedGainTrack<_>>>: {per_track:?}");
+    println!("of which FixedGainTrack<_>: {filters:?}");
+    // Issue 9's target: a 2-D αβ track with its lifecycle in at most 64
+    // bytes in f32 and in the fast fixed point.
+    assert_eq!(
+        per_track,
+        [("f64", 88), ("f32", 56), ("q32", 88), ("fixed", 64)]
+    );
+    assert_eq!(
+        filters,
+        [("f64", 64), ("f32", 32), ("q32", 64), ("fixed", 40)]
+    );
+    // The record header (id, two times, history, hits, scans, lifecycle,
+    // misses, refusals): 23 bytes, padded with the filter.
+    assert_eq!(size_of::<Option<Track<f32, Tiny>>>(), 24);
+
+    // The whole table, rounded up to its alignment (8).
+    let round = |b: usize| b.div_ceil(8) * 8;
+    let f64_bytes = |n: usize, m: usize| round(60 + 143 * n + 182 * m);
+    let f32_bytes = |n: usize, m: usize| round(56 + 111 * n + 126 * m);
+    let fixed_bytes = |n: usize, m: usize| round(56 + 119 * n + 134 * m);
     let tables = [
         ("f64", size_of::<Table<f64, 32, 32>>()),
         ("f32", size_of::<Table<f32, 32, 32>>()),
-        ("fixed", size_of::<Table<Fix, 32, 32>>()),
+        ("q32", size_of::<Table<Fix, 32, 32>>()),
+        ("fixed", size_of::<Table<Fixed32, 32, 32>>()),
     ];
-    println!("bytes per track slot: {per_track:?}");
     println!("TrackTable<_, FixedGainTrack<_>, 32, 32>: {tables:?}");
-    // The figures documented in abtrack::track (module docs, "Memory").
-    assert_eq!(per_track, [("f64", 184), ("f32", 112), ("fixed", 184)]);
-    assert_eq!(size_of::<FixedGainTrack<f64>>(), 160);
-    assert_eq!(size_of::<FixedGainTrack<f32>>(), 88);
-    assert_eq!(size_of::<abtrack::Cartesian<f64, 2, 2>>(), 128);
-    assert_eq!(size_of::<abtrack::Cartesian<f32, 2, 2>>(), 72);
-    // The documented formulas, rounded up to the table's alignment (8).
-    let round = |b: usize| b.div_ceil(8) * 8;
-    let f64_bytes = |n: usize, m: usize| round(56 + 239 * n + 154 * m);
-    let f32_bytes = |n: usize, m: usize| round(56 + 167 * n + 114 * m);
     assert_eq!(
         tables,
         [
             ("f64", f64_bytes(32, 32)),
             ("f32", f32_bytes(32, 32)),
-            ("fixed", f64_bytes(32, 32))
+            ("q32", f64_bytes(32, 32)),
+            ("fixed", fixed_bytes(32, 32)),
         ]
     );
     assert_eq!(size_of::<Table<f64, 8, 16>>(), f64_bytes(8, 16));
@@ -85,4 +110,51 @@ fn bytes_per_track() {
     assert_eq!(size_of::<Table<f32, 8, 16>>(), f32_bytes(8, 16));
     assert_eq!(size_of::<Table<f32, 64, 8>>(), f32_bytes(64, 8));
     assert_eq!(size_of::<Table<f32, 5, 3>>(), f32_bytes(5, 3));
+    assert_eq!(size_of::<Table<Fixed32, 64, 24>>(), fixed_bytes(64, 24));
+    assert_eq!(size_of::<Table<Fixed32, 3, 5>>(), fixed_bytes(3, 5));
+    assert_eq!(size_of::<Table<Fixed32, 256, 256>>(), fixed_bytes(256, 256));
+}
+
+/// A filter of one byte, to weigh the record header alone.
+#[derive(Debug, Clone, Copy, PartialEq)]
+struct Tiny(u8);
+
+impl TrackFilter<f32> for Tiny {
+    type Params = ();
+    type Step = ScanInterval<f32>;
+    fn step(_: &(), i: &ScanInterval<f32>) -> Result<ScanInterval<f32>, FilterError> {
+        Ok(*i)
+    }
+    fn interval_of(step: &ScanInterval<f32>) -> &ScanInterval<f32> {
+        step
+    }
+    fn empty(_: &()) -> Self {
+        Tiny(0)
+    }
+    fn update(
+        &mut self,
+        _: &(),
+        _: &Observation<f32>,
+        _: &ScanInterval<f32>,
+    ) -> Result<(), FilterError> {
+        Ok(())
+    }
+    fn coast(&mut self, _: &(), _: &ScanInterval<f32>) -> Result<(), FilterError> {
+        Ok(())
+    }
+    fn predict(&self, _: &(), _: &ScanInterval<f32>) -> Result<PredictedState<f32>, FilterError> {
+        Err(FilterError::Saturated)
+    }
+    fn position(&self) -> [f32; 2] {
+        [0.0; 2]
+    }
+    fn velocity(&self) -> [f32; 2] {
+        [0.0; 2]
+    }
+    fn predicted_variance_ratio(&self, _: &(), _: &ScanInterval<f32>) -> Option<f32> {
+        None
+    }
+    fn gate_alpha(&self, _: &()) -> f32 {
+        1.0
+    }
 }

@@ -54,25 +54,31 @@
 //! that takes its noise as an argument, which this adapter does not change.
 
 use super::gate::{hypot, Gate, GateRegion};
-use super::model::{Measurement, Observation, PredictedState, TrackFilter, Uncertainty};
+use super::model::{
+    uncertainty_radius, wave_radius, Measurement, Observation, PredictedState, ScanInterval,
+    TrackFilter, Uncertainty,
+};
+use super::numeric::TrackNumeric;
 use crate::filter::range_azimuth::{
     azimuth_of, CovarianceFactor, RangeAzimuthFilter, RangeAzimuthNoise,
 };
-use crate::filter::{FilterError, Gains, Phase, Prediction};
+use crate::filter::{FilterError, Gains, Phase, Prediction, UpdateKind, UpdateOutcome};
 use crate::gain::{GainContext, GainSchedule, ScheduledError, ScheduledFilter};
-use crate::num::Scalar;
+use crate::num::{Numeric, Quantity, Real, Scalar};
 
-/// The gate radius of [`Gate::Uncertainty`] for predicted variance ratio `p`
-/// (the rule documented on [`Gate`]).
-fn uncertainty_radius<S: Scalar>(
-    measurement_sigma: S,
-    threshold: S,
-    max_acceleration: S,
-    p: S,
-    dt: S,
-) -> S {
-    let half = S::from_f64_lossy(0.5);
-    measurement_sigma * (threshold * (p + S::ONE)).sqrt() + half * max_acceleration * dt * dt
+/// What an update did, without its innovation.
+fn kind_of<N: Numeric>(outcome: &UpdateOutcome<N>) -> UpdateKind {
+    match outcome {
+        UpdateOutcome::FirstPoint => UpdateKind::FirstPoint,
+        UpdateOutcome::SecondPoint => UpdateKind::SecondPoint,
+        UpdateOutcome::Filtered(_) => UpdateKind::Filtered,
+    }
+}
+
+/// One second: the interval [`TrackFilter::gate_alpha`] assumes (its
+/// signature has none).
+fn one_second<S: TrackNumeric>() -> Option<ScanInterval<S>> {
+    ScanInterval::from_ms(1000)
 }
 
 /// A scheduled update the table refused: the filter's own error, or, for a
@@ -122,19 +128,19 @@ fn filter_error(e: ScheduledError) -> FilterError {
 /// coasts until the table deletes it for its misses.
 #[derive(Debug, Clone, Copy, PartialEq)]
 #[cfg_attr(feature = "defmt", derive(defmt::Format))]
-pub struct ScheduledTrack<S: Scalar, G> {
+pub struct ScheduledTrack<S: TrackNumeric, G> {
     filter: ScheduledFilter<S, G, 2, 2>,
-    uncertainty: [Uncertainty<S>; 2],
+    uncertainty: [Uncertainty<S::Ratio>; 2],
 }
 
-impl<S: Scalar, G: GainSchedule<S, 2>> ScheduledTrack<S, G> {
+impl<S: TrackNumeric, G: GainSchedule<S, 2>> ScheduledTrack<S, G> {
     /// The filter with its schedule.
     pub fn filter(&self) -> &ScheduledFilter<S, G, 2, 2> {
         &self.filter
     }
 
     /// The covariance bookkeeping of the x and y axes.
-    pub fn uncertainty(&self) -> &[Uncertainty<S>; 2] {
+    pub fn uncertainty(&self) -> &[Uncertainty<S::Ratio>; 2] {
         &self.uncertainty
     }
 
@@ -147,14 +153,18 @@ impl<S: Scalar, G: GainSchedule<S, 2>> ScheduledTrack<S, G> {
     /// `predicted`, `dt` after the last update or coast; `None` before
     /// filtering starts (two-point initialisation uses no gains), when a
     /// restart is pending or the schedule gives none.
-    pub fn next_gains(&self, predicted: &PredictedState<S>, dt: S) -> Option<[Gains<S>; 2]> {
+    pub fn next_gains(
+        &self,
+        predicted: &PredictedState<S>,
+        dt: S::Interval,
+    ) -> Option<[Gains<S>; 2]> {
         if self.filter.filter().phase() != Phase::Tracking || self.restart_pending() {
             return None;
         }
         let prediction = |i: usize| Prediction {
             position: predicted.position[i],
             velocity: predicted.velocity[i],
-            acceleration: S::ZERO,
+            acceleration: S::Acceleration::ZERO,
         };
         let predictions = [prediction(0), prediction(1)];
         let n = self.filter.measurements().saturating_add(1);
@@ -162,14 +172,23 @@ impl<S: Scalar, G: GainSchedule<S, 2>> ScheduledTrack<S, G> {
         self.filter.schedule().gains(&ctx).ok()
     }
 
-    fn next_alpha(&self, predicted: &PredictedState<S>, dt: S) -> Option<S> {
+    fn next_alpha(&self, predicted: &PredictedState<S>, dt: S::Interval) -> Option<S::Ratio> {
         let [gx, gy] = self.next_gains(predicted, dt)?;
         Some(gx.alpha().max_of(gy.alpha()))
     }
 }
 
-impl<S: Scalar, G: GainSchedule<S, 2>> TrackFilter<S> for ScheduledTrack<S, G> {
+impl<S: TrackNumeric, G: GainSchedule<S, 2>> TrackFilter<S> for ScheduledTrack<S, G> {
     type Params = G;
+    type Step = ScanInterval<S>;
+
+    fn step(_: &G, interval: &ScanInterval<S>) -> Result<ScanInterval<S>, FilterError> {
+        Ok(*interval)
+    }
+
+    fn interval_of(step: &ScanInterval<S>) -> &ScanInterval<S> {
+        step
+    }
 
     fn empty(schedule: &G) -> Self {
         ScheduledTrack {
@@ -178,10 +197,15 @@ impl<S: Scalar, G: GainSchedule<S, 2>> TrackFilter<S> for ScheduledTrack<S, G> {
         }
     }
 
-    fn update(&mut self, _: &G, z: &Observation<S>, dt: S) -> Result<(), FilterError> {
+    fn update(
+        &mut self,
+        _: &G,
+        z: &Observation<S>,
+        step: &ScanInterval<S>,
+    ) -> Result<(), FilterError> {
         let mut filter = self.filter;
-        let step = match filter.update(z.xy(), dt) {
-            Ok(step) => step,
+        let update = match filter.update(z.xy(), step.interval()) {
+            Ok(update) => update,
             Err(e) => {
                 // A refused update changes the ScheduledFilter only by its
                 // saturation count, which is kept.
@@ -190,16 +214,21 @@ impl<S: Scalar, G: GainSchedule<S, 2>> TrackFilter<S> for ScheduledTrack<S, G> {
             }
         };
         let mut uncertainty = self.uncertainty;
-        for (i, (u, outcome)) in uncertainty.iter_mut().zip(step.outcome.iter()).enumerate() {
+        for (i, (u, outcome)) in uncertainty
+            .iter_mut()
+            .zip(update.outcome.iter())
+            .enumerate()
+        {
             // Initialisation updates use no gains (and their bookkeeping
             // ignores them).
-            let (alpha, beta) = step
+            let one = S::Ratio::ONE;
+            let (alpha, beta) = update
                 .gains
                 .as_ref()
                 .and_then(|g| g.get(i))
-                .map_or((S::ONE, S::ONE), |g| (g.alpha(), g.beta()));
+                .map_or((one, one), |g| (g.alpha(), g.beta()));
             *u = u
-                .after_update(outcome, alpha, beta, dt)
+                .after_update(kind_of(outcome), alpha, beta, step.seconds())
                 .ok_or(FilterError::Saturated)?;
         }
         self.filter = filter;
@@ -207,40 +236,42 @@ impl<S: Scalar, G: GainSchedule<S, 2>> TrackFilter<S> for ScheduledTrack<S, G> {
         Ok(())
     }
 
-    fn coast(&mut self, _: &G, dt: S) -> Result<(), FilterError> {
+    fn coast(&mut self, _: &G, step: &ScanInterval<S>) -> Result<(), FilterError> {
         let mut filter = self.filter;
-        filter.coast(dt)?;
+        filter.coast(step.interval())?;
         let [ux, uy] = self.uncertainty;
         let uncertainty = [
-            ux.after_coast(dt).ok_or(FilterError::Saturated)?,
-            uy.after_coast(dt).ok_or(FilterError::Saturated)?,
+            ux.after_coast(step.seconds())
+                .ok_or(FilterError::Saturated)?,
+            uy.after_coast(step.seconds())
+                .ok_or(FilterError::Saturated)?,
         ];
         self.filter = filter;
         self.uncertainty = uncertainty;
         Ok(())
     }
 
-    fn predict(&self, _: &G, dt: S) -> Result<PredictedState<S>, FilterError> {
-        let [px, py] = self.filter.filter().predict(dt)?;
+    fn predict(&self, _: &G, step: &ScanInterval<S>) -> Result<PredictedState<S>, FilterError> {
+        let [px, py] = self.filter.filter().predict(step.interval())?;
         Ok(PredictedState {
             position: [px.position, py.position],
             velocity: [px.velocity, py.velocity],
         })
     }
 
-    fn position(&self) -> [S; 2] {
+    fn position(&self) -> [S::Length; 2] {
         self.filter.filter().position()
     }
 
-    fn velocity(&self) -> [S; 2] {
+    fn velocity(&self) -> [S::Speed; 2] {
         self.filter.filter().velocity()
     }
 
     /// The larger of the two axes' predicted position variance ratios.
-    fn predicted_variance_ratio(&self, _: &G, dt: S) -> Option<S> {
+    fn predicted_variance_ratio(&self, _: &G, step: &ScanInterval<S>) -> Option<S::Ratio> {
         let [ux, uy] = &self.uncertainty;
-        let px = ux.predicted_variance_ratio(dt)?;
-        let py = uy.predicted_variance_ratio(dt)?;
+        let px = ux.predicted_variance_ratio(step.seconds())?;
+        let py = uy.predicted_variance_ratio(step.seconds())?;
         Some(px.max_of(py))
     }
 
@@ -248,18 +279,20 @@ impl<S: Scalar, G: GainSchedule<S, 2>> TrackFilter<S> for ScheduledTrack<S, G> {
     /// (this signature has no interval); 1 (the widest wave gate) when the
     /// schedule gives none. The table does not call it: [`Self::gate_region`]
     /// uses the gains at the scan's own interval.
-    fn gate_alpha(&self, schedule: &G) -> S {
-        self.predict(schedule, S::ONE)
-            .ok()
-            .and_then(|p| self.next_alpha(&p, S::ONE))
-            .unwrap_or(S::ONE)
+    fn gate_alpha(&self, schedule: &G) -> S::Ratio {
+        one_second::<S>()
+            .and_then(|second| {
+                let p = self.predict(schedule, &second).ok()?;
+                self.next_alpha(&p, second.interval())
+            })
+            .unwrap_or(S::Ratio::ONE)
     }
 
     fn gate_region(
         &self,
         params: &G,
         predicted: &PredictedState<S>,
-        dt: S,
+        step: &ScanInterval<S>,
         gate: &Gate<S>,
     ) -> Option<GateRegion<S>> {
         if self.restart_pending() {
@@ -271,18 +304,22 @@ impl<S: Scalar, G: GainSchedule<S, 2>> TrackFilter<S> for ScheduledTrack<S, G> {
                 threshold,
                 max_acceleration,
             } => {
-                let p = self.predicted_variance_ratio(params, dt)?;
-                uncertainty_radius(measurement_sigma, threshold, max_acceleration, p, dt)
+                let p = self.predicted_variance_ratio(params, step)?;
+                uncertainty_radius(measurement_sigma, threshold, max_acceleration, p, step)
             }
             Gate::Wave {
                 range_sigma,
                 bearing_sigma,
                 multiple,
             } => {
-                // Li et al. eqs. (11)–(12): Δd = λ·√(Δρ² + ρ²Δθ²), λ = √α.
-                let alpha = self.next_alpha(predicted, dt)?;
-                let rho = hypot(predicted.position[0], predicted.position[1]);
-                multiple * alpha.sqrt() * hypot(range_sigma, rho * bearing_sigma)
+                let alpha = self.next_alpha(predicted, step.interval())?;
+                wave_radius::<S>(
+                    range_sigma,
+                    bearing_sigma,
+                    multiple,
+                    alpha,
+                    predicted.position,
+                )
             }
         };
         GateRegion::circle(predicted.position, radius)
@@ -438,6 +475,18 @@ impl<S: Scalar> RangeAzimuthTrack<S> {
 
 impl<S: Scalar> TrackFilter<S> for RangeAzimuthTrack<S> {
     type Params = RangeAzimuthNoise<S>;
+    type Step = ScanInterval<S>;
+
+    fn step(
+        _: &RangeAzimuthNoise<S>,
+        interval: &ScanInterval<S>,
+    ) -> Result<ScanInterval<S>, FilterError> {
+        Ok(*interval)
+    }
+
+    fn interval_of(step: &ScanInterval<S>) -> &ScanInterval<S> {
+        step
+    }
 
     fn empty(noise: &RangeAzimuthNoise<S>) -> Self {
         RangeAzimuthTrack {
@@ -449,19 +498,28 @@ impl<S: Scalar> TrackFilter<S> for RangeAzimuthTrack<S> {
         &mut self,
         _: &RangeAzimuthNoise<S>,
         z: &Observation<S>,
-        dt: S,
+        step: &ScanInterval<S>,
     ) -> Result<(), FilterError> {
+        let dt = step.interval();
         let (range, azimuth) = Self::polar(z);
         // The filter leaves its state untouched on an error.
         self.filter.update(range, azimuth, dt).map(|_| ())
     }
 
-    fn coast(&mut self, _: &RangeAzimuthNoise<S>, dt: S) -> Result<(), FilterError> {
-        self.filter.coast(dt)
+    fn coast(
+        &mut self,
+        _: &RangeAzimuthNoise<S>,
+        step: &ScanInterval<S>,
+    ) -> Result<(), FilterError> {
+        self.filter.coast(step.interval())
     }
 
-    fn predict(&self, _: &RangeAzimuthNoise<S>, dt: S) -> Result<PredictedState<S>, FilterError> {
-        let p = self.filter.predict(dt)?;
+    fn predict(
+        &self,
+        _: &RangeAzimuthNoise<S>,
+        step: &ScanInterval<S>,
+    ) -> Result<PredictedState<S>, FilterError> {
+        let p = self.filter.predict(step.interval())?;
         Ok(PredictedState {
             position: p.position,
             velocity: p.velocity,
@@ -479,8 +537,13 @@ impl<S: Scalar> TrackFilter<S> for RangeAzimuthTrack<S> {
     /// The larger of P_R⁻₁₁/σ_R² and P_C⁻₁₁/(R_p σ_B)², each direction's
     /// predicted position variance in units of its own measurement variance
     /// (R_p the predicted range).
-    fn predicted_variance_ratio(&self, noise: &RangeAzimuthNoise<S>, dt: S) -> Option<S> {
-        let p = self.predict(noise, dt).ok()?;
+    fn predicted_variance_ratio(
+        &self,
+        noise: &RangeAzimuthNoise<S>,
+        step: &ScanInterval<S>,
+    ) -> Option<S> {
+        let dt = step.interval();
+        let p = self.predict(noise, step).ok()?;
         let range = hypot(p.position[0], p.position[1]);
         let [along, across, sigma_r, sigma_c] = self.predicted_sigmas(dt, range)?;
         let ratio = (along / sigma_r).max_of(across / sigma_c);
@@ -493,7 +556,7 @@ impl<S: Scalar> TrackFilter<S> for RangeAzimuthTrack<S> {
     /// not call it: [`Self::gate_region`] uses the gains at the scan's own
     /// interval.
     fn gate_alpha(&self, noise: &RangeAzimuthNoise<S>) -> S {
-        let Ok(p) = self.predict(noise, S::ONE) else {
+        let Some(Ok(p)) = one_second::<S>().map(|second| self.predict(noise, &second)) else {
             return S::ONE;
         };
         let range = hypot(p.position[0], p.position[1]);
@@ -509,9 +572,10 @@ impl<S: Scalar> TrackFilter<S> for RangeAzimuthTrack<S> {
         &self,
         _: &RangeAzimuthNoise<S>,
         predicted: &PredictedState<S>,
-        dt: S,
+        step: &ScanInterval<S>,
         gate: &Gate<S>,
     ) -> Option<GateRegion<S>> {
+        let dt = step.interval();
         let range = hypot(predicted.position[0], predicted.position[1]);
         let [along, across, sigma_r, sigma_c] = self.predicted_sigmas(dt, range)?;
         let (half_along, half_across) = match *gate {

@@ -1,21 +1,22 @@
 //! Tracker configuration: filter parameters, gate, initiation, confirmation,
 //! deletion and surveillance volume.
 
-use super::gate::{ConfigError, Gate};
-use crate::num::Scalar;
+use super::gate::{non_negative, ConfigError, Gate};
+use super::numeric::TrackNumeric;
+use crate::num::Quantity;
 
 /// Axis-aligned surveillance region (m). Tracks whose position leaves it are
 /// deleted; measurements outside it do not start tracks.
 #[derive(Debug, Clone, Copy, PartialEq)]
 #[cfg_attr(feature = "defmt", derive(defmt::Format))]
-pub struct Volume<S> {
-    min: [S; 2],
-    max: [S; 2],
+pub struct Volume<S: TrackNumeric> {
+    min: [S::Length; 2],
+    max: [S::Length; 2],
 }
 
-impl<S: Scalar> Volume<S> {
+impl<S: TrackNumeric> Volume<S> {
     /// The box `min ..= max` on each axis; needs min < max.
-    pub fn new(min: [S; 2], max: [S; 2]) -> Result<Self, ConfigError> {
+    pub fn new(min: [S::Length; 2], max: [S::Length; 2]) -> Result<Self, ConfigError> {
         for (lo, hi) in min.iter().zip(max.iter()) {
             if !(lo.is_valid() && hi.is_valid()) {
                 return Err(ConfigError::NotFinite);
@@ -27,15 +28,15 @@ impl<S: Scalar> Volume<S> {
         Ok(Volume { min, max })
     }
 
-    pub fn min(&self) -> [S; 2] {
+    pub fn min(&self) -> [S::Length; 2] {
         self.min
     }
-    pub fn max(&self) -> [S; 2] {
+    pub fn max(&self) -> [S::Length; 2] {
         self.max
     }
 
     /// Inside or on the boundary (false for invalid coordinates).
-    pub fn contains(&self, p: [S; 2]) -> bool {
+    pub fn contains(&self, p: [S::Length; 2]) -> bool {
         p.iter()
             .zip(self.min.iter().zip(self.max.iter()))
             .all(|(v, (lo, hi))| v >= lo && v <= hi)
@@ -58,11 +59,11 @@ impl<S: Scalar> Volume<S> {
 /// can be built by a `const fn` in a `static` (the checked constructors here
 /// cannot be `const`).
 #[derive(Debug, Clone, Copy, PartialEq)]
-pub struct TrackerConfig<S, P> {
+pub struct TrackerConfig<S: TrackNumeric, P> {
     params: P,
     gate: Gate<S>,
-    max_speed: S,
-    initiation_margin: S,
+    max_speed: S::Speed,
+    initiation_margin: S::Length,
     confirm_hits: u8,
     confirm_window: u8,
     delete_confirmed_misses: u8,
@@ -70,23 +71,23 @@ pub struct TrackerConfig<S, P> {
     volume: Option<Volume<S>>,
 }
 
-impl<S: Scalar, P: Copy> TrackerConfig<S, P> {
+impl<S: TrackNumeric, P: Copy> TrackerConfig<S, P> {
     /// `params` for the filters, the gate rule, and the largest target speed
     /// (m/s) for two-point initiation: a measurement pairs with one of the
     /// previous scan only if they are at most `max_speed·T` apart.
-    pub fn new(params: P, gate: Gate<S>, max_speed: S) -> Result<Self, ConfigError> {
+    pub fn new(params: P, gate: Gate<S>, max_speed: S::Speed) -> Result<Self, ConfigError> {
         let gate = gate.validated()?;
         if !max_speed.is_valid() {
             return Err(ConfigError::NotFinite);
         }
-        if max_speed <= S::ZERO {
+        if max_speed <= S::Speed::ZERO {
             return Err(ConfigError::OutOfRange);
         }
         Ok(TrackerConfig {
             params,
             gate,
             max_speed,
-            initiation_margin: S::ZERO,
+            initiation_margin: S::Length::ZERO,
             confirm_hits: 2,
             confirm_window: 3,
             delete_confirmed_misses: 3,
@@ -97,14 +98,8 @@ impl<S: Scalar, P: Copy> TrackerConfig<S, P> {
 
     /// Adds `margin` (m, ≥ 0) to the initiation radius `max_speed·T`, for
     /// measurement noise on the two points.
-    pub fn with_initiation_margin(mut self, margin: S) -> Result<Self, ConfigError> {
-        if !margin.is_valid() {
-            return Err(ConfigError::NotFinite);
-        }
-        if margin < S::ZERO {
-            return Err(ConfigError::OutOfRange);
-        }
-        self.initiation_margin = margin;
+    pub fn with_initiation_margin(mut self, margin: S::Length) -> Result<Self, ConfigError> {
+        self.initiation_margin = non_negative(margin)?;
         Ok(self)
     }
 
@@ -143,10 +138,10 @@ impl<S: Scalar, P: Copy> TrackerConfig<S, P> {
     pub fn gate(&self) -> &Gate<S> {
         &self.gate
     }
-    pub fn max_speed(&self) -> S {
+    pub fn max_speed(&self) -> S::Speed {
         self.max_speed
     }
-    pub fn initiation_margin(&self) -> S {
+    pub fn initiation_margin(&self) -> S::Length {
         self.initiation_margin
     }
     /// (M, N) of M-of-N confirmation.
@@ -161,7 +156,7 @@ impl<S: Scalar, P: Copy> TrackerConfig<S, P> {
         self.volume.as_ref()
     }
 
-    pub(crate) fn in_volume(&self, p: [S; 2]) -> bool {
+    pub(crate) fn in_volume(&self, p: [S::Length; 2]) -> bool {
         self.volume.as_ref().is_none_or(|v| v.contains(p))
     }
 }

@@ -107,7 +107,8 @@ use crate::design::{kalata_gains, tracking_index};
 use crate::filter::range_azimuth::RangeAzimuthNoise;
 use crate::gain::al_wagih::{least_squares_alpha, LeastSquaresConfig};
 use crate::gain::LeastSquaresGains;
-use crate::num::Scalar;
+use crate::num::{Quantity, Scalar};
+use crate::track::TrackNumeric;
 
 /// Fraction of a missed detection's probability allowed for a true
 /// measurement falling outside its gate (rule 1).
@@ -284,8 +285,9 @@ fn positive(v: f64) -> Result<f64, ConfigError> {
     }
 }
 
-fn scalar<S: Scalar>(v: f64) -> Result<S, ConfigError> {
-    S::try_from_f64(v).map_err(|_| ConfigError::NotFinite)
+/// A quantity of the tracker's number system (a length, a speed, ...).
+fn scalar<Q: Quantity>(v: f64) -> Result<Q, ConfigError> {
+    Q::try_from_f64(v).map_err(|_| ConfigError::NotFinite)
 }
 
 impl TrackerDesign {
@@ -468,7 +470,7 @@ impl TrackerDesign {
 
     /// The lifecycle part shared by every filter: gate, initiation,
     /// confirmation, deletion, volume.
-    fn config_with<S: Scalar, P: Copy>(
+    fn config_with<S: TrackNumeric, P: Copy>(
         &self,
         params: P,
         measurement_sigma: f64,
@@ -496,7 +498,7 @@ impl TrackerDesign {
     /// parameters of the caller's choice (e.g. fixed gains or another
     /// schedule): the uncertainty gate for σ_max (rule 3), so a Cartesian
     /// filter of either sensor.
-    pub fn tracker_config<S: Scalar, P: Copy>(
+    pub fn tracker_config<S: TrackNumeric, P: Copy>(
         &self,
         params: P,
     ) -> Result<TrackerConfig<S, P>, ConfigError> {
@@ -509,7 +511,7 @@ impl TrackerDesign {
     /// the sensor's σ (for a polar sensor, σ_max: the conversion to x, y is
     /// then covered everywhere, at the cost of gates as wide across range as
     /// at the edge of the region), and the lifecycle of the module docs.
-    pub fn cartesian_config<S: Scalar>(
+    pub fn cartesian_config<S: TrackNumeric>(
         &self,
     ) -> Result<TrackerConfig<S, LeastSquaresGains>, ConfigError> {
         let d = self.derive()?;
@@ -551,7 +553,8 @@ impl TrackerDesign {
 
 /// [`TrackerDesign::NOMINAL_RADAR`]'s Cartesian tracker (see the module
 /// docs): the configuration `replay --tracker` uses for `t,x,y` input.
-pub fn default_cartesian<S: Scalar>() -> Result<TrackerConfig<S, LeastSquaresGains>, ConfigError> {
+pub fn default_cartesian<S: TrackNumeric>(
+) -> Result<TrackerConfig<S, LeastSquaresGains>, ConfigError> {
     TrackerDesign::NOMINAL_RADAR.cartesian_config()
 }
 

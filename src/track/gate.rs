@@ -16,14 +16,14 @@
 //! al., whose uncertainty differs along and across range). A filter chooses
 //! its region in [`TrackFilter::gate_region`](super::TrackFilter::gate_region).
 
+use super::numeric::{quantise_unit, TrackNumeric};
 use super::{Measurement, Observation};
-use crate::num::Scalar;
-use crate::track::assign::MAX_COST;
+use crate::num::{Quantity, Scalar};
 
 /// The rule that sizes each track's gate.
 #[derive(Debug, Clone, Copy, PartialEq)]
 #[cfg_attr(feature = "defmt", derive(defmt::Format))]
-pub enum Gate<S> {
+pub enum Gate<S: TrackNumeric> {
     /// A circle around the predicted position whose radius follows the
     /// filter's predicted uncertainty:
     ///
@@ -42,9 +42,9 @@ pub enum Gate<S> {
     ///   noise, so an accelerating target drifts from the prediction by up to
     ///   ½·a·T² over the interval T; the gate is widened by that much.
     Uncertainty {
-        measurement_sigma: S,
-        threshold: S,
-        max_acceleration: S,
+        measurement_sigma: S::Length,
+        threshold: S::Ratio,
+        max_acceleration: S::Acceleration,
     },
     /// The wave gate of Li, Zhao, Liang & Zhang: a circle around the
     /// predicted position of radius
@@ -64,9 +64,9 @@ pub enum Gate<S> {
     /// consistent reading: a circular gate d ≤ κ·Δd, with κ playing the role
     /// of R. The paper gives no value for R; κ is the caller's choice.
     Wave {
-        range_sigma: S,
-        bearing_sigma: S,
-        multiple: S,
+        range_sigma: S::Length,
+        bearing_sigma: S::Ratio,
+        multiple: S::Ratio,
     },
 }
 
@@ -100,32 +100,32 @@ impl core::fmt::Display for ConfigError {
 
 impl core::error::Error for ConfigError {}
 
-fn positive<S: Scalar>(v: S) -> Result<S, ConfigError> {
+fn positive<Q: Quantity>(v: Q) -> Result<Q, ConfigError> {
     if !v.is_valid() {
         Err(ConfigError::NotFinite)
-    } else if v <= S::ZERO {
+    } else if v <= Q::ZERO {
         Err(ConfigError::OutOfRange)
     } else {
         Ok(v)
     }
 }
 
-fn non_negative<S: Scalar>(v: S) -> Result<S, ConfigError> {
+pub(super) fn non_negative<Q: Quantity>(v: Q) -> Result<Q, ConfigError> {
     if !v.is_valid() {
         Err(ConfigError::NotFinite)
-    } else if v < S::ZERO {
+    } else if v < Q::ZERO {
         Err(ConfigError::OutOfRange)
     } else {
         Ok(v)
     }
 }
 
-impl<S: Scalar> Gate<S> {
+impl<S: TrackNumeric> Gate<S> {
     /// [`Gate::Uncertainty`], checked: σ > 0, G > 0, a_max ≥ 0.
     pub fn uncertainty(
-        measurement_sigma: S,
-        threshold: S,
-        max_acceleration: S,
+        measurement_sigma: S::Length,
+        threshold: S::Ratio,
+        max_acceleration: S::Acceleration,
     ) -> Result<Self, ConfigError> {
         Ok(Gate::Uncertainty {
             measurement_sigma: positive(measurement_sigma)?,
@@ -135,10 +135,14 @@ impl<S: Scalar> Gate<S> {
     }
 
     /// [`Gate::Wave`], checked: Δρ ≥ 0, Δθ ≥ 0, not both 0, κ > 0.
-    pub fn wave(range_sigma: S, bearing_sigma: S, multiple: S) -> Result<Self, ConfigError> {
+    pub fn wave(
+        range_sigma: S::Length,
+        bearing_sigma: S::Ratio,
+        multiple: S::Ratio,
+    ) -> Result<Self, ConfigError> {
         let range_sigma = non_negative(range_sigma)?;
         let bearing_sigma = non_negative(bearing_sigma)?;
-        if range_sigma == S::ZERO && bearing_sigma == S::ZERO {
+        if range_sigma == S::Length::ZERO && bearing_sigma == S::Ratio::ZERO {
             return Err(ConfigError::OutOfRange);
         }
         Ok(Gate::Wave {
@@ -170,59 +174,64 @@ pub use crate::num::hypot;
 /// An axis-aligned box in x, y (m), boundaries included.
 #[derive(Debug, Clone, Copy, PartialEq)]
 #[cfg_attr(feature = "defmt", derive(defmt::Format))]
-pub struct BoundingBox<S> {
-    pub min: [S; 2],
-    pub max: [S; 2],
+pub struct BoundingBox<S: TrackNumeric> {
+    pub min: [S::Length; 2],
+    pub max: [S::Length; 2],
 }
 
-impl<S: Scalar> BoundingBox<S> {
+impl<S: TrackNumeric> BoundingBox<S> {
     /// Inside or on the boundary.
-    pub fn contains(&self, p: [S; 2]) -> bool {
+    pub fn contains(&self, p: [S::Length; 2]) -> bool {
         p[0] >= self.min[0] && p[0] <= self.max[0] && p[1] >= self.min[1] && p[1] <= self.max[1]
     }
 }
 
 /// One track's validation region for one scan.
 #[derive(Debug, Clone, Copy, PartialEq)]
-#[cfg_attr(feature = "defmt", derive(defmt::Format))]
-pub enum GateRegion<S> {
+pub enum GateRegion<S: TrackNumeric> {
     /// Points within `radius` of `center` (Cartesian, metres).
     Circle {
-        center: [S; 2],
-        radius: S,
-        /// 1/radius, so testing a measurement needs no division.
-        inverse_radius: S,
+        center: [S::Length; 2],
+        radius: S::Length,
+        /// What the number system keeps to test a point without a division
+        /// (the reciprocal of the radius for floats and Q32.32).
+        scale: S::CircleScale,
     },
-    /// A window in range and azimuth around a predicted position at
-    /// distance `range` from the sensor, in direction `unit`
-    /// ([`GateRegion::polar`]). Its cost is the normalised squared distance
-    /// (ΔR/half_range)² + (ΔB·inverse_half_azimuth)², as for the circle.
-    Polar {
-        range: S,
-        unit: [S; 2],
-        half_range: S,
-        inverse_half_range: S,
-        /// R_p / half_cross: 1 over the azimuth half-width (rad⁻¹).
-        inverse_half_azimuth: S,
-    },
+    /// A window in range and azimuth ([`GateRegion::polar`]), in the
+    /// number system's polar scalar.
+    Polar(PolarWindow<S::Polar>),
 }
 
-impl<S: Scalar> GateRegion<S> {
-    /// A circle; `None` if the radius is not a valid number > 0 or its
-    /// inverse is not representable.
-    pub fn circle(center: [S; 2], radius: S) -> Option<Self> {
-        if !(radius.is_valid() && radius > S::ZERO && center[0].is_valid() && center[1].is_valid())
+/// A window in range and azimuth around a predicted position at distance
+/// `range` from the sensor, in direction `unit` ([`GateRegion::polar`]).
+/// Its cost is the normalised squared distance
+/// (ΔR/half_range)² + (ΔB·inverse_half_azimuth)², as for the circle.
+#[derive(Debug, Clone, Copy, PartialEq)]
+#[cfg_attr(feature = "defmt", derive(defmt::Format))]
+pub struct PolarWindow<P> {
+    pub range: P,
+    pub unit: [P; 2],
+    pub half_range: P,
+    pub inverse_half_range: P,
+    /// R_p / half_cross: 1 over the azimuth half-width (rad⁻¹).
+    pub inverse_half_azimuth: P,
+}
+
+impl<S: TrackNumeric> GateRegion<S> {
+    /// A circle; `None` if the radius is not a valid number > 0 or the
+    /// number system cannot prepare its test.
+    pub fn circle(center: [S::Length; 2], radius: S::Length) -> Option<Self> {
+        if !(radius.is_valid()
+            && radius > S::Length::ZERO
+            && center[0].is_valid()
+            && center[1].is_valid())
         {
-            return None;
-        }
-        let inverse_radius = S::ONE / radius;
-        if !(inverse_radius.is_valid() && inverse_radius > S::ZERO) {
             return None;
         }
         Some(GateRegion::Circle {
             center,
             radius,
-            inverse_radius,
+            scale: S::circle_scale(radius)?,
         })
     }
 
@@ -244,80 +253,57 @@ impl<S: Scalar> GateRegion<S> {
     /// At R_p = 0 there is no direction: the circle of the larger
     /// half-width. `None` if a half-width is not a valid number > 0 or
     /// its inverse is not representable.
-    pub fn polar(center: [S; 2], half_range: S, half_cross: S) -> Option<Self> {
-        let range = hypot(center[0], center[1]);
-        if !range.is_valid() {
-            return None;
+    pub fn polar(
+        center: [S::Length; 2],
+        half_range: S::Length,
+        half_cross: S::Length,
+    ) -> Option<Self> {
+        let to = S::length_to_polar;
+        match PolarWindow::new(
+            [to(center[0]), to(center[1])],
+            to(half_range),
+            to(half_cross),
+        )? {
+            Ok(window) => Some(GateRegion::Polar(window)),
+            Err(radius) => Self::circle(center, S::length_from_polar(radius)),
         }
-        if range == S::ZERO {
-            return Self::circle(center, half_range.max_of(half_cross));
-        }
-        let valid = |v: S| v.is_valid() && v > S::ZERO;
-        if !(valid(half_range) && valid(half_cross)) {
-            return None;
-        }
-        let inverse_half_range = S::ONE / half_range;
-        // 1/ΔB_max = R_p / half_cross (rad⁻¹).
-        let inverse_half_azimuth = range / half_cross;
-        if !(valid(inverse_half_range) && valid(inverse_half_azimuth)) {
-            return None;
-        }
-        Some(GateRegion::Polar {
-            range,
-            unit: [center[0] / range, center[1] / range],
-            half_range,
-            inverse_half_range,
-            inverse_half_azimuth,
-        })
     }
 
     /// An axis-aligned box that contains every observation [`Self::cost`]
     /// accepts: the spatial pre-gate looks up the measurements inside it and
     /// tests only those exactly.
     ///
-    /// * Circle: the centre ± r·(1 + 2⁻⁸). The exact test accepts z when the
+    /// * Circle: the centre ± r·(1 + 2⁻⁴). The exact test accepts z when the
     ///   rounded z − c is ≤ r; one rounding errs by less than 2⁻²³ of the
-    ///   result in f32 (fixed point subtracts exactly), so z − c < r·(1 + 2⁻⁸)
+    ///   result in f32 (fixed point subtracts exactly), so z − c < r·(1 + 2⁻⁴)
     ///   and, rounding being monotone, z lies inside the rounded bounds.
-    /// * Range/azimuth window (half-widths h_R along and h_C across range at
-    ///   predicted range R_p): a point at range R and angle ΔB ≤ h_C/R_p from
-    ///   the prediction lies within √(h_R² + R·R_p·ΔB²) ≤
-    ///   h_R + h_C·(1 + h_R/R_p) of it; the box is the centre ± twice that
-    ///   plus (R_p + h_R)/256, room for the rounding of the projection, the
-    ///   square roots and the arctangent.
+    /// * Range/azimuth window: [`PolarWindow::bounds`], converted.
     pub fn bounds(&self) -> BoundingBox<S> {
-        let (center, half) = match *self {
+        match *self {
             GateRegion::Circle { center, radius, .. } => {
-                (center, radius + radius * S::from_f64_lossy(1.0 / 256.0))
+                let half = radius + radius.half().half().half().half();
+                BoundingBox {
+                    min: [center[0] - half, center[1] - half],
+                    max: [center[0] + half, center[1] + half],
+                }
             }
-            GateRegion::Polar {
-                range,
-                unit,
-                half_range,
-                inverse_half_range: _,
-                inverse_half_azimuth,
-            } => {
-                let half_cross = range / inverse_half_azimuth;
-                let spread = half_range + half_cross * (S::ONE + half_range / range);
-                let rounding = (range + half_range) * S::from_f64_lossy(1.0 / 256.0);
-                (
-                    [unit[0] * range, unit[1] * range],
-                    spread + spread + rounding,
-                )
+            GateRegion::Polar(window) => {
+                let (min, max) = window.bounds();
+                let from = S::length_from_polar;
+                BoundingBox {
+                    min: [from(min[0]), from(min[1])],
+                    max: [from(max[0]), from(max[1])],
+                }
             }
-        };
-        BoundingBox {
-            min: [center[0] - half, center[1] - half],
-            max: [center[0] + half, center[1] + half],
         }
     }
 
     /// Radius of a circular region; for a range/azimuth window, its range
     /// half-width.
-    pub fn radius(&self) -> S {
+    pub fn radius(&self) -> S::Length {
         match *self {
             GateRegion::Circle { radius, .. } => radius,
-            GateRegion::Polar { half_range, .. } => half_range,
+            GateRegion::Polar(window) => S::length_from_polar(window.half_range),
         }
     }
 
@@ -325,79 +311,110 @@ impl<S: Scalar> GateRegion<S> {
     /// `((ΔR/half_range)² + (ΔB/ΔB_max)²)·MAX_COST` (range/azimuth window),
     /// rounded, if the observation lies inside the region; `None` if
     /// outside.
-    ///
-    /// Each offset is first compared with its half-width, so the squares are
-    /// of numbers ≤ 1 and cannot saturate in fixed point.
     pub fn cost(&self, observation: &Observation<S>) -> Option<u16> {
         match *self {
             GateRegion::Circle {
                 center,
                 radius,
-                inverse_radius,
+                scale,
             } => {
                 let z = observation.xy();
-                let dx = z[0] - center[0];
-                let dy = z[1] - center[1];
-                // `!(a <= b)` is also true for NaN.
-                if !(dx.abs() <= radius && dy.abs() <= radius) {
-                    return None;
-                }
-                let nx = dx * inverse_radius;
-                let ny = dy * inverse_radius;
-                let d2 = nx * nx + ny * ny;
-                if !(d2.is_valid() && d2 <= S::ONE) {
-                    return None;
-                }
-                Some(quantise_unit(d2))
+                S::circle_cost(z[0] - center[0], z[1] - center[1], radius, scale)
             }
-            GateRegion::Polar {
-                range,
-                unit,
-                half_range,
-                inverse_half_range,
-                inverse_half_azimuth,
-            } => {
-                let z = observation.xy();
+            GateRegion::Polar(window) => {
+                let z = observation.xy().map(S::length_to_polar);
                 let measured_range = match observation.measurement() {
-                    Measurement::Polar { range, .. } => range,
+                    Measurement::Polar { range, .. } => S::length_to_polar(range),
                     Measurement::Cartesian { .. } => hypot(z[0], z[1]),
                 };
-                // The range test first: it is cheap and rejects most pairs.
-                let dr = measured_range - range;
-                // `!(a <= b)` is also true for NaN.
-                if !(dr.abs() <= half_range && measured_range != S::ZERO) {
-                    return None;
-                }
-                // Angle between the directions, from unit vectors (no
-                // product of two positions is formed, so Q32.32 cannot
-                // overflow) and one arctangent: exact for any width.
-                let m = [z[0] / measured_range, z[1] / measured_range];
-                let cross = unit[0] * m[1] - unit[1] * m[0];
-                let dot = unit[0] * m[0] + unit[1] * m[1];
-                let db = cross.atan2(dot);
-                let nr = dr * inverse_half_range;
-                let nb = db * inverse_half_azimuth;
-                if !(nb.abs() <= S::ONE && nr.abs() <= S::ONE) {
-                    return None;
-                }
-                let d2 = nr * nr + nb * nb;
-                if !(d2.is_valid() && d2 <= S::ONE) {
-                    return None;
-                }
-                Some(quantise_unit(d2))
+                window.cost(z, measured_range)
             }
         }
     }
 }
 
-/// A value in [0, 1] to `0 ..= MAX_COST`, rounded to nearest.
-fn quantise_unit<S: Scalar>(v: S) -> u16 {
-    let scaled = v.to_f64() * MAX_COST as f64 + 0.5;
-    // `as` saturates (and maps NaN to 0); the caller checked 0 ≤ v ≤ 1.
-    let q = scaled as u32;
-    if q > MAX_COST as u32 {
-        MAX_COST
-    } else {
-        q as u16
+impl<P: Scalar> PolarWindow<P> {
+    /// The window, or `Err(radius)` for a circle of that radius when the
+    /// centre is at the sensor (no direction); `None` if not representable.
+    #[inline(never)]
+    fn new(center: [P; 2], half_range: P, half_cross: P) -> Option<Result<Self, P>> {
+        let range = hypot(center[0], center[1]);
+        if !range.is_valid() {
+            return None;
+        }
+        if range == P::ZERO {
+            return Some(Err(half_range.max_of(half_cross)));
+        }
+        let valid = |v: P| v.is_valid() && v > P::ZERO;
+        if !(valid(half_range) && valid(half_cross)) {
+            return None;
+        }
+        let inverse_half_range = P::ONE / half_range;
+        // 1/ΔB_max = R_p / half_cross (rad⁻¹).
+        let inverse_half_azimuth = range / half_cross;
+        if !(valid(inverse_half_range) && valid(inverse_half_azimuth)) {
+            return None;
+        }
+        Some(Ok(PolarWindow {
+            range,
+            unit: [center[0] / range, center[1] / range],
+            half_range,
+            inverse_half_range,
+            inverse_half_azimuth,
+        }))
+    }
+
+    /// (min, max) corners of a box around the window: a point at range R
+    /// and angle ΔB ≤ h_C/R_p from the prediction (half-widths h_R along
+    /// and h_C across range, predicted range R_p) lies within
+    /// √(h_R² + R·R_p·ΔB²) ≤ h_R + h_C·(1 + h_R/R_p) of it; the box is the
+    /// centre ± twice that plus (R_p + h_R)/256, room for the rounding of
+    /// the projection, the square roots and the arctangent.
+    // Not inlined: the circle is the hot path, and a copy of the window's
+    // arithmetic at each call site costs flash for nothing.
+    #[inline(never)]
+    fn bounds(&self) -> ([P; 2], [P; 2]) {
+        let half_cross = self.range / self.inverse_half_azimuth;
+        let spread = self.half_range + half_cross * (P::ONE + self.half_range / self.range);
+        let rounding = (self.range + self.half_range) * P::from_f64_lossy(1.0 / 256.0);
+        let half = spread + spread + rounding;
+        let center = [self.unit[0] * self.range, self.unit[1] * self.range];
+        (
+            [center[0] - half, center[1] - half],
+            [center[0] + half, center[1] + half],
+        )
+    }
+
+    /// The cost of a measurement at `z` whose range from the sensor is
+    /// `measured_range` (its own for a polar measurement).
+    ///
+    /// Each offset is first compared with its half-width, so the squares are
+    /// of numbers ≤ 1 and cannot saturate in fixed point.
+    #[inline(never)]
+    fn cost(&self, z: [P; 2], measured_range: P) -> Option<u16> {
+        // The range test first: it is cheap and rejects most pairs.
+        let dr = measured_range - self.range;
+        // `!(a <= b)` is also true for NaN.
+        if !(dr.abs() <= self.half_range && measured_range != P::ZERO) {
+            return None;
+        }
+        // Angle between the directions, from unit vectors (no product of
+        // two positions is formed, so Q32.32 cannot overflow) and one
+        // arctangent: exact for any width.
+        let unit = self.unit;
+        let m = [z[0] / measured_range, z[1] / measured_range];
+        let cross = unit[0] * m[1] - unit[1] * m[0];
+        let dot = unit[0] * m[0] + unit[1] * m[1];
+        let db = cross.atan2(dot);
+        let nr = dr * self.inverse_half_range;
+        let nb = db * self.inverse_half_azimuth;
+        if !(nb.abs() <= P::ONE && nr.abs() <= P::ONE) {
+            return None;
+        }
+        let d2 = nr * nr + nb * nb;
+        if !(d2.is_valid() && d2 <= P::ONE) {
+            return None;
+        }
+        Some(quantise_unit(d2))
     }
 }

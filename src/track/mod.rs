@@ -120,17 +120,19 @@ mod config;
 pub mod defaults;
 mod gate;
 mod model;
+mod numeric;
 mod pregate;
 mod table;
 
 pub use adapters::{RangeAzimuthTrack, ScheduledTrack};
 pub use cluster::PAIRS_PER_MEASUREMENT;
 pub use config::{TrackerConfig, Volume};
-pub use gate::{hypot, BoundingBox, ConfigError, Gate, GateRegion};
+pub use gate::{hypot, BoundingBox, ConfigError, Gate, GateRegion, PolarWindow};
 pub use model::{
-    ErrorVariance, FixedGainTrack, Measurement, Observation, PredictedState, RejectReason,
-    TrackFilter, Uncertainty,
+    ErrorVariance, FixedGainStep, FixedGainTrack, Measurement, Observation, PredictedState,
+    RejectReason, ScanInterval, TrackFilter, Uncertainty,
 };
+pub use numeric::{PackedScaled, TrackNumeric};
 pub use table::{
     Association, DropReason, ScanError, ScanReport, ScanStage, TableStats, Track, TrackId,
     TrackStatus, TrackTable,

@@ -2,20 +2,23 @@
 //! measurements it feeds it ([`Measurement`], [`Observation`]), and the
 //! implementation for the fixed-gain Cartesian αβ filter ([`FixedGainTrack`]).
 
-use super::gate::{hypot, Gate, GateRegion};
-use crate::filter::{Cartesian, FilterError, Gains, UpdateOutcome};
-use crate::num::Scalar;
+use super::gate::{Gate, GateRegion};
+use super::numeric::TrackNumeric;
+use crate::filter::{
+    FilterError, Gains, IntervalTerms, KinematicFilter, Phase, StepGains, UpdateKind,
+};
+use crate::num::{Numeric, Quantity, Real, Scalar};
 
 /// One detection of one scan, as the sensor reports it.
 #[derive(Debug, Clone, Copy, PartialEq)]
 #[cfg_attr(feature = "defmt", derive(defmt::Format))]
-pub enum Measurement<S> {
+pub enum Measurement<S: TrackNumeric> {
     /// Position in the tracking plane (m).
-    Cartesian { x: S, y: S },
+    Cartesian { x: S::Length, y: S::Length },
     /// Range (m, ≥ 0) and azimuth (rad, clockwise from the +y axis) from a
     /// sensor at the origin; projected as x = R·sin B, y = R·cos B
     /// (He, Peng, Ling & Quan, §2).
-    Polar { range: S, azimuth: S },
+    Polar { range: S::Length, azimuth: S::Ratio },
 }
 
 /// Why a measurement was rejected (it touched no track).
@@ -35,13 +38,14 @@ pub enum RejectReason {
 /// A validated measurement with its Cartesian projection, computed once.
 #[derive(Debug, Clone, Copy, PartialEq)]
 #[cfg_attr(feature = "defmt", derive(defmt::Format))]
-pub struct Observation<S> {
+pub struct Observation<S: TrackNumeric> {
     measurement: Measurement<S>,
-    xy: [S; 2],
+    xy: [S::Length; 2],
 }
 
-impl<S: Scalar> Observation<S> {
-    /// Checks the measurement and projects it to x, y.
+impl<S: TrackNumeric> Observation<S> {
+    /// Checks the measurement and projects it to x, y (a polar one in the
+    /// number system's polar scalar, [`TrackNumeric::Polar`]).
     pub fn new(measurement: Measurement<S>) -> Result<Self, RejectReason> {
         let xy = match measurement {
             Measurement::Cartesian { x, y } => [x, y],
@@ -49,11 +53,15 @@ impl<S: Scalar> Observation<S> {
                 if !(range.is_valid() && azimuth.is_valid()) {
                     return Err(RejectReason::NotFinite);
                 }
-                if range < S::ZERO {
+                if range < S::Length::ZERO {
                     return Err(RejectReason::NegativeRange);
                 }
-                let (sin_b, cos_b) = azimuth.sin_cos();
-                [range * sin_b, range * cos_b]
+                let r = S::length_to_polar(range);
+                let (sin_b, cos_b) = S::ratio_to_polar(azimuth).sin_cos();
+                [
+                    S::length_from_polar(r * sin_b),
+                    S::length_from_polar(r * cos_b),
+                ]
             }
         };
         if !(xy[0].is_valid() && xy[1].is_valid()) {
@@ -67,7 +75,7 @@ impl<S: Scalar> Observation<S> {
     }
 
     /// Cartesian position (m).
-    pub fn xy(&self) -> [S; 2] {
+    pub fn xy(&self) -> [S::Length; 2] {
         self.xy
     }
 }
@@ -75,9 +83,46 @@ impl<S: Scalar> Observation<S> {
 /// A track's state predicted to the scan time, without changing it.
 #[derive(Debug, Clone, Copy, PartialEq)]
 #[cfg_attr(feature = "defmt", derive(defmt::Format))]
-pub struct PredictedState<S> {
-    pub position: [S; 2],
-    pub velocity: [S; 2],
+pub struct PredictedState<S: Numeric> {
+    pub position: [S::Length; 2],
+    pub velocity: [S::Speed; 2],
+}
+
+/// The interval of one scan, formed once per scan by the table and passed
+/// to every track's filter: T as the filters' interval quantity, T as a
+/// ratio (the number of seconds, for the covariance bookkeeping), and T²/2
+/// (the gate's manoeuvre allowance).
+#[derive(Debug, Clone, Copy, PartialEq)]
+#[cfg_attr(feature = "defmt", derive(defmt::Format))]
+pub struct ScanInterval<S: Numeric> {
+    terms: IntervalTerms<S>,
+    seconds: S::Ratio,
+}
+
+impl<S: Numeric> ScanInterval<S> {
+    /// The interval of `ms` milliseconds (> 0); `None` if it is 0 or not
+    /// representable.
+    pub fn from_ms(ms: u32) -> Option<Self> {
+        let dt = S::Interval::try_from_f64(f64::from(ms) / 1000.0).ok()?;
+        let terms = IntervalTerms::new(dt).ok()?;
+        let seconds = S::Ratio::from_ratio(u64::from(ms), 1000);
+        (seconds.is_valid() && seconds > S::Ratio::ZERO).then_some(ScanInterval { terms, seconds })
+    }
+
+    /// T.
+    pub fn interval(&self) -> S::Interval {
+        self.terms.interval()
+    }
+
+    /// T and T²/2.
+    pub fn terms(&self) -> &IntervalTerms<S> {
+        &self.terms
+    }
+
+    /// The number of seconds T, dimensionless.
+    pub fn seconds(&self) -> S::Ratio {
+        self.seconds
+    }
 }
 
 /// What a filter must provide to live in a [`TrackTable`](super::TrackTable).
@@ -89,51 +134,69 @@ pub struct PredictedState<S> {
 /// uncertainty: Uncertainty<S> }`. Everything shared by all tracks (fixed
 /// gains, schedule constants, noise figures) is [`Self::Params`], stored once
 /// in the [`TrackerConfig`](super::TrackerConfig) and passed to every call,
-/// so it costs no bytes per track.
+/// so it costs no bytes per track; what depends only on the parameters and
+/// the scan's interval (β/T of fixed gains) is [`Self::Step`], formed once
+/// per scan ([`Self::step`]).
 ///
-/// Contract (as for [`crate::filter`]): `dt` is the time since the previous
-/// `update` or `coast`, in seconds, > 0. An `Err` leaves the state untouched.
-pub trait TrackFilter<S: Scalar>: Copy {
+/// Contract (as for [`crate::filter`]): the step is for the time since the
+/// previous `update` or `coast`. An `Err` leaves the state untouched.
+pub trait TrackFilter<S: TrackNumeric>: Copy {
     /// Configuration shared by every track.
     type Params: Copy;
+    /// What every track's update needs of one scan's interval.
+    type Step: Copy;
+
+    /// The step of an interval, formed once per scan for every track.
+    fn step(params: &Self::Params, interval: &ScanInterval<S>) -> Result<Self::Step, FilterError>;
 
     /// A filter that has seen no measurement.
     fn empty(params: &Self::Params) -> Self;
 
-    /// Incorporates a measurement taken `dt` after the previous call. The
-    /// table initiates tracks by two updates on an empty filter (two-point
-    /// initialisation, Al-Wagih & Abdulla eqs. 9–10).
+    /// Incorporates a measurement taken `step`'s interval after the previous
+    /// call. The table initiates tracks by two updates on an empty filter
+    /// (two-point initialisation, Al-Wagih & Abdulla eqs. 9–10).
     fn update(
         &mut self,
         params: &Self::Params,
         z: &Observation<S>,
-        dt: S,
+        step: &Self::Step,
     ) -> Result<(), FilterError>;
 
-    /// No measurement this scan: advance by `dt`.
-    fn coast(&mut self, params: &Self::Params, dt: S) -> Result<(), FilterError>;
+    /// No measurement this scan: advance by the step's interval.
+    fn coast(&mut self, params: &Self::Params, step: &Self::Step) -> Result<(), FilterError>;
 
-    /// The state `dt` ahead, without changing the filter.
-    fn predict(&self, params: &Self::Params, dt: S) -> Result<PredictedState<S>, FilterError>;
+    /// The state the step's interval ahead, without changing the filter.
+    fn predict(
+        &self,
+        params: &Self::Params,
+        step: &Self::Step,
+    ) -> Result<PredictedState<S>, FilterError>;
 
     /// Smoothed position (m).
-    fn position(&self) -> [S; 2];
+    fn position(&self) -> [S::Length; 2];
 
     /// Smoothed velocity (m/s).
-    fn velocity(&self) -> [S; 2];
+    fn velocity(&self) -> [S::Speed; 2];
 
-    /// Variance of the position predicted `dt` ahead, per axis, in units of
-    /// the measurement noise variance (1 = as uncertain as one measurement).
-    /// `None` if unknown (before two measurements).
-    fn predicted_variance_ratio(&self, params: &Self::Params, dt: S) -> Option<S>;
+    /// Variance of the position predicted the step's interval ahead, per
+    /// axis, in units of the measurement noise variance (1 = as uncertain as
+    /// one measurement). `None` if unknown (before two measurements).
+    fn predicted_variance_ratio(
+        &self,
+        params: &Self::Params,
+        step: &Self::Step,
+    ) -> Option<S::Ratio>;
 
     /// The position gain α the next update will use (Li et al.'s wave gate
     /// scales by λ = √α, eq. 12).
-    fn gate_alpha(&self, params: &Self::Params) -> S;
+    fn gate_alpha(&self, params: &Self::Params) -> S::Ratio;
 
-    /// This track's validation region for a scan `dt` ahead whose predicted
-    /// state is `predicted`; `None` if no region can be formed (the track then
-    /// gets no measurement and coasts).
+    /// The step's interval and T²/2.
+    fn interval_of(step: &Self::Step) -> &ScanInterval<S>;
+
+    /// This track's validation region for a scan the step's interval ahead
+    /// whose predicted state is `predicted`; `None` if no region can be
+    /// formed (the track then gets no measurement and coasts).
     ///
     /// The default builds the Cartesian circle described on [`Gate`]. A
     /// filter that gates differently (range/azimuth windows) overrides it.
@@ -141,7 +204,7 @@ pub trait TrackFilter<S: Scalar>: Copy {
         &self,
         params: &Self::Params,
         predicted: &PredictedState<S>,
-        dt: S,
+        step: &Self::Step,
         gate: &Gate<S>,
     ) -> Option<GateRegion<S>> {
         let radius = match *gate {
@@ -150,24 +213,50 @@ pub trait TrackFilter<S: Scalar>: Copy {
                 threshold,
                 max_acceleration,
             } => {
-                let p = self.predicted_variance_ratio(params, dt)?;
-                let half = S::from_f64_lossy(0.5);
-                measurement_sigma * (threshold * (p + S::ONE)).sqrt()
-                    + half * max_acceleration * dt * dt
+                let p = self.predicted_variance_ratio(params, step)?;
+                let interval = Self::interval_of(step);
+                uncertainty_radius(measurement_sigma, threshold, max_acceleration, p, interval)
             }
             Gate::Wave {
                 range_sigma,
                 bearing_sigma,
                 multiple,
-            } => {
-                // Li et al. eqs. (11)–(12): Δd = λ·√(Δρ² + ρ²Δθ²), λ = √α.
-                let rho = hypot(predicted.position[0], predicted.position[1]);
-                let lambda = self.gate_alpha(params).sqrt();
-                multiple * lambda * hypot(range_sigma, rho * bearing_sigma)
-            }
+            } => wave_radius::<S>(
+                range_sigma,
+                bearing_sigma,
+                multiple,
+                self.gate_alpha(params),
+                predicted.position,
+            ),
         };
         GateRegion::circle(predicted.position, radius)
     }
+}
+
+/// The gate radius of [`Gate::Uncertainty`] for predicted variance ratio `p`
+/// (the rule documented on [`Gate`]): σ·√(G·(p + 1)) + ½·a_max·T².
+pub(super) fn uncertainty_radius<S: TrackNumeric>(
+    measurement_sigma: S::Length,
+    threshold: S::Ratio,
+    max_acceleration: S::Acceleration,
+    p: S::Ratio,
+    interval: &ScanInterval<S>,
+) -> S::Length {
+    let scale = (threshold * (p + S::Ratio::ONE)).sqrt();
+    scale * measurement_sigma + max_acceleration * interval.terms().half_squared()
+}
+
+/// Li et al. eqs. (11)–(12): the wave gate's radius κ·λ·√(Δρ² + ρ²Δθ²),
+/// λ = √α, ρ the range of the predicted `position`.
+pub(super) fn wave_radius<S: TrackNumeric>(
+    range_sigma: S::Length,
+    bearing_sigma: S::Ratio,
+    multiple: S::Ratio,
+    alpha: S::Ratio,
+    position: [S::Length; 2],
+) -> S::Length {
+    let rho = S::hypot(position[0], position[1]);
+    (multiple * alpha.sqrt()) * S::hypot(range_sigma, bearing_sigma * rho)
 }
 
 /// Covariance of one axis's (position, velocity) estimation error, in units
@@ -183,28 +272,28 @@ pub trait TrackFilter<S: Scalar>: Copy {
 /// variance 5; eq. 13 gives 5), which the tests check.
 #[derive(Debug, Clone, Copy, PartialEq)]
 #[cfg_attr(feature = "defmt", derive(defmt::Format))]
-pub struct ErrorVariance<S> {
-    pub p11: S,
-    pub p12: S,
-    pub p22: S,
+pub struct ErrorVariance<R> {
+    pub p11: R,
+    pub p12: R,
+    pub p22: R,
 }
 
-impl<S: Scalar> ErrorVariance<S> {
+impl<R: Real> ErrorVariance<R> {
     /// After two-point initialisation over interval T (Al-Wagih eq. 9):
     /// x = z₂ (variance 1), v = (z₂ − z₁)/T (variance 2/T²), and
-    /// cov(z₂, (z₂ − z₁)/T) = 1/T.
-    pub fn after_two_points(interval: S) -> Self {
-        let inv = S::ONE / interval;
+    /// cov(z₂, (z₂ − z₁)/T) = 1/T. `interval` in seconds.
+    pub fn after_two_points(interval: R) -> Self {
+        let inv = R::ONE / interval;
         ErrorVariance {
-            p11: S::ONE,
+            p11: R::ONE,
             p12: inv,
-            p22: (S::ONE + S::ONE) * inv * inv,
+            p22: (R::ONE + R::ONE) * inv * inv,
         }
     }
 
-    /// Propagated over `dt` by Φ = [[1, T], [0, 1]]: P⁻ = Φ·P·Φᵀ.
-    pub fn predicted(&self, dt: S) -> Self {
-        let two = S::ONE + S::ONE;
+    /// Propagated over `dt` seconds by Φ = [[1, T], [0, 1]]: P⁻ = Φ·P·Φᵀ.
+    pub fn predicted(&self, dt: R) -> Self {
+        let two = R::ONE + R::ONE;
         ErrorVariance {
             p11: self.p11 + dt * (two * self.p12 + dt * self.p22),
             p12: self.p12 + dt * self.p22,
@@ -215,15 +304,15 @@ impl<S: Scalar> ErrorVariance<S> {
     /// `self` is the prediction P⁻; the update with gain K = [α, β/T]ᵀ
     /// (Al-Wagih eqs. 6 and 8), in Joseph form, which holds for any gain:
     /// P = (I − KH)·P⁻·(I − KH)ᵀ + K·Kᵀ (R = 1 in these units).
-    pub fn updated(&self, alpha: S, beta: S, dt: S) -> Self {
+    pub fn updated(&self, alpha: R, beta: R, dt: R) -> Self {
         let k1 = alpha;
         let k2 = beta / dt;
-        let one_minus = S::ONE - k1;
-        let two = S::ONE + S::ONE;
+        let one_minus = R::ONE - k1;
+        let two = R::ONE + R::ONE;
         ErrorVariance {
             p11: one_minus * one_minus * self.p11 + k1 * k1,
             p12: one_minus * (self.p12 - k2 * self.p11) + k1 * k2,
-            p22: self.p22 - two * k2 * self.p12 + k2 * k2 * (self.p11 + S::ONE),
+            p22: self.p22 - two * k2 * self.p12 + k2 * k2 * (self.p11 + R::ONE),
         }
     }
 
@@ -233,39 +322,33 @@ impl<S: Scalar> ErrorVariance<S> {
 }
 
 /// The estimation-error bookkeeping that goes with a two-point-initialised
-/// αβ filter: nothing, one point (and the time since), or a covariance.
+/// αβ filter: nothing, one point (and the seconds since), or a covariance.
 #[derive(Debug, Clone, Copy, PartialEq)]
 #[cfg_attr(feature = "defmt", derive(defmt::Format))]
-pub enum Uncertainty<S> {
+pub enum Uncertainty<R> {
     Empty,
-    OnePoint { elapsed: S },
-    Tracking(ErrorVariance<S>),
+    OnePoint { elapsed: R },
+    Tracking(ErrorVariance<R>),
 }
 
-impl<S: Scalar> Uncertainty<S> {
-    /// The bookkeeping after an update that produced `outcome` with gains
-    /// (α, β) over `dt`; `None` if it left the representable range.
-    pub fn after_update(
-        &self,
-        outcome: &UpdateOutcome<S>,
-        alpha: S,
-        beta: S,
-        dt: S,
-    ) -> Option<Self> {
-        let next = match (outcome, self) {
-            (UpdateOutcome::FirstPoint, _) => Uncertainty::OnePoint { elapsed: S::ZERO },
-            (UpdateOutcome::SecondPoint, Uncertainty::OnePoint { elapsed }) => {
+impl<R: Real> Uncertainty<R> {
+    /// The bookkeeping after an update of kind `kind` with gains (α, β)
+    /// over `dt` seconds; `None` if it left the representable range.
+    pub fn after_update(&self, kind: UpdateKind, alpha: R, beta: R, dt: R) -> Option<Self> {
+        let next = match (kind, self) {
+            (UpdateKind::FirstPoint, _) => Uncertainty::OnePoint { elapsed: R::ZERO },
+            (UpdateKind::SecondPoint, Uncertainty::OnePoint { elapsed }) => {
                 Uncertainty::Tracking(ErrorVariance::after_two_points(*elapsed + dt))
             }
-            (UpdateOutcome::SecondPoint, _) => {
+            (UpdateKind::SecondPoint, _) => {
                 Uncertainty::Tracking(ErrorVariance::after_two_points(dt))
             }
-            (UpdateOutcome::Filtered(_), Uncertainty::Tracking(p)) => {
+            (UpdateKind::Filtered, Uncertainty::Tracking(p)) => {
                 Uncertainty::Tracking(p.predicted(dt).updated(alpha, beta, dt))
             }
             // A filtered update without a covariance (a filter started with
             // `from_state`): start from the two-point covariance.
-            (UpdateOutcome::Filtered(_), _) => Uncertainty::Tracking(
+            (UpdateKind::Filtered, _) => Uncertainty::Tracking(
                 ErrorVariance::after_two_points(dt)
                     .predicted(dt)
                     .updated(alpha, beta, dt),
@@ -274,8 +357,8 @@ impl<S: Scalar> Uncertainty<S> {
         next.is_valid().then_some(next)
     }
 
-    /// The bookkeeping after coasting `dt`.
-    pub fn after_coast(&self, dt: S) -> Option<Self> {
+    /// The bookkeeping after coasting `dt` seconds.
+    pub fn after_coast(&self, dt: R) -> Option<Self> {
         let next = match self {
             Uncertainty::Empty => Uncertainty::Empty,
             Uncertainty::OnePoint { elapsed } => Uncertainty::OnePoint {
@@ -286,9 +369,9 @@ impl<S: Scalar> Uncertainty<S> {
         next.is_valid().then_some(next)
     }
 
-    /// Predicted position variance ratio `dt` ahead (see
+    /// Predicted position variance ratio `dt` seconds ahead (see
     /// [`TrackFilter::predicted_variance_ratio`]).
-    pub fn predicted_variance_ratio(&self, dt: S) -> Option<S> {
+    pub fn predicted_variance_ratio(&self, dt: R) -> Option<R> {
         match self {
             Uncertainty::Tracking(p) => {
                 let r = p.predicted(dt).p11;
@@ -307,91 +390,301 @@ impl<S: Scalar> Uncertainty<S> {
     }
 }
 
-/// The crate's 2-D αβ filter ([`Cartesian<S, 2, 2>`]) with one fixed set of
-/// gains for every track (`Params = Gains<S>`), plus the error covariance
-/// that sizes its gate.
+/// A 2-D αβ filter with one fixed set of gains for every track (`Params =
+/// Gains<S>`, the per-interval gains β/T formed once per scan), plus the
+/// error covariance that sizes its gate, in as few bytes as the state
+/// allows: position and velocity in the number system's own formats, the
+/// covariance (three ratios, [`TrackNumeric::PackedRatios`]) shared by both
+/// axes (the same gains and intervals give both axes the same covariance),
+/// nothing else (no innovation, no per-axis phase or counter: a refusal is
+/// counted by the table, [`Track::refusals`](super::Track::refusals)).
+/// `docs/track-table.md` gives its bytes per number system.
+///
+/// The arithmetic is [`KinematicFilter`]'s (two-point initialisation,
+/// Al-Wagih & Abdulla eqs. 3–10, and the per-interval update), run on the
+/// two axes of this state.
 #[derive(Debug, Clone, Copy, PartialEq)]
-pub struct FixedGainTrack<S: Scalar> {
-    filter: Cartesian<S, 2, 2>,
-    uncertainty: Uncertainty<S>,
+pub struct FixedGainTrack<S: TrackNumeric> {
+    state: FixedGainState<S>,
 }
 
-impl<S: Scalar> FixedGainTrack<S> {
-    pub fn filter(&self) -> &Cartesian<S, 2, 2> {
-        &self.filter
-    }
-    pub fn uncertainty(&self) -> &Uncertainty<S> {
-        &self.uncertainty
-    }
+/// [`FixedGainTrack`]'s state by phase of two-point initialisation.
+#[derive(Debug, Clone, Copy, PartialEq)]
+enum FixedGainState<S: TrackNumeric> {
+    Empty,
+    /// One measurement; the time since (coasts add to it), as the filter's
+    /// interval and as seconds for the covariance.
+    OnePoint {
+        position: [S::Length; 2],
+        elapsed: S::Interval,
+        elapsed_seconds: S::Ratio,
+    },
+    Tracking {
+        position: [S::Length; 2],
+        velocity: [S::Speed; 2],
+        /// (p11, p12, p22) of [`ErrorVariance`].
+        variance: S::PackedRatios,
+    },
 }
 
-impl<S: Scalar> TrackFilter<S> for FixedGainTrack<S> {
-    type Params = Gains<S>;
+/// [`FixedGainTrack`]'s per-scan step: the interval, the step gains of both
+/// axes, and α, β for the covariance.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct FixedGainStep<S: TrackNumeric> {
+    interval: ScanInterval<S>,
+    gains: StepGains<S>,
+    alpha: S::Ratio,
+    beta: S::Ratio,
+}
 
-    fn empty(_: &Gains<S>) -> Self {
-        FixedGainTrack {
-            filter: Cartesian::new(),
-            uncertainty: Uncertainty::Empty,
+impl<S: TrackNumeric> FixedGainTrack<S> {
+    /// The phase of two-point initialisation.
+    pub fn phase(&self) -> Phase {
+        match self.state {
+            FixedGainState::Empty => Phase::Empty,
+            FixedGainState::OnePoint { .. } => Phase::OnePoint,
+            FixedGainState::Tracking { .. } => Phase::Tracking,
         }
     }
 
-    fn update(&mut self, gains: &Gains<S>, z: &Observation<S>, dt: S) -> Result<(), FilterError> {
-        let mut filter = self.filter;
-        let outcome = match filter.update(z.xy(), dt, gains) {
-            Ok(outcome) => outcome,
-            Err(e) => {
-                // A refused update leaves the filter as it was but for the
-                // saturation it counted: keep that count.
-                self.filter = filter;
-                return Err(e);
+    /// The covariance bookkeeping.
+    pub fn uncertainty(&self) -> Uncertainty<S::Ratio> {
+        match self.state {
+            FixedGainState::Empty => Uncertainty::Empty,
+            FixedGainState::OnePoint {
+                elapsed_seconds, ..
+            } => Uncertainty::OnePoint {
+                elapsed: elapsed_seconds,
+            },
+            FixedGainState::Tracking { variance, .. } => {
+                let [p11, p12, p22] = S::unpack(variance);
+                Uncertainty::Tracking(ErrorVariance { p11, p12, p22 })
             }
-        };
-        // Both axes pass through the same phases, so axis 0 speaks for both.
-        let uncertainty = self
-            .uncertainty
-            .after_update(&outcome[0], gains.alpha(), gains.beta(), dt)
-            .ok_or(FilterError::Saturated)?;
-        self.filter = filter;
-        self.uncertainty = uncertainty;
-        Ok(())
-    }
-
-    fn coast(&mut self, _: &Gains<S>, dt: S) -> Result<(), FilterError> {
-        let mut filter = self.filter;
-        if let Err(e) = filter.coast(dt) {
-            self.filter = filter; // unchanged but for the saturation count
-            return Err(e);
         }
-        let uncertainty = self
-            .uncertainty
-            .after_coast(dt)
-            .ok_or(FilterError::Saturated)?;
-        self.filter = filter;
-        self.uncertainty = uncertainty;
-        Ok(())
     }
 
-    fn predict(&self, _: &Gains<S>, dt: S) -> Result<PredictedState<S>, FilterError> {
-        let [px, py] = self.filter.predict(dt)?;
-        Ok(PredictedState {
-            position: [px.position, py.position],
-            velocity: [px.velocity, py.velocity],
+    fn tracking(
+        position: [S::Length; 2],
+        velocity: [S::Speed; 2],
+        uncertainty: Uncertainty<S::Ratio>,
+    ) -> Result<Self, FilterError> {
+        let Uncertainty::Tracking(p) = uncertainty else {
+            return Err(FilterError::Saturated);
+        };
+        Ok(FixedGainTrack {
+            state: FixedGainState::Tracking {
+                position,
+                velocity,
+                variance: S::pack([p.p11, p.p12, p.p22]),
+            },
         })
     }
 
-    fn position(&self) -> [S; 2] {
-        self.filter.position()
+    /// Two-point initialisation through the filter's own code: the first
+    /// point at `position`, `elapsed` before this step's interval.
+    fn second_point(
+        position: [S::Length; 2],
+        elapsed: S::Interval,
+        elapsed_seconds: S::Ratio,
+        z: [S::Length; 2],
+        step: &FixedGainStep<S>,
+    ) -> Result<Self, FilterError> {
+        let mut velocity = [S::Speed::ZERO; 2];
+        let mut next = [S::Length::ZERO; 2];
+        for (((v, p), &first), &z) in velocity
+            .iter_mut()
+            .zip(next.iter_mut())
+            .zip(&position)
+            .zip(&z)
+        {
+            let mut axis = KinematicFilter::<S, 2>::new();
+            axis.update_step(first, &step.gains)?;
+            if elapsed > S::Interval::ZERO {
+                axis.coast(elapsed)?;
+            }
+            axis.update_step(z, &step.gains)?;
+            *v = axis.velocity();
+            *p = axis.position();
+        }
+        let uncertainty = Uncertainty::OnePoint {
+            elapsed: elapsed_seconds,
+        }
+        .after_update(
+            UpdateKind::SecondPoint,
+            step.alpha,
+            step.beta,
+            step.interval.seconds(),
+        )
+        .ok_or(FilterError::Saturated)?;
+        Self::tracking(next, velocity, uncertainty)
+    }
+}
+
+impl<S: TrackNumeric> TrackFilter<S> for FixedGainTrack<S> {
+    type Params = Gains<S>;
+    type Step = FixedGainStep<S>;
+
+    fn step(gains: &Gains<S>, interval: &ScanInterval<S>) -> Result<FixedGainStep<S>, FilterError> {
+        Ok(FixedGainStep {
+            interval: *interval,
+            gains: StepGains::new(gains, interval.interval())?,
+            alpha: gains.alpha(),
+            beta: gains.beta(),
+        })
     }
 
-    fn velocity(&self) -> [S; 2] {
-        self.filter.velocity()
+    fn interval_of(step: &FixedGainStep<S>) -> &ScanInterval<S> {
+        &step.interval
     }
 
-    fn predicted_variance_ratio(&self, _: &Gains<S>, dt: S) -> Option<S> {
-        self.uncertainty.predicted_variance_ratio(dt)
+    fn empty(_: &Gains<S>) -> Self {
+        FixedGainTrack {
+            state: FixedGainState::Empty,
+        }
     }
 
-    fn gate_alpha(&self, gains: &Gains<S>) -> S {
+    fn update(
+        &mut self,
+        _: &Gains<S>,
+        z: &Observation<S>,
+        step: &FixedGainStep<S>,
+    ) -> Result<(), FilterError> {
+        let z = z.xy();
+        let next = match self.state {
+            FixedGainState::Empty => {
+                if !(z[0].is_valid() && z[1].is_valid()) {
+                    return Err(FilterError::InvalidMeasurement);
+                }
+                FixedGainTrack {
+                    state: FixedGainState::OnePoint {
+                        position: z,
+                        elapsed: S::Interval::ZERO,
+                        elapsed_seconds: S::Ratio::ZERO,
+                    },
+                }
+            }
+            FixedGainState::OnePoint {
+                position,
+                elapsed,
+                elapsed_seconds,
+            } => Self::second_point(position, elapsed, elapsed_seconds, z, step)?,
+            FixedGainState::Tracking {
+                position, velocity, ..
+            } => {
+                // Both axes computed on copies, written only if both pass.
+                let mut next_position = position;
+                let mut next_velocity = velocity;
+                for ((p, v), &z) in next_position
+                    .iter_mut()
+                    .zip(next_velocity.iter_mut())
+                    .zip(&z)
+                {
+                    let mut axis =
+                        KinematicFilter::<S, 2>::from_state(*p, *v, S::Acceleration::ZERO)?;
+                    axis.update_step(z, &step.gains)?;
+                    *p = axis.position();
+                    *v = axis.velocity();
+                }
+                let uncertainty = self
+                    .uncertainty()
+                    .after_update(
+                        UpdateKind::Filtered,
+                        step.alpha,
+                        step.beta,
+                        step.interval.seconds(),
+                    )
+                    .ok_or(FilterError::Saturated)?;
+                Self::tracking(next_position, next_velocity, uncertainty)?
+            }
+        };
+        *self = next;
+        Ok(())
+    }
+
+    fn coast(&mut self, _: &Gains<S>, step: &FixedGainStep<S>) -> Result<(), FilterError> {
+        let next = match self.state {
+            FixedGainState::Empty => return Ok(()),
+            FixedGainState::OnePoint {
+                position,
+                elapsed,
+                elapsed_seconds,
+            } => {
+                let elapsed = elapsed + step.interval.interval();
+                let elapsed_seconds = elapsed_seconds + step.interval.seconds();
+                if !(elapsed.is_valid() && elapsed_seconds.is_valid()) {
+                    return Err(FilterError::Saturated);
+                }
+                FixedGainTrack {
+                    state: FixedGainState::OnePoint {
+                        position,
+                        elapsed,
+                        elapsed_seconds,
+                    },
+                }
+            }
+            FixedGainState::Tracking { .. } => {
+                let p = self.predict_with(step)?;
+                let uncertainty = self
+                    .uncertainty()
+                    .after_coast(step.interval.seconds())
+                    .ok_or(FilterError::Saturated)?;
+                Self::tracking(p.position, p.velocity, uncertainty)?
+            }
+        };
+        *self = next;
+        Ok(())
+    }
+
+    fn predict(
+        &self,
+        _: &Gains<S>,
+        step: &FixedGainStep<S>,
+    ) -> Result<PredictedState<S>, FilterError> {
+        self.predict_with(step)
+    }
+
+    fn position(&self) -> [S::Length; 2] {
+        match self.state {
+            FixedGainState::Empty => [S::Length::ZERO; 2],
+            FixedGainState::OnePoint { position, .. }
+            | FixedGainState::Tracking { position, .. } => position,
+        }
+    }
+
+    fn velocity(&self) -> [S::Speed; 2] {
+        match self.state {
+            FixedGainState::Tracking { velocity, .. } => velocity,
+            _ => [S::Speed::ZERO; 2],
+        }
+    }
+
+    fn predicted_variance_ratio(&self, _: &Gains<S>, step: &FixedGainStep<S>) -> Option<S::Ratio> {
+        self.uncertainty()
+            .predicted_variance_ratio(step.interval.seconds())
+    }
+
+    fn gate_alpha(&self, gains: &Gains<S>) -> S::Ratio {
         gains.alpha()
+    }
+}
+
+impl<S: TrackNumeric> FixedGainTrack<S> {
+    /// Tenne & Singh eqs. (1)–(2) per axis, through the filter's own
+    /// prediction; the position holds before two points.
+    fn predict_with(&self, step: &FixedGainStep<S>) -> Result<PredictedState<S>, FilterError> {
+        let (position, velocity) = match self.state {
+            FixedGainState::Tracking {
+                position, velocity, ..
+            } => (position, velocity),
+            _ => (self.position(), [S::Speed::ZERO; 2]),
+        };
+        let mut out = PredictedState { position, velocity };
+        for (p, v) in out.position.iter_mut().zip(out.velocity.iter_mut()) {
+            let axis = KinematicFilter::<S, 2>::from_state(*p, *v, S::Acceleration::ZERO)?;
+            let q = axis.predict_terms(step.interval.terms())?;
+            *p = q.position;
+            *v = q.velocity;
+        }
+        Ok(out)
     }
 }

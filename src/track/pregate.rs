@@ -21,7 +21,8 @@
 
 use super::gate::BoundingBox;
 use super::model::Observation;
-use crate::num::Scalar;
+use super::numeric::TrackNumeric;
+use crate::num::Quantity;
 
 /// One indexed measurement: a coordinate (x in `by_x`, y in `by_y`) and
 /// its slot.
@@ -35,21 +36,21 @@ struct Entry<S> {
 /// measurement indices (< M < 65535). The keys are copied next to the slots
 /// so that sorting and searching read one array.
 #[derive(Debug, Clone)]
-pub(super) struct MeasurementIndex<S, const M: usize> {
+pub(super) struct MeasurementIndex<S: TrackNumeric, const M: usize> {
     /// The valid measurements sorted by (x, slot).
-    by_x: [Entry<S>; M],
+    by_x: [Entry<S::Length>; M],
     /// `by_x` with each strip sorted by (y, slot).
-    by_y: [Entry<S>; M],
+    by_y: [Entry<S::Length>; M],
     /// Valid measurements (the used prefix of both arrays).
     len: u16,
     /// Measurements per strip, ⌈√len⌉ (the last strip may hold fewer).
     strip: u16,
 }
 
-impl<S: Scalar, const M: usize> MeasurementIndex<S, M> {
+impl<S: TrackNumeric, const M: usize> MeasurementIndex<S, M> {
     pub(super) const fn new() -> Self {
         let empty = Entry {
-            key: S::ZERO,
+            key: S::Length::ZERO,
             slot: u16::MAX,
         };
         MeasurementIndex {
@@ -85,7 +86,7 @@ impl<S: Scalar, const M: usize> MeasurementIndex<S, M> {
             let key = observations
                 .get(x.slot as usize)
                 .and_then(|o| o.as_ref())
-                .map_or(S::ZERO, |o| o.xy()[1]);
+                .map_or(S::Length::ZERO, |o| o.xy()[1]);
             *y = Entry { key, slot: x.slot };
         }
         let mut start = 0;

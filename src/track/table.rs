@@ -6,9 +6,9 @@ use super::assign::{AssignError, AssignmentSolver, FORBIDDEN};
 use super::cluster::{CachedCost, Clusters, NONE};
 use super::config::TrackerConfig;
 use super::gate::GateRegion;
-use super::model::{Measurement, Observation, RejectReason, TrackFilter};
+use super::model::{Measurement, Observation, RejectReason, ScanInterval, TrackFilter};
+use super::numeric::TrackNumeric;
 use super::pregate::MeasurementIndex;
-use crate::num::Scalar;
 
 /// A track's identity, unique over the lifetime of its table: ids are issued
 /// in increasing order and, after 2³² of them, wrap around skipping any id
@@ -58,45 +58,64 @@ impl TrackStatus {
     }
 }
 
-/// One record of the table.
+/// Whether a track has passed M-of-N confirmation.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+enum Lifecycle {
+    Tentative,
+    Confirmed,
+}
+
+/// One record of the table: the filter and the lifecycle, nothing that can
+/// be derived (the status from the confirmation and the last scan's hit;
+/// bytes per track in `docs/track-table.md`).
 #[derive(Debug, Clone, Copy, PartialEq)]
-pub struct Track<S, F> {
+pub struct Track<S: TrackNumeric, F> {
+    filter: F,
     id: TrackId,
-    status: TrackStatus,
-    /// Consecutive scans without a measurement.
-    misses: u8,
+    created_ms: u32,
+    last_update_ms: u32,
+    /// Bit k set: the scan k scans ago had a measurement (bit 0 = last scan).
+    /// Bits older than the track's start are 0.
+    history: u32,
     /// Measurements incorporated (the two initiation points included),
     /// saturating.
     hits: u16,
     /// Scans since the track was started (that scan included), saturating.
     scans: u16,
-    /// Bit k set: the scan k scans ago had a measurement (bit 0 = last scan).
-    /// Bits older than the track's start are 0.
-    history: u32,
-    created_ms: u32,
-    last_update_ms: u32,
-    filter: F,
+    lifecycle: Lifecycle,
+    /// Consecutive scans without a measurement (the history holds only 32;
+    /// deletion thresholds go to 255), saturating.
+    misses: u8,
+    /// Updates or coasts the filter refused (arithmetic saturated),
+    /// saturating.
+    refusals: u8,
     _scalar: PhantomData<S>,
 }
 
-impl<S: Scalar, F: TrackFilter<S>> Track<S, F> {
+impl<S: TrackNumeric, F: TrackFilter<S>> Track<S, F> {
     pub fn id(&self) -> TrackId {
         self.id
     }
+    /// Tentative; confirmed and updated in the last scan; or confirmed and
+    /// missed it (coasting).
     pub fn status(&self) -> TrackStatus {
-        self.status
+        match (self.lifecycle, self.history & 1) {
+            (Lifecycle::Tentative, _) => TrackStatus::Tentative,
+            (Lifecycle::Confirmed, 1) => TrackStatus::Confirmed,
+            (Lifecycle::Confirmed, _) => TrackStatus::Coasting,
+        }
     }
     /// Confirmed or coasting.
     pub fn is_confirmed(&self) -> bool {
-        self.status != TrackStatus::Tentative
+        self.lifecycle == Lifecycle::Confirmed
     }
     pub fn filter(&self) -> &F {
         &self.filter
     }
-    pub fn position(&self) -> [S; 2] {
+    pub fn position(&self) -> [S::Length; 2] {
         self.filter.position()
     }
-    pub fn velocity(&self) -> [S; 2] {
+    pub fn velocity(&self) -> [S::Speed; 2] {
         self.filter.velocity()
     }
     /// Consecutive missed scans.
@@ -123,6 +142,11 @@ impl<S: Scalar, F: TrackFilter<S>> Track<S, F> {
     pub fn last_update_ms(&self) -> u32 {
         self.last_update_ms
     }
+    /// Updates and coasts the filter refused (its arithmetic saturated;
+    /// the track coasted or was deleted), saturating at 255.
+    pub fn refusals(&self) -> u8 {
+        self.refusals
+    }
 
     fn record_scan(&mut self, hit: bool, now_ms: u32) {
         self.history = (self.history << 1) | hit as u32;
@@ -131,14 +155,8 @@ impl<S: Scalar, F: TrackFilter<S>> Track<S, F> {
             self.hits = self.hits.saturating_add(1);
             self.misses = 0;
             self.last_update_ms = now_ms;
-            if self.status == TrackStatus::Coasting {
-                self.status = TrackStatus::Confirmed;
-            }
         } else {
             self.misses = self.misses.saturating_add(1);
-            if self.status == TrackStatus::Confirmed {
-                self.status = TrackStatus::Coasting;
-            }
         }
     }
 }
@@ -339,7 +357,7 @@ enum Outcome {
 /// See the [module docs](super) for the scan's stages, the time base and the
 /// memory figures.
 #[derive(Debug)]
-pub struct TrackTable<S, F, const N: usize, const M: usize> {
+pub struct TrackTable<S: TrackNumeric, F, const N: usize, const M: usize> {
     slots: [Option<Track<S, F>>; N],
     next_id: u32,
     last_scan_ms: Option<u32>,
@@ -359,7 +377,7 @@ pub struct TrackTable<S, F, const N: usize, const M: usize> {
     solver: AssignmentSolver<N, M>,
 }
 
-impl<S: Scalar, F: TrackFilter<S>, const N: usize, const M: usize> Default
+impl<S: TrackNumeric, F: TrackFilter<S>, const N: usize, const M: usize> Default
     for TrackTable<S, F, N, M>
 {
     fn default() -> Self {
@@ -367,7 +385,7 @@ impl<S: Scalar, F: TrackFilter<S>, const N: usize, const M: usize> Default
     }
 }
 
-impl<S: Scalar, F: TrackFilter<S>, const N: usize, const M: usize> TrackTable<S, F, N, M> {
+impl<S: TrackNumeric, F: TrackFilter<S>, const N: usize, const M: usize> TrackTable<S, F, N, M> {
     const CAPACITY_OK: () = assert!(
         N < NONE as usize && M < NONE as usize && N + M < NONE as usize,
         "track table capacities must be below 65535 together"
@@ -510,7 +528,7 @@ impl<S: Scalar, F: TrackFilter<S>, const N: usize, const M: usize> TrackTable<S,
         codes: &mut [Association],
         mut probe: impl FnMut(ScanStage),
     ) -> Result<ScanReport, ScanError> {
-        let (interval_ms, dt) = self.interval_to(now_ms)?;
+        let (interval_ms, dt) = self.interval_to(now_ms, config)?;
         let used = measurements.len().min(M);
         let mut report = ScanReport {
             time_ms: now_ms,
@@ -521,7 +539,7 @@ impl<S: Scalar, F: TrackFilter<S>, const N: usize, const M: usize> TrackTable<S,
         };
         self.intake(measurements, &mut report);
         probe(ScanStage::Intake);
-        if let Some(dt) = dt {
+        if let Some(dt) = &dt {
             self.index.build(&self.observations);
             probe(ScanStage::Index);
             self.gate(config, dt, &mut report);
@@ -534,7 +552,7 @@ impl<S: Scalar, F: TrackFilter<S>, const N: usize, const M: usize> TrackTable<S,
         // From here on the table changes: the scan is accepted.
         self.last_scan_ms = Some(now_ms);
         self.stats.scans = self.stats.scans.saturating_add(1);
-        if let Some(dt) = dt {
+        if let Some(dt) = &dt {
             self.update(config, dt, &mut report);
             probe(ScanStage::Update);
             self.manage(config, now_ms, &mut report);
@@ -548,9 +566,13 @@ impl<S: Scalar, F: TrackFilter<S>, const N: usize, const M: usize> TrackTable<S,
         Ok(report)
     }
 
-    /// The interval since the last scan, in ms and in seconds of `S`
-    /// (`None` for the first scan).
-    fn interval_to(&self, now_ms: u32) -> Result<(u32, Option<S>), ScanError> {
+    /// The interval since the last scan in ms, and the filters' step for it
+    /// (`None` for the first scan), formed once for every track.
+    fn interval_to(
+        &self,
+        now_ms: u32,
+        config: &TrackerConfig<S, F::Params>,
+    ) -> Result<(u32, Option<F::Step>), ScanError> {
         let Some(previous_ms) = self.last_scan_ms else {
             return Ok((0, None));
         };
@@ -561,12 +583,10 @@ impl<S: Scalar, F: TrackFilter<S>, const N: usize, const M: usize> TrackTable<S,
                 now_ms,
             });
         }
-        let dt = S::try_from_f64(interval as f64 / 1000.0)
-            .map_err(|_| ScanError::IntervalNotRepresentable)?;
-        if dt <= S::ZERO {
-            return Err(ScanError::IntervalNotRepresentable);
-        }
-        Ok((interval, Some(dt)))
+        let step = ScanInterval::from_ms(interval)
+            .and_then(|i| F::step(config.params(), &i).ok())
+            .ok_or(ScanError::IntervalNotRepresentable)?;
+        Ok((interval, Some(step)))
     }
 
     /// Intake: validate and project every measurement once, and forget the
@@ -595,7 +615,12 @@ impl<S: Scalar, F: TrackFilter<S>, const N: usize, const M: usize> TrackTable<S,
     /// Predict, pre-gate and gate: each track's region, the measurements in
     /// its bounding box, the exact test on those; every gated pair is cached
     /// and joins its track's cluster.
-    fn gate(&mut self, config: &TrackerConfig<S, F::Params>, dt: S, report: &mut ScanReport) {
+    fn gate(
+        &mut self,
+        config: &TrackerConfig<S, F::Params>,
+        dt: &F::Step,
+        report: &mut ScanReport,
+    ) {
         let params = config.params();
         for (t, slot) in self.slots.iter().enumerate() {
             let Some(track) = slot else { continue };
@@ -636,7 +661,7 @@ impl<S: Scalar, F: TrackFilter<S>, const N: usize, const M: usize> TrackTable<S,
     fn assign(
         &mut self,
         config: &TrackerConfig<S, F::Params>,
-        dt: S,
+        dt: &F::Step,
         report: &mut ScanReport,
     ) -> Result<(), ScanError> {
         for root in 0..N {
@@ -683,7 +708,7 @@ impl<S: Scalar, F: TrackFilter<S>, const N: usize, const M: usize> TrackTable<S,
     fn solve_cluster(
         &mut self,
         config: &TrackerConfig<S, F::Params>,
-        dt: S,
+        dt: &F::Step,
         rows: usize,
         cols: usize,
         report: &mut ScanReport,
@@ -724,7 +749,12 @@ impl<S: Scalar, F: TrackFilter<S>, const N: usize, const M: usize> TrackTable<S,
     }
 
     /// Update each assigned track; coast every other one.
-    fn update(&mut self, config: &TrackerConfig<S, F::Params>, dt: S, report: &mut ScanReport) {
+    fn update(
+        &mut self,
+        config: &TrackerConfig<S, F::Params>,
+        dt: &F::Step,
+        report: &mut ScanReport,
+    ) {
         let params = config.params();
         for (t, (slot, outcome)) in self
             .slots
@@ -747,6 +777,7 @@ impl<S: Scalar, F: TrackFilter<S>, const N: usize, const M: usize> TrackTable<S,
                         Err(_) => {
                             *code = Association::Rejected(RejectReason::FilterRefused);
                             increment(&mut report.filter_refused);
+                            track.refusals = track.refusals.saturating_add(1);
                         }
                     }
                 }
@@ -755,6 +786,7 @@ impl<S: Scalar, F: TrackFilter<S>, const N: usize, const M: usize> TrackTable<S,
                 increment(&mut report.coasted);
                 if track.filter.coast(params, dt).is_err() {
                     *outcome = Outcome::Failed;
+                    track.refusals = track.refusals.saturating_add(1);
                 }
             }
         }
@@ -801,11 +833,12 @@ impl<S: Scalar, F: TrackFilter<S>, const N: usize, const M: usize> TrackTable<S,
     fn initiate(
         &mut self,
         config: &TrackerConfig<S, F::Params>,
-        dt: S,
+        dt: &F::Step,
         now_ms: u32,
         report: &mut ScanReport,
     ) {
-        let radius = config.max_speed() * dt + config.initiation_margin();
+        let interval = F::interval_of(dt).interval();
+        let radius = config.max_speed() * interval + config.initiation_margin();
         for p in 0..M {
             let Some(Some(first)) = self.pending.get(p).copied() else {
                 continue;
@@ -862,7 +895,7 @@ impl<S: Scalar, F: TrackFilter<S>, const N: usize, const M: usize> TrackTable<S,
     fn start_track(
         &mut self,
         config: &TrackerConfig<S, F::Params>,
-        dt: S,
+        dt: &F::Step,
         now_ms: u32,
         first: &Observation<S>,
         second: &Observation<S>,
@@ -882,20 +915,21 @@ impl<S: Scalar, F: TrackFilter<S>, const N: usize, const M: usize> TrackTable<S,
         }
         let id = self.allocate_id();
         let mut track = Track {
+            filter,
             id,
-            status: TrackStatus::Tentative,
-            misses: 0,
-            hits: 2,
-            scans: 1,
-            history: 1,
             created_ms: now_ms,
             last_update_ms: now_ms,
-            filter,
+            history: 1,
+            hits: 2,
+            scans: 1,
+            lifecycle: Lifecycle::Tentative,
+            misses: 0,
+            refusals: 0,
             _scalar: PhantomData,
         };
         increment(&mut report.started);
         if config.confirmation().0 <= 1 {
-            track.status = TrackStatus::Confirmed;
+            track.lifecycle = Lifecycle::Confirmed;
             increment(&mut report.confirmed);
         }
         if let Some(slot) = self.slots.get_mut(free) {
@@ -963,10 +997,10 @@ impl<S: Scalar, F: TrackFilter<S>, const N: usize, const M: usize> TrackTable<S,
 
 /// The gate cost of `o` for `track` (predict, region, exact test), as the
 /// gate stage computes it; [`FORBIDDEN`] outside the gate.
-fn gate_cost<S: Scalar, F: TrackFilter<S>>(
+fn gate_cost<S: TrackNumeric, F: TrackFilter<S>>(
     track: &Track<S, F>,
     config: &TrackerConfig<S, F::Params>,
-    dt: S,
+    dt: &F::Step,
     o: &Observation<S>,
 ) -> u16 {
     let params = config.params();
@@ -988,14 +1022,14 @@ enum Deletion {
 }
 
 /// Confirmation and miss-count deletion after a track's scan was recorded.
-fn lifecycle<S: Scalar, F: TrackFilter<S>>(
+fn lifecycle<S: TrackNumeric, F: TrackFilter<S>>(
     track: &mut Track<S, F>,
     config: &TrackerConfig<S, F::Params>,
     report: &mut ScanReport,
 ) -> Option<Deletion> {
     let (confirm_hits, confirm_window) = config.confirmation();
     let (delete_confirmed, delete_tentative) = config.deletion();
-    if track.status == TrackStatus::Tentative {
+    if track.lifecycle == Lifecycle::Tentative {
         // M-of-N over the first N scans (the starting scan is scan 1).
         let mask = match confirm_window {
             32.. => u32::MAX,
@@ -1004,7 +1038,7 @@ fn lifecycle<S: Scalar, F: TrackFilter<S>>(
         let hits_in_window = (track.history & mask).count_ones();
         let remaining = (confirm_window as u32).saturating_sub(track.scans as u32);
         if hits_in_window >= confirm_hits as u32 {
-            track.status = TrackStatus::Confirmed;
+            track.lifecycle = Lifecycle::Confirmed;
             increment(&mut report.confirmed);
             None
         } else if track.misses >= delete_tentative {

@@ -1,7 +1,8 @@
 //! Shared helpers for the track_* tests.
 #![allow(dead_code)]
 
-use abtrack::track::{FixedGainTrack, Gate, Measurement, TrackerConfig};
+use abtrack::num::Quantity;
+use abtrack::track::{FixedGainTrack, Gate, Measurement, TrackNumeric, TrackerConfig};
 use abtrack::{Gains, Scalar};
 
 pub type Config<S> = TrackerConfig<S, Gains<S>>;
@@ -12,17 +13,22 @@ pub fn s<S: Scalar>(v: f64) -> S {
     S::try_from_f64(v).unwrap()
 }
 
-pub fn cart<S: Scalar>(x: f64, y: f64) -> Measurement<S> {
-    Measurement::Cartesian { x: s(x), y: s(y) }
+/// A quantity of any number system (a length, a ratio, ...).
+pub fn q<Q: Quantity>(v: f64) -> Q {
+    Q::try_from_f64(v).unwrap()
+}
+
+pub fn cart<S: TrackNumeric>(x: f64, y: f64) -> Measurement<S> {
+    Measurement::Cartesian { x: q(x), y: q(y) }
 }
 
 /// α = 0.5, β = 0.2 (inside Al-Wagih's triangle: 2α + β = 1.2 < 4);
 /// uncertainty gate σ = 5 m, G = 13.8 (99.9 %), a_max = 5 m/s²;
 /// v_max = 300 m/s; defaults otherwise (2 of 3, delete after 3 / 2 misses).
-pub fn default_config<S: Scalar>() -> Config<S> {
+pub fn default_config<S: TrackNumeric>() -> Config<S> {
     let gains = Gains::alpha_beta_f64(0.5, 0.2).unwrap();
-    let gate = Gate::uncertainty(s(5.0), s(13.8), s(5.0)).unwrap();
-    TrackerConfig::new(gains, gate, s(300.0)).unwrap()
+    let gate = Gate::uncertainty(q(5.0), q(13.8), q(5.0)).unwrap();
+    TrackerConfig::new(gains, gate, q(300.0)).unwrap()
 }
 
 /// Deterministic pseudo-random numbers (64-bit LCG, Knuth's MMIX constants).

@@ -26,6 +26,9 @@
 #![no_std]
 #![no_main]
 
+// Not every item is used here (the natural type: the scan rows choose their
+// types themselves).
+#[allow(dead_code)]
 #[path = "../../firmware/board.rs"]
 mod board;
 #[path = "../../firmware/synth.rs"]
@@ -40,6 +43,7 @@ mod minikalman;
 mod numeric;
 mod scan;
 
+use abtrack::num::fixed32::Fixed32;
 use abtrack::Fix;
 use counter::Bench;
 use numeric::Numeric;
@@ -72,6 +76,9 @@ fn run(bench: &mut Bench) {
     bench_numeric::<f32>(bench);
     bench_numeric::<Fix>(bench);
     bench_numeric::<f64>(bench);
+    // The track table in the fast fixed point (its other operations are
+    // measured by the numerics' own rows).
+    scan::sizes::<Fixed32>(bench);
     // Anchors in f32 only: the hand-written Kalman filter, and minikalman
     // (with its I16F16 build).
     anchors::axis_kalman::<f32>(bench);
@@ -86,28 +93,14 @@ fn bench_numeric<S: Numeric>(bench: &mut Bench) {
     filters::run::<S>(bench);
     anchors::floor::<S>(bench);
     if scans_fit::<S>() {
-        // The track table at N tracks = M measurements per scan, one line
-        // per size (each a table type of its own, with its own code). The
-        // micro:bit's 16 KiB of RAM hold the table (on the stack) up to the
-        // sizes below (`track/mod.rs` gives its bytes).
-        scan::run::<S, 8, 8>(bench);
-        scan::run::<S, 16, 16>(bench);
-        #[cfg(not(abtrack_board = "microbit"))]
-        {
-            scan::run::<S, 32, 32>(bench);
-            scan::run::<S, 64, 64>(bench);
-            scan::run::<S, 128, 128>(bench);
-            scan::run::<S, 256, 256>(bench);
-        }
+        scan::sizes::<S>(bench);
     }
 }
 
-/// Whether this image holds the scan rows in `S`: every board holds them
-/// in its natural type ([`board::Native`]); the micro:bit's 256 KiB of
-/// flash holds no other (each type's table code for two sizes is about
-/// 35 KiB there). Decided at compile time, so the code left out is not
-/// linked.
+/// Whether this image holds the scan rows in `S`: the mps2 boards hold
+/// them in every numeric type; the micro:bit's 256 KiB of flash hold them in
+/// the fast fixed point only (its table format, run by `run`). Decided at
+/// compile time, so the code left out is not linked.
 fn scans_fit<S: Numeric>() -> bool {
     !cfg!(abtrack_board = "microbit")
-        || core::any::TypeId::of::<S>() == core::any::TypeId::of::<board::Native>()
 }

@@ -7,15 +7,48 @@
 use core::hint::black_box;
 
 use abtrack::filter::Gains;
+use abtrack::num::fixed32::Fixed32;
+use abtrack::num::Quantity;
 use abtrack::track::{
     Association, FixedGainTrack, Gate, Measurement, Observation, ScanReport, ScanStage,
     TrackFilter, TrackTable, TrackerConfig,
 };
-use abtrack::Scalar;
+use abtrack::track::{ScanInterval, TrackNumeric};
 use cortex_m::peripheral::SYST;
 
 use crate::counter::{Bench, Size};
 use crate::numeric::Numeric;
+
+/// A number system of the scan rows, with its label in the output: every
+/// numeric type of the other rows, and the fast fixed point (`fixed`).
+pub trait ScanNumber: TrackNumeric {
+    const LABEL: &'static str;
+}
+
+impl<S: Numeric> ScanNumber for S {
+    const LABEL: &'static str = <S as Numeric>::LABEL;
+}
+
+impl ScanNumber for Fixed32 {
+    const LABEL: &'static str = "fixed";
+}
+
+/// The scan rows in `S`, one line per size (each a table type of its own,
+/// with its own code). The micro:bit's 16 KiB of RAM hold the table (on
+/// the stack) up to 32 × 32 in the fast fixed point (`docs/track-table.md`
+/// gives its bytes).
+#[inline(never)]
+pub fn sizes<S: ScanNumber>(bench: &mut Bench) {
+    run::<S, 8, 8>(bench);
+    run::<S, 16, 16>(bench);
+    run::<S, 32, 32>(bench);
+    #[cfg(not(abtrack_board = "microbit"))]
+    {
+        run::<S, 64, 64>(bench);
+        run::<S, 128, 128>(bench);
+        run::<S, 256, 256>(bench);
+    }
+}
 use crate::synth::Lcg;
 
 /// Scans timed per `scan_*` figure (one by one, averaged).
@@ -161,14 +194,18 @@ impl Scene {
     /// the target's own (12 m across, 100 m along), well inside the noise.
     /// With exact points every track starts on its own target; the scans
     /// measured come later.
-    fn measurements<S: Scalar, const M: usize>(self, k: u32, rng: &mut Lcg) -> [Measurement<S>; M] {
+    fn measurements<S: TrackNumeric, const M: usize>(
+        self,
+        k: u32,
+        rng: &mut Lcg,
+    ) -> [Measurement<S>; M] {
         let t = k as f64;
         let noise = if k < 2 { 0.0 } else { NOISE_M };
         core::array::from_fn(|i| {
             let (x, y) = self.start(i, M);
             Measurement::Cartesian {
-                x: S::from_f64_lossy(x + SPEED_M_PER_S * t + rng.uniform(-noise, noise)),
-                y: S::from_f64_lossy(y + rng.uniform(-noise, noise)),
+                x: S::Length::from_f64_lossy(x + SPEED_M_PER_S * t + rng.uniform(-noise, noise)),
+                y: S::Length::from_f64_lossy(y + rng.uniform(-noise, noise)),
             }
         })
     }
@@ -206,7 +243,7 @@ type BenchTable<S, const N: usize, const M: usize> = TrackTable<S, FixedGainTrac
 
 /// One scan; `marks[i]` gets SysTick's value as stage `STAGES[i]` ends.
 #[inline(never)]
-fn run_scan<S: Scalar, const N: usize, const M: usize>(
+fn run_scan<S: TrackNumeric, const N: usize, const M: usize>(
     table: &mut BenchTable<S, N, M>,
     config: &TrackerConfig<S, Gains<S>>,
     now_ms: u32,
@@ -225,7 +262,7 @@ fn run_scan<S: Scalar, const N: usize, const M: usize>(
 
 /// Both scenes at N tracks, M measurements per scan.
 #[inline(never)]
-pub fn run<S: Numeric, const N: usize, const M: usize>(bench: &mut Bench) {
+fn run<S: ScanNumber, const N: usize, const M: usize>(bench: &mut Bench) {
     scene::<S, N, M>(bench, Scene::Separated);
     scene::<S, N, M>(bench, Scene::Crowded);
 }
@@ -235,22 +272,22 @@ pub fn run<S: Numeric, const N: usize, const M: usize>(bench: &mut Bench) {
 /// SysTick read where the scan reports the stage's end); the counts of the
 /// last scan; the sizes of the clusters of the gated pairs.
 #[inline(never)]
-fn scene<S: Numeric, const N: usize, const M: usize>(bench: &mut Bench, scene: Scene) {
+fn scene<S: ScanNumber, const N: usize, const M: usize>(bench: &mut Bench, scene: Scene) {
     let numeric = S::LABEL;
     let operation = scene.operation();
     let size = Size { n: N, m: M };
     let (Some(gains), Ok(gate)) = (
         Gains::<S>::alpha_beta_f64(0.5, 0.2).ok(),
         Gate::uncertainty(
-            S::from_f64_lossy(5.0),
-            S::from_f64_lossy(13.8),
-            S::from_f64_lossy(5.0),
+            S::Length::from_f64_lossy(5.0),
+            S::Ratio::from_f64_lossy(13.8),
+            S::Acceleration::from_f64_lossy(5.0),
         ),
     ) else {
         bench.fail(numeric, operation, "tracker configuration refused");
         return;
     };
-    let Ok(config) = TrackerConfig::new(gains, gate, S::from_f64_lossy(300.0)) else {
+    let Ok(config) = TrackerConfig::new(gains, gate, S::Speed::from_f64_lossy(300.0)) else {
         bench.fail(numeric, operation, "tracker configuration refused");
         return;
     };
@@ -366,7 +403,7 @@ struct ClusterSizes<const N: usize> {
 }
 
 impl<const N: usize> ClusterSizes<N> {
-    fn of<S: Scalar, const M: usize>(
+    fn of<S: TrackNumeric, const M: usize>(
         table: &BenchTable<S, N, M>,
         config: &TrackerConfig<S, Gains<S>>,
         measurements: &[Measurement<S>; M],
@@ -376,14 +413,18 @@ impl<const N: usize> ClusterSizes<N> {
             gated: [false; N],
         };
         let mut owner = [u16::MAX; M];
-        let dt = S::ONE;
+        let Some(dt) = ScanInterval::from_ms(1000)
+            .and_then(|i| FixedGainTrack::step(config.params(), &i).ok())
+        else {
+            return sizes;
+        };
         let observations = measurements.map(|z| Observation::new(z).ok());
         for (t, track) in table.tracks().enumerate() {
             let f = track.filter();
             let Some(region) = f
-                .predict(config.params(), dt)
+                .predict(config.params(), &dt)
                 .ok()
-                .and_then(|p| f.gate_region(config.params(), &p, dt, config.gate()))
+                .and_then(|p| f.gate_region(config.params(), &p, &dt, config.gate()))
             else {
                 continue;
             };
