@@ -73,7 +73,7 @@ fn bytes_per_track() {
     // bytes in f32 and in the fast fixed point.
     assert_eq!(
         per_track,
-        [("f64", 88), ("f32", 56), ("q32", 88), ("fixed", 64)]
+        [("f64", 88), ("f32", 56), ("q32", 88), ("fixed", 56)]
     );
     assert_eq!(
         filters,
@@ -87,7 +87,7 @@ fn bytes_per_track() {
     let round = |b: usize| b.div_ceil(8) * 8;
     let f64_bytes = |n: usize, m: usize| round(60 + 143 * n + 182 * m);
     let f32_bytes = |n: usize, m: usize| round(56 + 111 * n + 126 * m);
-    let fixed_bytes = |n: usize, m: usize| round(56 + 119 * n + 134 * m);
+    let fixed_bytes = |n: usize, m: usize| round(56 + 111 * n + 134 * m);
     let tables = [
         ("f64", size_of::<Table<f64, 32, 32>>()),
         ("f32", size_of::<Table<f32, 32, 32>>()),

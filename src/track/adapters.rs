@@ -130,7 +130,7 @@ fn filter_error(e: ScheduledError) -> FilterError {
 #[cfg_attr(feature = "defmt", derive(defmt::Format))]
 pub struct ScheduledTrack<S: TrackNumeric, G> {
     filter: ScheduledFilter<S, G, 2, 2>,
-    uncertainty: [Uncertainty<S::Ratio>; 2],
+    uncertainty: [Uncertainty<S::Variance>; 2],
 }
 
 impl<S: TrackNumeric, G: GainSchedule<S, 2>> ScheduledTrack<S, G> {
@@ -140,7 +140,7 @@ impl<S: TrackNumeric, G: GainSchedule<S, 2>> ScheduledTrack<S, G> {
     }
 
     /// The covariance bookkeeping of the x and y axes.
-    pub fn uncertainty(&self) -> &[Uncertainty<S::Ratio>; 2] {
+    pub fn uncertainty(&self) -> &[Uncertainty<S::Variance>; 2] {
         &self.uncertainty
     }
 
@@ -227,8 +227,15 @@ impl<S: TrackNumeric, G: GainSchedule<S, 2>> TrackFilter<S> for ScheduledTrack<S
                 .as_ref()
                 .and_then(|g| g.get(i))
                 .map_or((one, one), |g| (g.alpha(), g.beta()));
+            let seconds = step.seconds();
+            let velocity_gain = S::to_variance(beta) / seconds;
             *u = u
-                .after_update(kind_of(outcome), alpha, beta, step.seconds())
+                .after_update(
+                    kind_of(outcome),
+                    S::to_variance(alpha),
+                    velocity_gain,
+                    seconds,
+                )
                 .ok_or(FilterError::Saturated)?;
         }
         self.filter = filter;
@@ -272,7 +279,7 @@ impl<S: TrackNumeric, G: GainSchedule<S, 2>> TrackFilter<S> for ScheduledTrack<S
         let [ux, uy] = &self.uncertainty;
         let px = ux.predicted_variance_ratio(step.seconds())?;
         let py = uy.predicted_variance_ratio(step.seconds())?;
-        Some(px.max_of(py))
+        Some(S::from_variance(px).max_of(S::from_variance(py)))
     }
 
     /// The larger per-axis α of [`Self::next_gains`] for a scan 1 s ahead

@@ -253,6 +253,15 @@ impl<const N: usize, const M: usize> Clusters<N, M> {
         self.root_of(t) == Some(t)
     }
 
+    /// The measurement of the cluster rooted at `root` if it is one track
+    /// and one measurement (assigned without the solver).
+    pub(super) fn single_pair(&self, root: usize) -> Option<usize> {
+        let links = self.tracks.get(root)?;
+        let k = links.first_measurement;
+        let alone = links.next == NONE && self.measurements.get(k as usize)?.next == NONE;
+        alone.then_some(k as usize)
+    }
+
     /// The tracks of the cluster rooted at `root`, in slot order.
     pub(super) fn tracks_of(&self, root: usize) -> impl Iterator<Item = usize> + '_ {
         let first = if self.is_root(root) {

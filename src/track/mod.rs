@@ -130,9 +130,9 @@ pub use config::{TrackerConfig, Volume};
 pub use gate::{hypot, BoundingBox, ConfigError, Gate, GateRegion, PolarWindow};
 pub use model::{
     ErrorVariance, FixedGainStep, FixedGainTrack, Measurement, Observation, PredictedState,
-    RejectReason, ScanInterval, TrackFilter, Uncertainty,
+    RejectReason, ScanInterval, TrackFilter, Uncertainty, VarianceNumber,
 };
-pub use numeric::{PackedScaled, TrackNumeric};
+pub use numeric::{FixedVariance, TrackNumeric};
 pub use table::{
     Association, DropReason, ScanError, ScanReport, ScanStage, TableStats, Track, TrackId,
     TrackStatus, TrackTable,

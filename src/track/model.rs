@@ -50,7 +50,7 @@ impl<S: TrackNumeric> Observation<S> {
         let xy = match measurement {
             Measurement::Cartesian { x, y } => [x, y],
             Measurement::Polar { range, azimuth } => {
-                if !(range.is_valid() && azimuth.is_valid()) {
+                if !(range.is_valid() && Quantity::is_valid(azimuth)) {
                     return Err(RejectReason::NotFinite);
                 }
                 if range < S::Length::ZERO {
@@ -89,24 +89,24 @@ pub struct PredictedState<S: Numeric> {
 }
 
 /// The interval of one scan, formed once per scan by the table and passed
-/// to every track's filter: T as the filters' interval quantity, T as a
-/// ratio (the number of seconds, for the covariance bookkeeping), and T²/2
-/// (the gate's manoeuvre allowance).
+/// to every track's filter: T as the filters' interval quantity, T as the
+/// covariance bookkeeping's number of seconds, and T²/2 (the gate's
+/// manoeuvre allowance).
 #[derive(Debug, Clone, Copy, PartialEq)]
-#[cfg_attr(feature = "defmt", derive(defmt::Format))]
-pub struct ScanInterval<S: Numeric> {
+pub struct ScanInterval<S: TrackNumeric> {
     terms: IntervalTerms<S>,
-    seconds: S::Ratio,
+    seconds: S::Variance,
 }
 
-impl<S: Numeric> ScanInterval<S> {
+impl<S: TrackNumeric> ScanInterval<S> {
     /// The interval of `ms` milliseconds (> 0); `None` if it is 0 or not
     /// representable.
     pub fn from_ms(ms: u32) -> Option<Self> {
         let dt = S::Interval::try_from_f64(f64::from(ms) / 1000.0).ok()?;
         let terms = IntervalTerms::new(dt).ok()?;
-        let seconds = S::Ratio::from_ratio(u64::from(ms), 1000);
-        (seconds.is_valid() && seconds > S::Ratio::ZERO).then_some(ScanInterval { terms, seconds })
+        let seconds = S::to_variance(S::Ratio::from_ratio(u64::from(ms), 1000));
+        (seconds.is_valid() && seconds != S::Variance::ZERO)
+            .then_some(ScanInterval { terms, seconds })
     }
 
     /// T.
@@ -119,8 +119,8 @@ impl<S: Numeric> ScanInterval<S> {
         &self.terms
     }
 
-    /// The number of seconds T, dimensionless.
-    pub fn seconds(&self) -> S::Ratio {
+    /// The number of seconds T, in the covariance's number type.
+    pub fn seconds(&self) -> S::Variance {
         self.seconds
     }
 }
@@ -242,7 +242,7 @@ pub(super) fn uncertainty_radius<S: TrackNumeric>(
     p: S::Ratio,
     interval: &ScanInterval<S>,
 ) -> S::Length {
-    let scale = (threshold * (p + S::Ratio::ONE)).sqrt();
+    let scale = (threshold * (p + <S::Ratio as Real>::ONE)).sqrt();
     scale * measurement_sigma + max_acceleration * interval.terms().half_squared()
 }
 
@@ -278,7 +278,34 @@ pub struct ErrorVariance<R> {
     pub p22: R,
 }
 
-impl<R: Real> ErrorVariance<R> {
+/// The arithmetic the covariance bookkeeping needs: every [`Real`] (the
+/// ratios of every number system), and the fast fixed point's own
+/// [`FixedVariance`](super::FixedVariance).
+pub trait VarianceNumber:
+    Copy
+    + PartialEq
+    + core::fmt::Debug
+    + core::ops::Add<Output = Self>
+    + core::ops::Sub<Output = Self>
+    + core::ops::Mul<Output = Self>
+    + core::ops::Div<Output = Self>
+{
+    const ZERO: Self;
+    const ONE: Self;
+    /// False for NaN, ±∞ and saturated values.
+    fn is_valid(self) -> bool;
+}
+
+impl<R: Real> VarianceNumber for R {
+    const ZERO: Self = <R as Quantity>::ZERO;
+    const ONE: Self = <R as Real>::ONE;
+    #[inline]
+    fn is_valid(self) -> bool {
+        Quantity::is_valid(self)
+    }
+}
+
+impl<R: VarianceNumber> ErrorVariance<R> {
     /// After two-point initialisation over interval T (Al-Wagih eq. 9):
     /// x = z₂ (variance 1), v = (z₂ − z₁)/T (variance 2/T²), and
     /// cov(z₂, (z₂ − z₁)/T) = 1/T. `interval` in seconds.
@@ -305,8 +332,14 @@ impl<R: Real> ErrorVariance<R> {
     /// (Al-Wagih eqs. 6 and 8), in Joseph form, which holds for any gain:
     /// P = (I − KH)·P⁻·(I − KH)ᵀ + K·Kᵀ (R = 1 in these units).
     pub fn updated(&self, alpha: R, beta: R, dt: R) -> Self {
+        self.updated_with(alpha, beta / dt)
+    }
+
+    /// [`Self::updated`] with the velocity gain k₂ = β/T formed already
+    /// (once per interval, for fixed gains).
+    pub fn updated_with(&self, alpha: R, velocity_gain: R) -> Self {
         let k1 = alpha;
-        let k2 = beta / dt;
+        let k2 = velocity_gain;
         let one_minus = R::ONE - k1;
         let two = R::ONE + R::ONE;
         ErrorVariance {
@@ -331,10 +364,17 @@ pub enum Uncertainty<R> {
     Tracking(ErrorVariance<R>),
 }
 
-impl<R: Real> Uncertainty<R> {
-    /// The bookkeeping after an update of kind `kind` with gains (α, β)
-    /// over `dt` seconds; `None` if it left the representable range.
-    pub fn after_update(&self, kind: UpdateKind, alpha: R, beta: R, dt: R) -> Option<Self> {
+impl<R: VarianceNumber> Uncertainty<R> {
+    /// The bookkeeping after an update of kind `kind` with gains α and
+    /// k₂ = β/T over `dt` seconds; `None` if it left the representable
+    /// range.
+    pub fn after_update(
+        &self,
+        kind: UpdateKind,
+        alpha: R,
+        velocity_gain: R,
+        dt: R,
+    ) -> Option<Self> {
         let next = match (kind, self) {
             (UpdateKind::FirstPoint, _) => Uncertainty::OnePoint { elapsed: R::ZERO },
             (UpdateKind::SecondPoint, Uncertainty::OnePoint { elapsed }) => {
@@ -344,14 +384,14 @@ impl<R: Real> Uncertainty<R> {
                 Uncertainty::Tracking(ErrorVariance::after_two_points(dt))
             }
             (UpdateKind::Filtered, Uncertainty::Tracking(p)) => {
-                Uncertainty::Tracking(p.predicted(dt).updated(alpha, beta, dt))
+                Uncertainty::Tracking(p.predicted(dt).updated_with(alpha, velocity_gain))
             }
             // A filtered update without a covariance (a filter started with
             // `from_state`): start from the two-point covariance.
             (UpdateKind::Filtered, _) => Uncertainty::Tracking(
                 ErrorVariance::after_two_points(dt)
                     .predicted(dt)
-                    .updated(alpha, beta, dt),
+                    .updated_with(alpha, velocity_gain),
             ),
         };
         next.is_valid().then_some(next)
@@ -394,7 +434,7 @@ impl<R: Real> Uncertainty<R> {
 /// Gains<S>`, the per-interval gains β/T formed once per scan), plus the
 /// error covariance that sizes its gate, in as few bytes as the state
 /// allows: position and velocity in the number system's own formats, the
-/// covariance (three ratios, [`TrackNumeric::PackedRatios`]) shared by both
+/// covariance (three [`TrackNumeric::Variance`] numbers) shared by both
 /// axes (the same gains and intervals give both axes the same covariance),
 /// nothing else (no innovation, no per-axis phase or counter: a refusal is
 /// counted by the table, [`Track::refusals`](super::Track::refusals)).
@@ -417,24 +457,23 @@ enum FixedGainState<S: TrackNumeric> {
     OnePoint {
         position: [S::Length; 2],
         elapsed: S::Interval,
-        elapsed_seconds: S::Ratio,
+        elapsed_seconds: S::Variance,
     },
     Tracking {
         position: [S::Length; 2],
         velocity: [S::Speed; 2],
-        /// (p11, p12, p22) of [`ErrorVariance`].
-        variance: S::PackedRatios,
+        variance: ErrorVariance<S::Variance>,
     },
 }
 
 /// [`FixedGainTrack`]'s per-scan step: the interval, the step gains of both
-/// axes, and α, β for the covariance.
+/// axes, and α and β/T for the covariance.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct FixedGainStep<S: TrackNumeric> {
     interval: ScanInterval<S>,
     gains: StepGains<S>,
-    alpha: S::Ratio,
-    beta: S::Ratio,
+    alpha: S::Variance,
+    velocity_gain: S::Variance,
 }
 
 impl<S: TrackNumeric> FixedGainTrack<S> {
@@ -448,7 +487,7 @@ impl<S: TrackNumeric> FixedGainTrack<S> {
     }
 
     /// The covariance bookkeeping.
-    pub fn uncertainty(&self) -> Uncertainty<S::Ratio> {
+    pub fn uncertainty(&self) -> Uncertainty<S::Variance> {
         match self.state {
             FixedGainState::Empty => Uncertainty::Empty,
             FixedGainState::OnePoint {
@@ -456,26 +495,23 @@ impl<S: TrackNumeric> FixedGainTrack<S> {
             } => Uncertainty::OnePoint {
                 elapsed: elapsed_seconds,
             },
-            FixedGainState::Tracking { variance, .. } => {
-                let [p11, p12, p22] = S::unpack(variance);
-                Uncertainty::Tracking(ErrorVariance { p11, p12, p22 })
-            }
+            FixedGainState::Tracking { variance, .. } => Uncertainty::Tracking(variance),
         }
     }
 
     fn tracking(
         position: [S::Length; 2],
         velocity: [S::Speed; 2],
-        uncertainty: Uncertainty<S::Ratio>,
+        uncertainty: Uncertainty<S::Variance>,
     ) -> Result<Self, FilterError> {
-        let Uncertainty::Tracking(p) = uncertainty else {
+        let Uncertainty::Tracking(variance) = uncertainty else {
             return Err(FilterError::Saturated);
         };
         Ok(FixedGainTrack {
             state: FixedGainState::Tracking {
                 position,
                 velocity,
-                variance: S::pack([p.p11, p.p12, p.p22]),
+                variance,
             },
         })
     }
@@ -485,7 +521,7 @@ impl<S: TrackNumeric> FixedGainTrack<S> {
     fn second_point(
         position: [S::Length; 2],
         elapsed: S::Interval,
-        elapsed_seconds: S::Ratio,
+        elapsed_seconds: S::Variance,
         z: [S::Length; 2],
         step: &FixedGainStep<S>,
     ) -> Result<Self, FilterError> {
@@ -512,7 +548,7 @@ impl<S: TrackNumeric> FixedGainTrack<S> {
         .after_update(
             UpdateKind::SecondPoint,
             step.alpha,
-            step.beta,
+            step.velocity_gain,
             step.interval.seconds(),
         )
         .ok_or(FilterError::Saturated)?;
@@ -525,11 +561,16 @@ impl<S: TrackNumeric> TrackFilter<S> for FixedGainTrack<S> {
     type Step = FixedGainStep<S>;
 
     fn step(gains: &Gains<S>, interval: &ScanInterval<S>) -> Result<FixedGainStep<S>, FilterError> {
+        let alpha = S::to_variance(gains.alpha());
+        let velocity_gain = S::to_variance(gains.beta()) / interval.seconds();
+        if !(alpha.is_valid() && velocity_gain.is_valid()) {
+            return Err(FilterError::Saturated);
+        }
         Ok(FixedGainStep {
             interval: *interval,
             gains: StepGains::new(gains, interval.interval())?,
-            alpha: gains.alpha(),
-            beta: gains.beta(),
+            alpha,
+            velocity_gain,
         })
     }
 
@@ -559,7 +600,7 @@ impl<S: TrackNumeric> TrackFilter<S> for FixedGainTrack<S> {
                     state: FixedGainState::OnePoint {
                         position: z,
                         elapsed: S::Interval::ZERO,
-                        elapsed_seconds: S::Ratio::ZERO,
+                        elapsed_seconds: S::Variance::ZERO,
                     },
                 }
             }
@@ -590,7 +631,7 @@ impl<S: TrackNumeric> TrackFilter<S> for FixedGainTrack<S> {
                     .after_update(
                         UpdateKind::Filtered,
                         step.alpha,
-                        step.beta,
+                        step.velocity_gain,
                         step.interval.seconds(),
                     )
                     .ok_or(FilterError::Saturated)?;
@@ -661,6 +702,7 @@ impl<S: TrackNumeric> TrackFilter<S> for FixedGainTrack<S> {
     fn predicted_variance_ratio(&self, _: &Gains<S>, step: &FixedGainStep<S>) -> Option<S::Ratio> {
         self.uncertainty()
             .predicted_variance_ratio(step.interval.seconds())
+            .map(S::from_variance)
     }
 
     fn gate_alpha(&self, gains: &Gains<S>) -> S::Ratio {

@@ -14,14 +14,17 @@
 //!   rather than Q32.32's inlined 128-bit arithmetic, 13 KB less flash on the
 //!   micro:bit; 24 significant bits: 6 mm at 100 km). Only polar
 //!   measurements and He et al.'s range/azimuth windows take this path.
-//! * A track stores three ratios (its gate's covariance) packed: the
-//!   [`Scaled`] ratios of [`Fixed32`] are an `i32` mantissa and an `i16`
-//!   exponent, 8 bytes with padding each; three mantissas and three
-//!   exponents take 20 (`docs/track-table.md`, bytes per track).
+//! * The covariance that sizes a gate ([`super::ErrorVariance`], in units
+//!   of σ²) is kept and propagated in the ratio type, except in [`Fixed32`],
+//!   whose ratios ([`Ratio`], a mantissa and an exponent in software) cost
+//!   about 100 instructions an operation on the Cortex-M3: there it is
+//!   [`FixedVariance`], a 32-bit I16F16 word (its envelope: intervals of at
+//!   least 8 ms, `docs/track-table.md`).
 
 use core::fmt::Debug;
 
 use super::assign::MAX_COST;
+use super::model::VarianceNumber;
 use crate::num::fixed32::{Fixed32, Length, Ratio};
 use crate::num::{Numeric, Quantity, Scalar};
 
@@ -32,8 +35,8 @@ pub trait TrackNumeric: Numeric {
     /// What a circular gate keeps to test measurements (the reciprocal of
     /// its radius, for floats and Q32.32).
     type CircleScale: Copy + Debug + PartialEq;
-    /// Three ratios as a track stores them.
-    type PackedRatios: Copy + Debug + PartialEq;
+    /// The number type of the gate's covariance bookkeeping.
+    type Variance: VarianceNumber;
 
     /// The circle's scale for `radius` (> 0), or `None` if it cannot be
     /// formed.
@@ -58,8 +61,10 @@ pub trait TrackNumeric: Numeric {
     /// Back (invalid if out of range).
     fn ratio_from_polar(v: Self::Polar) -> Self::Ratio;
 
-    fn pack(ratios: [Self::Ratio; 3]) -> Self::PackedRatios;
-    fn unpack(packed: Self::PackedRatios) -> [Self::Ratio; 3];
+    /// A ratio as a covariance number (saturating).
+    fn to_variance(r: Self::Ratio) -> Self::Variance;
+    /// Back.
+    fn from_variance(v: Self::Variance) -> Self::Ratio;
 }
 
 /// A value in [0, 1] to `0 ..= MAX_COST`, rounded to nearest.
@@ -77,7 +82,7 @@ pub(super) fn quantise_unit<S: Scalar>(v: S) -> u16 {
 impl<S: Scalar> TrackNumeric for S {
     type Polar = S;
     type CircleScale = S;
-    type PackedRatios = [S; 3];
+    type Variance = S;
 
     fn circle_scale(radius: S) -> Option<S> {
         let inverse = S::ONE / radius;
@@ -97,7 +102,11 @@ impl<S: Scalar> TrackNumeric for S {
         if !(d2.is_valid() && d2 <= S::ONE) {
             return None;
         }
-        Some(quantise_unit(d2))
+        // Scaled in S (one product and one sum, no conversion of the
+        // fraction to f64, which is software on every core here).
+        let scaled = d2 * S::from_f64_lossy(MAX_COST as f64) + S::from_f64_lossy(0.5);
+        let q = scaled.to_f64() as u32;
+        Some(q.min(MAX_COST as u32) as u16)
     }
 
     fn length_to_polar(v: S) -> S {
@@ -112,27 +121,127 @@ impl<S: Scalar> TrackNumeric for S {
     fn ratio_from_polar(v: S) -> S {
         v
     }
-    fn pack(ratios: [S; 3]) -> [S; 3] {
-        ratios
+    fn to_variance(r: S) -> S {
+        r
     }
-    fn unpack(packed: [S; 3]) -> [S; 3] {
-        packed
+    fn from_variance(v: S) -> S {
+        v
     }
 }
 
-/// Three [`Ratio`]s of [`Fixed32`] without the padding of each (module
-/// docs): the mantissas and the exponents.
-#[derive(Debug, Clone, Copy, PartialEq)]
+/// A covariance number of the fast fixed point: I16F16 in an `i32` word
+/// (±32 768, steps of 2⁻¹⁶), saturating like the [`Fixed32`] quantities
+/// (`i32::MIN`/`MAX` are sentinels, sticky). Products and quotients are
+/// formed in 64 bits and rounded to nearest once.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, PartialOrd, Ord)]
 #[cfg_attr(feature = "defmt", derive(defmt::Format))]
-pub struct PackedScaled {
-    mantissas: [i32; 3],
-    exponents: [i16; 3],
+pub struct FixedVariance(i32);
+
+impl FixedVariance {
+    const FRAC_BITS: u32 = 16;
+    const MAX: Self = FixedVariance(i32::MAX);
+    const MIN: Self = FixedVariance(i32::MIN);
+
+    /// The raw word (value × 2¹⁶).
+    pub const fn to_bits(self) -> i32 {
+        self.0
+    }
+
+    fn is_sentinel(self) -> bool {
+        self.0 == i32::MIN || self.0 == i32::MAX
+    }
+
+    /// `wide` as a word, or the sentinel of its sign.
+    fn saturate(wide: i64) -> Self {
+        match i32::try_from(wide) {
+            Ok(v) if v != i32::MIN && v != i32::MAX => FixedVariance(v),
+            _ => {
+                if wide < 0 {
+                    Self::MIN
+                } else {
+                    Self::MAX
+                }
+            }
+        }
+    }
+
+    /// The sentinel a result with the sign of `negative` saturates to.
+    fn sentinel(negative: bool) -> Self {
+        if negative {
+            Self::MIN
+        } else {
+            Self::MAX
+        }
+    }
+}
+
+impl core::ops::Add for FixedVariance {
+    type Output = Self;
+    fn add(self, rhs: Self) -> Self {
+        let wide = i64::from(self.0).wrapping_add(i64::from(rhs.0));
+        if self.is_sentinel() || rhs.is_sentinel() {
+            return Self::sentinel(wide < 0);
+        }
+        Self::saturate(wide)
+    }
+}
+
+impl core::ops::Sub for FixedVariance {
+    type Output = Self;
+    fn sub(self, rhs: Self) -> Self {
+        let wide = i64::from(self.0).wrapping_sub(i64::from(rhs.0));
+        if self.is_sentinel() || rhs.is_sentinel() {
+            return Self::sentinel(wide < 0);
+        }
+        Self::saturate(wide)
+    }
+}
+
+impl core::ops::Mul for FixedVariance {
+    type Output = Self;
+    fn mul(self, rhs: Self) -> Self {
+        // |a·b| < 2⁶²: exact; rounded half up to 16 fractional bits.
+        let product = i64::from(self.0).wrapping_mul(i64::from(rhs.0));
+        if self.is_sentinel() || rhs.is_sentinel() {
+            return Self::sentinel(product < 0);
+        }
+        let half = 1i64 << (Self::FRAC_BITS - 1);
+        Self::saturate(product.wrapping_add(half) >> Self::FRAC_BITS)
+    }
+}
+
+impl core::ops::Div for FixedVariance {
+    type Output = Self;
+    fn div(self, rhs: Self) -> Self {
+        let negative = (self.0 < 0) != (rhs.0 < 0);
+        if self.is_sentinel() || rhs.is_sentinel() || rhs.0 == 0 {
+            return Self::sentinel(negative);
+        }
+        // |a·2¹⁶| < 2⁴⁷; rounded half away from zero.
+        let numerator = i64::from(self.0) << Self::FRAC_BITS;
+        let divisor = i64::from(rhs.0);
+        let half = divisor.unsigned_abs() as i64 / 2;
+        let biased = if numerator < 0 {
+            numerator.wrapping_sub(half)
+        } else {
+            numerator.wrapping_add(half)
+        };
+        Self::saturate(biased.checked_div(divisor).unwrap_or(i64::MAX))
+    }
+}
+
+impl VarianceNumber for FixedVariance {
+    const ZERO: Self = FixedVariance(0);
+    const ONE: Self = FixedVariance(1 << Self::FRAC_BITS);
+    fn is_valid(self) -> bool {
+        !self.is_sentinel()
+    }
 }
 
 impl TrackNumeric for Fixed32 {
     type Polar = f32;
     type CircleScale = ();
-    type PackedRatios = PackedScaled;
+    type Variance = FixedVariance;
 
     fn circle_scale(radius: Length) -> Option<()> {
         (radius.is_valid() && radius > Length::ZERO).then_some(())
@@ -205,29 +314,30 @@ impl TrackNumeric for Fixed32 {
         Ratio::from_wide((f * (1u32 << 24) as f32) as i64, e.saturating_sub(24))
     }
 
-    fn pack(ratios: [Ratio; 3]) -> PackedScaled {
-        PackedScaled {
-            mantissas: ratios.map(|r| r.mantissa()),
-            // The exponents of valid values lie in −200..=100; the invalid
-            // value's is 0.
-            exponents: ratios.map(|r| r.exponent() as i16),
+    fn to_variance(r: Ratio) -> FixedVariance {
+        if r.is_invalid() {
+            return FixedVariance::MAX;
+        }
+        // r = m·2^e; the word is m·2^(e + 16), rounded.
+        let shift = r.exponent().saturating_add(FixedVariance::FRAC_BITS as i32);
+        let m = i64::from(r.mantissa());
+        if shift >= 0 {
+            // |m| < 2³¹, so m·2³² fits an i64; 32 and more overflow the word.
+            let s = shift.unsigned_abs().min(32);
+            FixedVariance::saturate(m << s)
+        } else {
+            let s = shift.unsigned_abs();
+            if s >= 63 {
+                return FixedVariance::ZERO;
+            }
+            FixedVariance::saturate(m.wrapping_add(1i64 << (s - 1)) >> s)
         }
     }
 
-    fn unpack(packed: PackedScaled) -> [Ratio; 3] {
-        let mut out = [Ratio::ZERO; 3];
-        for ((o, &m), &e) in out
-            .iter_mut()
-            .zip(packed.mantissas.iter())
-            .zip(packed.exponents.iter())
-        {
-            *o = if m == i32::MIN {
-                Ratio::INVALID
-            } else {
-                // Already normalised: from_wide gives back the same value.
-                Ratio::from_wide(i64::from(m), i32::from(e))
-            };
+    fn from_variance(v: FixedVariance) -> Ratio {
+        if !v.is_valid() {
+            return Ratio::INVALID;
         }
-        out
+        Ratio::from_wide(i64::from(v.0), -(FixedVariance::FRAC_BITS as i32))
     }
 }

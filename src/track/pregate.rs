@@ -7,8 +7,9 @@
 //! [x₀, x₁] (two binary searches), and in each the run of y in [y₀, y₁]
 //! (one binary search). A query costs O(log L + s·log √L + k) for s strips
 //! crossed and k measurements returned, against L for testing all; building
-//! costs O(L log L) comparisons (heapsort: no recursion, no allocation, no
-//! panic path). The coordinates are copied next to the measurement slots (2
+//! costs O(L log L) comparisons at worst (a natural merge sort: a scan whose
+//! measurements come in the order of the last one's, a sensor's sweep,
+//! costs a pass or two; no recursion, no allocation, no panic path). The coordinates are copied next to the measurement slots (2
 //! numbers and 4 bytes per measurement slot) so that sorting and searching
 //! read one array. Strips rather than one sort by x because targets aligned in
 //! x (a grid, a column of aircraft on one airway) would otherwise all fall
@@ -62,38 +63,87 @@ impl<S: TrackNumeric, const M: usize> MeasurementIndex<S, M> {
     }
 
     /// Indexes the valid entries of `observations`.
+    ///
+    /// When the valid measurements are the same slots as in the last scan
+    /// (a sensor that reports its targets in the same order every scan), the
+    /// last scan's order is the starting point: re-keyed, then insertion
+    /// sorted, which costs O(L + inversions) — targets moving past each
+    /// other swap places, nothing else moves. Beyond a budget of
+    /// L·⌈log₂ L⌉ moves, or from scratch, a natural merge sort.
     pub(super) fn build(&mut self, observations: &[Option<Observation<S>>; M]) {
-        let mut len = 0usize;
-        for (k, obs) in observations.iter().enumerate() {
-            let Some(o) = obs else { continue };
-            if let Some(e) = self.by_x.get_mut(len) {
-                // k < M < 65535.
-                *e = Entry {
-                    key: o.xy()[0],
-                    slot: k as u16,
-                };
-                len = len.saturating_add(1);
-            }
-        }
-        // len ≤ M < 65535.
-        self.len = len as u16;
-        let strip = ceil_sqrt(len).max(1);
-        self.strip = strip as u16;
-        if let Some(by_x) = self.by_x.get_mut(..len) {
-            heapsort(by_x);
-        }
-        for (x, y) in self.by_x.iter().zip(self.by_y.iter_mut()).take(len) {
-            let key = observations
-                .get(x.slot as usize)
+        let xy = |k: u16| {
+            observations
+                .get(k as usize)
                 .and_then(|o| o.as_ref())
-                .map_or(S::Length::ZERO, |o| o.xy()[1]);
-            *y = Entry { key, slot: x.slot };
+                .map(|o| o.xy())
+        };
+        let previous = self.len as usize;
+        // The same slots: as many valid ones, and all the last scan's valid.
+        let reusable = self
+            .by_x
+            .iter()
+            .take(previous)
+            .all(|e| xy(e.slot).is_some())
+            && observations.iter().filter(|o| o.is_some()).count() == previous;
+        let len = if reusable {
+            for e in self.by_x.iter_mut().take(previous) {
+                e.key = xy(e.slot).map_or(S::Length::ZERO, |p| p[0]);
+            }
+            previous
+        } else {
+            let mut len = 0usize;
+            for (k, obs) in observations.iter().enumerate() {
+                let Some(o) = obs else { continue };
+                if let Some(e) = self.by_x.get_mut(len) {
+                    // k < M < 65535.
+                    *e = Entry {
+                        key: o.xy()[0],
+                        slot: k as u16,
+                    };
+                    len = len.saturating_add(1);
+                }
+            }
+            len
+        };
+        // len ≤ M < 65535; the strip width changes only with it.
+        if !reusable {
+            self.len = len as u16;
+            self.strip = ceil_sqrt(len).max(1) as u16;
+        }
+        let strip = usize::from(self.strip);
+        let (Some(by_x), Some(by_y)) = (self.by_x.get_mut(..len), self.by_y.get_mut(..len)) else {
+            return;
+        };
+        let budget = len.saturating_mul(ceil_log2(len));
+        let moved = if reusable {
+            insertion_sort(by_x, budget)
+        } else {
+            None
+        };
+        match moved {
+            // Same order as the last scan: the strips hold the same
+            // measurements, in the last scan's y order.
+            Some(0) => {
+                for e in by_y.iter_mut() {
+                    e.key = xy(e.slot).map_or(S::Length::ZERO, |p| p[1]);
+                }
+            }
+            _ => {
+                if moved.is_none() {
+                    merge_sort(by_x, by_y);
+                }
+                for (x, y) in by_x.iter().zip(by_y.iter_mut()) {
+                    let key = xy(x.slot).map_or(S::Length::ZERO, |p| p[1]);
+                    *y = Entry { key, slot: x.slot };
+                }
+            }
         }
         let mut start = 0;
         while start < len {
             let stop = start.saturating_add(strip).min(len);
-            if let Some(run) = self.by_y.get_mut(start..stop) {
-                heapsort(run);
+            if let Some(run) = by_y.get_mut(start..stop) {
+                // A strip holds ⌈√L⌉ entries: O(L) moves at worst.
+                insertion_sort(run, usize::MAX);
             }
             start = stop;
         }
@@ -112,16 +162,15 @@ impl<S: TrackNumeric, const M: usize> MeasurementIndex<S, M> {
         let (Some(by_x), Some(by_y)) = (self.by_x.get(..len), self.by_y.get(..len)) else {
             return;
         };
-        // Sorted positions [first, end) have x in [min, max]; the strips
-        // holding them are the ones to visit.
+        // From the strip holding the first x ≥ min, every strip whose first
+        // x is ≤ max.
         let first = by_x.partition_point(|e| e.key < bounds.min[0]);
-        let end = by_x.partition_point(|e| e.key <= bounds.max[0]);
-        if first >= end {
-            return;
-        }
         // strip ≥ 1.
         let mut start = first.checked_div(strip).unwrap_or(0).saturating_mul(strip);
-        while start < end {
+        while by_x
+            .get(start)
+            .is_some_and(|e| e.key <= bounds.max[0] && start < len)
+        {
             let stop = start.saturating_add(strip).min(len);
             let Some(run) = by_y.get(start..stop) else {
                 return;
@@ -155,57 +204,113 @@ fn ceil_sqrt(n: usize) -> usize {
     }
 }
 
-/// Sorts entries by (key, slot): a total order (keys are valid numbers), so
-/// the result does not depend on the input order.
-fn heapsort<S: PartialOrd + Copy>(v: &mut [Entry<S>]) {
-    let n = v.len();
-    for root in (0..n / 2).rev() {
-        sift_down(v, root, n);
-    }
-    for end in (1..n).rev() {
-        swap(v, 0, end);
-        sift_down(v, 0, end);
-    }
-}
-
-fn less<S: PartialOrd>(a: &Entry<S>, b: &Entry<S>) -> bool {
+fn less<K: PartialOrd>(a: &Entry<K>, b: &Entry<K>) -> bool {
     a.key < b.key || (a.key == b.key && a.slot < b.slot)
 }
 
-/// Restores the max-heap property of `v[..end]` below `root`.
-fn sift_down<S: PartialOrd + Copy>(v: &mut [Entry<S>], mut root: usize, end: usize) {
+/// Sorts entries by (key, slot), a total order (keys are valid numbers), so
+/// the result does not depend on the algorithm or the input order: a
+/// natural merge sort (runs already in order are merged, not re-sorted: a
+/// sensor's sweep or a repeated scene costs a pass or two), with `scratch`
+/// (at least as long) as the other buffer. O(n log n) comparisons at worst,
+/// no recursion.
+fn merge_sort<K: PartialOrd + Copy>(data: &mut [Entry<K>], scratch: &mut [Entry<K>]) {
+    let Some(scratch) = scratch.get_mut(..data.len()) else {
+        return;
+    };
+    if run_end(data, 0) >= data.len() {
+        return;
+    }
     loop {
-        let left = root.saturating_mul(2).saturating_add(1);
-        if left >= end {
+        if merge_runs(data, scratch) <= 1 {
+            // Sorted already: `data` was one run, nothing was moved that
+            // matters (the copy in `scratch` is the same).
             return;
         }
-        let right = left.saturating_add(1);
-        let (Some(&l), Some(&r)) = (v.get(left), v.get(root)) else {
-            return;
-        };
-        let (mut child, mut child_value) = (left, l);
-        if right < end {
-            if let Some(&rv) = v.get(right) {
-                if less(&l, &rv) {
-                    (child, child_value) = (right, rv);
-                }
-            }
-        }
-        if !less(&r, &child_value) {
+        if merge_runs(scratch, data) <= 1 {
             return;
         }
-        swap(v, root, child);
-        root = child;
     }
 }
 
-fn swap<T: Copy>(v: &mut [T], a: usize, b: usize) {
-    if let (Some(&x), Some(&y)) = (v.get(a), v.get(b)) {
-        if let Some(p) = v.get_mut(a) {
-            *p = y;
+/// One pass: merges each pair of adjacent runs of `src` into `dst`; returns
+/// the number of runs it found (1: `src` was sorted; `dst` holds a copy).
+fn merge_runs<K: PartialOrd + Copy>(src: &[Entry<K>], dst: &mut [Entry<K>]) -> usize {
+    let n = src.len();
+    let (mut start, mut runs) = (0, 0usize);
+    while start < n {
+        let mid = run_end(src, start);
+        let end = run_end(src, mid);
+        runs = runs.saturating_add(if mid < end { 2 } else { 1 });
+        let (Some(left), Some(right), Some(out)) = (
+            src.get(start..mid),
+            src.get(mid..end),
+            dst.get_mut(start..end),
+        ) else {
+            return 0;
+        };
+        merge(left, right, out);
+        start = end;
+    }
+    runs
+}
+
+/// The end of the ascending run starting at `start`.
+fn run_end<K: PartialOrd>(v: &[Entry<K>], start: usize) -> usize {
+    let mut i = start.saturating_add(1);
+    while let (Some(previous), Some(next)) = (v.get(i.saturating_sub(1)), v.get(i)) {
+        if less(next, previous) {
+            break;
         }
-        if let Some(q) = v.get_mut(b) {
-            *q = x;
+        i = i.saturating_add(1);
+    }
+    i.min(v.len())
+}
+
+/// Merges two sorted runs into `out` (their total length).
+fn merge<K: PartialOrd + Copy>(left: &[Entry<K>], right: &[Entry<K>], out: &mut [Entry<K>]) {
+    let (mut l, mut r) = (left.iter().peekable(), right.iter().peekable());
+    for slot in out.iter_mut() {
+        let take_right = match (l.peek(), r.peek()) {
+            (Some(a), Some(b)) => less(b, a),
+            (None, Some(_)) => true,
+            _ => false,
+        };
+        let next = if take_right { r.next() } else { l.next() };
+        if let Some(&e) = next {
+            *slot = e;
         }
     }
+}
+
+/// Insertion sort by (key, slot); `Some(moves)`, or `None` (and the entries
+/// partly sorted) once the moves exceed `budget`.
+fn insertion_sort<K: PartialOrd + Copy>(v: &mut [Entry<K>], budget: usize) -> Option<usize> {
+    let mut moves = 0usize;
+    for i in 1..v.len() {
+        let Some(&current) = v.get(i) else { break };
+        let mut j = i;
+        while let Some(&previous) = j.checked_sub(1).and_then(|p| v.get(p)) {
+            if !less(&current, &previous) {
+                break;
+            }
+            if let Some(slot) = v.get_mut(j) {
+                *slot = previous;
+            }
+            j = j.saturating_sub(1);
+            moves = moves.saturating_add(1);
+        }
+        if let Some(slot) = v.get_mut(j) {
+            *slot = current;
+        }
+        if moves > budget {
+            return None;
+        }
+    }
+    Some(moves)
+}
+
+/// ⌈log₂ n⌉ (0 for n ≤ 1).
+fn ceil_log2(n: usize) -> usize {
+    (usize::BITS - n.saturating_sub(1).leading_zeros()) as usize
 }

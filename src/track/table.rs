@@ -593,22 +593,22 @@ impl<S: TrackNumeric, F: TrackFilter<S>, const N: usize, const M: usize> TrackTa
     /// previous scan's workspace.
     fn intake(&mut self, measurements: &[Measurement<S>], report: &mut ScanReport) {
         // In place: a whole-array assignment may build the array on the stack.
-        self.observations.fill(None);
-        self.codes.fill(Association::OutsideGates);
         self.clusters.reset();
         self.outcomes.fill(Outcome::Empty);
-        for ((m, obs), code) in measurements
-            .iter()
-            .zip(self.observations.iter_mut())
-            .zip(self.codes.iter_mut())
-        {
-            match Observation::new(*m) {
-                Ok(o) => *obs = Some(o),
+        let mut slots = self.observations.iter_mut().zip(self.codes.iter_mut());
+        // Measurements first: `zip` then stops without taking a slot.
+        for (m, (obs, code)) in measurements.iter().zip(slots.by_ref()) {
+            (*obs, *code) = match Observation::new(*m) {
+                Ok(o) => (Some(o), Association::OutsideGates),
                 Err(reason) => {
-                    *code = Association::Rejected(reason);
                     increment(&mut report.rejected);
+                    (None, Association::Rejected(reason))
                 }
-            }
+            };
+        }
+        // The slots beyond this scan's measurements.
+        for (obs, code) in slots {
+            (*obs, *code) = (None, Association::OutsideGates);
         }
     }
 
@@ -668,15 +668,16 @@ impl<S: TrackNumeric, F: TrackFilter<S>, const N: usize, const M: usize> TrackTa
             if !self.clusters.is_root(root) {
                 continue;
             }
-            let (rows, cols) = self.list_cluster(root);
             increment(&mut report.clusters);
-            report.largest_cluster = report.largest_cluster.max(sat_u32(rows));
-            if let (1, 1, Some(&k)) = (rows, cols, self.col_measurement.first()) {
+            if let Some(k) = self.clusters.single_pair(root) {
                 increment(&mut report.single_pairs);
                 increment(&mut report.assigned);
-                self.clusters.assign(root, k as usize);
+                report.largest_cluster = report.largest_cluster.max(1);
+                self.clusters.assign(root, k);
                 continue;
             }
+            let (rows, cols) = self.list_cluster(root);
+            report.largest_cluster = report.largest_cluster.max(sat_u32(rows));
             self.solve_cluster(config, dt, rows, cols, report)?;
         }
         Ok(())
