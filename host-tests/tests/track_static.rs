@@ -77,7 +77,7 @@ fn bytes_per_track() {
     );
     assert_eq!(
         filters,
-        [("f64", 64), ("f32", 32), ("q32", 64), ("fixed", 40)]
+        [("f64", 64), ("f32", 32), ("q32", 64), ("fixed", 32)]
     );
     // The record header (id, two times, history, hits, scans, lifecycle,
     // misses, refusals): 23 bytes, padded with the filter.
