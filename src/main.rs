@@ -58,14 +58,14 @@ use heapless::spsc::Queue;
 /// has at most 20 measurements per scan (2 targets + Poisson clutter).
 #[cfg(not(abtrack_board = "microbit"))]
 mod capacity {
-    pub const TRACKS: usize = 32;
-    pub const MEASUREMENTS_PER_SCAN: usize = 64;
+    pub const TRACKS: usize = 256;
+    pub const MEASUREMENTS_PER_SCAN: usize = 256;
     /// heapless queues hold one item less than their length.
     pub const QUEUE_LEN: usize = 128;
 }
 #[cfg(abtrack_board = "microbit")]
 mod capacity {
-    pub const TRACKS: usize = 8;
+    pub const TRACKS: usize = 16;
     pub const MEASUREMENTS_PER_SCAN: usize = 24;
     pub const QUEUE_LEN: usize = 32;
 }
