@@ -158,3 +158,96 @@ impl TrackFilter<f32> for Tiny {
         1.0
     }
 }
+
+/// Bytes per track slot of every track filter in every number system it
+/// runs in (the table in `docs/track-table.md`; the range–azimuth filter
+/// runs in the floats and Q32.32 only).
+#[test]
+fn bytes_per_track_of_every_filter() {
+    use abtrack::gain::al_wagih::{FixedGains, LeastSquaresGains};
+    use abtrack::gain::li::LiImprovedGains;
+    use abtrack::gain::tcas::FirmnessGains;
+    use abtrack::gain::AnySchedule;
+    use abtrack::track::{RangeAzimuthTrack, ScheduledTrack};
+    type Slot<S, F> = Option<Track<S, F>>;
+    macro_rules! row {
+        ($name:expr, $f:ident $(, $g:ident)?) => {
+            (
+                $name,
+                size_of::<Slot<f64, $f<f64 $(, $g)?>>>(),
+                size_of::<Slot<f32, $f<f32 $(, $g)?>>>(),
+                size_of::<Slot<Fix, $f<Fix $(, $g)?>>>(),
+                size_of::<Slot<Fixed32, $f<Fixed32 $(, $g)?>>>(),
+            )
+        };
+    }
+    let rows = [
+        row!("FixedGainTrack", FixedGainTrack),
+        row!(
+            "ScheduledTrack, M2 least squares",
+            ScheduledTrack,
+            LeastSquaresGains
+        ),
+        row!(
+            "ScheduledTrack, TCAS firmness",
+            ScheduledTrack,
+            FirmnessGains
+        ),
+        (
+            "ScheduledTrack, M1 fixed gains",
+            size_of::<Slot<f64, ScheduledTrack<f64, FixedGains<f64>>>>(),
+            size_of::<Slot<f32, ScheduledTrack<f32, FixedGains<f32>>>>(),
+            size_of::<Slot<Fix, ScheduledTrack<Fix, FixedGains<Fix>>>>(),
+            size_of::<Slot<Fixed32, ScheduledTrack<Fixed32, FixedGains<Fixed32>>>>(),
+        ),
+        (
+            "ScheduledTrack, Li",
+            size_of::<Slot<f64, ScheduledTrack<f64, LiImprovedGains<f64>>>>(),
+            size_of::<Slot<f32, ScheduledTrack<f32, LiImprovedGains<f32>>>>(),
+            size_of::<Slot<Fix, ScheduledTrack<Fix, LiImprovedGains<Fix>>>>(),
+            size_of::<Slot<Fixed32, ScheduledTrack<Fixed32, LiImprovedGains<Fixed32>>>>(),
+        ),
+        (
+            "ScheduledTrack, any schedule (windows of 8)",
+            size_of::<Slot<f64, ScheduledTrack<f64, AnySchedule<f64, 2, 8>>>>(),
+            size_of::<Slot<f32, ScheduledTrack<f32, AnySchedule<f32, 2, 8>>>>(),
+            size_of::<Slot<Fix, ScheduledTrack<Fix, AnySchedule<Fix, 2, 8>>>>(),
+            size_of::<Slot<Fixed32, ScheduledTrack<Fixed32, AnySchedule<Fixed32, 2, 8>>>>(),
+        ),
+        (
+            "RangeAzimuthTrack",
+            size_of::<Slot<f64, RangeAzimuthTrack<f64>>>(),
+            size_of::<Slot<f32, RangeAzimuthTrack<f32>>>(),
+            size_of::<Slot<Fix, RangeAzimuthTrack<Fix>>>(),
+            0,
+        ),
+    ];
+    println!("| filter | f64 | f32 | q32 | fixed |");
+    println!("|---|---|---|---|---|");
+    for (name, a, b, c, d) in rows {
+        let d = if d == 0 {
+            "—".to_string()
+        } else {
+            d.to_string()
+        };
+        println!("| {name} | {a} | {b} | {c} | {d} |");
+    }
+    assert_eq!(
+        rows,
+        [
+            ("FixedGainTrack", 88, 56, 88, 56),
+            ("ScheduledTrack, M2 least squares", 224, 136, 224, 136),
+            ("ScheduledTrack, TCAS firmness", 224, 136, 224, 136),
+            ("ScheduledTrack, M1 fixed gains", 248, 144, 248, 156),
+            ("ScheduledTrack, Li", 272, 160, 272, 172),
+            (
+                "ScheduledTrack, any schedule (windows of 8)",
+                864,
+                472,
+                864,
+                520
+            ),
+            ("RangeAzimuthTrack", 248, 140, 248, 0),
+        ]
+    );
+}

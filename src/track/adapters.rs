@@ -25,33 +25,15 @@
 //!
 //! # Bytes per track
 //!
-//! `size_of::<Option<Track<S, F>>>()`, the table's slot (asserted by
-//! `host-tests/tests/claims_issue5.rs`; the records hold no pointer or
-//! `usize`, so Cortex-M and x86-64 agree). The 24-byte record header and the
-//! `Option` (a niche, free) are included.
-//!
-//! | filter `F` | f64 | f32 | Fix (Q32.32) |
-//! |---|---|---|---|
-//! | [`FixedGainTrack`](super::FixedGainTrack) (for comparison) | 184 | 112 | 184 |
-//! | `ScheduledTrack<S, LeastSquaresGains>` (M2; the default Cartesian tracker) | 224 | 136 | 224 |
-//! | `ScheduledTrack<S, FixedGains<S>>` (M1) | 248 | 144 | 248 |
-//! | `ScheduledTrack<S, LiImprovedGains<S>>` | 272 | 160 | 272 |
-//! | `ScheduledTrack<S, FirmnessGains>` (TCAS) | 224 | 136 | 224 |
-//! | `ScheduledTrack<S, AnySchedule<S, 2, 8>>` (any schedule, windows of 8) | 864 | 472 | 864 |
-//! | [`RangeAzimuthTrack`] (the default polar tracker) | 248 | 140 | 248 |
-//!
-//! A [`ScheduledTrack`] is the [`Cartesian<S, 2, 2>`](crate::Cartesian)
-//! filter (128 / 72 bytes), the schedule's state, a `u32` measurement count
-//! and two per-axis covariances (2 × 32 / 2 × 16 bytes). A schedule's
-//! constants sit in every track's copy of it (a [`ScheduledFilter`] owns its
-//! schedule by value): 24 / 12 bytes for M1's fixed gains. `AnySchedule` is
-//! as large as its largest variant (the window schedules' per-axis
-//! innovation windows), so a table that only ever runs one schedule should
-//! name that schedule's type instead. A
+//! In `docs/track-table.md` (asserted by
+//! `host-tests/tests/track_static.rs`). A schedule's constants sit in every
+//! track's copy of it (a [`ScheduledFilter`] owns its schedule by value), and
+//! `AnySchedule` is as large as its largest variant, so a table that only
+//! ever runs one schedule should name that schedule's type. A
 //! [`RangeAzimuthTrack`] is the [`RangeAzimuthFilter`] as it is, which keeps
-//! its noise figures (48 / 24 bytes) and its last innovation (72 / 36 bytes,
-//! for diagnostics) in every track; a leaner record would need a filter
-//! that takes its noise as an argument, which this adapter does not change.
+//! its noise figures and its last innovation in every track; a leaner record
+//! would need a filter that takes its noise as an argument, which this
+//! adapter does not change.
 
 use super::gate::{hypot, Gate, GateRegion};
 use super::model::{

@@ -277,7 +277,12 @@ impl<S: TrackNumeric> GateRegion<S> {
     ///   rounded z − c is ≤ r; one rounding errs by less than 2⁻²³ of the
     ///   result in f32 (fixed point subtracts exactly), so z − c < r·(1 + 2⁻⁴)
     ///   and, rounding being monotone, z lies inside the rounded bounds.
-    /// * Range/azimuth window: [`PolarWindow::bounds`], converted.
+    /// * Range/azimuth window: a point at range R and angle ΔB ≤ h_C/R_p
+    ///   from the prediction (half-widths h_R along and h_C across range,
+    ///   predicted range R_p) lies within √(h_R² + R·R_p·ΔB²) ≤
+    ///   h_R + h_C·(1 + h_R/R_p) of it; the box is the centre ± twice that
+    ///   plus (R_p + h_R)/256, room for the rounding of the projection, the
+    ///   square roots and the arctangent (in the polar scalar, converted).
     pub fn bounds(&self) -> BoundingBox<S> {
         match *self {
             GateRegion::Circle { center, radius, .. } => {
@@ -364,12 +369,7 @@ impl<P: Scalar> PolarWindow<P> {
         }))
     }
 
-    /// (min, max) corners of a box around the window: a point at range R
-    /// and angle ΔB ≤ h_C/R_p from the prediction (half-widths h_R along
-    /// and h_C across range, predicted range R_p) lies within
-    /// √(h_R² + R·R_p·ΔB²) ≤ h_R + h_C·(1 + h_R/R_p) of it; the box is the
-    /// centre ± twice that plus (R_p + h_R)/256, room for the rounding of
-    /// the projection, the square roots and the arctangent.
+    /// (min, max) corners of the box of [`GateRegion::bounds`].
     // Not inlined: the circle is the hot path, and a copy of the window's
     // arithmetic at each call site costs flash for nothing.
     #[inline(never)]

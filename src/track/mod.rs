@@ -63,45 +63,21 @@
 //! among new candidates is corrected by M-of-N (its velocity is wrong, so its
 //! next gate misses and it is deleted) at the cost of one scan of latency.
 //!
+//! # Number systems
+//!
+//! The table runs in any [`TrackNumeric`]: `f64`, `f32`, Q32.32
+//! ([`crate::Fix`]) and the fast fixed point
+//! ([`Fixed32`](crate::num::fixed32::Fixed32)), whose gate test and cost are
+//! exact integer arithmetic and whose covariance bookkeeping is
+//! [`FixedVariance`].
+//!
 //! # Memory
 //!
-//! Measured with `core::mem::size_of` by `host-tests/tests/track_static.rs`
-//! (which asserts these numbers) and confirmed on thumbv6m-none-eabi (a
-//! `static` table of each kind, symbol sizes read with `llvm-nm`; the
-//! records hold no pointer or `usize`, so x86-64 and Cortex-M agree).
-//!
-//! Bytes per track slot, `size_of::<Option<Track<S, F>>>()` (the `Option`
-//! costs nothing: it uses a niche of [`TrackStatus`]):
-//!
-//! | filter `F` | `S = f64` | `S = f32` | `S = Fix` (Q32.32) |
-//! |---|---|---|---|
-//! | [`FixedGainTrack`] (2-D αβ, fixed gains) | 184 | 112 | 184 |
-//!
-//! of which the record header (id, status, counters, history, two times) is
-//! 24 bytes, the filter [`Cartesian<S, 2, 2>`] 128 (f64/Fix) or 72 (f32), and
-//! the error covariance ([`Uncertainty`]) 32 or 16. Fixed gains live once in
-//! [`TrackerConfig`], not per track.
-//!
-//! The whole table, `size_of::<TrackTable<S, FixedGainTrack<S>, N, M>>()`,
-//! rounded up to a multiple of 8, is
-//!
-//! * f64 and Fix: 56 + 239·N + 154·M bytes — 12 640 for N = M = 32;
-//! * f32:         56 + 167·N + 114·M bytes — 9 056 for N = M = 32.
-//!
-//! Per track slot beyond the record: 40 bytes of solver workspace, 12 of
-//! cluster links, 3 of indices and outcome. Per measurement slot: 24 bytes
-//! of solver workspace, 8 cached gated pairs (32 bytes), two
-//! [`Observation`]s (the scan's and the pending first points: 2 × 40 for
-//! f64/Fix, 2 × 20 for f32), an 8-byte [`Association`], 4 bytes of pre-gate
-//! index and 6 of links and indices. Nothing grows with N·M.
-//!
-//! Stack: all per-scan workspace is in the table, so the stack use of
-//! [`TrackTable::scan`] does not grow with N or M. On thumbv6m (release,
-//! `opt-level = "s"`) its own frame is about 850 bytes for Fix and 560 for
-//! f32 (read from the function prologues), and the deepest call below it,
-//! the filter update, adds under 1 KB: budget 2 KB.
-//!
-//! [`Cartesian<S, 2, 2>`]: crate::filter::Cartesian
+//! No heap, nothing that grows with N·M; all per-scan workspace is in the
+//! table, so the stack use of [`TrackTable::scan`] does not grow with N or
+//! M. Bytes per track slot of every filter in every number system, the
+//! formula for the table's size and the firmware's capacities are in
+//! `docs/track-table.md` (`host-tests/tests/track_static.rs` asserts them).
 //!
 //! # Extending
 //!
