@@ -1,10 +1,13 @@
 //! Deterministic multi-target scenarios: crossing targets keep their ids,
-//! and f64, f32 and Q32.32 make the same association decisions.
+//! and f64, f32, Q32.32 and the fast fixed point make the same association
+//! decisions.
 
 #![allow(clippy::needless_range_loop)]
 
 mod track_support;
 
+use abtrack::num::fixed32::Fixed32;
+use abtrack::track::TrackNumeric;
 use abtrack::track::{Association, Measurement, ScanReport, TrackId, TrackStatus};
 use abtrack::track::{Gate, TrackerConfig};
 use abtrack::Gains;
@@ -45,14 +48,14 @@ fn crossing(times: &[u32]) -> Vec<Vec<(f64, f64)>> {
 }
 
 /// Runs a scenario; returns per-scan codes, reports and the final table.
-fn run<S: Scalar>(
+fn run<S: TrackNumeric>(
     scans: &[Vec<(f64, f64)>],
     times: &[u32],
 ) -> (Vec<Vec<Association>>, Vec<ScanReport>, Table<S, 16, 16>) {
     run_with(&default_config::<S>(), scans, times)
 }
 
-fn run_with<S: Scalar>(
+fn run_with<S: TrackNumeric>(
     config: &Config<S>,
     scans: &[Vec<(f64, f64)>],
     times: &[u32],
@@ -185,18 +188,22 @@ fn f64_f32_fix_make_the_same_decisions() {
     let c64 = crossing_keeps_ids::<f64>();
     assert_eq!(run::<f32>(&scans, &times).0, c64);
     assert_eq!(run::<Fix>(&scans, &times).0, c64);
+    assert_eq!(run::<Fixed32>(&scans, &times).0, c64);
 
     let (scans, times) = cluttered();
     let (c64, r64, t64) = run::<f64>(&scans, &times);
     let (c32, r32, _) = run::<f32>(&scans, &times);
     let (cfx, rfx, _) = run::<Fix>(&scans, &times);
+    let (cf32, rf32, _) = run::<Fixed32>(&scans, &times);
     for k in 0..scans.len() {
         assert_eq!(c32[k], c64[k], "f32 differs at scan {k}");
-        assert_eq!(cfx[k], c64[k], "fixed differs at scan {k}");
+        assert_eq!(cfx[k], c64[k], "Q32.32 differs at scan {k}");
+        assert_eq!(cf32[k], c64[k], "Fixed32 differs at scan {k}");
     }
     // The per-stage counts agree too (the solver's steps included).
     assert_eq!(r32, r64);
     assert_eq!(rfx, r64);
+    assert_eq!(rf32, r64);
     // The scenario is not trivial: clutter starts tracks, some are deleted,
     // the three targets end confirmed.
     let started: u32 = r64.iter().map(|r| r.started).sum();

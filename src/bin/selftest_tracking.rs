@@ -44,10 +44,13 @@ use abtrack::filter::range_azimuth::{
     RangeAzimuthFilter, RangeAzimuthNoise, RangeAzimuthOutcome, PAPER_BEARING_VARIANCE,
 };
 use abtrack::filter::{FilterError, Gains, Phase};
+#[cfg(not(abtrack_board = "microbit"))]
+use abtrack::num::fixed32::Fixed32;
 use abtrack::tcas::{
     assess, Advisory, Intruder, OwnAircraft, SensitivityLevel, ThreatAssessment,
     METRES_PER_NAUTICAL_MILE, METRES_PER_SECOND_PER_KNOT,
 };
+use abtrack::track::TrackNumeric;
 use abtrack::track::{
     Association, DropReason, FixedGainTrack, Gate, Measurement, RejectReason, ScanError,
     ScanReport, Track, TrackId, TrackStatus, TrackTable, TrackerConfig,
@@ -107,6 +110,13 @@ const TESTS: &[Test] = &[
     (
         "track_cluttered_scans_same_codes_as_f64",
         track_cluttered_scans_same_codes_as_f64,
+    ),
+    // The micro:bit's flash does not hold a third table type beside the
+    // rest of this image; the Cortex-M3 (mps2-an385) runs it without an FPU.
+    #[cfg(not(abtrack_board = "microbit"))]
+    (
+        "track_fast_fixed_point_same_codes_as_f64",
+        track_fast_fixed_point_same_codes_as_f64,
     ),
     (
         "track_full_table_refuses_and_counts",
@@ -1224,11 +1234,11 @@ type Config<S> = TrackerConfig<S, Gains<S>>;
 /// α = 0.5, β = 0.2; uncertainty gate σ = 5 m, G = 13.8 (99.9 %),
 /// a_max = 5 m/s²; v_max = 300 m/s; confirmation 2 of 3, deletion after
 /// 3 / 2 misses.
-fn track_config<S: TestScalar>() -> Result<Config<S>, Failure> {
+fn track_config<S: TrackNumeric>() -> Result<Config<S>, Failure> {
     let gains = Gains::<S>::alpha_beta_f64(0.5, 0.2);
-    let gate = Gate::uncertainty(value::<S>(5.0)?, value::<S>(13.8)?, value::<S>(5.0)?);
+    let gate = Gate::uncertainty(quantity(5.0)?, quantity(13.8)?, quantity(5.0)?);
     match (gains, gate) {
-        (Ok(g), Ok(gate)) => match TrackerConfig::new(g, gate, value::<S>(300.0)?) {
+        (Ok(g), Ok(gate)) => match TrackerConfig::new(g, gate, quantity(300.0)?) {
             Ok(c) => Ok(c),
             Err(e) => {
                 defmt::error!("{=str}: tracker configuration refused: {}", S::NAME, e);
@@ -1330,15 +1340,23 @@ fn crossing_scan(k: u32, rng: &mut Lcg) -> [(f64, f64); 2] {
     ]
 }
 
-fn cartesian<S: TestScalar>(x: f64, y: f64) -> Result<Measurement<S>, Failure> {
+/// A quantity of any number system (a length, a ratio, ...).
+fn quantity<Q: abtrack::num::Quantity>(v: f64) -> Result<Q, Failure> {
+    Q::try_from_f64(v).map_err(|e| {
+        defmt::error!("{=f64} not representable: {}", v, e);
+        Failure
+    })
+}
+
+fn cartesian<S: TrackNumeric>(x: f64, y: f64) -> Result<Measurement<S>, Failure> {
     Ok(Measurement::Cartesian {
-        x: value::<S>(x)?,
-        y: value::<S>(y)?,
+        x: quantity(x)?,
+        y: quantity(y)?,
     })
 }
 
 /// Runs one scan of f64 measurements through the table in `S`.
-fn scan_table<S: TestScalar>(
+fn scan_table<S: TrackNumeric>(
     table: &mut Table<S>,
     config: &Config<S>,
     now_ms: u32,
@@ -1346,8 +1364,8 @@ fn scan_table<S: TestScalar>(
     codes: &mut [Association; PER_SCAN],
 ) -> Result<ScanReport, Failure> {
     let mut m = [Measurement::Cartesian {
-        x: S::ZERO,
-        y: S::ZERO,
+        x: <S::Length as abtrack::num::Quantity>::ZERO,
+        y: <S::Length as abtrack::num::Quantity>::ZERO,
     }; PER_SCAN];
     let n = points.len().min(PER_SCAN);
     for (slot, &(x, y)) in m.iter_mut().zip(points) {
@@ -1373,8 +1391,11 @@ fn track_crossing_targets_keep_ids() -> TestResult {
 /// lie in both gates (4 gated pairs) and the optimal assignment decides; at
 /// the end both are confirmed and head their own way. The native table's
 /// codes and per-stage counts equal the f64 table's at every scan.
-fn crossing_keeps_ids(native: &mut Table<Native>, reference: &mut Table<f64>) -> TestResult {
-    let (cn, cf) = (track_config::<Native>()?, track_config::<f64>()?);
+fn crossing_keeps_ids<N: TrackNumeric>(
+    native: &mut Table<N>,
+    reference: &mut Table<f64>,
+) -> TestResult {
+    let (cn, cf) = (track_config::<N>()?, track_config::<f64>()?);
     let mut rng = Lcg::new(2024);
     let mut ids = None;
     let mut contested = 0u32;
@@ -1418,8 +1439,8 @@ fn crossing_keeps_ids(native: &mut Table<Native>, reference: &mut Table<f64>) ->
         if ta.id() == a && tb.id() == b
             && ta.status() == TrackStatus::Confirmed
             && tb.status() == TrackStatus::Confirmed
-            && ta.velocity()[1].to_f64() > 5.0
-            && tb.velocity()[1].to_f64() < -5.0);
+            && abtrack::num::Quantity::to_f64(ta.velocity()[1]) > 5.0
+            && abtrack::num::Quantity::to_f64(tb.velocity()[1]) < -5.0);
     ensure!(
         ok && native.len() == 2,
         "after the crossing the tracks are not ({}, confirmed, vy > 0) and ({}, confirmed, vy < 0)",
@@ -1428,12 +1449,25 @@ fn crossing_keeps_ids(native: &mut Table<Native>, reference: &mut Table<f64>) ->
     );
     defmt::println!(
         "       {=str}: ids {} and {} kept through {=u32} contested scans; codes and per-stage counts equal to f64 on all 22 scans",
-        Native::NAME,
+        <N as abtrack::num::Numeric>::NAME,
         a,
         b,
         contested
     );
     Ok(())
+}
+
+/// The crossing and the cluttered scenarios in the fast fixed point
+/// ([`Fixed32`], the table's format on cores without an FPU): the same
+/// codes and per-stage counts as f64 at every scan.
+#[cfg(not(abtrack_board = "microbit"))]
+fn track_fast_fixed_point_same_codes_as_f64() -> TestResult {
+    let mut fixed = const { Table::<Fixed32>::new() };
+    let mut reference = const { Table::<f64>::new() };
+    crossing_keeps_ids(&mut fixed, &mut reference)?;
+    let mut fixed = const { Table::<Fixed32>::new() };
+    let mut reference = const { Table::<f64>::new() };
+    cluttered_same_codes(&mut fixed, &mut reference)
 }
 
 fn track_cluttered_scans_same_codes_as_f64() -> TestResult {
@@ -1448,8 +1482,11 @@ fn track_cluttered_scans_same_codes_as_f64() -> TestResult {
 /// tracks, most are deleted, the table fills at times. The association code
 /// of every measurement and the per-stage counts (solver steps included)
 /// must equal f64's at every scan.
-fn cluttered_same_codes(native: &mut Table<Native>, reference: &mut Table<f64>) -> TestResult {
-    let (cn, cf) = (track_config::<Native>()?, track_config::<f64>()?);
+fn cluttered_same_codes<N: TrackNumeric>(
+    native: &mut Table<N>,
+    reference: &mut Table<f64>,
+) -> TestResult {
+    let (cn, cf) = (track_config::<N>()?, track_config::<f64>()?);
     let mut rng = Lcg::new(99);
     let mut totals = ScanReport::default();
     for k in 0..40u32 {
@@ -1506,7 +1543,7 @@ fn cluttered_same_codes(native: &mut Table<Native>, reference: &mut Table<f64>) 
     );
     defmt::println!(
         "       {=str}: 40 scans, same codes and counts as f64: {=u32} tracks started, {=u32} confirmed, {=u32} deleted, {=u32} refused (table full), {=u32} gated pairs, {=u32} not assigned",
-        Native::NAME,
+        <N as abtrack::num::Numeric>::NAME,
         totals.started,
         totals.confirmed,
         totals.deleted,
