@@ -146,6 +146,8 @@ pub struct FixedVariance(i32);
 
 impl FixedVariance {
     const FRAC_BITS: u32 = 16;
+    /// The binary exponent of one step, −16.
+    const EXPONENT: i32 = -16;
     const MAX: Self = FixedVariance(i32::MAX);
     const MIN: Self = FixedVariance(i32::MIN);
 
@@ -274,7 +276,9 @@ impl TrackNumeric for Fixed32 {
         if offset > limit || limit == 0 {
             return None;
         }
-        let shift = (u64::BITS - limit.leading_zeros()).saturating_sub(32);
+        let shift = u64::BITS
+            .saturating_sub(limit.leading_zeros())
+            .saturating_sub(32);
         let (n, d) = (offset >> shift, limit >> shift);
         // n ≤ d < 2³², so n·MAX_COST < 2⁴⁸; d ≥ 1.
         let cost = n
@@ -337,7 +341,9 @@ impl TrackNumeric for Fixed32 {
             if s >= 63 {
                 return FixedVariance::ZERO;
             }
-            FixedVariance::saturate(m.wrapping_add(1i64 << (s - 1)) >> s)
+            // 1 ≤ s ≤ 62: round half up.
+            let half = 1i64 << s.saturating_sub(1);
+            FixedVariance::saturate(m.wrapping_add(half) >> s)
         }
     }
 
@@ -345,6 +351,6 @@ impl TrackNumeric for Fixed32 {
         if !v.is_valid() {
             return Ratio::INVALID;
         }
-        Ratio::from_wide(i64::from(v.0), -(FixedVariance::FRAC_BITS as i32))
+        Ratio::from_wide(i64::from(v.0), FixedVariance::EXPONENT)
     }
 }

@@ -312,5 +312,5 @@ fn insertion_sort<K: PartialOrd + Copy>(v: &mut [Entry<K>], budget: usize) -> Op
 
 /// ⌈log₂ n⌉ (0 for n ≤ 1).
 fn ceil_log2(n: usize) -> usize {
-    (usize::BITS - n.saturating_sub(1).leading_zeros()) as usize
+    usize::BITS.saturating_sub(n.saturating_sub(1).leading_zeros()) as usize
 }

@@ -1034,7 +1034,8 @@ fn lifecycle<S: TrackNumeric, F: TrackFilter<S>>(
         // M-of-N over the first N scans (the starting scan is scan 1).
         let mask = match confirm_window {
             32.. => u32::MAX,
-            w => (1u32 << w) - 1,
+            // w < 32.
+            w => (1u32 << w).wrapping_sub(1),
         };
         let hits_in_window = (track.history & mask).count_ones();
         let remaining = (confirm_window as u32).saturating_sub(track.scans as u32);
@@ -1044,7 +1045,7 @@ fn lifecycle<S: TrackNumeric, F: TrackFilter<S>>(
             None
         } else if track.misses >= delete_tentative {
             Some(Deletion::Misses)
-        } else if hits_in_window + remaining < confirm_hits as u32 {
+        } else if hits_in_window.saturating_add(remaining) < confirm_hits as u32 {
             Some(Deletion::Unconfirmed)
         } else {
             None
