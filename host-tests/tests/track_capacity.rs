@@ -297,81 +297,16 @@ fn fixed_gain_track_refuses_a_saturating_update_unchanged() {
     assert_eq!(track, before);
 }
 
-/// A filter that accepts the two initiation points and refuses every later
-/// update (as a saturating one would): the table codes the measurement
+/// A filter that refuses every update after its two initiation points (as
+/// a saturating one would): the table codes the measurement
 /// `FilterRefused`, the track coasts, and the refusal is counted on it.
-#[derive(Debug, Clone, Copy, PartialEq)]
-struct Refuser {
-    points: u8,
-    position: [f64; 2],
-}
-
-impl abtrack::track::TrackFilter<f64> for Refuser {
-    type Params = ();
-    type Step = abtrack::track::ScanInterval<f64>;
-    fn step(
-        _: &(),
-        interval: &abtrack::track::ScanInterval<f64>,
-    ) -> Result<Self::Step, abtrack::FilterError> {
-        Ok(*interval)
-    }
-    fn interval_of(step: &Self::Step) -> &abtrack::track::ScanInterval<f64> {
-        step
-    }
-    fn empty(_: &()) -> Self {
-        Refuser {
-            points: 0,
-            position: [0.0; 2],
-        }
-    }
-    fn update(
-        &mut self,
-        _: &(),
-        z: &abtrack::track::Observation<f64>,
-        _: &Self::Step,
-    ) -> Result<(), abtrack::FilterError> {
-        if self.points >= 2 {
-            return Err(abtrack::FilterError::Saturated);
-        }
-        self.points += 1;
-        self.position = z.xy();
-        Ok(())
-    }
-    fn coast(&mut self, _: &(), _: &Self::Step) -> Result<(), abtrack::FilterError> {
-        Ok(())
-    }
-    fn predict(
-        &self,
-        _: &(),
-        _: &Self::Step,
-    ) -> Result<abtrack::track::PredictedState<f64>, abtrack::FilterError> {
-        Ok(abtrack::track::PredictedState {
-            position: self.position,
-            velocity: [0.0; 2],
-        })
-    }
-    fn position(&self) -> [f64; 2] {
-        self.position
-    }
-    fn velocity(&self) -> [f64; 2] {
-        [0.0; 2]
-    }
-    fn predicted_variance_ratio(&self, _: &(), _: &Self::Step) -> Option<f64> {
-        Some(1.0)
-    }
-    fn gate_alpha(&self, _: &()) -> f64 {
-        1.0
-    }
-}
-
 #[test]
 fn refused_updates_are_counted_on_the_track() {
-    let gate = abtrack::track::Gate::uncertainty(5.0, 13.8, 0.0).unwrap();
-    let config = abtrack::track::TrackerConfig::new((), gate, 300.0)
-        .unwrap()
-        .with_confirmation(1, 1)
-        .unwrap();
-    let mut table: abtrack::track::TrackTable<f64, Refuser, 2, 2> =
+    let config = track_support::parked_config(track_support::ParkedParams {
+        gate_radius: Some(20.0),
+        refuse: true,
+    });
+    let mut table: abtrack::track::TrackTable<f64, track_support::Parked, 2, 2> =
         abtrack::track::TrackTable::new();
     let mut codes = [Association::OutsideGates; 1];
     for t in [0, 1000] {

@@ -16,17 +16,16 @@
 
 mod track_support;
 
-use abtrack::filter::FilterError;
 use abtrack::num::fixed32::Fixed32;
 use abtrack::track::assign::{AssignmentSolver, FORBIDDEN, MAX_COST};
 use abtrack::track::{
-    Association, FixedGainTrack, Gate, GateRegion, Measurement, Observation, PredictedState,
-    ScanReport, TrackFilter, TrackId, TrackTable, TrackerConfig,
+    Association, FixedGainTrack, GateRegion, Measurement, Observation, ScanReport, TrackFilter,
+    TrackId, TrackTable, TrackerConfig,
 };
 use abtrack::track::{ScanInterval, TrackNumeric};
 use abtrack::Fix;
 use proptest::prelude::*;
-use track_support::{cart, default_config, q, Lcg};
+use track_support::{cart, default_config, parked_config, q, Lcg, Parked, ParkedParams};
 
 // ---------------------------------------------------------------------------
 // 1. The solver: components solved apart = the whole solved at once.
@@ -503,79 +502,6 @@ fn scenes_cover_ties_and_clusters() {
     assert!(checked.largest_cluster >= 6, "{checked:?}");
 }
 
-/// A stationary track whose gate, a 60 m circle, exists only when the
-/// configuration switches it on: so that tracks can be started close
-/// together without gating each other's measurements.
-#[derive(Debug, Clone, Copy, PartialEq)]
-struct Parked {
-    position: [f64; 2],
-}
-
-/// [`Parked`]'s configuration: gates on or off.
-#[derive(Debug, Clone, Copy)]
-struct GatesOn(bool);
-
-impl TrackFilter<f64> for Parked {
-    type Params = GatesOn;
-    type Step = ScanInterval<f64>;
-    fn step(_: &GatesOn, interval: &ScanInterval<f64>) -> Result<ScanInterval<f64>, FilterError> {
-        Ok(*interval)
-    }
-    fn interval_of(step: &ScanInterval<f64>) -> &ScanInterval<f64> {
-        step
-    }
-    fn empty(_: &GatesOn) -> Self {
-        Parked { position: [0.0; 2] }
-    }
-    fn update(
-        &mut self,
-        _: &GatesOn,
-        z: &Observation<f64>,
-        _: &ScanInterval<f64>,
-    ) -> Result<(), FilterError> {
-        self.position = z.xy();
-        Ok(())
-    }
-    fn coast(&mut self, _: &GatesOn, _: &ScanInterval<f64>) -> Result<(), FilterError> {
-        Ok(())
-    }
-    fn predict(
-        &self,
-        _: &GatesOn,
-        _: &ScanInterval<f64>,
-    ) -> Result<PredictedState<f64>, FilterError> {
-        Ok(PredictedState {
-            position: self.position,
-            velocity: [0.0; 2],
-        })
-    }
-    fn position(&self) -> [f64; 2] {
-        self.position
-    }
-    fn velocity(&self) -> [f64; 2] {
-        [0.0; 2]
-    }
-    fn predicted_variance_ratio(&self, _: &GatesOn, _: &ScanInterval<f64>) -> Option<f64> {
-        Some(0.0)
-    }
-    fn gate_alpha(&self, _: &GatesOn) -> f64 {
-        1.0
-    }
-    fn gate_region(
-        &self,
-        on: &GatesOn,
-        _: &PredictedState<f64>,
-        _: &ScanInterval<f64>,
-        _: &Gate<f64>,
-    ) -> Option<GateRegion<f64>> {
-        if on.0 {
-            GateRegion::circle(self.position, 60.0)
-        } else {
-            None
-        }
-    }
-}
-
 /// 24 tracks within 20 m of each other, then 4 measurements among them: up
 /// to 96 gated pairs, more than the cache holds for 4 measurement slots (8
 /// each): the costs of the tracks that do not fit are recomputed, with the
@@ -584,17 +510,13 @@ impl TrackFilter<f64> for Parked {
 fn overflowing_pair_cache_gives_the_same_assignment() {
     let mut checked = Checked::default();
     let mut overflowed = 0;
+    // Tracks gating a 60 m circle only when the gates are on: so that they
+    // can be started close together without gating each other's points.
     let config = |on: bool| {
-        TrackerConfig::new(
-            GatesOn(on),
-            Gate::uncertainty(5.0, 13.8, 5.0).unwrap(),
-            300.0,
-        )
-        .unwrap()
-        .with_confirmation(1, 1)
-        .unwrap()
-        .with_deletion(255, 255)
-        .unwrap()
+        parked_config(ParkedParams {
+            gate_radius: on.then_some(60.0),
+            refuse: false,
+        })
     };
     for seed in 0..40 {
         let mut rng = Lcg(seed);

@@ -265,29 +265,17 @@ impl<const N: usize, const M: usize> Clusters<N, M> {
     /// The tracks of the cluster rooted at `root`, in slot order.
     pub(super) fn tracks_of(&self, root: usize) -> impl Iterator<Item = usize> + '_ {
         let first = if self.is_root(root) {
-            root
+            root as u16
         } else {
-            NONE as usize
+            NONE
         };
-        core::iter::successors(Some(first), |&t| {
-            self.tracks
-                .get(t)
-                .map(|l| l.next as usize)
-                .filter(|&n| n != NONE as usize)
-        })
-        .filter(|&t| t != NONE as usize)
+        walk(first, |t| self.tracks.get(t).map(|l| l.next))
     }
 
     /// The measurements of the cluster rooted at `root`, in index order.
     pub(super) fn measurements_of(&self, root: usize) -> impl Iterator<Item = usize> + '_ {
-        let first = self.tracks.get(root).map_or(NONE, |l| l.first_measurement) as usize;
-        core::iter::successors(Some(first), |&k| {
-            self.measurements
-                .get(k)
-                .map(|m| m.next as usize)
-                .filter(|&n| n != NONE as usize)
-        })
-        .filter(|&k| k != NONE as usize)
+        let first = self.tracks.get(root).map_or(NONE, |l| l.first_measurement);
+        walk(first, |k| self.measurements.get(k).map(|m| m.next))
     }
 
     /// The cost of pair (`t`, `k`) from the cache.
@@ -328,4 +316,11 @@ impl<const N: usize, const M: usize> Clusters<N, M> {
             k => Some(k as usize),
         }
     }
+}
+
+/// The indices of a linked list from `first`, following `next` until `NONE`.
+fn walk(first: u16, next: impl Fn(usize) -> Option<u16>) -> impl Iterator<Item = usize> {
+    core::iter::successors(Some(first), move |&i| next(usize::from(i)))
+        .take_while(|&i| i != NONE)
+        .map(usize::from)
 }

@@ -476,6 +476,23 @@ pub struct FixedGainStep<S: TrackNumeric> {
     velocity_gain: S::Variance,
 }
 
+impl<S: TrackNumeric> FixedGainStep<S> {
+    /// The covariance bookkeeping after an update of kind `kind` with this
+    /// step's gains (Al-Wagih eqs. 6, 8).
+    fn after(
+        &self,
+        uncertainty: Uncertainty<S::Variance>,
+        kind: UpdateKind,
+    ) -> Option<Uncertainty<S::Variance>> {
+        uncertainty.after_update(
+            kind,
+            self.alpha,
+            self.velocity_gain,
+            self.interval.seconds(),
+        )
+    }
+}
+
 impl<S: TrackNumeric> FixedGainTrack<S> {
     /// The phase of two-point initialisation.
     pub fn phase(&self) -> Phase {
@@ -499,12 +516,14 @@ impl<S: TrackNumeric> FixedGainTrack<S> {
         }
     }
 
+    /// The tracking state with the covariance `uncertainty` (refused if
+    /// the bookkeeping left its range).
     fn tracking(
         position: [S::Length; 2],
         velocity: [S::Speed; 2],
-        uncertainty: Uncertainty<S::Variance>,
+        uncertainty: Option<Uncertainty<S::Variance>>,
     ) -> Result<Self, FilterError> {
-        let Uncertainty::Tracking(variance) = uncertainty else {
+        let Some(Uncertainty::Tracking(variance)) = uncertainty else {
             return Err(FilterError::Saturated);
         };
         Ok(FixedGainTrack {
@@ -542,17 +561,14 @@ impl<S: TrackNumeric> FixedGainTrack<S> {
             *v = axis.velocity();
             *p = axis.position();
         }
-        let uncertainty = Uncertainty::OnePoint {
+        let one_point = Uncertainty::OnePoint {
             elapsed: elapsed_seconds,
-        }
-        .after_update(
-            UpdateKind::SecondPoint,
-            step.alpha,
-            step.velocity_gain,
-            step.interval.seconds(),
+        };
+        Self::tracking(
+            next,
+            velocity,
+            step.after(one_point, UpdateKind::SecondPoint),
         )
-        .ok_or(FilterError::Saturated)?;
-        Self::tracking(next, velocity, uncertainty)
     }
 }
 
@@ -626,15 +642,7 @@ impl<S: TrackNumeric> TrackFilter<S> for FixedGainTrack<S> {
                     *p = axis.position();
                     *v = axis.velocity();
                 }
-                let uncertainty = self
-                    .uncertainty()
-                    .after_update(
-                        UpdateKind::Filtered,
-                        step.alpha,
-                        step.velocity_gain,
-                        step.interval.seconds(),
-                    )
-                    .ok_or(FilterError::Saturated)?;
+                let uncertainty = step.after(self.uncertainty(), UpdateKind::Filtered);
                 Self::tracking(next_position, next_velocity, uncertainty)?
             }
         };
@@ -665,10 +673,7 @@ impl<S: TrackNumeric> TrackFilter<S> for FixedGainTrack<S> {
             }
             FixedGainState::Tracking { .. } => {
                 let p = self.predict_with(step)?;
-                let uncertainty = self
-                    .uncertainty()
-                    .after_coast(step.interval.seconds())
-                    .ok_or(FilterError::Saturated)?;
+                let uncertainty = self.uncertainty().after_coast(step.interval.seconds());
                 Self::tracking(p.position, p.velocity, uncertainty)?
             }
         };

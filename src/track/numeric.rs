@@ -195,14 +195,22 @@ impl core::ops::Add for FixedVariance {
     }
 }
 
+impl core::ops::Neg for FixedVariance {
+    type Output = Self;
+    fn neg(self) -> Self {
+        // The valid range is symmetric; the sentinels swap.
+        match self {
+            Self::MAX => Self::MIN,
+            Self::MIN => Self::MAX,
+            FixedVariance(v) => FixedVariance(v.wrapping_neg()),
+        }
+    }
+}
+
 impl core::ops::Sub for FixedVariance {
     type Output = Self;
     fn sub(self, rhs: Self) -> Self {
-        let wide = i64::from(self.0).wrapping_sub(i64::from(rhs.0));
-        if self.is_sentinel() || rhs.is_sentinel() {
-            return Self::sentinel(wide < 0);
-        }
-        Self::saturate(wide)
+        self + (-rhs)
     }
 }
 
@@ -219,23 +227,13 @@ impl core::ops::Mul for FixedVariance {
     }
 }
 
+/// Through the fast fixed point's ratios: the quotients of the bookkeeping
+/// (1/T after two points, β/T once per scan) are few, and [`Ratio`]'s
+/// division is the one rounding rule of the number system.
 impl core::ops::Div for FixedVariance {
     type Output = Self;
     fn div(self, rhs: Self) -> Self {
-        let negative = (self.0 < 0) != (rhs.0 < 0);
-        if self.is_sentinel() || rhs.is_sentinel() || rhs.0 == 0 {
-            return Self::sentinel(negative);
-        }
-        // |a·2¹⁶| < 2⁴⁷; rounded half away from zero.
-        let numerator = i64::from(self.0) << Self::FRAC_BITS;
-        let divisor = i64::from(rhs.0);
-        let half = divisor.unsigned_abs() as i64 / 2;
-        let biased = if numerator < 0 {
-            numerator.wrapping_sub(half)
-        } else {
-            numerator.wrapping_add(half)
-        };
-        Self::saturate(biased.checked_div(divisor).unwrap_or(i64::MAX))
+        Fixed32::to_variance(Fixed32::from_variance(self) / Fixed32::from_variance(rhs))
     }
 }
 

@@ -2,8 +2,11 @@
 #![allow(dead_code)]
 
 use abtrack::num::Quantity;
-use abtrack::track::{FixedGainTrack, Gate, Measurement, TrackNumeric, TrackerConfig};
-use abtrack::{Gains, Scalar};
+use abtrack::track::{
+    FixedGainTrack, Gate, GateRegion, Measurement, Observation, PredictedState, ScanInterval,
+    TrackFilter, TrackNumeric, TrackerConfig,
+};
+use abtrack::{FilterError, Gains, Scalar};
 
 pub type Config<S> = TrackerConfig<S, Gains<S>>;
 pub type Table<S, const N: usize, const M: usize> =
@@ -43,4 +46,97 @@ impl Lcg {
             .wrapping_add(1442695040888963407);
         ((self.0 >> 11) as f64 / (1u64 << 53) as f64) * 2.0 - 1.0
     }
+}
+
+/// A stationary track for the tests that need a filter of their own: it
+/// takes its position from its measurements and gates a circle of the
+/// configured radius around it (none when the radius is `None`); with
+/// `refuse` it refuses every update after the two initiation points, as a
+/// saturating update would.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Parked {
+    points: u8,
+    position: [f64; 2],
+}
+
+/// [`Parked`]'s configuration.
+#[derive(Debug, Clone, Copy)]
+pub struct ParkedParams {
+    pub gate_radius: Option<f64>,
+    pub refuse: bool,
+}
+
+impl TrackFilter<f64> for Parked {
+    type Params = ParkedParams;
+    type Step = ScanInterval<f64>;
+    fn step(_: &ParkedParams, i: &ScanInterval<f64>) -> Result<ScanInterval<f64>, FilterError> {
+        Ok(*i)
+    }
+    fn interval_of(step: &ScanInterval<f64>) -> &ScanInterval<f64> {
+        step
+    }
+    fn empty(_: &ParkedParams) -> Self {
+        Parked {
+            points: 0,
+            position: [0.0; 2],
+        }
+    }
+    fn update(
+        &mut self,
+        params: &ParkedParams,
+        z: &Observation<f64>,
+        _: &ScanInterval<f64>,
+    ) -> Result<(), FilterError> {
+        if params.refuse && self.points >= 2 {
+            return Err(FilterError::Saturated);
+        }
+        self.points = self.points.saturating_add(1);
+        self.position = z.xy();
+        Ok(())
+    }
+    fn coast(&mut self, _: &ParkedParams, _: &ScanInterval<f64>) -> Result<(), FilterError> {
+        Ok(())
+    }
+    fn predict(
+        &self,
+        _: &ParkedParams,
+        _: &ScanInterval<f64>,
+    ) -> Result<PredictedState<f64>, FilterError> {
+        Ok(PredictedState {
+            position: self.position,
+            velocity: [0.0; 2],
+        })
+    }
+    fn position(&self) -> [f64; 2] {
+        self.position
+    }
+    fn velocity(&self) -> [f64; 2] {
+        [0.0; 2]
+    }
+    fn predicted_variance_ratio(&self, _: &ParkedParams, _: &ScanInterval<f64>) -> Option<f64> {
+        Some(0.0)
+    }
+    fn gate_alpha(&self, _: &ParkedParams) -> f64 {
+        1.0
+    }
+    fn gate_region(
+        &self,
+        params: &ParkedParams,
+        _: &PredictedState<f64>,
+        _: &ScanInterval<f64>,
+        _: &Gate<f64>,
+    ) -> Option<GateRegion<f64>> {
+        GateRegion::circle(self.position, params.gate_radius?)
+    }
+}
+
+/// A configuration of [`Parked`] tracks: confirmed at their start, deleted
+/// after 255 misses.
+pub fn parked_config(params: ParkedParams) -> TrackerConfig<f64, ParkedParams> {
+    TrackerConfig::new(params, Gate::uncertainty(5.0, 13.8, 5.0).unwrap(), 300.0)
+        .unwrap()
+        .with_confirmation(1, 1)
+        .unwrap()
+        .with_deletion(255, 255)
+        .unwrap()
 }
