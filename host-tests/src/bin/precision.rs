@@ -1,18 +1,27 @@
-//! Prints the measured deviation of the f32 and fixed-point filters from the
-//! independent f64 reference on the documented runs
+//! Prints the measured deviation of the f32, Q32.32 (`q32`) and fast
+//! fixed-point (`fixed`, `Fixed32`) filters from the independent f64
+//! reference on the documented runs
 //! (`abtrack_host_tests::precision::documented_runs`), next to the error
-//! budget for each run and the ratio budget / measured maximum.
+//! budget for each run and the ratio budget / measured maximum; then, per
+//! run, how many times closer to f64 than f32 the fast fixed point is
+//! (issue 8 asks for at least 10 in position, velocity and acceleration).
 //!
-//! `cd host-tests && cargo run --release --bin precision`
+//! `cd host-tests && cargo run --release --bin precision > ../results/precision.md`
 //! (from the repository root: `cargo run --release --manifest-path
 //! host-tests/Cargo.toml --target host-tuple --bin precision`).
 
-use abtrack::{Fix, Scalar};
-use abtrack_host_tests::precision::{documented_runs, measure_documented, DocumentedRun};
+use abtrack::num::Numeric;
+use abtrack::{Fix, Fixed32};
+use abtrack_host_tests::precision::{
+    documented_runs, measure_documented, DocumentedRun, RunReport,
+};
 use std::process::ExitCode;
 
-fn row<S: Scalar>(run: &DocumentedRun) -> Result<bool, String> {
-    let report = measure_documented::<S>(run)?;
+/// The closeness issue 8 asks of the fast fixed point: f32's deviation over
+/// the fixed point's, at least this on every run and quantity.
+const CLOSER_THAN_F32: f64 = 10.0;
+
+fn row<N: Numeric>(run: &DocumentedRun, report: &RunReport) -> bool {
     let d = &report.deviation;
     let rms = d.rms();
     let axes = if run.order == 3 { 3 } else { 2 };
@@ -22,7 +31,7 @@ fn row<S: Scalar>(run: &DocumentedRun) -> Result<bool, String> {
         Ok(b) => Some([b.position, b.velocity, b.acceleration]),
         Err(e) => {
             within = false;
-            eprintln!("{}: no budget for {}: {e}", run.name, S::NAME);
+            eprintln!("{}: no budget for {}: {e}", run.name, N::NAME);
             None
         }
     };
@@ -42,20 +51,31 @@ fn row<S: Scalar>(run: &DocumentedRun) -> Result<bool, String> {
     if axes == 2 {
         cells.push("- | - | - | -".into());
     }
+    if report.refused > 0 {
+        eprintln!(
+            "{}: {} refused {} updates",
+            run.name,
+            N::NAME,
+            report.refused
+        );
+    }
     println!(
         "| {} | {} | {} | {} |",
         run.name,
-        S::NAME,
+        N::NAME,
         cells.join(" | "),
         if within { "yes" } else { "NO" }
     );
-    Ok(within)
+    within
 }
 
 fn main() -> ExitCode {
     println!("Deviation from the f64 reference over 10 000 updates (max, RMS), error budget and budget/max.");
     println!(
-        "x in m, v in m/s, a in m/s². Budget: abtrack::budget::error_budget_around_reference.\n"
+        "x in m, v in m/s, a in m/s². Budget: abtrack::budget::error_budget_around_reference."
+    );
+    println!(
+        "Numerics: f32; q32 = Q32.32 (abtrack::Fix); fixed = the fast fixed point (abtrack::Fixed32).\n"
     );
     let runs = documented_runs();
     for run in &runs {
@@ -65,21 +85,68 @@ fn main() -> ExitCode {
     println!("| run | numeric | max Δx | RMS Δx | budget x | ratio | max Δv | RMS Δv | budget v | ratio | max Δa | RMS Δa | budget a | ratio | within |");
     println!("|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|");
     let mut ok = true;
+    let mut closeness = Vec::new();
     for run in &runs {
-        for result in [row::<f32>(run), row::<Fix>(run)] {
-            match result {
-                Ok(within) => ok &= within,
-                Err(e) => {
+        let reports = (
+            measure_documented::<f32>(run),
+            measure_documented::<Fix>(run),
+            measure_documented::<Fixed32>(run),
+        );
+        match reports {
+            (Ok(f32_report), Ok(q32_report), Ok(fixed_report)) => {
+                ok &= row::<f32>(run, &f32_report);
+                ok &= row::<Fix>(run, &q32_report);
+                ok &= row::<Fixed32>(run, &fixed_report);
+                closeness.push((run, f32_report, fixed_report));
+            }
+            (a, b, c) => {
+                for e in [a.err(), b.err(), c.err()].into_iter().flatten() {
                     eprintln!("{}: {e}", run.name);
-                    ok = false;
                 }
+                ok = false;
             }
         }
+    }
+    println!();
+    println!(
+        "How many times closer to f64 the fast fixed point is than f32 (f32 max / fixed max; issue 8 asks ≥ {CLOSER_THAN_F32:.0}):"
+    );
+    println!();
+    println!("| run | x | v | a | ≥ {CLOSER_THAN_F32:.0} |");
+    println!("|---|---|---|---|---|");
+    for (run, f32_report, fixed_report) in &closeness {
+        let axes = if run.order == 3 { 3 } else { 2 };
+        let mut cells = Vec::new();
+        let mut enough = true;
+        for i in 0..3 {
+            if i < axes {
+                let ratio = f32_report.deviation.max[i] / fixed_report.deviation.max[i];
+                enough &= ratio >= CLOSER_THAN_F32;
+                cells.push(format!("{ratio:.0}"));
+            } else {
+                cells.push("-".into());
+            }
+        }
+        if !enough {
+            eprintln!(
+                "{}: the fast fixed point is less than {CLOSER_THAN_F32}x closer to f64 than f32",
+                run.name
+            );
+        }
+        println!(
+            "| {} | {} | {} |",
+            run.name,
+            cells.join(" | "),
+            if enough { "yes" } else { "NO" }
+        );
+        ok &= enough;
     }
     if ok {
         ExitCode::SUCCESS
     } else {
-        eprintln!("some run exceeded its budget or could not be bounded");
+        eprintln!(
+            "some run exceeded its budget, could not be bounded, or missed the closeness target"
+        );
         ExitCode::FAILURE
     }
 }
