@@ -27,10 +27,13 @@
 //! ```
 //!
 //! **Step 1: the local error `δ_k`** (running error analysis). Each
-//! intermediate of the update, in the library's evaluation order (see
-//! `KinematicFilter::update`), is tracked as a pair (bound `M` on its exact
-//! magnitude, bound `E` on its computed error), using the rounding model of
-//! [`Scalar::UNIT_ROUNDOFF`] and [`Scalar::ABS_RESOLUTION`] (`u`, `ε`):
+//! intermediate of the update, in the library's evaluation order
+//! (`StepGains::new` once per interval, then `KinematicFilter::update_step`),
+//! is tracked as a pair (bound `M` on its exact magnitude, bound `E` on its
+//! computed error), using the rounding model of the intermediate's own
+//! quantity, [`Quantity::UNIT_ROUNDOFF`] and [`Quantity::ABS_RESOLUTION`]
+//! (`u`, `ε`; per quantity for the fast fixed point, see
+//! `docs/numerics-fixed-point.md`):
 //!
 //! * input (conversion from `f64`): `E = u·M + ε/2`;
 //! * `a ± b`: `E = E_a + E_b + u·(M + E_a + E_b)` (fixed point: exact);
@@ -41,11 +44,12 @@
 //! The magnitudes come from the [`RunEnvelope`] (`M` of a sum is the smaller of
 //! `M_a + M_b` and the envelope's bound on the quantity it is, e.g. a
 //! predicted position). So for floats every operation injects
-//! (unit roundoff × the magnitude it handles), and for Q32.32 every product and
-//! quotient injects one step 2⁻³², divisions by `T` amplify the error of their
-//! numerator by `1/T` (`β·e/T`, and `γ·e/(2T²)` by `1/(2T²)`), and the inputs
-//! are quantised to 2⁻³³. The rounding of the gains multiplies the residual, so
-//! the residual's magnitude is part of the envelope.
+//! (unit roundoff × the magnitude it handles), and for fixed formats every
+//! product and quotient injects one step of its result's format, the
+//! per-interval gains β/T and γ/(2T²) carry the rounding of their division,
+//! and the inputs are quantised to half a step. The rounding of the gains
+//! multiplies the residual, so the residual's magnitude is part of the
+//! envelope.
 //!
 //! The first two updates (two-point initialisation, Al-Wagih eqs. (9)–(10))
 //! inject the initial error `d_2 = (E_z, E[(z₂ − z₁)/T], 0)`.

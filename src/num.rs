@@ -1,6 +1,11 @@
-//! The numeric representations: one [`Scalar`] abstraction over `f64`, `f32`
-//! and the fixed-point type [`Fix`]. This is the only module that knows how a
-//! number is stored; every filter, schedule and tracker is generic over it.
+//! The numeric representations. [`Numeric`] is a number system with one
+//! type per quantity ([`numeric`]); [`Scalar`] is a single type used for
+//! every quantity (`f64`, `f32` and the Q32.32 fixed point [`Fix`]), which
+//! implements [`Numeric`] through a blanket implementation; [`Fixed32`]
+//! ([`fixed32`]) is the fast fixed point, with a 32-bit format per quantity.
+//! This is the only module that knows how a number is stored; every filter,
+//! schedule and tracker is generic over it. The formats, the envelope and
+//! how to port code are in `docs/numerics-fixed-point.md`.
 //!
 //! # Invalid values
 //!
