@@ -228,7 +228,9 @@ pub struct ScalarGuard<S> {
 }
 
 impl<S: Scalar> Guard for ScalarGuard<S> {
+    /// `s − s == 0` exactly when `s` is finite (module docs).
     #[inline]
+    #[allow(clippy::eq_op)] // the subtraction of equal operands is the test
     fn passed(&self) -> bool {
         self.sum - self.sum == S::ZERO
     }
