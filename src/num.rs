@@ -277,6 +277,24 @@ pub fn hypot<S: Scalar>(a: S, b: S) -> S {
     large * (S::ONE + k * k).sqrt()
 }
 
+/// Azimuth of (x, y), clockwise from the y axis, in [0, 2π).
+pub fn azimuth_of<S: Scalar>(x: S, y: S) -> S {
+    let two_pi = S::from_f64_lossy(core::f64::consts::TAU);
+    let a = x.atan2(y);
+    if a < S::ZERO {
+        let wrapped = a + two_pi;
+        // A tiny negative angle plus 2π can round to 2π in f32/f64: that
+        // direction is azimuth 0.
+        if wrapped >= two_pi {
+            S::ZERO
+        } else {
+            wrapped
+        }
+    } else {
+        a
+    }
+}
+
 /// Q32.32 saturating fixed point with sticky saturation (see the module docs).
 #[derive(Clone, Copy, Default, PartialEq, Eq, PartialOrd, Ord, Hash)]
 pub struct Fix(I32F32);
