@@ -12,16 +12,28 @@
 
 use abtrack::num::Numeric;
 use abtrack::{Fix, Fixed32};
+use abtrack_host_tests::output::write_stdout;
 use abtrack_host_tests::precision::{
     documented_runs, measure_documented, DocumentedRun, RunReport,
 };
+use clap::Parser;
+use std::fmt::Write as _;
 use std::process::ExitCode;
+
+/// Prints the deviation of the f32, Q32.32 and fast fixed-point filters from
+/// the independent f64 reference on the documented runs, next to the error
+/// budget, and how many times closer than f32 the fast fixed point is (a
+/// Markdown report on stdout; exit status 1 if a run exceeds its budget or
+/// misses the closeness target).
+#[derive(Debug, Parser)]
+#[command(name = "precision")]
+struct PrecisionArgs {}
 
 /// The closeness issue 8 asks of the fast fixed point: f32's deviation over
 /// the fixed point's, at least this on every run and quantity.
 const CLOSER_THAN_F32: f64 = 10.0;
 
-fn row<N: Numeric>(run: &DocumentedRun, report: &RunReport) -> bool {
+fn row<N: Numeric>(out: &mut String, run: &DocumentedRun, report: &RunReport) -> bool {
     let d = &report.deviation;
     let rms = d.rms();
     let axes = if run.order == 3 { 3 } else { 2 };
@@ -59,7 +71,8 @@ fn row<N: Numeric>(run: &DocumentedRun, report: &RunReport) -> bool {
             report.refused
         );
     }
-    println!(
+    let _ = writeln!(
+        out,
         "| {} | {} | {} | {} |",
         run.name,
         N::NAME,
@@ -70,20 +83,22 @@ fn row<N: Numeric>(run: &DocumentedRun, report: &RunReport) -> bool {
 }
 
 fn main() -> ExitCode {
-    println!("Deviation from the f64 reference over 10 000 updates (max, RMS), error budget and budget/max.");
-    println!(
-        "x in m, v in m/s, a in m/s². Budget: abtrack::budget::error_budget_around_reference."
+    PrecisionArgs::parse();
+    let mut out = String::new();
+    out.push_str("Deviation from the f64 reference over 10 000 updates (max, RMS), error budget and budget/max.\n");
+    out.push_str(
+        "x in m, v in m/s, a in m/s². Budget: abtrack::budget::error_budget_around_reference.\n",
     );
-    println!(
-        "Numerics: f32; q32 = Q32.32 (abtrack::Fix); fixed = the fast fixed point (abtrack::Fixed32).\n"
+    out.push_str(
+        "Numerics: f32; q32 = Q32.32 (abtrack::Fix); fixed = the fast fixed point (abtrack::Fixed32).\n\n",
     );
     let runs = documented_runs();
     for run in &runs {
-        println!("* {}: {}", run.name, run.description);
+        let _ = writeln!(out, "* {}: {}", run.name, run.description);
     }
-    println!();
-    println!("| run | numeric | max Δx | RMS Δx | budget x | ratio | max Δv | RMS Δv | budget v | ratio | max Δa | RMS Δa | budget a | ratio | within |");
-    println!("|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|");
+    out.push('\n');
+    out.push_str("| run | numeric | max Δx | RMS Δx | budget x | ratio | max Δv | RMS Δv | budget v | ratio | max Δa | RMS Δa | budget a | ratio | within |\n");
+    out.push_str("|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|\n");
     let mut ok = true;
     let mut closeness = Vec::new();
     for run in &runs {
@@ -94,9 +109,9 @@ fn main() -> ExitCode {
         );
         match reports {
             (Ok(f32_report), Ok(q32_report), Ok(fixed_report)) => {
-                ok &= row::<f32>(run, &f32_report);
-                ok &= row::<Fix>(run, &q32_report);
-                ok &= row::<Fixed32>(run, &fixed_report);
+                ok &= row::<f32>(&mut out, run, &f32_report);
+                ok &= row::<Fix>(&mut out, run, &q32_report);
+                ok &= row::<Fixed32>(&mut out, run, &fixed_report);
                 closeness.push((run, f32_report, fixed_report));
             }
             (a, b, c) => {
@@ -107,13 +122,12 @@ fn main() -> ExitCode {
             }
         }
     }
-    println!();
-    println!(
-        "How many times closer to f64 the fast fixed point is than f32 (f32 max / fixed max; issue 8 asks ≥ {CLOSER_THAN_F32:.0}):"
+    let _ = writeln!(
+        out,
+        "\nHow many times closer to f64 the fast fixed point is than f32 (f32 max / fixed max; issue 8 asks ≥ {CLOSER_THAN_F32:.0}):\n"
     );
-    println!();
-    println!("| run | x | v | a | ≥ {CLOSER_THAN_F32:.0} |");
-    println!("|---|---|---|---|---|");
+    let _ = writeln!(out, "| run | x | v | a | ≥ {CLOSER_THAN_F32:.0} |");
+    out.push_str("|---|---|---|---|---|\n");
     for (run, f32_report, fixed_report) in &closeness {
         let axes = if run.order == 3 { 3 } else { 2 };
         let mut cells = Vec::new();
@@ -133,7 +147,8 @@ fn main() -> ExitCode {
                 run.name
             );
         }
-        println!(
+        let _ = writeln!(
+            out,
             "| {} | {} | {} |",
             run.name,
             cells.join(" | "),
@@ -141,8 +156,9 @@ fn main() -> ExitCode {
         );
         ok &= enough;
     }
+    let written = write_stdout("precision", out.as_bytes());
     if ok {
-        ExitCode::SUCCESS
+        written
     } else {
         eprintln!(
             "some run exceeded its budget, could not be bounded, or missed the closeness target"
