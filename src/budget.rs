@@ -548,6 +548,22 @@ impl Analysis {
         self.checked(q, Tracked { mag, err })
     }
 
+    /// The product `a·b` of a guarded `q + a·b` (rounded like a product);
+    /// when the number system forms the sum in a wider word (`fused`), the
+    /// product alone need not fit its quantity, only the sum is checked.
+    fn term(&mut self, fused: bool, q: Model, a: Tracked, b: Tracked, cap: f64) -> Tracked {
+        if fused {
+            let mag = min(a.mag * b.mag, cap);
+            let e = a.mag * b.err + b.mag * a.err + a.err * b.err;
+            Tracked {
+                mag,
+                err: e + q.unit * (mag + e) + q.abs,
+            }
+        } else {
+            self.mul(q, a, b, cap)
+        }
+    }
+
     /// `a/2`: exact in floating formats, half a step in fixed ones.
     fn half(&mut self, q: Model, a: Tracked) -> Tracked {
         let t = Tracked {
@@ -584,6 +600,9 @@ fn local_errors<N: Numeric>(
     let rate = model::<N::Rate>();
     let rate2 = model::<N::RateSquared>();
     let mut an = Analysis { overflow: false };
+    // Whether the hot path's q + a·b narrows only the sum (the fast fixed
+    // point) or also the product (sticky operators).
+    let fused = N::FUSED_PRODUCTS;
     let pos_cap = env.max_position;
     let vel_cap = env.max_velocity;
     let acc_cap = if order3 { env.max_acceleration } else { 0.0 };
@@ -614,28 +633,28 @@ fn local_errors<N: Numeric>(
         let acceleration_gain = an.div(rate2, gamma, double, 2.0 * dt_min2, NO_CAP);
         let half_squared = an.half(interval2, squared);
         // x_p = (x + v·T) + a·(T²/2); v_p = v + a·T
-        let v_t = an.mul(length, v, dt, NO_CAP);
+        let v_t = an.term(fused, length, v, dt, NO_CAP);
         let first = an.add(length, x, v_t, NO_CAP);
-        let a_t2 = an.mul(length, a, half_squared, NO_CAP);
+        let a_t2 = an.term(fused, length, a, half_squared, NO_CAP);
         let x_p = an.add(length, first, a_t2, pos_cap);
-        let a_t = an.mul(speed, a, dt, NO_CAP);
+        let a_t = an.term(fused, speed, a, dt, NO_CAP);
         let v_p = an.add(speed, v, a_t, vel_cap);
         let e = an.add(length, z, x_p, env.max_residual);
         // x_s = x_p + α·e; v_s = v_p + (β/T)·e; a_s = a + (γ/(2T²))·e
-        let alpha_e = an.mul(length, alpha, e, NO_CAP);
+        let alpha_e = an.term(fused, length, alpha, e, NO_CAP);
         let x_s = an.add(length, x_p, alpha_e, pos_cap);
-        let dv = an.mul(speed, velocity_gain, e, NO_CAP);
+        let dv = an.term(fused, speed, velocity_gain, e, NO_CAP);
         let v_s = an.add(speed, v_p, dv, vel_cap);
-        let da = an.mul(acceleration, acceleration_gain, e, NO_CAP);
+        let da = an.term(fused, acceleration, acceleration_gain, e, NO_CAP);
         let a_s = an.add(acceleration, a, da, acc_cap);
         [x_s.err, v_s.err, a_s.err]
     } else {
-        let v_t = an.mul(length, v, dt, NO_CAP);
+        let v_t = an.term(fused, length, v, dt, NO_CAP);
         let x_p = an.add(length, x, v_t, pos_cap);
         let e = an.add(length, z, x_p, env.max_residual);
-        let alpha_e = an.mul(length, alpha, e, NO_CAP);
+        let alpha_e = an.term(fused, length, alpha, e, NO_CAP);
         let x_s = an.add(length, x_p, alpha_e, pos_cap);
-        let dv = an.mul(speed, velocity_gain, e, NO_CAP);
+        let dv = an.term(fused, speed, velocity_gain, e, NO_CAP);
         let v_s = an.add(speed, v, dv, vel_cap);
         [x_s.err, v_s.err, 0.0]
     };

@@ -53,7 +53,7 @@ use abtrack::track::{
     ScanReport, Track, TrackId, TrackStatus, TrackTable, TrackerConfig,
 };
 use abtrack::Scalar;
-use board::Native;
+use board::TableScalar as Native;
 use propagation::{ErrorPropagation, Lag, Matrix};
 use support::{
     fixed_gain_budget_computed_gains, never, value, Failure, Magnitudes, Test, TestResult,

@@ -7,8 +7,8 @@
 //! | quantity | type | format | range | resolution |
 //! |---|---|---|---|---|
 //! | length (m) | [`Length`] | I20F12 | ±524 288 | 2.4·10⁻⁴ |
-//! | speed (m/s) | [`Speed`] | I12F20 | ±2 048 | 9.5·10⁻⁷ |
-//! | acceleration (m/s²) | [`Acceleration`] | I12F20 | ±2 048 | 9.5·10⁻⁷ |
+//! | speed (m/s) | [`Speed`] | I14F18 | ±8 192 | 3.8·10⁻⁶ |
+//! | acceleration (m/s²) | [`Acceleration`] | I14F18 | ±8 192 | 3.8·10⁻⁶ |
 //! | interval (s) | [`Interval`] | I8F24 | ±128 | 6.0·10⁻⁸ |
 //! | α in the per-update path | [`Gain`] | I4F28 | ±8 | 3.7·10⁻⁹ |
 //! | gains, ratios | [`Ratio`] | [`Scaled`] | 2⁻¹⁷⁰…2¹³¹ | 2⁻³⁰ relative |
@@ -26,7 +26,7 @@
 use core::fmt;
 use core::ops::{Add, Div, Mul, Neg, Sub};
 
-use fixed::types::{I12F20, I20F12, I4F28, I8F24};
+use fixed::types::{I14F18, I20F12, I4F28, I8F24};
 
 use super::numeric::{AddProduct, Checked, Guard, Numeric, Quantity, SubGuarded};
 use super::scaled::{isqrt_u64, unit, Scaled};
@@ -363,8 +363,8 @@ macro_rules! fixed_quantity {
 }
 
 fixed_quantity!(Length, I20F12, 12, "A length in metres");
-fixed_quantity!(Speed, I12F20, 20, "A speed in m/s");
-fixed_quantity!(Acceleration, I12F20, 20, "An acceleration in m/s²");
+fixed_quantity!(Speed, I14F18, 18, "A speed in m/s");
+fixed_quantity!(Acceleration, I14F18, 18, "An acceleration in m/s²");
 fixed_quantity!(Interval, I8F24, 24, "An interval in seconds");
 fixed_quantity!(Gain, I4F28, 28, "A gain of the per-update path (α)");
 
@@ -611,6 +611,7 @@ fn turns(theta: Angle) -> u32 {
 
 impl Numeric for Fixed32 {
     const NAME: &'static str = "fixed";
+    const FUSED_PRODUCTS: bool = true;
     type Length = Length;
     type Speed = Speed;
     type Acceleration = Acceleration;

@@ -181,6 +181,12 @@ pub trait Numeric:
     /// Short name for reports: "f64", "f32", "q32", "fixed".
     const NAME: &'static str;
 
+    /// Whether [`AddProduct`] forms `q + a·b` in a wider word and checks
+    /// only the sum (the fast fixed point), rather than rounding and
+    /// checking the product on its own (the sticky operators): the error
+    /// budget's range checks follow it.
+    const FUSED_PRODUCTS: bool = false;
+
     /// Metres (feet where a tracker works in feet): positions, residuals.
     /// `From<Ratio>` reads a number of metres (invalid beyond the range).
     type Length: Quantity
