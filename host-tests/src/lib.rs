@@ -16,6 +16,7 @@
 //! * [`experiments`]: the `experiments` tool's groups and output helpers.
 //! * [`frames`]: wire frames for the demo firmware's UART (the `frames` tool).
 
+pub mod altitude_figures;
 pub mod cli;
 pub mod csv_input;
 pub mod experiments;
