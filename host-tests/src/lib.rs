@@ -2,7 +2,9 @@
 //!
 //! * [`reference`]: the independent `f64` reference filters, written straight
 //!   from the papers; [`reference_ra`] the same for He et al.'s range-azimuth
-//!   filter.
+//!   filter; [`reference_tcas`] the TCAS II v7.1 logic on true states.
+//! * [`encounters`]: the TCAS encounter suite and the demo scenario;
+//!   [`altitude_figures`]: the altitude tracker's figures.
 //! * [`trajectory`]: seeded random trajectories for the precision checks.
 //! * [`scenario`], [`noise`]: the papers' scenarios and measurement noise.
 //! * [`kalman`]: the Kalman-filter baselines; [`metrics`]: RMSE, confidence
@@ -19,6 +21,7 @@
 pub mod altitude_figures;
 pub mod cli;
 pub mod csv_input;
+pub mod encounters;
 pub mod experiments;
 pub mod frames;
 pub mod kalman;
@@ -27,6 +30,7 @@ pub mod noise;
 pub mod precision;
 pub mod reference;
 pub mod reference_ra;
+pub mod reference_tcas;
 pub mod replay;
 pub mod replay_tracker;
 pub mod scenario;

@@ -3,15 +3,31 @@
 //! firmness (RTCA DO-185B, as transcribed in ledieuke/tcas_simulator
 //! `tracking_intruders.py`: `horizontal_tracking`, `smoother`,
 //! `update_firmness`, `coast_horizontal_track`, `calc_acc_thresh`,
-//! `project_hmd`; the gain table is [`crate::gain::tcas`]).
+//! `project_hmd`, `linear_extrap`; the gain table is [`crate::gain::tcas`]).
 //!
-//! γ convention: DO-185B's smoother corrects the acceleration by γ·e/T²;
-//! abtrack's αβγ filter (Tenne & Singh eq. 5) by γ/(2T²)·e, so the table's γ
-//! enters the filter as 2γ. Bearing is not used here (see docs/tcas.md).
+//! * γ convention: DO-185B's smoother corrects the acceleration by γ·e/T²
+//!   (`smoother`: `srdd = srddp + gamma*residual/dt**2`), and that is what
+//!   this tracker does with the table's γ (abtrack's αβγ filter uses
+//!   Tenne & Singh's γ/(2T²)·e, so the same table entry there is half the
+//!   correction).
+//! * Prediction: DO-185B keeps two range trackers with the same gains, a
+//!   parabolic one (r + ṙT + r̈T²/2) whose r̈ gives the miss distance, and a
+//!   "Cartesian" one whose prediction follows a straight relative path
+//!   (`linear_extrap`). This tracker is one tracker with the straight-path
+//!   prediction once r̈ > 0 is estimated (parabolic before): with the
+//!   table's small γ the parabolic r̈ lags so much that the miss-distance
+//!   filter never acts (docs/tcas.md has the figures), while the
+//!   straight-path prediction is exact for an unaccelerated intruder.
+//! * Bearing is not used here; the range–azimuth filter is the bearing
+//!   tracker (docs/tcas.md).
+//!
+//! No square of a range is formed: the straight-path prediction works with
+//! the miss distance d = r·√(r r̈/(r r̈ + ṙ²)) and the along-track distance
+//! y = r ṙ/v, and r' = hypot(d, y + vT).
 
-use crate::filter::{check_interval, AlphaBetaGamma, FilterError, Gains, Phase, UpdateOutcome};
+use crate::filter::{check_interval, FilterError, Phase};
 use crate::gain::tcas::{FIRMNESS_ALPHA, FIRMNESS_BETA, FIRMNESS_GAMMA, MAX_FIRMNESS};
-use crate::num::Scalar;
+use crate::num::{hypot, Scalar};
 
 use super::METRES_PER_FOOT;
 
@@ -81,14 +97,25 @@ impl<S: Scalar> RangeEstimate<S> {
 #[derive(Debug, Clone, Copy, PartialEq)]
 #[cfg_attr(feature = "defmt", derive(defmt::Format))]
 pub struct RangeTracker<S> {
-    filter: AlphaBetaGamma<S>,
+    phase: Phase,
+    range_m: S,
+    range_rate_m_per_s: S,
+    range_acceleration_m_per_s2: S,
+    /// While `OnePoint`: time since the first reply (coasts add to it).
+    since_first_s: S,
     firmness: u8,
     initialised: bool,
     /// Running mean of the squared range residual, m² (DO-185B `smoressq`).
     residual_mean_square_m2: S,
-    /// Saturations counted by a filter replaced when the track lost its
-    /// acceleration.
-    earlier_saturations: u32,
+    saturations: u32,
+}
+
+/// A predicted range state.
+#[derive(Debug, Clone, Copy, PartialEq)]
+struct Predicted<S> {
+    range: S,
+    rate: S,
+    acceleration: S,
 }
 
 impl<S: Scalar> Default for RangeTracker<S> {
@@ -106,16 +133,20 @@ impl<S: Scalar> RangeTracker<S> {
     /// A tracker waiting for its first reply.
     pub fn new() -> Self {
         RangeTracker {
-            filter: AlphaBetaGamma::new(),
+            phase: Phase::Empty,
+            range_m: S::ZERO,
+            range_rate_m_per_s: S::ZERO,
+            range_acceleration_m_per_s2: S::ZERO,
+            since_first_s: S::ZERO,
             firmness: 0,
             initialised: false,
             residual_mean_square_m2: nominal_residual_variance(),
-            earlier_saturations: 0,
+            saturations: 0,
         }
     }
 
     pub fn phase(&self) -> Phase {
-        self.filter.phase()
+        self.phase
     }
 
     pub fn firmness(&self) -> u8 {
@@ -124,14 +155,12 @@ impl<S: Scalar> RangeTracker<S> {
 
     /// How many updates or coasts were discarded because they saturated.
     pub fn saturations(&self) -> u32 {
-        self.filter
-            .saturations()
-            .saturating_add(self.earlier_saturations)
+        self.saturations
     }
 
     /// The current estimate; `None` before the second reply (no range rate).
     pub fn estimate(&self) -> Option<RangeEstimate<S>> {
-        if self.filter.phase() != Phase::Tracking {
+        if self.phase != Phase::Tracking {
             return None;
         }
         let nominal = nominal_residual_variance::<S>();
@@ -141,88 +170,173 @@ impl<S: Scalar> RangeTracker<S> {
             .sqrt()
             .max_of(S::ONE);
         Some(RangeEstimate {
-            range_m: self.filter.position(),
-            range_rate_m_per_s: self.filter.velocity(),
-            range_acceleration_m_per_s2: self.filter.acceleration(),
+            range_m: self.range_m,
+            range_rate_m_per_s: self.range_rate_m_per_s,
+            range_acceleration_m_per_s2: self.range_acceleration_m_per_s2,
             firmness: self.firmness,
             initialised: self.initialised,
             acceleration_threshold_m_per_s2: threshold * scale,
         })
     }
 
+    /// The state `dt` ahead: along a straight relative path when the track
+    /// is initialised and r̈ > 0 (r r̈ = v² − ṙ², DO-185B `linear_extrap`),
+    /// parabolic otherwise.
+    fn predict(&self, dt: S) -> Predicted<S> {
+        let (r, rate, acc) = (
+            self.range_m,
+            self.range_rate_m_per_s,
+            self.range_acceleration_m_per_s2,
+        );
+        if self.initialised && acc > S::ZERO && r > S::ZERO {
+            let x = r * acc;
+            let speed_squared = x + rate * rate;
+            let speed = speed_squared.sqrt();
+            let miss = r * (x / speed_squared).sqrt();
+            let along = r * (rate / speed) + speed * dt;
+            let range = hypot(miss, along);
+            if range > S::ONE {
+                let k = (miss / range) * speed;
+                return Predicted {
+                    range,
+                    rate: along * (speed / range),
+                    acceleration: k * k / range,
+                };
+            }
+        }
+        let half = S::from_f64_lossy(0.5);
+        Predicted {
+            range: r + rate * dt + half * acc * dt * dt,
+            rate: rate + acc * dt,
+            acceleration: acc,
+        }
+    }
+
     /// One reply: slant range `range_m` (m, ≥ 0), `dt` s after the previous
-    /// scan. Invalid input is refused and changes nothing.
+    /// scan. Invalid input, or an update whose arithmetic saturates
+    /// (counted), is refused and changes nothing.
     pub fn update(&mut self, range_m: S, dt: S) -> Result<(), FilterError> {
         if !range_m.is_valid() || range_m < S::ZERO {
             return Err(FilterError::InvalidMeasurement);
         }
         check_interval(dt)?;
-        let firmness = if self.filter.phase() == Phase::Empty {
-            0
-        } else {
-            self.firmness.saturating_add(1).min(MAX_FIRMNESS)
-        };
-        let initialised = self.initialised || firmness == MAX_FIRMNESS;
-        let gains = table_gains(firmness.max(1), initialised)?;
-        let outcome = self.filter.update(range_m, dt, &gains)?;
-        if let (true, UpdateOutcome::Filtered(innovation)) = (initialised, outcome) {
-            let clip = S::from_f64_lossy(RESIDUAL_CLIP_M);
-            let e = innovation.residual.max_of(-clip).min_of(clip);
-            let w = S::from_f64_lossy(RESIDUAL_SMOOTHING);
-            let mean_square = w * e * e + (S::ONE - w) * self.residual_mean_square_m2;
-            if mean_square.is_valid() {
-                self.residual_mean_square_m2 = mean_square;
+        let mut next = *self;
+        match self.phase {
+            Phase::Empty => {
+                next.phase = Phase::OnePoint;
+                next.range_m = range_m;
+                next.since_first_s = S::ZERO;
+                next.firmness = 0;
+            }
+            Phase::OnePoint => {
+                // Entry 1 (α = β = 1): two-point initialisation.
+                next.phase = Phase::Tracking;
+                next.range_rate_m_per_s = (range_m - self.range_m) / (self.since_first_s + dt);
+                next.range_m = range_m;
+                next.range_acceleration_m_per_s2 = S::ZERO;
+                next.firmness = 1;
+            }
+            Phase::Tracking => {
+                let firmness = self.firmness.saturating_add(1).min(MAX_FIRMNESS);
+                let initialised = self.initialised || firmness == MAX_FIRMNESS;
+                let (alpha, beta, gamma) = table_gains::<S>(firmness.max(1))?;
+                let p = self.predict(dt);
+                let e = range_m - p.range;
+                next.range_m = p.range + alpha * e;
+                next.range_rate_m_per_s = p.rate + beta * e / dt;
+                // DO-185B holds r̈ at zero until the track is initialised.
+                next.range_acceleration_m_per_s2 = if initialised {
+                    p.acceleration + gamma * e / (dt * dt)
+                } else {
+                    S::ZERO
+                };
+                if initialised && self.initialised {
+                    let clip = S::from_f64_lossy(RESIDUAL_CLIP_M);
+                    let e = e.max_of(-clip).min_of(clip);
+                    let w = S::from_f64_lossy(RESIDUAL_SMOOTHING);
+                    next.residual_mean_square_m2 =
+                        w * e * e + (S::ONE - w) * self.residual_mean_square_m2;
+                }
+                next.firmness = firmness;
+                next.initialised = initialised;
             }
         }
-        self.firmness = firmness;
-        self.initialised = initialised;
+        next.clamp_range();
+        if !next.is_valid() {
+            self.saturations = self.saturations.saturating_add(1);
+            return Err(FilterError::Saturated);
+        }
+        *self = next;
         Ok(())
+    }
+
+    /// A range is never negative: through closest approach the estimate can
+    /// overshoot zero; DO-185B then takes r = 0 and ṙ ≥ 0.
+    fn clamp_range(&mut self) {
+        if self.range_m < S::ZERO {
+            self.range_m = S::ZERO;
+            self.range_rate_m_per_s = self.range_rate_m_per_s.max_of(S::ZERO);
+        }
+    }
+
+    fn is_valid(&self) -> bool {
+        [
+            self.range_m,
+            self.range_rate_m_per_s,
+            self.range_acceleration_m_per_s2,
+            self.since_first_s,
+            self.residual_mean_square_m2,
+        ]
+        .iter()
+        .all(|v| v.is_valid())
     }
 
     /// No reply this scan: predict `dt` ahead and lose one firmness; below
     /// [`MIN_ALERT_FIRMNESS`] the track is no longer initialised and its
     /// acceleration is dropped (DO-185B `coast_horizontal_track`).
     pub fn coast(&mut self, dt: S) -> Result<(), FilterError> {
-        self.filter.coast(dt)?;
-        self.firmness = self.firmness.saturating_sub(1);
-        if self.firmness < MIN_ALERT_FIRMNESS && self.initialised {
-            self.initialised = false;
-            self.residual_mean_square_m2 = nominal_residual_variance();
-            if self.filter.phase() == Phase::Tracking {
-                let rebuilt = AlphaBetaGamma::from_state(
-                    self.filter.position(),
-                    self.filter.velocity(),
-                    S::ZERO,
-                );
-                if let Ok(f) = rebuilt {
-                    self.earlier_saturations = self.saturations();
-                    self.filter = f;
+        check_interval(dt)?;
+        let mut next = *self;
+        match self.phase {
+            Phase::Empty => return Ok(()),
+            Phase::OnePoint => next.since_first_s = self.since_first_s + dt,
+            Phase::Tracking => {
+                let p = self.predict(dt);
+                next.range_m = p.range;
+                next.range_rate_m_per_s = p.rate;
+                next.range_acceleration_m_per_s2 = p.acceleration;
+                next.firmness = self.firmness.saturating_sub(1);
+                if next.firmness < MIN_ALERT_FIRMNESS && self.initialised {
+                    next.initialised = false;
+                    next.range_acceleration_m_per_s2 = S::ZERO;
+                    next.residual_mean_square_m2 = nominal_residual_variance();
                 }
             }
         }
+        next.clamp_range();
+        if !next.is_valid() {
+            self.saturations = self.saturations.saturating_add(1);
+            return Err(FilterError::Saturated);
+        }
+        *self = next;
         Ok(())
     }
 }
 
-/// The gains of the reply that raises the firmness to `firmness` (DO-185B
-/// applies the entry after counting the reply). γ/T² as DO-185B, through
-/// the filter's γ/(2T²): 2γ; before the track is initialised DO-185B holds
-/// r̈ at zero, so the gains are αβ.
-fn table_gains<S: Scalar>(firmness: u8, initialised: bool) -> Result<Gains<S>, FilterError> {
+/// The table entry of the reply that raises the firmness to `firmness`
+/// (DO-185B applies the entry after counting the reply), in `S`.
+fn table_gains<S: Scalar>(firmness: u8) -> Result<(S, S, S), FilterError> {
     let i = usize::from(firmness);
-    let (Some(&a), Some(&b), Some(&g)) = (
+    match (
         FIRMNESS_ALPHA.get(i),
         FIRMNESS_BETA.get(i),
         FIRMNESS_GAMMA.get(i),
-    ) else {
-        return Err(FilterError::Saturated);
-    };
-    let gains = if initialised && g > 0.0 {
-        Gains::alpha_beta_gamma_f64(a, b, 2.0 * g)
-    } else {
-        Gains::alpha_beta_f64(a, b)
-    };
-    // Entries 1..=8 lie inside the stability region (tested), so a refusal
-    // means the type cannot hold them.
-    gains.map_err(|_| FilterError::Saturated)
+    ) {
+        (Some(&a), Some(&b), Some(&g)) => Ok((
+            S::from_f64_lossy(a),
+            S::from_f64_lossy(b),
+            S::from_f64_lossy(g),
+        )),
+        _ => Err(FilterError::Saturated),
+    }
 }
