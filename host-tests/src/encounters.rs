@@ -405,6 +405,18 @@ pub fn has_false_alert(run: &[ScanOutcome], reference: &[ScanOutcome], level: Al
     })
 }
 
+/// Whether the run's RA ends (clear of conflict) at a scan from which the
+/// reference keeps its RA for more than [`FALSE_ALERT_TOLERANCE_S`].
+pub fn has_interrupted_ra(run: &[ScanOutcome], reference: &[ScanOutcome]) -> bool {
+    let tol = FALSE_ALERT_TOLERANCE_S as usize;
+    run.iter().enumerate().any(|(k, s)| {
+        s.clear_of_conflict
+            && reference
+                .get(k..=k + tol)
+                .is_some_and(|w| w.iter().all(|r| r.alert == Alert::Ra))
+    })
+}
+
 /// Counts over the noisy runs of one encounter in one type.
 #[derive(Debug, Clone, Default)]
 pub struct NoiseCounts {
@@ -414,6 +426,9 @@ pub struct NoiseCounts {
     pub false_ta: usize,
     pub false_ra: usize,
     pub wrong_sense: usize,
+    /// Runs whose RA ended while the reference's RA went on for more than
+    /// [`FALSE_ALERT_TOLERANCE_S`] (an RA dropped early, perhaps restarted).
+    pub interrupted_ra: usize,
     pub refused: usize,
     /// Onset delays (run minus reference, s) of the runs that have both.
     pub ta_delays: Vec<f64>,
@@ -424,6 +439,11 @@ pub struct NoiseCounts {
 /// Base seed of the noisy runs.
 pub const BASE_SEED: u64 = 0x0010_7CA5_E2C0_0010;
 
+/// The seed of noisy run `run` of encounter `encounter_index`.
+pub fn derive_run_seed(encounter_index: u64, run: u64) -> u64 {
+    derive_seed(derive_seed(BASE_SEED, encounter_index), run)
+}
+
 /// `runs` noisy runs of `e` in `S` against the reference.
 pub fn noisy_runs<S: Scalar>(e: &Encounter, encounter_index: u64, runs: usize) -> NoiseCounts {
     let reference = run_reference(e);
@@ -433,7 +453,7 @@ pub fn noisy_runs<S: Scalar>(e: &Encounter, encounter_index: u64, runs: usize) -
         ..NoiseCounts::default()
     };
     for run in 0..runs {
-        let seed = derive_seed(derive_seed(BASE_SEED, encounter_index), run as u64);
+        let seed = derive_run_seed(encounter_index, run as u64);
         let meas = measurements(e, Noise::Seeded(seed));
         let Ok(out) = run_library::<S>(e, &meas) else {
             n.refused += 1;
@@ -444,6 +464,7 @@ pub fn noisy_runs<S: Scalar>(e: &Encounter, encounter_index: u64, runs: usize) -
         n.missed_ra += usize::from(expected.ra_onset_s.is_some() && got.ra_onset_s.is_none());
         n.false_ta += usize::from(has_false_alert(&out, &reference, Alert::Ta));
         n.false_ra += usize::from(has_false_alert(&out, &reference, Alert::Ra));
+        n.interrupted_ra += usize::from(has_interrupted_ra(&out, &reference));
         n.wrong_sense += usize::from(
             expected.sense.is_some() && got.sense.is_some() && expected.sense != got.sense,
         );

@@ -57,6 +57,9 @@ pub const MANOEUVRE_SHUTDOWN_CYCLES: u8 = 10;
 /// The bearing cross-check: a range-based HMD more than this times the
 /// bearing tracker's is a manoeuvre (DO-185B `rbratio`).
 pub const BEARING_CROSS_CHECK_RATIO: f64 = 2.0;
+/// The largest modified tau kept by the tau cap, s (any value above every
+/// TAU does).
+pub const TAU_CAP_LIMIT_S: f64 = 60.0;
 /// Least vertical firmness for a new RA (DO-185B `MINFIRM`).
 pub const MIN_RA_VERTICAL_FIRMNESS: u8 = 2;
 
@@ -376,6 +379,10 @@ pub struct ThreatState<S> {
     ta_age_s: Option<S>,
     /// An RA threat (DO-185B `KHIT` > 0).
     ra_threat: bool,
+    /// The smallest RA modified tau since the track became firm and
+    /// stopped diverging, s (DO-185B `TAUCAP`: tau may not rise again, so
+    /// range noise cannot flicker the range test).
+    ra_tau_cap_s: Option<S>,
     miss_distance: MissDistanceFilter,
 }
 
@@ -403,6 +410,7 @@ impl<S: Scalar> ThreatState<S> {
         ThreatState {
             ta_age_s: None,
             ra_threat: false,
+            ra_tau_cap_s: None,
             miss_distance: MissDistanceFilter {
                 exceed_cycles: 0,
                 shutdown_cycles: 0,
@@ -529,14 +537,26 @@ impl<S: Scalar> ThreatState<S> {
         let ra_tests = match (params.ra, params.resolution, &vertical, inputs.altitude) {
             (Some(ra_t), Some(limits), Some(v), Some(a)) => {
                 let ra = Thresholds::<S>::new(&ra_t, 0.0);
-                let range_ok = range_hit(
-                    r,
-                    rdot,
-                    &ra,
-                    Some(c(MAX_RA_RANGE_NM * METRES_PER_NAUTICAL_MILE)),
-                );
-                let modified_tau =
-                    capped_modified_tau(r, rdot, ra.dmod_m, c(MISS_DISTANCE_TAU_LIMIT_S));
+                // τ_mod, never rising once the track is firm (DO-185B
+                // `tau_calculation` with `TAUCAP`), capped at 60 s so the
+                // quotient stays bounded (TAU ≤ 35 s); both the range test
+                // and the miss-distance filter's 35 s limit use it.
+                let modified_tau = if diverging(rdot) {
+                    self.ra_tau_cap_s = None;
+                    S::ZERO
+                } else {
+                    let now = capped_modified_tau(r, rdot, ra.dmod_m, c(TAU_CAP_LIMIT_S));
+                    let tau = self.ra_tau_cap_s.map_or(now, |cap| cap.min_of(now));
+                    if inputs.firm_for_ta {
+                        self.ra_tau_cap_s = Some(tau);
+                    }
+                    tau
+                };
+                let range_ok = if diverging(rdot) {
+                    range_hit(r, rdot, &ra, None)
+                } else {
+                    r <= c(MAX_RA_RANGE_NM * METRES_PER_NAUTICAL_MILE) && modified_tau < ra.tau_s
+                };
                 let filtered = self.miss_distance.filters(
                     inputs.miss_distance_m,
                     modified_tau,
