@@ -244,3 +244,51 @@ fn closest_approach_s(e: &Encounter) -> f64 {
     let vv = x.v[0] * x.v[0] + x.v[1] * x.v[1];
     -(x.s[0] * x.v[0] + x.s[1] * x.v[1]) / vv
 }
+
+/// The demo scenario (issue 10 item 7): the reference gives intruder 0 a
+/// TA, then an RA, then clear of conflict; intruder 1 (level 1000 ft
+/// above) and intruder 3 (1 NM abeam, beyond the HMD) no RA; intruder 2
+/// (no altitude) a TA at most. The library, per intruder on the demo's
+/// noisy replies (association is the firmware's), gives the same RAs with
+/// the reference's sense. False replies are present, with no altitude.
+#[test]
+fn demo_scenario_meets_its_specification() {
+    use abtrack_host_tests::encounters::{
+        demo_intruders, demo_reference, demo_scenario, Measurement,
+    };
+    let scans = 150;
+    let reference = demo_reference(scans);
+    let ever = |i: usize, a: Alert| reference.iter().any(|s| s[i] == a);
+    assert!(ever(0, Alert::Ta) && ever(0, Alert::Ra));
+    assert!(!ever(1, Alert::Ra) && !ever(2, Alert::Ra) && !ever(3, Alert::Ra));
+    assert!(ever(2, Alert::Ta));
+    let replies = demo_scenario(0xDE40, scans);
+    assert!(replies
+        .iter()
+        .any(|r| r.intruder.is_none() && r.altitude_ft.is_none()));
+    for (i, e) in demo_intruders().iter().enumerate() {
+        let meas: Vec<Measurement> = replies
+            .iter()
+            .filter(|r| r.intruder == Some(i))
+            .map(|r| Measurement {
+                range_m: r.range_m,
+                bearing_rad: r.bearing_rad,
+                altitude_ft: r.altitude_ft,
+            })
+            .collect();
+        assert_eq!(meas.len(), scans);
+        let e = Encounter { scans, ..*e };
+        let got = timeline(&run_library::<f64>(&e, &meas).unwrap());
+        let want = timeline(&run_reference(&e));
+        assert_eq!(
+            got.ra_onset_s.is_some(),
+            want.ra_onset_s.is_some(),
+            "intruder {i}"
+        );
+        assert_eq!(got.sense, want.sense, "intruder {i}");
+        if i == 0 {
+            assert_eq!(got.sense, Some(Sense::Down));
+            assert!(got.clear_of_conflict_s.is_some());
+        }
+    }
+}
