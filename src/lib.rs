@@ -4,7 +4,8 @@
 //!
 //! | module | what it owns |
 //! |---|---|
-//! | [`num`] | the [`num::Scalar`] abstraction over `f64`, `f32` and Q32.32 fixed point |
+//! | [`num`] | the number systems ([`num::Numeric`]): `f64`, `f32`, Q32.32 and the fast fixed point |
+//! | [`gains`] | the gains (α, β, γ), their stability region and the papers' gain formulas |
 //! | [`filter`] | single-target αβ / αβγ filters, one axis and composed into 2-D/3-D |
 //! | [`budget`] | the error budget: bound on the deviation of an f32 / fixed-point run from f64 |
 //! | [`design`] | closed-form analysis: stability, noise ratio, steady-state and transient errors |
@@ -24,6 +25,7 @@ pub mod budget;
 pub mod design;
 pub mod filter;
 pub mod gain;
+pub mod gains;
 pub mod num;
 pub mod scan;
 pub mod tcas;
@@ -31,4 +33,4 @@ pub mod track;
 pub mod wire;
 
 pub use filter::{AlphaBeta, AlphaBetaGamma, Cartesian, FilterError, GainError, Gains};
-pub use num::{Fix, NumError, Scalar};
+pub use num::{Fix, Fixed32, NumError, Numeric, Quantity, Scalar};

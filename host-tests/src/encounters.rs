@@ -506,8 +506,9 @@ pub struct DemoReply {
 /// 1. level 1000 ft above, crossing: no RA;
 /// 2. not reporting altitude, converging: TA at most;
 /// 3. passing 1 NM abeam co-altitude (beyond the HMD threshold): no RA;
-/// plus false replies (uniform in range 1–14 NM and bearing, about one a
-/// second, no altitude correlation).
+///
+/// Plus false replies (uniform in range 1–14 NM and bearing, 0.7 a second,
+/// without altitude).
 pub fn demo_intruders() -> Vec<Encounter> {
     vec![
         Encounter {
@@ -554,7 +555,7 @@ pub fn demo_intruders() -> Vec<Encounter> {
 pub fn demo_scenario(seed: u64, scans: usize) -> Vec<DemoReply> {
     let mut rng = rng_from_seed(seed);
     let intruders = demo_intruders();
-    let addresses = [Some(0x4CA1_23), None, None, Some(0x3C66_01)];
+    let addresses = [Some(0x004C_A123), None, None, Some(0x003C_6601)];
     let mut replies = Vec::new();
     for k in 0..scans {
         let t = k as f64;

@@ -17,8 +17,11 @@
 //!   the metrics and experiments.
 //! * [`experiments`]: the `experiments` tool's groups and output helpers.
 //! * [`frames`]: wire frames for the demo firmware's UART (the `frames` tool).
+//! * [`bench_report`]: the benchmark firmware's output to bench/results.csv
+//!   and bench/BENCHMARKS.md (the `bench_report` tool).
 
 pub mod altitude_figures;
+pub mod bench_report;
 pub mod cli;
 pub mod csv_input;
 pub mod encounters;

@@ -426,8 +426,8 @@ impl Reference {
             }
             (None, false, Some(ra_level)) => {
                 let alim = ra_level.alim_ft;
-                let climb = own.rate_ft_per_s.min(MAXDRATE_FT_S).max(CLMRT_FT_S);
-                let descend = own.rate_ft_per_s.max(-MAXDRATE_FT_S).min(-CLMRT_FT_S);
+                let climb = own.rate_ft_per_s.clamp(CLMRT_FT_S, MAXDRATE_FT_S);
+                let descend = own.rate_ft_per_s.clamp(-MAXDRATE_FT_S, -CLMRT_FT_S);
                 let worst = |sense: Sense, goal: f64| {
                     threats
                         .iter()

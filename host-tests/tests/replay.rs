@@ -213,7 +213,7 @@ fn check<S: Scalar, const ORDER: usize>(filter: FilterKind, numeric: Numeric, ga
                     // Printed in the representation's shortest round-trip form
                     // (f64, f32) or as a decimal of the Q32.32 value, which
                     // reads back within 10⁻¹⁰ relative.
-                    let tol = if S::NAME == "fixed" {
+                    let tol = if S::NAME == "q32" {
                         1e-10 * (1.0 + b.abs())
                     } else {
                         0.0

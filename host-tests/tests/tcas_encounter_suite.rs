@@ -167,6 +167,7 @@ fn noisy<S: Scalar>() -> Vec<(Encounter, NoiseCounts)> {
 ///   (the range one is only produced when r̈ exceeds its threshold, which
 ///   at a true r̈ below it selects the upward noise); at most 10 % of the
 ///   runs, none elsewhere.
+///
 /// Onsets that are not false lie within ±4 s of the reference's.
 fn noise_counts<S: Scalar>() {
     for (e, n) in noisy::<S>() {
