@@ -19,6 +19,24 @@
 use crate::filter::{check_interval, FilterError};
 use crate::num::Scalar;
 
+/// `a·b` and `a/b` out of line, for logic that runs once a second per
+/// intruder: Q32.32's 64×64-bit product and quotient, inlined at every use,
+/// would otherwise cost the Cortex-M0's flash (measured: the altitude
+/// tracker alone took 49 KiB in Q32.32 with the operators inlined). Used by
+/// this tracker and by `crate::tcas`.
+pub(crate) trait OutOfLine: Scalar {
+    #[inline(never)]
+    fn times(self, other: Self) -> Self {
+        self * other
+    }
+    #[inline(never)]
+    fn over(self, other: Self) -> Self {
+        self / other
+    }
+}
+
+impl<S: Scalar> OutOfLine for S {}
+
 /// Default nominal scan interval T, s (TCAS surveillance updates once a
 /// second; DO-185B `DT`).
 pub const DEFAULT_INTERVAL_S: f64 = 1.0;
@@ -293,6 +311,9 @@ pub struct AltitudeTracker<S> {
     saturations: u32,
 }
 
+// Not inlined: each call site would otherwise carry the f64-to-S
+// conversion (soft-float on the M0), which costs flash.
+#[inline(never)]
 fn c<S: Scalar>(v: f64) -> S {
     S::from_f64_lossy(v)
 }
@@ -449,13 +470,15 @@ impl<S: Scalar> AltitudeTracker<S> {
         }
         let elapsed = self.coasted_s + dt;
         if self.since_start_s + dt < c(RATE_SETTLING_S) {
-            return change.abs() <= c::<S>(CREDIBLE_INITIAL_RATE_FT_PER_S) * elapsed;
+            return change.abs() <= c::<S>(CREDIBLE_INITIAL_RATE_FT_PER_S).times(elapsed);
         }
-        let predicted_change = self.rate_ft_per_s * elapsed;
+        let predicted_change = self.rate_ft_per_s.times(elapsed);
         (change - predicted_change).abs()
             <= self.q()
-                + c::<S>(CREDIBLE_RATE_ERROR_FT_PER_S) * elapsed
-                + c::<S>(CREDIBLE_HALF_ACCELERATION_FT_PER_S2) * elapsed * elapsed
+                + c::<S>(CREDIBLE_RATE_ERROR_FT_PER_S).times(elapsed)
+                + c::<S>(CREDIBLE_HALF_ACCELERATION_FT_PER_S2)
+                    .times(elapsed)
+                    .times(elapsed)
     }
 
     fn coast(&mut self, dt: S) {
@@ -472,7 +495,7 @@ impl<S: Scalar> AltitudeTracker<S> {
         self.coasted_s = coasted;
         self.since_start_s = self.since_start_s + dt;
         self.since_transition_s = self.since_transition_s + dt;
-        self.altitude_ft = self.altitude_ft + self.rate_ft_per_s * dt;
+        self.altitude_ft = self.altitude_ft + self.rate_ft_per_s.times(dt);
         self.firmness = self.firmness.saturating_sub(1);
     }
 
@@ -498,7 +521,7 @@ impl<S: Scalar> AltitudeTracker<S> {
 
     /// The estimate stays inside the reported bin.
     fn clamp_to_bin(&mut self, z: S) {
-        let half = self.q() * c(0.5);
+        let half = self.q().times(c(0.5));
         self.altitude_ft = self.altitude_ft.max_of(z - half).min_of(z + half);
     }
 
@@ -530,7 +553,10 @@ impl<S: Scalar> AltitudeTracker<S> {
         self.rate_ft_per_s = S::ZERO;
         self.class = VerticalClass::Level;
         self.firmness = MAX_VERTICAL_FIRMNESS;
-        let outer = self.signed(self.q() / self.since_transition_s.max_of(self.config.interval));
+        let outer = self.signed(
+            self.q()
+                .over(self.since_transition_s.max_of(self.config.interval)),
+        );
         self.set_bounds(S::ZERO, outer);
     }
 
@@ -549,7 +575,7 @@ impl<S: Scalar> AltitudeTracker<S> {
             VerticalClass::New => {
                 self.altitude_ft = z;
                 self.rate_ft_per_s = S::ZERO;
-                let bound = q / self.since_start_s;
+                let bound = q.over(self.since_start_s);
                 self.set_bounds(-bound, bound);
                 self.occupancy_firmness();
             }
@@ -561,12 +587,12 @@ impl<S: Scalar> AltitudeTracker<S> {
                 }
             }
             VerticalClass::Guess => {
-                self.rate_ft_per_s = self.rate_ft_per_s * c(GUESS_DECAY);
-                self.altitude_ft = self.altitude_ft + self.rate_ft_per_s * dt;
+                self.rate_ft_per_s = self.rate_ft_per_s.times(c(GUESS_DECAY));
+                self.altitude_ft = self.altitude_ft + self.rate_ft_per_s.times(dt);
                 let outer = if self.since_start_s > c(RATE_SETTLING_S) {
-                    (q / since).min_of(c(LIKELY_RATE_FT_PER_S))
+                    q.over(since).min_of(c(LIKELY_RATE_FT_PER_S))
                 } else {
-                    q / since
+                    q.over(since)
                 };
                 let outer = self.signed(outer);
                 self.set_bounds(S::ZERO, outer);
@@ -580,27 +606,27 @@ impl<S: Scalar> AltitudeTracker<S> {
                 } else if overdue > c(LATE_SLACK_S) {
                     // No transition when due: the rate that would just have
                     // missed it, tapering to zero at LATELEVEL.
-                    let half_t = t * c(0.5);
-                    let taper = (late_level + half_t - overdue) / (late_level + half_t);
-                    self.rate_ft_per_s = self.signed(q / (since + t) * taper);
+                    let half_t = t.times(c(0.5));
+                    let taper = (late_level + half_t - overdue).over(late_level + half_t);
+                    self.rate_ft_per_s = self.signed(q.over(since + t).times(taper));
                     self.bins_in_rate = self.bins_in_rate.saturating_sub(1).max(1);
-                    self.altitude_ft = z + self.signed(q * c(0.5));
-                    self.set_bounds(S::ZERO, self.signed(q / since));
+                    self.altitude_ft = z + self.signed(q.times(c(0.5)));
+                    self.set_bounds(S::ZERO, self.signed(q.over(since)));
                     self.firmness = if overdue > c(OVERDUE_S) {
                         self.firmness.saturating_add(1).min(2)
                     } else {
                         1
                     };
                 } else {
-                    let predicted = self.altitude_ft + self.rate_ft_per_s * dt;
-                    let half = q * c(0.5);
+                    let predicted = self.altitude_ft + self.rate_ft_per_s.times(dt);
+                    let half = q.times(c(0.5));
                     if predicted > z + half || predicted < z - half {
                         // Ahead of the reports: hold the estimate at the bin
                         // edge and take the difference out of the rate.
                         self.altitude_ft = z + self.signed(half);
                         let error = self.altitude_ft - predicted;
                         self.rate_ft_per_s =
-                            self.rate_ft_per_s + error / since.max_of(c(MIN_CORRECTION_TIME_S));
+                            self.rate_ft_per_s + error.over(since.max_of(c(MIN_CORRECTION_TIME_S)));
                         self.bins_in_rate = self.bins_in_rate.saturating_sub(1).max(1);
                         if error.abs() > c(PREDICTION_ERROR_FT) {
                             self.firmness = 1;
@@ -618,9 +644,9 @@ impl<S: Scalar> AltitudeTracker<S> {
     fn transition(&mut self, z: S, change: S, dt: S, since_report: S) -> bool {
         let q = self.q();
         let sign: i8 = if change > S::ZERO { 1 } else { -1 };
-        let bins = bins_of(change.abs() / q);
+        let bins = bins_of(change.abs().over(q));
         let bins_s = c::<S>(f64::from(bins));
-        let time_per_bin = self.since_transition_s / bins_s;
+        let time_per_bin = self.since_transition_s.over(bins_s);
         let same_direction = self.direction == sign;
         let mut keep = true;
         match self.class {
@@ -636,7 +662,7 @@ impl<S: Scalar> AltitudeTracker<S> {
             }
             VerticalClass::Oscillating => {
                 let qs = if sign > 0 { q } else { -q };
-                self.altitude_ft = z - qs / c(3.0);
+                self.altitude_ft = z - qs.over(c(3.0));
                 self.firmness = MAX_VERTICAL_FIRMNESS;
             }
             VerticalClass::Trend if same_direction => {
@@ -645,10 +671,10 @@ impl<S: Scalar> AltitudeTracker<S> {
             VerticalClass::Trend if bins > 1 => self.start_guess(z, change, sign, since_report),
             VerticalClass::Trend => {
                 if self.bin_time_s > S::ZERO
-                    && time_per_bin <= c::<S>(REVERSAL_JITTER) * self.bin_time_s
+                    && time_per_bin <= c::<S>(REVERSAL_JITTER).times(self.bin_time_s)
                 {
                     // Right after a transition: jitter at the boundary.
-                    self.altitude_ft = self.altitude_ft + self.rate_ft_per_s * dt;
+                    self.altitude_ft = self.altitude_ft + self.rate_ft_per_s.times(dt);
                     self.firmness = 0;
                     keep = false;
                 } else {
@@ -670,21 +696,21 @@ impl<S: Scalar> AltitudeTracker<S> {
         let t = self.config.interval;
         // After a long gap over several bins the change itself is a rate.
         self.rate_ft_per_s = if since_report > c(LONG_COAST_S) && change.abs() > q {
-            (change - qs) / since_report
+            (change - qs).over(since_report)
         } else if sign > 0 {
             c(GUESS_RATE_FT_PER_S)
         } else {
             -c::<S>(GUESS_RATE_FT_PER_S)
         };
         let outer = if self.since_start_s < c(RATE_SETTLING_S) {
-            (change + qs) / self.since_start_s
+            (change + qs).over(self.since_start_s)
         } else if sign > 0 {
             c(LIKELY_RATE_FT_PER_S)
         } else {
             -c::<S>(LIKELY_RATE_FT_PER_S)
         };
         self.set_bounds(S::ZERO, outer);
-        self.altitude_ft = z - qs * c(0.5) + self.rate_ft_per_s * t * c(0.5);
+        self.altitude_ft = z - qs.times(c(0.5)) + self.rate_ft_per_s.times(t).times(c(0.5));
         self.firmness = 0;
         self.class = VerticalClass::Guess;
     }
@@ -692,7 +718,7 @@ impl<S: Scalar> AltitudeTracker<S> {
     /// DO-185B `oscil_track_init`.
     fn start_oscillation(&mut self, z: S, sign: i8) {
         let qs = if sign > 0 { self.q() } else { -self.q() };
-        self.altitude_ft = z - qs / c(3.0);
+        self.altitude_ft = z - qs.over(c(3.0));
         self.rate_ft_per_s = S::ZERO;
         self.firmness = 2;
         self.set_bounds(S::ZERO, S::ZERO);
@@ -711,9 +737,9 @@ impl<S: Scalar> AltitudeTracker<S> {
         } else {
             time_per_bin.max_of(c(MIN_FIRST_BIN_S))
         };
-        self.rate_ft_per_s = qs / self.bin_time_s;
+        self.rate_ft_per_s = qs.over(self.bin_time_s);
         self.altitude_ft = if self.bin_time_s > S::ONE {
-            z - qs * c(0.5) + self.rate_ft_per_s * t * c(0.5)
+            z - qs.times(c(0.5)) + self.rate_ft_per_s.times(t).times(c(0.5))
         } else {
             z
         };
@@ -723,12 +749,15 @@ impl<S: Scalar> AltitudeTracker<S> {
             self.firmness = 2;
             let outer_time = (since - t).max_of(t);
             self.set_bounds(
-                change / (since + t),
-                c::<S>(RATE_BOUND_MARGIN) * change / outer_time,
+                change.over(since + t),
+                c::<S>(RATE_BOUND_MARGIN).times(change).over(outer_time),
             );
         } else {
             self.firmness = 1;
-            self.set_bounds(change / (c::<S>(MIN_TREND_S) + t), (change + qs) / since);
+            self.set_bounds(
+                change.over(c::<S>(MIN_TREND_S) + t),
+                (change + qs).over(since),
+            );
         }
         self.class = VerticalClass::Trend;
     }
@@ -757,11 +786,11 @@ impl<S: Scalar> AltitudeTracker<S> {
         if self.alpha_beta {
             let (alpha, beta) = ALPHA_BETA_GAINS;
             let previous = self.altitude_ft;
-            let predicted = previous + self.rate_ft_per_s * dt;
+            let predicted = previous + self.rate_ft_per_s.times(dt);
             let residual = z - predicted;
-            self.altitude_ft = predicted + c::<S>(alpha) * residual;
-            self.rate_ft_per_s = self.rate_ft_per_s + c::<S>(beta) * residual / dt;
-            let after = z - (previous + self.rate_ft_per_s * dt);
+            self.altitude_ft = predicted + c::<S>(alpha).times(residual);
+            self.rate_ft_per_s = self.rate_ft_per_s + c::<S>(beta).times(residual).over(dt);
+            let after = z - (previous + self.rate_ft_per_s.times(dt));
             if after.abs() >= c(self.config.quantum.residual_threshold_ft()) {
                 self.firmness = self.firmness.saturating_sub(2);
                 self.bins_in_rate = self.bins_in_rate.saturating_sub(1).max(3);
@@ -770,19 +799,19 @@ impl<S: Scalar> AltitudeTracker<S> {
                 self.bins_in_rate = self.bins_in_rate.saturating_add(bins).min(MAX_BINS);
             }
             if self.rate_ft_per_s != S::ZERO {
-                self.bin_time_s = (q / self.rate_ft_per_s).abs();
+                self.bin_time_s = q.over(self.rate_ft_per_s).abs();
             }
             // Bounds: the measured rate ± half a bin per averaged bin.
             let n = c::<S>(f64::from(self.bins_in_rate.max(1)));
             let half = c::<S>(0.5);
             self.set_bounds(
-                self.rate_ft_per_s * (n - half) / n,
-                self.rate_ft_per_s * (n + half) / n,
+                self.rate_ft_per_s.times(n - half).over(n),
+                self.rate_ft_per_s.times(n + half).over(n),
             );
             return;
         }
         // Bin occupancy: average the time per bin.
-        let late = since - previous_bin_time * bins_s;
+        let late = since - previous_bin_time.times(bins_s);
         let restart_bins = if time_per_bin > c(MIN_TREND_S) {
             bins
         } else {
@@ -792,16 +821,16 @@ impl<S: Scalar> AltitudeTracker<S> {
             self.bins_in_rate = restart_bins;
             self.lateness_s = S::ZERO;
         } else {
-            self.lateness_s = c::<S>(LATENESS_MEMORY) * self.lateness_s + late;
+            self.lateness_s = c::<S>(LATENESS_MEMORY).times(self.lateness_s) + late;
             if self.lateness_s.abs() <= c(SLIGHTLY_OFF_S) {
                 let max_time = c::<S>(MAX_RATE_TIME_S);
-                if time_per_bin * c(2.0) >= max_time {
+                if time_per_bin.times(c(2.0)) >= max_time {
                     self.bins_in_rate = 1;
                 } else {
                     // The most bins whose time fits in MAXZDTIME.
                     let mut most = 1u8;
                     for n in 2..=MAX_BINS {
-                        if c::<S>(f64::from(n)) * time_per_bin <= max_time {
+                        if c::<S>(f64::from(n)).times(time_per_bin) <= max_time {
                             most = n;
                         }
                     }
@@ -809,16 +838,18 @@ impl<S: Scalar> AltitudeTracker<S> {
                 }
             } else {
                 self.bins_in_rate = restart_bins;
-                self.lateness_s = self.lateness_s * c(LATENESS_DECAY);
+                self.lateness_s = self.lateness_s.times(c(LATENESS_DECAY));
             }
         }
-        let weight = bins_s / c::<S>(f64::from(self.bins_in_rate.max(1)));
-        self.bin_time_s =
-            previous_bin_time + weight.min_of(S::ONE) * (time_per_bin - previous_bin_time);
-        self.rate_ft_per_s = sign_q / self.bin_time_s;
-        self.altitude_ft = self.altitude_ft + self.rate_ft_per_s * dt;
+        let weight = bins_s.over(c::<S>(f64::from(self.bins_in_rate.max(1))));
+        self.bin_time_s = previous_bin_time
+            + weight
+                .min_of(S::ONE)
+                .times(time_per_bin - previous_bin_time);
+        self.rate_ft_per_s = sign_q.over(self.bin_time_s);
+        self.altitude_ft = self.altitude_ft + self.rate_ft_per_s.times(dt);
         // Firmness from how regular the bin crossings are.
-        let ratio = time_per_bin / previous_bin_time;
+        let ratio = time_per_bin.over(previous_bin_time);
         self.firmness = [3u8, 2, 1]
             .iter()
             .zip(BIN_RATIO_FIRMNESS.iter())
@@ -842,18 +873,22 @@ impl<S: Scalar> AltitudeTracker<S> {
         // Rate bounds: ± one scan of timing over the averaged bins when the
         // crossings are regular; wider otherwise.
         if self.firmness == MAX_VERTICAL_FIRMNESS || late.abs() < c(out2) {
-            let span = c::<S>(f64::from(self.bins_in_rate)) * since;
+            let span = c::<S>(f64::from(self.bins_in_rate)).times(since);
             self.set_bounds(
-                self.rate_ft_per_s * (span - t) / span,
-                self.rate_ft_per_s * (span + t) / span,
+                self.rate_ft_per_s.times(span - t).over(span),
+                self.rate_ft_per_s.times(span + t).over(span),
             );
         } else if ratio < S::ONE {
             self.set_bounds(
-                sign_q / previous_bin_time,
-                c::<S>(RATE_BOUND_MARGIN) * change / (since - t).max_of(t),
+                sign_q.over(previous_bin_time),
+                c::<S>(RATE_BOUND_MARGIN)
+                    .times(change)
+                    .over((since - t).max_of(t)),
             );
         } else {
-            let outer = (q / time_per_bin).max_of(self.bounds.highest_ft_per_s.abs());
+            let outer = q
+                .over(time_per_bin)
+                .max_of(self.bounds.highest_ft_per_s.abs());
             self.set_bounds(S::ZERO, self.signed(outer));
         }
     }

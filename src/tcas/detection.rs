@@ -13,7 +13,7 @@ use super::{
     Advisory, TcasError, METRES_PER_FOOT, METRES_PER_NAUTICAL_MILE, PROXIMATE_ALTITUDE_FT,
     PROXIMATE_RANGE_NM,
 };
-use crate::filter::altitude::AltitudeEstimate;
+use crate::filter::altitude::{AltitudeEstimate, OutOfLine};
 use crate::num::Scalar;
 
 /// Range rate above which an intruder counts as diverging, and the floor
@@ -63,6 +63,9 @@ pub const TAU_CAP_LIMIT_S: f64 = 60.0;
 /// Least vertical firmness for a new RA (DO-185B `MINFIRM`).
 pub const MIN_RA_VERTICAL_FIRMNESS: u8 = 2;
 
+// Not inlined: each call site would otherwise carry the f64-to-S
+// conversion (soft-float on the M0), which costs flash.
+#[inline(never)]
 fn c<S: Scalar>(v: f64) -> S {
     S::from_f64_lossy(v)
 }
@@ -116,22 +119,22 @@ fn diverging<S: Scalar>(range_rate_m_per_s: S) -> bool {
 ///   RAs also need r ≤ 12 NM (`max_range_m`).
 fn range_hit<S: Scalar>(r: S, rdot: S, t: &Thresholds<S>, max_range_m: Option<S>) -> bool {
     if diverging(rdot) {
-        return r <= t.dmod_m && r * rdot <= t.h1_m2_per_s;
+        return r <= t.dmod_m && r.times(rdot) <= t.h1_m2_per_s;
     }
     if max_range_m.is_some_and(|max| r > max) {
         return false;
     }
-    r <= t.dmod_m || r - t.dmod_m * (t.dmod_m / r) < t.tau_s * closure(rdot)
+    r <= t.dmod_m || r - t.dmod_m.times(t.dmod_m.over(r)) < t.tau_s.times(closure(rdot))
 }
 
 /// min(r/closure, cap): the true range tau, capped so the quotient stays
 /// bounded.
 fn capped_range_tau<S: Scalar>(r: S, rdot: S, cap_s: S) -> S {
     let closure = closure(rdot);
-    if r >= cap_s * closure {
+    if r >= cap_s.times(closure) {
         cap_s
     } else {
-        r / closure
+        r.over(closure)
     }
 }
 
@@ -140,12 +143,12 @@ fn capped_modified_tau<S: Scalar>(r: S, rdot: S, dmod_m: S, cap_s: S) -> S {
     if r <= dmod_m {
         return S::ZERO;
     }
-    let excess = r - dmod_m * (dmod_m / r);
+    let excess = r - dmod_m.times(dmod_m.over(r));
     let closure = closure(rdot);
-    if excess >= cap_s * closure {
+    if excess >= cap_s.times(closure) {
         cap_s
     } else {
-        excess / closure
+        excess.over(closure)
     }
 }
 
@@ -157,8 +160,8 @@ fn vertical_miss_distance<S: Scalar>(h: S, hdot: S, r: S, rdot: S, dmod_m: S, ca
     if rdot > S::ZERO {
         return h;
     }
-    let at_true = h + hdot * capped_range_tau(r, rdot, cap_s);
-    let at_modified = h + hdot * capped_modified_tau(r, rdot, dmod_m, cap_s);
+    let at_true = h + hdot.times(capped_range_tau(r, rdot, cap_s));
+    let at_modified = h + hdot.times(capped_modified_tau(r, rdot, dmod_m, cap_s));
     let straddle = (at_true <= S::ZERO && at_modified >= S::ZERO)
         || (at_true >= S::ZERO && at_modified <= S::ZERO);
     if straddle {
@@ -185,7 +188,7 @@ fn separation_rate<S: Scalar>(h: S, hdot: S) -> S {
 fn ra_vertical_tau<S: Scalar>(own_rate: S, intruder_rate: S, level_tau: S, tau: S) -> S {
     let level = c::<S>(LEVEL_OWN_RATE_FT_PER_S);
     let same_way_slower =
-        own_rate * intruder_rate >= S::ZERO && own_rate.abs() < intruder_rate.abs();
+        own_rate.times(intruder_rate) >= S::ZERO && own_rate.abs() < intruder_rate.abs();
     if own_rate.abs() <= level || same_way_slower {
         level_tau
     } else {
@@ -224,7 +227,8 @@ fn ra_vertical_hit<S: Scalar>(
         return false;
     }
     let closing = -adot;
-    a < vertical_tau_threshold * closing && (vmd.abs() < zthr || a * closure(rdot) < r * closing)
+    a < vertical_tau_threshold.times(closing)
+        && (vmd.abs() < zthr || a.times(closure(rdot)) < r.times(closing))
 }
 
 /// The TA vertical test (DAIDALUS `TCAS3D::vertical_RA` with the TA table;
@@ -235,7 +239,7 @@ fn ta_vertical_hit<S: Scalar>(h: S, hdot: S, zthr: S, tau: S) -> bool {
         return true;
     }
     let adot = separation_rate(h, hdot);
-    adot < c(VERTICAL_CONVERGENCE_FT_PER_S) && a < tau * (-adot)
+    adot < c(VERTICAL_CONVERGENCE_FT_PER_S) && a < tau.times(-adot)
 }
 
 /// The horizontal miss-distance filter's state for one intruder (DO-185B
@@ -263,7 +267,7 @@ impl MissDistanceFilter {
     ) -> Option<S> {
         let from_range = range.miss_distance_m();
         let bearing_disagrees = match (from_range, bearing_miss_distance_m) {
-            (Some(r), Some(b)) => c::<S>(BEARING_CROSS_CHECK_RATIO) * b < r,
+            (Some(r), Some(b)) => c::<S>(BEARING_CROSS_CHECK_RATIO).times(b) < r,
             _ => false,
         };
         let manoeuvre = range.initialised
@@ -296,7 +300,7 @@ impl MissDistanceFilter {
             return false;
         }
         let threshold = if continuing {
-            c::<S>(CONTINUING_HMD_DMOD_FACTOR) * dmod_m
+            c::<S>(CONTINUING_HMD_DMOD_FACTOR).times(dmod_m)
         } else {
             new_threshold_m
         };

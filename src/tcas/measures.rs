@@ -3,6 +3,7 @@
 //! `TCAS2D.cpp` `tau_mod`), computed without squares of ranges.
 
 use super::{TcasError, CLOSURE_RATE_FLOOR_M_PER_S};
+use crate::filter::altitude::OutOfLine;
 use crate::num::{hypot, Scalar};
 
 /// Closure speed for the taus: max(−ṙ, floor), or `None` when diverging.
@@ -40,7 +41,7 @@ pub fn range_tau<S: Scalar>(range_m: S, range_rate_m_per_s: S) -> Result<Option<
     }
     match floored_closure(range_rate_m_per_s) {
         None => Ok(None),
-        Some(closure) => valid_result(range_m / closure).map(Some),
+        Some(closure) => valid_result(range_m.over(closure)).map(Some),
     }
 }
 
@@ -62,7 +63,9 @@ pub fn modified_tau<S: Scalar>(
     match floored_closure(range_rate_m_per_s) {
         None => Ok(None),
         // r > DMOD ≥ 0, so the division by r is safe and r − DMOD²/r > 0.
-        Some(closure) => valid_result((range_m - dmod_m * (dmod_m / range_m)) / closure).map(Some),
+        Some(closure) => {
+            valid_result((range_m - dmod_m.times(dmod_m.over(range_m))).over(closure)).map(Some)
+        }
     }
 }
 
@@ -98,9 +101,9 @@ pub fn closest_approach<S: Scalar>(
         }));
     }
     // Unit vectors: every product below is bounded by 1.
-    let (ux, uy) = (px / range, py / range);
-    let (wx, wy) = (vx / speed, vy / speed);
-    let cos = ux * wx + uy * wy;
+    let (ux, uy) = (px.over(range), py.over(range));
+    let (wx, wy) = (vx.over(speed), vy.over(speed));
+    let cos = ux.times(wx) + uy.times(wy);
     if cos >= S::ZERO {
         // Opening (or tangential): the closest approach is now.
         return Ok(Some(ClosestApproach {
@@ -109,12 +112,12 @@ pub fn closest_approach<S: Scalar>(
         }));
     }
     // t = −(p·v)/|v|² = −cos θ · r/|v|; d = r·|sin θ|.
-    let time = -cos * (range / speed);
+    let time = (-cos).times(range.over(speed));
     if !time.is_valid() {
         return Ok(None);
     }
-    let sin = ux * wy - uy * wx;
-    let distance = valid_result(range * sin.abs())?;
+    let sin = ux.times(wy) - uy.times(wx);
+    let distance = valid_result(range.times(sin.abs()))?;
     Ok(Some(ClosestApproach {
         time_s: time,
         distance_m: distance,
@@ -137,7 +140,7 @@ pub fn vertical_tau<S: Scalar>(
     if !converging(h, hdot) {
         return Ok(None);
     }
-    let tau = -h / hdot;
+    let tau = (-h).over(hdot);
     Ok(if tau.is_valid() { Some(tau) } else { None })
 }
 
@@ -160,7 +163,7 @@ pub fn line_miss_distance<S: Scalar>(position_m: [S; 2], velocity_m_per_s: [S; 2
     if speed == S::ZERO || range == S::ZERO {
         return Some(range);
     }
-    let sin = (px / range) * (vy / speed) - (py / range) * (vx / speed);
-    let d = range * sin.abs();
+    let sin = px.over(range).times(vy.over(speed)) - py.over(range).times(vx.over(speed));
+    let d = range.times(sin.abs());
     d.is_valid().then_some(d)
 }

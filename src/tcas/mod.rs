@@ -34,7 +34,7 @@
 //! [`assess`] is the stateless assessment of a relative state vector (no
 //! firmness, no hysteresis), for tools and the scan loop of issue 4.
 
-use crate::filter::altitude::AltitudeEstimate;
+use crate::filter::altitude::{AltitudeEstimate, OutOfLine};
 use crate::filter::range_azimuth::{hypot, RangeAzimuthFilter};
 use crate::num::Scalar;
 
@@ -200,7 +200,7 @@ pub fn assess<S: Scalar>(
     let range_rate = if range == S::ZERO {
         S::ZERO
     } else {
-        measures::valid_result((px / range) * vx + (py / range) * vy)?
+        measures::valid_result(px.over(range).times(vx) + py.over(range).times(vy))?
     };
     let closest = closest_approach(
         intruder.relative_position_m,

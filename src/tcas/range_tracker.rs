@@ -25,6 +25,7 @@
 //! the miss distance d = r·√(r r̈/(r r̈ + ṙ²)) and the along-track distance
 //! y = r ṙ/v, and r' = hypot(d, y + vT).
 
+use crate::filter::altitude::OutOfLine;
 use crate::filter::{check_interval, FilterError, Phase};
 use crate::gain::tcas::{FIRMNESS_ALPHA, FIRMNESS_BETA, FIRMNESS_GAMMA, MAX_FIRMNESS};
 use crate::num::{hypot, Scalar};
@@ -81,10 +82,10 @@ impl<S: Scalar> RangeEstimate<S> {
         {
             return None;
         }
-        let x = self.range_m * self.range_acceleration_m_per_s2;
+        let x = self.range_m.times(self.range_acceleration_m_per_s2);
         let rate = self.range_rate_m_per_s;
-        let ratio = x / (x + rate * rate);
-        let hmd = self.range_m * ratio.sqrt();
+        let ratio = x.over(x + rate.times(rate));
+        let hmd = self.range_m.times(ratio.sqrt());
         if hmd.is_valid() {
             Some(hmd)
         } else {
@@ -166,7 +167,7 @@ impl<S: Scalar> RangeTracker<S> {
         let nominal = nominal_residual_variance::<S>();
         let threshold = S::from_f64_lossy(ACCELERATION_THRESHOLD_FT_PER_S2 * METRES_PER_FOOT);
         // max(ACCTHR, ACCTHR·σ/σ_n) = ACCTHR·max(1, √(ms/σ_n²)).
-        let scale = (self.residual_mean_square_m2 / nominal)
+        let scale = (self.residual_mean_square_m2.over(nominal))
             .sqrt()
             .max_of(S::ONE);
         Some(RangeEstimate {
@@ -175,7 +176,7 @@ impl<S: Scalar> RangeTracker<S> {
             range_acceleration_m_per_s2: self.range_acceleration_m_per_s2,
             firmness: self.firmness,
             initialised: self.initialised,
-            acceleration_threshold_m_per_s2: threshold * scale,
+            acceleration_threshold_m_per_s2: threshold.times(scale),
         })
     }
 
@@ -189,25 +190,25 @@ impl<S: Scalar> RangeTracker<S> {
             self.range_acceleration_m_per_s2,
         );
         if self.initialised && acc > S::ZERO && r > S::ZERO {
-            let x = r * acc;
-            let speed_squared = x + rate * rate;
+            let x = r.times(acc);
+            let speed_squared = x + rate.times(rate);
             let speed = speed_squared.sqrt();
-            let miss = r * (x / speed_squared).sqrt();
-            let along = r * (rate / speed) + speed * dt;
+            let miss = r.times(x.over(speed_squared).sqrt());
+            let along = r.times(rate.over(speed)) + speed.times(dt);
             let range = hypot(miss, along);
             if range > S::ONE {
-                let k = (miss / range) * speed;
+                let k = miss.over(range).times(speed);
                 return Predicted {
                     range,
-                    rate: along * (speed / range),
-                    acceleration: k * k / range,
+                    rate: along.times(speed.over(range)),
+                    acceleration: k.times(k).over(range),
                 };
             }
         }
         let half = S::from_f64_lossy(0.5);
         Predicted {
-            range: r + rate * dt + half * acc * dt * dt,
-            rate: rate + acc * dt,
+            range: r + rate.times(dt) + half.times(acc).times(dt).times(dt),
+            rate: rate + acc.times(dt),
             acceleration: acc,
         }
     }
@@ -231,7 +232,7 @@ impl<S: Scalar> RangeTracker<S> {
             Phase::OnePoint => {
                 // Entry 1 (α = β = 1): two-point initialisation.
                 next.phase = Phase::Tracking;
-                next.range_rate_m_per_s = (range_m - self.range_m) / (self.since_first_s + dt);
+                next.range_rate_m_per_s = (range_m - self.range_m).over(self.since_first_s + dt);
                 next.range_m = range_m;
                 next.range_acceleration_m_per_s2 = S::ZERO;
                 next.firmness = 1;
@@ -242,11 +243,11 @@ impl<S: Scalar> RangeTracker<S> {
                 let (alpha, beta, gamma) = table_gains::<S>(firmness.max(1))?;
                 let p = self.predict(dt);
                 let e = range_m - p.range;
-                next.range_m = p.range + alpha * e;
-                next.range_rate_m_per_s = p.rate + beta * e / dt;
+                next.range_m = p.range + alpha.times(e);
+                next.range_rate_m_per_s = p.rate + beta.times(e).over(dt);
                 // DO-185B holds r̈ at zero until the track is initialised.
                 next.range_acceleration_m_per_s2 = if initialised {
-                    p.acceleration + gamma * e / (dt * dt)
+                    p.acceleration + gamma.times(e).over(dt.times(dt))
                 } else {
                     S::ZERO
                 };
@@ -255,7 +256,7 @@ impl<S: Scalar> RangeTracker<S> {
                     let e = e.max_of(-clip).min_of(clip);
                     let w = S::from_f64_lossy(RESIDUAL_SMOOTHING);
                     next.residual_mean_square_m2 =
-                        w * e * e + (S::ONE - w) * self.residual_mean_square_m2;
+                        w.times(e).times(e) + (S::ONE - w).times(self.residual_mean_square_m2);
                 }
                 next.firmness = firmness;
                 next.initialised = initialised;

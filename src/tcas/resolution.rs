@@ -14,6 +14,7 @@
 use super::detection::{Cycle, ThreatGeometry};
 use super::measures::all_valid;
 use super::TcasError;
+use crate::filter::altitude::OutOfLine;
 use crate::num::Scalar;
 
 /// Pilot response delay to an initial RA, s (DO-185B `TV1`).
@@ -49,6 +50,9 @@ pub const INCREASE_DESCENT_INHIBIT_FT: (f64, f64) = (1450.0, 1650.0);
 /// booklet 500 ± 100).
 pub const AURAL_INHIBIT_FT: (f64, f64) = (400.0, 600.0);
 
+// Not inlined: each call site would otherwise carry the f64-to-S
+// conversion (soft-float on the M0), which costs flash.
+#[inline(never)]
 fn c<S: Scalar>(v: f64) -> S {
     S::from_f64_lossy(v)
 }
@@ -195,13 +199,13 @@ impl LowAltitudeInhibits {
 /// `delay` s and then accelerates at `accel` to `goal` (DO-185B
 /// `project_vertical_given_zdgoal`).
 fn project_own<S: Scalar>(t: S, z: S, rate: S, goal: S, delay: S, accel: S) -> S {
-    let to_goal = (goal - rate).abs() / accel;
+    let to_goal = (goal - rate).abs().over(accel);
     let accelerating = (t - delay).max_of(S::ZERO).min_of(to_goal);
     let at_goal = (t - delay - to_goal).max_of(S::ZERO);
     let signed_accel = if goal >= rate { accel } else { -accel };
-    z + rate * delay.min_of(t)
-        + (rate + c::<S>(0.5) * signed_accel * accelerating) * accelerating
-        + goal * at_goal
+    z + rate.times(delay.min_of(t))
+        + (rate + c::<S>(0.5).times(signed_accel).times(accelerating)).times(accelerating)
+        + goal.times(at_goal)
 }
 
 /// A modelled manoeuvre of the own aircraft.
@@ -224,7 +228,8 @@ fn modelled_separation<S: Scalar>(
 ) -> S {
     let at = |t: S| {
         let own = project_own(t, own_altitude, own_rate, m.goal, m.delay, m.accel);
-        let intruder = threat.intruder.altitude_ft + threat.intruder.vertical_rate_ft_per_s * t;
+        let intruder =
+            threat.intruder.altitude_ft + threat.intruder.vertical_rate_ft_per_s.times(t);
         match sense {
             RaSense::Up => own - intruder,
             RaSense::Down => intruder - own,

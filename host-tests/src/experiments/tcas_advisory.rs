@@ -90,6 +90,8 @@ pub const FILES: &[&str] = &[
     "encounters_noise.md",
     "altitude_tracker.csv",
     "altitude_tracker.md",
+    "range_acceleration.csv",
+    "range_acceleration.md",
     "tau_vs_time.svg",
     "tau_mod_vs_time.svg",
     "d_cpa_vs_time.svg",

@@ -20,18 +20,6 @@ use crate::reference_tcas::Sense;
 /// Documented noisy runs per encounter and type.
 pub const RUNS: usize = 100;
 
-/// Files this part writes.
-pub const FILES: &[&str] = &[
-    "encounters_exact.csv",
-    "encounters_exact.md",
-    "encounters_noise.csv",
-    "encounters_noise.md",
-    "altitude_tracker.csv",
-    "altitude_tracker.md",
-    "range_acceleration.csv",
-    "range_acceleration.md",
-];
-
 /// The range acceleration of the `offset-beyond-hmd` pass (exact ranges)
 /// from the library's range tracker (straight-path prediction) and from a
 /// parabolic-prediction tracker with the same firmness gains (abtrack's
