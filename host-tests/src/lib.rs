@@ -9,8 +9,9 @@
 //! * [`scenario`], [`noise`]: the papers' scenarios and measurement noise.
 //! * [`kalman`]: the Kalman-filter baselines; [`metrics`]: RMSE, confidence
 //!   intervals, OSPA and track metrics.
-//! * [`csv_input`], [`replay`], [`cli`]: the `replay` tool's CSV reader,
-//!   runner and command line.
+//! * [`csv_input`], [`replay`], [`replay_tracker`], [`cli`]: the `replay`
+//!   tool's CSV reader, runners and command line; [`output`]: stdout for the
+//!   tools (a closed pipe ends them quietly).
 //! * [`precision`]: runs a representation next to the reference and measures
 //!   the deviation and the run's magnitudes; the documented runs.
 //! * [`tracking`]: runs the track table over the multi-target scenarios for
@@ -30,6 +31,7 @@ pub mod frames;
 pub mod kalman;
 pub mod metrics;
 pub mod noise;
+pub mod output;
 pub mod precision;
 pub mod reference;
 pub mod reference_ra;

@@ -56,7 +56,7 @@ pub const GROUPS: &[Group] = &[
     },
     Group {
         name: tcas_advisory::NAME,
-        about: "TCAS: encounter suite vs the v7.1 reference, altitude tracker (issue 10); converging encounter (issue 4)",
+        about: "TCAS: encounter suite vs the v7.1 reference, altitude tracker; converging encounter: estimated vs true tau",
         run: tcas_advisory::run,
     },
 ];
