@@ -37,6 +37,8 @@
 //! * eq. (22), J_αβ: the cross term is `−v·a_s·T⁴/β²`, not `+`
 //!   ([`alpha_beta_transient_cost`]).
 //!
+//! Tenne & Singh's optimal design (§3, eqs. 23–35) is in [`optimal`].
+//!
 //! # Designing gains from sensor noise and manoeuvre level
 //!
 //! ```ignore
@@ -50,6 +52,8 @@
 //! then `gains.convert::<Fix>()` (or `f32`) for the filter on the target.
 
 use crate::filter::{GainError, Gains};
+
+pub mod optimal;
 
 /// Why a design formula refused its input.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -71,6 +75,12 @@ pub enum DesignError {
     Unstable(GainError),
     /// The result does not fit in a finite `f64`.
     Overflow,
+    /// An optimisation found no point where its cost is defined, or its
+    /// stationarity condition has no root in the formula's domain.
+    NoOptimum,
+    /// A printed formula gave a negative variance or sum of squares: it is
+    /// not a cost there (Tenne & Singh's misprinted eqs. 10, 16, 21).
+    Negative,
 }
 
 impl core::fmt::Display for DesignError {
@@ -84,6 +94,8 @@ impl core::fmt::Display for DesignError {
             }
             DesignError::Unstable(e) => write!(f, "gains are not stable: {e}"),
             DesignError::Overflow => f.write_str("result overflows f64"),
+            DesignError::NoOptimum => f.write_str("no optimum found in the stability region"),
+            DesignError::Negative => f.write_str("a printed variance or squared error is negative"),
         }
     }
 }
