@@ -15,6 +15,7 @@ pub mod liu;
 pub mod monte_carlo;
 pub mod multi_target;
 pub mod tcas_advisory;
+pub mod tenne_singh;
 
 use common::Context;
 
@@ -58,5 +59,10 @@ pub const GROUPS: &[Group] = &[
         name: tcas_advisory::NAME,
         about: "TCAS converging encounter: estimated vs true tau and advisory timeline (issue 4)",
         run: tcas_advisory::run,
+    },
+    Group {
+        name: tenne_singh::GROUP,
+        about: "Tenne & Singh s3: optimal gains (Figs. 1-2, eqs. 28-35) and the simulated worked example",
+        run: tenne_singh::run,
     },
 ];
