@@ -98,3 +98,115 @@ fn tenne_singh_closed_forms_optimiser_and_simulation() {
         );
     }
 }
+
+// ---------------------------------------------------------------------------
+// He et al. eq. (9) as printed
+
+use abtrack_host_tests::experiments::he_tcas::{self, HeTcasConfig, Method, Quantity, Window};
+use abtrack_host_tests::reference_ra::ReferenceRangeAzimuth;
+
+#[test]
+fn he_eq_9_as_printed_collapses_to_per_axis_gains() {
+    // Deterministic: with VAR in eq. 9, α = W1 and β/T = W2 at every scan.
+    let mut f = ReferenceRangeAzimuth::as_printed(100.0 * 100.0, 7.569e-3, 0.01);
+    let (mut r, mut b) = (280_000.0, 0.5236);
+    for k in 0..300 {
+        r -= 55.0 + 40.0 * ((k as f64) * 0.7).sin();
+        b += 1e-4 * ((k as f64) * 1.3).cos();
+        if let Some(step) = f.update(r, b, 1.0) {
+            assert!((step.alpha - step.w1).abs() <= 1e-15 * step.w1.abs());
+            assert!((step.beta - step.w2).abs() <= 1e-12 * step.w2.abs());
+        }
+    }
+    // Statistically: its position error is the per-axis αβ filter's (M2),
+    // and it is not better than the consistent reading.
+    let out = he_tcas::simulate(&HeTcasConfig {
+        numeric_types: false,
+        yardstick: false,
+        ..HeTcasConfig::with_runs(100)
+    })
+    .unwrap();
+    let printed = out.method(Method::RangeAzimuthEq9AsPrinted).unwrap();
+    let m2 = out.method(Method::AlphaBetaM2).unwrap();
+    let ra = out.method(Method::RangeAzimuthF64).unwrap();
+    for window in [Window::Overall, Window::Late] {
+        let (d, _) = he_tcas::paired(printed, m2, window, Quantity::Position).unwrap();
+        let scale = m2.ci(window, Quantity::Position).mean;
+        assert!(
+            d.lower() > -0.01 * scale && d.upper() < 0.01 * scale,
+            "{window:?}: {d:?} of {scale}"
+        );
+    }
+    let (d, _) = he_tcas::paired(printed, ra, Window::Overall, Quantity::Position).unwrap();
+    assert!(d.lower() > 0.0, "{d:?}");
+}
+
+// ---------------------------------------------------------------------------
+// Liu et al. 2.1.4, "the n scans before now"
+
+use abtrack_host_tests::experiments::liu::{self, LiuResidualReference};
+use abtrack_host_tests::experiments::monte_carlo::Scheduled;
+use abtrack_host_tests::experiments::monte_carlo::{compare, Estimator, Metric, Segment};
+use abtrack_host_tests::reference::LiuWindow;
+use abtrack_host_tests::scenario;
+
+#[test]
+fn liu_reference_reproduces_the_library_reading_exactly() {
+    // The reference with the current innovation included is the library's
+    // `liu-residual` (f64): same gains, same estimates, on a scenario run.
+    let run = scenario::generate("liu-turn", 7).unwrap();
+    let mut library = Scheduled::<f64>::from_spec("liu-residual").unwrap();
+    let mut reference = LiuResidualReference::new(LiuWindow::IncludingCurrent);
+    let mut before = LiuResidualReference::new(LiuWindow::ExcludingCurrent);
+    let mut differs = 0;
+    for scan in &run.scans {
+        let z = scan.measurements[0].position();
+        let a = library.step(z, 2.0).unwrap();
+        let b = reference.step(z, 2.0).unwrap();
+        let c = before.step(z, 2.0).unwrap();
+        for axis in 0..2 {
+            assert!((a.position[axis] - b.position[axis]).abs() < 1e-9);
+            assert!((a.velocity[axis] - b.velocity[axis]).abs() < 1e-9);
+        }
+        match (a.gains, b.gains) {
+            (Some(ga), Some(gb)) => {
+                for (x, y) in ga.iter().zip(&gb) {
+                    assert!((x.0 - y.0).abs() < 1e-12 && (x.1 - y.1).abs() < 1e-12);
+                }
+            }
+            (None, None) => {}
+            other => panic!("gains {other:?}"),
+        }
+        if b.gains != c.gains {
+            differs += 1;
+        }
+    }
+    // The two windows really differ (all but the first filtered scan).
+    assert_eq!(differs, run.scans.len() - 3);
+}
+
+#[test]
+fn liu_before_now_window_is_better_straight_and_worse_in_the_turn() {
+    let exp = liu::evaluate(Some(100)).unwrap();
+    let seg = liu::Segments::new(&exp);
+    let straight_fn = |k: usize| seg.straight(k);
+    let turn_fn = |k: usize| seg.turning(k);
+    let straight = Segment {
+        name: "straight",
+        contains: &straight_fn,
+    };
+    let turn = Segment {
+        name: "turn",
+        contains: &turn_fn,
+    };
+    let d = Metric::PositionDistance;
+    // Straight: the before-now window (current innovation left out) has the
+    // lower error; in the turn the current-included one does.
+    let c = compare(&exp, "", liu::RESIDUAL_BEFORE, liu::RESIDUAL, d, straight).unwrap();
+    assert!(c.difference.lower() > 0.0, "{}", c.describe());
+    let c = compare(&exp, "", liu::RESIDUAL, liu::RESIDUAL_BEFORE, d, turn).unwrap();
+    assert!(c.difference.lower() > 0.0, "{}", c.describe());
+    // In the turn it still beats the fixed gains by far (U3b, second part).
+    let c = compare(&exp, "", liu::RESIDUAL_BEFORE, liu::FIXED, d, turn).unwrap();
+    assert!(c.difference.lower() > 5.0, "{}", c.describe());
+}
