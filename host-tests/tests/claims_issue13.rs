@@ -109,7 +109,7 @@ use abtrack_host_tests::reference_ra::ReferenceRangeAzimuth;
 fn he_eq_9_as_printed_collapses_to_per_axis_gains() {
     // Deterministic: with VAR in eq. 9, α = W1 and β/T = W2 at every scan.
     let mut f = ReferenceRangeAzimuth::as_printed(100.0 * 100.0, 7.569e-3, 0.01);
-    let (mut r, mut b) = (280_000.0, 0.5236);
+    let (mut r, mut b) = (280_000.0, 0.52);
     for k in 0..300 {
         r -= 55.0 + 40.0 * ((k as f64) * 0.7).sin();
         b += 1e-4 * ((k as f64) * 1.3).cos();
