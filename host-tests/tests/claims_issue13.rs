@@ -210,3 +210,42 @@ fn liu_before_now_window_is_better_straight_and_worse_in_the_turn() {
     let c = compare(&exp, "", liu::RESIDUAL_BEFORE, liu::FIXED, d, turn).unwrap();
     assert!(c.difference.lower() > 5.0, "{}", c.describe());
 }
+
+// ---------------------------------------------------------------------------
+// Al-Wagih & Abdulla: which trajectory
+
+use abtrack_host_tests::experiments::alwagih::{PAPER_TABLE_1, PAPER_TABLE_2};
+use abtrack_host_tests::experiments::alwagih_trajectories::{
+    distance, evaluate, fit_threshold, paper_means, paper_methods, Trajectory, ALL_METHODS,
+    LINE_FIT_METHODS,
+};
+
+#[test]
+fn alwagih_tables_fit_a_constant_acceleration_only_in_the_m2_m3_columns() {
+    // The best fit of the committed search (results/alwagih/trajectories.md):
+    // a = (0.042, 0.085) m/s², σ = 45 m.
+    let methods = paper_methods().unwrap();
+    let table1 = paper_means(&PAPER_TABLE_1);
+    let ca = Trajectory::ConstantAcceleration {
+        ax: 0.0425,
+        ay: 0.085,
+    };
+    let cells = evaluate(&methods, &ca, 45.0, false, 40).unwrap();
+    let line_limit = fit_threshold(&PAPER_TABLE_1, &LINE_FIT_METHODS);
+    assert!(distance(&cells, &table1, &LINE_FIT_METHODS) <= line_limit);
+    // All ten cells: far outside (M1, M4, M5 do not follow).
+    assert!(
+        distance(&cells, &table1, &ALL_METHODS) > 3.0 * fit_threshold(&PAPER_TABLE_1, &ALL_METHODS)
+    );
+    // A constant-velocity target cannot give M2/M3's errors at any σ: M2 is the least-squares line there, its errors are equal in
+    // X and Y, and the paper's Y is about twice its X.
+    for sigma in [5.0, 10.0, 20.0, 45.0, 63.0, 90.0] {
+        let cv = evaluate(&methods, &Trajectory::ConstantVelocity, sigma, false, 20).unwrap();
+        assert!(
+            distance(&cv, &table1, &LINE_FIT_METHODS) > line_limit,
+            "σ = {sigma}"
+        );
+    }
+    // The thresholds are the paper's own scatter, not ours.
+    assert!(fit_threshold(&PAPER_TABLE_2, &ALL_METHODS) > 0.1);
+}

@@ -8,6 +8,7 @@
 //! the README's results section quotes the generated `summary.md` files.
 
 pub mod alwagih;
+pub mod alwagih_trajectories;
 pub mod common;
 pub mod he_tcas;
 pub mod li;
