@@ -379,20 +379,29 @@ impl RangeResidualVariant {
     }
 }
 
+/// Runs an f64 host filter over the measurements: `update` takes
+/// (R, B, dt) and returns the estimate (position, velocity) after it.
+fn track_host_f64(
+    meas: &[Polar],
+    mut update: impl FnMut(f64, f64, f64) -> ([f64; 2], [f64; 2]),
+) -> (Estimates, usize) {
+    let out = meas
+        .iter()
+        .map(|m| update(m.range, m.azimuth, m.dt))
+        .collect();
+    (out, 0)
+}
+
 fn track_range_residual_variant(meas: &[Polar], accel_sigma: f64) -> (Estimates, usize) {
     let mut f = RangeResidualVariant::new(
         RANGE_SIGMA_M * RANGE_SIGMA_M,
         HE_AZIMUTH_VARIANCE,
         accel_sigma * accel_sigma,
     );
-    let out = meas
-        .iter()
-        .map(|m| {
-            f.update(m.range, m.azimuth, m.dt);
-            (f.position(), f.velocity())
-        })
-        .collect();
-    (out, 0)
+    track_host_f64(meas, |r, b, dt| {
+        f.update(r, b, dt);
+        (f.position(), f.velocity())
+    })
 }
 
 /// He et al.'s filter with eq. (9) exactly as printed (the f64 reference,
@@ -403,14 +412,10 @@ fn track_eq9_as_printed(meas: &[Polar], accel_sigma: f64) -> (Estimates, usize) 
         HE_AZIMUTH_VARIANCE,
         accel_sigma * accel_sigma,
     );
-    let out = meas
-        .iter()
-        .map(|m| {
-            f.update(m.range, m.azimuth, m.dt);
-            ([f.x[0], f.y[0]], [f.x[1], f.y[1]])
-        })
-        .collect();
-    (out, 0)
+    track_host_f64(meas, |r, b, dt| {
+        f.update(r, b, dt);
+        ([f.x[0], f.y[0]], [f.x[1], f.y[1]])
+    })
 }
 
 /// Per-axis αβ on the converted measurements with the least-squares gains

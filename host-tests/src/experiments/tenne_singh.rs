@@ -91,6 +91,14 @@ pub struct Figure1Row {
     pub printed: Option<(f64, f64, f64, f64)>,
 }
 
+/// The αβγ optimum of the printed forms (eqs. 10, 16, 21) and the cost it
+/// really has; `None` if the printed cost has no minimum.
+fn printed_optimum(m: &Manoeuvre, p: &Penalty) -> Option<(f64, f64, f64, f64)> {
+    let o = minimise_alpha_beta_gamma(m, p, Forms::AsPrinted).ok()?;
+    let c = alpha_beta_gamma_cost(m, p, Forms::Consistent, o.alpha, o.beta, o.gamma).ok()?;
+    Some((o.alpha, o.beta, o.gamma, c.total()))
+}
+
 pub fn figure1(kappas: &[f64]) -> Result<Vec<Figure1Row>, String> {
     let m = circle();
     kappas
@@ -99,13 +107,7 @@ pub fn figure1(kappas: &[f64]) -> Result<Vec<Figure1Row>, String> {
             let p = penalty(kappa, NOISE_VARIANCE);
             let ab = minimise_alpha_beta(&m, &p, Forms::Consistent).map_err(e)?;
             let abg = minimise_alpha_beta_gamma(&m, &p, Forms::Consistent).map_err(e)?;
-            let printed = minimise_alpha_beta_gamma(&m, &p, Forms::AsPrinted)
-                .ok()
-                .and_then(|o| {
-                    alpha_beta_gamma_cost(&m, &p, Forms::Consistent, o.alpha, o.beta, o.gamma)
-                        .ok()
-                        .map(|c| (o.alpha, o.beta, o.gamma, c.total()))
-                });
+            let printed = printed_optimum(&m, &p);
             Ok(Figure1Row {
                 kappa,
                 alpha_beta: (ab.alpha, ab.beta, ab.cost.total()),
@@ -237,13 +239,7 @@ pub fn abc_rows(kappas: &[f64]) -> Result<Vec<AbcRow>, String> {
                     .map(|o| o.cost.total())
                     .map_err(e)
             };
-            let printed = minimise_alpha_beta_gamma(&m, &p, Forms::AsPrinted)
-                .ok()
-                .and_then(|o| {
-                    alpha_beta_gamma_cost(&m, &p, Forms::Consistent, o.alpha, o.beta, o.gamma)
-                        .ok()
-                        .map(|c| (o.alpha, o.beta, o.gamma, c.total()))
-                });
+            let printed = printed_optimum(&m, &p);
             Ok(AbcRow {
                 kappa,
                 closed: four(closed),
@@ -534,6 +530,10 @@ pub struct Outcome {
     pub eq31_full_residual: f64,
     /// β of the steady-state optimum at κ = 10⁻⁹.
     pub steady_state_beta_small_kappa: f64,
+    /// Eq. 25 with v = a_s = 1 (T = 1, x̄o² = 1): per κ, the consistent
+    /// optimum (α, β, cost) and the optimum of the printed eq. 22 with the
+    /// cost it really has.
+    pub mixed: Vec<(f64, (f64, f64, f64), (f64, f64, f64))>,
 }
 
 pub fn evaluate(runs: usize) -> Result<Outcome, String> {
@@ -575,7 +575,30 @@ pub fn evaluate(runs: usize) -> Result<Outcome, String> {
     )
     .map_err(e)?
     .beta;
+    let both = Manoeuvre::StraightLine(StraightLine {
+        velocity: 1.0,
+        acceleration: 1.0,
+        ..StraightLine::constant_velocity(0.0, 1.0)
+    });
+    let mixed = ks
+        .iter()
+        .step_by(4)
+        .map(|&kappa| {
+            let p = penalty(kappa, 1.0);
+            let c = minimise_alpha_beta(&both, &p, Forms::Consistent).map_err(e)?;
+            let pr = minimise_alpha_beta(&both, &p, Forms::AsPrinted).map_err(e)?;
+            let true_cost = alpha_beta_cost(&both, &p, Forms::Consistent, pr.alpha, pr.beta)
+                .map_err(e)?
+                .total();
+            Ok((
+                kappa,
+                (c.alpha, c.beta, c.cost.total()),
+                (pr.alpha, pr.beta, true_cost),
+            ))
+        })
+        .collect::<Result<_, String>>()?;
     Ok(Outcome {
+        mixed,
         steady_state_beta_small_kappa,
         figure1,
         figure2,
@@ -781,6 +804,48 @@ pub fn claims(o: &Outcome) -> Vec<Claim> {
         ),
         &[worst_34 < 1e-6, least_35 < 1e-6],
         "Eq. 34 is one of the two stationarity conditions (in α-β-γ: 4α² + 4αβ + αγ − 8β = 0). Eq. 35 is the set where the a-b-c transform is singular (a repeated pole), a spurious root of a determinant taken in a-b-c coordinates, not an optimum.",
+    ));
+    let mixed_excess = o
+        .mixed
+        .iter()
+        .map(|(_, c, p)| (p.2 - c.2) / c.2)
+        .fold(0.0, f64::max);
+    let mixed_shift = o
+        .mixed
+        .iter()
+        .map(|(_, c, p)| (p.0 - c.0).abs().max((p.1 - c.1).abs()))
+        .fold(0.0, f64::max);
+    claims.push(descriptive(
+        "T10",
+        "eqs. 22, 25",
+        "eq. 22 is the αβ transient metric J for a target with velocity v and acceleration a_s, to be used in eq. 25",
+        format!(
+            "with v = a_s = 1 m/s(²), T = 1 s, κ = 10⁻³…10³: the optimum of eq. 25 built on the printed eq. 22 is up to {mixed_shift:.3} away in α or β from the consistent one and really costs up to {:.1} % more (`mixed_straight_line.md`).",
+            100.0 * mixed_excess
+        ),
+        &[mixed_excess < 1e-3],
+        "The printed cross term +v·a_s·T⁴/β² has the wrong sign (README, \"four misprints\"); with only v or only a_s (Fig. 2) it vanishes and the printed and consistent optima coincide.",
+    ));
+    let printed_ratio = |rows: &mut dyn Iterator<Item = (Option<f64>, f64)>| {
+        rows.map(|(p, best)| p.map_or(f64::INFINITY, |p| p / best))
+            .fold(f64::INFINITY, f64::min)
+    };
+    let circle_ratio = printed_ratio(
+        &mut o
+            .figure1
+            .iter()
+            .map(|r| (r.printed.map(|p| p.3), r.alpha_beta_gamma.3)),
+    );
+    let abc_ratio = printed_ratio(&mut o.abc.iter().map(|r| (r.printed.map(|p| p.3), r.closed.3)));
+    claims.push(descriptive(
+        "T11",
+        "eqs. 10, 16, 21; Fig. 1 (upper)",
+        "the αβγ optimum follows from the costs built on eqs. 10 and 16 (circle) or 10 and 21 (straight line)",
+        format!(
+            "built on the printed eqs. 10/16 the circle cost is minimised at α → 2, β, γ → 0 (the printed noise ratio and error turn negative or vanish there), and those gains really cost at least {circle_ratio:.0}× the consistent optimum; built on the printed eqs. 10/21, the acceleration optimum really costs at least {abc_ratio:.2}× the consistent one."
+        ),
+        &[circle_ratio < 1.001, abc_ratio < 1.001],
+        "Not a claim of the paper's text but of its printed formulas: as printed they do not give usable gains, so Fig. 1 cannot have come from them.",
     ));
     for ex in &o.examples {
         let inside = ex.predictions_inside();
@@ -1025,6 +1090,24 @@ pub fn run(ctx: &Context) -> Result<(), String> {
 
     let mut t = Table::new([
         "kappa",
+        "consistent optimum (α, β)",
+        "its cost",
+        "printed eq. 22 optimum (α, β)",
+        "its true cost",
+    ]);
+    for (kappa, c, p) in &out.mixed {
+        t.push([
+            g(*kappa),
+            format!("({}, {})", g(c.0), g(c.1)),
+            g(c.2),
+            format!("({}, {})", g(p.0), g(p.1)),
+            g(p.2),
+        ]);
+    }
+    t.write(&dir, "mixed_straight_line")?;
+
+    let mut t = Table::new([
+        "kappa",
         "gains",
         "alpha",
         "beta",
@@ -1107,6 +1190,7 @@ fn summary(o: &Outcome, claims: &[Claim], runs: usize) -> String {
          - `figure1_circle.md` (+ `.csv`), `figure1_alpha_beta_gamma.svg`, `figure1_alpha_beta.svg`: Fig. 1, optimal gains on the circle against κ (αβ and αβγ; also the optimum of the printed eqs. 10/16 and what it really costs)\n\
          - `figure2_straight_line.md`, `figure2_alpha_beta.svg`: Fig. 2, the three αβ curves, closed form beside the optimiser\n\
          - `abc_constant_acceleration.md`: the αβγ acceleration optimum, closed form and optimiser, restricted to the printed surfaces of eqs. 34 and 35, and the printed-cost optimum\n\
+         - `mixed_straight_line.md`: eq. 25 with v and a_s together, on the consistent and on the printed eq. 22\n\
          - `worked_example.md`: the simulated check\n\
          - `claims.md`: the verdicts"
     );
