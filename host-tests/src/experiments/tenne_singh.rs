@@ -516,6 +516,10 @@ pub fn example_check(kappa: f64, runs: usize) -> Result<ExampleCheck, String> {
 // ---------------------------------------------------------------------------
 // Claims
 
+/// κ, the consistent optimum (α, β, cost), the printed-eq.-22 optimum
+/// (α, β, true cost).
+pub type MixedRow = (f64, (f64, f64, f64), (f64, f64, f64));
+
 /// Everything the group measures.
 pub struct Outcome {
     pub figure1: Vec<Figure1Row>,
@@ -533,7 +537,7 @@ pub struct Outcome {
     /// Eq. 25 with v = a_s = 1 (T = 1, x̄o² = 1): per κ, the consistent
     /// optimum (α, β, cost) and the optimum of the printed eq. 22 with the
     /// cost it really has.
-    pub mixed: Vec<(f64, (f64, f64, f64), (f64, f64, f64))>,
+    pub mixed: Vec<MixedRow>,
 }
 
 pub fn evaluate(runs: usize) -> Result<Outcome, String> {
