@@ -2,16 +2,22 @@
 //! byte stream of `abtrack::wire` measurement frames (the demo firmware's UART
 //! input), optionally with corrupted frames and garbage between frames to
 //! exercise the receiver; and the reverse, a byte stream decoded into
-//! messages with a summary. Used by the `frames` binary and the scan-loop
-//! tests.
+//! messages with a summary; and the demo firmware's decisions on the host
+//! ([`run_like_the_firmware`]). Used by the `frames` binary and the
+//! scan-loop, fault-injection and determinism tests.
 
 use crate::noise::{derive_seed, rng_from_seed, uniform_index};
 use crate::scenario::{self, Measurement};
-use abtrack::tcas::Advisory;
-use abtrack::wire::{
-    Decoder, DecoderStats, LinkStatus, MeasurementReport, Message, ScanSummary, TrackReport,
-    MAX_FRAME_LEN,
+use abtrack::scan::{
+    Collected, Intake, MeasurementSource, RunVerdict, ScanConfig, ScanLoop, TickReport,
 };
+use abtrack::tcas::Advisory;
+use abtrack::track::FixedGainTrack;
+use abtrack::wire::{
+    Decoder, DecoderStats, Encoder, Health, MeasurementReport, Message, ScanSummary, TrackReport,
+    CRC_LEN, HEADER_LEN, MAX_FRAME_LEN,
+};
+use abtrack::{Gains, Scalar};
 use std::collections::BTreeMap;
 use std::fmt::Write as _;
 
@@ -151,6 +157,7 @@ pub fn encode(reports: &[MeasurementReport], faults: Faults) -> Encoded {
     let mut out = Encoded::default();
     let mut per_time: BTreeMap<u32, usize> = BTreeMap::new();
     let mut frame = [0u8; MAX_FRAME_LEN];
+    let mut encoder = Encoder::new();
     for (k, r) in reports.iter().enumerate() {
         *per_time.entry(r.time_ms).or_default() += 1;
         let n = k + 1;
@@ -161,15 +168,15 @@ pub fn encode(reports: &[MeasurementReport], faults: Faults) -> Encoded {
             }
             out.garbage_bytes += len;
         }
-        let len = Message::Measurement(*r)
-            .emit(&mut frame)
+        let len = encoder
+            .encode(&Message::Measurement(*r), &mut frame)
             .expect("a frame fits MAX_FRAME_LEN");
         let mut bytes = frame[..len].to_vec();
         if faults.corrupt_every.is_some_and(|c| c > 0 && n % c == 0) {
             // A payload bit: the header stays valid, so the decoder takes the
             // whole frame and fails its CRC.
-            let bit = uniform_index(&mut rng, (len - 6) * 8);
-            bytes[4 + bit / 8] ^= 1 << (bit % 8);
+            let bit = uniform_index(&mut rng, (len - HEADER_LEN - CRC_LEN) * 8);
+            bytes[HEADER_LEN + bit / 8] ^= 1 << (bit % 8);
             out.corrupted += 1;
         }
         out.bytes.extend_from_slice(&bytes);
@@ -213,7 +220,7 @@ pub struct ReportSummary {
     pub tracks: BTreeMap<u32, TrackHistory>,
     /// (scan time, new highest advisory) each time it changed.
     pub advisory_changes: Vec<(u32, Advisory)>,
-    pub last_link: Option<LinkStatus>,
+    pub last_health: Option<Health>,
     pub measurements: usize,
     pub decoder: DecoderStats,
 }
@@ -248,7 +255,7 @@ pub fn summarise(bytes: &[u8]) -> ReportSummary {
                 }
                 s.scans.push(scan);
             }
-            Message::Link(l) => s.last_link = Some(l),
+            Message::Health(h) => s.last_health = Some(h),
             Message::Measurement(_) => s.measurements += 1,
         }
     }
@@ -266,26 +273,28 @@ impl ReportSummary {
         let d = &self.decoder;
         let _ = writeln!(
             out,
-            "{} frames decoded ({} CRC errors, {} bytes skipped): {} scan summaries, {} track reports, {} measurements",
-            d.frames,
+            "{} frames decoded ({} CRC errors, {} bytes skipped, {} frames lost): {} scan summaries, {} track reports, {} measurements",
+            d.accepted,
             d.crc_errors,
             d.bytes_skipped,
+            d.frames_lost,
             self.scans.len(),
             self.tracks.values().map(|t| t.reports).sum::<usize>(),
             self.measurements
         );
         if let (Some(first), Some(last)) = (self.scans.first(), self.scans.last()) {
-            let taken: u32 = self.scans.iter().map(|s| s.measurements as u32).sum();
-            let started: u32 = self.scans.iter().map(|s| s.started as u32).sum();
-            let confirmed: u32 = self.scans.iter().map(|s| s.confirmed as u32).sum();
-            let deleted: u32 = self.scans.iter().map(|s| s.deleted as u32).sum();
+            let used: u32 = self.scans.iter().map(|s| s.counts.used as u32).sum();
+            let started: u32 = self.scans.iter().map(|s| s.counts.started as u32).sum();
+            let confirmed: u32 = self.scans.iter().map(|s| s.counts.confirmed as u32).sum();
+            let deleted: u32 = self.scans.iter().map(|s| s.counts.deleted as u32).sum();
             let _ = writeln!(
                 out,
-                "scans t = {} .. {} s: {taken} measurements; tracks started {started}, confirmed {confirmed}, deleted {deleted}; {} live at the end ({} confirmed)",
+                "{} scans, t = {} .. {} s: {used} measurements used; tracks started {started}, confirmed {confirmed}, deleted {deleted}; {} live at the end ({} confirmed)",
+                self.scans.len(),
                 seconds(first.time_ms),
                 seconds(last.time_ms),
-                last.tracks,
-                last.confirmed_tracks
+                last.counts.tracks,
+                last.counts.confirmed_tracks
             );
         }
         for t in self.tracks.values() {
@@ -319,22 +328,11 @@ impl ReportSummary {
                 changes.join(", ")
             }
         );
-        if let Some(l) = &self.last_link {
-            let _ = writeln!(
-                out,
-                "receiver (t = {} s): {} frames, {} CRC errors, {} unknown type, {} bad length, {} bad field, {} truncated, {} bytes skipped, {} queue full, {} not measurements, {} UART overruns",
-                seconds(l.time_ms),
-                l.frames,
-                l.crc_errors,
-                l.unknown_type,
-                l.bad_length,
-                l.bad_field,
-                l.truncated,
-                l.bytes_skipped,
-                l.queue_full,
-                l.not_measurement,
-                l.rx_overruns
-            );
+        if let Some(h) = &self.last_health {
+            let _ = writeln!(out, "health (t = {} s):", seconds(h.time_ms));
+            let _ = writeln!(out, "  receiver: {}", h.decoder);
+            let _ = writeln!(out, "  intake: {}", h.intake);
+            let _ = writeln!(out, "  scan loop: {}", h.scan);
         }
         out
     }
@@ -344,7 +342,9 @@ impl ReportSummary {
 pub fn message_line(m: &Message) -> String {
     match m {
         Message::Measurement(r) => {
-            let alt = r.altitude_ft.map_or(String::new(), |a| format!(" alt {a} ft"));
+            let alt = r
+                .altitude_ft
+                .map_or(String::new(), |a| format!(" alt {a} ft"));
             match r.position {
                 abtrack::wire::MeasuredPosition::Cartesian { x_cm, y_cm } => format!(
                     "measurement t={} s sensor {} x={} m y={} m{alt}",
@@ -381,27 +381,98 @@ pub fn message_line(m: &Message) -> String {
                 .map_or("-".to_string(), |d| format!("{} s", d as f64 / 10.0)),
         ),
         Message::Scan(s) => format!(
-            "scan t={} s: {} measurements ({} invalid, {} late, {} dropped), {} updated, {} started, {} confirmed, {} deleted, {} tracks ({} confirmed), advisory {}",
+            "scan t={} s (interval {} ms), advisory {}: {}",
             seconds(s.time_ms),
-            s.measurements,
-            s.invalid,
-            s.late,
-            s.dropped,
-            s.updated,
-            s.started,
-            s.confirmed,
-            s.deleted,
-            s.tracks,
-            s.confirmed_tracks,
-            s.highest_advisory.name()
+            s.interval_ms,
+            s.highest_advisory.name(),
+            s.counts
         ),
-        Message::Link(l) => format!(
-            "link t={} s: {} frames, {} CRC errors, {} bytes skipped, {} queue full",
-            seconds(l.time_ms),
-            l.frames,
-            l.crc_errors,
-            l.bytes_skipped,
-            l.queue_full
+        Message::Health(h) => format!(
+            "health t={} s: receiver: {}; intake: {}; scan loop: {}",
+            seconds(h.time_ms),
+            h.decoder,
+            h.intake,
+            h.scan
         ),
     }
+}
+
+/// The demo firmware's decisions, on the host: the same scan-loop core fed
+/// the same bytes in the same order, paced as `src/main.rs` paces it (a
+/// scan runs once the input has moved past it; after the input, the line
+/// goes idle, the rest is scanned, then three idle scans), with the same
+/// capacities (`N` tracks, `M` measurements per scan, a queue of `Q`) and
+/// number type. With flow control nothing depends on timing, so the report
+/// frames are the firmware's, byte for byte.
+pub fn run_like_the_firmware<S: Scalar, const N: usize, const M: usize, const Q: usize>(
+    input: &[u8],
+    config: &ScanConfig<S, Gains<S>>,
+) -> FirmwareRun {
+    /// `IDLE_SCANS` of src/main.rs.
+    const IDLE_SCANS: u32 = 3;
+    let mut intake: Box<Intake<Q>> = Box::new(Intake::new());
+    let mut scan_loop: Box<ScanLoop<S, FixedGainTrack<S>, N, M>> = Box::new(ScanLoop::new());
+    let mut run = FirmwareRun::default();
+    let mut encoder = Encoder::new();
+    let mut tick = |scan_loop: &mut ScanLoop<S, FixedGainTrack<S>, N, M>,
+                    intake: &mut Intake<Q>,
+                    run: &mut FirmwareRun| {
+        let mut frame = [0u8; MAX_FRAME_LEN];
+        let report = scan_loop
+            .on_tick(config, intake, |m| {
+                let n = encoder.encode(m, &mut frame).expect("a frame fits");
+                run.output.extend_from_slice(&frame[..n]);
+            })
+            .expect("the loop's tracker clock always advances");
+        run.ticks.push(report);
+        report
+    };
+    for &b in input {
+        // Flow control: the receiver reads a byte only with room for what
+        // it may complete.
+        while !intake.can_take_byte() {
+            if scan_loop.collect(config, intake.as_mut()) == Collected::ScanDue {
+                tick(&mut scan_loop, &mut intake, &mut run);
+            }
+        }
+        intake.push(b);
+        while scan_loop.collect(config, intake.as_mut()) == Collected::ScanDue {
+            tick(&mut scan_loop, &mut intake, &mut run);
+        }
+    }
+    intake.line_idle();
+    let mut idle_scans = 0;
+    while idle_scans < IDLE_SCANS {
+        scan_loop.collect(config, intake.as_mut());
+        let report = tick(&mut scan_loop, &mut intake, &mut run);
+        if intake.queued() == 0 {
+            scan_loop.finish();
+        }
+        if report.summary.counts.used == 0 && intake.queued() == 0 && scan_loop.held() == 0 {
+            idle_scans += 1;
+        } else {
+            idle_scans = 0;
+        }
+    }
+    let (decoder, intake_counters) = intake.receiver_counters();
+    run.health = Health {
+        time_ms: scan_loop.scan_time_ms(),
+        decoder,
+        intake: intake_counters,
+        scan: *scan_loop.counters(),
+    };
+    run.verdict = Some(RunVerdict::from_health(&run.health));
+    run
+}
+
+/// What [`run_like_the_firmware`] produced.
+#[derive(Debug, Clone, Default)]
+pub struct FirmwareRun {
+    /// The report frames, as the firmware sends them on its UART.
+    pub output: Vec<u8>,
+    /// Every scan's result.
+    pub ticks: Vec<TickReport>,
+    /// The counters at the end (the firmware's summary).
+    pub health: Health,
+    pub verdict: Option<RunVerdict>,
 }

@@ -72,10 +72,10 @@ fn encoded_faults_are_what_the_decoder_counts() {
     let (messages, stats) = frames::decode_all(&dirty.bytes);
     assert_eq!(messages.len(), dirty.frames - dirty.corrupted);
     assert_eq!(stats.crc_errors as usize, dirty.corrupted);
-    // Measurement frames of the Cartesian scenario are 24 bytes.
+    // Measurement frames of the Cartesian scenario are 28 bytes.
     assert_eq!(
         stats.bytes_skipped as usize,
-        dirty.garbage_bytes + 24 * dirty.corrupted
+        dirty.garbage_bytes + 28 * dirty.corrupted
     );
     // The summary of a measurement stream counts them.
     let s = frames::summarise(&dirty.bytes);

@@ -8,12 +8,14 @@
 //! on the demo's input on the host.
 
 use abtrack::filter::altitude::{AltitudeQuantum, AltitudeTrackerConfig};
-use abtrack::scan::ScanConfig;
+use abtrack::scan::{ClockConfig, ScanConfig};
 use abtrack::tcas::OwnAircraft;
 use abtrack::track::{Gate, TrackerConfig, Volume};
 use abtrack::{Gains, Scalar};
 
-/// The scan period, ms: the sensor's (one scan per second).
+/// The scan period, ms: the sensor's (one scan per second). The scan
+/// clock's windows are `ClockConfig::new`'s: late up to one period after
+/// the scan, a silence of up to 30 periods is a gap, a longer step a jump.
 pub const SCAN_PERIOD_MS: u32 = 1000;
 
 /// The own aircraft: level at 8000 ft over the sea (TCAS sensitivity level
@@ -58,9 +60,11 @@ pub fn demo_config<S: Scalar>() -> Result<ScanConfig<S, Gains<S>>, &'static str>
         .with_volume(volume);
     let altitude = AltitudeTrackerConfig::default_for(AltitudeQuantum::ModeC)
         .map_err(|_| "altitude tracker refused")?;
+    let clock = ClockConfig::new(SCAN_PERIOD_MS).map_err(|_| "scan period refused")?;
     Ok(ScanConfig {
         tracker,
         own: OwnAircraft::over_sea_level(s(OWN_ALTITUDE_FT)?, S::ZERO),
         altitude,
+        clock,
     })
 }

@@ -639,11 +639,14 @@ impl<S: Scalar, F: TrackFilter<S>, const N: usize, const M: usize> TrackTable<S,
 
         // The measurements still unused become next scan's first points.
         self.pending.fill(None);
+        // Only the codes of this scan's measurements: the slots beyond them
+        // hold no measurement (issue 11: they were counted outside gates).
         for ((pending, obs), code) in self
             .pending
             .iter_mut()
             .zip(self.observations.iter())
             .zip(self.codes.iter())
+            .take(measurements.len())
         {
             if *code == Association::OutsideGates {
                 report.outside_gates += 1;

@@ -43,7 +43,8 @@ decode reads a byte stream (e.g. the demo's UART output) and prints a
 summary of the frames in it: scans, tracks, advisories, receiver counters;
 --messages prints every message, one per line, instead. With --check the exit
 status is 1 if the stream is not clean frames only (a CRC error, a skipped
-or left-over byte): a firmware's report output must be.
+or left-over byte, a gap in the sequence numbers): a firmware's report
+output must be.
 ";
 
 #[derive(Debug, PartialEq)]
@@ -209,12 +210,19 @@ fn run(command: Command) -> Result<(), String> {
             if check {
                 let (messages, stats) = frames::decode_all(&bytes);
                 let in_frames: usize = messages.iter().map(|m| m.buffer_len()).sum();
-                if stats.crc_errors > 0 || stats.bytes_skipped > 0 || in_frames != bytes.len() {
+                if stats.crc_errors > 0
+                    || stats.bytes_skipped > 0
+                    || stats.frames_lost > 0
+                    || stats.out_of_sequence > 0
+                    || in_frames != bytes.len()
+                {
                     return Err(format!(
-                        "{}: not clean frames: {} CRC errors, {} bytes skipped, {} of {} bytes in frames",
+                        "{}: not clean frames: {} CRC errors, {} bytes skipped, {} frames lost, {} out of sequence, {} of {} bytes in frames",
                         file.display(),
                         stats.crc_errors,
                         stats.bytes_skipped,
+                        stats.frames_lost,
+                        stats.out_of_sequence,
                         in_frames,
                         bytes.len()
                     ));
