@@ -9,25 +9,31 @@
 //!
 //! Measurement frames (`abtrack::wire`) arrive on the UART; the receive
 //! interrupt decodes them and queues the measurements; every SysTick wakes
-//! the main loop, which runs one function per stage: [`receive`] takes the
+//! the main loop (and so does a measurement waiting in the queue), which
+//! runs one function per stage: [`receive`] takes the
 //! queued measurements into the scan being assembled (the scan clock of
 //! `abtrack::scan` sorts them by the sensor's time), [`scan`] runs the scan
 //! once the input has moved past it, [`show_advisories`] drives the advisory
-//! lines, [`input_ended`] notices the end of the input, and [`summarise`]
-//! and [`verdict`] end the run. The reports go out through [`Reporter`].
+//! lines, [`input_has_ended`] and [`run_is_over`] notice the end of the
+//! input and of the run, and [`summarise`] and [`verdict`] end the run. The reports go out through [`Reporter`].
 //!
-//! The input is a recording, replayed faster than real time: SysTick fires
-//! every 20 ms and a scan runs on a tick once the input has moved past its
-//! time (a measurement of a later scan is at the head of the queue) or the
-//! line has gone idle (no byte for a second). QEMU's UART delivers a file as
+//! The input is a recording, replayed faster than real time: a scan runs as
+//! soon as the input has moved past its time (a measurement of a later scan
+//! is at the head of the queue) or the input has ended (its end-of-input
+//! frame arrived, or, without one, no byte for 10 s; SysTick, every 20 ms,
+//! times that silence). QEMU's UART delivers a file as
 //! fast as the firmware reads it, so the receive interrupt stops reading
-//! while the queue is nearly full (flow control: QEMU holds the bytes back,
-//! as a sender would on a deasserted RTS line) and the main loop resumes it
-//! as it takes measurements out. The decisions depend only on the order of
-//! the bytes, never on how fast the host runs QEMU: every run makes the same
-//! ones (`scripts/determinism.sh` compares runs byte for byte).
+//! as soon as it has queued a measurement (flow control: QEMU holds the
+//! bytes back, as a sender would on a deasserted RTS line) and the main loop
+//! resumes it once it has taken the measurement. So everything the firmware
+//! does, the receiver's counters included, depends only on the bytes and
+//! never on how fast the host runs QEMU: every run sends the same report
+//! frames and logs the same lines, but for the flow-control and stack lines
+//! of the summary (host-tests/tests/determinism.rs compares runs byte for
+//! byte, and with the same core run on the host).
 //!
-//! After the input ends it runs three idle scans, prints a summary and
+//! After the input ends it scans what is left, runs three idle scans,
+//! prints a summary and
 //! leaves QEMU with status 0 when the run was clean
 //! (`abtrack::scan::RunVerdict`: something was used, at most one in ten
 //! frames the sensor sent was lost or not used, no threat assessment
@@ -52,8 +58,8 @@ use abtrack::scan::{
 use abtrack::tcas::Advisory;
 use abtrack::track::FixedGainTrack;
 use abtrack::wire::{
-    DecoderStats, Encoder, Health, IntakeCounters, MeasurementReport, Message, ScanSummary,
-    TrackReport, MAX_FRAMES_PER_BYTE, MAX_FRAME_LEN,
+    DecoderStats, Encoder, EndOfInput, Health, IntakeCounters, MeasurementReport, Message,
+    ScanSummary, TrackReport, MAX_FRAMES_PER_BYTE, MAX_FRAME_LEN,
 };
 use abtrack::Scalar;
 use board::Native;
@@ -84,8 +90,10 @@ type DemoIntake = Intake<QUEUE_LEN>;
 
 /// SysTick period (QEMU's virtual clock, real time without `-icount`).
 const TICK_MS: u32 = 20;
-/// No byte for this many ticks (1 s): the input has ended.
-const IDLE_TICKS: u32 = 50;
+/// No byte for this many ticks (10 s) and no end-of-input frame: the input
+/// has ended anyway (a recording without its end frame, a silent sensor).
+/// Long, because a loaded host can stall QEMU's input for a second or more.
+const SILENT_TICKS: u32 = 500;
 /// Scans run after the input ended, before the summary.
 const IDLE_SCANS: u32 = 3;
 /// Confirmed tracks remembered for the summary.
@@ -97,6 +105,9 @@ static LAST_RX_TICK: AtomicU32 = AtomicU32::new(0);
 /// full), cleared by the main loop when it resumes it.
 static RX_PAUSED: AtomicBool = AtomicBool::new(false);
 static RX_PAUSES: AtomicU32 = AtomicU32::new(0);
+/// Set when the receiver stopped for good: the end-of-input frame arrived,
+/// or the line stayed silent.
+static RX_ENDED: AtomicBool = AtomicBool::new(false);
 /// The receive side: decoder and measurement queue, filled by the receive
 /// interrupt, emptied by the main loop one measurement per critical
 /// section.
@@ -124,8 +135,17 @@ fn on_interrupt(irqn: i16) -> bool {
             if io::uart_overrun() {
                 intake.count_overrun();
             }
-            if !intake.can_take_byte() {
-                // Flow control: leave the byte in the UART; main resumes us.
+            if intake.input_ended().is_some() {
+                // The recording is over: read nothing after its end.
+                NVIC::mask(io::UartRxIrq);
+                RX_ENDED.store(true, Relaxed);
+                break;
+            }
+            if intake.queued() > 0 || !intake.can_take_byte() {
+                // Flow control, in lock-step with the main loop: leave the
+                // byte in the UART until main has taken the measurement
+                // queued (main resumes us). What has been received when a
+                // scan runs then depends only on the bytes, not on timing.
                 NVIC::mask(io::UartRxIrq);
                 RX_PAUSED.store(true, Relaxed);
                 RX_PAUSES.store(RX_PAUSES.load(Relaxed).wrapping_add(1), Relaxed);
@@ -166,13 +186,13 @@ impl MeasurementSource for SharedIntake {
     }
 }
 
-/// Unmasks the receive interrupt again once the queue has room, and pends
+/// Unmasks the receive interrupt again once the queue is empty, and pends
 /// it so that the byte left waiting in the UART is read. True if it did.
 fn resume_receiver() -> bool {
-    if !RX_PAUSED.load(Relaxed) {
+    if !RX_PAUSED.load(Relaxed) || RX_ENDED.load(Relaxed) {
         return false;
     }
-    if SharedIntake::with(|i| i.can_take_byte()) != Some(true) {
+    if SharedIntake::with(|i| i.queued() == 0 && i.can_take_byte()) != Some(true) {
         return false;
     }
     RX_PAUSED.store(false, Relaxed);
@@ -183,17 +203,24 @@ fn resume_receiver() -> bool {
     true
 }
 
-/// Sleeps until the next SysTick. Interrupts are off between the check and
-/// the WFI, which still wakes on a pending interrupt, so no tick is missed.
-fn wait_for_tick(seen: &mut u32) {
+/// Whether the main loop has something to do: the receiver paused with a
+/// measurement queued, or it stopped.
+fn receiver_waits() -> bool {
+    RX_PAUSED.load(Relaxed) || RX_ENDED.load(Relaxed)
+}
+
+/// Sleeps until the next SysTick or until the receiver waits for the main
+/// loop. Interrupts are off between the check and the WFI, which still
+/// wakes on a pending interrupt, so no event is missed.
+fn wait_for_event(seen: &mut u32) {
     loop {
         let now = TICKS.load(Relaxed);
-        if now != *seen {
+        if now != *seen || receiver_waits() {
             *seen = now;
             return;
         }
         free(|_| {
-            if TICKS.load(Relaxed) == *seen {
+            if TICKS.load(Relaxed) == *seen && !receiver_waits() {
                 cortex_m::asm::wfi();
             }
         });
@@ -273,7 +300,7 @@ impl Reporter {
                 self.tracks_of_scan.clear();
             }
             Message::Health(h) => self.health = *h,
-            Message::Measurement(_) => {}
+            Message::Measurement(_) | Message::End(_) => {}
         }
         self.send(message);
     }
@@ -385,6 +412,10 @@ fn log_track(t: &TrackReport) {
 /// The run's state between stages.
 struct Run {
     seen_ticks: u32,
+    /// The input has ended (end-of-input frame, or silence).
+    ended: bool,
+    /// The end-of-input frame, if that is how it ended.
+    end_frame: Option<EndOfInput>,
     idle_scans: u32,
     scan_errors: u32,
     /// Sensor time of the last scan that used a measurement.
@@ -409,7 +440,7 @@ fn start() -> DemoConfig {
         core::mem::size_of::<DemoIntake>()
     );
     defmt::println!(
-        "input: wire frames on {=str}, receive IRQ {=u16}; SysTick every {=u32} ms; scans every {=u32} ms of the sensor's clock; advisory lines: {=str}",
+        "input: wire frames on {=str}, receive IRQ {=u16}; SysTick every {=u32} ms; a scan every {=u32} ms of the sensor's clock; advisory lines: {=str}",
         io::UART_NAME,
         io::UART_RX_IRQ,
         TICK_MS,
@@ -462,15 +493,29 @@ fn receive(config: &DemoConfig, scan_loop: &mut DemoLoop) -> bool {
     }
 }
 
-/// Whether the line has been idle for [`IDLE_TICKS`]; on the first tick
-/// of a silence, the decoder abandons a partial frame.
-fn line_is_idle(run: &Run, flushed: &mut bool) -> bool {
-    let idle = run.seen_ticks.wrapping_sub(LAST_RX_TICK.load(Relaxed)) >= IDLE_TICKS;
-    if idle && !*flushed {
-        SharedIntake::with(|i| i.line_idle());
+/// Whether the input has ended: the end-of-input frame arrived, or the line
+/// stayed silent for [`SILENT_TICKS`]. The first time, the receiver stops
+/// for good and its decoder abandons a partial frame.
+fn input_has_ended(run: &mut Run) -> bool {
+    if run.ended {
+        return true;
     }
-    *flushed = idle;
-    idle
+    // The last byte's tick first: the tick read after it is never earlier,
+    // so the difference cannot wrap.
+    let last_rx = LAST_RX_TICK.load(Relaxed);
+    let silent = TICKS.load(Relaxed).wrapping_sub(last_rx) >= SILENT_TICKS;
+    if !(RX_ENDED.load(Relaxed) || silent) {
+        return false;
+    }
+    NVIC::mask(io::UartRxIrq);
+    RX_ENDED.store(true, Relaxed);
+    run.ended = true;
+    run.end_frame = SharedIntake::with(|i| {
+        i.line_idle();
+        i.input_ended()
+    })
+    .flatten();
+    true
 }
 
 /// One scan and its reports; returns the scan's summary.
@@ -514,16 +559,19 @@ fn show_advisories(lines: &mut AdvisoryLines<io::AdvisoryPin>, summary: &ScanSum
     }
 }
 
-/// After the line went idle and everything received was scanned, counts
-/// the idle scans; true after [`IDLE_SCANS`] of them.
-fn input_ended(idle: bool, used: u16, scan_loop: &mut DemoLoop, run: &mut Run) -> bool {
+/// After the input ended and everything received was scanned, counts the
+/// idle scans; true after [`IDLE_SCANS`] of them.
+fn run_is_over(used: u16, scan_loop: &mut DemoLoop, run: &mut Run) -> bool {
     let queued = SharedIntake::with(|i| i.queued()).unwrap_or(0);
-    if idle && queued == 0 {
+    if !run.ended {
+        return false;
+    }
+    if queued == 0 {
         // Nothing more can arrive to confirm a held out-of-window
         // measurement.
         scan_loop.finish();
     }
-    if idle && used == 0 && queued == 0 && scan_loop.held() == 0 {
+    if used == 0 && queued == 0 && scan_loop.held() == 0 {
         run.idle_scans = run.idle_scans.saturating_add(1);
     } else {
         run.idle_scans = 0;
@@ -548,11 +596,25 @@ fn summarise(
         intake,
         scan: *scan_loop.counters(),
     };
+    match run.end_frame {
+        Some(e) => {
+            let (sec, ms) = secs(e.time_ms);
+            defmt::println!(
+                "input ended: end-of-input frame (sensor clock t={=u32}.{=u32:03} s)",
+                sec,
+                ms
+            );
+        }
+        None => defmt::println!(
+            "input ended: no byte for {=u32} s and no end-of-input frame",
+            SILENT_TICKS * TICK_MS / 1000
+        ),
+    }
     match run.last_input_ms {
         Some(t) => {
             let (sec, ms) = secs(t);
             defmt::println!(
-                "input ended after the scan at t={=u32}.{=u32:03} s; {=u32} idle scans",
+                "last measurements used in the scan at t={=u32}.{=u32:03} s; {=u32} idle scans after the input",
                 sec,
                 ms,
                 IDLE_SCANS
@@ -633,19 +695,20 @@ fn main() -> ! {
 
     let mut run = Run {
         seen_ticks: TICKS.load(Relaxed),
+        ended: false,
+        end_frame: None,
         idle_scans: 0,
         scan_errors: 0,
         last_input_ms: None,
     };
-    let mut flushed = false;
     loop {
-        wait_for_tick(&mut run.seen_ticks);
+        wait_for_event(&mut run.seen_ticks);
         let mut due = receive(&config, scan_loop);
-        let idle = line_is_idle(&run, &mut flushed);
-        if idle {
+        let ended = input_has_ended(&mut run);
+        if ended {
             due |= receive(&config, scan_loop);
         }
-        if !(due || idle) {
+        if !(due || ended) {
             continue;
         }
         let used = match scan(&config, scan_loop, reporter, &mut run) {
@@ -655,7 +718,7 @@ fn main() -> ! {
             }
             None => 0,
         };
-        if input_ended(idle, used, scan_loop, &mut run) {
+        if run_is_over(used, scan_loop, &mut run) {
             break;
         }
     }

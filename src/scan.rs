@@ -103,8 +103,8 @@ use crate::track::{
     ScanReport, TrackFilter, TrackId, TrackTable, TrackerConfig,
 };
 use crate::wire::{
-    Decoder, DecoderStats, Health, IntakeCounters, LoopCounters, MeasurementReport, Message,
-    ScanCounts, ScanSummary, TrackReport, WireError, MAX_FRAMES_PER_BYTE,
+    Decoder, DecoderStats, EndOfInput, Health, IntakeCounters, LoopCounters, MeasurementReport,
+    Message, ScanCounts, ScanSummary, TrackReport, WireError, MAX_FRAMES_PER_BYTE,
 };
 
 fn bump(counter: &mut u32) {
@@ -237,6 +237,7 @@ pub struct Intake<const Q: usize> {
     decoder: Decoder,
     queue: MeasurementQueue<Q>,
     counters: IntakeCounters,
+    ended: Option<EndOfInput>,
 }
 
 impl<const Q: usize> Default for Intake<Q> {
@@ -251,6 +252,7 @@ impl<const Q: usize> Intake<Q> {
             decoder: Decoder::new(),
             queue: MeasurementQueue::new(),
             counters: IntakeCounters::new(),
+            ended: None,
         }
     }
 
@@ -306,10 +308,20 @@ impl<const Q: usize> Intake<Q> {
                     Err(_) => bump(&mut self.counters.queue_full),
                 }
             }
+            Ok(Message::End(e)) => {
+                bump(&mut self.counters.not_measurement);
+                self.ended = Some(e);
+            }
             Ok(_) => bump(&mut self.counters.not_measurement),
             Err(_) => {}
         }
         0
+    }
+
+    /// The end-of-input frame, once received: the sender's recording has
+    /// ended (a receiver stops reading there).
+    pub fn input_ended(&self) -> Option<EndOfInput> {
+        self.ended
     }
 
     /// Counts a byte the UART lost before it could be read (hardware

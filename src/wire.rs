@@ -46,6 +46,7 @@
 //! |---|---|---|
 //! | `0x01` | Cartesian measurement | [`field::cartesian`] |
 //! | `0x02` | polar measurement | [`field::polar`] |
+//! | `0x03` | end of input: a recording ends here | [`field::end`] |
 //! | `0x81` | track report, one per confirmed track per scan | [`field::track`] |
 //! | `0x82` | scan summary, one per scan | [`field::scan`], counts [`ScanCounts`] |
 //! | `0x84` | health, one per scan: every lifetime counter | [`field::health`] |
@@ -78,7 +79,7 @@ pub const CRC_LEN: usize = 4;
 pub const MAX_PAYLOAD_LEN: usize = FrameKind::longest_payload();
 /// The longest frame.
 pub const MAX_FRAME_LEN: usize = frame_len_for(MAX_PAYLOAD_LEN);
-/// The shortest frame (a polar measurement).
+/// The shortest frame (the end of input).
 pub const MIN_FRAME_LEN: usize = frame_len_for(FrameKind::shortest_payload());
 /// At most this many frames can complete on one byte pushed into the
 /// [`Decoder`]: after a failed candidate, the bytes it held are examined
@@ -377,6 +378,15 @@ pub mod field {
         }
     }
     layout! {
+        /// End of input (type `0x03`): the sender's recording ends here (a
+        /// replay's last frame; its sequence number also reveals frames
+        /// lost just before it).
+        pub mod end {
+            /// The sensor's clock at the end, ms.
+            TIME: u32,
+        }
+    }
+    layout! {
         /// Track report (type `0x81`), one per confirmed track per scan.
         pub mod track {
             /// Scan time, ms (the sensor's clock).
@@ -434,7 +444,7 @@ pub mod field {
     }
 }
 
-use field::{cartesian, header, health, polar, scan, track};
+use field::{cartesian, end, header, health, polar, scan, track};
 
 // ---------------------------------------------------------------------------
 // Counter lists
@@ -694,6 +704,7 @@ counter_list! {
 pub enum FrameKind {
     MeasurementCartesian = 0x01,
     MeasurementPolar = 0x02,
+    EndOfInput = 0x03,
     TrackReport = 0x81,
     ScanSummary = 0x82,
     Health = 0x84,
@@ -701,9 +712,10 @@ pub enum FrameKind {
 
 impl FrameKind {
     /// Every kind.
-    pub const ALL: [FrameKind; 5] = [
+    pub const ALL: [FrameKind; 6] = [
         FrameKind::MeasurementCartesian,
         FrameKind::MeasurementPolar,
+        FrameKind::EndOfInput,
         FrameKind::TrackReport,
         FrameKind::ScanSummary,
         FrameKind::Health,
@@ -714,6 +726,7 @@ impl FrameKind {
         match b {
             0x01 => Some(FrameKind::MeasurementCartesian),
             0x02 => Some(FrameKind::MeasurementPolar),
+            0x03 => Some(FrameKind::EndOfInput),
             0x81 => Some(FrameKind::TrackReport),
             0x82 => Some(FrameKind::ScanSummary),
             0x84 => Some(FrameKind::Health),
@@ -731,6 +744,7 @@ impl FrameKind {
         match self {
             FrameKind::MeasurementCartesian => cartesian::LEN,
             FrameKind::MeasurementPolar => polar::LEN,
+            FrameKind::EndOfInput => end::LEN,
             FrameKind::TrackReport => track::LEN,
             FrameKind::ScanSummary => scan::LEN,
             FrameKind::Health => health::LEN,
@@ -1150,11 +1164,20 @@ pub struct Health {
     pub scan: LoopCounters,
 }
 
+/// The end of a recording (frame type 0x03).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+#[cfg_attr(feature = "defmt", derive(defmt::Format))]
+pub struct EndOfInput {
+    /// The sensor's clock at the end, ms.
+    pub time_ms: u32,
+}
+
 /// A decoded frame.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 #[cfg_attr(feature = "defmt", derive(defmt::Format))]
 pub enum Message {
     Measurement(MeasurementReport),
+    End(EndOfInput),
     Track(TrackReport),
     Scan(ScanSummary),
     Health(Health),
@@ -1260,6 +1283,9 @@ impl Message {
                 },
                 altitude_ft: parse_altitude(polar::FLAGS.get(p), polar::ALTITUDE.get(p))?,
             }),
+            FrameKind::EndOfInput => Message::End(EndOfInput {
+                time_ms: end::TIME.get(p),
+            }),
             FrameKind::TrackReport => Message::Track(parse_track(p)?),
             FrameKind::ScanSummary => {
                 if scan::RESERVED.get(p) != 0 {
@@ -1295,6 +1321,7 @@ impl Message {
     pub fn kind(&self) -> FrameKind {
         match self {
             Message::Measurement(m) => m.kind(),
+            Message::End(_) => FrameKind::EndOfInput,
             Message::Track(_) => FrameKind::TrackReport,
             Message::Scan(_) => FrameKind::ScanSummary,
             Message::Health(_) => FrameKind::Health,
@@ -1339,6 +1366,7 @@ impl Message {
                     polar::ALTITUDE.set(p, m.altitude_ft.unwrap_or(0));
                 }
             },
+            Message::End(e) => end::TIME.set(p, e.time_ms),
             Message::Track(t) => emit_track(t, p),
             Message::Scan(s) => {
                 scan::TIME.set(p, s.time_ms);

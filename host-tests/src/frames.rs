@@ -14,8 +14,8 @@ use abtrack::scan::{
 use abtrack::tcas::Advisory;
 use abtrack::track::FixedGainTrack;
 use abtrack::wire::{
-    Decoder, DecoderStats, Encoder, Health, MeasurementReport, Message, ScanSummary, TrackReport,
-    CRC_LEN, HEADER_LEN, MAX_FRAME_LEN,
+    Decoder, DecoderStats, Encoder, EndOfInput, Health, MeasurementReport, Message, ScanSummary,
+    TrackReport, CRC_LEN, HEADER_LEN, MAX_FRAME_LEN,
 };
 use abtrack::{Gains, Scalar};
 use std::collections::BTreeMap;
@@ -141,7 +141,7 @@ pub struct Faults {
 #[derive(Debug, Clone, PartialEq, Eq, Default)]
 pub struct Encoded {
     pub bytes: Vec<u8>,
-    /// Frames written (corrupted ones included).
+    /// Frames written (corrupted ones and the end-of-input frame included).
     pub frames: usize,
     /// Frames written with a flipped bit.
     pub corrupted: usize,
@@ -151,7 +151,8 @@ pub struct Encoded {
     pub max_per_scan: usize,
 }
 
-/// Encodes `reports` in order as frames, with the faults.
+/// Encodes `reports` in order as numbered frames, with the faults, and an
+/// end-of-input frame.
 pub fn encode(reports: &[MeasurementReport], faults: Faults) -> Encoded {
     let mut rng = rng_from_seed(derive_seed(faults.seed, 0xF4A7));
     let mut out = Encoded::default();
@@ -182,6 +183,15 @@ pub fn encode(reports: &[MeasurementReport], faults: Faults) -> Encoded {
         out.bytes.extend_from_slice(&bytes);
         out.frames += 1;
     }
+    // The end of the recording, so that a replay ends at once.
+    let end = EndOfInput {
+        time_ms: reports.last().map_or(0, |r| r.time_ms),
+    };
+    let len = encoder
+        .encode(&Message::End(end), &mut frame)
+        .expect("a frame fits MAX_FRAME_LEN");
+    out.bytes.extend_from_slice(&frame[..len]);
+    out.frames += 1;
     out.max_per_scan = per_time.values().copied().max().unwrap_or(0);
     out
 }
@@ -222,6 +232,7 @@ pub struct ReportSummary {
     pub advisory_changes: Vec<(u32, Advisory)>,
     pub last_health: Option<Health>,
     pub measurements: usize,
+    pub end: Option<EndOfInput>,
     pub decoder: DecoderStats,
 }
 
@@ -257,6 +268,7 @@ pub fn summarise(bytes: &[u8]) -> ReportSummary {
             }
             Message::Health(h) => s.last_health = Some(h),
             Message::Measurement(_) => s.measurements += 1,
+            Message::End(e) => s.end = Some(e),
         }
     }
     s
@@ -387,6 +399,7 @@ pub fn message_line(m: &Message) -> String {
             s.highest_advisory.name(),
             s.counts
         ),
+        Message::End(e) => format!("end of input t={} s", seconds(e.time_ms)),
         Message::Health(h) => format!(
             "health t={} s: receiver: {}; intake: {}; scan loop: {}",
             seconds(h.time_ms),
@@ -402,8 +415,10 @@ pub fn message_line(m: &Message) -> String {
 /// scan runs once the input has moved past it; after the input, the line
 /// goes idle, the rest is scanned, then three idle scans), with the same
 /// capacities (`N` tracks, `M` measurements per scan, a queue of `Q`) and
-/// number type. With flow control nothing depends on timing, so the report
-/// frames are the firmware's, byte for byte.
+/// number type. The receiver reads in lock-step with the main loop (a byte
+/// only once every queued measurement was taken) and stops at the
+/// end-of-input frame, so nothing depends on timing: the report frames are
+/// the firmware's, byte for byte.
 pub fn run_like_the_firmware<S: Scalar, const N: usize, const M: usize, const Q: usize>(
     input: &[u8],
     config: &ScanConfig<S, Gains<S>>,
@@ -427,17 +442,24 @@ pub fn run_like_the_firmware<S: Scalar, const N: usize, const M: usize, const Q:
         run.ticks.push(report);
         report
     };
-    for &b in input {
-        // Flow control: the receiver reads a byte only with room for what
-        // it may complete.
-        while !intake.can_take_byte() {
-            if scan_loop.collect(config, intake.as_mut()) == Collected::ScanDue {
-                tick(&mut scan_loop, &mut intake, &mut run);
+    // Flow control in lock-step: the receiver reads the next byte only once
+    // the main loop has taken every queued measurement (running a scan when
+    // one is due).
+    let mut drain = |scan_loop: &mut ScanLoop<S, FixedGainTrack<S>, N, M>,
+                     intake: &mut Intake<Q>,
+                     run: &mut FirmwareRun| {
+        while intake.queued() > 0 {
+            if scan_loop.collect(config, intake) == Collected::ScanDue {
+                tick(scan_loop, intake, run);
             }
         }
+    };
+    for &b in input {
         intake.push(b);
-        while scan_loop.collect(config, intake.as_mut()) == Collected::ScanDue {
-            tick(&mut scan_loop, &mut intake, &mut run);
+        drain(&mut scan_loop, &mut intake, &mut run);
+        if intake.input_ended().is_some() {
+            // The receiver reads nothing after the end-of-input frame.
+            break;
         }
     }
     intake.line_idle();
@@ -455,8 +477,9 @@ pub fn run_like_the_firmware<S: Scalar, const N: usize, const M: usize, const Q:
         }
     }
     let (decoder, intake_counters) = intake.receiver_counters();
+    // As the last health frame sent.
     run.health = Health {
-        time_ms: scan_loop.scan_time_ms(),
+        time_ms: run.ticks.last().map_or(0, |t| t.summary.time_ms),
         decoder,
         intake: intake_counters,
         scan: *scan_loop.counters(),
@@ -475,4 +498,292 @@ pub struct FirmwareRun {
     /// The counters at the end (the firmware's summary).
     pub health: Health,
     pub verdict: Option<RunVerdict>,
+}
+
+// ---------------------------------------------------------------------------
+// Fault injection
+// ---------------------------------------------------------------------------
+
+/// A line or sensor fault, injected into the demo's input (the
+/// `two-crossing` scenario, seed 1) by [`fault_stream`]: the
+/// fault-injection tests on the three boards, and `frames encode --fault`.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Fault {
+    /// 8 KiB of random bytes first, then 1–64 random bytes before every
+    /// 5th frame.
+    Garbage,
+    /// The same, drawn from the sync, type and length bytes.
+    SyncGarbage,
+    /// One payload bit flipped in every 20th frame (CRC errors).
+    CrcErrors,
+    /// Every 25th frame cut short by 2–20 bytes, mid-stream.
+    Truncated,
+    /// Every 25th frame with a length byte 8 too large and 8 more bytes.
+    Oversize,
+    /// Ten times the scan capacity of extra measurements in the scan at
+    /// t = 30 s.
+    Flood,
+    /// The sensor silent for 10 s (the scans at t = 20 … 29 s missing).
+    Gap,
+    /// The sensor's clock steps back 10 s at t = 30 s.
+    Backwards,
+    /// The sensor's clock reads 12:00 (43.2e6 ms) at the start.
+    FarClock,
+    /// The sensor's clock jumps 40 days (past 2³¹ ms) at t = 30 s.
+    Jump,
+    /// After every 20th frame, a frame outside the envelope (x = 500 km,
+    /// range 1000 km, altitude 200 000 ft in turn).
+    OutOfRange,
+    /// 200 extra clutter measurements per scan, shuffled with the others.
+    ClutterStorm,
+    /// The scans in reverse time order.
+    Reversed,
+    /// 20 KiB of random bytes and no frame at all (not even the end of
+    /// input: the firmware ends after 10 s of silence).
+    GarbageOnly,
+}
+
+impl Fault {
+    pub const ALL: [Fault; 14] = [
+        Fault::Garbage,
+        Fault::SyncGarbage,
+        Fault::CrcErrors,
+        Fault::Truncated,
+        Fault::Oversize,
+        Fault::Flood,
+        Fault::Gap,
+        Fault::Backwards,
+        Fault::FarClock,
+        Fault::Jump,
+        Fault::OutOfRange,
+        Fault::ClutterStorm,
+        Fault::Reversed,
+        Fault::GarbageOnly,
+    ];
+
+    pub const fn name(self) -> &'static str {
+        match self {
+            Fault::Garbage => "garbage",
+            Fault::SyncGarbage => "sync-garbage",
+            Fault::CrcErrors => "crc-errors",
+            Fault::Truncated => "truncated",
+            Fault::Oversize => "oversize",
+            Fault::Flood => "flood",
+            Fault::Gap => "gap",
+            Fault::Backwards => "backwards",
+            Fault::FarClock => "far-clock",
+            Fault::Jump => "jump",
+            Fault::OutOfRange => "out-of-range",
+            Fault::ClutterStorm => "clutter-storm",
+            Fault::Reversed => "reversed",
+            Fault::GarbageOnly => "garbage-only",
+        }
+    }
+
+    pub fn from_name(name: &str) -> Option<Fault> {
+        Fault::ALL.into_iter().find(|f| f.name() == name)
+    }
+}
+
+/// The scan at which [`Fault::Flood`], [`Fault::Backwards`] and
+/// [`Fault::Jump`] happen, and [`Fault::Gap`] ends.
+pub const FAULT_SCAN: u32 = 30;
+/// [`Fault::Gap`]: scans missing before [`FAULT_SCAN`].
+pub const GAP_SCANS: u32 = 10;
+/// [`Fault::Backwards`]: the step, ms.
+pub const BACKWARDS_MS: u32 = 10_000;
+/// [`Fault::Jump`]: 40 days, ms (more than 2³¹).
+pub const JUMP_MS: u32 = 40 * 86_400_000;
+/// [`Fault::FarClock`]: 12:00, ms.
+pub const FAR_CLOCK_MS: u32 = 43_200_000;
+
+/// A faulty stream and what was put in it.
+#[derive(Debug, Clone, Default)]
+pub struct FaultStream {
+    pub bytes: Vec<u8>,
+    /// Numbered frames sent (damaged ones and the end-of-input frame
+    /// included).
+    pub frames: usize,
+    /// Frames damaged or made up by the fault (corrupted, cut, oversize,
+    /// out of range).
+    pub damaged: usize,
+    /// Random bytes put between frames.
+    pub garbage_bytes: usize,
+    /// Measurements added by the fault (flood, clutter storm).
+    pub added: usize,
+    /// Scan by scan, in sending order: (sensor time of the scan, scenario
+    /// time in s, measurements sent).
+    pub scans: Vec<(u32, f64, usize)>,
+}
+
+impl FaultStream {
+    /// The scenario time (s) of a scan sent at sensor time `time_ms`.
+    pub fn scenario_time(&self, time_ms: u32) -> Option<f64> {
+        self.scans
+            .iter()
+            .find(|(t, _, _)| *t == time_ms)
+            .map(|(_, s, _)| *s)
+    }
+}
+
+/// The demo's input with `fault` injected; `capacity` is the board's
+/// measurements per scan (for [`Fault::Flood`]).
+pub fn fault_stream(fault: Fault, capacity: usize, seed: u64) -> Result<FaultStream, String> {
+    let mut rng = rng_from_seed(derive_seed(seed, 0xFA17));
+    let mut out = FaultStream::default();
+    if fault == Fault::GarbageOnly {
+        out.bytes = (0..20 * 1024)
+            .map(|_| uniform_index(&mut rng, 256) as u8)
+            .collect();
+        out.garbage_bytes = out.bytes.len();
+        return Ok(out);
+    }
+    let run = scenario::generate("two-crossing", 1).map_err(|e| e.to_string())?;
+    let mut scans: Vec<(u32, f64, Vec<MeasurementReport>)> = Vec::new();
+    for scan in &run.scans {
+        let t = time_ms(scan.t)?;
+        let reports = scan
+            .measurements
+            .iter()
+            .map(|m| report(m, 1))
+            .collect::<Result<Vec<_>, _>>()?;
+        scans.push((t, scan.t, reports));
+    }
+    let clutter = |rng: &mut crate::noise::SimRng, t: u32| {
+        let mut u = || (uniform_index(rng, 1_000_001) as f64 / 1e6 - 0.5) * 10_000.0;
+        MeasurementReport::cartesian_from_metres(t, 1, u(), u(), None).expect("inside ±5 km")
+    };
+    let shuffle = |rng: &mut crate::noise::SimRng, v: &mut Vec<MeasurementReport>| {
+        for i in (1..v.len()).rev() {
+            v.swap(i, uniform_index(rng, i + 1));
+        }
+    };
+    let fault_ms = FAULT_SCAN * 1000;
+    for (t, _, reports) in scans.iter_mut() {
+        let k_ms = *t;
+        let shifted = match fault {
+            Fault::Backwards if k_ms >= fault_ms => Some(t.wrapping_sub(BACKWARDS_MS)),
+            Fault::Jump if k_ms >= fault_ms => Some(t.wrapping_add(JUMP_MS)),
+            Fault::FarClock => Some(t.wrapping_add(FAR_CLOCK_MS)),
+            _ => None,
+        };
+        if let Some(new) = shifted {
+            *t = new;
+            for r in reports.iter_mut() {
+                r.time_ms = new;
+            }
+        }
+        let extra = match fault {
+            Fault::Flood if k_ms == fault_ms => 10 * capacity,
+            Fault::ClutterStorm => 200,
+            _ => 0,
+        };
+        if extra > 0 {
+            for _ in 0..extra {
+                reports.push(clutter(&mut rng, *t));
+            }
+            shuffle(&mut rng, reports);
+            out.added += extra;
+        }
+    }
+    match fault {
+        Fault::Gap => {
+            scans.retain(|(t, _, _)| !(fault_ms - GAP_SCANS * 1000..fault_ms).contains(t))
+        }
+        Fault::Reversed => scans.reverse(),
+        _ => {}
+    }
+
+    let mut encoder = Encoder::new();
+    let mut frame = [0u8; MAX_FRAME_LEN];
+    let mut n = 0usize;
+    if matches!(fault, Fault::Garbage | Fault::SyncGarbage) {
+        let prefix = garbage(&mut rng, fault, 8 * 1024);
+        out.garbage_bytes += prefix.len();
+        out.bytes.extend(prefix);
+    }
+    for (t, scenario_t, reports) in &scans {
+        out.scans.push((*t, *scenario_t, reports.len()));
+        for r in reports {
+            n += 1;
+            if matches!(fault, Fault::Garbage | Fault::SyncGarbage) && n % 5 == 0 {
+                let len = 1 + uniform_index(&mut rng, 64);
+                let g = garbage(&mut rng, fault, len);
+                out.garbage_bytes += g.len();
+                out.bytes.extend(g);
+            }
+            let len = encoder
+                .encode(&Message::Measurement(*r), &mut frame)
+                .expect("a frame fits");
+            let mut bytes = frame[..len].to_vec();
+            out.frames += 1;
+            match fault {
+                Fault::CrcErrors if n % 20 == 0 => {
+                    let bit = uniform_index(&mut rng, (len - HEADER_LEN - CRC_LEN) * 8);
+                    bytes[HEADER_LEN + bit / 8] ^= 1 << (bit % 8);
+                    out.damaged += 1;
+                }
+                Fault::Truncated if n % 25 == 0 => {
+                    let cut = 2 + uniform_index(&mut rng, 19);
+                    bytes.truncate(len - cut);
+                    out.damaged += 1;
+                }
+                Fault::Oversize if n % 25 == 0 => {
+                    bytes[3] = bytes[3].wrapping_add(8);
+                    bytes.extend((0..8).map(|_| uniform_index(&mut rng, 256) as u8));
+                    out.damaged += 1;
+                }
+                _ => {}
+            }
+            out.bytes.extend(bytes);
+            if fault == Fault::OutOfRange && n % 20 == 0 {
+                let position = match (n / 20) % 3 {
+                    0 => abtrack::wire::MeasuredPosition::Cartesian {
+                        x_cm: 50_000_000,
+                        y_cm: 0,
+                    },
+                    1 => abtrack::wire::MeasuredPosition::Polar {
+                        range_cm: 100_000_000,
+                        azimuth_bam: 0,
+                    },
+                    _ => abtrack::wire::MeasuredPosition::Cartesian { x_cm: 0, y_cm: 0 },
+                };
+                let bad = MeasurementReport {
+                    time_ms: r.time_ms,
+                    sensor: r.sensor,
+                    position,
+                    altitude_ft: ((n / 20) % 3 == 2).then_some(200_000),
+                };
+                let len = encoder
+                    .encode(&Message::Measurement(bad), &mut frame)
+                    .expect("a frame fits");
+                out.bytes.extend_from_slice(&frame[..len]);
+                out.frames += 1;
+                out.damaged += 1;
+            }
+        }
+    }
+    let end = EndOfInput {
+        time_ms: scans.last().map_or(0, |s| s.0),
+    };
+    let len = encoder
+        .encode(&Message::End(end), &mut frame)
+        .expect("a frame fits");
+    out.bytes.extend_from_slice(&frame[..len]);
+    out.frames += 1;
+    Ok(out)
+}
+
+/// `len` garbage bytes: uniform, or from the bytes a frame header holds.
+fn garbage(rng: &mut crate::noise::SimRng, fault: Fault, len: usize) -> Vec<u8> {
+    const HEADERS: [u8; 10] = [0xAB, 0xCD, 0x01, 0x02, 0x81, 0x82, 0x84, 18, 16, 36];
+    (0..len)
+        .map(|_| {
+            if fault == Fault::SyncGarbage {
+                HEADERS[uniform_index(rng, HEADERS.len())]
+            } else {
+                uniform_index(rng, 256) as u8
+            }
+        })
+        .collect()
 }
