@@ -28,9 +28,9 @@
 //! resumes it once it has taken the measurement. So everything the firmware
 //! does, the receiver's counters included, depends only on the bytes and
 //! never on how fast the host runs QEMU: every run sends the same report
-//! frames and logs the same lines, but for the flow-control and stack lines
-//! of the summary (host-tests/tests/determinism.rs compares runs byte for
-//! byte, and with the same core run on the host).
+//! frames and logs the same lines but the stack high-water mark
+//! (`demo_runs_are_identical_*` in host-tests/tests/fault_injection.rs
+//! compares runs byte for byte, and with the same core run on the host).
 //!
 //! After the input ends it scans what is left, runs three idle scans,
 //! prints a summary and
@@ -580,9 +580,8 @@ fn run_is_over(used: u16, scan_loop: &mut DemoLoop, run: &mut Run) -> bool {
 }
 
 /// The end-of-run summary: the lifetime counters, the confirmed tracks,
-/// the reports sent. The two last lines (flow-control pauses, stack
-/// high-water mark) depend on the host's timing; everything else is the
-/// same on every run.
+/// the reports sent. Only the stack high-water mark can differ from run to
+/// run (a SysTick exception landing at the deepest point of a scan).
 fn summarise(
     scan_loop: &DemoLoop,
     reporter: &Reporter,

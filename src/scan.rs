@@ -562,6 +562,8 @@ pub struct ScanLoop<S, F, const N: usize, const M: usize> {
     /// Per batch entry: of how many confirmed tracks it is the champion.
     batch_champions: heapless::Vec<u8, M>,
     gates: [Option<TrackGate<S>>; N],
+    /// The batch overflowed: `gates` and the priorities are computed.
+    ranked: bool,
     /// Counts of the scan being assembled (the intake part).
     pending_counts: ScanCounts,
     codes: [Association; M],
@@ -591,6 +593,7 @@ impl<S: Scalar, F: TrackFilter<S>, const N: usize, const M: usize> ScanLoop<S, F
             batch_priorities: heapless::Vec::new(),
             batch_champions: heapless::Vec::new(),
             gates: [const { None }; N],
+            ranked: false,
             pending_counts: ScanCounts::new(),
             codes: [Association::OutsideGates; M],
             altitudes: [const { None }; N],
@@ -640,13 +643,17 @@ impl<S: Scalar, F: TrackFilter<S>, const N: usize, const M: usize> ScanLoop<S, F
     }
 
     fn timing(&self, clock: &ClockConfig, t: u32) -> Timing {
-        let d = i64::from(signed_difference(t, self.scan_ms));
-        let period = i64::from(clock.period_ms);
-        if d <= 0 && d > -period {
+        let d = signed_difference(t, self.scan_ms);
+        let distance = d.unsigned_abs();
+        if d > 0 {
+            if distance <= clock.jump_ms {
+                Timing::LaterScan
+            } else {
+                Timing::OutOfWindow
+            }
+        } else if distance < clock.period_ms {
             Timing::ThisScan
-        } else if d > 0 && d <= i64::from(clock.jump_ms) {
-            Timing::LaterScan
-        } else if d <= -period && d >= -i64::from(clock.late_window_ms) {
+        } else if distance <= clock.late_window_ms {
             Timing::Late
         } else {
             Timing::OutOfWindow
@@ -688,7 +695,7 @@ impl<S: Scalar, F: TrackFilter<S>, const N: usize, const M: usize> ScanLoop<S, F
                 Timing::ThisScan => {
                     self.drop_candidate();
                     if let Some(m) = source.pop() {
-                        self.take(&m);
+                        self.take(config, &m);
                     }
                 }
                 Timing::LaterScan => {
@@ -719,18 +726,18 @@ impl<S: Scalar, F: TrackFilter<S>, const N: usize, const M: usize> ScanLoop<S, F
 
     /// Re-locks onto the held measurement's time; it joins the (empty)
     /// batch.
-    fn apply_relock(&mut self) {
+    fn apply_relock(&mut self, config: &ScanConfig<S, F::Params>) {
         self.relock = false;
         if let Some(c) = self.candidate.take() {
             self.scan_ms = c.time_ms;
             bump(&mut self.counters.clock_relocks);
-            self.take(&c);
+            self.take(config, &c);
         }
     }
 
-    /// One measurement of this scan: converted, then into the batch by
-    /// priority.
-    fn take(&mut self, report: &MeasurementReport) {
+    /// One measurement of this scan: converted, then into the batch; by
+    /// priority once the batch is full.
+    fn take(&mut self, config: &ScanConfig<S, F::Params>, report: &MeasurementReport) {
         let converted = report
             .position::<S>()
             .and_then(|m| report.altitude::<S>().map(|a| (m, a)));
@@ -739,44 +746,61 @@ impl<S: Scalar, F: TrackFilter<S>, const N: usize, const M: usize> ScanLoop<S, F
             bump(&mut self.counters.invalid);
             return;
         };
-        let observation = Observation::new(measurement).ok();
-        let priority = self.priority(observation.as_ref());
-        let index = if self.batch.len() < M {
-            self.batch.len()
-        } else {
-            match self.evictable(&priority, observation.as_ref()) {
-                Some(i) => {
-                    self.release(i);
-                    i
-                }
-                None => {
-                    bump16(&mut self.pending_counts.over_capacity);
-                    bump(&mut self.counters.over_capacity);
-                    return;
-                }
-            }
-        };
-        if index == self.batch.len() {
-            // Four pushes on vectors of the same length below M.
+        if self.batch.len() < M {
+            // Room: no priority needed (yet). Four pushes on vectors of the
+            // same length below M.
             let _ = self.batch.push(measurement);
             let _ = self.batch_altitudes.push(altitude);
-            let _ = self.batch_priorities.push(priority);
+            let _ = self.batch_priorities.push(Priority {
+                class: CLASS_OTHER,
+                gate_cost: 0,
+                range: S::ZERO,
+            });
             let _ = self.batch_champions.push(0);
-        } else {
+            return;
+        }
+        if !self.ranked {
+            self.rank_batch(config);
+        }
+        let observation = Observation::new(measurement).ok();
+        let priority = self.priority(observation.as_ref());
+        let Some(index) = self.evictable(&priority, observation.as_ref()) else {
             bump16(&mut self.pending_counts.over_capacity);
             bump(&mut self.counters.over_capacity);
-            if let Some(slot) = self.batch.get_mut(index) {
-                *slot = measurement;
-            }
-            if let Some(slot) = self.batch_altitudes.get_mut(index) {
-                *slot = altitude;
-            }
-            if let Some(slot) = self.batch_priorities.get_mut(index) {
-                *slot = priority;
-            }
+            return;
+        };
+        self.release(index);
+        bump16(&mut self.pending_counts.over_capacity);
+        bump(&mut self.counters.over_capacity);
+        if let Some(slot) = self.batch.get_mut(index) {
+            *slot = measurement;
+        }
+        if let Some(slot) = self.batch_altitudes.get_mut(index) {
+            *slot = altitude;
+        }
+        if let Some(slot) = self.batch_priorities.get_mut(index) {
+            *slot = priority;
         }
         if let Some(o) = observation {
             self.crown(index, &o);
+        }
+    }
+
+    /// The batch has just overflowed: the gates of the confirmed tracks,
+    /// and the priority and champion places of every entry (in arrival
+    /// order). Only a scan with more than `M` measurements pays for this.
+    fn rank_batch(&mut self, config: &ScanConfig<S, F::Params>) {
+        self.prepare_gates(config);
+        self.ranked = true;
+        for i in 0..self.batch.len() {
+            let observation = self.batch.get(i).and_then(|m| Observation::new(*m).ok());
+            let priority = self.priority(observation.as_ref());
+            if let Some(slot) = self.batch_priorities.get_mut(i) {
+                *slot = priority;
+            }
+            if let Some(o) = observation {
+                self.crown(i, &o);
+            }
         }
     }
 
@@ -901,8 +925,8 @@ impl<S: Scalar, F: TrackFilter<S>, const N: usize, const M: usize> ScanLoop<S, F
         }
     }
 
-    /// The gates of the confirmed tracks for the next scan (one period
-    /// ahead).
+    /// The gates of the confirmed tracks for the scan being assembled (one
+    /// period after the last).
     fn prepare_gates(&mut self, config: &ScanConfig<S, F::Params>) {
         self.gates = [const { None }; N];
         let params = config.tracker.params();
@@ -941,7 +965,7 @@ impl<S: Scalar, F: TrackFilter<S>, const N: usize, const M: usize> ScanLoop<S, F
     ) -> Result<TickReport, ScanError> {
         if self.relock && self.batch.is_empty() {
             // Nothing for the old time base: re-lock at once.
-            self.apply_relock();
+            self.apply_relock(config);
         }
         self.collect(config, source);
         let used = self.batch.len();
@@ -1002,9 +1026,9 @@ impl<S: Scalar, F: TrackFilter<S>, const N: usize, const M: usize> ScanLoop<S, F
         self.tracker_ms = self.tracker_ms.wrapping_add(config.clock.period_ms);
         let time_ms = self.scan_ms;
         self.scan_ms = self.scan_ms.wrapping_add(config.clock.period_ms);
-        self.prepare_gates(config);
+        self.ranked = false;
         if self.relock {
-            self.apply_relock();
+            self.apply_relock(config);
         }
 
         let (decoder, intake) = source.receiver_counters();

@@ -180,6 +180,9 @@ const CRC32C_POLY_REFLECTED: u32 = 0x82F6_3B78;
 /// Initial value (and final XOR) of CRC-32C.
 pub const CRC_INIT: u32 = 0xFFFF_FFFF;
 
+// Evaluated at compile time only: an index out of range or an overflow
+// would fail the build, not the firmware.
+#[allow(clippy::indexing_slicing, clippy::arithmetic_side_effects)]
 const fn crc_table() -> [u32; 256] {
     let mut table = [0u32; 256];
     let mut i = 0;
@@ -756,6 +759,8 @@ impl FrameKind {
         frame_len_for(self.payload_len())
     }
 
+    // Compile time only (MAX_PAYLOAD_LEN): see `crc_table`.
+    #[allow(clippy::indexing_slicing, clippy::arithmetic_side_effects)]
     const fn longest_payload() -> usize {
         let mut longest = 0;
         let mut i = 0;
@@ -769,6 +774,8 @@ impl FrameKind {
         longest
     }
 
+    // Compile time only (MIN_FRAME_LEN): see `crc_table`.
+    #[allow(clippy::indexing_slicing, clippy::arithmetic_side_effects)]
     const fn shortest_payload() -> usize {
         let mut shortest = usize::MAX;
         let mut i = 0;

@@ -706,7 +706,7 @@ pub fn fault_stream(fault: Fault, capacity: usize, seed: u64) -> Result<FaultStr
         out.scans.push((*t, *scenario_t, reports.len()));
         for r in reports {
             n += 1;
-            if matches!(fault, Fault::Garbage | Fault::SyncGarbage) && n % 5 == 0 {
+            if matches!(fault, Fault::Garbage | Fault::SyncGarbage) && n.is_multiple_of(5) {
                 let len = 1 + uniform_index(&mut rng, 64);
                 let g = garbage(&mut rng, fault, len);
                 out.garbage_bytes += g.len();
@@ -718,17 +718,17 @@ pub fn fault_stream(fault: Fault, capacity: usize, seed: u64) -> Result<FaultStr
             let mut bytes = frame[..len].to_vec();
             out.frames += 1;
             match fault {
-                Fault::CrcErrors if n % 20 == 0 => {
+                Fault::CrcErrors if n.is_multiple_of(20) => {
                     let bit = uniform_index(&mut rng, (len - HEADER_LEN - CRC_LEN) * 8);
                     bytes[HEADER_LEN + bit / 8] ^= 1 << (bit % 8);
                     out.damaged += 1;
                 }
-                Fault::Truncated if n % 25 == 0 => {
+                Fault::Truncated if n.is_multiple_of(25) => {
                     let cut = 2 + uniform_index(&mut rng, 19);
                     bytes.truncate(len - cut);
                     out.damaged += 1;
                 }
-                Fault::Oversize if n % 25 == 0 => {
+                Fault::Oversize if n.is_multiple_of(25) => {
                     bytes[3] = bytes[3].wrapping_add(8);
                     bytes.extend((0..8).map(|_| uniform_index(&mut rng, 256) as u8));
                     out.damaged += 1;
@@ -736,7 +736,7 @@ pub fn fault_stream(fault: Fault, capacity: usize, seed: u64) -> Result<FaultStr
                 _ => {}
             }
             out.bytes.extend(bytes);
-            if fault == Fault::OutOfRange && n % 20 == 0 {
+            if fault == Fault::OutOfRange && n.is_multiple_of(20) {
                 let position = match (n / 20) % 3 {
                     0 => abtrack::wire::MeasuredPosition::Cartesian {
                         x_cm: 50_000_000,

@@ -8,6 +8,9 @@
 //! clean. The firmware's report frames must also equal, byte for byte, what
 //! the same scan-loop core decides on the host (`run_like_the_firmware`).
 //!
+//! `demo_runs_are_identical_*` runs the demo's own input several times on
+//! each board and compares the runs byte for byte (report frames and log).
+//!
 //! Needs qemu-system-arm and defmt-print (scripts/setup.sh installs them),
 //! so the tests are ignored by a plain `cargo test`; scripts/test.sh runs
 //! them, one board per step:
@@ -22,7 +25,7 @@ mod demo_config;
 use abtrack::scan::RunVerdict;
 use abtrack::wire::{Health, Message, ScanSummary, TrackReport};
 use abtrack::Fix;
-use abtrack_host_tests::frames::{self, Fault, FaultStream, FirmwareRun};
+use abtrack_host_tests::frames::{self, Fault, FaultStream, Faults, FirmwareRun};
 use abtrack_host_tests::scenario;
 use std::path::{Path, PathBuf};
 use std::process::Command;
@@ -438,4 +441,80 @@ fn fault_injection_mps2_an385() {
 #[ignore = "runs QEMU; scripts/test.sh runs it"]
 fn fault_injection_microbit() {
     fault_injection(&MICROBIT);
+}
+
+/// Runs of the demo compared with each other.
+const RUNS: usize = 3;
+
+/// The log without its stack high-water line: the one figure that depends
+/// on timing (a SysTick exception landing at the deepest point of a scan
+/// adds its frame).
+fn without_stack_line(log: &str) -> String {
+    log.lines()
+        .filter(|l| !l.starts_with("stack: "))
+        .collect::<Vec<_>>()
+        .join("\n")
+}
+
+/// The demo's own input (scripts/demo-input.sh: two-crossing, seed 1, a
+/// corrupted frame every 97, garbage before every 41st), run [`RUNS`]
+/// times: the report frames are identical to each other and to the host's
+/// run of the same core, and so is the log, line for line (but the stack
+/// line). (The issue 11
+/// finding: one run in about 90 ran the first scan with 3 of its 9
+/// measurements.)
+fn demo_runs_are_identical(board: &Board) {
+    let elf = firmware(board);
+    let reports = frames::scenario_reports("two-crossing", 1, 1).unwrap();
+    let input = frames::encode(
+        &reports,
+        Faults {
+            corrupt_every: Some(97),
+            garbage_every: Some(41),
+            seed: 0,
+        },
+    )
+    .bytes;
+    let host = model(board, &input);
+    let runs: Vec<Run> = (0..RUNS)
+        .map(|k| run_firmware(board, &elf, &input, &format!("demo-run-{k}")))
+        .collect();
+    for (k, run) in runs.iter().enumerate() {
+        assert_eq!(run.status, 0, "run {k} on {}:\n{}", board.machine, run.log);
+        assert!(
+            run.uart == host.output,
+            "run {k} on {}: the report frames differ from the host's",
+            board.machine
+        );
+        assert_eq!(
+            without_stack_line(&run.log),
+            without_stack_line(&runs[0].log),
+            "run {k} on {}: the log differs from run 0's",
+            board.machine
+        );
+    }
+    println!(
+        "{}: {RUNS} runs of the demo, {} bytes of report frames and {} lines of log each, identical",
+        board.machine,
+        runs[0].uart.len(),
+        runs[0].log.lines().count()
+    );
+}
+
+#[test]
+#[ignore = "runs QEMU; scripts/test.sh runs it"]
+fn demo_runs_are_identical_mps2_an386() {
+    demo_runs_are_identical(&MPS2_AN386);
+}
+
+#[test]
+#[ignore = "runs QEMU; scripts/test.sh runs it"]
+fn demo_runs_are_identical_mps2_an385() {
+    demo_runs_are_identical(&MPS2_AN385);
+}
+
+#[test]
+#[ignore = "runs QEMU; scripts/test.sh runs it"]
+fn demo_runs_are_identical_microbit() {
+    demo_runs_are_identical(&MICROBIT);
 }

@@ -504,11 +504,7 @@ fn the_scan_clock_relocks_on_a_jump_and_keeps_the_track() {
             .map(|t| t.track_id)
             .collect();
         assert_eq!(near.len(), 1, "{name}: {tracks:?}");
-        let last = tracks
-            .iter()
-            .filter(|t| near.contains(&t.track_id))
-            .last()
-            .unwrap();
+        let last = tracks.iter().rfind(|t| near.contains(&t.track_id)).unwrap();
         assert_eq!(last.time_ms, (start + 19_000).wrapping_add(step), "{name}");
         assert!(
             (last.x_cm as f64 / 100.0 - 950.0).abs() < 5.0,
@@ -912,7 +908,7 @@ fn confirmed_tracks_are_never_starved() {
         }
         let p0 = truth(k, 0);
         for _ in 0..10 {
-            let angle = rng.signed() * 3.14;
+            let angle = rng.signed() * std::f64::consts::PI;
             q.push(at_xy(
                 t,
                 [p0[0] + 20.0 * angle.cos(), p0[1] + 20.0 * angle.sin()],
