@@ -308,25 +308,30 @@ impl<T: WireValue> Field<T> {
 }
 
 /// Declares a layout: each field's offset is the end of the one before,
-/// and `LEN` is the end of the last.
+/// `LEN` is the end of the last, and `FIELDS` lists them (name, offset,
+/// width, doc) for the documentation (`frames layout`).
 macro_rules! layout {
     (
         $(#[$meta:meta])*
-        pub mod $name:ident { $($fields:tt)* }
+        pub mod $name:ident { $( $(#[doc = $doc:literal])* $field:ident: $t:ty, )* }
     ) => {
         $(#[$meta])*
         pub mod $name {
             #[allow(unused_imports)]
             use super::super::*;
-            layout!(@fields 0usize; $($fields)*);
+            layout!(@fields 0usize; $( $(#[doc = $doc])* $field: $t, )*);
+            /// Every field: name, offset, width, what it holds.
+            pub const FIELDS: &[(&str, usize, usize, &str)] = &[
+                $( (stringify!($field), $field.start(), <$t as WireValue>::WIDTH, concat!($($doc),*)), )*
+            ];
         }
     };
     (@fields $at:expr;) => {
         /// Bytes in the layout.
         pub const LEN: usize = $at;
     };
-    (@fields $at:expr; $(#[$fmeta:meta])* $field:ident: $t:ty, $($rest:tt)*) => {
-        $(#[$fmeta])*
+    (@fields $at:expr; $(#[doc = $doc:literal])* $field:ident: $t:ty, $($rest:tt)*) => {
+        $(#[doc = $doc])*
         pub const $field: Field<$t> = Field::at($at);
         layout!(@fields $field.end(); $($rest)*);
     };
@@ -353,6 +358,7 @@ pub mod field {
         pub mod cartesian {
             /// Sensor clock, ms (it may wrap; see [`crate::scan`]).
             TIME: u32,
+            /// Sensor id.
             SENSOR: u8,
             /// Bit 0: altitude present; bits 1–7 must be 0.
             FLAGS: u8,
@@ -369,6 +375,7 @@ pub mod field {
         pub mod polar {
             /// Sensor clock, ms.
             TIME: u32,
+            /// Sensor id.
             SENSOR: u8,
             /// Bit 0: altitude present; bits 1–7 must be 0.
             FLAGS: u8,
@@ -394,6 +401,7 @@ pub mod field {
         pub mod track {
             /// Scan time, ms (the sensor's clock).
             TIME: u32,
+            /// Track id (never reused while the track lives).
             TRACK_ID: u32,
             /// 0 tentative, 1 confirmed, 2 coasting.
             STATUS: u8,
@@ -440,14 +448,33 @@ pub mod field {
         pub mod health {
             /// Scan time, ms (the sensor's clock).
             TIME: u32,
+            /// The decoder's counters ([`DecoderStats`]).
             DECODER: DecoderStats,
+            /// The receive side's ([`IntakeCounters`]).
             INTAKE: IntakeCounters,
+            /// The scan loop's ([`LoopCounters`]).
             SCAN: LoopCounters,
         }
     }
 }
 
 use field::{cartesian, end, header, health, polar, scan, track};
+
+/// Every layout: (name, type byte if a message, fields), for the
+/// documentation (`frames layout`).
+pub const LAYOUTS: [(&str, Option<FrameKind>, &[(&str, usize, usize, &str)]); 7] = [
+    ("frame header", None, header::FIELDS),
+    (
+        "Cartesian measurement",
+        Some(FrameKind::MeasurementCartesian),
+        cartesian::FIELDS,
+    ),
+    ("polar measurement", Some(FrameKind::MeasurementPolar), polar::FIELDS),
+    ("end of input", Some(FrameKind::EndOfInput), end::FIELDS),
+    ("track report", Some(FrameKind::TrackReport), track::FIELDS),
+    ("scan summary", Some(FrameKind::ScanSummary), scan::FIELDS),
+    ("health", Some(FrameKind::Health), health::FIELDS),
+];
 
 // ---------------------------------------------------------------------------
 // Counter lists

@@ -500,6 +500,68 @@ pub struct FirmwareRun {
     pub verdict: Option<RunVerdict>,
 }
 
+/// The frame format as Markdown, from the library's layout tables and
+/// counter lists (`frames layout`; docs/firmware-runtime.md holds a copy,
+/// checked by the frames tool's tests).
+pub fn layout_markdown() -> String {
+    use abtrack::wire::{IntakeCounters, LoopCounters, ScanCounts, LAYOUTS};
+    let mut out = String::new();
+    for (name, kind, fields) in LAYOUTS {
+        match kind {
+            Some(k) => {
+                out += &format!(
+                    "**{name}** (type `0x{:02X}`, payload {} bytes, frame {} bytes)\n\n",
+                    k.byte(),
+                    k.payload_len(),
+                    k.frame_len()
+                )
+            }
+            None => {
+                out += &format!(
+                    "**{name}** ({HEADER_LEN} bytes; then the payload, then a {CRC_LEN}-byte CRC-32C of everything after the sync bytes)\n\n"
+                )
+            }
+        }
+        out += "| offset | bytes | field | holds |\n|---|---|---|---|\n";
+        for (field, offset, width, doc) in fields {
+            // Rustdoc links read as plain code here.
+            let doc = doc.trim().replace("[`", "`").replace("`]", "`");
+            let doc = doc.replace("`crate::scan`", "`abtrack::scan`");
+            out += &format!("| {offset} | {width} | `{field}` | {doc} |\n");
+        }
+        out += "\n";
+    }
+    let list = |title: &str, names: &[&str], labels: &[&str]| {
+        let items: Vec<String> = names
+            .iter()
+            .zip(labels)
+            .map(|(n, l)| format!("`{n}` ({l})"))
+            .collect();
+        format!("{title}: {}.\n\n", items.join(", "))
+    };
+    out += &list(
+        "`COUNTS` of the scan summary, u16 each, in order",
+        &ScanCounts::NAMES,
+        &ScanCounts::LABELS,
+    );
+    out += &list(
+        "`DECODER` of the health report, u32 each, in order",
+        &DecoderStats::NAMES,
+        &DecoderStats::LABELS,
+    );
+    out += &list(
+        "`INTAKE` of the health report, u32 each",
+        &IntakeCounters::NAMES,
+        &IntakeCounters::LABELS,
+    );
+    out += &list(
+        "`SCAN` of the health report, u32 each",
+        &LoopCounters::NAMES,
+        &LoopCounters::LABELS,
+    );
+    out
+}
+
 // ---------------------------------------------------------------------------
 // Fault injection
 // ---------------------------------------------------------------------------

@@ -135,3 +135,20 @@ fn fault_streams_hold_what_they_say() {
         );
     }
 }
+
+/// docs/firmware-runtime.md holds the output of `frames layout` between two
+/// markers: it must be the current one (regenerate it with that command).
+#[test]
+fn the_documented_frame_format_is_current() {
+    let doc = std::fs::read_to_string(
+        std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("../docs/firmware-runtime.md"),
+    )
+    .unwrap();
+    let start = doc.find("<!-- frames layout -->\n").unwrap() + "<!-- frames layout -->\n".len();
+    let end = doc.find("<!-- end frames layout -->").unwrap();
+    assert_eq!(
+        &doc[start..end],
+        frames::layout_markdown(),
+        "docs/firmware-runtime.md: run `cargo run --release --bin frames -- layout` in host-tests and paste its output between the markers"
+    );
+}

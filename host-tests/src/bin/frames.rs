@@ -6,6 +6,7 @@
 //!               [--corrupt-every K] [--garbage-every K] --out FILE
 //! frames encode --fault KIND [--capacity M] [--fault-seed N] --out FILE
 //! frames decode FILE [--messages | --scans-csv] [--check]
+//! frames layout
 //! frames --help
 //! ```
 //!
@@ -26,6 +27,7 @@ USAGE:
                   [--corrupt-every K] [--garbage-every K] --out FILE
     frames encode --fault KIND [--capacity M] [--fault-seed N] --out FILE
     frames decode FILE [--messages | --scans-csv] [--check]
+    frames layout
     frames --help
 
 encode writes one measurement frame per measurement, in time order:
@@ -48,6 +50,9 @@ of the fault-injection tests: garbage, sync-garbage, crc-errors, truncated,
 oversize, flood (10 x --capacity extra measurements at t = 30 s; default 64),
 gap, backwards, far-clock, jump, out-of-range, clutter-storm, reversed,
 garbage-only (see docs/firmware-runtime.md).
+
+layout prints the frame format (every layout and counter list, from the
+code's own tables) as Markdown: docs/firmware-runtime.md includes it.
 
 decode reads a byte stream (e.g. the demo's UART output) and prints a
 summary of the frames in it: scans, tracks, advisories, health counters;
@@ -75,6 +80,7 @@ enum Output {
 #[derive(Debug, PartialEq)]
 enum Command {
     Help,
+    Layout,
     Encode {
         source: Source,
         sensor: u8,
@@ -99,6 +105,12 @@ fn parse(args: &[String]) -> Result<Command, String> {
     };
     if sub == "-h" || sub == "--help" {
         return Ok(Command::Help);
+    }
+    if sub == "layout" {
+        return match args.get(1) {
+            None => Ok(Command::Layout),
+            Some(a) => Err(format!("layout takes no argument ('{a}')")),
+        };
     }
     let mut scenario_name = None;
     let mut seed = 0u64;
@@ -185,6 +197,7 @@ fn parse(args: &[String]) -> Result<Command, String> {
 fn run(command: Command) -> Result<(), String> {
     match command {
         Command::Help => print!("{USAGE}"),
+        Command::Layout => print!("{}", frames::layout_markdown()),
         Command::Encode {
             source,
             sensor,
@@ -368,6 +381,8 @@ mod tests {
         assert!(parse(&args(&["encode", "--sensor", "300"])).is_err());
         assert!(parse(&args(&["decode"])).is_err());
         assert!(parse(&args(&["frobnicate"])).is_err());
+        assert_eq!(parse(&args(&["layout"])), Ok(Command::Layout));
+        assert!(parse(&args(&["layout", "x"])).is_err());
         assert!(parse(&args(&["encode", "--fault", "nope", "--out", "x"])).is_err());
         assert!(parse(&args(&[
             "encode",
