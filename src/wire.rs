@@ -76,11 +76,11 @@ pub const HEADER_LEN: usize = field::header::LEN;
 /// The CRC at the end.
 pub const CRC_LEN: usize = 4;
 /// The longest payload of any type.
-pub const MAX_PAYLOAD_LEN: usize = FrameKind::longest_payload();
+pub const MAX_PAYLOAD_LEN: usize = FrameKind::payload_bound(true);
 /// The longest frame.
 pub const MAX_FRAME_LEN: usize = frame_len_for(MAX_PAYLOAD_LEN);
 /// The shortest frame (the end of input).
-pub const MIN_FRAME_LEN: usize = frame_len_for(FrameKind::shortest_payload());
+pub const MIN_FRAME_LEN: usize = frame_len_for(FrameKind::payload_bound(false));
 /// At most this many frames can complete on one byte pushed into the
 /// [`Decoder`]: after a failed candidate, the bytes it held are examined
 /// again, and up to `MAX_FRAME_LEN / MIN_FRAME_LEN` frames fit in them. A
@@ -469,7 +469,11 @@ pub const LAYOUTS: [(&str, Option<FrameKind>, &[(&str, usize, usize, &str)]); 7]
         Some(FrameKind::MeasurementCartesian),
         cartesian::FIELDS,
     ),
-    ("polar measurement", Some(FrameKind::MeasurementPolar), polar::FIELDS),
+    (
+        "polar measurement",
+        Some(FrameKind::MeasurementPolar),
+        polar::FIELDS,
+    ),
     ("end of input", Some(FrameKind::EndOfInput), end::FIELDS),
     ("track report", Some(FrameKind::TrackReport), track::FIELDS),
     ("scan summary", Some(FrameKind::ScanSummary), scan::FIELDS),
@@ -786,34 +790,20 @@ impl FrameKind {
         frame_len_for(self.payload_len())
     }
 
-    // Compile time only (MAX_PAYLOAD_LEN): see `crc_table`.
+    // Compile time only (MAX_PAYLOAD_LEN, MIN_FRAME_LEN): see `crc_table`.
+    /// The longest (or shortest) payload of any kind.
     #[allow(clippy::indexing_slicing, clippy::arithmetic_side_effects)]
-    const fn longest_payload() -> usize {
-        let mut longest = 0;
-        let mut i = 0;
+    const fn payload_bound(longest: bool) -> usize {
+        let mut bound = Self::ALL[0].payload_len();
+        let mut i = 1;
         while i < Self::ALL.len() {
             let len = Self::ALL[i].payload_len();
-            if len > longest {
-                longest = len;
+            if (longest && len > bound) || (!longest && len < bound) {
+                bound = len;
             }
             i += 1;
         }
-        longest
-    }
-
-    // Compile time only (MIN_FRAME_LEN): see `crc_table`.
-    #[allow(clippy::indexing_slicing, clippy::arithmetic_side_effects)]
-    const fn shortest_payload() -> usize {
-        let mut shortest = usize::MAX;
-        let mut i = 0;
-        while i < Self::ALL.len() {
-            let len = Self::ALL[i].payload_len();
-            if len < shortest {
-                shortest = len;
-            }
-            i += 1;
-        }
-        shortest
+        bound
     }
 }
 

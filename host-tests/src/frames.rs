@@ -531,34 +531,36 @@ pub fn layout_markdown() -> String {
         }
         out += "\n";
     }
-    let list = |title: &str, names: &[&str], labels: &[&str]| {
+    let lists: [(&str, &[&str], &[&str]); 4] = [
+        (
+            "`COUNTS` of the scan summary, u16 each, in order",
+            &ScanCounts::NAMES,
+            &ScanCounts::LABELS,
+        ),
+        (
+            "`DECODER` of the health report, u32 each, in order",
+            &DecoderStats::NAMES,
+            &DecoderStats::LABELS,
+        ),
+        (
+            "`INTAKE` of the health report, u32 each",
+            &IntakeCounters::NAMES,
+            &IntakeCounters::LABELS,
+        ),
+        (
+            "`SCAN` of the health report, u32 each",
+            &LoopCounters::NAMES,
+            &LoopCounters::LABELS,
+        ),
+    ];
+    for (title, names, labels) in lists {
         let items: Vec<String> = names
             .iter()
             .zip(labels)
             .map(|(n, l)| format!("`{n}` ({l})"))
             .collect();
-        format!("{title}: {}.\n\n", items.join(", "))
-    };
-    out += &list(
-        "`COUNTS` of the scan summary, u16 each, in order",
-        &ScanCounts::NAMES,
-        &ScanCounts::LABELS,
-    );
-    out += &list(
-        "`DECODER` of the health report, u32 each, in order",
-        &DecoderStats::NAMES,
-        &DecoderStats::LABELS,
-    );
-    out += &list(
-        "`INTAKE` of the health report, u32 each",
-        &IntakeCounters::NAMES,
-        &IntakeCounters::LABELS,
-    );
-    out += &list(
-        "`SCAN` of the health report, u32 each",
-        &LoopCounters::NAMES,
-        &LoopCounters::LABELS,
-    );
+        out += &format!("{title}: {}.\n\n", items.join(", "));
+    }
     out
 }
 

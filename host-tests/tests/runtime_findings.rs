@@ -4,8 +4,11 @@
 //! "Issue 11 runtime findings reproduced ..."); the CRC collision finding
 //! is `a_made_up_frame_does_not_swallow_the_real_one` in wire.rs.
 
+mod common;
 #[path = "../../src/firmware/demo_config.rs"]
 mod demo_config;
+
+use common::{crossing_truth, Lcg};
 
 use abtrack::scan::{Collected, MeasurementQueue, ScanLoop};
 use abtrack::track::{Association, FixedGainTrack, TrackTable};
@@ -95,6 +98,14 @@ fn jump_past_2_31_ms_does_not_make_later_frames_late() {
     let mut scan_loop: Box<Loop<f64, 4, 8>> = Box::new(Loop::new());
     const FORTY_DAYS_MS: u32 = 40 * 86_400_000;
     let mut late = 0;
+    let mut tick = |scan_loop: &mut Loop<f64, 4, 8>, q: &mut MeasurementQueue<16>| {
+        late += scan_loop
+            .on_tick(&config, q, |_| {})
+            .unwrap()
+            .summary
+            .counts
+            .late;
+    };
     for k in 0..10u32 {
         let t = if k < 5 {
             k * 1000
@@ -103,20 +114,10 @@ fn jump_past_2_31_ms_does_not_make_later_frames_late() {
         };
         q.push(at(t, 100.0 * k as f64, 0.0)).unwrap();
         while scan_loop.collect(&config, &mut q) == Collected::ScanDue {
-            late += scan_loop
-                .on_tick(&config, &mut q, |_| {})
-                .unwrap()
-                .summary
-                .counts
-                .late;
+            tick(&mut scan_loop, &mut q);
         }
     }
-    late += scan_loop
-        .on_tick(&config, &mut q, |_| {})
-        .unwrap()
-        .summary
-        .counts
-        .late;
+    tick(&mut scan_loop, &mut q);
     assert_eq!(late, 0);
     let c = scan_loop.counters();
     assert_eq!((c.used, c.clock_relocks, c.scans), (10, 1, 10), "{c:?}");
@@ -142,34 +143,6 @@ fn flood_beyond_capacity_is_counted_as_over_capacity() {
     assert_eq!(flood::<f32, 32, 64, 128>(&bytes), [0, 5000 - 64, 65]);
     assert_eq!(flood::<Fix, 32, 64, 128>(&bytes), [0, 5000 - 64, 65]);
     assert_eq!(flood::<Fix, 8, 24, 32>(&bytes), [0, 5000 - 24, 25]);
-}
-
-/// Deterministic pseudo-random numbers (64-bit LCG, Knuth's MMIX constants).
-struct Lcg(u64);
-impl Lcg {
-    fn next_u64(&mut self) -> u64 {
-        self.0 = self
-            .0
-            .wrapping_mul(6364136223846793005)
-            .wrapping_add(1442695040888963407);
-        self.0 >> 11
-    }
-    /// Uniform in [-1, 1).
-    fn signed(&mut self) -> f64 {
-        (self.next_u64() as f64 / (1u64 << 53) as f64) * 2.0 - 1.0
-    }
-    fn below(&mut self, n: usize) -> usize {
-        (self.next_u64() % n as u64) as usize
-    }
-}
-
-/// The two targets of the crossing (scan_loop.rs): A from (−3000, −1500) m
-/// moving (100, 50) m/s, B from (−3000, 1500) m moving (100, −50) m/s.
-fn crossing_truth(t: f64) -> [[f64; 2]; 2] {
-    [
-        [-3000.0 + 100.0 * t, -1500.0 + 50.0 * t],
-        [-3000.0 + 100.0 * t, 1500.0 - 50.0 * t],
-    ]
 }
 
 /// The crossing with 200 clutter measurements per scan (uniform over the

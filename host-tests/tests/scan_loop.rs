@@ -4,8 +4,11 @@
 
 #![allow(clippy::needless_range_loop)]
 
+mod common;
 #[path = "../../src/firmware/demo_config.rs"]
 mod demo_config;
+
+use common::{crossing_truth, Lcg};
 
 use abtrack::filter::altitude::{AltitudeQuantum, AltitudeTrackerConfig};
 use abtrack::scan::{
@@ -23,25 +26,6 @@ use abtrack_host_tests::scenario;
 use std::collections::{BTreeMap, BTreeSet};
 
 type Loop<S, const N: usize, const M: usize> = ScanLoop<S, FixedGainTrack<S>, N, M>;
-
-/// Deterministic pseudo-random numbers (64-bit LCG, Knuth's MMIX constants).
-struct Lcg(u64);
-impl Lcg {
-    fn next_u64(&mut self) -> u64 {
-        self.0 = self
-            .0
-            .wrapping_mul(6364136223846793005)
-            .wrapping_add(1442695040888963407);
-        self.0 >> 11
-    }
-    /// Uniform in [-1, 1).
-    fn signed(&mut self) -> f64 {
-        (self.next_u64() as f64 / (1u64 << 53) as f64) * 2.0 - 1.0
-    }
-    fn below(&mut self, n: usize) -> usize {
-        (self.next_u64() % n as u64) as usize
-    }
-}
 
 /// Numbers the frames of the test's sensor.
 #[derive(Default)]
@@ -129,17 +113,6 @@ impl<S: Scalar, const N: usize, const M: usize> Rig<S, N, M> {
             .unwrap();
         self.ticks.push(report);
     }
-}
-
-/// Two targets on an X through the own aircraft at the origin, both at
-/// 111.8 m/s: A from (−3000, −1500) m moving (100, 50) m/s, B from
-/// (−3000, 1500) m moving (100, −50) m/s; they cross at the origin at
-/// t = 30 s. Noise uniform ±15 m per axis.
-fn crossing_truth(t: f64) -> [[f64; 2]; 2] {
-    [
-        [-3000.0 + 100.0 * t, -1500.0 + 50.0 * t],
-        [-3000.0 + 100.0 * t, 1500.0 - 50.0 * t],
-    ]
 }
 
 /// Runs the crossing through the loop in `S`; returns the rig's output and
