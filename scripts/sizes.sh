@@ -46,6 +46,7 @@ bins=(abtrack-firmware selftest selftest-tracking bench)
 printf '%-22s %-11s %-17s %10s %10s\n' target board binary "flash (B)" "RAM (B)"
 for t in "${ABTRACK_TARGETS[@]}"; do
     cargo build --quiet --release --target "$t"
+    cargo build --quiet --release --target "$t" --bin bench --features bench-anchors
     for b in "${bins[@]}"; do
         elf="target/$t/release/$b"
         "$size_tool" -A "$elf" | awk -v t="$t" -v board="$(board_for_target "$t")" -v b="$b" '

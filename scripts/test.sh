@@ -3,12 +3,16 @@
 #   1. formatting (cargo fmt --check, root crate and host-tests),
 #   2. host tests (cd host-tests && cargo test --release),
 #   3. the library alone for the three thumb targets (no firmware feature),
-#   4. the firmware (demo, self-test, benchmark) for the three targets,
+#   4. the firmware (demo, self-tests) for the three targets (the benchmark,
+#      which needs the feature bench-anchors, is built by step 7),
 #   5. the demo and the on-target self-tests (selftest, selftest-tracking)
 #      under QEMU on the three boards
 #      (mps2-an386 / Cortex-M4F, mps2-an385 / Cortex-M3, microbit / Cortex-M0),
 #   6. fault injection and repeated demo runs on the three boards, and a
-#      one-hour soak on the Cortex-M3 (docs/firmware-runtime.md).
+#      one-hour soak on the Cortex-M3 (docs/firmware-runtime.md),
+#   7. a smoke run of the benchmark image on each board: it must run to its
+#      end and print a well-formed report (nothing about speed is checked;
+#      scripts/bench.sh measures).
 #
 #   scripts/test.sh
 #
@@ -90,6 +94,22 @@ for t in "${ABTRACK_TARGETS[@]}"; do
     for bin in selftest selftest-tracking; do
         step "$bin on $(board_for_target "$t")" run_selftest "$t" "$bin"
     done
+done
+
+# The benchmark image (its own feature: the minikalman anchor) must run to
+# its end and print a complete, well-formed report: bench_report --check
+# refuses a malformed line, a missing end line or a line count that differs
+# from the end line's. The figures themselves are not checked.
+run_bench_smoke() {
+    local target=$1 log="$log_dir/bench-$1.log"
+    cargo run --release --target "$target" --bin bench --features bench-anchors >"$log" || {
+        tail -n 20 "$log" >&2
+        return 1
+    }
+    in_host_tests cargo run --quiet --release --bin bench_report -- --check "$log"
+}
+for t in "${ABTRACK_TARGETS[@]}"; do
+    step "benchmark smoke run on $(board_for_target "$t")" run_bench_smoke "$t"
 done
 
 echo

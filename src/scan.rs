@@ -425,7 +425,7 @@ impl ClockConfig {
 /// [`TrackerConfig`] is kept outside [`TrackTable`]) so that the loop can be
 /// built by a `const fn` in a `static`.
 #[derive(Debug, Clone, Copy, PartialEq)]
-pub struct ScanConfig<S, P> {
+pub struct ScanConfig<S: Scalar, P> {
     pub tracker: TrackerConfig<S, P>,
     /// The own aircraft, for the threat assessment.
     pub own: OwnAircraft<S>,
@@ -461,7 +461,7 @@ pub struct TickReport {
 }
 
 #[derive(Debug, Clone, Copy)]
-struct AltitudeSlot<S> {
+struct AltitudeSlot<S: Scalar> {
     track: TrackId,
     tracker: AltitudeTracker<S>,
     updated: bool,
@@ -545,7 +545,7 @@ fn scaled_i32<S: Scalar>(v: S, scale: f64) -> i32 {
 /// [`AltitudeTracker<S>`]. `host-tests/tests/scan_loop.rs` prints the sizes;
 /// the firmware prints its own at start-up.
 #[derive(Debug)]
-pub struct ScanLoop<S, F, const N: usize, const M: usize> {
+pub struct ScanLoop<S: Scalar, F, const N: usize, const M: usize> {
     table: TrackTable<S, F, N, M>,
     /// The tracker's time of the next scan (ms; +1 period per scan).
     tracker_ms: u32,
