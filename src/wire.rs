@@ -321,7 +321,7 @@ macro_rules! layout {
             use super::super::*;
             layout!(@fields 0usize; $( $(#[doc = $doc])* $field: $t, )*);
             /// Every field: name, offset, width, what it holds.
-            pub const FIELDS: &[(&str, usize, usize, &str)] = &[
+            pub const FIELDS: &[FieldRow] = &[
                 $( (stringify!($field), $field.start(), <$t as WireValue>::WIDTH, concat!($($doc),*)), )*
             ];
         }
@@ -460,9 +460,13 @@ pub mod field {
 
 use field::{cartesian, end, header, health, polar, scan, track};
 
+/// A field of a layout, for the documentation: name, offset, width, what it
+/// holds.
+pub type FieldRow = (&'static str, usize, usize, &'static str);
+
 /// Every layout: (name, type byte if a message, fields), for the
 /// documentation (`frames layout`).
-pub const LAYOUTS: [(&str, Option<FrameKind>, &[(&str, usize, usize, &str)]); 7] = [
+pub const LAYOUTS: [(&str, Option<FrameKind>, &[FieldRow]); 7] = [
     ("frame header", None, header::FIELDS),
     (
         "Cartesian measurement",
