@@ -1,6 +1,6 @@
 //! The soak's day (not built for the micro:bit).
 
-use crate::board::{self, Native};
+use crate::board::{self, TableScalar as Native};
 use crate::demo_config;
 use crate::icount::InstructionCounter;
 use crate::synth;
