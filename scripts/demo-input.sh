@@ -1,9 +1,11 @@
 #!/usr/bin/env bash
 # Writes the demo's default UART input: the `two-crossing` scenario (seed 1)
-# as abtrack wire frames, with a corrupted frame every 97 and 1-16 garbage
-# bytes before every 41st, so the receiver's resynchronisation and counters
-# have something to do. host-tests/tests/scan_loop.rs runs the same input
-# through the same configuration on the host.
+# as numbered abtrack wire frames ending with an end-of-input frame, with a
+# corrupted frame every 97 and 1-16 garbage bytes before every 41st, so the
+# receiver's resynchronisation and counters have something to do.
+# host-tests/tests/scan_loop.rs runs the same input through the same
+# configuration on the host; `frames encode --fault KIND` writes it with one
+# of the fault-injection faults instead (docs/firmware-runtime.md).
 #
 #   scripts/demo-input.sh <output file>
 #

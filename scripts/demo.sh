@@ -11,8 +11,10 @@
 # thumbv6m-none-eabi / microbit / m0 (Cortex-M0, fixed point).
 # Input: the given frames file, or by default the two-crossing scenario
 # written by scripts/demo-input.sh (make your own with the `frames` tool:
-# see README.md). Installs what is missing (the Rust target, qemu-system-arm
-# when root, defmt-print). The exit status is the firmware's.
+# see README.md and docs/firmware-runtime.md). Installs what is missing (the
+# Rust target, qemu-system-arm when root, defmt-print). The exit status is
+# the firmware's: 0 for a clean run (docs/firmware-runtime.md, "Exit status
+# and health"), or 1 if the report frames on the UART are not clean frames.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 # shellcheck source=scripts/setup.sh

@@ -4,11 +4,13 @@
 #   2. host tests (cd host-tests && cargo test --release),
 #   3. the library alone for the three thumb targets (no firmware feature),
 #   4. the firmware (demo, self-tests) for the three targets (the benchmark,
-#      which needs the feature bench-anchors, is built by step 6),
+#      which needs the feature bench-anchors, is built by step 7),
 #   5. the demo and the on-target self-tests (selftest, selftest-tracking)
 #      under QEMU on the three boards
 #      (mps2-an386 / Cortex-M4F, mps2-an385 / Cortex-M3, microbit / Cortex-M0),
-#   6. a smoke run of the benchmark image on each board: it must run to its
+#   6. fault injection and repeated demo runs on the three boards, and a
+#      one-hour soak on the Cortex-M3 (docs/firmware-runtime.md),
+#   7. a smoke run of the benchmark image on each board: it must run to its
 #      end and print a well-formed report (nothing about speed is checked;
 #      scripts/bench.sh measures).
 #
@@ -75,6 +77,18 @@ done
 for t in "${ABTRACK_TARGETS[@]}"; do
     step "demo on $(board_for_target "$t")" cargo run --release --target "$t" --bin abtrack-firmware
 done
+# Fault injection through each board's UART (every fault of
+# host-tests/src/frames.rs `Fault`), and three runs of the demo compared byte
+# for byte, with each other and with the same core run on the host
+# (host-tests/tests/fault_injection.rs; about 30 s per board).
+for t in "${ABTRACK_TARGETS[@]}"; do
+    b=$(board_for_target "$t")
+    step "fault injection and repeated runs on $b" in_host_tests \
+        cargo test --release --test fault_injection -- --ignored --test-threads=1 "${b//-/_}"
+done
+# The soak, shortened to one hour of scans (scripts/soak.sh runs the day).
+step "soak, one hour, on mps2-an385" in_host_tests env ABTRACK_SOAK_SCANS=3600 \
+    cargo test --release --test soak -- --ignored soak_mps2_an385
 # Two self-test images (together they do not fit the micro:bit's flash).
 for t in "${ABTRACK_TARGETS[@]}"; do
     for bin in selftest selftest-tracking; do

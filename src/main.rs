@@ -1,33 +1,44 @@
 //! abtrack demo firmware: the interrupt-driven scan loop.
 //!
 //! ```text
-//! UART RX interrupt ─▶ scan::Intake (wire::Decoder) ─▶ spsc queue ─┐
-//! SysTick ─▶ wakes main (WFI) ─▶ scan::ScanLoop::on_tick ◀────────┘
-//!   tracker scan ─▶ TCAS assessment ─▶ defmt log lines
-//!                                    ─▶ report frames on UART TX
-//!                                    ─▶ advisory lines (OutputPin)
+//! UART RX interrupt ─▶ scan::Intake (wire::Decoder, measurement queue) ─┐
+//! SysTick ─▶ wakes main (WFI) ─▶ receive ─▶ scan::ScanLoop::collect ◀────┘
+//!   ─▶ ScanLoop::on_tick: tracker scan, TCAS assessment
+//!        ─▶ defmt log lines, report frames on UART TX, advisory lines
 //! ```
 //!
 //! Measurement frames (`abtrack::wire`) arrive on the UART; the receive
 //! interrupt decodes them and queues the measurements; every SysTick wakes
-//! the main loop, which runs one scan per sensor period (1 s of the
-//! recording's clock) on the queued measurements, logs the tracks, the
-//! per-stage counts and the advisories through defmt, sends track, scan and
-//! link reports back as frames on the UART, and drives the traffic and
-//! resolution advisory lines. When the input has ended (the line idle for a
-//! second) it runs a few more scans, prints a summary and leaves QEMU:
-//! status 0, or 1 if no measurement arrived, a scan was refused or a report
-//! could not be sent.
+//! the main loop (and so does a measurement waiting in the queue), which
+//! runs one function per stage: [`receive`] takes the
+//! queued measurements into the scan being assembled (the scan clock of
+//! `abtrack::scan` sorts them by the sensor's time), [`scan`] runs the scan
+//! once the input has moved past it, [`show_advisories`] drives the advisory
+//! lines, [`input_has_ended`] and [`run_is_over`] notice the end of the
+//! input and of the run, and [`summarise`] and [`verdict`] end the run. The reports go out through [`Reporter`].
 //!
-//! The input is a recording, replayed faster than real time: SysTick fires
-//! every 20 ms and each tick is one 1 s scan of the recording's clock (50×).
-//! QEMU's UART delivers a file as fast as the firmware reads it, so two
-//! things a live sensor link would not need keep the replay faithful: the
-//! receive interrupt stops reading while the queue is nearly full (flow
-//! control: QEMU holds the bytes back, as a sender would on a deasserted
-//! RTS line), and a scan waits until the input has moved past its time (or
-//! gone idle), so each scan gets exactly its measurements however fast the
-//! host runs QEMU. See README.md, "The demo".
+//! The input is a recording, replayed faster than real time: a scan runs as
+//! soon as the input has moved past its time (a measurement of a later scan
+//! is at the head of the queue) or the input has ended (its end-of-input
+//! frame arrived, or, without one, no byte for 10 s; SysTick, every 20 ms,
+//! times that silence). QEMU's UART delivers a file as
+//! fast as the firmware reads it, so the receive interrupt stops reading
+//! as soon as it has queued a measurement (flow control: QEMU holds the
+//! bytes back, as a sender would on a deasserted RTS line) and the main loop
+//! resumes it once it has taken the measurement. So everything the firmware
+//! does, the receiver's counters included, depends only on the bytes and
+//! never on how fast the host runs QEMU: every run sends the same report
+//! frames and logs the same lines but the stack high-water mark
+//! (`demo_runs_are_identical_*` in host-tests/tests/fault_injection.rs
+//! compares runs byte for byte, and with the same core run on the host).
+//!
+//! After the input ends it scans what is left, runs three idle scans,
+//! prints a summary and
+//! leaves QEMU with status 0 when the run was clean
+//! (`abtrack::scan::RunVerdict`: something was used, at most one in ten
+//! frames the sensor sent was lost or not used, no threat assessment
+//! failed), and every scan ran and every report was sent; 1 otherwise. See
+//! docs/firmware-runtime.md.
 #![no_std]
 #![no_main]
 
@@ -41,18 +52,21 @@ mod io;
 use core::cell::RefCell;
 use core::sync::atomic::{AtomicBool, AtomicU32, Ordering::Relaxed};
 
-use abtrack::scan::{AdvisoryLines, Intake, ScanLoop};
+use abtrack::scan::{
+    AdvisoryLines, Collected, Intake, MeasurementSource, RunVerdict, ScanConfig, ScanLoop,
+};
 use abtrack::tcas::Advisory;
 use abtrack::track::FixedGainTrack;
-use abtrack::wire::{LinkStatus, MeasurementReport, Message, ScanSummary, TrackReport};
-use abtrack::wire::{MAX_FRAMES_PER_BYTE, MAX_FRAME_LEN};
+use abtrack::wire::{
+    DecoderStats, Encoder, EndOfInput, Health, IntakeCounters, MeasurementReport, Message,
+    ScanSummary, TrackReport, MAX_FRAMES_PER_BYTE, MAX_FRAME_LEN,
+};
 use abtrack::Scalar;
 use board::TableScalar as Native;
 use cortex_m::interrupt::{free, Mutex};
 use cortex_m::peripheral::syst::SystClkSource;
 use cortex_m::peripheral::NVIC;
 use cortex_m_rt::exception;
-use heapless::spsc::Queue;
 
 /// Capacities. The micro:bit's 16 KiB of RAM set its own: the scenario
 /// has at most 20 measurements per scan (2 targets + Poisson clutter).
@@ -72,12 +86,15 @@ mod capacity {
 use capacity::{MEASUREMENTS_PER_SCAN, QUEUE_LEN, TRACKS};
 
 type DemoLoop = ScanLoop<Native, FixedGainTrack<Native>, TRACKS, MEASUREMENTS_PER_SCAN>;
-type MeasurementQueue = Queue<MeasurementReport, QUEUE_LEN>;
+type DemoConfig = ScanConfig<Native, abtrack::Gains<Native>>;
+type DemoIntake = Intake<QUEUE_LEN>;
 
 /// SysTick period (QEMU's virtual clock, real time without `-icount`).
 const TICK_MS: u32 = 20;
-/// No byte for this many ticks (1 s): the input has ended.
-const IDLE_TICKS: u32 = 50;
+/// No byte for this many ticks (10 s) and no end-of-input frame: the input
+/// has ended anyway (a recording without its end frame, a silent sensor).
+/// Long, because a loaded host can stall QEMU's input for a second or more.
+const SILENT_TICKS: u32 = 500;
 /// Scans run after the input ended, before the summary.
 const IDLE_SCANS: u32 = 3;
 /// Confirmed tracks remembered for the summary.
@@ -89,9 +106,13 @@ static LAST_RX_TICK: AtomicU32 = AtomicU32::new(0);
 /// full), cleared by the main loop when it resumes it.
 static RX_PAUSED: AtomicBool = AtomicBool::new(false);
 static RX_PAUSES: AtomicU32 = AtomicU32::new(0);
-/// The receive side: decoder and queue producer, owned by the receive
-/// interrupt, read by the main loop for its counters.
-static RX: Mutex<RefCell<Option<Intake<'static>>>> = Mutex::new(RefCell::new(None));
+/// Set when the receiver stopped for good: the end-of-input frame arrived,
+/// or the line stayed silent.
+static RX_ENDED: AtomicBool = AtomicBool::new(false);
+/// The receive side: decoder and measurement queue, filled by the receive
+/// interrupt, emptied by the main loop one measurement per critical
+/// section.
+static RX: Mutex<RefCell<DemoIntake>> = Mutex::new(RefCell::new(Intake::new()));
 
 #[exception]
 fn SysTick() {
@@ -108,19 +129,24 @@ fn on_interrupt(irqn: i16) -> bool {
     free(|cs| {
         // `try_`: no borrow is ever held across an interrupt, and this way no
         // panic path exists for one.
-        let Ok(mut rx) = RX.borrow(cs).try_borrow_mut() else {
-            return;
-        };
-        let Some(intake) = rx.as_mut() else {
-            NVIC::mask(io::UartRxIrq);
+        let Ok(mut intake) = RX.borrow(cs).try_borrow_mut() else {
             return;
         };
         loop {
             if io::uart_overrun() {
                 intake.count_overrun();
             }
-            if !intake.can_take_byte() {
-                // Flow control: leave the byte in the UART; main resumes us.
+            if intake.input_ended().is_some() {
+                // The recording is over: read nothing after its end.
+                NVIC::mask(io::UartRxIrq);
+                RX_ENDED.store(true, Relaxed);
+                break;
+            }
+            if intake.queued() > 0 || !intake.can_take_byte() {
+                // Flow control, in lock-step with the main loop: leave the
+                // byte in the UART until main has taken the measurement
+                // queued (main resumes us). What has been received when a
+                // scan runs then depends only on the bytes, not on timing.
                 NVIC::mask(io::UartRxIrq);
                 RX_PAUSED.store(true, Relaxed);
                 RX_PAUSES.store(RX_PAUSES.load(Relaxed).wrapping_add(1), Relaxed);
@@ -134,52 +160,77 @@ fn on_interrupt(irqn: i16) -> bool {
     true
 }
 
-/// Unmasks the receive interrupt again once the queue has room, and pends
-/// it so that the byte left waiting in the UART is read.
-fn resume_receiver() {
-    if !RX_PAUSED.load(Relaxed) {
-        return;
-    }
-    let room = free(|cs| {
-        RX.borrow(cs)
-            .try_borrow()
-            .is_ok_and(|rx| rx.as_ref().is_some_and(|i| i.can_take_byte()))
-    });
-    if room {
-        RX_PAUSED.store(false, Relaxed);
-        // SAFETY: the handler and the intake are installed; unmasking is
-        // not done inside a critical section.
-        unsafe { NVIC::unmask(io::UartRxIrq) };
-        NVIC::pend(io::UartRxIrq);
+/// The main loop's access to the receive side: one short critical section
+/// per call.
+struct SharedIntake;
+
+impl SharedIntake {
+    fn with<R>(f: impl FnOnce(&mut DemoIntake) -> R) -> Option<R> {
+        free(|cs| {
+            RX.borrow(cs)
+                .try_borrow_mut()
+                .ok()
+                .map(|mut intake| f(&mut intake))
+        })
     }
 }
 
-fn link_status(time_ms: u32) -> LinkStatus {
-    free(|cs| {
-        RX.borrow(cs)
-            .try_borrow()
-            .ok()
-            .and_then(|rx| rx.as_ref().map(|i| i.status(time_ms)))
-            .unwrap_or_default()
-    })
+impl MeasurementSource for SharedIntake {
+    fn peek(&mut self) -> Option<MeasurementReport> {
+        Self::with(|i| i.peek()).flatten()
+    }
+    fn pop(&mut self) -> Option<MeasurementReport> {
+        Self::with(|i| i.pop()).flatten()
+    }
+    fn receiver_counters(&mut self) -> (DecoderStats, IntakeCounters) {
+        Self::with(|i| i.receiver_counters()).unwrap_or_default()
+    }
 }
 
-/// Sleeps until the next SysTick. Interrupts are off between the check and
-/// the WFI, which still wakes on a pending interrupt, so no tick is missed.
-fn wait_for_tick(seen: &mut u32) {
+/// Unmasks the receive interrupt again once the queue is empty, and pends
+/// it so that the byte left waiting in the UART is read. True if it did.
+fn resume_receiver() -> bool {
+    if !RX_PAUSED.load(Relaxed) || RX_ENDED.load(Relaxed) {
+        return false;
+    }
+    if SharedIntake::with(|i| i.queued() == 0 && i.can_take_byte()) != Some(true) {
+        return false;
+    }
+    RX_PAUSED.store(false, Relaxed);
+    // SAFETY: the handler and the intake are installed; unmasking is not
+    // done inside a critical section.
+    unsafe { NVIC::unmask(io::UartRxIrq) };
+    NVIC::pend(io::UartRxIrq);
+    true
+}
+
+/// Whether the main loop has something to do: the receiver paused with a
+/// measurement queued, or it stopped.
+fn receiver_waits() -> bool {
+    RX_PAUSED.load(Relaxed) || RX_ENDED.load(Relaxed)
+}
+
+/// Sleeps until the next SysTick or until the receiver waits for the main
+/// loop. Interrupts are off between the check and the WFI, which still
+/// wakes on a pending interrupt, so no event is missed.
+fn wait_for_event(seen: &mut u32) {
     loop {
         let now = TICKS.load(Relaxed);
-        if now != *seen {
+        if now != *seen || receiver_waits() {
             *seen = now;
             return;
         }
         free(|_| {
-            if TICKS.load(Relaxed) == *seen {
+            if TICKS.load(Relaxed) == *seen && !receiver_waits() {
                 cortex_m::asm::wfi();
             }
         });
     }
 }
+
+// ---------------------------------------------------------------------------
+// Reports
+// ---------------------------------------------------------------------------
 
 #[derive(Clone, Copy)]
 struct TrackSeen {
@@ -190,17 +241,21 @@ struct TrackSeen {
     worst: Advisory,
 }
 
-/// Where the scan loop's reports go: defmt lines, frames on UART TX, and a
-/// record of the confirmed tracks for the summary.
+/// Where the scan loop's reports go: frames on UART TX (numbered by an
+/// [`Encoder`]), defmt lines, and a record of the confirmed tracks for the
+/// summary.
 ///
 /// On the wire a scan's track reports come first and its summary closes it;
 /// the log prints the summary line first, so the track lines wait here.
 struct Reporter {
+    encoder: Encoder,
     tracks_of_scan: heapless::Vec<TrackReport, TRACKS>,
     seen: heapless::Vec<TrackSeen, MAX_TRACKS_SEEN>,
     not_remembered: u32,
     frames_sent: u32,
     frames_not_sent: u32,
+    /// The last health report sent.
+    health: Health,
 }
 
 /// `ms` as seconds and milliseconds, for log lines.
@@ -213,6 +268,23 @@ fn metres(cm: i32) -> f32 {
 }
 
 impl Reporter {
+    const fn new() -> Self {
+        Reporter {
+            encoder: Encoder::new(),
+            tracks_of_scan: heapless::Vec::new(),
+            seen: heapless::Vec::new(),
+            not_remembered: 0,
+            frames_sent: 0,
+            frames_not_sent: 0,
+            health: Health {
+                time_ms: 0,
+                decoder: DecoderStats::new(),
+                intake: IntakeCounters::new(),
+                scan: abtrack::wire::LoopCounters::new(),
+            },
+        }
+    }
+
     fn report(&mut self, message: &Message) {
         match message {
             Message::Track(t) => {
@@ -228,30 +300,31 @@ impl Reporter {
                 }
                 self.tracks_of_scan.clear();
             }
-            _ => {}
+            Message::Health(h) => self.health = *h,
+            Message::Measurement(_) | Message::End(_) => {}
         }
         self.send(message);
     }
 
     fn send(&mut self, message: &Message) {
         let mut frame = [0u8; MAX_FRAME_LEN];
-        let Ok(len) = message.emit(&mut frame) else {
-            self.frames_not_sent += 1;
+        let Ok(len) = self.encoder.encode(message, &mut frame) else {
+            self.frames_not_sent = self.frames_not_sent.saturating_add(1);
             return;
         };
         for &b in frame.iter().take(len) {
             if !io::uart_write(b) {
-                self.frames_not_sent += 1;
+                self.frames_not_sent = self.frames_not_sent.saturating_add(1);
                 return;
             }
         }
-        self.frames_sent += 1;
+        self.frames_sent = self.frames_sent.saturating_add(1);
     }
 
     fn remember(&mut self, t: &TrackReport) {
         if let Some(s) = self.seen.iter_mut().find(|s| s.id == t.track_id) {
             s.last_ms = t.time_ms;
-            s.reports += 1;
+            s.reports = s.reports.saturating_add(1);
             s.worst = s.worst.max(t.advisory);
             return;
         }
@@ -263,7 +336,7 @@ impl Reporter {
             worst: t.advisory,
         };
         if self.seen.push(new).is_err() {
-            self.not_remembered += 1;
+            self.not_remembered = self.not_remembered.saturating_add(1);
         }
     }
 }
@@ -271,23 +344,10 @@ impl Reporter {
 fn log_scan(s: &ScanSummary) {
     let (sec, ms) = secs(s.time_ms);
     defmt::println!(
-        "t={=u32}.{=u32:03} s | {=u16} meas ({=u16} invalid, {=u16} late, {=u16} dropped) | predicted {=u16}, gated {=u16}, assigned {=u16}, updated {=u16}, coasted {=u16} | started {=u16}, confirmed {=u16}, deleted {=u16} | {=u16} tracks, {=u16} confirmed | {=str}",
+        "t={=u32}.{=u32:03} s | {} | {=str}",
         sec,
         ms,
-        s.measurements,
-        s.invalid,
-        s.late,
-        s.dropped,
-        s.predicted,
-        s.gated_pairs,
-        s.assigned,
-        s.updated,
-        s.coasted,
-        s.started,
-        s.confirmed,
-        s.deleted,
-        s.tracks,
-        s.confirmed_tracks,
+        s.counts,
         s.highest_advisory.name()
     );
 }
@@ -346,14 +406,26 @@ fn log_track(t: &TrackReport) {
     }
 }
 
-#[cortex_m_rt::entry]
-fn main() -> ! {
-    // cortex-m-rt turns these into `&'static mut` references, initialised
-    // at compile time (no copy through the stack, no unsafe here).
-    static mut QUEUE: MeasurementQueue = Queue::new();
-    static mut SCAN_LOOP: DemoLoop = ScanLoop::new();
+// ---------------------------------------------------------------------------
+// Stages
+// ---------------------------------------------------------------------------
 
-    board::paint_stack();
+/// The run's state between stages.
+struct Run {
+    seen_ticks: u32,
+    /// The input has ended (end-of-input frame, or silence).
+    ended: bool,
+    /// The end-of-input frame, if that is how it ended.
+    end_frame: Option<EndOfInput>,
+    idle_scans: u32,
+    scan_errors: u32,
+    /// Sensor time of the last scan that used a measurement.
+    last_input_ms: Option<u32>,
+}
+
+/// Banner and configuration; a configuration the number type refuses ends
+/// the run.
+fn start() -> DemoConfig {
     defmt::println!(
         "abtrack scan-loop demo on {=str} ({=str}), tracker in {=str}",
         board::BOARD,
@@ -361,51 +433,36 @@ fn main() -> ! {
         Native::NAME
     );
     defmt::println!(
-        "capacity: {=usize} tracks, {=usize} measurements per scan, queue of {=usize}; RAM: scan loop {=usize} B, queue {=usize} B, receiver {=usize} B",
+        "capacity: {=usize} tracks, {=usize} measurements per scan, queue of {=usize}; RAM: scan loop {=usize} B, receiver {=usize} B",
         TRACKS,
         MEASUREMENTS_PER_SCAN,
-        QUEUE_LEN - 1,
+        QUEUE_LEN,
         core::mem::size_of::<DemoLoop>(),
-        core::mem::size_of::<MeasurementQueue>(),
-        core::mem::size_of::<Option<Intake<'static>>>()
+        core::mem::size_of::<DemoIntake>()
     );
     defmt::println!(
-        "input: wire frames on {=str}, receive IRQ {=u16}; SysTick every {=u32} ms = one {=u32} ms scan; advisory lines: {=str}",
+        "input: wire frames on {=str}, receive IRQ {=u16}; SysTick every {=u32} ms; a scan every {=u32} ms of the sensor's clock; advisory lines: {=str}",
         io::UART_NAME,
         io::UART_RX_IRQ,
         TICK_MS,
         demo_config::SCAN_PERIOD_MS,
         io::PINS_NAME
     );
-
-    let config = match demo_config::demo_config::<Native>() {
+    match demo_config::demo_config::<Native>() {
         Ok(c) => c,
         Err(e) => {
             defmt::error!("configuration: {=str}", e);
             board::exit(false)
         }
-    };
+    }
+}
+
+/// The UART with its receive interrupt, and SysTick.
+fn start_peripherals() {
     let Some(mut core) = cortex_m::Peripherals::take() else {
         defmt::error!("core peripherals already taken");
         board::exit(false)
     };
-
-    let (producer, mut consumer) = QUEUE.split();
-    free(|cs| {
-        if let Ok(mut rx) = RX.borrow(cs).try_borrow_mut() {
-            *rx = Some(Intake::new(producer));
-        }
-    });
-    let scan_loop: &mut DemoLoop = SCAN_LOOP;
-    let mut lines = AdvisoryLines::new(io::AdvisoryPin::traffic(), io::AdvisoryPin::resolution());
-    let mut reporter = Reporter {
-        tracks_of_scan: heapless::Vec::new(),
-        seen: heapless::Vec::new(),
-        not_remembered: 0,
-        frames_sent: 0,
-        frames_not_sent: 0,
-    };
-
     io::uart_init();
     board::set_interrupt_handler(on_interrupt);
     // SAFETY: the handler and the intake are installed; not in a critical
@@ -417,101 +474,157 @@ fn main() -> ! {
     syst.clear_current();
     syst.enable_counter();
     syst.enable_interrupt();
+}
 
-    let mut seen_ticks = TICKS.load(Relaxed);
-    let mut now_ms = 0u32;
-    let mut idle_scans = 0u32;
-    let mut scan_errors = 0u32;
-    let mut last_input_ms = None;
+/// Takes the queued measurements into the scan being assembled, resuming
+/// the paused receiver as room appears, until the queue is empty or the
+/// scan is due (the input has moved past it). True if it is due.
+fn receive(config: &DemoConfig, scan_loop: &mut DemoLoop) -> bool {
     loop {
-        wait_for_tick(&mut seen_ticks);
-        // Take this scan's measurements out of the queue as they come, so
-        // that the receiver can go on.
-        scan_loop.collect(&mut consumer, now_ms);
-        resume_receiver();
-        let idle = seen_ticks.wrapping_sub(LAST_RX_TICK.load(Relaxed)) >= IDLE_TICKS;
-        // The queue head is after `now_ms` (collect stopped there): the
-        // input has moved past this scan.
-        let input_ahead = consumer.peek().is_some();
-        if !(input_ahead || idle || scan_loop.batch_is_full()) {
-            continue;
+        let collected = scan_loop.collect(config, &mut SharedIntake);
+        // A resumed receiver reads at once (its interrupt is pending): take
+        // what it queued before deciding.
+        let resumed = resume_receiver();
+        if collected == Collected::ScanDue {
+            return true;
         }
-        if idle {
-            free(|cs| {
-                if let Ok(mut rx) = RX.borrow(cs).try_borrow_mut() {
-                    if let Some(intake) = rx.as_mut() {
-                        intake.line_idle();
-                    }
-                }
-            });
-        }
-        let had_input = scan_loop.batch_len() > 0 || !consumer.is_empty();
-        match scan_loop.on_tick(&config, now_ms, &mut consumer, |m| reporter.report(m)) {
-            Ok(tick) => {
-                if tick.summary.measurements > 0 {
-                    last_input_ms = Some(now_ms);
-                }
-                let before = (lines.pins().0.is_high(), lines.pins().1.is_high());
-                if let Ok(true) = lines.show(tick.summary.highest_advisory) {
-                    let (ta, ra) = (lines.pins().0.is_high(), lines.pins().1.is_high());
-                    if (ta, ra) != before {
-                        let (sec, ms) = secs(now_ms);
-                        defmt::println!(
-                            "advisory lines at t={=u32}.{=u32:03} s: TA {=bool}, RA {=bool}",
-                            sec,
-                            ms,
-                            ta,
-                            ra
-                        );
-                    }
-                }
-                reporter.send(&Message::Link(link_status(now_ms)));
-            }
-            Err(e) => {
-                defmt::error!("scan at {=u32} ms refused: {}", now_ms, e);
-                scan_errors += 1;
-            }
-        }
-        now_ms = now_ms.wrapping_add(demo_config::SCAN_PERIOD_MS);
-        if idle && !had_input && consumer.is_empty() {
-            idle_scans += 1;
-            if idle_scans >= IDLE_SCANS {
-                break;
-            }
-        } else {
-            idle_scans = 0;
+        if !resumed {
+            return false;
         }
     }
+}
 
-    // Summary.
-    let link = link_status(now_ms);
-    let stats = *scan_loop.table().stats();
-    let c = *scan_loop.counters();
-    match last_input_ms {
+/// Whether the input has ended: the end-of-input frame arrived, or the line
+/// stayed silent for [`SILENT_TICKS`]. The first time, the receiver stops
+/// for good and its decoder abandons a partial frame.
+fn input_has_ended(run: &mut Run) -> bool {
+    if run.ended {
+        return true;
+    }
+    // The last byte's tick first: the tick read after it is never earlier,
+    // so the difference cannot wrap.
+    let last_rx = LAST_RX_TICK.load(Relaxed);
+    let silent = TICKS.load(Relaxed).wrapping_sub(last_rx) >= SILENT_TICKS;
+    if !(RX_ENDED.load(Relaxed) || silent) {
+        return false;
+    }
+    NVIC::mask(io::UartRxIrq);
+    RX_ENDED.store(true, Relaxed);
+    run.ended = true;
+    run.end_frame = SharedIntake::with(|i| {
+        i.line_idle();
+        i.input_ended()
+    })
+    .flatten();
+    true
+}
+
+/// One scan and its reports; returns the scan's summary.
+fn scan(
+    config: &DemoConfig,
+    scan_loop: &mut DemoLoop,
+    reporter: &mut Reporter,
+    run: &mut Run,
+) -> Option<ScanSummary> {
+    match scan_loop.on_tick(config, &mut SharedIntake, |m| reporter.report(m)) {
+        Ok(tick) => {
+            if tick.summary.counts.used > 0 {
+                run.last_input_ms = Some(tick.summary.time_ms);
+            }
+            Some(tick.summary)
+        }
+        Err(e) => {
+            defmt::error!("scan refused: {}", e);
+            run.scan_errors = run.scan_errors.saturating_add(1);
+            None
+        }
+    }
+}
+
+/// Drives the advisory lines for the scan's most severe advisory; logs a
+/// change.
+fn show_advisories(lines: &mut AdvisoryLines<io::AdvisoryPin>, summary: &ScanSummary) {
+    let before = (lines.pins().0.is_high(), lines.pins().1.is_high());
+    if let Ok(true) = lines.show(summary.highest_advisory) {
+        let (ta, ra) = (lines.pins().0.is_high(), lines.pins().1.is_high());
+        if (ta, ra) != before {
+            let (sec, ms) = secs(summary.time_ms);
+            defmt::println!(
+                "advisory lines at t={=u32}.{=u32:03} s: TA {=bool}, RA {=bool}",
+                sec,
+                ms,
+                ta,
+                ra
+            );
+        }
+    }
+}
+
+/// After the input ended and everything received was scanned, counts the
+/// idle scans; true after [`IDLE_SCANS`] of them.
+fn run_is_over(used: u16, scan_loop: &mut DemoLoop, run: &mut Run) -> bool {
+    let queued = SharedIntake::with(|i| i.queued()).unwrap_or(0);
+    if !run.ended {
+        return false;
+    }
+    if queued == 0 {
+        // Nothing more can arrive to confirm a held out-of-window
+        // measurement.
+        scan_loop.finish();
+    }
+    if used == 0 && queued == 0 && scan_loop.held() == 0 {
+        run.idle_scans = run.idle_scans.saturating_add(1);
+    } else {
+        run.idle_scans = 0;
+    }
+    run.idle_scans >= IDLE_SCANS
+}
+
+/// The end-of-run summary: the lifetime counters, the confirmed tracks,
+/// the reports sent. Only the stack high-water mark can differ from run to
+/// run (a SysTick exception landing at the deepest point of a scan).
+fn summarise(
+    scan_loop: &DemoLoop,
+    reporter: &Reporter,
+    lines: &AdvisoryLines<io::AdvisoryPin>,
+    run: &Run,
+) -> Health {
+    let (decoder, intake) = SharedIntake.receiver_counters();
+    let health = Health {
+        time_ms: scan_loop.scan_time_ms(),
+        decoder,
+        intake,
+        scan: *scan_loop.counters(),
+    };
+    match run.end_frame {
+        Some(e) => {
+            let (sec, ms) = secs(e.time_ms);
+            defmt::println!(
+                "input ended: end-of-input frame (sensor clock t={=u32}.{=u32:03} s)",
+                sec,
+                ms
+            );
+        }
+        None => defmt::println!(
+            "input ended: no byte for {=u32} s and no end-of-input frame",
+            SILENT_TICKS * TICK_MS / 1000
+        ),
+    }
+    match run.last_input_ms {
         Some(t) => {
             let (sec, ms) = secs(t);
             defmt::println!(
-                "input ended after the scan at t={=u32}.{=u32:03} s; {=u32} idle scans",
+                "last measurements used in the scan at t={=u32}.{=u32:03} s; {=u32} idle scans after the input",
                 sec,
                 ms,
                 IDLE_SCANS
             );
         }
-        None => defmt::error!("no measurement arrived on the UART"),
+        None => defmt::error!("no measurement was used"),
     }
-    defmt::println!(
-        "summary: {=u32} scans; {=u32} measurements ({=u32} beyond 400 km, {=u32} bad altitude, {=u32} late, {=u32} over the scan capacity); tracks started {=u32}, confirmed {=u32}, deleted {=u32}, refused (table full) {=u32}",
-        stats.scans,
-        c.taken,
-        c.position_out_of_range,
-        c.altitude_out_of_range,
-        c.late,
-        c.dropped,
-        stats.tracks_started,
-        stats.tracks_confirmed,
-        stats.tracks_deleted,
-        stats.refused_table_full
-    );
+    defmt::println!("receiver: {}", health.decoder);
+    defmt::println!("intake: {}", health.intake);
+    defmt::println!("scan loop: {}", health.scan);
     defmt::println!(
         "confirmed tracks ({=usize}):",
         reporter.seen.len() + reporter.not_remembered as usize
@@ -531,20 +644,6 @@ fn main() -> ! {
         );
     }
     defmt::println!(
-        "receiver: {=u32} frames, {=u32} CRC errors, {=u32} unknown type, {=u32} bad length, {=u32} bad field, {=u32} truncated, {=u32} bytes skipped; {=u32} queue full, {=u32} UART overruns; flow control paused it {=u32} times (keeps {=usize} slots free)",
-        link.frames,
-        link.crc_errors,
-        link.unknown_type,
-        link.bad_length,
-        link.bad_field,
-        link.truncated,
-        link.bytes_skipped,
-        link.queue_full,
-        link.rx_overruns,
-        RX_PAUSES.load(Relaxed),
-        MAX_FRAMES_PER_BYTE
-    );
-    defmt::println!(
         "reports: {=u32} frames sent on the UART, {=u32} not sent; advisory lines changed {=u32} times, now TA {=bool}, RA {=bool}",
         reporter.frames_sent,
         reporter.frames_not_sent,
@@ -552,10 +651,77 @@ fn main() -> ! {
         lines.pins().0.is_high(),
         lines.pins().1.is_high()
     );
+    defmt::println!(
+        "flow control paused the receiver {=u32} times (it keeps {=usize} queue slots free)",
+        RX_PAUSES.load(Relaxed),
+        MAX_FRAMES_PER_BYTE
+    );
     board::report_stack();
-    let ok = scan_errors == 0
-        && last_input_ms.is_some()
-        && reporter.frames_not_sent == 0
-        && c.assessment_errors == 0;
-    board::exit(ok)
+    health
+}
+
+/// The exit status: the run's input verdict, and every scan ran and every
+/// report was sent.
+fn verdict(health: &Health, reporter: &Reporter, run: &Run) -> bool {
+    let v = RunVerdict::from_health(health);
+    let clean = v.is_clean() && run.scan_errors == 0 && reporter.frames_not_sent == 0;
+    defmt::println!(
+        "verdict: {=str}: the sensor sent {=u32} frames, {=u32} lost or not used (at most 1 in {=u32} allowed), {=u32} measurements used; {=u32} scans refused, {=u32} reports not sent, {=u32} assessment errors",
+        if clean { "clean" } else { "NOT CLEAN" },
+        v.sent,
+        v.lost,
+        abtrack::scan::MAX_LOST_FRACTION_INVERSE,
+        v.used,
+        run.scan_errors,
+        reporter.frames_not_sent,
+        v.assessment_errors
+    );
+    clean
+}
+
+#[cortex_m_rt::entry]
+fn main() -> ! {
+    // cortex-m-rt turns this into a `&'static mut`, initialised at compile
+    // time (no copy through the stack, no unsafe here).
+    static mut SCAN_LOOP: DemoLoop = ScanLoop::new();
+    static mut REPORTER: Reporter = Reporter::new();
+
+    board::paint_stack();
+    let config = start();
+    let scan_loop: &mut DemoLoop = SCAN_LOOP;
+    let reporter: &mut Reporter = REPORTER;
+    let mut lines = AdvisoryLines::new(io::AdvisoryPin::traffic(), io::AdvisoryPin::resolution());
+    start_peripherals();
+
+    let mut run = Run {
+        seen_ticks: TICKS.load(Relaxed),
+        ended: false,
+        end_frame: None,
+        idle_scans: 0,
+        scan_errors: 0,
+        last_input_ms: None,
+    };
+    loop {
+        wait_for_event(&mut run.seen_ticks);
+        let mut due = receive(&config, scan_loop);
+        let ended = input_has_ended(&mut run);
+        if ended {
+            due |= receive(&config, scan_loop);
+        }
+        if !(due || ended) {
+            continue;
+        }
+        let used = match scan(&config, scan_loop, reporter, &mut run) {
+            Some(summary) => {
+                show_advisories(&mut lines, &summary);
+                summary.counts.used
+            }
+            None => 0,
+        };
+        if run_is_over(used, scan_loop, &mut run) {
+            break;
+        }
+    }
+    let health = summarise(scan_loop, reporter, &lines, &run);
+    board::exit(verdict(&health, reporter, &run))
 }

@@ -4,37 +4,84 @@
 //! code.
 //!
 //! ```text
-//! receive interrupt:  byte ─▶ Intake::push ─▶ wire::Decoder ─▶ spsc queue ─┐
-//!                                                                          │
-//! timer tick (main):  ScanLoop::on_tick(now) ◀─ drain measurements ≤ now ◀─┘
-//!                       ├─ MeasurementReport::position / altitude (checked)
-//!                       ├─ TrackTable::scan: predict, gate, associate,
-//!                       │  update, initiate / confirm / coast / delete
-//!                       ├─ altitude trackers of the tracks (Mode C reports)
-//!                       ├─ tcas::assess of each confirmed track
-//!                       └─ reports: wire::TrackReport per confirmed track,
-//!                          wire::ScanSummary per scan ─▶ caller's callback
+//! receive interrupt:  byte ─▶ Intake::push ─▶ wire::Decoder ─▶ MeasurementQueue ─┐
+//!                                                                                  │
+//! main loop:  ScanLoop::collect ◀─ the scan clock sorts each measurement ◀─────────┘
+//!               (this scan / a later one / late / out of the window)
+//!               ─▶ the scan's batch, by priority when over capacity
+//!             ScanLoop::on_tick: TrackTable::scan, altitude trackers,
+//!               tcas::assess per confirmed track
+//!               ─▶ TrackReport per confirmed track, ScanSummary, Health ─▶ callback
 //! advisory outputs:   AdvisoryLines::show(highest) ─▶ embedded-hal OutputPin
 //! ```
 //!
 //! * [`Intake`] is the producer half, run in the receive interrupt: bytes
-//!   into the [`Decoder`], measurement frames into a
-//!   `heapless::spsc` queue. A full queue drops the measurement and counts
-//!   it ([`LinkStatus::queue_full`]); it never blocks or panics.
-//! * [`ScanLoop`] is the consumer half, run from the main loop on each tick.
-//!   It owns the [`TrackTable`], an altitude tracker per altitude-reporting
-//!   track and the scan's measurement batch; [`ScanConfig`] holds the
-//!   tracker configuration and the own aircraft.
+//!   into the [`Decoder`], measurements into a [`MeasurementQueue`] (a plain
+//!   ring buffer with no panic path; the firmware shares it through a
+//!   critical section, one short one per measurement). A full queue drops
+//!   the measurement and counts it; it never blocks or panics.
+//! * [`ScanLoop`] is the consumer half, run from the main loop. It owns the
+//!   [`TrackTable`], an altitude tracker per altitude-reporting track, the
+//!   scan clock and the scan's batch; [`ScanConfig`] holds the tracker
+//!   configuration, the own aircraft and the clock's bounds.
 //!
-//! # Time
+//! The rules below are stated once here; `docs/firmware-runtime.md` gives
+//! the reasons and the measured figures.
 //!
-//! Measurements carry the sensor's millisecond clock; `on_tick(now_ms)` takes
-//! the queued measurements timestamped at or before `now_ms` (in wrapping
-//! `u32` arithmetic, like [`TrackTable::scan`]) and leaves later ones queued
-//! for the next scan. A measurement timestamped at or before the previous
-//! scan arrived too late for it and is dropped and counted (`late`). The
-//! scan runs at `now_ms`, so a scan's measurements are treated as
-//! simultaneous: the tick period should be the sensor's scan period.
+//! # Time: the scan clock
+//!
+//! Measurements carry the sensor's millisecond clock (`u32`, wrapping). The
+//! loop locks onto it at the first measurement: that measurement's time is
+//! the first scan's time, and scans follow every `period_ms`
+//! ([`ClockConfig`]) of the sensor's clock. For the scan being assembled,
+//! at sensor time `N`, a measurement at time `t` (`d = t − N` in wrapping
+//! arithmetic, as a signed 32-bit difference) is
+//!
+//! * **this scan's** if `−period < d ≤ 0`: it joins the batch;
+//! * **a later scan's** if `0 < d ≤ jump`: it stays queued, and the scan
+//!   runs (the input has moved past it): a silence of up to `jump` runs
+//!   empty scans, one per period, in which the tracks coast;
+//! * **late** if `−late_window ≤ d ≤ −period`: its scan has run; dropped
+//!   and counted (`late`);
+//! * **out of the window** otherwise. It is held until the next
+//!   measurement: if that one is within one period of it, the sensor's
+//!   clock jumped, and the loop **re-locks** (counted): the scan being
+//!   assembled runs (if it has measurements), and the next scan is at the
+//!   held measurement's time. If not, the held one is dropped and counted
+//!   (`out_of_window`). So one wild time stamp never moves the clock, and a
+//!   step of the sensor's clock (forwards or back, by any amount, past 2³¹
+//!   ms included) costs no measurement.
+//!
+//! Every measurement is taken from the queue once and ends in exactly one
+//! scan's batch or one drop count, so a clock stepping back never makes a
+//! frame be processed twice.
+//!
+//! The tracker has its own time: it advances by exactly one period per scan
+//! and never jumps, so [`TrackTable::scan`] always sees a one-period
+//! interval, whatever the sensor's clock did; a re-lock takes a clock step
+//! to be the sensor's, not the targets'. Reports carry the sensor's time of
+//! their scan.
+//!
+//! # Capacity: who gets the scan's `M` slots
+//!
+//! When a scan has more measurements than `M`, the batch keeps the most
+//! important ones, in this priority:
+//!
+//! 1. for each confirmed track, the measurement nearest its predicted
+//!    position inside its gate (it is never evicted, so a confirmed track
+//!    is never starved by clutter);
+//! 2. other measurements inside a confirmed track's gate, by normalised
+//!    gate distance;
+//! 3. all others (tentative tracks' and candidates for new tracks), nearest
+//!    to the own aircraft first: an unknown return's threat grows as it
+//!    closes in;
+//! 4. measurements the tracker would refuse (not finite).
+//!
+//! A newcomer replaces the least important unprotected entry only if it is
+//! strictly more important (or takes a confirmed track's first place);
+//! among exact equals the later batch slot goes first. Gates are the
+//! tracker's own ([`TrackFilter::gate_region`]) for the next scan. The
+//! others are dropped and counted (`over_capacity`).
 //!
 //! # Own aircraft
 //!
@@ -47,59 +94,176 @@
 //! advisories at most).
 
 use embedded_hal::digital::OutputPin;
-use heapless::spsc::{Consumer, Producer};
 
 use crate::filter::altitude::{AltitudeEstimate, AltitudeTracker, AltitudeTrackerConfig};
-use crate::num::Scalar;
+use crate::num::{hypot, Scalar};
 use crate::tcas::{self, Advisory, Intruder, OwnAircraft};
 use crate::track::{
-    Association, Measurement, ScanError, ScanReport, TrackFilter, TrackId, TrackTable,
-    TrackerConfig,
+    Association, ConfigError, DropReason, GateRegion, Measurement, Observation, ScanError,
+    ScanReport, TrackFilter, TrackId, TrackTable, TrackerConfig,
 };
 use crate::wire::{
-    ConversionError, Decoder, LinkStatus, MeasurementReport, Message, ScanSummary, TrackReport,
-    WireError, MAX_FRAMES_PER_BYTE,
+    Decoder, DecoderStats, EndOfInput, Health, IntakeCounters, LoopCounters, MeasurementReport,
+    Message, ScanCounts, ScanSummary, TrackReport, WireError, MAX_FRAMES_PER_BYTE,
 };
+
+fn bump(counter: &mut u32) {
+    *counter = counter.saturating_add(1);
+}
+
+fn bump16(counter: &mut u16) {
+    *counter = counter.saturating_add(1);
+}
 
 // ---------------------------------------------------------------------------
 // Producer side
 // ---------------------------------------------------------------------------
 
-/// The receive-interrupt half: decodes bytes and queues the measurements.
-pub struct Intake<'q> {
-    decoder: Decoder,
-    producer: Producer<'q, MeasurementReport>,
-    queue_full: u32,
-    not_measurement: u32,
-    rx_overruns: u32,
+/// A fixed-capacity FIFO of measurements: `Q` slots, no heap, no panic
+/// path (indices wrap by comparison, never by `%`).
+#[derive(Debug, Clone)]
+pub struct MeasurementQueue<const Q: usize> {
+    slots: [Option<MeasurementReport>; Q],
+    head: usize,
+    len: usize,
 }
 
-impl core::fmt::Debug for Intake<'_> {
-    fn fmt(&self, f: &mut core::fmt::Formatter<'_>) -> core::fmt::Result {
-        f.debug_struct("Intake")
-            .field("decoder", &self.decoder)
-            .field("queued", &self.producer.len())
-            .field("queue_full", &self.queue_full)
-            .field("not_measurement", &self.not_measurement)
-            .field("rx_overruns", &self.rx_overruns)
-            .finish()
+impl<const Q: usize> Default for MeasurementQueue<Q> {
+    fn default() -> Self {
+        Self::new()
     }
 }
 
-impl<'q> Intake<'q> {
-    pub const fn new(producer: Producer<'q, MeasurementReport>) -> Self {
+impl<const Q: usize> MeasurementQueue<Q> {
+    pub const fn new() -> Self {
+        MeasurementQueue {
+            slots: [None; Q],
+            head: 0,
+            len: 0,
+        }
+    }
+
+    /// Slot `head + k`, wrapped (k < Q).
+    fn index(&self, k: usize) -> usize {
+        let i = self.head.wrapping_add(k);
+        if i >= Q {
+            i.wrapping_sub(Q)
+        } else {
+            i
+        }
+    }
+
+    pub fn len(&self) -> usize {
+        self.len
+    }
+
+    pub fn is_empty(&self) -> bool {
+        self.len == 0
+    }
+
+    pub const fn capacity(&self) -> usize {
+        Q
+    }
+
+    /// Free slots.
+    pub fn free(&self) -> usize {
+        Q.saturating_sub(self.len)
+    }
+
+    /// Appends; hands the measurement back when full.
+    pub fn push(&mut self, m: MeasurementReport) -> Result<(), MeasurementReport> {
+        if self.len >= Q {
+            return Err(m);
+        }
+        let i = self.index(self.len);
+        match self.slots.get_mut(i) {
+            Some(slot) => {
+                *slot = Some(m);
+                self.len = self.len.saturating_add(1);
+                Ok(())
+            }
+            None => Err(m),
+        }
+    }
+
+    /// The oldest measurement.
+    pub fn peek(&self) -> Option<&MeasurementReport> {
+        if self.len == 0 {
+            return None;
+        }
+        self.slots.get(self.head).and_then(|s| s.as_ref())
+    }
+
+    /// Takes the oldest measurement.
+    pub fn pop(&mut self) -> Option<MeasurementReport> {
+        if self.len == 0 {
+            return None;
+        }
+        let m = self.slots.get_mut(self.head).and_then(|s| s.take());
+        self.head = self.index(1);
+        self.len = self.len.saturating_sub(1);
+        m
+    }
+}
+
+/// Where the scan loop takes its measurements from: the [`Intake`] itself
+/// on the host, a critical-section wrapper of it in the firmware.
+pub trait MeasurementSource {
+    /// The oldest queued measurement, without taking it.
+    fn peek(&mut self) -> Option<MeasurementReport>;
+    /// Takes the oldest queued measurement.
+    fn pop(&mut self) -> Option<MeasurementReport>;
+    /// The receive side's counters, for the health report.
+    fn receiver_counters(&mut self) -> (DecoderStats, IntakeCounters);
+}
+
+/// A queue filled directly (host tests, a source without a decoder).
+impl<const Q: usize> MeasurementSource for MeasurementQueue<Q> {
+    fn peek(&mut self) -> Option<MeasurementReport> {
+        MeasurementQueue::peek(self).copied()
+    }
+    fn pop(&mut self) -> Option<MeasurementReport> {
+        MeasurementQueue::pop(self)
+    }
+    fn receiver_counters(&mut self) -> (DecoderStats, IntakeCounters) {
+        (DecoderStats::new(), IntakeCounters::new())
+    }
+}
+
+/// The receive-interrupt half: decodes bytes and queues the measurements
+/// (at most `Q`).
+#[derive(Debug, Clone)]
+pub struct Intake<const Q: usize> {
+    decoder: Decoder,
+    queue: MeasurementQueue<Q>,
+    counters: IntakeCounters,
+    ended: Option<EndOfInput>,
+}
+
+impl<const Q: usize> Default for Intake<Q> {
+    fn default() -> Self {
+        Self::new()
+    }
+}
+
+impl<const Q: usize> Intake<Q> {
+    pub const fn new() -> Self {
         Intake {
             decoder: Decoder::new(),
-            producer,
-            queue_full: 0,
-            not_measurement: 0,
-            rx_overruns: 0,
+            queue: MeasurementQueue::new(),
+            counters: IntakeCounters::new(),
+            ended: None,
         }
     }
 
     /// Free slots in the measurement queue.
     pub fn free_slots(&self) -> usize {
-        self.producer.capacity().saturating_sub(self.producer.len())
+        self.queue.free()
+    }
+
+    /// Measurements queued.
+    pub fn queued(&self) -> usize {
+        self.queue.len()
     }
 
     /// Whether the next byte cannot overflow the queue, whatever it
@@ -115,10 +279,10 @@ impl<'q> Intake<'q> {
     /// counted as lost when the queue is full), other valid frames are
     /// counted, errors are counted by the decoder.
     pub fn push(&mut self, byte: u8) -> usize {
-        let mut queued = 0;
+        let mut queued = 0usize;
         let mut event = self.decoder.push(byte);
         while let Some(result) = event {
-            queued += self.handle(result);
+            queued = queued.saturating_add(self.handle(result));
             event = self.decoder.poll();
         }
         queued
@@ -128,62 +292,134 @@ impl<'q> Intake<'q> {
     /// bytes after it held ([`Decoder::line_idle`]); returns how many
     /// measurements it queued.
     pub fn line_idle(&mut self) -> usize {
-        let mut queued = 0;
+        let mut queued = 0usize;
         while let Some(result) = self.decoder.line_idle() {
-            queued += self.handle(result);
+            queued = queued.saturating_add(self.handle(result));
         }
         queued
     }
 
     fn handle(&mut self, result: Result<Message, WireError>) -> usize {
         match result {
-            Ok(Message::Measurement(m)) => match self.producer.enqueue(m) {
-                Ok(()) => return 1,
-                Err(_) => self.queue_full = self.queue_full.saturating_add(1),
-            },
-            Ok(_) => self.not_measurement = self.not_measurement.saturating_add(1),
+            Ok(Message::Measurement(m)) => {
+                bump(&mut self.counters.measurements);
+                match self.queue.push(m) {
+                    Ok(()) => return 1,
+                    Err(_) => bump(&mut self.counters.queue_full),
+                }
+            }
+            Ok(Message::End(e)) => {
+                bump(&mut self.counters.not_measurement);
+                self.ended = Some(e);
+            }
+            Ok(_) => bump(&mut self.counters.not_measurement),
             Err(_) => {}
         }
         0
     }
 
+    /// The end-of-input frame, once received: the sender's recording has
+    /// ended (a receiver stops reading there).
+    pub fn input_ended(&self) -> Option<EndOfInput> {
+        self.ended
+    }
+
     /// Counts a byte the UART lost before it could be read (hardware
     /// overrun flag).
     pub fn count_overrun(&mut self) {
-        self.rx_overruns = self.rx_overruns.saturating_add(1);
+        bump(&mut self.counters.rx_overruns);
     }
 
     pub fn decoder(&self) -> &Decoder {
         &self.decoder
     }
 
-    /// Measurements lost because the queue was full.
-    pub fn queue_full(&self) -> u32 {
-        self.queue_full
+    pub fn counters(&self) -> &IntakeCounters {
+        &self.counters
     }
+}
 
-    /// The counters as a link status report stamped `time_ms`.
-    pub fn status(&self, time_ms: u32) -> LinkStatus {
-        let d = self.decoder.stats();
-        LinkStatus {
-            time_ms,
-            frames: d.frames,
-            crc_errors: d.crc_errors,
-            unknown_type: d.unknown_type,
-            bad_length: d.bad_length,
-            bad_field: d.bad_field,
-            truncated: d.truncated,
-            bytes_skipped: d.bytes_skipped,
-            queue_full: self.queue_full,
-            not_measurement: self.not_measurement,
-            rx_overruns: self.rx_overruns,
-        }
+impl<const Q: usize> MeasurementSource for Intake<Q> {
+    fn peek(&mut self) -> Option<MeasurementReport> {
+        self.queue.peek().copied()
+    }
+    fn pop(&mut self) -> Option<MeasurementReport> {
+        self.queue.pop()
+    }
+    fn receiver_counters(&mut self) -> (DecoderStats, IntakeCounters) {
+        (*self.decoder.stats(), self.counters)
     }
 }
 
 // ---------------------------------------------------------------------------
-// Consumer side
+// Configuration
 // ---------------------------------------------------------------------------
+
+/// The scan clock's period and windows (see the module docs, "Time"), in
+/// milliseconds of the sensor's clock.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+#[cfg_attr(feature = "defmt", derive(defmt::Format))]
+pub struct ClockConfig {
+    period_ms: u32,
+    late_window_ms: u32,
+    jump_ms: u32,
+}
+
+impl ClockConfig {
+    /// Late window, in periods, of [`ClockConfig::new`]: a measurement up
+    /// to one period after its scan ran is late; an older one is out of
+    /// the window.
+    pub const LATE_PERIODS: u32 = 2;
+    /// Jump bound, in periods, of [`ClockConfig::new`]: a silence of up to
+    /// 30 periods is a gap (empty scans, the tracks coast and are deleted);
+    /// a longer step is a jump of the sensor's clock (re-lock).
+    pub const JUMP_PERIODS: u32 = 30;
+
+    /// The scan period (> 0, < 2³¹ ms / [`JUMP_PERIODS`](Self::JUMP_PERIODS))
+    /// with the default windows.
+    pub const fn new(period_ms: u32) -> Result<Self, ConfigError> {
+        let (Some(late), Some(jump)) = (
+            period_ms.checked_mul(Self::LATE_PERIODS),
+            period_ms.checked_mul(Self::JUMP_PERIODS),
+        ) else {
+            return Err(ConfigError::OutOfRange);
+        };
+        Self::with_windows(period_ms, late, jump)
+    }
+
+    /// Explicit windows: period > 0, late window ≥ period, jump ≥ period,
+    /// all below 2³¹ ms.
+    pub const fn with_windows(
+        period_ms: u32,
+        late_window_ms: u32,
+        jump_ms: u32,
+    ) -> Result<Self, ConfigError> {
+        let limit = i32::MAX as u32;
+        if period_ms == 0
+            || late_window_ms < period_ms
+            || jump_ms < period_ms
+            || late_window_ms > limit
+            || jump_ms > limit
+        {
+            return Err(ConfigError::OutOfRange);
+        }
+        Ok(ClockConfig {
+            period_ms,
+            late_window_ms,
+            jump_ms,
+        })
+    }
+
+    pub const fn period_ms(&self) -> u32 {
+        self.period_ms
+    }
+    pub const fn late_window_ms(&self) -> u32 {
+        self.late_window_ms
+    }
+    pub const fn jump_ms(&self) -> u32 {
+        self.jump_ms
+    }
+}
 
 /// What a [`ScanLoop`] needs besides its state. Kept outside it (as
 /// [`TrackerConfig`] is kept outside [`TrackTable`]) so that the loop can be
@@ -195,33 +431,23 @@ pub struct ScanConfig<S: Scalar, P> {
     pub own: OwnAircraft<S>,
     /// The altitude trackers of altitude-reporting tracks.
     pub altitude: AltitudeTrackerConfig<S>,
+    /// The scan period and the clock's windows.
+    pub clock: ClockConfig,
 }
 
-/// Counters over the loop's lifetime (saturating).
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+// ---------------------------------------------------------------------------
+// Consumer side
+// ---------------------------------------------------------------------------
+
+/// What [`ScanLoop::collect`] found.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
 #[cfg_attr(feature = "defmt", derive(defmt::Format))]
-pub struct LoopCounters {
-    /// Scans run.
-    pub scans: u32,
-    /// Measurements taken from the queue.
-    pub taken: u32,
-    /// ... refused at the conversion: position or range beyond 400 km,
-    pub position_out_of_range: u32,
-    /// ... altitude outside the Mode C range,
-    pub altitude_out_of_range: u32,
-    /// ... not representable in the number type,
-    pub not_representable: u32,
-    /// ... timestamped at or before the previous scan,
-    pub late: u32,
-    /// ... beyond the `M` measurements of one scan.
-    pub dropped: u32,
-    /// Track reports emitted.
-    pub track_reports: u32,
-    /// Confirmed tracks whose threat assessment failed (reported without
-    /// one).
-    pub assessment_errors: u32,
-    /// Altitude updates refused by the altitude tracker.
-    pub altitude_errors: u32,
+pub enum Collected {
+    /// The queue is empty: this scan may still get measurements.
+    Waiting,
+    /// The input has moved past this scan (a measurement for a later scan
+    /// is at the head of the queue, or the clock must re-lock): run it.
+    ScanDue,
 }
 
 /// The result of one tick.
@@ -234,15 +460,6 @@ pub struct TickReport {
     pub summary: ScanSummary,
 }
 
-/// Counts of the batch being assembled for the next scan.
-#[derive(Debug, Clone, Copy, Default)]
-struct BatchCounts {
-    taken: u32,
-    invalid: u32,
-    late: u32,
-    dropped: u32,
-}
-
 #[derive(Debug, Clone, Copy)]
 struct AltitudeSlot<S: Scalar> {
     track: TrackId,
@@ -250,15 +467,57 @@ struct AltitudeSlot<S: Scalar> {
     updated: bool,
 }
 
-/// `t` is after `reference` on a wrapping millisecond clock (less than 2³¹
-/// ms after it).
-fn is_after(t: u32, reference: u32) -> bool {
-    let d = t.wrapping_sub(reference);
-    d != 0 && d <= i32::MAX as u32
+/// Where a measurement's time puts it (module docs, "Time").
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+enum Timing {
+    ThisScan,
+    LaterScan,
+    Late,
+    OutOfWindow,
+}
+
+/// A batch entry's claim on a slot; smaller is more important (module
+/// docs, "Capacity").
+#[derive(Debug, Clone, Copy, PartialEq)]
+struct Priority<S> {
+    class: u8,
+    gate_cost: u16,
+    range: S,
+}
+
+const CLASS_CONFIRMED_GATE: u8 = 0;
+const CLASS_OTHER: u8 = 1;
+const CLASS_REFUSED: u8 = 2;
+
+impl<S: Scalar> Priority<S> {
+    /// Strictly less important than `other`.
+    fn is_worse_than(&self, other: &Self) -> bool {
+        (self.class, self.gate_cost) > (other.class, other.gate_cost)
+            || ((self.class, self.gate_cost) == (other.class, other.gate_cost)
+                && self.range > other.range)
+    }
+}
+
+/// A confirmed track's gate for the next scan, and its best measurement so
+/// far.
+#[derive(Debug, Clone, Copy)]
+struct TrackGate<S> {
+    region: GateRegion<S>,
+    /// (batch index, gate cost) of the nearest measurement in the gate.
+    champion: Option<(usize, u16)>,
+}
+
+/// `d` of the module docs: `t − n` as a signed 32-bit difference.
+fn signed_difference(t: u32, n: u32) -> i32 {
+    i32::from_ne_bytes(t.wrapping_sub(n).to_ne_bytes())
 }
 
 fn sat_u16(v: u32) -> u16 {
     u16::try_from(v).unwrap_or(u16::MAX)
+}
+
+fn sat_u32(v: usize) -> u32 {
+    u32::try_from(v).unwrap_or(u32::MAX)
 }
 
 /// `v·scale` rounded to an integer, saturated to the i32 range (NaN → 0).
@@ -276,20 +535,37 @@ fn scaled_i32<S: Scalar>(v: S, scale: f64) -> i32 {
     }
 }
 
-/// The consumer half: turns a tick into a tracker scan, threat assessments
-/// and reports. At most `N` tracks, `M` measurements per scan.
+/// The consumer half: sorts queued measurements into scans, turns each scan
+/// into a tracker scan, threat assessments and reports. At most `N` tracks,
+/// `M` measurements per scan.
 ///
 /// Memory: the [`TrackTable`] (see [`crate::track`] for its size), plus per
-/// measurement slot one `Measurement<S>`, one `Option<S>` and an
-/// [`Association`], plus per track slot an `Option` of an
-/// [`AltitudeTracker<S>`] and its id. `host-tests/tests/scan_loop.rs`
-/// prints the sizes; the firmware prints its own at start-up.
+/// measurement slot one `Measurement<S>`, one `Option<S>`, a priority and an
+/// [`Association`], plus per track slot a gate region and an `Option` of an
+/// [`AltitudeTracker<S>`]. `host-tests/tests/scan_loop.rs` prints the sizes;
+/// the firmware prints its own at start-up.
 #[derive(Debug)]
 pub struct ScanLoop<S: Scalar, F, const N: usize, const M: usize> {
     table: TrackTable<S, F, N, M>,
+    /// The tracker's time of the next scan (ms; +1 period per scan).
+    tracker_ms: u32,
+    /// The sensor's time of the scan being assembled.
+    scan_ms: u32,
+    locked: bool,
+    /// A measurement outside the window, held until the next one.
+    candidate: Option<MeasurementReport>,
+    /// The next measurement confirmed the candidate: re-lock after this scan.
+    relock: bool,
     batch: heapless::Vec<Measurement<S>, M>,
     batch_altitudes: heapless::Vec<Option<S>, M>,
-    batch_counts: BatchCounts,
+    batch_priorities: heapless::Vec<Priority<S>, M>,
+    /// Per batch entry: of how many confirmed tracks it is the champion.
+    batch_champions: heapless::Vec<u8, M>,
+    gates: [Option<TrackGate<S>>; N],
+    /// The batch overflowed: `gates` and the priorities are computed.
+    ranked: bool,
+    /// Counts of the scan being assembled (the intake part).
+    pending_counts: ScanCounts,
     codes: [Association; M],
     altitudes: [Option<AltitudeSlot<S>>; N],
     counters: LoopCounters,
@@ -307,28 +583,21 @@ impl<S: Scalar, F: TrackFilter<S>, const N: usize, const M: usize> ScanLoop<S, F
     pub const fn new() -> Self {
         ScanLoop {
             table: TrackTable::new(),
+            tracker_ms: 0,
+            scan_ms: 0,
+            locked: false,
+            candidate: None,
+            relock: false,
             batch: heapless::Vec::new(),
             batch_altitudes: heapless::Vec::new(),
-            batch_counts: BatchCounts {
-                taken: 0,
-                invalid: 0,
-                late: 0,
-                dropped: 0,
-            },
+            batch_priorities: heapless::Vec::new(),
+            batch_champions: heapless::Vec::new(),
+            gates: [const { None }; N],
+            ranked: false,
+            pending_counts: ScanCounts::new(),
             codes: [Association::OutsideGates; M],
             altitudes: [const { None }; N],
-            counters: LoopCounters {
-                scans: 0,
-                taken: 0,
-                position_out_of_range: 0,
-                altitude_out_of_range: 0,
-                not_representable: 0,
-                late: 0,
-                dropped: 0,
-                track_reports: 0,
-                assessment_errors: 0,
-                altitude_errors: 0,
-            },
+            counters: LoopCounters::new(),
         }
     }
 
@@ -340,15 +609,28 @@ impl<S: Scalar, F: TrackFilter<S>, const N: usize, const M: usize> ScanLoop<S, F
         &self.counters
     }
 
+    /// The sensor's time of the scan being assembled (meaningful once the
+    /// clock has locked).
+    pub fn scan_time_ms(&self) -> u32 {
+        self.scan_ms
+    }
+
+    /// Whether the clock has locked onto the sensor's.
+    pub fn is_locked(&self) -> bool {
+        self.locked
+    }
+
     /// Measurements collected for the next scan.
     pub fn batch_len(&self) -> usize {
         self.batch.len()
     }
 
-    /// The next scan has as many measurements as it can take; more are
-    /// dropped (and counted).
-    pub fn batch_is_full(&self) -> bool {
-        self.batch.is_full()
+    /// Measurements taken from the queue and not yet used or dropped: the
+    /// batch and a held out-of-window measurement.
+    pub fn held(&self) -> usize {
+        self.batch
+            .len()
+            .saturating_add(usize::from(self.candidate.is_some()))
     }
 
     /// The altitude estimate of a track, if it reported altitude.
@@ -360,90 +642,425 @@ impl<S: Scalar, F: TrackFilter<S>, const N: usize, const M: usize> ScanLoop<S, F
             .and_then(|s| s.tracker.estimate())
     }
 
-    /// Moves the queued measurements timestamped at or before `up_to_ms`
-    /// into the next scan's batch, converting them (the checked edge);
-    /// stops at the first later one. Returns how many it took. `on_tick`
-    /// calls it; calling it between ticks too frees queue space early.
-    pub fn collect(&mut self, queue: &mut Consumer<'_, MeasurementReport>, up_to_ms: u32) -> usize {
-        let mut taken = 0;
-        while let Some(head) = queue.peek() {
-            if is_after(head.time_ms, up_to_ms) {
-                break;
+    fn timing(&self, clock: &ClockConfig, t: u32) -> Timing {
+        let d = signed_difference(t, self.scan_ms);
+        let distance = d.unsigned_abs();
+        if d > 0 {
+            if distance <= clock.jump_ms {
+                Timing::LaterScan
+            } else {
+                Timing::OutOfWindow
             }
-            let Some(report) = queue.dequeue() else {
-                break;
-            };
-            self.take(&report);
-            taken += 1;
+        } else if distance < clock.period_ms {
+            Timing::ThisScan
+        } else if distance <= clock.late_window_ms {
+            Timing::Late
+        } else {
+            Timing::OutOfWindow
         }
-        taken
     }
 
-    fn take(&mut self, report: &MeasurementReport) {
-        let b = &mut self.batch_counts;
-        let c = &mut self.counters;
-        b.taken += 1;
-        c.taken = c.taken.saturating_add(1);
-        if let Some(last) = self.table.last_scan_ms() {
-            if !is_after(report.time_ms, last) {
-                b.late += 1;
-                c.late = c.late.saturating_add(1);
-                return;
+    /// Drops the held out-of-window measurement, counted.
+    fn drop_candidate(&mut self) {
+        if self.candidate.take().is_some() {
+            bump16(&mut self.pending_counts.out_of_window);
+            bump(&mut self.counters.out_of_window);
+        }
+    }
+
+    /// Takes the queued measurements that belong to the scan being
+    /// assembled into its batch (converting them: the checked edge), and
+    /// counts the late and out-of-window ones; stops at the first one for a
+    /// later scan. Call it as often as wanted between scans: it frees queue
+    /// space early.
+    pub fn collect(
+        &mut self,
+        config: &ScanConfig<S, F::Params>,
+        source: &mut impl MeasurementSource,
+    ) -> Collected {
+        let clock = &config.clock;
+        loop {
+            if self.relock {
+                return Collected::ScanDue;
+            }
+            let Some(head) = source.peek() else {
+                return Collected::Waiting;
+            };
+            if !self.locked {
+                self.locked = true;
+                self.scan_ms = head.time_ms;
+                bump(&mut self.counters.clock_locks);
+            }
+            match self.timing(clock, head.time_ms) {
+                Timing::ThisScan => {
+                    self.drop_candidate();
+                    if let Some(m) = source.pop() {
+                        self.take(config, &m);
+                    }
+                }
+                Timing::LaterScan => {
+                    self.drop_candidate();
+                    return Collected::ScanDue;
+                }
+                Timing::Late => {
+                    self.drop_candidate();
+                    if source.pop().is_some() {
+                        bump16(&mut self.pending_counts.late);
+                        bump(&mut self.counters.late);
+                    }
+                }
+                Timing::OutOfWindow => {
+                    let consistent = self.candidate.is_some_and(|c| {
+                        signed_difference(head.time_ms, c.time_ms).unsigned_abs() <= clock.period_ms
+                    });
+                    if consistent {
+                        self.relock = true;
+                        return Collected::ScanDue;
+                    }
+                    self.drop_candidate();
+                    self.candidate = source.pop();
+                }
             }
         }
+    }
+
+    /// Re-locks onto the held measurement's time; it joins the (empty)
+    /// batch.
+    fn apply_relock(&mut self, config: &ScanConfig<S, F::Params>) {
+        self.relock = false;
+        if let Some(c) = self.candidate.take() {
+            self.scan_ms = c.time_ms;
+            bump(&mut self.counters.clock_relocks);
+            self.take(config, &c);
+        }
+    }
+
+    /// One measurement of this scan: converted, then into the batch; by
+    /// priority once the batch is full.
+    fn take(&mut self, config: &ScanConfig<S, F::Params>, report: &MeasurementReport) {
         let converted = report
             .position::<S>()
             .and_then(|m| report.altitude::<S>().map(|a| (m, a)));
-        match converted {
-            Ok((m, a)) => {
-                if self.batch.push(m).is_ok() {
-                    // Same capacity as `batch`, one push each: cannot fail.
-                    let _ = self.batch_altitudes.push(a);
-                } else {
-                    b.dropped += 1;
-                    c.dropped = c.dropped.saturating_add(1);
-                }
+        let Ok((measurement, altitude)) = converted else {
+            bump16(&mut self.pending_counts.invalid);
+            bump(&mut self.counters.invalid);
+            return;
+        };
+        if self.batch.len() < M {
+            // Room: no priority needed (yet). Four pushes on vectors of the
+            // same length below M.
+            let _ = self.batch.push(measurement);
+            let _ = self.batch_altitudes.push(altitude);
+            let _ = self.batch_priorities.push(Priority {
+                class: CLASS_OTHER,
+                gate_cost: 0,
+                range: S::ZERO,
+            });
+            let _ = self.batch_champions.push(0);
+            return;
+        }
+        if !self.ranked {
+            self.rank_batch(config);
+        }
+        let observation = Observation::new(measurement).ok();
+        let priority = self.priority(observation.as_ref());
+        let Some(index) = self.evictable(&priority, observation.as_ref()) else {
+            bump16(&mut self.pending_counts.over_capacity);
+            bump(&mut self.counters.over_capacity);
+            return;
+        };
+        self.release(index);
+        bump16(&mut self.pending_counts.over_capacity);
+        bump(&mut self.counters.over_capacity);
+        if let Some(slot) = self.batch.get_mut(index) {
+            *slot = measurement;
+        }
+        if let Some(slot) = self.batch_altitudes.get_mut(index) {
+            *slot = altitude;
+        }
+        if let Some(slot) = self.batch_priorities.get_mut(index) {
+            *slot = priority;
+        }
+        if let Some(o) = observation {
+            self.crown(index, &o);
+        }
+    }
+
+    /// The batch has just overflowed: the gates of the confirmed tracks,
+    /// and the priority and champion places of every entry (in arrival
+    /// order). Only a scan with more than `M` measurements pays for this.
+    fn rank_batch(&mut self, config: &ScanConfig<S, F::Params>) {
+        self.prepare_gates(config);
+        self.ranked = true;
+        for i in 0..self.batch.len() {
+            let observation = self.batch.get(i).and_then(|m| Observation::new(*m).ok());
+            let priority = self.priority(observation.as_ref());
+            if let Some(slot) = self.batch_priorities.get_mut(i) {
+                *slot = priority;
             }
-            Err(e) => {
-                b.invalid += 1;
-                let counter = match e {
-                    ConversionError::PositionOutOfRange | ConversionError::RangeOutOfRange => {
-                        &mut c.position_out_of_range
-                    }
-                    ConversionError::AltitudeOutOfRange => &mut c.altitude_out_of_range,
-                    ConversionError::NotRepresentable => &mut c.not_representable,
-                };
-                *counter = counter.saturating_add(1);
+            if let Some(o) = observation {
+                self.crown(i, &o);
             }
         }
     }
 
-    /// One scan at `now_ms`: collects the queued measurements up to
-    /// `now_ms`, runs the tracker, updates the altitude trackers, assesses
-    /// every confirmed track and passes the reports to `emit` (one
-    /// [`Message::Track`] per confirmed track, then one [`Message::Scan`]).
+    /// The priority of a measurement against the gates of the next scan.
+    fn priority(&self, observation: Option<&Observation<S>>) -> Priority<S> {
+        let Some(o) = observation else {
+            return Priority {
+                class: CLASS_REFUSED,
+                gate_cost: 0,
+                range: S::ZERO,
+            };
+        };
+        let best = self
+            .gates
+            .iter()
+            .flatten()
+            .filter_map(|g| g.region.cost(o))
+            .min();
+        // Positions are relative to the own aircraft.
+        let [x, y] = o.xy();
+        let range = hypot(x, y);
+        match best {
+            Some(gate_cost) => Priority {
+                class: CLASS_CONFIRMED_GATE,
+                gate_cost,
+                range,
+            },
+            None => Priority {
+                class: CLASS_OTHER,
+                gate_cost: 0,
+                range,
+            },
+        }
+    }
+
+    /// Which batch entry a new measurement replaces, if any: the least
+    /// important one that is no confirmed track's nearest measurement once
+    /// the new one is counted (it may take that place from another), if the
+    /// new one is more important or takes such a place itself.
+    fn evictable(
+        &self,
+        priority: &Priority<S>,
+        observation: Option<&Observation<S>>,
+    ) -> Option<usize> {
+        // Champion places the new measurement would take from each entry,
+        // and whether it would hold one.
+        let mut dethroned = [0u8; M];
+        let mut crowned = false;
+        if let Some(o) = observation {
+            for gate in self.gates.iter().flatten() {
+                let Some(cost) = gate.region.cost(o) else {
+                    continue;
+                };
+                match gate.champion {
+                    Some((i, c)) if cost < c => {
+                        crowned = true;
+                        if let Some(d) = dethroned.get_mut(i) {
+                            *d = d.saturating_add(1);
+                        }
+                    }
+                    None => crowned = true,
+                    _ => {}
+                }
+            }
+        }
+        // The least important unprotected entry (the last of equals).
+        let mut worst: Option<(usize, &Priority<S>)> = None;
+        for (i, (p, (&places, &taken))) in self
+            .batch_priorities
+            .iter()
+            .zip(self.batch_champions.iter().zip(dethroned.iter()))
+            .enumerate()
+        {
+            if places > taken {
+                continue;
+            }
+            if worst.is_none_or(|(_, w)| !w.is_worse_than(p)) {
+                worst = Some((i, p));
+            }
+        }
+        let (w, worst_priority) = worst?;
+        // Ties keep the measurement already in the batch.
+        if crowned || worst_priority.is_worse_than(priority) {
+            Some(w)
+        } else {
+            None
+        }
+    }
+
+    /// Clears a batch entry's champion places (it is being replaced).
+    fn release(&mut self, index: usize) {
+        for gate in self.gates.iter_mut().flatten() {
+            if gate.champion.is_some_and(|(i, _)| i == index) {
+                gate.champion = None;
+            }
+        }
+        if let Some(c) = self.batch_champions.get_mut(index) {
+            *c = 0;
+        }
+    }
+
+    /// Makes the entry at `index` the champion of every confirmed track
+    /// whose gate it is nearest to so far.
+    fn crown(&mut self, index: usize, observation: &Observation<S>) {
+        for gate in self.gates.iter_mut().flatten() {
+            let Some(cost) = gate.region.cost(observation) else {
+                continue;
+            };
+            let previous = match gate.champion {
+                Some((_, c)) if cost >= c => continue,
+                previous => previous,
+            };
+            if let Some((p, _)) = previous {
+                if let Some(count) = self.batch_champions.get_mut(p) {
+                    *count = count.saturating_sub(1);
+                }
+            }
+            gate.champion = Some((index, cost));
+            if let Some(count) = self.batch_champions.get_mut(index) {
+                *count = count.saturating_add(1);
+            }
+        }
+    }
+
+    /// The gates of the confirmed tracks for the scan being assembled (one
+    /// period after the last).
+    fn prepare_gates(&mut self, config: &ScanConfig<S, F::Params>) {
+        self.gates = [const { None }; N];
+        let params = config.tracker.params();
+        let Ok(dt) = S::try_from_f64(f64::from(config.clock.period_ms) / 1000.0) else {
+            return;
+        };
+        let confirmed = self.table.tracks().filter(|t| t.is_confirmed());
+        for (gate, track) in self.gates.iter_mut().zip(confirmed) {
+            let region = track.filter().predict(params, dt).ok().and_then(|p| {
+                track
+                    .filter()
+                    .gate_region(params, &p, dt, config.tracker.gate())
+            });
+            *gate = region.map(|region| TrackGate {
+                region,
+                champion: None,
+            });
+        }
+    }
+
+    /// Runs the scan being assembled: collects what is due from `source`,
+    /// runs the tracker, updates the altitude trackers, assesses every
+    /// confirmed track and passes the reports to `emit`: one
+    /// [`Message::Track`] per confirmed track, one [`Message::Scan`], one
+    /// [`Message::Health`]. Then the next scan is one period later (or at
+    /// the re-lock time).
     ///
-    /// On `Err` (a `now_ms` not after the previous scan) nothing is emitted,
-    /// the tracker is unchanged and the collected measurements stay in the
-    /// batch for the next successful call.
+    /// On `Err` (the tracker refused the scan: its time does not advance,
+    /// which the loop's own tracker clock rules out) nothing is emitted and
+    /// the batch is kept for the next call.
     pub fn on_tick(
         &mut self,
         config: &ScanConfig<S, F::Params>,
-        now_ms: u32,
-        queue: &mut Consumer<'_, MeasurementReport>,
+        source: &mut impl MeasurementSource,
         mut emit: impl FnMut(&Message),
     ) -> Result<TickReport, ScanError> {
-        self.collect(queue, now_ms);
-        let report = self
-            .table
-            .scan(&config.tracker, now_ms, &self.batch, &mut self.codes)?;
-        self.counters.scans = self.counters.scans.saturating_add(1);
+        if self.relock && self.batch.is_empty() {
+            // Nothing for the old time base: re-lock at once.
+            self.apply_relock(config);
+        }
+        self.collect(config, source);
+        let used = self.batch.len();
+        let report = self.table.scan(
+            &config.tracker,
+            self.tracker_ms,
+            &self.batch,
+            &mut self.codes,
+        )?;
         self.update_altitudes(config, &report);
+        let (highest, confirmed_tracks) = self.report_tracks(config, &mut emit);
 
+        let mut counts = self.pending_counts;
+        counts.used = sat_u16(sat_u32(used));
+        for code in self.codes.iter().take(used) {
+            bump16(match code {
+                Association::Updated(_) => &mut counts.updated,
+                Association::Started(_) => &mut counts.started,
+                Association::NotAssigned => &mut counts.not_assigned,
+                Association::OutsideGates => &mut counts.outside_gates,
+                Association::Rejected(_) => &mut counts.rejected,
+                Association::Dropped(DropReason::TableFull) => &mut counts.refused_table_full,
+                Association::Dropped(DropReason::ScanOverflow) => &mut counts.over_capacity,
+            });
+        }
+        counts.predicted = sat_u16(report.predicted);
+        counts.gated_pairs = sat_u16(report.gated_pairs);
+        counts.coasted = sat_u16(report.coasted);
+        counts.confirmed = sat_u16(report.confirmed);
+        counts.deleted = sat_u16(report.deleted);
+        counts.tracks = sat_u16(report.tracks);
+        counts.confirmed_tracks = sat_u16(confirmed_tracks);
+
+        let c = &mut self.counters;
+        bump(&mut c.scans);
+        c.used = c.used.saturating_add(sat_u32(used));
+        c.tracks_started = c.tracks_started.saturating_add(report.started);
+        c.tracks_confirmed = c.tracks_confirmed.saturating_add(report.confirmed);
+        c.tracks_deleted = c.tracks_deleted.saturating_add(report.deleted);
+        c.refused_table_full = c
+            .refused_table_full
+            .saturating_add(report.refused_table_full);
+
+        let summary = ScanSummary {
+            time_ms: self.scan_ms,
+            interval_ms: report.interval_ms,
+            counts,
+            highest_advisory: highest,
+        };
+        emit(&Message::Scan(summary));
+
+        // The next scan.
+        self.batch.clear();
+        self.batch_altitudes.clear();
+        self.batch_priorities.clear();
+        self.batch_champions.clear();
+        self.pending_counts = ScanCounts::new();
+        self.tracker_ms = self.tracker_ms.wrapping_add(config.clock.period_ms);
+        let time_ms = self.scan_ms;
+        self.scan_ms = self.scan_ms.wrapping_add(config.clock.period_ms);
+        self.ranked = false;
+        if self.relock {
+            self.apply_relock(config);
+        }
+
+        let (decoder, intake) = source.receiver_counters();
+        emit(&Message::Health(Health {
+            time_ms,
+            decoder,
+            intake,
+            scan: self.counters,
+        }));
+        Ok(TickReport {
+            scan: report,
+            summary,
+        })
+    }
+
+    /// At the end of a run: drops a held out-of-window measurement
+    /// (counted), so that every measurement taken is accounted for.
+    pub fn finish(&mut self) {
+        self.drop_candidate();
+    }
+
+    /// Emits a track report per confirmed track; returns the highest
+    /// advisory and the number of confirmed tracks.
+    fn report_tracks(
+        &mut self,
+        config: &ScanConfig<S, F::Params>,
+        emit: &mut impl FnMut(&Message),
+    ) -> (Advisory, u32) {
         let mut highest = Advisory::None;
         let mut confirmed = 0u32;
         for track in self.table.tracks().filter(|t| t.is_confirmed()) {
-            confirmed += 1;
+            confirmed = confirmed.saturating_add(1);
             let altitude = self
                 .altitudes
                 .iter()
@@ -457,7 +1074,7 @@ impl<S: Scalar, F: TrackFilter<S>, const N: usize, const M: usize> ScanLoop<S, F
             };
             let assessment = tcas::assess(&config.own, &intruder).ok();
             if assessment.is_none() {
-                self.counters.assessment_errors = self.counters.assessment_errors.saturating_add(1);
+                bump(&mut self.counters.assessment_errors);
             }
             let advisory = assessment.map_or(Advisory::None, |a| a.advisory);
             highest = highest.max(advisory);
@@ -468,7 +1085,7 @@ impl<S: Scalar, F: TrackFilter<S>, const N: usize, const M: usize> ScanLoop<S, F
                 u16::try_from(ds.max(0)).unwrap_or(u16::MAX)
             });
             let report = TrackReport {
-                time_ms: now_ms,
+                time_ms: self.scan_ms,
                 track_id: track.id().get(),
                 status: track.status(),
                 advisory,
@@ -481,45 +1098,15 @@ impl<S: Scalar, F: TrackFilter<S>, const N: usize, const M: usize> ScanLoop<S, F
                     let rate = scaled_i32(a.vertical_rate_ft_per_s, 60.0);
                     (
                         scaled_i32(a.altitude_ft, 1.0),
-                        rate.clamp(i16::MIN as i32, i16::MAX as i32) as i16,
+                        i16::try_from(rate).unwrap_or(if rate < 0 { i16::MIN } else { i16::MAX }),
                     )
                 }),
                 range_tau_ds: tau_ds,
             };
             emit(&Message::Track(report));
-            self.counters.track_reports = self.counters.track_reports.saturating_add(1);
+            bump(&mut self.counters.track_reports);
         }
-
-        let b = self.batch_counts;
-        let summary = ScanSummary {
-            time_ms: now_ms,
-            interval_ms: report.interval_ms,
-            measurements: sat_u16(b.taken),
-            invalid: sat_u16(b.invalid),
-            late: sat_u16(b.late),
-            dropped: sat_u16(b.dropped),
-            rejected: sat_u16(report.rejected),
-            predicted: sat_u16(report.predicted),
-            gated_pairs: sat_u16(report.gated_pairs),
-            assigned: sat_u16(report.assigned),
-            updated: sat_u16(report.updated),
-            coasted: sat_u16(report.coasted),
-            started: sat_u16(report.started),
-            confirmed: sat_u16(report.confirmed),
-            deleted: sat_u16(report.deleted),
-            tracks: sat_u16(report.tracks),
-            confirmed_tracks: sat_u16(confirmed),
-            highest_advisory: highest,
-        };
-        emit(&Message::Scan(summary));
-
-        self.batch.clear();
-        self.batch_altitudes.clear();
-        self.batch_counts = BatchCounts::default();
-        Ok(TickReport {
-            scan: report,
-            summary,
-        })
+        (highest, confirmed)
     }
 
     /// Feeds the scan's altitude reports to the trackers of the tracks they
@@ -533,12 +1120,12 @@ impl<S: Scalar, F: TrackFilter<S>, const N: usize, const M: usize> ScanLoop<S, F
             }
         }
         // The first scan has no interval, and no track yet.
-        let Ok(dt) = S::try_from_f64(report.interval_ms as f64 / 1000.0) else {
-            return;
-        };
         if report.interval_ms == 0 {
             return;
         }
+        let Ok(dt) = S::try_from_f64(f64::from(report.interval_ms) / 1000.0) else {
+            return;
+        };
         let n = self.batch.len().min(M);
         for (code, altitude) in self.codes.iter().take(n).zip(self.batch_altitudes.iter()) {
             let (Association::Updated(id) | Association::Started(id)) = *code else {
@@ -567,16 +1154,74 @@ impl<S: Scalar, F: TrackFilter<S>, const N: usize, const M: usize> ScanLoop<S, F
             };
             if let Some(Some(s)) = index.and_then(|i| self.altitudes.get_mut(i)) {
                 if s.tracker.scan(Some(altitude), dt).is_err() {
-                    self.counters.altitude_errors = self.counters.altitude_errors.saturating_add(1);
+                    bump(&mut self.counters.altitude_errors);
                 }
                 s.updated = true;
             }
         }
         for s in self.altitudes.iter_mut().flatten() {
             if !s.updated && s.tracker.scan(None, dt).is_err() {
-                self.counters.altitude_errors = self.counters.altitude_errors.saturating_add(1);
+                bump(&mut self.counters.altitude_errors);
             }
         }
+    }
+}
+
+// ---------------------------------------------------------------------------
+// The verdict of a run
+// ---------------------------------------------------------------------------
+
+/// Whether a run's input was used, from its last health counters: the rule
+/// behind the demo firmware's exit status.
+///
+/// The sensor sent `sent = accepted frames + frames lost` (from the
+/// sequence numbers); of those, `lost = frames lost + measurements not used`
+/// (queue full, late, out of the window, over capacity, not representable).
+/// A run is **clean** when it used at least one measurement and lost at
+/// most one in [`MAX_LOST_FRACTION_INVERSE`] of what was sent, and no
+/// threat assessment failed.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+#[cfg_attr(feature = "defmt", derive(defmt::Format))]
+pub struct RunVerdict {
+    pub sent: u32,
+    pub lost: u32,
+    pub used: u32,
+    pub assessment_errors: u32,
+}
+
+/// A clean run loses at most 1 in this many of the frames sent.
+pub const MAX_LOST_FRACTION_INVERSE: u32 = 10;
+
+impl RunVerdict {
+    pub fn from_health(h: &Health) -> Self {
+        let s = &h.scan;
+        let lost = [
+            h.decoder.frames_lost,
+            h.intake.queue_full,
+            s.late,
+            s.out_of_window,
+            s.over_capacity,
+            s.invalid,
+        ]
+        .into_iter()
+        .fold(0u32, |a, b| a.saturating_add(b));
+        RunVerdict {
+            sent: h.decoder.accepted.saturating_add(h.decoder.frames_lost),
+            lost,
+            used: s.used,
+            assessment_errors: s.assessment_errors,
+        }
+    }
+
+    /// More than one in [`MAX_LOST_FRACTION_INVERSE`] of the frames sent
+    /// was not used.
+    pub fn lost_too_much(&self) -> bool {
+        u64::from(self.lost).saturating_mul(u64::from(MAX_LOST_FRACTION_INVERSE))
+            > u64::from(self.sent)
+    }
+
+    pub fn is_clean(&self) -> bool {
+        self.used > 0 && !self.lost_too_much() && self.assessment_errors == 0
     }
 }
 

@@ -1,8 +1,15 @@
-//! The serial protocol: measurement frames in, track and scan report frames
-//! out. Sans-IO and allocation-free (in the style of smoltcp's `wire`): a
-//! byte view [`Frame`] with `new_checked`, the typed [`Message`] with
-//! [`Message::parse`] / [`Message::emit`], and a byte-at-a-time streaming
-//! [`Decoder`] for an interrupt handler.
+//! The serial protocol: measurement frames in; track, scan and health report
+//! frames out. Sans-IO and allocation-free (in the style of smoltcp's
+//! `wire`): a byte view [`Frame`] with `new_checked`, the typed [`Message`]
+//! with [`Message::parse`] / [`Message::emit`], named field offsets
+//! ([`field`]), a numbering [`Encoder`] and a byte-at-a-time [`Decoder`] for
+//! an interrupt handler.
+//!
+//! The layouts are tables ([`field`]): each field is declared once, with its
+//! type, and its offset follows from the fields before it, so adding a field
+//! is one line in a table (and its meaning in `parse` and `emit`); the
+//! payload length follows from the table. `docs/firmware-runtime.md` prints
+//! every layout.
 //!
 //! # Frame
 //!
@@ -10,19 +17,21 @@
 //! |---|---|---|
 //! | 0 | 2 | sync `0xAB 0xCD` ([`SYNC`]) |
 //! | 2 | 1 | message type ([`FrameKind`]) |
-//! | 3 | 1 | payload length `L` — must equal the type's fixed length |
-//! | 4 | `L` | payload, big-endian (network order) fields |
-//! | 4 + `L` | 2 | CRC-16/CCITT-FALSE of bytes 2 .. 4 + `L` (type, length, payload), big-endian |
+//! | 3 | 1 | payload length `L`: must be the type's length |
+//! | 4 | 2 | sequence number: the sender's frame count, +1 per frame, wrapping |
+//! | 6 | `L` | payload, big-endian (network order) fields |
+//! | 6 + `L` | 4 | CRC-32C of bytes 2 .. 6 + `L`, big-endian |
 //!
-//! CRC-16/CCITT-FALSE: polynomial 0x1021, initial value 0xFFFF, no
-//! reflection, no final XOR; check value 0x29B1 for the ASCII bytes
-//! `123456789` ([`crc16`]). The sync bytes are not covered (they are
-//! constant); the length is, so a corrupted length is caught even when it
-//! happens to be a valid one.
+//! CRC-32C (Castagnoli et al., IEEE Trans. Commun. 41(6), 1993; the iSCSI
+//! CRC of RFC 3720): reflected polynomial 0x82F63B78, initial value and final
+//! XOR 0xFFFFFFFF; check value 0xE3069283 for the ASCII bytes `123456789`
+//! ([`crc32c`]). The sync bytes are not covered (they are constant); the
+//! length and the sequence number are. Why 32 bits and not 16:
+//! `docs/firmware-runtime.md`, "Framing".
 //!
 //! Every type has one fixed payload length. The decoder checks the type at
 //! byte 2 and the length at byte 3, so a corrupted header is refused at once
-//! instead of swallowing up to 255 bytes of the following frames.
+//! instead of swallowing the following frames.
 //!
 //! # Payloads
 //!
@@ -30,66 +39,31 @@
 //! representation (f64, f32, Q32.32) either end computes in, every value has
 //! exactly one encoding, and a receiver needs no float parsing in its
 //! interrupt handler. Resolution: 1 cm, 1 cm/s, 1 ft, 2π/65536 rad (0.0055°,
-//! the binary angle of ASTERIX radar data), 1 ms, 0.1 s.
+//! the binary angle of ASTERIX radar data), 1 ms, 0.1 s. Unused bits and
+//! absent fields must be 0 ([`WireError::BadField`] otherwise).
 //!
-//! **Measurement, Cartesian** (type `0x01`, 18 bytes):
-//!
-//! | offset | type | field |
+//! | type | message | payload layout |
 //! |---|---|---|
-//! | 0 | u32 | time, ms (the sensor's monotonic clock; it may wrap) |
-//! | 4 | u8 | sensor id |
-//! | 5 | u8 | flags: bit 0 = altitude present; bits 1–7 must be 0 |
-//! | 6 | i32 | x, cm |
-//! | 10 | i32 | y, cm |
-//! | 14 | i32 | pressure altitude, ft (0 when absent) |
+//! | `0x01` | Cartesian measurement | [`field::cartesian`] |
+//! | `0x02` | polar measurement | [`field::polar`] |
+//! | `0x03` | end of input: a recording ends here | [`field::end`] |
+//! | `0x81` | track report, one per confirmed track per scan | [`field::track`] |
+//! | `0x82` | scan summary, one per scan | [`field::scan`], counts [`ScanCounts`] |
+//! | `0x84` | health, one per scan: every lifetime counter | [`field::health`] |
 //!
-//! **Measurement, polar** (type `0x02`, 16 bytes):
+//! # The envelope
 //!
-//! | offset | type | field |
-//! |---|---|---|
-//! | 0 | u32 | time, ms |
-//! | 4 | u8 | sensor id |
-//! | 5 | u8 | flags: bit 0 = altitude present; bits 1–7 must be 0 |
-//! | 6 | u32 | range, cm |
-//! | 10 | u16 | azimuth, binary angle: 65536 = 360°, clockwise from +y |
-//! | 12 | i32 | pressure altitude, ft (0 when absent) |
-//!
-//! **Track report** (type `0x81`, 36 bytes), one per confirmed track per scan:
-//!
-//! | offset | type | field |
-//! |---|---|---|
-//! | 0 | u32 | scan time, ms |
-//! | 4 | u32 | track id |
-//! | 8 | u8 | status: 0 tentative, 1 confirmed, 2 coasting |
-//! | 9 | u8 | advisory: 0 none, 1 proximate traffic, 2 traffic (TA), 3 resolution (RA) |
-//! | 10 | u8 | flags: bit 0 altitude valid, bit 1 range tau valid; bits 2–7 must be 0 |
-//! | 11 | u8 | TCAS sensitivity level 2–7, 0 = not assessed |
-//! | 12 | i32 | x, cm (relative to the own aircraft) |
-//! | 16 | i32 | y, cm |
-//! | 20 | i32 | vx, cm/s |
-//! | 24 | i32 | vy, cm/s |
-//! | 28 | i32 | altitude, ft (0 when not valid) |
-//! | 32 | i16 | vertical rate, ft/min (0 when not valid) |
-//! | 34 | u16 | range tau, 0.1 s (0 when not valid) |
-//!
-//! **Scan summary** (type `0x82`, 40 bytes), one per scan: u32 scan time (ms),
-//! u32 interval (ms), then fifteen u16 counts (saturating) in this order:
-//! measurements taken, invalid (failed the conversion), late, dropped (over
-//! the scan's capacity), rejected by the tracker, predicted, gated pairs,
-//! assigned, updated, coasted, started, confirmed, deleted, live tracks,
-//! confirmed tracks; then u8 highest advisory and a u8 that must be 0.
-//!
-//! **Link status** (type `0x83`, 44 bytes): u32 time (ms), then ten u32
-//! counters of the receiving side, in the order of the fields of
-//! [`LinkStatus`].
-//!
-//! # Conversions
-//!
-//! [`MeasurementReport::position`] and [`MeasurementReport::altitude`] are
-//! the checked edge into the tracker: positions and ranges beyond ±400 km
-//! (the numeric envelope the filters are specified for, issue 2) and
-//! altitudes outside the Mode C range −1000 … 126 700 ft are refused with a
-//! [`ConversionError`].
+//! A measurement frame with a valid CRC is still refused
+//! ([`WireError::OutOfEnvelope`], counted) when it is not physical for the
+//! tracker: a position or range beyond 400 km ([`MAX_POSITION_CM`], the
+//! numeric envelope of the fixed-point filters, issue 2) or a reported
+//! altitude outside Mode C's −1000 … 126 700 ft. The decoder then examines
+//! the candidate's bytes again, so a made-up frame (a CRC collision in
+//! garbage) cannot swallow a real frame behind it. Times are checked by the
+//! scan clock ([`crate::scan`]); speeds by the tracker's gates and
+//! initiation bound.
+
+use core::marker::PhantomData;
 
 use crate::num::Scalar;
 use crate::tcas::{Advisory, SensitivityLevel};
@@ -97,21 +71,25 @@ use crate::track::{Measurement, TrackStatus};
 
 /// The two bytes that start every frame.
 pub const SYNC: [u8; 2] = [0xAB, 0xCD];
-/// Sync, type and length.
-pub const HEADER_LEN: usize = 4;
+/// Sync, type, length and sequence number.
+pub const HEADER_LEN: usize = field::header::LEN;
 /// The CRC at the end.
-pub const CRC_LEN: usize = 2;
+pub const CRC_LEN: usize = 4;
 /// The longest payload of any type.
-pub const MAX_PAYLOAD_LEN: usize = 44;
+pub const MAX_PAYLOAD_LEN: usize = FrameKind::payload_bound(true);
 /// The longest frame.
-pub const MAX_FRAME_LEN: usize = HEADER_LEN + MAX_PAYLOAD_LEN + CRC_LEN;
-/// The shortest frame (a polar measurement).
-pub const MIN_FRAME_LEN: usize = HEADER_LEN + 16 + CRC_LEN;
+pub const MAX_FRAME_LEN: usize = frame_len_for(MAX_PAYLOAD_LEN);
+/// The shortest frame (the end of input).
+pub const MIN_FRAME_LEN: usize = frame_len_for(FrameKind::payload_bound(false));
 /// At most this many frames can complete on one byte pushed into the
 /// [`Decoder`]: after a failed candidate, the bytes it held are examined
 /// again, and up to `MAX_FRAME_LEN / MIN_FRAME_LEN` frames fit in them. A
 /// producer that wants no message dropped keeps this many queue slots free.
 pub const MAX_FRAMES_PER_BYTE: usize = MAX_FRAME_LEN / MIN_FRAME_LEN;
+
+const fn frame_len_for(payload: usize) -> usize {
+    HEADER_LEN.saturating_add(payload).saturating_add(CRC_LEN)
+}
 
 /// Largest |x|, |y| or range accepted, cm: 400 km, the position envelope of
 /// the fixed-point filters (issue 2).
@@ -125,7 +103,9 @@ pub const MAX_ALTITUDE_FT: i32 = 126_700;
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 #[cfg_attr(feature = "defmt", derive(defmt::Format))]
 pub enum WireError {
-    /// Fewer bytes than the header says (or than a header).
+    /// Fewer bytes than the header says (or than a header); from the
+    /// decoder: a frame cut short (the line went idle, or another frame's
+    /// header starts inside it).
     Truncated,
     /// The first two bytes are not [`SYNC`].
     BadSync,
@@ -139,6 +119,8 @@ pub enum WireError {
     /// an unknown status or advisory code, a value given for an absent
     /// field).
     BadField,
+    /// A measurement outside the physical envelope (see the module docs).
+    OutOfEnvelope,
     /// The output buffer is too short for the frame.
     BufferTooShort,
 }
@@ -152,12 +134,15 @@ impl core::fmt::Display for WireError {
             WireError::BadLength => "length does not match the message type",
             WireError::Checksum => "CRC mismatch",
             WireError::BadField => "field value not allowed",
+            WireError::OutOfEnvelope => "measurement outside the physical envelope",
             WireError::BufferTooShort => "output buffer too short",
         })
     }
 }
 
-/// Why a measurement frame cannot enter the tracker.
+impl core::error::Error for WireError {}
+
+/// Why a measurement cannot enter the tracker.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 #[cfg_attr(feature = "defmt", derive(defmt::Format))]
 pub enum ConversionError {
@@ -183,25 +168,32 @@ impl core::fmt::Display for ConversionError {
     }
 }
 
+impl core::error::Error for ConversionError {}
+
 // ---------------------------------------------------------------------------
-// CRC-16/CCITT-FALSE
+// CRC-32C
 // ---------------------------------------------------------------------------
 
-const CRC_POLY: u16 = 0x1021;
-/// Initial value of CRC-16/CCITT-FALSE.
-pub const CRC_INIT: u16 = 0xFFFF;
+/// CRC-32C's polynomial 0x1EDC6F41, bit-reversed (the CRC is computed
+/// least significant bit first).
+const CRC32C_POLY_REFLECTED: u32 = 0x82F6_3B78;
+/// Initial value (and final XOR) of CRC-32C.
+pub const CRC_INIT: u32 = 0xFFFF_FFFF;
 
-const fn crc_table() -> [u16; 256] {
-    let mut table = [0u16; 256];
+// Evaluated at compile time only: an index out of range or an overflow
+// would fail the build, not the firmware.
+#[allow(clippy::indexing_slicing, clippy::arithmetic_side_effects)]
+const fn crc_table() -> [u32; 256] {
+    let mut table = [0u32; 256];
     let mut i = 0;
     while i < 256 {
-        let mut crc = (i as u16) << 8;
+        let mut crc = i as u32;
         let mut bit = 0;
         while bit < 8 {
-            crc = if crc & 0x8000 != 0 {
-                (crc << 1) ^ CRC_POLY
+            crc = if crc & 1 != 0 {
+                (crc >> 1) ^ CRC32C_POLY_REFLECTED
             } else {
-                crc << 1
+                crc >> 1
             };
             bit += 1;
         }
@@ -211,90 +203,532 @@ const fn crc_table() -> [u16; 256] {
     table
 }
 
-/// 512 bytes of flash buy one table lookup per byte instead of eight shifts
+/// 1 KiB of flash buys one table lookup per byte instead of eight shifts
 /// in the receive interrupt.
-static CRC_TABLE: [u16; 256] = crc_table();
+static CRC_TABLE: [u32; 256] = crc_table();
 
-/// Continues a CRC-16/CCITT-FALSE over `data` from the running value `crc`
-/// (start from [`CRC_INIT`]).
-pub fn crc16_update(mut crc: u16, data: &[u8]) -> u16 {
+/// Continues a CRC-32C over `data` from the running register `crc` (start
+/// from [`CRC_INIT`]; the final value is `!crc`, see [`crc32c`]).
+pub fn crc32c_update(mut crc: u32, data: &[u8]) -> u32 {
     for &b in data {
         // The index is a u8: always inside the 256-entry table.
-        let index = ((crc >> 8) as u8 ^ b) as usize;
-        crc = (crc << 8) ^ CRC_TABLE[index];
+        let index = usize::from((crc as u8) ^ b);
+        crc = (crc >> 8) ^ CRC_TABLE.get(index).copied().unwrap_or(0);
     }
     crc
 }
 
-/// CRC-16/CCITT-FALSE (poly 0x1021, init 0xFFFF, not reflected, no final
-/// XOR) of `data`; 0x29B1 for `b"123456789"`.
-pub fn crc16(data: &[u8]) -> u16 {
-    crc16_update(CRC_INIT, data)
+/// CRC-32C (CRC-32/ISCSI: reflected poly 0x82F63B78, init and final XOR
+/// 0xFFFFFFFF) of `data`; 0xE3069283 for `b"123456789"`.
+pub fn crc32c(data: &[u8]) -> u32 {
+    !crc32c_update(CRC_INIT, data)
 }
 
 // ---------------------------------------------------------------------------
-// Field access without panics
+// Field tables
 // ---------------------------------------------------------------------------
 
-fn get_array<const K: usize>(bytes: &[u8], at: usize) -> [u8; K] {
-    let mut out = [0u8; K];
-    if let Some(src) = bytes.get(at..at.saturating_add(K)) {
-        // Element by element: `copy_from_slice` would keep a length-check
-        // panic path the compiler cannot remove.
-        for (o, b) in out.iter_mut().zip(src) {
-            *o = *b;
-        }
-    }
-    out
+/// A value with a fixed big-endian encoding: an integer, or a list of
+/// counters ([`ScanCounts`], ...).
+pub trait WireValue: Copy {
+    /// Bytes on the wire.
+    const WIDTH: usize;
+    /// Reads the value from `bytes` (exactly `WIDTH` of them; a shorter
+    /// slice reads as zeros where bytes are missing). Never panics.
+    fn read(bytes: &[u8]) -> Self;
+    /// Writes the value into `bytes` (as many of its bytes as fit).
+    fn write(self, bytes: &mut [u8]);
 }
 
-fn get_u8(bytes: &[u8], at: usize) -> u8 {
-    bytes.get(at).copied().unwrap_or(0)
-}
-fn get_u16(bytes: &[u8], at: usize) -> u16 {
-    u16::from_be_bytes(get_array(bytes, at))
-}
-fn get_i16(bytes: &[u8], at: usize) -> i16 {
-    i16::from_be_bytes(get_array(bytes, at))
-}
-fn get_u32(bytes: &[u8], at: usize) -> u32 {
-    u32::from_be_bytes(get_array(bytes, at))
-}
-fn get_i32(bytes: &[u8], at: usize) -> i32 {
-    i32::from_be_bytes(get_array(bytes, at))
-}
-
-/// Writes big-endian fields in order into a payload; never panics (a write
-/// past the end is dropped, and [`Message::emit`] checks the length first).
-struct PayloadWriter<'a> {
-    bytes: &'a mut [u8],
-    at: usize,
-}
-
-impl PayloadWriter<'_> {
-    fn put(&mut self, src: &[u8]) {
-        let end = self.at.saturating_add(src.len());
-        if let Some(dst) = self.bytes.get_mut(self.at..end) {
-            for (d, b) in dst.iter_mut().zip(src) {
-                *d = *b;
+macro_rules! wire_int {
+    ($($t:ty),*) => {$(
+        impl WireValue for $t {
+            const WIDTH: usize = core::mem::size_of::<$t>();
+            fn read(bytes: &[u8]) -> Self {
+                let mut be = [0u8; core::mem::size_of::<$t>()];
+                // Element by element: `copy_from_slice` would keep a
+                // length-check panic path.
+                for (b, src) in be.iter_mut().zip(bytes) {
+                    *b = *src;
+                }
+                <$t>::from_be_bytes(be)
+            }
+            fn write(self, bytes: &mut [u8]) {
+                for (dst, b) in bytes.iter_mut().zip(self.to_be_bytes()) {
+                    *dst = b;
+                }
             }
         }
-        self.at = end;
+    )*};
+}
+wire_int!(u8, u16, i16, u32, i32);
+
+/// A named field of a layout: its offset and, in the type, its encoding
+/// (smoltcp's `mod field`, with the width checked by the type).
+#[derive(Debug)]
+pub struct Field<T> {
+    start: usize,
+    _value: PhantomData<fn() -> T>,
+}
+
+impl<T> Clone for Field<T> {
+    fn clone(&self) -> Self {
+        *self
     }
-    fn u8(&mut self, v: u8) {
-        self.put(&[v]);
+}
+impl<T> Copy for Field<T> {}
+
+impl<T: WireValue> Field<T> {
+    /// The field at `start`.
+    pub const fn at(start: usize) -> Self {
+        Field {
+            start,
+            _value: PhantomData,
+        }
     }
-    fn u16(&mut self, v: u16) {
-        self.put(&v.to_be_bytes());
+    /// First byte.
+    pub const fn start(self) -> usize {
+        self.start
     }
-    fn i16(&mut self, v: i16) {
-        self.put(&v.to_be_bytes());
+    /// One past the last byte: where the next field starts.
+    pub const fn end(self) -> usize {
+        self.start.saturating_add(T::WIDTH)
     }
-    fn u32(&mut self, v: u32) {
-        self.put(&v.to_be_bytes());
+    /// Reads the field of `bytes` (0 for bytes beyond the end). Never
+    /// panics.
+    pub fn get(self, bytes: &[u8]) -> T {
+        T::read(bytes.get(self.start..).unwrap_or(&[]))
     }
-    fn i32(&mut self, v: i32) {
-        self.put(&v.to_be_bytes());
+    /// Writes the field into `bytes` (the part that fits). Never panics.
+    pub fn set(self, bytes: &mut [u8], value: T) {
+        if let Some(dst) = bytes.get_mut(self.start..) {
+            value.write(dst);
+        }
+    }
+}
+
+/// Declares a layout: each field's offset is the end of the one before,
+/// `LEN` is the end of the last, and `FIELDS` lists them (name, offset,
+/// width, doc) for the documentation (`frames layout`).
+macro_rules! layout {
+    (
+        $(#[$meta:meta])*
+        pub mod $name:ident { $( $(#[doc = $doc:literal])* $field:ident: $t:ty, )* }
+    ) => {
+        $(#[$meta])*
+        pub mod $name {
+            #[allow(unused_imports)]
+            use super::super::*;
+            layout!(@fields 0usize; $( $(#[doc = $doc])* $field: $t, )*);
+            /// Every field: name, offset, width, what it holds.
+            pub const FIELDS: &[FieldRow] = &[
+                $( (stringify!($field), $field.start(), <$t as WireValue>::WIDTH, concat!($($doc),*)), )*
+            ];
+        }
+    };
+    (@fields $at:expr;) => {
+        /// Bytes in the layout.
+        pub const LEN: usize = $at;
+    };
+    (@fields $at:expr; $(#[doc = $doc:literal])* $field:ident: $t:ty, $($rest:tt)*) => {
+        $(#[doc = $doc])*
+        pub const $field: Field<$t> = Field::at($at);
+        layout!(@fields $field.end(); $($rest)*);
+    };
+}
+
+/// The layouts: the frame header and each message's payload (offsets within
+/// the payload). See the module docs for the frame around them.
+pub mod field {
+    layout! {
+        /// The frame header.
+        pub mod header {
+            /// [`SYNC`] as a big-endian u16.
+            SYNC: u16,
+            /// [`FrameKind`] byte.
+            TYPE: u8,
+            /// Payload length (must be the type's).
+            LENGTH: u8,
+            /// The sender's frame count, wrapping ([`Encoder`]).
+            SEQUENCE: u16,
+        }
+    }
+    layout! {
+        /// Cartesian measurement (type `0x01`).
+        pub mod cartesian {
+            /// Sensor clock, ms (it may wrap; see [`crate::scan`]).
+            TIME: u32,
+            /// Sensor id.
+            SENSOR: u8,
+            /// Bit 0: altitude present; bits 1–7 must be 0.
+            FLAGS: u8,
+            /// cm.
+            X: i32,
+            /// cm.
+            Y: i32,
+            /// Pressure altitude, ft (0 when absent).
+            ALTITUDE: i32,
+        }
+    }
+    layout! {
+        /// Polar measurement (type `0x02`).
+        pub mod polar {
+            /// Sensor clock, ms.
+            TIME: u32,
+            /// Sensor id.
+            SENSOR: u8,
+            /// Bit 0: altitude present; bits 1–7 must be 0.
+            FLAGS: u8,
+            /// cm.
+            RANGE: u32,
+            /// Binary angle, 65536 = 360°, clockwise from +y.
+            AZIMUTH: u16,
+            /// Pressure altitude, ft (0 when absent).
+            ALTITUDE: i32,
+        }
+    }
+    layout! {
+        /// End of input (type `0x03`): the sender's recording ends here (a
+        /// replay's last frame; its sequence number also reveals frames
+        /// lost just before it).
+        pub mod end {
+            /// The sensor's clock at the end, ms.
+            TIME: u32,
+        }
+    }
+    layout! {
+        /// Track report (type `0x81`), one per confirmed track per scan.
+        pub mod track {
+            /// Scan time, ms (the sensor's clock).
+            TIME: u32,
+            /// Track id (never reused while the track lives).
+            TRACK_ID: u32,
+            /// 0 tentative, 1 confirmed, 2 coasting.
+            STATUS: u8,
+            /// 0 none, 1 proximate traffic, 2 traffic (TA), 3 resolution (RA).
+            ADVISORY: u8,
+            /// Bit 0 altitude valid, bit 1 range tau valid; bits 2–7 must be 0.
+            FLAGS: u8,
+            /// TCAS sensitivity level 2–7, 0 = not assessed.
+            SENSITIVITY: u8,
+            /// cm, relative to the own aircraft.
+            X: i32,
+            /// cm.
+            Y: i32,
+            /// cm/s.
+            VX: i32,
+            /// cm/s.
+            VY: i32,
+            /// ft (0 when not valid).
+            ALTITUDE: i32,
+            /// ft/min (0 when not valid).
+            VERTICAL_RATE: i16,
+            /// 0.1 s (0 when not valid).
+            RANGE_TAU: u16,
+        }
+    }
+    layout! {
+        /// Scan summary (type `0x82`), one per scan.
+        pub mod scan {
+            /// Scan time, ms (the sensor's clock).
+            TIME: u32,
+            /// Since the previous scan, ms (0 for the first).
+            INTERVAL: u32,
+            /// The most severe advisory over all tracks (as in the track report).
+            HIGHEST_ADVISORY: u8,
+            /// Must be 0.
+            RESERVED: u8,
+            /// This scan's counts, u16 each, saturating.
+            COUNTS: ScanCounts,
+        }
+    }
+    layout! {
+        /// Health (type `0x84`), one per scan: every lifetime counter of
+        /// the receiving and scanning side, u32 each, saturating.
+        pub mod health {
+            /// Scan time, ms (the sensor's clock).
+            TIME: u32,
+            /// The decoder's counters ([`DecoderStats`]).
+            DECODER: DecoderStats,
+            /// The receive side's ([`IntakeCounters`]).
+            INTAKE: IntakeCounters,
+            /// The scan loop's ([`LoopCounters`]).
+            SCAN: LoopCounters,
+        }
+    }
+}
+
+use field::{cartesian, end, header, health, polar, scan, track};
+
+/// A field of a layout, for the documentation: name, offset, width, what it
+/// holds.
+pub type FieldRow = (&'static str, usize, usize, &'static str);
+
+/// Every layout: (name, type byte if a message, fields), for the
+/// documentation (`frames layout`).
+pub const LAYOUTS: [(&str, Option<FrameKind>, &[FieldRow]); 7] = [
+    ("frame header", None, header::FIELDS),
+    (
+        "Cartesian measurement",
+        Some(FrameKind::MeasurementCartesian),
+        cartesian::FIELDS,
+    ),
+    (
+        "polar measurement",
+        Some(FrameKind::MeasurementPolar),
+        polar::FIELDS,
+    ),
+    ("end of input", Some(FrameKind::EndOfInput), end::FIELDS),
+    ("track report", Some(FrameKind::TrackReport), track::FIELDS),
+    ("scan summary", Some(FrameKind::ScanSummary), scan::FIELDS),
+    ("health", Some(FrameKind::Health), health::FIELDS),
+];
+
+// ---------------------------------------------------------------------------
+// Counter lists
+// ---------------------------------------------------------------------------
+
+/// Declares a list of counters once: the struct, its names and labels in
+/// wire order, the wire encoding ([`WireValue`]), the log line
+/// (`defmt::Format`, non-zero counters) and the text ([`core::fmt::Display`],
+/// every counter), so that none of them can drift from the others.
+macro_rules! counter_list {
+    (
+        $(#[$meta:meta])*
+        pub struct $name:ident: $int:ty {
+            $( $(#[doc = $doc:literal])* $field:ident => $label:literal, )+
+        }
+    ) => {
+        $(#[$meta])*
+        #[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+        pub struct $name {
+            $( $(#[doc = $doc])* pub $field: $int, )+
+        }
+
+        impl $name {
+            /// Number of counters.
+            pub const LEN: usize = [$(stringify!($field)),+].len();
+            /// Field names in wire order (CSV column names).
+            pub const NAMES: [&'static str; Self::LEN] = [$(stringify!($field)),+];
+            /// What each counter counts, in wire order (log and text).
+            pub const LABELS: [&'static str; Self::LEN] = [$($label),+];
+
+            /// All zero.
+            pub const fn new() -> Self {
+                Self::from_values([0; Self::LEN])
+            }
+            /// The values in wire order.
+            pub const fn values(&self) -> [$int; Self::LEN] {
+                [$(self.$field),+]
+            }
+            /// From values in wire order.
+            pub const fn from_values(values: [$int; Self::LEN]) -> Self {
+                let [$($field),+] = values;
+                Self { $($field),+ }
+            }
+            /// The counters added one by one, saturating.
+            pub fn saturating_add(self, other: Self) -> Self {
+                let mut sum = self.values();
+                for (s, o) in sum.iter_mut().zip(other.values()) {
+                    *s = s.saturating_add(o);
+                }
+                Self::from_values(sum)
+            }
+        }
+
+        impl WireValue for $name {
+            const WIDTH: usize = Self::LEN.saturating_mul(<$int as WireValue>::WIDTH);
+            fn read(bytes: &[u8]) -> Self {
+                let mut values = [0; Self::LEN];
+                for (v, chunk) in values
+                    .iter_mut()
+                    .zip(bytes.chunks(<$int as WireValue>::WIDTH))
+                {
+                    *v = <$int as WireValue>::read(chunk);
+                }
+                Self::from_values(values)
+            }
+            fn write(self, bytes: &mut [u8]) {
+                for (v, chunk) in self
+                    .values()
+                    .into_iter()
+                    .zip(bytes.chunks_mut(<$int as WireValue>::WIDTH))
+                {
+                    v.write(chunk);
+                }
+            }
+        }
+
+        impl core::fmt::Display for $name {
+            fn fmt(&self, f: &mut core::fmt::Formatter<'_>) -> core::fmt::Result {
+                for (i, (value, label)) in self.values().into_iter().zip(Self::LABELS).enumerate() {
+                    if i > 0 {
+                        f.write_str(", ")?;
+                    }
+                    write!(f, "{value} {label}")?;
+                }
+                Ok(())
+            }
+        }
+
+        #[cfg(feature = "defmt")]
+        impl defmt::Format for $name {
+            fn format(&self, f: defmt::Formatter) {
+                let mut first = true;
+                for (value, label) in self.values().into_iter().zip(Self::LABELS) {
+                    if value == 0 {
+                        continue;
+                    }
+                    if !first {
+                        defmt::write!(f, ", ");
+                    }
+                    defmt::write!(f, "{} {=str}", value, label);
+                    first = false;
+                }
+                if first {
+                    defmt::write!(f, "all zero");
+                }
+            }
+        }
+    };
+}
+
+counter_list! {
+    /// What the [`Decoder`] has seen over its lifetime (saturating).
+    ///
+    /// Invariants (`host-tests/tests/wire.rs`): `bytes = frame_bytes +
+    /// bytes_skipped + held`, and `frames = accepted + crc_errors +
+    /// unknown_type + bad_length + bad_field + out_of_envelope + truncated`.
+    pub struct DecoderStats: u32 {
+        /// Bytes pushed.
+        bytes => "bytes",
+        /// Bytes of the accepted frames.
+        frame_bytes => "frame bytes",
+        /// Bytes discarded: not part of any accepted frame (garbage, the
+        /// bytes of refused candidates).
+        bytes_skipped => "bytes skipped",
+        /// Frame candidates decided: accepted or refused for one reason.
+        frames => "frames",
+        /// Valid frames returned.
+        accepted => "accepted",
+        crc_errors => "CRC errors",
+        unknown_type => "unknown type",
+        bad_length => "bad length",
+        /// Valid CRC, a value the format does not allow.
+        bad_field => "bad field",
+        /// Valid CRC, a measurement outside the envelope.
+        out_of_envelope => "out of envelope",
+        /// Cut short: the line went idle, or another frame started inside.
+        truncated => "truncated",
+        /// Frames missing from the sender's sequence numbers.
+        frames_lost => "frames lost",
+        /// Accepted frames whose sequence number went back or repeated
+        /// (a sender restart or a replayed frame); the count restarts there.
+        out_of_sequence => "out of sequence",
+    }
+}
+
+counter_list! {
+    /// The receive side's own counters ([`crate::scan::Intake`]): what
+    /// became of the accepted frames (saturating).
+    ///
+    /// Invariant: `decoder.accepted = measurements + not_measurement`.
+    pub struct IntakeCounters: u32 {
+        /// Measurement frames accepted (queued or lost to a full queue).
+        measurements => "measurements received",
+        /// Measurements lost because the queue was full.
+        queue_full => "lost, queue full",
+        /// Accepted frames of a type the receiver does not take as input.
+        not_measurement => "not measurements",
+        /// Bytes the UART lost before the decoder saw them (hardware
+        /// overrun).
+        rx_overruns => "UART overruns",
+    }
+}
+
+counter_list! {
+    /// The scan loop's lifetime counters ([`crate::scan::ScanLoop`]),
+    /// saturating.
+    ///
+    /// Every measurement taken from the queue ends in exactly one of `used`,
+    /// `late`, `out_of_window`, `over_capacity`, `invalid` (or is still
+    /// held for the next scan): `intake.measurements = intake.queue_full +
+    /// those + held` ([`crate::scan::ScanLoop::held`]).
+    pub struct LoopCounters: u32 {
+        scans => "scans",
+        /// The scan clock locked onto the sensor's clock (the first
+        /// measurement).
+        clock_locks => "clock locks",
+        /// ... and locked again after a jump beyond the window.
+        clock_relocks => "clock re-locks",
+        /// Measurements that entered a tracker scan.
+        used => "used",
+        /// Timestamped for a scan already run (within the late window).
+        late => "late",
+        /// Timestamped outside the clock's window, and not confirmed as a
+        /// new time base by the next measurement.
+        out_of_window => "out of time window",
+        /// Beyond a scan's capacity (the lowest priority ones).
+        over_capacity => "over capacity",
+        /// Not representable in the tracker's number type.
+        invalid => "not representable",
+        tracks_started => "tracks started",
+        tracks_confirmed => "tracks confirmed",
+        tracks_deleted => "tracks deleted",
+        /// Candidate tracks refused because the table was full.
+        refused_table_full => "refused, table full",
+        track_reports => "track reports",
+        /// Confirmed tracks whose threat assessment failed.
+        assessment_errors => "assessment errors",
+        /// Altitude updates the altitude tracker refused.
+        altitude_errors => "altitude errors",
+    }
+}
+
+counter_list! {
+    /// One scan's counts (the scan summary, type `0x82`), u16 saturating.
+    ///
+    /// The measurements taken for the scan: `used + late + out_of_window +
+    /// over_capacity + invalid`; the used ones, by what the tracker did with
+    /// them: `used = updated + started + not_assigned + outside_gates +
+    /// rejected + refused_table_full`.
+    pub struct ScanCounts: u16 {
+        /// Entered the tracker scan.
+        used => "used",
+        /// Timestamped for a scan already run.
+        late => "late",
+        /// Outside the clock's window.
+        out_of_window => "out of time window",
+        /// Beyond the scan's capacity.
+        over_capacity => "over capacity",
+        /// Not representable in the number type.
+        invalid => "not representable",
+        /// Updated a track.
+        updated => "updated",
+        /// Started a (tentative) track with a point of the previous scan.
+        started => "started",
+        /// Inside a gate, but the assignment gave the track another one.
+        not_assigned => "not assigned",
+        /// Inside no gate, and not paired (kept as a first point).
+        outside_gates => "outside gates",
+        /// Refused by the tracker (not finite, or the filter refused it).
+        rejected => "rejected",
+        /// Would have started a track; the table was full.
+        refused_table_full => "refused, table full",
+        /// Tracks predicted to the scan time.
+        predicted => "predicted",
+        /// (track, measurement) pairs inside a gate.
+        gated_pairs => "gated pairs",
+        /// Tracks without a measurement this scan.
+        coasted => "coasted",
+        /// Tracks confirmed in this scan.
+        confirmed => "confirmed",
+        /// Tracks deleted in this scan.
+        deleted => "deleted",
+        /// Live tracks after the scan.
+        tracks => "tracks",
+        /// Confirmed (or coasting) tracks after the scan.
+        confirmed_tracks => "confirmed tracks",
     }
 }
 
@@ -308,20 +742,32 @@ impl PayloadWriter<'_> {
 pub enum FrameKind {
     MeasurementCartesian = 0x01,
     MeasurementPolar = 0x02,
+    EndOfInput = 0x03,
     TrackReport = 0x81,
     ScanSummary = 0x82,
-    LinkStatus = 0x83,
+    Health = 0x84,
 }
 
 impl FrameKind {
+    /// Every kind.
+    pub const ALL: [FrameKind; 6] = [
+        FrameKind::MeasurementCartesian,
+        FrameKind::MeasurementPolar,
+        FrameKind::EndOfInput,
+        FrameKind::TrackReport,
+        FrameKind::ScanSummary,
+        FrameKind::Health,
+    ];
+
     /// The kind with this type byte.
     pub const fn from_byte(b: u8) -> Option<Self> {
         match b {
             0x01 => Some(FrameKind::MeasurementCartesian),
             0x02 => Some(FrameKind::MeasurementPolar),
+            0x03 => Some(FrameKind::EndOfInput),
             0x81 => Some(FrameKind::TrackReport),
             0x82 => Some(FrameKind::ScanSummary),
-            0x83 => Some(FrameKind::LinkStatus),
+            0x84 => Some(FrameKind::Health),
             _ => None,
         }
     }
@@ -331,22 +777,42 @@ impl FrameKind {
         self as u8
     }
 
-    /// The payload length every frame of this kind has.
+    /// The payload length every frame of this kind has (from its layout).
     pub const fn payload_len(self) -> usize {
         match self {
-            FrameKind::MeasurementCartesian => 18,
-            FrameKind::MeasurementPolar => 16,
-            FrameKind::TrackReport => 36,
-            FrameKind::ScanSummary => 40,
-            FrameKind::LinkStatus => 44,
+            FrameKind::MeasurementCartesian => cartesian::LEN,
+            FrameKind::MeasurementPolar => polar::LEN,
+            FrameKind::EndOfInput => end::LEN,
+            FrameKind::TrackReport => track::LEN,
+            FrameKind::ScanSummary => scan::LEN,
+            FrameKind::Health => health::LEN,
         }
     }
 
     /// Header + payload + CRC.
     pub const fn frame_len(self) -> usize {
-        HEADER_LEN + self.payload_len() + CRC_LEN
+        frame_len_for(self.payload_len())
+    }
+
+    // Compile time only (MAX_PAYLOAD_LEN, MIN_FRAME_LEN): see `crc_table`.
+    /// The longest (or shortest) payload of any kind.
+    #[allow(clippy::indexing_slicing, clippy::arithmetic_side_effects)]
+    const fn payload_bound(longest: bool) -> usize {
+        let mut bound = Self::ALL[0].payload_len();
+        let mut i = 1;
+        while i < Self::ALL.len() {
+            let len = Self::ALL[i].payload_len();
+            if (longest && len > bound) || (!longest && len < bound) {
+                bound = len;
+            }
+            i += 1;
+        }
+        bound
     }
 }
+
+// The length byte holds every payload length.
+const _: () = assert!(MAX_PAYLOAD_LEN <= u8::MAX as usize);
 
 /// A frame in a byte buffer (smoltcp-style view: the accessors read and
 /// write the buffer in place).
@@ -382,7 +848,7 @@ impl<T: AsRef<[u8]>> Frame<T> {
         if bytes.len() < HEADER_LEN {
             return Err(WireError::Truncated);
         }
-        if get_array::<2>(bytes, 0) != SYNC {
+        if header::SYNC.get(bytes).to_be_bytes() != SYNC {
             return Err(WireError::BadSync);
         }
         let kind = self.kind().ok_or(WireError::UnknownType)?;
@@ -397,7 +863,7 @@ impl<T: AsRef<[u8]>> Frame<T> {
 
     /// The type byte.
     pub fn type_byte(&self) -> u8 {
-        get_u8(self.buffer.as_ref(), 2)
+        header::TYPE.get(self.buffer.as_ref())
     }
 
     /// The message type, if the type byte names one.
@@ -407,31 +873,46 @@ impl<T: AsRef<[u8]>> Frame<T> {
 
     /// The length byte.
     pub fn payload_len(&self) -> usize {
-        get_u8(self.buffer.as_ref(), 3) as usize
+        usize::from(header::LENGTH.get(self.buffer.as_ref()))
+    }
+
+    /// The sender's sequence number.
+    pub fn sequence(&self) -> u16 {
+        header::SEQUENCE.get(self.buffer.as_ref())
     }
 
     /// Header + payload + CRC, from the length byte.
     pub fn frame_len(&self) -> usize {
-        HEADER_LEN + self.payload_len() + CRC_LEN
+        frame_len_for(self.payload_len())
+    }
+
+    fn payload_end(&self) -> usize {
+        HEADER_LEN
+            .saturating_add(self.payload_len())
+            .min(self.buffer.as_ref().len())
     }
 
     /// The payload (as much of it as the buffer holds).
     pub fn payload(&self) -> &[u8] {
-        let bytes = self.buffer.as_ref();
-        let end = (HEADER_LEN + self.payload_len()).min(bytes.len());
-        bytes.get(HEADER_LEN..end).unwrap_or(&[])
+        let end = self.payload_end();
+        self.buffer.as_ref().get(HEADER_LEN..end).unwrap_or(&[])
     }
 
     /// The CRC stored in the frame.
-    pub fn crc(&self) -> u16 {
-        get_u16(self.buffer.as_ref(), HEADER_LEN + self.payload_len())
+    pub fn crc(&self) -> u32 {
+        let at = HEADER_LEN.saturating_add(self.payload_len());
+        Field::<u32>::at(at).get(self.buffer.as_ref())
     }
 
-    /// The CRC computed over type, length and payload.
-    pub fn compute_crc(&self) -> u16 {
-        let bytes = self.buffer.as_ref();
-        let end = (HEADER_LEN + self.payload_len()).min(bytes.len());
-        crc16(bytes.get(2..end).unwrap_or(&[]))
+    /// The CRC computed over type, length, sequence number and payload.
+    pub fn compute_crc(&self) -> u32 {
+        let end = self.payload_end();
+        crc32c(
+            self.buffer
+                .as_ref()
+                .get(header::TYPE.start()..end)
+                .unwrap_or(&[]),
+        )
     }
 
     /// Whether the stored CRC matches (false on a truncated buffer).
@@ -445,36 +926,31 @@ impl<T: AsRef<[u8]>> Frame<T> {
 }
 
 impl<T: AsRef<[u8]> + AsMut<[u8]>> Frame<T> {
-    /// Writes sync, type and length.
-    pub fn set_header(&mut self, kind: FrameKind) {
-        let mut w = PayloadWriter {
-            bytes: self.buffer.as_mut(),
-            at: 0,
-        };
-        w.put(&SYNC);
-        w.u8(kind.byte());
-        // Every payload length is ≤ MAX_PAYLOAD_LEN = 40.
-        w.u8(kind.payload_len() as u8);
+    /// Writes sync, type, length and sequence number.
+    pub fn set_header(&mut self, kind: FrameKind, sequence: u16) {
+        let bytes = self.buffer.as_mut();
+        header::SYNC.set(bytes, u16::from_be_bytes(SYNC));
+        header::TYPE.set(bytes, kind.byte());
+        // Every payload length is ≤ u8::MAX (asserted above).
+        header::LENGTH.set(bytes, u8::try_from(kind.payload_len()).unwrap_or(u8::MAX));
+        header::SEQUENCE.set(bytes, sequence);
     }
 
     /// The payload, for writing (as much of it as the buffer holds).
     pub fn payload_mut(&mut self) -> &mut [u8] {
-        let len = self.payload_len();
-        let bytes = self.buffer.as_mut();
-        let end = (HEADER_LEN + len).min(bytes.len());
-        bytes.get_mut(HEADER_LEN..end).unwrap_or(&mut [])
+        let end = self.payload_end();
+        self.buffer
+            .as_mut()
+            .get_mut(HEADER_LEN..end)
+            .unwrap_or(&mut [])
     }
 
     /// Computes and stores the CRC (after the header and payload are
     /// written).
     pub fn fill_crc(&mut self) {
         let crc = self.compute_crc();
-        let at = HEADER_LEN + self.payload_len();
-        let mut w = PayloadWriter {
-            bytes: self.buffer.as_mut(),
-            at,
-        };
-        w.u16(crc);
+        let at = HEADER_LEN.saturating_add(self.payload_len());
+        Field::<u32>::at(at).set(self.buffer.as_mut(), crc);
     }
 }
 
@@ -539,8 +1015,7 @@ fn checked_altitude(altitude_ft: Option<f64>) -> Result<Option<i32>, ConversionE
 
 impl MeasurementReport {
     /// A Cartesian report from metres (rounded to cm) and an optional
-    /// altitude in feet (rounded to 1 ft), checked against the limits of
-    /// [`MeasurementReport::position`].
+    /// altitude in feet (rounded to 1 ft), checked against the envelope.
     pub fn cartesian_from_metres(
         time_ms: u32,
         sensor: u8,
@@ -548,7 +1023,7 @@ impl MeasurementReport {
         y_m: f64,
         altitude_ft: Option<f64>,
     ) -> Result<Self, ConversionError> {
-        let limit = MAX_POSITION_CM as i64;
+        let limit = i64::from(MAX_POSITION_CM);
         let (Some(x), Some(y)) = (cm_from_m(x_m), cm_from_m(y_m)) else {
             return Err(ConversionError::NotRepresentable);
         };
@@ -583,7 +1058,7 @@ impl MeasurementReport {
         if !azimuth_rad.is_finite() {
             return Err(ConversionError::NotRepresentable);
         }
-        if !(0..=MAX_POSITION_CM as i64).contains(&range) {
+        if !(0..=i64::from(MAX_POSITION_CM)).contains(&range) {
             return Err(ConversionError::RangeOutOfRange);
         }
         let turns = azimuth_rad / core::f64::consts::TAU;
@@ -601,32 +1076,46 @@ impl MeasurementReport {
         })
     }
 
-    /// The measurement for the tracker, in metres and radians in the number
-    /// type `S`: the checked edge of the input path.
-    pub fn position<S: Scalar>(&self) -> Result<Measurement<S>, ConversionError> {
-        let s = |v: f64| S::try_from_f64(v).map_err(|_| ConversionError::NotRepresentable);
+    /// The envelope check of a received measurement: position or range
+    /// within 400 km, altitude within Mode C's range.
+    pub fn check_envelope(&self) -> Result<(), ConversionError> {
         match self.position {
             MeasuredPosition::Cartesian { x_cm, y_cm } => {
                 if x_cm.unsigned_abs() > MAX_POSITION_CM || y_cm.unsigned_abs() > MAX_POSITION_CM {
                     return Err(ConversionError::PositionOutOfRange);
                 }
-                Ok(Measurement::Cartesian {
-                    x: s(x_cm as f64 / 100.0)?,
-                    y: s(y_cm as f64 / 100.0)?,
-                })
             }
-            MeasuredPosition::Polar {
-                range_cm,
-                azimuth_bam,
-            } => {
+            MeasuredPosition::Polar { range_cm, .. } => {
                 if range_cm > MAX_POSITION_CM {
                     return Err(ConversionError::RangeOutOfRange);
                 }
-                Ok(Measurement::Polar {
-                    range: s(range_cm as f64 / 100.0)?,
-                    azimuth: s(azimuth_bam as f64 * RAD_PER_BAM)?,
-                })
             }
+        }
+        match self.altitude_ft {
+            Some(a) if !(MIN_ALTITUDE_FT..=MAX_ALTITUDE_FT).contains(&a) => {
+                Err(ConversionError::AltitudeOutOfRange)
+            }
+            _ => Ok(()),
+        }
+    }
+
+    /// The measurement for the tracker, in metres and radians in the number
+    /// type `S`: the checked edge of the input path.
+    pub fn position<S: Scalar>(&self) -> Result<Measurement<S>, ConversionError> {
+        self.check_envelope()?;
+        let s = |v: f64| S::try_from_f64(v).map_err(|_| ConversionError::NotRepresentable);
+        match self.position {
+            MeasuredPosition::Cartesian { x_cm, y_cm } => Ok(Measurement::Cartesian {
+                x: s(f64::from(x_cm) / 100.0)?,
+                y: s(f64::from(y_cm) / 100.0)?,
+            }),
+            MeasuredPosition::Polar {
+                range_cm,
+                azimuth_bam,
+            } => Ok(Measurement::Polar {
+                range: s(f64::from(range_cm) / 100.0)?,
+                azimuth: s(f64::from(azimuth_bam) * RAD_PER_BAM)?,
+            }),
         }
     }
 
@@ -638,7 +1127,7 @@ impl MeasurementReport {
             Some(a) if !(MIN_ALTITUDE_FT..=MAX_ALTITUDE_FT).contains(&a) => {
                 Err(ConversionError::AltitudeOutOfRange)
             }
-            Some(a) => S::try_from_f64(a as f64)
+            Some(a) => S::try_from_f64(f64::from(a))
                 .map(Some)
                 .map_err(|_| ConversionError::NotRepresentable),
         }
@@ -657,7 +1146,7 @@ impl MeasurementReport {
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 #[cfg_attr(feature = "defmt", derive(defmt::Format))]
 pub struct TrackReport {
-    /// Scan time, ms.
+    /// Scan time, ms (the sensor's clock).
     pub time_ms: u32,
     pub track_id: u32,
     pub status: TrackStatus,
@@ -677,62 +1166,38 @@ pub struct TrackReport {
     pub range_tau_ds: Option<u16>,
 }
 
-/// Per-stage counts of one scan (frame type 0x82); see the module docs for
-/// the field order on the wire. Counts saturate at 65535.
+/// One scan (frame type 0x82): its time, interval, counts and the most
+/// severe advisory.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 #[cfg_attr(feature = "defmt", derive(defmt::Format))]
 pub struct ScanSummary {
+    /// Scan time, ms (the sensor's clock).
     pub time_ms: u32,
+    /// Since the previous scan, ms (0 for the first).
     pub interval_ms: u32,
-    /// Measurements taken from the queue for this scan.
-    pub measurements: u16,
-    /// Failed the conversion ([`ConversionError`]).
-    pub invalid: u16,
-    /// Timestamped at or before the previous scan.
-    pub late: u16,
-    /// Beyond the scan's capacity.
-    pub dropped: u16,
-    /// Refused by the tracker as bad input.
-    pub rejected: u16,
-    pub predicted: u16,
-    pub gated_pairs: u16,
-    pub assigned: u16,
-    pub updated: u16,
-    pub coasted: u16,
-    pub started: u16,
-    pub confirmed: u16,
-    pub deleted: u16,
-    /// Live tracks after the scan.
-    pub tracks: u16,
-    /// Confirmed (or coasting) tracks after the scan.
-    pub confirmed_tracks: u16,
+    pub counts: ScanCounts,
     /// The most severe advisory over all tracks.
     pub highest_advisory: Advisory,
 }
 
-/// Counters of the receiving side (frame type 0x83): the decoder's and the
-/// measurement queue's. Saturating.
+/// Every lifetime counter of the receiving and scanning side (frame type
+/// 0x84), sent after each scan.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
 #[cfg_attr(feature = "defmt", derive(defmt::Format))]
-pub struct LinkStatus {
+pub struct Health {
+    /// Scan time, ms (the sensor's clock).
     pub time_ms: u32,
-    /// Valid frames decoded.
-    pub frames: u32,
-    pub crc_errors: u32,
-    pub unknown_type: u32,
-    pub bad_length: u32,
-    /// Frames with a valid CRC and an invalid field.
-    pub bad_field: u32,
-    /// Partial frames abandoned when the line went idle.
-    pub truncated: u32,
-    /// Bytes that were not part of any valid frame.
-    pub bytes_skipped: u32,
-    /// Measurements lost because the queue was full.
-    pub queue_full: u32,
-    /// Valid frames of a type the receiver does not take as input.
-    pub not_measurement: u32,
-    /// Bytes the UART lost before the decoder saw them (hardware overrun).
-    pub rx_overruns: u32,
+    pub decoder: DecoderStats,
+    pub intake: IntakeCounters,
+    pub scan: LoopCounters,
+}
+
+/// The end of a recording (frame type 0x03).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+#[cfg_attr(feature = "defmt", derive(defmt::Format))]
+pub struct EndOfInput {
+    /// The sensor's clock at the end, ms.
+    pub time_ms: u32,
 }
 
 /// A decoded frame.
@@ -740,9 +1205,10 @@ pub struct LinkStatus {
 #[cfg_attr(feature = "defmt", derive(defmt::Format))]
 pub enum Message {
     Measurement(MeasurementReport),
+    End(EndOfInput),
     Track(TrackReport),
     Scan(ScanSummary),
-    Link(LinkStatus),
+    Health(Health),
 }
 
 fn status_code(s: TrackStatus) -> u8 {
@@ -808,9 +1274,17 @@ fn parse_altitude(flags: u8, field: i32) -> Result<Option<i32>, WireError> {
     }
 }
 
+fn altitude_flag(altitude: Option<i32>) -> u8 {
+    if altitude.is_some() {
+        FLAG_ALTITUDE
+    } else {
+        0
+    }
+}
+
 impl Message {
-    /// Decodes a frame: structure ([`Frame::check_len`]), CRC, then every
-    /// field.
+    /// Decodes a frame: structure ([`Frame::check_len`]), CRC, every field,
+    /// then the envelope of a measurement.
     pub fn parse<T: AsRef<[u8]>>(frame: &Frame<T>) -> Result<Message, WireError> {
         frame.check_len()?;
         if !frame.verify_crc() {
@@ -818,102 +1292,51 @@ impl Message {
         }
         let p = frame.payload();
         let kind = frame.kind().ok_or(WireError::UnknownType)?;
-        Ok(match kind {
+        let message = match kind {
             FrameKind::MeasurementCartesian => Message::Measurement(MeasurementReport {
-                time_ms: get_u32(p, 0),
-                sensor: get_u8(p, 4),
+                time_ms: cartesian::TIME.get(p),
+                sensor: cartesian::SENSOR.get(p),
                 position: MeasuredPosition::Cartesian {
-                    x_cm: get_i32(p, 6),
-                    y_cm: get_i32(p, 10),
+                    x_cm: cartesian::X.get(p),
+                    y_cm: cartesian::Y.get(p),
                 },
-                altitude_ft: parse_altitude(get_u8(p, 5), get_i32(p, 14))?,
+                altitude_ft: parse_altitude(cartesian::FLAGS.get(p), cartesian::ALTITUDE.get(p))?,
             }),
             FrameKind::MeasurementPolar => Message::Measurement(MeasurementReport {
-                time_ms: get_u32(p, 0),
-                sensor: get_u8(p, 4),
+                time_ms: polar::TIME.get(p),
+                sensor: polar::SENSOR.get(p),
                 position: MeasuredPosition::Polar {
-                    range_cm: get_u32(p, 6),
-                    azimuth_bam: get_u16(p, 10),
+                    range_cm: polar::RANGE.get(p),
+                    azimuth_bam: polar::AZIMUTH.get(p),
                 },
-                altitude_ft: parse_altitude(get_u8(p, 5), get_i32(p, 12))?,
+                altitude_ft: parse_altitude(polar::FLAGS.get(p), polar::ALTITUDE.get(p))?,
             }),
-            FrameKind::TrackReport => {
-                let flags = get_u8(p, 10);
-                if flags & !(FLAG_ALTITUDE | FLAG_TAU) != 0 {
-                    return Err(WireError::BadField);
-                }
-                let (alt, rate, tau) = (get_i32(p, 28), get_i16(p, 32), get_u16(p, 34));
-                let altitude = if flags & FLAG_ALTITUDE != 0 {
-                    Some((alt, rate))
-                } else if alt == 0 && rate == 0 {
-                    None
-                } else {
-                    return Err(WireError::BadField);
-                };
-                let range_tau_ds = if flags & FLAG_TAU != 0 {
-                    Some(tau)
-                } else if tau == 0 {
-                    None
-                } else {
-                    return Err(WireError::BadField);
-                };
-                Message::Track(TrackReport {
-                    time_ms: get_u32(p, 0),
-                    track_id: get_u32(p, 4),
-                    status: status_from_code(get_u8(p, 8))?,
-                    advisory: advisory_from_code(get_u8(p, 9))?,
-                    sensitivity: level_from_code(get_u8(p, 11))?,
-                    x_cm: get_i32(p, 12),
-                    y_cm: get_i32(p, 16),
-                    vx_cm_per_s: get_i32(p, 20),
-                    vy_cm_per_s: get_i32(p, 24),
-                    altitude,
-                    range_tau_ds,
-                })
-            }
+            FrameKind::EndOfInput => Message::End(EndOfInput {
+                time_ms: end::TIME.get(p),
+            }),
+            FrameKind::TrackReport => Message::Track(parse_track(p)?),
             FrameKind::ScanSummary => {
-                if get_u8(p, 39) != 0 {
+                if scan::RESERVED.get(p) != 0 {
                     return Err(WireError::BadField);
                 }
-                let c = |i: usize| get_u16(p, 8 + 2 * i);
                 Message::Scan(ScanSummary {
-                    time_ms: get_u32(p, 0),
-                    interval_ms: get_u32(p, 4),
-                    measurements: c(0),
-                    invalid: c(1),
-                    late: c(2),
-                    dropped: c(3),
-                    rejected: c(4),
-                    predicted: c(5),
-                    gated_pairs: c(6),
-                    assigned: c(7),
-                    updated: c(8),
-                    coasted: c(9),
-                    started: c(10),
-                    confirmed: c(11),
-                    deleted: c(12),
-                    tracks: c(13),
-                    confirmed_tracks: c(14),
-                    highest_advisory: advisory_from_code(get_u8(p, 38))?,
+                    time_ms: scan::TIME.get(p),
+                    interval_ms: scan::INTERVAL.get(p),
+                    counts: scan::COUNTS.get(p),
+                    highest_advisory: advisory_from_code(scan::HIGHEST_ADVISORY.get(p))?,
                 })
             }
-            FrameKind::LinkStatus => {
-                let c = |i: usize| get_u32(p, 4 + 4 * i);
-                Message::Link(LinkStatus {
-                    time_ms: get_u32(p, 0),
-                    frames: c(0),
-                    crc_errors: c(1),
-                    unknown_type: c(2),
-                    bad_length: c(3),
-                    bad_field: c(4),
-                    truncated: c(5),
-                    bytes_skipped: c(6),
-                    queue_full: c(7),
-                    not_measurement: c(8),
-                    rx_overruns: c(9),
-                })
-            }
-        })
+            FrameKind::Health => Message::Health(Health {
+                time_ms: health::TIME.get(p),
+                decoder: health::DECODER.get(p),
+                intake: health::INTAKE.get(p),
+                scan: health::SCAN.get(p),
+            }),
+        };
+        if let Message::Measurement(m) = &message {
+            m.check_envelope().map_err(|_| WireError::OutOfEnvelope)?;
+        }
+        Ok(message)
     }
 
     /// Decodes the frame at the start of `bytes` (extra bytes after it are
@@ -926,9 +1349,10 @@ impl Message {
     pub fn kind(&self) -> FrameKind {
         match self {
             Message::Measurement(m) => m.kind(),
+            Message::End(_) => FrameKind::EndOfInput,
             Message::Track(_) => FrameKind::TrackReport,
             Message::Scan(_) => FrameKind::ScanSummary,
-            Message::Link(_) => FrameKind::LinkStatus,
+            Message::Health(_) => FrameKind::Health,
         }
     }
 
@@ -937,107 +1361,53 @@ impl Message {
         self.kind().frame_len()
     }
 
-    /// Writes the whole frame (sync, header, payload, CRC) at the start of
-    /// `buffer`; returns its length.
-    pub fn emit(&self, buffer: &mut [u8]) -> Result<usize, WireError> {
+    /// Writes the whole frame (sync, header with `sequence`, payload, CRC)
+    /// at the start of `buffer`; returns its length. An [`Encoder`] numbers
+    /// a stream's frames.
+    pub fn emit(&self, sequence: u16, buffer: &mut [u8]) -> Result<usize, WireError> {
         let len = self.buffer_len();
         let Some(bytes) = buffer.get_mut(..len) else {
             return Err(WireError::BufferTooShort);
         };
         let mut frame = Frame::new_unchecked(bytes);
-        frame.set_header(self.kind());
-        let mut w = PayloadWriter {
-            bytes: frame.payload_mut(),
-            at: 0,
-        };
+        frame.set_header(self.kind(), sequence);
+        let p = frame.payload_mut();
         match self {
-            Message::Measurement(m) => {
-                w.u32(m.time_ms);
-                w.u8(m.sensor);
-                w.u8(if m.altitude_ft.is_some() {
-                    FLAG_ALTITUDE
-                } else {
-                    0
-                });
-                match m.position {
-                    MeasuredPosition::Cartesian { x_cm, y_cm } => {
-                        w.i32(x_cm);
-                        w.i32(y_cm);
-                    }
-                    MeasuredPosition::Polar {
-                        range_cm,
-                        azimuth_bam,
-                    } => {
-                        w.u32(range_cm);
-                        w.u16(azimuth_bam);
-                    }
+            Message::Measurement(m) => match m.position {
+                MeasuredPosition::Cartesian { x_cm, y_cm } => {
+                    cartesian::TIME.set(p, m.time_ms);
+                    cartesian::SENSOR.set(p, m.sensor);
+                    cartesian::FLAGS.set(p, altitude_flag(m.altitude_ft));
+                    cartesian::X.set(p, x_cm);
+                    cartesian::Y.set(p, y_cm);
+                    cartesian::ALTITUDE.set(p, m.altitude_ft.unwrap_or(0));
                 }
-                w.i32(m.altitude_ft.unwrap_or(0));
-            }
-            Message::Track(t) => {
-                w.u32(t.time_ms);
-                w.u32(t.track_id);
-                w.u8(status_code(t.status));
-                w.u8(advisory_code(t.advisory));
-                let mut flags = 0;
-                if t.altitude.is_some() {
-                    flags |= FLAG_ALTITUDE;
+                MeasuredPosition::Polar {
+                    range_cm,
+                    azimuth_bam,
+                } => {
+                    polar::TIME.set(p, m.time_ms);
+                    polar::SENSOR.set(p, m.sensor);
+                    polar::FLAGS.set(p, altitude_flag(m.altitude_ft));
+                    polar::RANGE.set(p, range_cm);
+                    polar::AZIMUTH.set(p, azimuth_bam);
+                    polar::ALTITUDE.set(p, m.altitude_ft.unwrap_or(0));
                 }
-                if t.range_tau_ds.is_some() {
-                    flags |= FLAG_TAU;
-                }
-                w.u8(flags);
-                w.u8(t.sensitivity.map_or(0, |l| l.number()));
-                w.i32(t.x_cm);
-                w.i32(t.y_cm);
-                w.i32(t.vx_cm_per_s);
-                w.i32(t.vy_cm_per_s);
-                let (alt, rate) = t.altitude.unwrap_or((0, 0));
-                w.i32(alt);
-                w.i16(rate);
-                w.u16(t.range_tau_ds.unwrap_or(0));
-            }
+            },
+            Message::End(e) => end::TIME.set(p, e.time_ms),
+            Message::Track(t) => emit_track(t, p),
             Message::Scan(s) => {
-                w.u32(s.time_ms);
-                w.u32(s.interval_ms);
-                for c in [
-                    s.measurements,
-                    s.invalid,
-                    s.late,
-                    s.dropped,
-                    s.rejected,
-                    s.predicted,
-                    s.gated_pairs,
-                    s.assigned,
-                    s.updated,
-                    s.coasted,
-                    s.started,
-                    s.confirmed,
-                    s.deleted,
-                    s.tracks,
-                    s.confirmed_tracks,
-                ] {
-                    w.u16(c);
-                }
-                w.u8(advisory_code(s.highest_advisory));
-                w.u8(0);
+                scan::TIME.set(p, s.time_ms);
+                scan::INTERVAL.set(p, s.interval_ms);
+                scan::HIGHEST_ADVISORY.set(p, advisory_code(s.highest_advisory));
+                scan::RESERVED.set(p, 0);
+                scan::COUNTS.set(p, s.counts);
             }
-            Message::Link(l) => {
-                w.u32(l.time_ms);
-                for c in [
-                    l.frames,
-                    l.crc_errors,
-                    l.unknown_type,
-                    l.bad_length,
-                    l.bad_field,
-                    l.truncated,
-                    l.bytes_skipped,
-                    l.queue_full,
-                    l.not_measurement,
-                    l.rx_overruns,
-                ] {
-                    w.u32(c);
-                }
+            Message::Health(h) => {
+                health::TIME.set(p, h.time_ms);
+                health::DECODER.set(p, h.decoder);
+                health::INTAKE.set(p, h.intake);
+                health::SCAN.set(p, h.scan);
             }
         }
         frame.fill_crc();
@@ -1045,47 +1415,134 @@ impl Message {
     }
 }
 
+fn parse_track(p: &[u8]) -> Result<TrackReport, WireError> {
+    let flags = track::FLAGS.get(p);
+    if flags & !(FLAG_ALTITUDE | FLAG_TAU) != 0 {
+        return Err(WireError::BadField);
+    }
+    let (alt, rate, tau) = (
+        track::ALTITUDE.get(p),
+        track::VERTICAL_RATE.get(p),
+        track::RANGE_TAU.get(p),
+    );
+    let altitude = if flags & FLAG_ALTITUDE != 0 {
+        Some((alt, rate))
+    } else if alt == 0 && rate == 0 {
+        None
+    } else {
+        return Err(WireError::BadField);
+    };
+    let range_tau_ds = if flags & FLAG_TAU != 0 {
+        Some(tau)
+    } else if tau == 0 {
+        None
+    } else {
+        return Err(WireError::BadField);
+    };
+    Ok(TrackReport {
+        time_ms: track::TIME.get(p),
+        track_id: track::TRACK_ID.get(p),
+        status: status_from_code(track::STATUS.get(p))?,
+        advisory: advisory_from_code(track::ADVISORY.get(p))?,
+        sensitivity: level_from_code(track::SENSITIVITY.get(p))?,
+        x_cm: track::X.get(p),
+        y_cm: track::Y.get(p),
+        vx_cm_per_s: track::VX.get(p),
+        vy_cm_per_s: track::VY.get(p),
+        altitude,
+        range_tau_ds,
+    })
+}
+
+fn emit_track(t: &TrackReport, p: &mut [u8]) {
+    let mut flags = 0;
+    if t.altitude.is_some() {
+        flags |= FLAG_ALTITUDE;
+    }
+    if t.range_tau_ds.is_some() {
+        flags |= FLAG_TAU;
+    }
+    let (alt, rate) = t.altitude.unwrap_or((0, 0));
+    track::TIME.set(p, t.time_ms);
+    track::TRACK_ID.set(p, t.track_id);
+    track::STATUS.set(p, status_code(t.status));
+    track::ADVISORY.set(p, advisory_code(t.advisory));
+    track::FLAGS.set(p, flags);
+    track::SENSITIVITY.set(p, t.sensitivity.map_or(0, |l| l.number()));
+    track::X.set(p, t.x_cm);
+    track::Y.set(p, t.y_cm);
+    track::VX.set(p, t.vx_cm_per_s);
+    track::VY.set(p, t.vy_cm_per_s);
+    track::ALTITUDE.set(p, alt);
+    track::VERTICAL_RATE.set(p, rate);
+    track::RANGE_TAU.set(p, t.range_tau_ds.unwrap_or(0));
+}
+
+/// Numbers the frames of one sender's stream (the header's sequence
+/// number, +1 per frame, wrapping), so that the receiver counts lost
+/// frames.
+#[derive(Debug, Clone, Copy, Default, PartialEq, Eq)]
+pub struct Encoder {
+    next_sequence: u16,
+}
+
+impl Encoder {
+    /// A stream whose first frame is number 0.
+    pub const fn new() -> Self {
+        Encoder { next_sequence: 0 }
+    }
+
+    /// The number the next frame gets.
+    pub fn next_sequence(&self) -> u16 {
+        self.next_sequence
+    }
+
+    /// Writes the next frame of the stream; the number advances only when
+    /// the frame was written.
+    pub fn encode(&mut self, message: &Message, buffer: &mut [u8]) -> Result<usize, WireError> {
+        let len = message.emit(self.next_sequence, buffer)?;
+        self.next_sequence = self.next_sequence.wrapping_add(1);
+        Ok(len)
+    }
+
+    /// Counts a frame as sent without writing it (a sender that drops a
+    /// frame on purpose, e.g. a test of the receiver's loss count).
+    pub fn skip(&mut self) {
+        self.next_sequence = self.next_sequence.wrapping_add(1);
+    }
+}
+
 // ---------------------------------------------------------------------------
 // Streaming decoder
 // ---------------------------------------------------------------------------
-
-/// What the [`Decoder`] has seen (saturating counters).
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
-#[cfg_attr(feature = "defmt", derive(defmt::Format))]
-pub struct DecoderStats {
-    /// Valid frames returned.
-    pub frames: u32,
-    pub crc_errors: u32,
-    pub unknown_type: u32,
-    pub bad_length: u32,
-    pub bad_field: u32,
-    /// Partial frames abandoned by [`Decoder::line_idle`].
-    pub truncated: u32,
-    /// Bytes discarded: not part of any valid frame (garbage, the bytes of
-    /// failed candidates). Every byte pushed ends up in a returned frame, in
-    /// this count, or still held ([`Decoder::held`]).
-    pub bytes_skipped: u32,
-}
 
 /// Byte-at-a-time frame decoder for a receive interrupt: no allocation,
 /// O(1) work per byte except after a failed candidate.
 ///
 /// It hunts for [`SYNC`], checks the type and length bytes as soon as they
-/// arrive, and the CRC and fields at the end of the frame. After any failure
-/// it drops only the candidate's first byte and examines the bytes it had
-/// taken again, so a valid frame that began inside a corrupted or truncated
-/// one is still found. It never panics, whatever the bytes.
+/// arrive, and the CRC, fields and envelope at the end of the frame. After
+/// any failure it drops only the candidate's first byte and examines the
+/// bytes it had taken again, so a valid frame that began inside a corrupted,
+/// truncated or made-up one is still found. It never panics, whatever the
+/// bytes.
+///
+/// A candidate whose CRC fails although a frame header (sync, a known type,
+/// its length: as many of these bytes as the candidate holds, at least the
+/// two sync bytes) starts inside it was cut short by that frame: it is
+/// counted as [`truncated`](DecoderStats::truncated), not as a CRC error.
 ///
 /// Each call returns at most one result. A failure, or a frame found among
 /// re-examined bytes, can leave further bytes held and unexamined: they are
 /// examined on the next [`push`](Decoder::push), or by [`poll`](Decoder::poll)
 /// without new input (at most [`MAX_FRAMES_PER_BYTE`] frames plus failures
-/// can be pending), so nothing is lost, only delayed.
+/// can be pending), so nothing is lost, only delayed. When the line goes
+/// idle, [`line_idle`](Decoder::line_idle) abandons a partial frame.
 ///
-/// A truncated frame is only recognised once the bytes it claims have
-/// arrived (they are then examined again, so a frame that started among them
-/// is found). When the line goes idle, [`line_idle`](Decoder::line_idle)
-/// abandons a partial frame at once.
+/// Sequence numbers: each accepted frame's number is compared with the one
+/// after the previous accepted frame; a gap of `d` (less than 2¹⁵) counts
+/// `d` [`frames_lost`](DecoderStats::frames_lost), a step back or a repeat
+/// counts [`out_of_sequence`](DecoderStats::out_of_sequence) and restarts
+/// the count there.
 #[derive(Debug, Clone)]
 pub struct Decoder {
     buffer: [u8; MAX_FRAME_LEN],
@@ -1094,6 +1551,8 @@ pub struct Decoder {
     /// Leading bytes of `buffer` examined and accepted as the current
     /// candidate frame.
     accepted: usize,
+    /// The sequence number the next frame should carry.
+    expected_sequence: Option<u16>,
     stats: DecoderStats,
 }
 
@@ -1111,21 +1570,22 @@ enum Verdict {
     Fail(WireError),
 }
 
+fn bump(counter: &mut u32) {
+    *counter = counter.saturating_add(1);
+}
+
+fn saturating_u32(n: usize) -> u32 {
+    u32::try_from(n).unwrap_or(u32::MAX)
+}
+
 impl Decoder {
     pub const fn new() -> Self {
         Decoder {
             buffer: [0; MAX_FRAME_LEN],
             held: 0,
             accepted: 0,
-            stats: DecoderStats {
-                frames: 0,
-                crc_errors: 0,
-                unknown_type: 0,
-                bad_length: 0,
-                bad_field: 0,
-                truncated: 0,
-                bytes_skipped: 0,
-            },
+            expected_sequence: None,
+            stats: DecoderStats::new(),
         }
     }
 
@@ -1141,14 +1601,13 @@ impl Decoder {
     /// Forgets the held bytes (counting them as skipped), e.g. after a line
     /// break.
     pub fn reset(&mut self) {
-        self.stats.bytes_skipped = self.stats.bytes_skipped.saturating_add(self.held as u32);
-        self.held = 0;
-        self.accepted = 0;
+        self.discard(self.held);
     }
 
     /// Takes one received byte; returns a frame or a frame-level error if
     /// one completed.
     pub fn push(&mut self, byte: u8) -> Option<Result<Message, WireError>> {
+        bump(&mut self.stats.bytes);
         if self.held >= MAX_FRAME_LEN {
             // Unreachable: after every call fewer than MAX_FRAME_LEN bytes
             // are held (a candidate of MAX_FRAME_LEN bytes is complete and
@@ -1158,9 +1617,13 @@ impl Decoder {
         }
         if let Some(slot) = self.buffer.get_mut(self.held) {
             *slot = byte;
-            self.held += 1;
+            self.held = self.held.saturating_add(1);
         }
         self.poll()
+    }
+
+    fn byte(&self, i: usize) -> Option<u8> {
+        self.buffer.get(..self.held).and_then(|b| b.get(i)).copied()
     }
 
     /// Examines held bytes without new input; `None` once nothing more can
@@ -1168,7 +1631,7 @@ impl Decoder {
     pub fn poll(&mut self) -> Option<Result<Message, WireError>> {
         while self.accepted < self.held {
             let i = self.accepted;
-            let byte = self.buffer.get(i).copied().unwrap_or(0);
+            let byte = self.byte(i).unwrap_or(0);
             let verdict = match i {
                 0 if byte == SYNC[0] => Verdict::Accept,
                 1 if byte == SYNC[1] => Verdict::Accept,
@@ -1177,35 +1640,30 @@ impl Decoder {
                     Some(_) => Verdict::Accept,
                     None => Verdict::Fail(WireError::UnknownType),
                 },
-                3 => match self.buffer.get(2).copied().and_then(FrameKind::from_byte) {
-                    Some(kind) if kind.payload_len() == byte as usize => Verdict::Accept,
+                3 => match self.byte(2).and_then(FrameKind::from_byte) {
+                    Some(kind) if kind.payload_len() == usize::from(byte) => Verdict::Accept,
                     _ => Verdict::Fail(WireError::BadLength),
                 },
                 _ => Verdict::Accept,
             };
             match verdict {
                 Verdict::Skip => self.discard(1),
-                Verdict::Fail(e) => {
-                    self.count(e);
-                    self.discard(1);
-                    return Some(Err(e));
-                }
+                Verdict::Fail(e) => return Some(Err(self.refuse(e))),
                 Verdict::Accept => {
-                    self.accepted += 1;
+                    self.accepted = self.accepted.saturating_add(1);
                     let frame = Frame::new_unchecked(self.buffer.get(..self.accepted)?);
                     if self.accepted >= HEADER_LEN && self.accepted == frame.frame_len() {
-                        let result = Message::parse(&frame);
-                        match result {
-                            Ok(_) => {
-                                self.stats.frames = self.stats.frames.saturating_add(1);
-                                self.consume(self.accepted);
+                        let sequence = frame.sequence();
+                        return Some(match Message::parse(&frame) {
+                            Ok(message) => {
+                                self.accept(sequence);
+                                Ok(message)
                             }
-                            Err(e) => {
-                                self.count(e);
-                                self.discard(1);
+                            Err(WireError::Checksum) if self.header_inside_candidate() => {
+                                Err(self.refuse(WireError::Truncated))
                             }
-                        }
-                        return Some(result);
+                            Err(e) => Err(self.refuse(e)),
+                        });
                     }
                 }
             }
@@ -1227,40 +1685,87 @@ impl Decoder {
         }
         // `poll` returned None with bytes held: they are an incomplete
         // candidate.
-        self.stats.truncated = self.stats.truncated.saturating_add(1);
-        self.discard(1);
-        Some(Err(WireError::Truncated))
+        Some(Err(self.refuse(WireError::Truncated)))
     }
 
-    fn count(&mut self, e: WireError) {
+    /// Whether a frame header starts inside the current (complete)
+    /// candidate, after its first byte: as many of its four bytes as the
+    /// candidate holds, at least the two sync bytes.
+    fn header_inside_candidate(&self) -> bool {
+        let end = self.accepted;
+        (1..end.saturating_sub(1)).any(|i| {
+            let at = |k: usize| {
+                self.byte(i.saturating_add(k))
+                    .filter(|_| i.saturating_add(k) < end)
+            };
+            let sync = at(0) == Some(SYNC[0]) && at(1) == Some(SYNC[1]);
+            let kind = at(2).map(FrameKind::from_byte);
+            let type_ok = !matches!(kind, Some(None));
+            let length_ok = match (kind, at(3)) {
+                (Some(Some(k)), Some(len)) => k.payload_len() == usize::from(len),
+                _ => true,
+            };
+            sync && type_ok && length_ok
+        })
+    }
+
+    /// Counts a refused candidate and drops its first byte.
+    fn refuse(&mut self, e: WireError) -> WireError {
         let s = &mut self.stats;
-        let counter = match e {
+        bump(&mut s.frames);
+        bump(match e {
             WireError::Checksum => &mut s.crc_errors,
             WireError::UnknownType => &mut s.unknown_type,
             WireError::BadLength => &mut s.bad_length,
-            // Truncated, BadSync and BufferTooShort cannot come out of the
-            // decoder's own checks; BadField is the remaining one.
+            WireError::OutOfEnvelope => &mut s.out_of_envelope,
+            WireError::Truncated => &mut s.truncated,
+            // BadSync and BufferTooShort cannot come out of the decoder's
+            // own checks; BadField is the remaining one.
             _ => &mut s.bad_field,
-        };
-        *counter = counter.saturating_add(1);
+        });
+        self.discard(1);
+        e
+    }
+
+    /// Counts an accepted candidate (and its sequence number) and drops its
+    /// bytes.
+    fn accept(&mut self, sequence: u16) {
+        let s = &mut self.stats;
+        bump(&mut s.frames);
+        bump(&mut s.accepted);
+        s.frame_bytes = s.frame_bytes.saturating_add(saturating_u32(self.accepted));
+        if let Some(expected) = self.expected_sequence {
+            let gap = sequence.wrapping_sub(expected);
+            if gap < 0x8000 {
+                s.frames_lost = s.frames_lost.saturating_add(u32::from(gap));
+            } else {
+                bump(&mut s.out_of_sequence);
+            }
+        }
+        self.expected_sequence = Some(sequence.wrapping_add(1));
+        self.consume(self.accepted);
     }
 
     /// Drops the first `n` held bytes as skipped; restarts the hunt.
     fn discard(&mut self, n: usize) {
-        self.stats.bytes_skipped = self.stats.bytes_skipped.saturating_add(n as u32);
+        let n = n.min(self.held);
+        self.stats.bytes_skipped = self.stats.bytes_skipped.saturating_add(saturating_u32(n));
         self.consume(n);
     }
 
     /// Drops the first `n` held bytes; restarts the hunt at the next one.
     fn consume(&mut self, n: usize) {
         let n = n.min(self.held);
-        for to in 0..self.held - n {
-            let byte = self.buffer.get(to + n).copied().unwrap_or(0);
+        let kept = self.held.saturating_sub(n);
+        // Element by element: `copy_within` would keep a bounds-check panic
+        // path.
+        for to in 0..kept {
+            let byte = self.byte(to.saturating_add(n)).unwrap_or(0);
             if let Some(slot) = self.buffer.get_mut(to) {
                 *slot = byte;
             }
         }
-        self.held -= n;
+        self.held = kept;
         self.accepted = 0;
     }
 }

@@ -2,16 +2,22 @@
 //! byte stream of `abtrack::wire` measurement frames (the demo firmware's UART
 //! input), optionally with corrupted frames and garbage between frames to
 //! exercise the receiver; and the reverse, a byte stream decoded into
-//! messages with a summary. Used by the `frames` binary and the scan-loop
-//! tests.
+//! messages with a summary; and the demo firmware's decisions on the host
+//! ([`run_like_the_firmware`]). Used by the `frames` binary and the
+//! scan-loop, fault-injection and determinism tests.
 
 use crate::noise::{derive_seed, rng_from_seed, uniform_index};
 use crate::scenario::{self, Measurement};
-use abtrack::tcas::Advisory;
-use abtrack::wire::{
-    Decoder, DecoderStats, LinkStatus, MeasurementReport, Message, ScanSummary, TrackReport,
-    MAX_FRAME_LEN,
+use abtrack::scan::{
+    Collected, Intake, MeasurementSource, RunVerdict, ScanConfig, ScanLoop, TickReport,
 };
+use abtrack::tcas::Advisory;
+use abtrack::track::FixedGainTrack;
+use abtrack::wire::{
+    Decoder, DecoderStats, Encoder, EndOfInput, Health, MeasurementReport, Message, ScanSummary,
+    TrackReport, CRC_LEN, HEADER_LEN, MAX_FRAME_LEN,
+};
+use abtrack::{Gains, Scalar};
 use std::collections::BTreeMap;
 use std::fmt::Write as _;
 
@@ -135,7 +141,7 @@ pub struct Faults {
 #[derive(Debug, Clone, PartialEq, Eq, Default)]
 pub struct Encoded {
     pub bytes: Vec<u8>,
-    /// Frames written (corrupted ones included).
+    /// Frames written (corrupted ones and the end-of-input frame included).
     pub frames: usize,
     /// Frames written with a flipped bit.
     pub corrupted: usize,
@@ -145,12 +151,14 @@ pub struct Encoded {
     pub max_per_scan: usize,
 }
 
-/// Encodes `reports` in order as frames, with the faults.
+/// Encodes `reports` in order as numbered frames, with the faults, and an
+/// end-of-input frame.
 pub fn encode(reports: &[MeasurementReport], faults: Faults) -> Encoded {
     let mut rng = rng_from_seed(derive_seed(faults.seed, 0xF4A7));
     let mut out = Encoded::default();
     let mut per_time: BTreeMap<u32, usize> = BTreeMap::new();
     let mut frame = [0u8; MAX_FRAME_LEN];
+    let mut encoder = Encoder::new();
     for (k, r) in reports.iter().enumerate() {
         *per_time.entry(r.time_ms).or_default() += 1;
         let n = k + 1;
@@ -161,20 +169,29 @@ pub fn encode(reports: &[MeasurementReport], faults: Faults) -> Encoded {
             }
             out.garbage_bytes += len;
         }
-        let len = Message::Measurement(*r)
-            .emit(&mut frame)
+        let len = encoder
+            .encode(&Message::Measurement(*r), &mut frame)
             .expect("a frame fits MAX_FRAME_LEN");
         let mut bytes = frame[..len].to_vec();
         if faults.corrupt_every.is_some_and(|c| c > 0 && n % c == 0) {
             // A payload bit: the header stays valid, so the decoder takes the
             // whole frame and fails its CRC.
-            let bit = uniform_index(&mut rng, (len - 6) * 8);
-            bytes[4 + bit / 8] ^= 1 << (bit % 8);
+            let bit = uniform_index(&mut rng, (len - HEADER_LEN - CRC_LEN) * 8);
+            bytes[HEADER_LEN + bit / 8] ^= 1 << (bit % 8);
             out.corrupted += 1;
         }
         out.bytes.extend_from_slice(&bytes);
         out.frames += 1;
     }
+    // The end of the recording, so that a replay ends at once.
+    let end = EndOfInput {
+        time_ms: reports.last().map_or(0, |r| r.time_ms),
+    };
+    let len = encoder
+        .encode(&Message::End(end), &mut frame)
+        .expect("a frame fits MAX_FRAME_LEN");
+    out.bytes.extend_from_slice(&frame[..len]);
+    out.frames += 1;
     out.max_per_scan = per_time.values().copied().max().unwrap_or(0);
     out
 }
@@ -213,8 +230,9 @@ pub struct ReportSummary {
     pub tracks: BTreeMap<u32, TrackHistory>,
     /// (scan time, new highest advisory) each time it changed.
     pub advisory_changes: Vec<(u32, Advisory)>,
-    pub last_link: Option<LinkStatus>,
+    pub last_health: Option<Health>,
     pub measurements: usize,
+    pub end: Option<EndOfInput>,
     pub decoder: DecoderStats,
 }
 
@@ -248,8 +266,9 @@ pub fn summarise(bytes: &[u8]) -> ReportSummary {
                 }
                 s.scans.push(scan);
             }
-            Message::Link(l) => s.last_link = Some(l),
+            Message::Health(h) => s.last_health = Some(h),
             Message::Measurement(_) => s.measurements += 1,
+            Message::End(e) => s.end = Some(e),
         }
     }
     s
@@ -266,26 +285,28 @@ impl ReportSummary {
         let d = &self.decoder;
         let _ = writeln!(
             out,
-            "{} frames decoded ({} CRC errors, {} bytes skipped): {} scan summaries, {} track reports, {} measurements",
-            d.frames,
+            "{} frames decoded ({} CRC errors, {} bytes skipped, {} frames lost): {} scan summaries, {} track reports, {} measurements",
+            d.accepted,
             d.crc_errors,
             d.bytes_skipped,
+            d.frames_lost,
             self.scans.len(),
             self.tracks.values().map(|t| t.reports).sum::<usize>(),
             self.measurements
         );
         if let (Some(first), Some(last)) = (self.scans.first(), self.scans.last()) {
-            let taken: u32 = self.scans.iter().map(|s| s.measurements as u32).sum();
-            let started: u32 = self.scans.iter().map(|s| s.started as u32).sum();
-            let confirmed: u32 = self.scans.iter().map(|s| s.confirmed as u32).sum();
-            let deleted: u32 = self.scans.iter().map(|s| s.deleted as u32).sum();
+            let used: u32 = self.scans.iter().map(|s| s.counts.used as u32).sum();
+            let started: u32 = self.scans.iter().map(|s| s.counts.started as u32).sum();
+            let confirmed: u32 = self.scans.iter().map(|s| s.counts.confirmed as u32).sum();
+            let deleted: u32 = self.scans.iter().map(|s| s.counts.deleted as u32).sum();
             let _ = writeln!(
                 out,
-                "scans t = {} .. {} s: {taken} measurements; tracks started {started}, confirmed {confirmed}, deleted {deleted}; {} live at the end ({} confirmed)",
+                "{} scans, t = {} .. {} s: {used} measurements used; tracks started {started}, confirmed {confirmed}, deleted {deleted}; {} live at the end ({} confirmed)",
+                self.scans.len(),
                 seconds(first.time_ms),
                 seconds(last.time_ms),
-                last.tracks,
-                last.confirmed_tracks
+                last.counts.tracks,
+                last.counts.confirmed_tracks
             );
         }
         for t in self.tracks.values() {
@@ -319,22 +340,11 @@ impl ReportSummary {
                 changes.join(", ")
             }
         );
-        if let Some(l) = &self.last_link {
-            let _ = writeln!(
-                out,
-                "receiver (t = {} s): {} frames, {} CRC errors, {} unknown type, {} bad length, {} bad field, {} truncated, {} bytes skipped, {} queue full, {} not measurements, {} UART overruns",
-                seconds(l.time_ms),
-                l.frames,
-                l.crc_errors,
-                l.unknown_type,
-                l.bad_length,
-                l.bad_field,
-                l.truncated,
-                l.bytes_skipped,
-                l.queue_full,
-                l.not_measurement,
-                l.rx_overruns
-            );
+        if let Some(h) = &self.last_health {
+            let _ = writeln!(out, "health (t = {} s):", seconds(h.time_ms));
+            let _ = writeln!(out, "  receiver: {}", h.decoder);
+            let _ = writeln!(out, "  intake: {}", h.intake);
+            let _ = writeln!(out, "  scan loop: {}", h.scan);
         }
         out
     }
@@ -344,7 +354,9 @@ impl ReportSummary {
 pub fn message_line(m: &Message) -> String {
     match m {
         Message::Measurement(r) => {
-            let alt = r.altitude_ft.map_or(String::new(), |a| format!(" alt {a} ft"));
+            let alt = r
+                .altitude_ft
+                .map_or(String::new(), |a| format!(" alt {a} ft"));
             match r.position {
                 abtrack::wire::MeasuredPosition::Cartesian { x_cm, y_cm } => format!(
                     "measurement t={} s sensor {} x={} m y={} m{alt}",
@@ -381,27 +393,461 @@ pub fn message_line(m: &Message) -> String {
                 .map_or("-".to_string(), |d| format!("{} s", d as f64 / 10.0)),
         ),
         Message::Scan(s) => format!(
-            "scan t={} s: {} measurements ({} invalid, {} late, {} dropped), {} updated, {} started, {} confirmed, {} deleted, {} tracks ({} confirmed), advisory {}",
+            "scan t={} s (interval {} ms), advisory {}: {}",
             seconds(s.time_ms),
-            s.measurements,
-            s.invalid,
-            s.late,
-            s.dropped,
-            s.updated,
-            s.started,
-            s.confirmed,
-            s.deleted,
-            s.tracks,
-            s.confirmed_tracks,
-            s.highest_advisory.name()
+            s.interval_ms,
+            s.highest_advisory.name(),
+            s.counts
         ),
-        Message::Link(l) => format!(
-            "link t={} s: {} frames, {} CRC errors, {} bytes skipped, {} queue full",
-            seconds(l.time_ms),
-            l.frames,
-            l.crc_errors,
-            l.bytes_skipped,
-            l.queue_full
+        Message::End(e) => format!("end of input t={} s", seconds(e.time_ms)),
+        Message::Health(h) => format!(
+            "health t={} s: receiver: {}; intake: {}; scan loop: {}",
+            seconds(h.time_ms),
+            h.decoder,
+            h.intake,
+            h.scan
         ),
     }
+}
+
+/// The demo firmware's decisions, on the host: the same scan-loop core fed
+/// the same bytes in the same order, paced as `src/main.rs` paces it (a
+/// scan runs once the input has moved past it; after the input, the line
+/// goes idle, the rest is scanned, then three idle scans), with the same
+/// capacities (`N` tracks, `M` measurements per scan, a queue of `Q`) and
+/// number type. The receiver reads in lock-step with the main loop (a byte
+/// only once every queued measurement was taken) and stops at the
+/// end-of-input frame, so nothing depends on timing: the report frames are
+/// the firmware's, byte for byte.
+pub fn run_like_the_firmware<S: Scalar, const N: usize, const M: usize, const Q: usize>(
+    input: &[u8],
+    config: &ScanConfig<S, Gains<S>>,
+) -> FirmwareRun {
+    /// `IDLE_SCANS` of src/main.rs.
+    const IDLE_SCANS: u32 = 3;
+    let mut intake: Box<Intake<Q>> = Box::new(Intake::new());
+    let mut scan_loop: Box<ScanLoop<S, FixedGainTrack<S>, N, M>> = Box::new(ScanLoop::new());
+    let mut run = FirmwareRun::default();
+    let mut encoder = Encoder::new();
+    let mut tick = |scan_loop: &mut ScanLoop<S, FixedGainTrack<S>, N, M>,
+                    intake: &mut Intake<Q>,
+                    run: &mut FirmwareRun| {
+        let mut frame = [0u8; MAX_FRAME_LEN];
+        let report = scan_loop
+            .on_tick(config, intake, |m| {
+                let n = encoder.encode(m, &mut frame).expect("a frame fits");
+                run.output.extend_from_slice(&frame[..n]);
+            })
+            .expect("the loop's tracker clock always advances");
+        run.ticks.push(report);
+        report
+    };
+    // Flow control in lock-step: the receiver reads the next byte only once
+    // the main loop has taken every queued measurement (running a scan when
+    // one is due).
+    let mut drain = |scan_loop: &mut ScanLoop<S, FixedGainTrack<S>, N, M>,
+                     intake: &mut Intake<Q>,
+                     run: &mut FirmwareRun| {
+        while intake.queued() > 0 {
+            if scan_loop.collect(config, intake) == Collected::ScanDue {
+                tick(scan_loop, intake, run);
+            }
+        }
+    };
+    for &b in input {
+        intake.push(b);
+        drain(&mut scan_loop, &mut intake, &mut run);
+        if intake.input_ended().is_some() {
+            // The receiver reads nothing after the end-of-input frame.
+            break;
+        }
+    }
+    intake.line_idle();
+    let mut idle_scans = 0;
+    while idle_scans < IDLE_SCANS {
+        scan_loop.collect(config, intake.as_mut());
+        let report = tick(&mut scan_loop, &mut intake, &mut run);
+        if intake.queued() == 0 {
+            scan_loop.finish();
+        }
+        if report.summary.counts.used == 0 && intake.queued() == 0 && scan_loop.held() == 0 {
+            idle_scans += 1;
+        } else {
+            idle_scans = 0;
+        }
+    }
+    let (decoder, intake_counters) = intake.receiver_counters();
+    // As the last health frame sent.
+    run.health = Health {
+        time_ms: run.ticks.last().map_or(0, |t| t.summary.time_ms),
+        decoder,
+        intake: intake_counters,
+        scan: *scan_loop.counters(),
+    };
+    run.verdict = Some(RunVerdict::from_health(&run.health));
+    run
+}
+
+/// What [`run_like_the_firmware`] produced.
+#[derive(Debug, Clone, Default)]
+pub struct FirmwareRun {
+    /// The report frames, as the firmware sends them on its UART.
+    pub output: Vec<u8>,
+    /// Every scan's result.
+    pub ticks: Vec<TickReport>,
+    /// The counters at the end (the firmware's summary).
+    pub health: Health,
+    pub verdict: Option<RunVerdict>,
+}
+
+/// The frame format as Markdown, from the library's layout tables and
+/// counter lists (`frames layout`; docs/firmware-runtime.md holds a copy,
+/// checked by the frames tool's tests).
+pub fn layout_markdown() -> String {
+    use abtrack::wire::{IntakeCounters, LoopCounters, ScanCounts, LAYOUTS};
+    let mut out = String::new();
+    for (name, kind, fields) in LAYOUTS {
+        match kind {
+            Some(k) => {
+                out += &format!(
+                    "**{name}** (type `0x{:02X}`, payload {} bytes, frame {} bytes)\n\n",
+                    k.byte(),
+                    k.payload_len(),
+                    k.frame_len()
+                )
+            }
+            None => {
+                out += &format!(
+                    "**{name}** ({HEADER_LEN} bytes; then the payload, then a {CRC_LEN}-byte CRC-32C of everything after the sync bytes)\n\n"
+                )
+            }
+        }
+        out += "| offset | bytes | field | holds |\n|---|---|---|---|\n";
+        for (field, offset, width, doc) in fields {
+            // Rustdoc links read as plain code here.
+            let doc = doc.trim().replace("[`", "`").replace("`]", "`");
+            let doc = doc.replace("`crate::scan`", "`abtrack::scan`");
+            out += &format!("| {offset} | {width} | `{field}` | {doc} |\n");
+        }
+        out += "\n";
+    }
+    let lists: [(&str, &[&str], &[&str]); 4] = [
+        (
+            "`COUNTS` of the scan summary, u16 each, in order",
+            &ScanCounts::NAMES,
+            &ScanCounts::LABELS,
+        ),
+        (
+            "`DECODER` of the health report, u32 each, in order",
+            &DecoderStats::NAMES,
+            &DecoderStats::LABELS,
+        ),
+        (
+            "`INTAKE` of the health report, u32 each",
+            &IntakeCounters::NAMES,
+            &IntakeCounters::LABELS,
+        ),
+        (
+            "`SCAN` of the health report, u32 each",
+            &LoopCounters::NAMES,
+            &LoopCounters::LABELS,
+        ),
+    ];
+    for (title, names, labels) in lists {
+        let items: Vec<String> = names
+            .iter()
+            .zip(labels)
+            .map(|(n, l)| format!("`{n}` ({l})"))
+            .collect();
+        out += &format!("{title}: {}.\n\n", items.join(", "));
+    }
+    out
+}
+
+// ---------------------------------------------------------------------------
+// Fault injection
+// ---------------------------------------------------------------------------
+
+/// A line or sensor fault, injected into the demo's input (the
+/// `two-crossing` scenario, seed 1) by [`fault_stream`]: the
+/// fault-injection tests on the three boards, and `frames encode --fault`.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Fault {
+    /// 8 KiB of random bytes first, then 1–64 random bytes before every
+    /// 5th frame.
+    Garbage,
+    /// The same, drawn from the sync, type and length bytes.
+    SyncGarbage,
+    /// One payload bit flipped in every 20th frame (CRC errors).
+    CrcErrors,
+    /// Every 25th frame cut short by 2–20 bytes, mid-stream.
+    Truncated,
+    /// Every 25th frame with a length byte 8 too large and 8 more bytes.
+    Oversize,
+    /// Ten times the scan capacity of extra measurements in the scan at
+    /// t = 30 s.
+    Flood,
+    /// The sensor silent for 10 s (the scans at t = 20 … 29 s missing).
+    Gap,
+    /// The sensor's clock steps back 10 s at t = 30 s.
+    Backwards,
+    /// The sensor's clock reads 12:00 (43.2e6 ms) at the start.
+    FarClock,
+    /// The sensor's clock jumps 40 days (past 2³¹ ms) at t = 30 s.
+    Jump,
+    /// After every 20th frame, a frame outside the envelope (x = 500 km,
+    /// range 1000 km, altitude 200 000 ft in turn).
+    OutOfRange,
+    /// 200 extra clutter measurements per scan, shuffled with the others.
+    ClutterStorm,
+    /// The scans in reverse time order.
+    Reversed,
+    /// 20 KiB of random bytes and no frame at all (not even the end of
+    /// input: the firmware ends after 10 s of silence).
+    GarbageOnly,
+}
+
+impl Fault {
+    pub const ALL: [Fault; 14] = [
+        Fault::Garbage,
+        Fault::SyncGarbage,
+        Fault::CrcErrors,
+        Fault::Truncated,
+        Fault::Oversize,
+        Fault::Flood,
+        Fault::Gap,
+        Fault::Backwards,
+        Fault::FarClock,
+        Fault::Jump,
+        Fault::OutOfRange,
+        Fault::ClutterStorm,
+        Fault::Reversed,
+        Fault::GarbageOnly,
+    ];
+
+    pub const fn name(self) -> &'static str {
+        match self {
+            Fault::Garbage => "garbage",
+            Fault::SyncGarbage => "sync-garbage",
+            Fault::CrcErrors => "crc-errors",
+            Fault::Truncated => "truncated",
+            Fault::Oversize => "oversize",
+            Fault::Flood => "flood",
+            Fault::Gap => "gap",
+            Fault::Backwards => "backwards",
+            Fault::FarClock => "far-clock",
+            Fault::Jump => "jump",
+            Fault::OutOfRange => "out-of-range",
+            Fault::ClutterStorm => "clutter-storm",
+            Fault::Reversed => "reversed",
+            Fault::GarbageOnly => "garbage-only",
+        }
+    }
+
+    pub fn from_name(name: &str) -> Option<Fault> {
+        Fault::ALL.into_iter().find(|f| f.name() == name)
+    }
+}
+
+/// The scan at which [`Fault::Flood`], [`Fault::Backwards`] and
+/// [`Fault::Jump`] happen, and [`Fault::Gap`] ends.
+pub const FAULT_SCAN: u32 = 30;
+/// [`Fault::Gap`]: scans missing before [`FAULT_SCAN`].
+pub const GAP_SCANS: u32 = 10;
+/// [`Fault::Backwards`]: the step, ms.
+pub const BACKWARDS_MS: u32 = 10_000;
+/// [`Fault::Jump`]: 40 days, ms (more than 2³¹).
+pub const JUMP_MS: u32 = 40 * 86_400_000;
+/// [`Fault::FarClock`]: 12:00, ms.
+pub const FAR_CLOCK_MS: u32 = 43_200_000;
+
+/// A faulty stream and what was put in it.
+#[derive(Debug, Clone, Default)]
+pub struct FaultStream {
+    pub bytes: Vec<u8>,
+    /// Numbered frames sent (damaged ones and the end-of-input frame
+    /// included).
+    pub frames: usize,
+    /// Frames damaged or made up by the fault (corrupted, cut, oversize,
+    /// out of range).
+    pub damaged: usize,
+    /// Random bytes put between frames.
+    pub garbage_bytes: usize,
+    /// Measurements added by the fault (flood, clutter storm).
+    pub added: usize,
+    /// Scan by scan, in sending order: (sensor time of the scan, scenario
+    /// time in s, measurements sent).
+    pub scans: Vec<(u32, f64, usize)>,
+}
+
+impl FaultStream {
+    /// The scenario time (s) of a scan sent at sensor time `time_ms`.
+    pub fn scenario_time(&self, time_ms: u32) -> Option<f64> {
+        self.scans
+            .iter()
+            .find(|(t, _, _)| *t == time_ms)
+            .map(|(_, s, _)| *s)
+    }
+}
+
+/// The demo's input with `fault` injected; `capacity` is the board's
+/// measurements per scan (for [`Fault::Flood`]).
+pub fn fault_stream(fault: Fault, capacity: usize, seed: u64) -> Result<FaultStream, String> {
+    let mut rng = rng_from_seed(derive_seed(seed, 0xFA17));
+    let mut out = FaultStream::default();
+    if fault == Fault::GarbageOnly {
+        out.bytes = (0..20 * 1024)
+            .map(|_| uniform_index(&mut rng, 256) as u8)
+            .collect();
+        out.garbage_bytes = out.bytes.len();
+        return Ok(out);
+    }
+    let run = scenario::generate("two-crossing", 1).map_err(|e| e.to_string())?;
+    let mut scans: Vec<(u32, f64, Vec<MeasurementReport>)> = Vec::new();
+    for scan in &run.scans {
+        let t = time_ms(scan.t)?;
+        let reports = scan
+            .measurements
+            .iter()
+            .map(|m| report(m, 1))
+            .collect::<Result<Vec<_>, _>>()?;
+        scans.push((t, scan.t, reports));
+    }
+    let clutter = |rng: &mut crate::noise::SimRng, t: u32| {
+        let mut u = || (uniform_index(rng, 1_000_001) as f64 / 1e6 - 0.5) * 10_000.0;
+        MeasurementReport::cartesian_from_metres(t, 1, u(), u(), None).expect("inside ±5 km")
+    };
+    let shuffle = |rng: &mut crate::noise::SimRng, v: &mut Vec<MeasurementReport>| {
+        for i in (1..v.len()).rev() {
+            v.swap(i, uniform_index(rng, i + 1));
+        }
+    };
+    let fault_ms = FAULT_SCAN * 1000;
+    for (t, _, reports) in scans.iter_mut() {
+        let k_ms = *t;
+        let shifted = match fault {
+            Fault::Backwards if k_ms >= fault_ms => Some(t.wrapping_sub(BACKWARDS_MS)),
+            Fault::Jump if k_ms >= fault_ms => Some(t.wrapping_add(JUMP_MS)),
+            Fault::FarClock => Some(t.wrapping_add(FAR_CLOCK_MS)),
+            _ => None,
+        };
+        if let Some(new) = shifted {
+            *t = new;
+            for r in reports.iter_mut() {
+                r.time_ms = new;
+            }
+        }
+        let extra = match fault {
+            Fault::Flood if k_ms == fault_ms => 10 * capacity,
+            Fault::ClutterStorm => 200,
+            _ => 0,
+        };
+        if extra > 0 {
+            for _ in 0..extra {
+                reports.push(clutter(&mut rng, *t));
+            }
+            shuffle(&mut rng, reports);
+            out.added += extra;
+        }
+    }
+    match fault {
+        Fault::Gap => {
+            scans.retain(|(t, _, _)| !(fault_ms - GAP_SCANS * 1000..fault_ms).contains(t))
+        }
+        Fault::Reversed => scans.reverse(),
+        _ => {}
+    }
+
+    let mut encoder = Encoder::new();
+    let mut frame = [0u8; MAX_FRAME_LEN];
+    let mut n = 0usize;
+    if matches!(fault, Fault::Garbage | Fault::SyncGarbage) {
+        let prefix = garbage(&mut rng, fault, 8 * 1024);
+        out.garbage_bytes += prefix.len();
+        out.bytes.extend(prefix);
+    }
+    for (t, scenario_t, reports) in &scans {
+        out.scans.push((*t, *scenario_t, reports.len()));
+        for r in reports {
+            n += 1;
+            if matches!(fault, Fault::Garbage | Fault::SyncGarbage) && n.is_multiple_of(5) {
+                let len = 1 + uniform_index(&mut rng, 64);
+                let g = garbage(&mut rng, fault, len);
+                out.garbage_bytes += g.len();
+                out.bytes.extend(g);
+            }
+            let len = encoder
+                .encode(&Message::Measurement(*r), &mut frame)
+                .expect("a frame fits");
+            let mut bytes = frame[..len].to_vec();
+            out.frames += 1;
+            match fault {
+                Fault::CrcErrors if n.is_multiple_of(20) => {
+                    let bit = uniform_index(&mut rng, (len - HEADER_LEN - CRC_LEN) * 8);
+                    bytes[HEADER_LEN + bit / 8] ^= 1 << (bit % 8);
+                    out.damaged += 1;
+                }
+                Fault::Truncated if n.is_multiple_of(25) => {
+                    let cut = 2 + uniform_index(&mut rng, 19);
+                    bytes.truncate(len - cut);
+                    out.damaged += 1;
+                }
+                Fault::Oversize if n.is_multiple_of(25) => {
+                    bytes[3] = bytes[3].wrapping_add(8);
+                    bytes.extend((0..8).map(|_| uniform_index(&mut rng, 256) as u8));
+                    out.damaged += 1;
+                }
+                _ => {}
+            }
+            out.bytes.extend(bytes);
+            if fault == Fault::OutOfRange && n.is_multiple_of(20) {
+                let position = match (n / 20) % 3 {
+                    0 => abtrack::wire::MeasuredPosition::Cartesian {
+                        x_cm: 50_000_000,
+                        y_cm: 0,
+                    },
+                    1 => abtrack::wire::MeasuredPosition::Polar {
+                        range_cm: 100_000_000,
+                        azimuth_bam: 0,
+                    },
+                    _ => abtrack::wire::MeasuredPosition::Cartesian { x_cm: 0, y_cm: 0 },
+                };
+                let bad = MeasurementReport {
+                    time_ms: r.time_ms,
+                    sensor: r.sensor,
+                    position,
+                    altitude_ft: ((n / 20) % 3 == 2).then_some(200_000),
+                };
+                let len = encoder
+                    .encode(&Message::Measurement(bad), &mut frame)
+                    .expect("a frame fits");
+                out.bytes.extend_from_slice(&frame[..len]);
+                out.frames += 1;
+                out.damaged += 1;
+            }
+        }
+    }
+    let end = EndOfInput {
+        time_ms: scans.last().map_or(0, |s| s.0),
+    };
+    let len = encoder
+        .encode(&Message::End(end), &mut frame)
+        .expect("a frame fits");
+    out.bytes.extend_from_slice(&frame[..len]);
+    out.frames += 1;
+    Ok(out)
+}
+
+/// `len` garbage bytes: uniform, or from the bytes a frame header holds.
+fn garbage(rng: &mut crate::noise::SimRng, fault: Fault, len: usize) -> Vec<u8> {
+    const HEADERS: [u8; 10] = [0xAB, 0xCD, 0x01, 0x02, 0x81, 0x82, 0x84, 18, 16, 36];
+    (0..len)
+        .map(|_| {
+            if fault == Fault::SyncGarbage {
+                HEADERS[uniform_index(rng, HEADERS.len())]
+            } else {
+                uniform_index(rng, 256) as u8
+            }
+        })
+        .collect()
 }

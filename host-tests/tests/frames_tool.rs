@@ -1,8 +1,8 @@
 //! The `frames` tool's library side: CSV and scenario input to frames, and
 //! the summary of a report stream.
 
-use abtrack::wire::{MeasuredPosition, MeasurementReport, Message};
-use abtrack_host_tests::frames::{self, Faults};
+use abtrack::wire::{EndOfInput, MeasuredPosition, MeasurementReport, Message};
+use abtrack_host_tests::frames::{self, Fault, Faults};
 
 #[test]
 fn cartesian_csv_becomes_reports() {
@@ -54,14 +54,24 @@ fn bad_csv_names_the_line() {
 fn encoded_faults_are_what_the_decoder_counts() {
     let reports = frames::scenario_reports("two-crossing", 1, 1).unwrap();
     let clean = frames::encode(&reports, Faults::default());
-    assert_eq!(clean.frames, reports.len());
+    // One numbered frame per measurement, and the end of input.
+    assert_eq!(clean.frames, reports.len() + 1);
     let (messages, stats) = frames::decode_all(&clean.bytes);
-    assert_eq!(messages.len(), reports.len());
-    assert_eq!((stats.crc_errors, stats.bytes_skipped), (0, 0));
+    assert_eq!(messages.len(), reports.len() + 1);
+    assert_eq!(
+        (stats.crc_errors, stats.bytes_skipped, stats.frames_lost),
+        (0, 0, 0)
+    );
     assert!(messages
         .iter()
         .zip(&reports)
         .all(|(m, r)| *m == Message::Measurement(*r)));
+    assert_eq!(
+        messages.last(),
+        Some(&Message::End(EndOfInput {
+            time_ms: reports.last().unwrap().time_ms
+        }))
+    );
 
     let faults = Faults {
         corrupt_every: Some(10),
@@ -72,13 +82,73 @@ fn encoded_faults_are_what_the_decoder_counts() {
     let (messages, stats) = frames::decode_all(&dirty.bytes);
     assert_eq!(messages.len(), dirty.frames - dirty.corrupted);
     assert_eq!(stats.crc_errors as usize, dirty.corrupted);
-    // Measurement frames of the Cartesian scenario are 24 bytes.
+    assert_eq!(stats.frames_lost as usize, dirty.corrupted);
+    // Measurement frames of the Cartesian scenario are 28 bytes.
     assert_eq!(
         stats.bytes_skipped as usize,
-        dirty.garbage_bytes + 24 * dirty.corrupted
+        dirty.garbage_bytes + 28 * dirty.corrupted
     );
     // The summary of a measurement stream counts them.
     let s = frames::summarise(&dirty.bytes);
-    assert_eq!(s.measurements, messages.len());
+    assert_eq!(s.measurements, messages.len() - 1);
     assert!(s.to_text().contains("CRC errors"));
+}
+
+/// Every fault stream holds what it says: the frames sent (numbered), the
+/// damaged ones, the garbage; the decoder counts them.
+#[test]
+fn fault_streams_hold_what_they_say() {
+    for fault in Fault::ALL {
+        let s = frames::fault_stream(fault, 24, 0).unwrap();
+        let (messages, stats) = frames::decode_all(&s.bytes);
+        let name = fault.name();
+        match fault {
+            Fault::GarbageOnly => assert_eq!(stats.accepted, 0, "{name}"),
+            _ => {
+                assert_eq!(
+                    stats.accepted as usize + stats.frames_lost as usize,
+                    s.frames,
+                    "{name}"
+                );
+                assert!(matches!(messages.last(), Some(Message::End(_))), "{name}");
+            }
+        }
+        let damaged = s.damaged as u32;
+        match fault {
+            Fault::CrcErrors => assert_eq!(stats.crc_errors, damaged),
+            Fault::Truncated => assert_eq!((stats.truncated, stats.crc_errors), (damaged, 0)),
+            Fault::OutOfRange => assert_eq!(stats.out_of_envelope, damaged),
+            Fault::Garbage | Fault::SyncGarbage => {
+                assert_eq!(stats.bytes_skipped as usize, s.garbage_bytes, "{name}")
+            }
+            Fault::Flood => assert_eq!(s.added, 240),
+            Fault::ClutterStorm => assert_eq!(s.added, 200 * 60),
+            Fault::Gap => assert_eq!(s.scans.len(), 50),
+            _ => {}
+        }
+        assert!(
+            damaged > 0
+                || !matches!(
+                    fault,
+                    Fault::CrcErrors | Fault::Truncated | Fault::Oversize | Fault::OutOfRange
+                )
+        );
+    }
+}
+
+/// docs/firmware-runtime.md holds the output of `frames layout` between two
+/// markers: it must be the current one (regenerate it with that command).
+#[test]
+fn the_documented_frame_format_is_current() {
+    let doc = std::fs::read_to_string(
+        std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("../docs/firmware-runtime.md"),
+    )
+    .unwrap();
+    let start = doc.find("<!-- frames layout -->\n").unwrap() + "<!-- frames layout -->\n".len();
+    let end = doc.find("<!-- end frames layout -->").unwrap();
+    assert_eq!(
+        &doc[start..end],
+        frames::layout_markdown(),
+        "docs/firmware-runtime.md: run `cargo run --release --bin frames -- layout` in host-tests and paste its output between the markers"
+    );
 }

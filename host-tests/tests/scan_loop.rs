@@ -4,71 +4,61 @@
 
 #![allow(clippy::needless_range_loop)]
 
+mod common;
 #[path = "../../src/firmware/demo_config.rs"]
 mod demo_config;
 
+use common::{crossing_truth, Lcg};
+
 use abtrack::filter::altitude::{AltitudeQuantum, AltitudeTrackerConfig};
-use abtrack::scan::{AdvisoryLines, Intake, ScanConfig, ScanLoop, TickReport};
+use abtrack::scan::{
+    AdvisoryLines, ClockConfig, Intake, MeasurementQueue, ScanConfig, ScanLoop, TickReport,
+};
 use abtrack::tcas::{Advisory, OwnAircraft};
 use abtrack::track::{FixedGainTrack, Gate, TrackStatus, TrackerConfig};
 use abtrack::wire::{
-    Decoder, LinkStatus, MeasuredPosition, MeasurementReport, Message, ScanSummary, TrackReport,
-    MAX_FRAME_LEN,
+    Decoder, DecoderStats, Encoder, MeasuredPosition, MeasurementReport, Message, ScanSummary,
+    TrackReport, MAX_FRAME_LEN,
 };
 use abtrack::{Fix, Gains, Scalar};
 use abtrack_host_tests::frames::{self, Faults};
 use abtrack_host_tests::scenario;
-use heapless::spsc::{Consumer, Queue};
 use std::collections::{BTreeMap, BTreeSet};
 
 type Loop<S, const N: usize, const M: usize> = ScanLoop<S, FixedGainTrack<S>, N, M>;
 
-/// Deterministic pseudo-random numbers (64-bit LCG, Knuth's MMIX constants).
-struct Lcg(u64);
-impl Lcg {
-    fn next_u64(&mut self) -> u64 {
-        self.0 = self
-            .0
-            .wrapping_mul(6364136223846793005)
-            .wrapping_add(1442695040888963407);
-        self.0 >> 11
+/// Numbers the frames of the test's sensor.
+#[derive(Default)]
+struct Sensor(Encoder);
+impl Sensor {
+    fn frame(&mut self, r: MeasurementReport) -> Vec<u8> {
+        let mut buf = [0u8; MAX_FRAME_LEN];
+        let n = self.0.encode(&Message::Measurement(r), &mut buf).unwrap();
+        buf[..n].to_vec()
     }
-    /// Uniform in [-1, 1).
-    fn signed(&mut self) -> f64 {
-        (self.next_u64() as f64 / (1u64 << 53) as f64) * 2.0 - 1.0
-    }
-    fn below(&mut self, n: usize) -> usize {
-        (self.next_u64() % n as u64) as usize
-    }
-}
-
-fn frame(m: &Message) -> Vec<u8> {
-    let mut buf = [0u8; MAX_FRAME_LEN];
-    let n = m.emit(&mut buf).unwrap();
-    buf[..n].to_vec()
-}
-
-fn measurement_frame(r: MeasurementReport) -> Vec<u8> {
-    frame(&Message::Measurement(r))
 }
 
 /// Everything the loop emitted, decoded back from the bytes.
 #[derive(Default)]
 struct Output {
     bytes: Vec<u8>,
+    encoder: Encoder,
 }
 
 impl Output {
     fn sink(&mut self) -> impl FnMut(&Message) + '_ {
         |m: &Message| {
             let mut buf = [0u8; MAX_FRAME_LEN];
-            let n = m.emit(&mut buf).unwrap();
+            let n = self.encoder.encode(m, &mut buf).unwrap();
             self.bytes.extend_from_slice(&buf[..n]);
         }
     }
     fn decode(&self) -> Vec<Message> {
         let (messages, stats) = frames::decode_all(&self.bytes);
-        assert_eq!(stats.crc_errors + stats.bytes_skipped, 0);
+        assert_eq!(
+            stats.crc_errors + stats.bytes_skipped + stats.frames_lost,
+            0
+        );
         messages
     }
     fn tracks(&self) -> Vec<TrackReport> {
@@ -92,22 +82,19 @@ impl Output {
 }
 
 /// Drives a loop like the firmware: all bytes of scan k are received, then
-/// the tick at the scan's time.
-struct Rig<'q, S: Scalar, const N: usize, const M: usize> {
-    intake: Intake<'q>,
-    consumer: Consumer<'q, MeasurementReport>,
+/// the scan runs.
+struct Rig<S: Scalar, const N: usize, const M: usize> {
+    intake: Box<Intake<64>>,
     scan_loop: Box<Loop<S, N, M>>,
     config: ScanConfig<S, Gains<S>>,
     out: Output,
     ticks: Vec<TickReport>,
 }
 
-impl<'q, S: Scalar, const N: usize, const M: usize> Rig<'q, S, N, M> {
-    fn new(queue: &'q mut Queue<MeasurementReport, 64>, config: ScanConfig<S, Gains<S>>) -> Self {
-        let (producer, consumer) = queue.split();
+impl<S: Scalar, const N: usize, const M: usize> Rig<S, N, M> {
+    fn new(config: ScanConfig<S, Gains<S>>) -> Self {
         Rig {
-            intake: Intake::new(producer),
-            consumer,
+            intake: Box::new(Intake::new()),
             scan_loop: Box::new(Loop::new()),
             config,
             out: Output::default(),
@@ -119,31 +106,20 @@ impl<'q, S: Scalar, const N: usize, const M: usize> Rig<'q, S, N, M> {
             self.intake.push(b);
         }
     }
-    fn tick(&mut self, now_ms: u32) {
+    fn tick(&mut self) {
         let report = self
             .scan_loop
-            .on_tick(&self.config, now_ms, &mut self.consumer, self.out.sink())
+            .on_tick(&self.config, self.intake.as_mut(), self.out.sink())
             .unwrap();
         self.ticks.push(report);
     }
 }
 
-/// Two targets on an X through the own aircraft at the origin, both at
-/// 111.8 m/s: A from (−3000, −1500) m moving (100, 50) m/s, B from
-/// (−3000, 1500) m moving (100, −50) m/s; they cross at the origin at
-/// t = 30 s. Noise uniform ±15 m per axis.
-fn crossing_truth(t: f64) -> [[f64; 2]; 2] {
-    [
-        [-3000.0 + 100.0 * t, -1500.0 + 50.0 * t],
-        [-3000.0 + 100.0 * t, 1500.0 - 50.0 * t],
-    ]
-}
-
 /// Runs the crossing through the loop in `S`; returns the rig's output and
 /// the number of garbage bytes inserted.
-fn run_crossing<S: Scalar>() -> (Output, Vec<TickReport>, LinkStatus, usize) {
-    let mut queue = Queue::new();
-    let mut rig: Rig<S, 8, 16> = Rig::new(&mut queue, demo_config::demo_config::<S>().unwrap());
+fn run_crossing<S: Scalar>() -> (Output, Vec<TickReport>, DecoderStats, usize) {
+    let mut rig: Rig<S, 8, 16> = Rig::new(demo_config::demo_config::<S>().unwrap());
+    let mut sensor = Sensor::default();
     let mut rng = Lcg(0x5CA1_AB1E);
     let mut garbage = 0;
     for k in 0..60u32 {
@@ -171,12 +147,13 @@ fn run_crossing<S: Scalar>() -> (Output, Vec<TickReport>, LinkStatus, usize) {
             }
             let r =
                 MeasurementReport::cartesian_from_metres(k * 1000, 1, p[0], p[1], None).unwrap();
-            bytes.extend(measurement_frame(r));
+            bytes.extend(sensor.frame(r));
         }
         rig.receive(&bytes);
-        rig.tick(k * 1000);
+        rig.tick();
     }
-    let link = rig.intake.status(59_000);
+    let link = *rig.intake.decoder().stats();
+    assert_eq!(rig.intake.counters().queue_full, 0);
     (rig.out, rig.ticks, link, garbage)
 }
 
@@ -193,14 +170,14 @@ fn distances(report: &TrackReport) -> [f64; 2] {
 fn crossing_targets_keep_their_ids<S: Scalar>() {
     let (out, ticks, link, garbage) = run_crossing::<S>();
     // Garbage skipped and counted, every frame decoded: 4 per scan.
-    assert_eq!(link.frames, 240, "{link:?}");
-    assert_eq!(link.queue_full, 0);
+    assert_eq!(link.accepted, 240, "{link:?}");
+    assert_eq!(link.frames_lost, 0);
     assert!(
         link.bytes_skipped as usize >= garbage,
         "{link:?} vs {garbage}"
     );
-    let taken: u32 = ticks.iter().map(|t| t.summary.measurements as u32).sum();
-    assert_eq!(taken, 240);
+    let used: u32 = ticks.iter().map(|t| t.summary.counts.used as u32).sum();
+    assert_eq!(used, 240);
 
     // The tracks that follow the targets: every report of the id within
     // 100 m of the same target.
@@ -256,8 +233,23 @@ fn crossing_targets_keep_their_ids<S: Scalar>() {
     assert_eq!(scans.len(), 60);
     for (s, t) in scans.iter().zip(&ticks) {
         assert_eq!(*s, t.summary);
-        assert_eq!(s.updated as u32, t.scan.updated);
-        assert_eq!(s.tracks as u32, t.scan.tracks);
+        assert_eq!(s.counts.updated as u32, t.scan.updated);
+        assert_eq!(s.counts.tracks as u32, t.scan.tracks);
+        // The per-measurement outcomes (counted from the association
+        // codes) agree with the tracker's own counts.
+        assert_eq!(s.counts.outside_gates as u32, t.scan.outside_gates, "{t:?}");
+        assert_eq!(s.counts.started as u32, t.scan.started);
+        assert_eq!(s.counts.not_assigned as u32, t.scan.not_assigned);
+        let c = &s.counts;
+        assert_eq!(
+            c.used,
+            c.updated
+                + c.started
+                + c.not_assigned
+                + c.outside_gates
+                + c.rejected
+                + c.refused_table_full
+        );
     }
     assert!(scans
         .iter()
@@ -296,13 +288,11 @@ fn representations_report_the_same_tracks() {
 
 #[test]
 fn queue_overflow_is_counted() {
-    // Capacity 3 (heapless keeps one slot free).
-    let mut queue: Queue<MeasurementReport, 4> = Queue::new();
-    let (producer, mut consumer) = queue.split();
-    let mut intake = Intake::new(producer);
+    let mut intake: Intake<4> = Intake::new();
+    let mut sensor = Sensor::default();
     let mut bytes = Vec::new();
     for k in 0..10 {
-        bytes.extend(measurement_frame(
+        bytes.extend(sensor.frame(
             MeasurementReport::cartesian_from_metres(0, 1, 100.0 * k as f64, 0.0, None).unwrap(),
         ));
     }
@@ -310,70 +300,194 @@ fn queue_overflow_is_counted() {
     for &b in &bytes {
         queued += intake.push(b);
     }
-    assert_eq!(queued, 3);
-    assert_eq!(intake.queue_full(), 7);
-    let link = intake.status(0);
-    assert_eq!((link.frames, link.queue_full), (10, 7));
+    assert_eq!(queued, 4);
+    let c = *intake.counters();
+    assert_eq!((c.measurements, c.queue_full), (10, 6));
+    assert_eq!(intake.decoder().stats().accepted, 10);
     assert_eq!(intake.free_slots(), 0);
     assert!(!intake.can_take_byte());
 
-    // The three queued ones reach the scan, in order.
+    // The four queued ones reach the scan, in order.
     let mut scan_loop: Box<Loop<f64, 4, 8>> = Box::new(Loop::new());
     let config = demo_config::demo_config::<f64>().unwrap();
     let mut out = Output::default();
-    let tick = scan_loop
-        .on_tick(&config, 0, &mut consumer, out.sink())
-        .unwrap();
-    assert_eq!(tick.summary.measurements, 3);
-    assert_eq!(scan_loop.counters().taken, 3);
-    assert!(intake.can_take_byte());
+    let tick = scan_loop.on_tick(&config, &mut intake, out.sink()).unwrap();
+    assert_eq!(tick.summary.counts.used, 4);
+    assert_eq!(scan_loop.counters().used, 4);
+    assert_eq!(intake.free_slots(), 4);
 }
 
+fn direct(reports: &[MeasurementReport]) -> Box<MeasurementQueue<64>> {
+    let mut q = Box::new(MeasurementQueue::new());
+    for r in reports {
+        q.push(*r).unwrap();
+    }
+    q
+}
+
+fn at(t: u32, x: f64) -> MeasurementReport {
+    MeasurementReport::cartesian_from_metres(t, 1, x, 0.0, None).unwrap()
+}
+
+/// The scan clock (abtrack::scan, "Time"): it locks at the first
+/// measurement, later measurements wait, late ones and lone out-of-window
+/// ones are counted, every measurement ends in exactly one scan or count.
 #[test]
-fn later_measurements_wait_and_late_ones_are_counted() {
-    let mut queue: Queue<MeasurementReport, 16> = Queue::new();
-    let (producer, mut consumer) = queue.split();
-    let mut intake = Intake::new(producer);
-    let at = |t: u32, x: f64| {
-        measurement_frame(MeasurementReport::cartesian_from_metres(t, 1, x, 0.0, None).unwrap())
-    };
-    let mut scan_loop: Box<Loop<f32, 4, 8>> = Box::new(Loop::new());
+fn the_scan_clock_sorts_measurements_by_the_sensor_time() {
     let config = demo_config::demo_config::<f32>().unwrap();
+    let mut scan_loop: Box<Loop<f32, 4, 8>> = Box::new(Loop::new());
     let mut out = Output::default();
-    for f in [at(900, 0.0), at(1000, 10.0), at(1500, 20.0), at(2000, 30.0)] {
-        for b in f {
-            intake.push(b);
+    let mut q = direct(&[
+        at(1000, 0.0),
+        at(1000, 10.0),
+        at(1500, 20.0),
+        at(2000, 30.0),
+    ]);
+    // Locked at 1000 ms: the two measurements of 1000 ms are this scan's;
+    // 1500 ms belongs to the scan at 2000 ms, which is due.
+    assert_eq!(
+        scan_loop.collect(&config, q.as_mut()),
+        abtrack::scan::Collected::ScanDue
+    );
+    assert_eq!(scan_loop.batch_len(), 2);
+    let t = scan_loop.on_tick(&config, q.as_mut(), out.sink()).unwrap();
+    assert_eq!((t.summary.time_ms, t.summary.counts.used), (1000, 2));
+    // The scan at 2000 ms takes 1500 and 2000; the queue is empty: waiting.
+    assert_eq!(
+        scan_loop.collect(&config, q.as_mut()),
+        abtrack::scan::Collected::Waiting
+    );
+    assert_eq!(scan_loop.batch_len(), 2);
+    // A measurement of 1000 ms arriving now is late (its scan has run); one
+    // of 500 ms is older than the late window (2 periods before this scan):
+    // out of the window, held, then dropped when the next one does not
+    // confirm a new time base.
+    for r in [at(1000, 40.0), at(-500i32 as u32, 50.0), at(2000, 60.0)] {
+        q.push(r).unwrap();
+    }
+    let t = scan_loop.on_tick(&config, q.as_mut(), out.sink()).unwrap();
+    let c = t.summary.counts;
+    assert_eq!(t.summary.time_ms, 2000);
+    assert_eq!((c.used, c.late, c.out_of_window), (3, 1, 1));
+    assert_eq!(t.summary.interval_ms, 1000);
+    let lc = scan_loop.counters();
+    assert_eq!(
+        (lc.used, lc.late, lc.out_of_window, lc.clock_relocks),
+        (5, 1, 1, 0)
+    );
+}
+
+/// A silence shorter than the jump bound is a gap: one empty scan per
+/// period, on schedule; the tracks coast and are deleted.
+#[test]
+fn a_gap_runs_empty_scans_on_schedule() {
+    let config = demo_config::demo_config::<f64>().unwrap();
+    let mut scan_loop: Box<Loop<f64, 4, 8>> = Box::new(Loop::new());
+    let mut out = Output::default();
+    let mut q = direct(&[
+        at(0, 0.0),
+        at(1000, 100.0),
+        at(2000, 200.0),
+        at(3000, 300.0),
+    ]);
+    let mut times = Vec::new();
+    for _ in 0..4 {
+        times.push(
+            scan_loop
+                .on_tick(&config, q.as_mut(), out.sink())
+                .unwrap()
+                .summary
+                .time_ms,
+        );
+    }
+    // 12 s of silence, then the target again.
+    q.push(at(15_000, 1500.0)).unwrap();
+    while scan_loop.collect(&config, q.as_mut()) == abtrack::scan::Collected::ScanDue {
+        let t = scan_loop.on_tick(&config, q.as_mut(), out.sink()).unwrap();
+        times.push(t.summary.time_ms);
+    }
+    let t = scan_loop.on_tick(&config, q.as_mut(), out.sink()).unwrap();
+    times.push(t.summary.time_ms);
+    let expected: Vec<u32> = (0..=15).map(|k| k * 1000).collect();
+    assert_eq!(times, expected);
+    assert_eq!(scan_loop.counters().clock_relocks, 0);
+    // The track (confirmed at 2 s) coasted and was deleted in the gap.
+    assert_eq!(scan_loop.counters().tracks_deleted, 1);
+}
+
+/// Issue 11's clock findings on the scan core: a clock far from zero, a
+/// jump past 2³¹ ms, a step back; each re-lock is counted, no measurement
+/// is lost or used twice, and a target keeps its track across a step of
+/// the sensor's clock.
+#[test]
+fn the_scan_clock_relocks_on_a_jump_and_keeps_the_track() {
+    const FORTY_DAYS_MS: u32 = 40 * 86_400_000;
+    for (name, step) in [
+        ("+40 days", FORTY_DAYS_MS),
+        ("-10 s", (-10_000i32) as u32),
+        ("+31 s", 31_000),
+        ("-1 h", (-3_600_000i32) as u32),
+    ] {
+        let config = demo_config::demo_config::<Fix>().unwrap();
+        let mut scan_loop: Box<Loop<Fix, 4, 8>> = Box::new(Loop::new());
+        let mut out = Output::default();
+        let start = 43_200_000u32; // noon
+        let mut q = Box::new(MeasurementQueue::<64>::new());
+        let mut sent = 0;
+        for k in 0..20u32 {
+            let t = start + k * 1000;
+            let t = if k >= 10 { t.wrapping_add(step) } else { t };
+            // One target at 50 m/s and one clutter point per scan.
+            q.push(at(t, 50.0 * k as f64)).unwrap();
+            q.push(
+                MeasurementReport::cartesian_from_metres(
+                    t,
+                    1,
+                    -3000.0 + 100.0 * k as f64,
+                    4000.0,
+                    None,
+                )
+                .unwrap(),
+            )
+            .unwrap();
+            sent += 2;
+            while scan_loop.collect(&config, q.as_mut()) == abtrack::scan::Collected::ScanDue {
+                scan_loop.on_tick(&config, q.as_mut(), out.sink()).unwrap();
+            }
         }
+        scan_loop.on_tick(&config, q.as_mut(), out.sink()).unwrap();
+        let c = *scan_loop.counters();
+        assert_eq!(c.clock_locks, 1, "{name}");
+        assert_eq!(c.clock_relocks, 1, "{name}: {c:?}");
+        assert_eq!(
+            (c.late, c.out_of_window, c.invalid),
+            (0, 0, 0),
+            "{name}: {c:?}"
+        );
+        assert_eq!(c.used, sent, "{name}: {c:?}");
+        // 20 scans: no empty scan before the first data, none across the
+        // step.
+        assert_eq!(c.scans, 20, "{name}: {c:?}");
+        // One track follows the target through the step, reported at the
+        // sensor's times.
+        let tracks = out.tracks();
+        let near: BTreeSet<u32> = tracks
+            .iter()
+            .filter(|t| (t.y_cm as f64).abs() < 10_000.0)
+            .map(|t| t.track_id)
+            .collect();
+        assert_eq!(near.len(), 1, "{name}: {tracks:?}");
+        let last = tracks.iter().rfind(|t| near.contains(&t.track_id)).unwrap();
+        assert_eq!(last.time_ms, (start + 19_000).wrapping_add(step), "{name}");
+        assert!(
+            (last.x_cm as f64 / 100.0 - 950.0).abs() < 5.0,
+            "{name}: {last:?}"
+        );
     }
-    // The scan at 1000 ms takes the two measurements up to 1000 ms; the
-    // later ones stay queued.
-    let t = scan_loop
-        .on_tick(&config, 1000, &mut consumer, out.sink())
-        .unwrap();
-    assert_eq!(t.summary.measurements, 2);
-    assert_eq!(consumer.len(), 2);
-    // A measurement of 1000 ms arriving after that scan is late.
-    for b in at(1000, 40.0) {
-        intake.push(b);
-    }
-    let t = scan_loop
-        .on_tick(&config, 2000, &mut consumer, out.sink())
-        .unwrap();
-    assert_eq!((t.summary.measurements, t.summary.late), (3, 1));
-    assert_eq!(t.scan.measurements, 2);
-    assert_eq!(scan_loop.counters().late, 1);
-    // A scan time that does not advance is refused, nothing emitted.
-    let before = out.bytes.len();
-    assert!(scan_loop
-        .on_tick(&config, 2000, &mut consumer, out.sink())
-        .is_err());
-    assert_eq!(out.bytes.len(), before);
 }
 
 #[test]
 fn out_of_range_measurements_are_refused_and_counted() {
-    let mut queue: Queue<MeasurementReport, 16> = Queue::new();
-    let (mut producer, mut consumer) = queue.split();
     let reports = [
         MeasurementReport {
             time_ms: 0,
@@ -406,51 +520,55 @@ fn out_of_range_measurements_are_refused_and_counted() {
             altitude_ft: Some(5_000),
         },
     ];
+    // Through the wire they are refused by the decoder (outside the
+    // envelope) ...
+    let mut intake: Intake<16> = Intake::new();
+    let mut sensor = Sensor::default();
     for r in reports {
-        producer.enqueue(r).unwrap();
+        for b in sensor.frame(r) {
+            intake.push(b);
+        }
     }
+    let d = intake.decoder().stats();
+    assert_eq!((d.accepted, d.out_of_envelope, d.frames_lost), (1, 3, 0));
+    // ... and if they reach the loop another way, by the conversion.
+    let mut q = direct(&reports);
     let mut scan_loop: Box<Loop<Fix, 4, 8>> = Box::new(Loop::new());
     let config = demo_config::demo_config::<Fix>().unwrap();
     let mut out = Output::default();
-    let t = scan_loop
-        .on_tick(&config, 0, &mut consumer, out.sink())
-        .unwrap();
-    assert_eq!((t.summary.measurements, t.summary.invalid), (4, 3));
+    let t = scan_loop.on_tick(&config, q.as_mut(), out.sink()).unwrap();
+    assert_eq!((t.summary.counts.used, t.summary.counts.invalid), (1, 3));
     assert_eq!(t.scan.measurements, 1);
-    let c = scan_loop.counters();
-    assert_eq!((c.position_out_of_range, c.altitude_out_of_range), (2, 1));
+    assert_eq!(scan_loop.counters().invalid, 3);
 }
 
 #[test]
 fn scan_overflow_is_counted() {
-    let mut queue: Queue<MeasurementReport, 16> = Queue::new();
-    let (mut producer, mut consumer) = queue.split();
-    for k in 0..7 {
-        producer
-            .enqueue(
-                MeasurementReport::cartesian_from_metres(0, 1, 100.0 * k as f64, 0.0, None)
-                    .unwrap(),
-            )
-            .unwrap();
-    }
+    let mut q = direct(&(0..7).map(|k| at(0, 100.0 * k as f64)).collect::<Vec<_>>());
     let mut scan_loop: Box<Loop<f64, 4, 5>> = Box::new(Loop::new());
     let config = demo_config::demo_config::<f64>().unwrap();
     let mut out = Output::default();
-    let t = scan_loop
-        .on_tick(&config, 0, &mut consumer, out.sink())
-        .unwrap();
-    assert_eq!((t.summary.measurements, t.summary.dropped), (7, 2));
+    let t = scan_loop.on_tick(&config, q.as_mut(), out.sink()).unwrap();
+    assert_eq!(
+        (t.summary.counts.used, t.summary.counts.over_capacity),
+        (5, 2)
+    );
     assert_eq!(t.scan.measurements, 5);
-    assert!(consumer.is_empty());
+    assert!(q.is_empty());
+    // Nearest to the own aircraft first: the five nearest were kept.
+    let c = t.summary.counts;
+    assert_eq!(c.used, c.outside_gates);
 }
 
 /// The demo's own input (what scripts/demo.sh feeds the firmware: the
 /// `two-crossing` scenario, seed 1, a corrupted frame every 97 and garbage
-/// before every 41st) through the demo's configuration, in the three number
-/// types: the two targets are tracked under one id each from early on to
-/// the end, the clutter confirms at most short-lived tracks, and the faults
-/// are counted exactly.
-fn demo_input_is_tracked<S: Scalar>() -> Vec<(u32, u32)> {
+/// before every 41st) through the demo's configuration and the firmware's
+/// pacing and capacities, in the three number types: the two targets are
+/// tracked under one id each from early on to the end, the clutter confirms
+/// at most short-lived tracks, the faults are counted exactly, and the run
+/// is clean.
+fn demo_input_is_tracked<S: Scalar, const N: usize, const M: usize, const Q: usize>(
+) -> Vec<(u32, u32)> {
     const SEED: u64 = 1;
     let faults = Faults {
         corrupt_every: Some(97),
@@ -462,28 +580,36 @@ fn demo_input_is_tracked<S: Scalar>() -> Vec<(u32, u32)> {
     assert!(encoded.corrupted > 0 && encoded.garbage_bytes > 0);
     let run = scenario::generate("two-crossing", SEED).unwrap();
 
-    let mut queue = Queue::new();
-    let mut rig: Rig<S, 16, 32> = Rig::new(&mut queue, demo_config::demo_config::<S>().unwrap());
-    // The bytes in order, paced as the firmware paces them: a scan runs
-    // once the input has moved past its time; then the idle line.
-    let mut now = 0u32;
-    for &b in &encoded.bytes {
-        rig.intake.push(b);
-        rig.scan_loop.collect(&mut rig.consumer, now);
-        while rig.consumer.peek().is_some_and(|h| h.time_ms > now) {
-            rig.tick(now);
-            now += demo_config::SCAN_PERIOD_MS;
-            rig.scan_loop.collect(&mut rig.consumer, now);
-        }
-    }
-    rig.intake.line_idle();
-    rig.tick(now);
-    let link = rig.intake.status(now);
-    assert_eq!(link.frames as usize, encoded.frames - encoded.corrupted);
-    assert_eq!(link.crc_errors as usize, encoded.corrupted);
-    assert_eq!(link.queue_full, 0);
+    let config = demo_config::demo_config::<S>().unwrap();
+    let fw = frames::run_like_the_firmware::<S, N, M, Q>(&encoded.bytes, &config);
+    let h = fw.health;
+    assert_eq!(
+        h.decoder.accepted as usize,
+        encoded.frames - encoded.corrupted
+    );
+    assert_eq!(h.decoder.crc_errors as usize, encoded.corrupted);
+    assert_eq!(h.decoder.frames_lost as usize, encoded.corrupted);
+    assert_eq!(
+        h.decoder.bytes_skipped as usize,
+        encoded.garbage_bytes + 28 * encoded.corrupted
+    );
+    assert_eq!(h.intake.queue_full, 0);
+    // Every accepted frame but the end of input used.
+    assert_eq!(h.scan.used + 1, h.decoder.accepted);
+    assert!(fw.verdict.unwrap().is_clean());
 
-    let reports = rig.out.tracks();
+    let (messages, stats) = frames::decode_all(&fw.output);
+    assert_eq!(
+        stats.frames_lost + stats.crc_errors + stats.bytes_skipped,
+        0
+    );
+    let reports: Vec<TrackReport> = messages
+        .iter()
+        .filter_map(|m| match m {
+            Message::Track(t) => Some(*t),
+            _ => None,
+        })
+        .collect();
     let mut by_id: BTreeMap<u32, Vec<TrackReport>> = BTreeMap::new();
     for r in &reports {
         by_id.entry(r.track_id).or_default().push(*r);
@@ -506,9 +632,10 @@ fn demo_input_is_tracked<S: Scalar>() -> Vec<(u32, u32)> {
     let mut long_lived = Vec::new();
     for (id, rs) in &by_id {
         if rs.len() >= 10 {
-            // Every long-lived track follows one target throughout.
+            // Every long-lived track follows one target throughout (its
+            // reports while updated; coasting after the input ended).
             let mut common = targets_near(&rs[0]);
-            for r in rs {
+            for r in rs.iter().filter(|r| r.time_ms <= 59_000) {
                 common = common.intersection(&targets_near(r)).copied().collect();
             }
             assert_eq!(common.len(), 1, "track {id} follows {common:?}");
@@ -534,10 +661,13 @@ fn demo_input_is_tracked<S: Scalar>() -> Vec<(u32, u32)> {
 }
 
 #[test]
-fn demo_input_is_tracked_f64() {
-    let f64_ids = demo_input_is_tracked::<f64>();
-    assert_eq!(demo_input_is_tracked::<f32>(), f64_ids);
-    assert_eq!(demo_input_is_tracked::<Fix>(), f64_ids);
+fn demo_input_is_tracked_in_every_number_type() {
+    // The mps2 boards' capacities (32 tracks, 64 per scan, a queue of 128)
+    // and the micro:bit's (8, 24, 32).
+    let f64_ids = demo_input_is_tracked::<f64, 32, 64, 128>();
+    assert_eq!(demo_input_is_tracked::<f32, 32, 64, 128>(), f64_ids);
+    assert_eq!(demo_input_is_tracked::<Fix, 32, 64, 128>(), f64_ids);
+    assert_eq!(demo_input_is_tracked::<Fix, 8, 24, 32>(), f64_ids);
 }
 
 /// A TCAS encounter (`tcas-converging`: range/bearing with Mode C altitude,
@@ -561,13 +691,15 @@ fn run_tcas<S: Scalar>() -> Output {
         tracker,
         own: OwnAircraft::over_sea_level(v(scenario::TCAS_OWN_ALTITUDE_FT), S::ZERO),
         altitude: AltitudeTrackerConfig::default_for(AltitudeQuantum::ModeC).unwrap(),
+        clock: ClockConfig::new(1000).unwrap(),
     };
     let reports = frames::scenario_reports("tcas-converging", 3, 2).unwrap();
-    let mut queue = Queue::new();
-    let mut rig: Rig<S, 8, 8> = Rig::new(&mut queue, config);
+    let mut rig: Rig<S, 8, 8> = Rig::new(config);
+    let mut sensor = Sensor::default();
     for (k, r) in reports.iter().enumerate() {
-        rig.receive(&measurement_frame(*r));
-        rig.tick(k as u32 * 1000);
+        assert_eq!(r.time_ms, k as u32 * 1000);
+        rig.receive(&sensor.frame(*r));
+        rig.tick();
     }
     rig.out
 }
@@ -690,7 +822,8 @@ fn print_memory_sizes() {
             "ScanLoop<Fix, 8, 24>",
             std::mem::size_of::<Loop<Fix, 8, 24>>(),
         ),
-        ("Intake", std::mem::size_of::<Intake<'static>>()),
+        ("Intake<128>", std::mem::size_of::<Intake<128>>()),
+        ("Intake<32>", std::mem::size_of::<Intake<32>>()),
         (
             "MeasurementReport",
             std::mem::size_of::<MeasurementReport>(),
@@ -699,5 +832,86 @@ fn print_memory_sizes() {
     ] {
         eprintln!("{name}: {size} bytes");
     }
-    assert!(std::mem::size_of::<Loop<Fix, 8, 24>>() < 8 * 1024);
+    assert!(std::mem::size_of::<Loop<Fix, 8, 24>>() < 9 * 1024);
+}
+
+/// Capacity under clutter (abtrack::scan, "Capacity"): three confirmed
+/// tracks 4 km out, then a scan with room for 8 of 53 returns: 40 clutter
+/// returns within 500 m of the own aircraft, 10 more clutter returns 20 m
+/// from track 0's prediction (closer than the other tracks' targets are to
+/// theirs), and the three targets last (track 0's 3 m off, the others'
+/// 40 m off). First come, first served would keep only clutter; by gate
+/// distance alone track 0's clutter would take every slot; each confirmed
+/// track's nearest measurement is kept.
+#[test]
+fn confirmed_tracks_are_never_starved() {
+    fn run<S: Scalar>() {
+        let config = demo_config::demo_config::<S>().unwrap();
+        let mut scan_loop: Box<Loop<S, 8, 8>> = Box::new(Loop::new());
+        let mut out = Output::default();
+        let truth = |k: u32, n: usize| -> [f64; 2] {
+            let angle = n as f64 * 2.0;
+            let r = 4000.0 - 50.0 * k as f64;
+            [r * angle.cos(), r * angle.sin()]
+        };
+        let at_xy = |t: u32, p: [f64; 2]| {
+            MeasurementReport::cartesian_from_metres(t, 1, p[0], p[1], None).unwrap()
+        };
+        let mut q = Box::new(MeasurementQueue::<128>::new());
+        for k in 0..4 {
+            for n in 0..3 {
+                q.push(at_xy(k * 1000, truth(k, n))).unwrap();
+            }
+            scan_loop.on_tick(&config, q.as_mut(), out.sink()).unwrap();
+        }
+        assert_eq!(
+            scan_loop
+                .table()
+                .tracks()
+                .filter(|t| t.is_confirmed())
+                .count(),
+            3
+        );
+        let mut rng = Lcg(7);
+        let k = 4;
+        let t = k * 1000;
+        for _ in 0..40 {
+            q.push(at_xy(t, [500.0 * rng.signed(), 350.0 * rng.signed()]))
+                .unwrap();
+        }
+        let p0 = truth(k, 0);
+        for _ in 0..10 {
+            let angle = rng.signed() * std::f64::consts::PI;
+            q.push(at_xy(
+                t,
+                [p0[0] + 20.0 * angle.cos(), p0[1] + 20.0 * angle.sin()],
+            ))
+            .unwrap();
+        }
+        q.push(at_xy(t, [p0[0] + 3.0, p0[1] - 2.0])).unwrap();
+        for n in 1..3 {
+            let p = truth(k, n);
+            q.push(at_xy(t, [p[0] + 40.0, p[1]])).unwrap();
+        }
+        let before = out.tracks().len();
+        let tick = scan_loop.on_tick(&config, q.as_mut(), out.sink()).unwrap();
+        let c = tick.summary.counts;
+        assert_eq!((c.used, c.over_capacity), (8, 45), "{c}");
+        assert_eq!(c.updated, 3, "{c}");
+        let tracks = &out.tracks()[before..];
+        assert_eq!(tracks.len(), 3);
+        for r in tracks {
+            assert_eq!(r.status, TrackStatus::Confirmed);
+            let d = (0..3)
+                .map(|n| {
+                    let p = truth(k, n);
+                    (p[0] - r.x_cm as f64 / 100.0).hypot(p[1] - r.y_cm as f64 / 100.0)
+                })
+                .fold(f64::INFINITY, f64::min);
+            assert!(d < 45.0, "{r:?}: {d} m from its target");
+        }
+    }
+    run::<f64>();
+    run::<f32>();
+    run::<Fix>();
 }

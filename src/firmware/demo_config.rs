@@ -3,17 +3,21 @@
 //! `parallel-200m`: σ = 20 m per axis, T = 1 s, targets up to ~150 m/s,
 //! clutter over a 10 km × 10 km square), and the own aircraft at the origin.
 //!
-//! Depends on the library only: the firmware includes it (`#[path]`), and so
-//! does `host-tests/tests/scan_loop.rs`, which runs this exact configuration
-//! on the demo's input on the host.
+//! Depends on the library only: the firmware (demo and soak) includes it
+//! (`#[path]`), and so do the host tests, which run this exact
+//! configuration on the same inputs on the host.
+// Each includer uses part of it.
+#![allow(dead_code)]
 
 use abtrack::filter::altitude::{AltitudeQuantum, AltitudeTrackerConfig};
-use abtrack::scan::ScanConfig;
+use abtrack::scan::{ClockConfig, ScanConfig};
 use abtrack::tcas::OwnAircraft;
 use abtrack::track::{Gate, TrackerConfig, Volume};
 use abtrack::{Gains, Scalar};
 
-/// The scan period, ms: the sensor's (one scan per second).
+/// The scan period, ms: the sensor's (one scan per second). The scan
+/// clock's windows are `ClockConfig::new`'s: late up to one period after
+/// the scan, a silence of up to 30 periods is a gap, a longer step a jump.
 pub const SCAN_PERIOD_MS: u32 = 1000;
 
 /// The own aircraft: level at 8000 ft over the sea (TCAS sensitivity level
@@ -41,6 +45,14 @@ pub const SURVEILLANCE_HALF_WIDTH_M: f64 = 5000.0;
 
 /// The configuration in the number type `S`; `Err` names what was refused.
 pub fn demo_config<S: Scalar>() -> Result<ScanConfig<S, Gains<S>>, &'static str> {
+    config_for_square(SURVEILLANCE_HALF_WIDTH_M)
+}
+
+/// The demo's configuration with a surveillance square of ±`half_width_m`
+/// (the soak's sky is ±16 km).
+pub fn config_for_square<S: Scalar>(
+    half_width_m: f64,
+) -> Result<ScanConfig<S, Gains<S>>, &'static str> {
     let s = |v: f64| S::try_from_f64(v).map_err(|_| "a constant is not representable");
     let gains = Gains::alpha_beta_f64(ALPHA, BETA).map_err(|_| "gains refused")?;
     let gate = Gate::uncertainty(
@@ -49,7 +61,7 @@ pub fn demo_config<S: Scalar>() -> Result<ScanConfig<S, Gains<S>>, &'static str>
         s(MAX_ACCELERATION_M_PER_S2)?,
     )
     .map_err(|_| "gate refused")?;
-    let half = s(SURVEILLANCE_HALF_WIDTH_M)?;
+    let half = s(half_width_m)?;
     let volume = Volume::new([-half, -half], [half, half]).map_err(|_| "volume refused")?;
     let margin = s(INITIATION_MARGIN_M)?;
     let tracker = TrackerConfig::new(gains, gate, s(MAX_SPEED_M_PER_S)?)
@@ -58,9 +70,11 @@ pub fn demo_config<S: Scalar>() -> Result<ScanConfig<S, Gains<S>>, &'static str>
         .with_volume(volume);
     let altitude = AltitudeTrackerConfig::default_for(AltitudeQuantum::ModeC)
         .map_err(|_| "altitude tracker refused")?;
+    let clock = ClockConfig::new(SCAN_PERIOD_MS).map_err(|_| "scan period refused")?;
     Ok(ScanConfig {
         tracker,
         own: OwnAircraft::over_sea_level(s(OWN_ALTITUDE_FT)?, S::ZERO),
         altitude,
+        clock,
     })
 }

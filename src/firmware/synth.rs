@@ -1,4 +1,4 @@
-//! Deterministic synthetic data for the firmware (demo, self-test, benchmark):
+//! Deterministic synthetic data for the firmware (self-test, benchmark, soak):
 //! a tiny pseudo-random generator and target trajectories, in `f64` (the
 //! truth is always computed in `f64`; the filters under test get it converted
 //! to their own numeric type). No std, no heap, no panics.
@@ -90,7 +90,7 @@ impl TurningTarget {
                 velocity: self.velocity,
             };
         }
-        let (s, c) = libm::sincos(self.turn_rate * turning);
+        let (s, c) = <f64 as abtrack::Scalar>::sin_cos(self.turn_rate * turning);
         // ∫₀^τ R(ωu)·v du = (1/ω)·[[sin ωτ, −(1−cos ωτ)], [1−cos ωτ, sin ωτ]]·v
         let w = self.turn_rate;
         position[0] += (s * vx - (1.0 - c) * vy) / w;
@@ -100,4 +100,113 @@ impl TurningTarget {
             velocity: [c * vx - s * vy, s * vx + c * vy],
         }
     }
+}
+
+// ---------------------------------------------------------------------------
+// The soak's sky: 45 intruders on circular orbits, clutter, Pd 0.9
+// ---------------------------------------------------------------------------
+
+/// Intruders of the soak.
+pub const SOAK_TARGETS: usize = 45;
+/// Half-width of the surveillance square, m.
+pub const SOAK_HALF_WIDTH_M: f64 = 16_000.0;
+/// False measurements per scan, uniform over the square (0.02 per km²).
+pub const SOAK_CLUTTER_PER_SCAN: usize = 20;
+/// Detection probability of each intruder in each scan.
+pub const SOAK_DETECTION_PROBABILITY: f64 = 0.9;
+/// Measurement noise per axis, m (the demo sensor's).
+pub const SOAK_SIGMA_M: f64 = 20.0;
+/// The most measurements a soak scan has.
+pub const SOAK_MAX_PER_SCAN: usize = SOAK_TARGETS + SOAK_CLUTTER_PER_SCAN;
+
+/// A target flying a circle at constant speed for ever (a holding pattern):
+/// it stays in the surveillance square for the whole day.
+#[derive(Debug, Clone, Copy)]
+pub struct Orbit {
+    pub centre: [f64; 2],
+    pub radius: f64,
+    pub speed: f64,
+    /// Angle at t = 0, rad.
+    pub phase: f64,
+    /// +1 counter-clockwise, −1 clockwise.
+    pub direction: f64,
+}
+
+impl Orbit {
+    /// Intruder `i` of the soak: centres on a 9 × 5 grid 3.5 km apart,
+    /// radii 1.0–1.4 km, speeds 30–50 m/s (centripetal acceleration at most
+    /// 1.8 m/s²), phases and directions spread.
+    pub fn soak(i: usize) -> Self {
+        let column = (i % 9) as f64 - 4.0;
+        let row = (i / 9) as f64 - 2.0;
+        Orbit {
+            centre: [3500.0 * column, 3500.0 * row],
+            radius: 1000.0 + 100.0 * (i % 5) as f64,
+            speed: 30.0 + 5.0 * ((i / 5) % 5) as f64,
+            phase: 0.7 * i as f64,
+            direction: if i.is_multiple_of(2) { 1.0 } else { -1.0 },
+        }
+    }
+
+    /// The true state at time `t` (s).
+    pub fn at(&self, t: f64) -> PlaneState {
+        let omega = self.direction * self.speed / self.radius;
+        let (s, c) = <f64 as abtrack::Scalar>::sin_cos(self.phase + omega * t);
+        PlaneState {
+            position: [
+                self.centre[0] + self.radius * c,
+                self.centre[1] + self.radius * s,
+            ],
+            velocity: [-self.radius * omega * s, self.radius * omega * c],
+        }
+    }
+}
+
+/// The measurements of soak scan `k` (time `k` s, sensor clock `k`·1000
+/// ms) into `out`, shuffled; returns how many. Each intruder is detected
+/// with [`SOAK_DETECTION_PROBABILITY`] and measured with noise of
+/// [`SOAK_SIGMA_M`] per axis; [`SOAK_CLUTTER_PER_SCAN`] false measurements
+/// are uniform over the square. Each scan has its own generator (seeded
+/// from `k`), so any scan can be generated alone, on the board or on the
+/// host, bit for bit the same (f64 and libm on both).
+pub fn soak_scan(k: u32, out: &mut [abtrack::wire::MeasurementReport; SOAK_MAX_PER_SCAN]) -> usize {
+    let mut rng =
+        Lcg::new(0x50AC_0000_0000_0000 ^ u64::from(k).wrapping_mul(0x9E37_79B9_7F4A_7C15));
+    let t = f64::from(k);
+    let time_ms = k.wrapping_mul(1000);
+    let mut n = 0;
+    let mut put =
+        |x: f64, y: f64, out: &mut [abtrack::wire::MeasurementReport; SOAK_MAX_PER_SCAN]| {
+            // Inside ±16 km: the conversion cannot fail.
+            if let (Ok(m), Some(slot)) = (
+                abtrack::wire::MeasurementReport::cartesian_from_metres(time_ms, 1, x, y, None),
+                out.get_mut(n),
+            ) {
+                *slot = m;
+                n += 1;
+            }
+        };
+    for i in 0..SOAK_TARGETS {
+        let truth = Orbit::soak(i).at(t);
+        let detected = rng.unit() < SOAK_DETECTION_PROBABILITY;
+        let (nx, ny) = (rng.noise(SOAK_SIGMA_M), rng.noise(SOAK_SIGMA_M));
+        if detected {
+            put(truth.position[0] + nx, truth.position[1] + ny, out);
+        }
+    }
+    for _ in 0..SOAK_CLUTTER_PER_SCAN {
+        let x = rng.uniform(-SOAK_HALF_WIDTH_M, SOAK_HALF_WIDTH_M);
+        let y = rng.uniform(-SOAK_HALF_WIDTH_M, SOAK_HALF_WIDTH_M);
+        put(x, y, out);
+    }
+    // Fisher–Yates: the sensor does not sort its reports.
+    let mut i = n;
+    while i > 1 {
+        let j = rng.index(i);
+        i -= 1;
+        if j < i && i < out.len() {
+            out.swap(i, j);
+        }
+    }
+    n
 }

@@ -948,6 +948,8 @@ impl<S: TrackNumeric, F: TrackFilter<S>, const N: usize, const M: usize> TrackTa
         report: &mut ScanReport,
     ) {
         self.pending.fill(None);
+        // Only the codes of this scan's measurements: the slots beyond them
+        // hold no measurement (issue 11: they were counted outside gates).
         for ((pending, obs), code) in self
             .pending
             .iter_mut()

@@ -4,13 +4,16 @@
 //! ```text
 //! frames encode (--scenario NAME [--seed N] | --csv FILE) [--sensor ID]
 //!               [--corrupt-every K] [--garbage-every K] --out FILE
-//! frames decode FILE [--messages] [--check]
+//! frames encode --fault KIND [--capacity M] [--fault-seed N] --out FILE
+//! frames decode FILE [--messages | --scans-csv] [--check]
+//! frames layout
 //! frames --help
 //! ```
 //!
 //! The frame format is documented in `abtrack::wire`.
 
-use abtrack_host_tests::frames::{self, Faults};
+use abtrack::wire::ScanCounts;
+use abtrack_host_tests::frames::{self, Fault, Faults};
 use abtrack_host_tests::scenario::{self, SCENARIO_NAMES};
 use std::io::Write;
 use std::path::PathBuf;
@@ -22,7 +25,9 @@ frames: abtrack wire frames for the demo firmware's UART (format: abtrack::wire)
 USAGE:
     frames encode (--scenario NAME [--seed N] | --csv FILE) [--sensor ID]
                   [--corrupt-every K] [--garbage-every K] --out FILE
-    frames decode FILE [--messages] [--check]
+    frames encode --fault KIND [--capacity M] [--fault-seed N] --out FILE
+    frames decode FILE [--messages | --scans-csv] [--check]
+    frames layout
     frames --help
 
 encode writes one measurement frame per measurement, in time order:
@@ -38,23 +43,44 @@ encode writes one measurement frame per measurement, in time order:
     --out FILE          output file
   and prints what it wrote (frames, corrupted frames, garbage bytes, the
   largest number of measurements at one time) on stdout.
+  Frames are numbered from 0 (the header's sequence number).
+
+encode --fault writes the demo's input (two-crossing, seed 1) with one fault
+of the fault-injection tests: garbage, sync-garbage, crc-errors, truncated,
+oversize, flood (10 x --capacity extra measurements at t = 30 s; default 64),
+gap, backwards, far-clock, jump, out-of-range, clutter-storm, reversed,
+garbage-only (see docs/firmware-runtime.md).
+
+layout prints the frame format (every layout and counter list, from the
+code's own tables) as Markdown: docs/firmware-runtime.md includes it.
 
 decode reads a byte stream (e.g. the demo's UART output) and prints a
-summary of the frames in it: scans, tracks, advisories, receiver counters;
---messages prints every message, one per line, instead. With --check the exit
+summary of the frames in it: scans, tracks, advisories, health counters;
+--messages prints every message, one per line, instead; --scans-csv prints the
+scan summaries as CSV (time_s, interval_ms, advisory, then every count). With --check the exit
 status is 1 if the stream is not clean frames only (a CRC error, a skipped
-or left-over byte): a firmware's report output must be.
+or left-over byte, a gap in the sequence numbers): a firmware's report
+output must be.
 ";
 
 #[derive(Debug, PartialEq)]
 enum Source {
     Scenario(String, u64),
     Csv(PathBuf),
+    Fault(Fault, usize),
+}
+
+#[derive(Debug, PartialEq, Clone, Copy)]
+enum Output {
+    Summary,
+    Messages,
+    Csv,
 }
 
 #[derive(Debug, PartialEq)]
 enum Command {
     Help,
+    Layout,
     Encode {
         source: Source,
         sensor: u8,
@@ -63,7 +89,7 @@ enum Command {
     },
     Decode {
         file: PathBuf,
-        messages: bool,
+        output: Output,
         check: bool,
     },
 }
@@ -80,6 +106,12 @@ fn parse(args: &[String]) -> Result<Command, String> {
     if sub == "-h" || sub == "--help" {
         return Ok(Command::Help);
     }
+    if sub == "layout" {
+        return match args.get(1) {
+            None => Ok(Command::Layout),
+            Some(a) => Err(format!("layout takes no argument ('{a}')")),
+        };
+    }
     let mut scenario_name = None;
     let mut seed = 0u64;
     let mut csv = None;
@@ -87,8 +119,10 @@ fn parse(args: &[String]) -> Result<Command, String> {
     let mut faults = Faults::default();
     let mut out = None;
     let mut file = None;
-    let mut messages = false;
+    let mut output = Output::Summary;
     let mut check = false;
+    let mut fault = None;
+    let mut capacity = 64usize;
     let mut it = args.iter().skip(1);
     while let Some(arg) = it.next() {
         let mut value = |name: &str| -> Result<String, String> {
@@ -106,7 +140,16 @@ fn parse(args: &[String]) -> Result<Command, String> {
             "--garbage-every" => faults.garbage_every = Some(parse_number(arg, &value(arg)?)?),
             "--fault-seed" => faults.seed = parse_number(arg, &value(arg)?)?,
             "--out" => out = Some(PathBuf::from(value(arg)?)),
-            "--messages" => messages = true,
+            "--messages" => output = Output::Messages,
+            "--scans-csv" => output = Output::Csv,
+            "--fault" => {
+                let name = value(arg)?;
+                fault = Some(Fault::from_name(&name).ok_or_else(|| {
+                    let known: Vec<&str> = Fault::ALL.iter().map(|f| f.name()).collect();
+                    format!("unknown fault '{name}' (known: {})", known.join(", "))
+                })?);
+            }
+            "--capacity" => capacity = parse_number(arg, &value(arg)?)?,
             "--check" => check = true,
             other if !other.starts_with('-') && file.is_none() => file = Some(PathBuf::from(other)),
             other => return Err(format!("unknown argument '{other}' (try --help)")),
@@ -114,8 +157,9 @@ fn parse(args: &[String]) -> Result<Command, String> {
     }
     match sub.as_str() {
         "encode" => {
-            let source = match (scenario_name, csv) {
-                (Some(name), None) => {
+            let source = match (scenario_name, csv, fault) {
+                (None, None, Some(fault)) => Source::Fault(fault, capacity),
+                (Some(name), None, None) => {
                     if scenario::info(&name).is_none() {
                         return Err(format!(
                             "unknown scenario '{name}' (known: {})",
@@ -124,8 +168,12 @@ fn parse(args: &[String]) -> Result<Command, String> {
                     }
                     Source::Scenario(name, seed)
                 }
-                (None, Some(path)) => Source::Csv(path),
-                _ => return Err("encode needs one of --scenario NAME or --csv FILE".into()),
+                (None, Some(path), None) => Source::Csv(path),
+                _ => {
+                    return Err(
+                        "encode needs one of --scenario NAME, --csv FILE or --fault KIND".into(),
+                    )
+                }
             };
             let out = out.ok_or("encode needs --out FILE")?;
             Ok(Command::Encode {
@@ -137,7 +185,7 @@ fn parse(args: &[String]) -> Result<Command, String> {
         }
         "decode" => Ok(Command::Decode {
             file: file.ok_or("decode needs a FILE")?,
-            messages,
+            output,
             check,
         }),
         other => Err(format!(
@@ -149,28 +197,40 @@ fn parse(args: &[String]) -> Result<Command, String> {
 fn run(command: Command) -> Result<(), String> {
     match command {
         Command::Help => print!("{USAGE}"),
+        Command::Layout => print!("{}", frames::layout_markdown()),
         Command::Encode {
             source,
             sensor,
             faults,
             out,
         } => {
-            let (reports, what) = match &source {
+            let (encoded, what) = match &source {
+                Source::Fault(fault, capacity) => {
+                    let stream = frames::fault_stream(*fault, *capacity, faults.seed)?;
+                    let encoded = frames::Encoded {
+                        frames: stream.frames,
+                        corrupted: stream.damaged,
+                        garbage_bytes: stream.garbage_bytes,
+                        max_per_scan: stream.scans.iter().map(|s| s.2).max().unwrap_or(0),
+                        bytes: stream.bytes,
+                    };
+                    (
+                        encoded,
+                        format!("two-crossing seed 1 with fault {}", fault.name()),
+                    )
+                }
                 Source::Scenario(name, seed) => (
-                    frames::scenario_reports(name, *seed, sensor)?,
+                    frames::encode(&frames::scenario_reports(name, *seed, sensor)?, faults),
                     format!("{name} seed {seed}"),
                 ),
                 Source::Csv(path) => {
                     let text = std::fs::read_to_string(path)
                         .map_err(|e| format!("cannot read {}: {e}", path.display()))?;
-                    (
-                        frames::reports_from_csv(&text, sensor)
-                            .map_err(|e| format!("{}: {e}", path.display()))?,
-                        path.display().to_string(),
-                    )
+                    let reports = frames::reports_from_csv(&text, sensor)
+                        .map_err(|e| format!("{}: {e}", path.display()))?;
+                    (frames::encode(&reports, faults), path.display().to_string())
                 }
             };
-            let encoded = frames::encode(&reports, faults);
             if let Some(dir) = out.parent().filter(|d| !d.as_os_str().is_empty()) {
                 std::fs::create_dir_all(dir)
                     .map_err(|e| format!("cannot create {}: {e}", dir.display()))?;
@@ -178,7 +238,7 @@ fn run(command: Command) -> Result<(), String> {
             std::fs::write(&out, &encoded.bytes)
                 .map_err(|e| format!("cannot write {}: {e}", out.display()))?;
             println!(
-                "{what}: {} frames ({} corrupted), {} garbage bytes, {} bytes, at most {} measurements at one time -> {}",
+                "{what}: {} frames ({} damaged), {} garbage bytes, {} bytes, at most {} measurements at one time -> {}",
                 encoded.frames,
                 encoded.corrupted,
                 encoded.garbage_bytes,
@@ -189,19 +249,19 @@ fn run(command: Command) -> Result<(), String> {
         }
         Command::Decode {
             file,
-            messages,
+            output,
             check,
         } => {
             let bytes =
                 std::fs::read(&file).map_err(|e| format!("cannot read {}: {e}", file.display()))?;
-            let text = if messages {
-                frames::decode_all(&bytes)
+            let text = match output {
+                Output::Messages => frames::decode_all(&bytes)
                     .0
                     .iter()
                     .map(|m| frames::message_line(m) + "\n")
-                    .collect()
-            } else {
-                frames::summarise(&bytes).to_text()
+                    .collect(),
+                Output::Csv => scans_csv(&frames::summarise(&bytes).scans),
+                Output::Summary => frames::summarise(&bytes).to_text(),
             };
             // A closed pipe (`| head`) ends the output quietly.
             let mut out = std::io::stdout().lock();
@@ -209,12 +269,19 @@ fn run(command: Command) -> Result<(), String> {
             if check {
                 let (messages, stats) = frames::decode_all(&bytes);
                 let in_frames: usize = messages.iter().map(|m| m.buffer_len()).sum();
-                if stats.crc_errors > 0 || stats.bytes_skipped > 0 || in_frames != bytes.len() {
+                if stats.crc_errors > 0
+                    || stats.bytes_skipped > 0
+                    || stats.frames_lost > 0
+                    || stats.out_of_sequence > 0
+                    || in_frames != bytes.len()
+                {
                     return Err(format!(
-                        "{}: not clean frames: {} CRC errors, {} bytes skipped, {} of {} bytes in frames",
+                        "{}: not clean frames: {} CRC errors, {} bytes skipped, {} frames lost, {} out of sequence, {} of {} bytes in frames",
                         file.display(),
                         stats.crc_errors,
                         stats.bytes_skipped,
+                        stats.frames_lost,
+                        stats.out_of_sequence,
                         in_frames,
                         bytes.len()
                     ));
@@ -223,6 +290,26 @@ fn run(command: Command) -> Result<(), String> {
         }
     }
     Ok(())
+}
+
+/// The scan summaries as CSV: one column per count, named as in
+/// [`ScanCounts::NAMES`].
+fn scans_csv(scans: &[abtrack::wire::ScanSummary]) -> String {
+    let mut out = format!(
+        "time_s,interval_ms,advisory,{}\n",
+        ScanCounts::NAMES.join(",")
+    );
+    for s in scans {
+        let counts: Vec<String> = s.counts.values().iter().map(u16::to_string).collect();
+        out += &format!(
+            "{},{},{},{}\n",
+            s.time_ms as f64 / 1000.0,
+            s.interval_ms,
+            s.highest_advisory.name(),
+            counts.join(",")
+        );
+    }
+    out
 }
 
 fn main() -> ExitCode {
@@ -279,7 +366,7 @@ mod tests {
             parse(&args(&["decode", "r.bin", "--messages"])),
             Ok(Command::Decode {
                 file: PathBuf::from("r.bin"),
-                messages: true,
+                output: Output::Messages,
                 check: false
             })
         );
@@ -294,5 +381,18 @@ mod tests {
         assert!(parse(&args(&["encode", "--sensor", "300"])).is_err());
         assert!(parse(&args(&["decode"])).is_err());
         assert!(parse(&args(&["frobnicate"])).is_err());
+        assert_eq!(parse(&args(&["layout"])), Ok(Command::Layout));
+        assert!(parse(&args(&["layout", "x"])).is_err());
+        assert!(parse(&args(&["encode", "--fault", "nope", "--out", "x"])).is_err());
+        assert!(parse(&args(&[
+            "encode",
+            "--fault",
+            "gap",
+            "--scenario",
+            "two-crossing",
+            "--out",
+            "x"
+        ]))
+        .is_err());
     }
 }

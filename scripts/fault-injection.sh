@@ -1,0 +1,34 @@
+#!/usr/bin/env bash
+# Fault injection on the three boards through the real UART path, and
+# repeated runs of the demo compared byte for byte
+# (host-tests/tests/fault_injection.rs); writes the outcome tables to
+# results/fault-injection-<board>.md. scripts/test.sh runs the same tests
+# without writing the tables.
+#
+#   scripts/fault-injection.sh [target | board | core ...]   (default: all three)
+set -euo pipefail
+cd "$(dirname "$0")/.."
+# shellcheck source=scripts/setup.sh
+. scripts/setup.sh
+
+targets=()
+for arg in "$@"; do
+    targets+=("$(target_for "$arg")") || die "unknown target '$arg'"
+done
+[ ${#targets[@]} -gt 0 ] || targets=("${ABTRACK_TARGETS[@]}")
+
+ensure_targets "${targets[@]}"
+ensure_host_linker
+ensure_qemu
+ensure_defmt_print
+
+mkdir -p results
+for t in "${targets[@]}"; do
+    b=$(board_for_target "$t")
+    (
+        cd host-tests
+        ABTRACK_FAULT_RESULTS="$PWD/../results" \
+            cargo test --release --test fault_injection -- --ignored --test-threads=1 "${b//-/_}"
+    )
+    say "results/fault-injection-$b.md"
+done
