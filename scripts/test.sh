@@ -2,7 +2,8 @@
 # Runs every test of the project:
 #   1. formatting (cargo fmt --check, root crate and host-tests),
 #   2. host tests (cd host-tests && cargo test --release),
-#   3. the library alone for the three thumb targets (no firmware feature),
+#   3. the library alone for the three thumb targets (no default features),
+#      its dependency tree (no firmware crates) and `cargo publish --dry-run`,
 #   4. the firmware (demo, self-test, benchmark) for the three targets,
 #   5. the demo and the on-target self-tests (selftest, selftest-tracking)
 #      under QEMU on the three boards
@@ -59,12 +60,28 @@ run_selftest() {
     }
 }
 
+# A library user's build (default features, any target) must not pull in
+# the firmware's crates.
+library_has_no_firmware_dependencies() {
+    local deps firmware_crates
+    deps=$(cargo tree -p abtrack -e normal,build --target all --prefix none --format '{p}') || return
+    firmware_crates=$(grep -E '^(cortex-m|cortex-m-rt|defmt|defmt-semihosting|defmt-rtt|panic-probe|qemu-exit) ' <<<"$deps" | sort -u)
+    if [ -n "$firmware_crates" ]; then
+        echo "the library's default build depends on firmware crates:" >&2
+        echo "$firmware_crates" >&2
+        return 1
+    fi
+    echo "library dependencies: $(sed 's/ .*//' <<<"$deps" | sort -u | tr '\n' ' ')"
+}
+
 step "cargo fmt --check" cargo fmt --check
 step "cargo fmt --check (host-tests)" in_host_tests cargo fmt --check
 step "host tests (cargo test --release)" in_host_tests cargo test --release
 for t in "${ABTRACK_TARGETS[@]}"; do
     step "library alone for $t" cargo build --release --lib --no-default-features --target "$t"
 done
+step "library: no firmware crates among its dependencies" library_has_no_firmware_dependencies
+step "library: cargo publish --dry-run" cargo publish --quiet --dry-run -p abtrack --allow-dirty
 for t in "${ABTRACK_TARGETS[@]}"; do
     step "firmware build for $t" cargo build --release --target "$t"
 done
