@@ -42,7 +42,7 @@ size_tool=$(find_size_tool) || {
     size_tool=$(find_size_tool) || die "llvm-tools installed but llvm-size not found"
 }
 
-bins=(abtrack-firmware selftest selftest-tracking bench)
+mapfile -t bins < <(firmware_bins)
 printf '%-22s %-11s %-17s %10s %10s\n' target board binary "flash (B)" "RAM (B)"
 for t in "${ABTRACK_TARGETS[@]}"; do
     cargo build --quiet --release --target "$t"

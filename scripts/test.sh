@@ -4,15 +4,19 @@
 #   2. host tests (cd host-tests && cargo test --release),
 #   3. the library alone for the three thumb targets (no default features),
 #      its dependency tree (no firmware crates) and `cargo publish --dry-run`,
-#   4. the firmware (demo, self-test, benchmark) for the three targets,
+#   4. the firmware (every binary of boards/qemu) for the three targets; no
+#      call into core::panicking in any release ELF; the stack below the
+#      static data (flip-link); a deliberate stack overflow ends in a clean
+#      HardFault report on each board; stack high-water marks with 25 %
+#      margin (scripts/stack.sh),
 #   5. the demo and the on-target self-tests (selftest, selftest-tracking)
 #      under QEMU on the three boards
 #      (mps2-an386 / Cortex-M4F, mps2-an385 / Cortex-M3, microbit / Cortex-M0).
 #
 #   scripts/test.sh
 #
-# Installs what is missing (Rust targets, rustfmt, qemu-system-arm and a C
-# compiler when root, defmt-print). Every step runs even if an earlier one
+# Installs what is missing (Rust targets, rustfmt, qemu-system-arm, a C
+# compiler and llvm when root, defmt-print, flip-link). Every step runs even if an earlier one
 # failed; the summary lists them and the exit status is non-zero if any
 # failed. `.ci/run` calls this.
 set -euo pipefail
@@ -25,6 +29,7 @@ ensure_rustfmt
 ensure_host_linker
 ensure_qemu
 ensure_defmt_print
+ensure_llvm_tools
 
 results=()
 failures=0
@@ -74,6 +79,55 @@ library_has_no_firmware_dependencies() {
     echo "library dependencies: $(sed 's/ .*//' <<<"$deps" | sort -u | tr '\n' ' ')"
 }
 
+# Every release firmware ELF of the three targets.
+firmware_elves() {
+    local t b
+    for t in "${ABTRACK_TARGETS[@]}"; do
+        for b in $(firmware_bins); do
+            echo "target/$t/release/$b"
+        done
+    done
+}
+
+check_no_panic_calls() {
+    local tool
+    tool=$(firmware_check_tool) || return
+    # shellcheck disable=SC2046 # one ELF per word
+    "$tool" panics $(firmware_elves)
+}
+
+check_stack_layout() {
+    local tool
+    tool=$(firmware_check_tool) || return
+    # RAM starts at 0x2000_0000 on the three boards (boards/*/memory.x).
+    # shellcheck disable=SC2046
+    "$tool" layout --ram-origin 0x20000000 $(firmware_elves)
+}
+
+# The deliberate overflow (src/bin/stack_overflow.rs) must end in the
+# HardFault handler's report with the statics intact and exit status 1; not
+# in QEMU's "Lockup" abort (134), a hang (124) or a normal exit.
+run_stack_overflow() {
+    local target=$1 log="$log_dir/stack-overflow-$1.log" status=0
+    cargo run --release --target "$target" --bin stack-overflow 2>&1 | tee "$log" || status=$?
+    if [ "$status" -ne 1 ]; then
+        echo "stack-overflow on $target: exit status $status, expected 1 (the HardFault handler's)" >&2
+        return 1
+    fi
+    local expected
+    for expected in 'hard fault: stack overflow' 'statics intact: 256 of 256' \
+        'hard fault handler: [0-9]* bytes of stack used'; do
+        grep -q "$expected" "$log" || {
+            echo "stack-overflow on $target: no '$expected' in the output" >&2
+            return 1
+        }
+    done
+    if grep -qi 'lockup' "$log"; then
+        echo "stack-overflow on $target: QEMU reports a lockup" >&2
+        return 1
+    fi
+}
+
 step "cargo fmt --check" cargo fmt --check
 step "cargo fmt --check (host-tests)" in_host_tests cargo fmt --check
 step "host tests (cargo test --release)" in_host_tests cargo test --release
@@ -85,6 +139,12 @@ step "library: cargo publish --dry-run" cargo publish --quiet --dry-run -p abtra
 for t in "${ABTRACK_TARGETS[@]}"; do
     step "firmware build for $t" cargo build --release --target "$t"
 done
+step "firmware: no call into core::panicking in any release ELF" check_no_panic_calls
+step "firmware: stack below the static data in every release ELF (flip-link)" check_stack_layout
+for t in "${ABTRACK_TARGETS[@]}"; do
+    step "stack overflow faults cleanly on $(board_for_target "$t")" run_stack_overflow "$t"
+done
+step "stack high-water marks, demo and fault inputs (>= 25 % margin)" bash scripts/stack.sh
 for t in "${ABTRACK_TARGETS[@]}"; do
     step "demo on $(board_for_target "$t")" cargo run --release --target "$t" --bin abtrack-firmware
 done

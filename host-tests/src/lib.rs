@@ -15,10 +15,13 @@
 //!   the metrics and experiments.
 //! * [`experiments`]: the `experiments` tool's groups and output helpers.
 //! * [`frames`]: wire frames for the demo firmware's UART (the `frames` tool).
+//! * [`firmware_elf`]: checks on the release firmware ELFs (panic calls, stack
+//!   layout; the `firmware-check` tool).
 
 pub mod cli;
 pub mod csv_input;
 pub mod experiments;
+pub mod firmware_elf;
 pub mod frames;
 pub mod kalman;
 pub mod metrics;
