@@ -3,10 +3,10 @@
 //! With flip-link the stack sits below the static data and grows towards
 //! the bottom of RAM, so the overflow runs off the bottom of RAM and faults;
 //! the HardFault handler (src/firmware/board.rs) moves the stack pointer back
-//! to the top of the stack, reports the overflow and leaves QEMU with status
-//! 1. Its hook here then checks that every word of a static guard block,
-//! filled with a known pattern at start-up, still holds it: the overflow
-//! corrupted no static data.
+//! to the top of the stack, reports the overflow, runs this image's hook and
+//! leaves QEMU with status 1. The hook checks that every word of a static
+//! guard block, filled with a known pattern at start-up, still holds it: the
+//! overflow corrupted no static data.
 //!
 //! scripts/test.sh runs it on the three boards and expects exactly that: the
 //! report, the guard intact, exit status 1; not QEMU's "Lockup" (status 134,

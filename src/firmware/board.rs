@@ -386,7 +386,7 @@ fn report_fault(frame: usize, bottom: usize, top: usize) {
             bottom,
             top
         );
-    } else if frame.saturating_add(FRAME_LEN) <= top && frame % 4 == 0 {
+    } else if frame.saturating_add(FRAME_LEN) <= top && frame.is_multiple_of(4) {
         // SAFETY: the exception frame's eight words lie within the stack
         // (checked above); the sixth is the stacked PC (ARMv7-M ARM B1.5.6).
         let pc = unsafe { ((frame + 24) as *const u32).read_volatile() };
@@ -409,8 +409,10 @@ fn report_fault(frame: usize, bottom: usize, top: usize) {
 /// A binary's own check to run after a hard fault has been reported (the
 /// stack-overflow image checks its statics); called once, then the run
 /// fails.
-static FAULT_HOOK: cortex_m::interrupt::Mutex<Cell<Option<fn()>>> =
-    cortex_m::interrupt::Mutex::new(Cell::new(None));
+static FAULT_HOOK: Installed<fn()> = cortex_m::interrupt::Mutex::new(Cell::new(None));
+
+/// A function a binary installs into board.rs (read in handlers).
+type Installed<F> = cortex_m::interrupt::Mutex<Cell<Option<F>>>;
 
 /// Installs the hook [`hard_fault`] calls after its report.
 #[allow(dead_code)] // only the stack-overflow image has one
@@ -422,7 +424,7 @@ pub fn set_fault_hook(hook: fn()) {
 /// crate, cortex-m-rt sends every device interrupt to `DefaultHandler`;
 /// binaries that enable one route it here. It returns false for an
 /// interrupt it does not handle.
-static INTERRUPT_HANDLER: cortex_m::interrupt::Mutex<Cell<Option<InterruptHandler>>> =
+static INTERRUPT_HANDLER: Installed<InterruptHandler> =
     cortex_m::interrupt::Mutex::new(Cell::new(None));
 
 /// Takes the IRQ number; true if it handled the interrupt.
