@@ -210,3 +210,21 @@ firmware_check_tool() {
     host=$(rustc -vV | sed -n 's/^host: //p')
     echo "$root/host-tests/target/$host/release/firmware-check"
 }
+
+# A nightly toolchain and cargo-fuzz, for the fuzz targets (fuzz/,
+# scripts/fuzz.sh): cargo-fuzz needs nightly's sanitizer flags; everything
+# else builds with the stable toolchain.
+ensure_cargo_fuzz() {
+    ensure_cargo
+    if ! rustup run nightly rustc --version >/dev/null 2>&1; then
+        command -v rustup >/dev/null ||
+            die "the fuzz targets need a nightly toolchain: install rustup, then 'rustup toolchain install nightly --profile minimal'"
+        say "rustup toolchain install nightly --profile minimal (for cargo-fuzz)"
+        rustup toolchain install nightly --profile minimal
+    fi
+    cargo fuzz --version >/dev/null 2>&1 && return 0
+    ensure_host_linker
+    say "cargo install cargo-fuzz --locked (a few minutes, once)"
+    cargo install cargo-fuzz --locked ||
+        die "installing cargo-fuzz failed; install it with 'cargo install cargo-fuzz --locked', then re-run"
+}

@@ -9,16 +9,19 @@
 #      static data (flip-link); a deliberate stack overflow ends in a clean
 #      HardFault report on each board; stack high-water marks with 25 %
 #      margin (scripts/stack.sh),
-#   5. the demo and the on-target self-tests (selftest, selftest-tracking)
+#   5. the nRF52840-DK build of the demo, and a short run of each fuzz
+#      target (scripts/fuzz.sh 20; installs nightly and cargo-fuzz),
+#   6. the demo and the on-target self-tests (selftest, selftest-tracking)
 #      under QEMU on the three boards
 #      (mps2-an386 / Cortex-M4F, mps2-an385 / Cortex-M3, microbit / Cortex-M0).
 #
 #   scripts/test.sh
 #
 # Installs what is missing (Rust targets, rustfmt, qemu-system-arm, a C
-# compiler and llvm when root, defmt-print, flip-link). Every step runs even if an earlier one
-# failed; the summary lists them and the exit status is non-zero if any
-# failed. `.ci/run` calls this.
+# compiler and llvm when root, defmt-print, flip-link, nightly and
+# cargo-fuzz). Every step runs even if an earlier one failed; the summary
+# lists them and the exit status is non-zero if any failed. `.ci/run` calls
+# this.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 # shellcheck source=scripts/setup.sh
@@ -128,6 +131,16 @@ run_stack_overflow() {
     fi
 }
 
+# The real board's build (nothing can run it here): its own workspace and
+# .cargo/config.toml; prints its sizes and checks its stack layout.
+build_nrf52840_dk() {
+    (cd boards/nrf52840-dk && cargo build --release) || return
+    local elf=boards/nrf52840-dk/target/thumbv7em-none-eabihf/release/abtrack-firmware tool
+    tool=$(firmware_check_tool) || return
+    "$tool" layout --ram-origin 0x20000000 "$elf" || return
+    bash scripts/sizes.sh --nrf52840-dk
+}
+
 step "cargo fmt --check" cargo fmt --check
 step "cargo fmt --check (host-tests)" in_host_tests cargo fmt --check
 step "host tests (cargo test --release)" in_host_tests cargo test --release
@@ -151,6 +164,8 @@ for t in "${ABTRACK_TARGETS[@]}"; do
     step "stack overflow faults cleanly on $(board_for_target "$t")" run_stack_overflow "$t"
 done
 step "stack high-water marks, demo and fault inputs (>= 25 % margin)" bash scripts/stack.sh
+step "nRF52840-DK demo build (boards/nrf52840-dk: defmt-rtt, probe-rs runner, flip-link)" build_nrf52840_dk
+step "fuzz: each target 20 s from the committed corpus (scripts/fuzz.sh)" bash scripts/fuzz.sh 20
 for t in "${ABTRACK_TARGETS[@]}"; do
     step "demo on $(board_for_target "$t")" cargo run --release --target "$t" --bin abtrack-firmware
 done
