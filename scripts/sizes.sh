@@ -63,7 +63,7 @@ if [ "${1:-}" = --nrf52840-dk ]; then
 fi
 mapfile -t bins < <(firmware_bins)
 for t in "${ABTRACK_TARGETS[@]}"; do
-    cargo build --quiet --release --target "$t"
+    cargo build --quiet --release --target "$t" --features bench-anchors
     for b in "${bins[@]}"; do
         size_row "$t" "$(board_for_target "$t")" "$b" "target/$t/release/$b"
     done

@@ -4,16 +4,20 @@
 #   2. host tests (cd host-tests && cargo test --release),
 #   3. the library alone for the three thumb targets (no default features),
 #      its dependency tree (no firmware crates) and `cargo publish --dry-run`,
-#   4. the firmware (every binary of boards/qemu) for the three targets; no
-#      call into core::panicking in any release ELF; the stack below the
-#      static data (flip-link); a deliberate stack overflow ends in a clean
-#      HardFault report on each board; stack high-water marks with 25 %
-#      margin (scripts/stack.sh),
+#   4. the firmware (every binary of boards/qemu, the benchmark with its
+#      feature bench-anchors) for the three targets; no call into
+#      core::panicking in any release ELF; the stack below the static data
+#      (flip-link); a deliberate stack overflow ends in a clean HardFault
+#      report on each board; stack high-water marks with 25 % margin
+#      (scripts/stack.sh),
 #   5. the nRF52840-DK build of the demo, and a short run of each fuzz
 #      target (scripts/fuzz.sh 20; installs nightly and cargo-fuzz),
 #   6. the demo and the on-target self-tests (selftest, selftest-tracking)
 #      under QEMU on the three boards
-#      (mps2-an386 / Cortex-M4F, mps2-an385 / Cortex-M3, microbit / Cortex-M0).
+#      (mps2-an386 / Cortex-M4F, mps2-an385 / Cortex-M3, microbit / Cortex-M0),
+#   7. a smoke run of the benchmark image on each board: it must run to its
+#      end and print a well-formed report (nothing about speed is checked;
+#      scripts/bench.sh measures).
 #
 #   scripts/test.sh
 #
@@ -156,7 +160,7 @@ done
 step "library: no firmware crates among its dependencies" library_has_no_firmware_dependencies
 step "library: cargo publish --dry-run" cargo publish --quiet --dry-run -p abtrack --allow-dirty
 for t in "${ABTRACK_TARGETS[@]}"; do
-    step "firmware build for $t" cargo build --release --target "$t"
+    step "firmware build for $t" cargo build --release --target "$t" --features bench-anchors
 done
 step "firmware: no call into core::panicking in any release ELF" check_no_panic_calls
 step "firmware: stack below the static data in every release ELF (flip-link)" check_stack_layout
@@ -174,6 +178,22 @@ for t in "${ABTRACK_TARGETS[@]}"; do
     for bin in selftest selftest-tracking; do
         step "$bin on $(board_for_target "$t")" run_selftest "$t" "$bin"
     done
+done
+
+# The benchmark image (its own feature: the minikalman anchor) must run to
+# its end and print a complete, well-formed report: bench_report --check
+# refuses a malformed line, a missing end line or a line count that differs
+# from the end line's. The figures themselves are not checked.
+run_bench_smoke() {
+    local target=$1 log="$log_dir/bench-$1.log"
+    cargo run --release --target "$target" --bin bench --features bench-anchors >"$log" || {
+        tail -n 20 "$log" >&2
+        return 1
+    }
+    in_host_tests cargo run --quiet --release --bin bench_report -- --check "$log"
+}
+for t in "${ABTRACK_TARGETS[@]}"; do
+    step "benchmark smoke run on $(board_for_target "$t")" run_bench_smoke "$t"
 done
 
 echo

@@ -36,10 +36,9 @@
 
 use core::fmt;
 
-use crate::filter::{AlphaBeta, FilterError, Gains, Phase, Prediction};
-use crate::gain::al_wagih::beta_from_alpha;
-use crate::gain::{check_range, config_scalar, ConfigError};
-use crate::num::Scalar;
+use crate::filter::{AlphaBeta, FilterError, Gains, Phase, Prediction, UpdateOutcome};
+use crate::gains::{beta_from_alpha, check_range, config_quantity, grid_point, ConfigError};
+use crate::num::{Numeric, Quantity, Real};
 
 /// Configuration of a bank (`bank:k=8,min=0.05,max=1`).
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -92,40 +91,40 @@ impl core::error::Error for BankError {}
 /// The member chosen for one measurement (Algorithm 3, step 3).
 #[derive(Debug, Clone, Copy, PartialEq)]
 #[cfg_attr(feature = "defmt", derive(defmt::Format))]
-pub struct BankSelection<S> {
+pub struct BankSelection<N: Numeric> {
     /// Index of the member with the least |innovation|.
     pub member: usize,
     /// Its prediction x_p of the measurement: the bank's output.
-    pub predicted: S,
+    pub predicted: N::Length,
     /// Its innovation z − x_p.
-    pub residual: S,
+    pub residual: N::Length,
 }
 
 /// What a bank update did.
 #[derive(Debug, Clone, Copy, PartialEq)]
 #[cfg_attr(feature = "defmt", derive(defmt::Format))]
-pub enum BankOutcome<S> {
+pub enum BankOutcome<N: Numeric> {
     FirstPoint,
     SecondPoint,
-    Filtered(BankSelection<S>),
+    Filtered(BankSelection<N>),
 }
 
 /// M5 on one axis: up to K fixed-gain αβ trackers (storage for K, `len`
 /// in use).
 #[derive(Debug, Clone, Copy, PartialEq)]
 #[cfg_attr(feature = "defmt", derive(defmt::Format))]
-pub struct ParallelBank<S, const K: usize> {
-    members: [AlphaBeta<S>; K],
-    gains: [Gains<S>; K],
+pub struct ParallelBank<N: Numeric, const K: usize> {
+    members: [AlphaBeta<N>; K],
+    gains: [Gains<N>; K],
     len: usize,
     selected: usize,
-    last: Option<BankSelection<S>>,
+    last: Option<BankSelection<N>>,
     saturations: u32,
 }
 
-impl<S: Scalar, const K: usize> ParallelBank<S, K> {
+impl<N: Numeric, const K: usize> ParallelBank<N, K> {
     /// A bank whose members have `gains` (1 ≤ len ≤ K).
-    pub fn new(gains: &[Gains<S>]) -> Result<Self, BankError> {
+    pub fn new(gains: &[Gains<N>]) -> Result<Self, BankError> {
         let first = *gains.first().ok_or(BankError::MemberCount)?;
         if gains.len() > K {
             return Err(BankError::MemberCount);
@@ -154,13 +153,13 @@ impl<S: Scalar, const K: usize> ParallelBank<S, K> {
                 capacity: K,
             });
         }
-        let lo: S = config_scalar(c.alpha_min, "min")?;
-        let hi: S = config_scalar(c.alpha_max, "max")?;
-        let mut gains = [Gains::alpha_beta(S::ONE, S::ONE)
+        let lo: N::Ratio = config_quantity(c.alpha_min, "min")?;
+        let hi: N::Ratio = config_quantity(c.alpha_max, "max")?;
+        let mut gains = [Gains::alpha_beta(N::Ratio::ONE, N::Ratio::ONE)
             .map_err(|_| ConfigError::NotRepresentable { parameter: "min" })?;
             K];
         for (i, g) in gains.iter_mut().take(k).enumerate() {
-            let a = crate::gain::window_grid_point(lo, hi, i, k);
+            let a = grid_point(lo, hi, i, k);
             *g = Gains::alpha_beta(a, beta_from_alpha(a))
                 .map_err(|_| ConfigError::NotRepresentable { parameter: "min" })?;
         }
@@ -177,11 +176,11 @@ impl<S: Scalar, const K: usize> ParallelBank<S, K> {
         self.len == 0
     }
 
-    pub fn member(&self, i: usize) -> Option<&AlphaBeta<S>> {
+    pub fn member(&self, i: usize) -> Option<&AlphaBeta<N>> {
         self.members.get(..self.len)?.get(i)
     }
 
-    pub fn member_gains(&self, i: usize) -> Option<&Gains<S>> {
+    pub fn member_gains(&self, i: usize) -> Option<&Gains<N>> {
         self.gains.get(..self.len)?.get(i)
     }
 
@@ -190,7 +189,7 @@ impl<S: Scalar, const K: usize> ParallelBank<S, K> {
         self.selected
     }
 
-    pub fn last_selection(&self) -> Option<BankSelection<S>> {
+    pub fn last_selection(&self) -> Option<BankSelection<N>> {
         self.last
     }
 
@@ -199,13 +198,13 @@ impl<S: Scalar, const K: usize> ParallelBank<S, K> {
     }
 
     /// The selected member's smoothed position.
-    pub fn position(&self) -> S {
-        self.current().map_or(S::ZERO, |m| m.position())
+    pub fn position(&self) -> N::Length {
+        self.current().map_or(N::Length::ZERO, |m| m.position())
     }
 
     /// The selected member's smoothed velocity.
-    pub fn velocity(&self) -> S {
-        self.current().map_or(S::ZERO, |m| m.velocity())
+    pub fn velocity(&self) -> N::Speed {
+        self.current().map_or(N::Speed::ZERO, |m| m.velocity())
     }
 
     /// Updates or coasts refused because a member's arithmetic saturated.
@@ -213,13 +212,13 @@ impl<S: Scalar, const K: usize> ParallelBank<S, K> {
         self.saturations
     }
 
-    fn current(&self) -> Option<&AlphaBeta<S>> {
+    fn current(&self) -> Option<&AlphaBeta<N>> {
         self.members.get(self.selected)
     }
 
     /// The selected member's prediction `dt` ahead (causal: chosen at the
     /// previous measurement).
-    pub fn predict(&self, dt: S) -> Result<Prediction<S>, FilterError> {
+    pub fn predict(&self, dt: N::Interval) -> Result<Prediction<N>, FilterError> {
         self.current()
             .ok_or(FilterError::InvalidInterval)?
             .predict(dt)
@@ -227,16 +226,16 @@ impl<S: Scalar, const K: usize> ParallelBank<S, K> {
 
     /// Runs every member on `z` (all or none) and selects the member with the
     /// least |innovation| (Algorithm 3, steps 2–3).
-    pub fn update(&mut self, z: S, dt: S) -> Result<BankOutcome<S>, FilterError> {
+    pub fn update(&mut self, z: N::Length, dt: N::Interval) -> Result<BankOutcome<N>, FilterError> {
         let mut next = self.members;
-        let mut best: Option<(BankSelection<S>, S)> = None;
+        let mut best: Option<(BankSelection<N>, N::Length)> = None;
         let mut outcome = BankOutcome::FirstPoint;
         let active = next.iter_mut().zip(&self.gains).take(self.len);
         for (i, (member, gains)) in active.enumerate() {
             match member.update(z, dt, gains) {
-                Ok(crate::filter::UpdateOutcome::FirstPoint) => outcome = BankOutcome::FirstPoint,
-                Ok(crate::filter::UpdateOutcome::SecondPoint) => outcome = BankOutcome::SecondPoint,
-                Ok(crate::filter::UpdateOutcome::Filtered(inn)) => {
+                Ok(UpdateOutcome::FirstPoint) => outcome = BankOutcome::FirstPoint,
+                Ok(UpdateOutcome::SecondPoint) => outcome = BankOutcome::SecondPoint,
+                Ok(UpdateOutcome::Filtered(inn)) => {
                     let size = inn.residual.abs();
                     if best.is_none_or(|(_, b)| size < b) {
                         best = Some((
@@ -267,7 +266,7 @@ impl<S: Scalar, const K: usize> ParallelBank<S, K> {
     }
 
     /// No measurement: every member coasts (all or none).
-    pub fn coast(&mut self, dt: S) -> Result<(), FilterError> {
+    pub fn coast(&mut self, dt: N::Interval) -> Result<(), FilterError> {
         let mut next = self.members;
         for m in next.iter_mut().take(self.len) {
             if let Err(e) = m.coast(dt) {
@@ -286,13 +285,13 @@ impl<S: Scalar, const K: usize> ParallelBank<S, K> {
 /// own member.
 #[derive(Debug, Clone, Copy, PartialEq)]
 #[cfg_attr(feature = "defmt", derive(defmt::Format))]
-pub struct CartesianBank<S, const K: usize, const D: usize> {
-    axes: [ParallelBank<S, K>; D],
+pub struct CartesianBank<N: Numeric, const K: usize, const D: usize> {
+    axes: [ParallelBank<N, K>; D],
 }
 
-impl<S: Scalar, const K: usize, const D: usize> CartesianBank<S, K, D> {
+impl<N: Numeric, const K: usize, const D: usize> CartesianBank<N, K, D> {
     /// Every axis with the same members.
-    pub fn new(bank: ParallelBank<S, K>) -> Self {
+    pub fn new(bank: ParallelBank<N, K>) -> Self {
         CartesianBank { axes: [bank; D] }
     }
 
@@ -300,7 +299,7 @@ impl<S: Scalar, const K: usize, const D: usize> CartesianBank<S, K, D> {
         Ok(Self::new(ParallelBank::from_config(c)?))
     }
 
-    pub fn axes(&self) -> &[ParallelBank<S, K>; D] {
+    pub fn axes(&self) -> &[ParallelBank<N, K>; D] {
         &self.axes
     }
 
@@ -308,15 +307,19 @@ impl<S: Scalar, const K: usize, const D: usize> CartesianBank<S, K, D> {
         self.axes.first().map_or(Phase::Empty, |a| a.phase())
     }
 
-    pub fn position(&self) -> [S; D] {
+    pub fn position(&self) -> [N::Length; D] {
         self.axes.map(|a| a.position())
     }
 
-    pub fn velocity(&self) -> [S; D] {
+    pub fn velocity(&self) -> [N::Speed; D] {
         self.axes.map(|a| a.velocity())
     }
 
-    pub fn update(&mut self, z: [S; D], dt: S) -> Result<[BankOutcome<S>; D], FilterError> {
+    pub fn update(
+        &mut self,
+        z: [N::Length; D],
+        dt: N::Interval,
+    ) -> Result<[BankOutcome<N>; D], FilterError> {
         let mut next = self.axes;
         let mut out = [BankOutcome::FirstPoint; D];
         for ((axis, o), z) in next.iter_mut().zip(out.iter_mut()).zip(z) {
@@ -335,7 +338,7 @@ impl<S: Scalar, const K: usize, const D: usize> CartesianBank<S, K, D> {
         Ok(out)
     }
 
-    pub fn coast(&mut self, dt: S) -> Result<(), FilterError> {
+    pub fn coast(&mut self, dt: N::Interval) -> Result<(), FilterError> {
         let mut next = self.axes;
         for axis in next.iter_mut() {
             if let Err(e) = axis.coast(dt) {

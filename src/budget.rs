@@ -144,8 +144,10 @@
 // Matrix code below indexes `m[i][j]` as the formulas do.
 #![allow(clippy::needless_range_loop)]
 
+use core::any::TypeId;
+
 use crate::filter::Gains;
-use crate::num::Scalar;
+use crate::num::{Numeric, Quantity};
 
 /// At most this many powers of the closed-loop matrix are summed for the ℓ1
 /// norm of the impulse response (see the module docs, step 2).
@@ -299,16 +301,16 @@ impl core::error::Error for BudgetError {}
 /// Bound on `|estimate_S − estimate_f64|` for a run with fixed gains (module
 /// docs, steps 1–4). `ORDER` is 2 (αβ) or 3 (αβγ); `envelope` must bound the
 /// `S` run's values.
-pub fn error_budget<S: Scalar, const ORDER: usize>(
+pub fn error_budget<N: Numeric, const ORDER: usize>(
     gains: &Gains<f64>,
     envelope: &RunEnvelope,
 ) -> Result<ErrorBound, BudgetError> {
-    error_budget_varying_gains::<S, ORDER>(gains, &GainSpread::default(), envelope)
+    error_budget_varying_gains::<N, ORDER>(gains, &GainSpread::default(), envelope)
 }
 
 /// Bound for a run whose gains stay within `nominal ± spread` at every update
 /// (a gain schedule; module docs, step 3).
-pub fn error_budget_varying_gains<S: Scalar, const ORDER: usize>(
+pub fn error_budget_varying_gains<N: Numeric, const ORDER: usize>(
     nominal: &Gains<f64>,
     spread: &GainSpread,
     envelope: &RunEnvelope,
@@ -336,7 +338,7 @@ pub fn error_budget_varying_gains<S: Scalar, const ORDER: usize>(
         beta + spread.beta,
         gamma + spread.gamma,
     ];
-    let local_s = local_errors::<S>(order3, envelope, &largest)?;
+    let local_s = local_errors::<N>(order3, envelope, &largest)?;
     let local_f64 = local_errors::<f64>(order3, envelope, &largest)?;
 
     // Step 2: ℓ1 norm of the impulse response at the nominal gains.
@@ -375,7 +377,7 @@ pub fn error_budget_varying_gains<S: Scalar, const ORDER: usize>(
 
     // Step 4: S against exact, plus f64 against exact (doubled), back in
     // physical units, plus the conversion of the estimate to f64.
-    let to_f64 = f64::UNIT_ROUNDOFF;
+    let to_f64 = <f64 as Quantity>::UNIT_ROUNDOFF;
     let scale = [1.0, 1.0 / t0, 1.0 / (t0 * t0)];
     let magnitude = [
         envelope.max_position,
@@ -426,14 +428,14 @@ pub fn closed_loop_matrix<const ORDER: usize>(
 /// in `f64` (the reference): the envelope is widened by twice a first bound
 /// and the bound recomputed, which must stay within that factor two (module
 /// docs, "Where the magnitudes come from").
-pub fn error_budget_around_reference<S: Scalar, const ORDER: usize>(
+pub fn error_budget_around_reference<N: Numeric, const ORDER: usize>(
     gains: &Gains<f64>,
     spread: &GainSpread,
     reference: &RunEnvelope,
 ) -> Result<ErrorBound, BudgetError> {
-    let first = error_budget_varying_gains::<S, ORDER>(gains, spread, reference)?;
+    let first = error_budget_varying_gains::<N, ORDER>(gains, spread, reference)?;
     let widened = reference.widened(&first, 2.0);
-    let second = error_budget_varying_gains::<S, ORDER>(gains, spread, &widened)?;
+    let second = error_budget_varying_gains::<N, ORDER>(gains, spread, &widened)?;
     let closes = second.position <= 2.0 * first.position
         && second.velocity <= 2.0 * first.velocity
         && second.acceleration <= 2.0 * first.acceleration;
@@ -454,66 +456,76 @@ struct Tracked {
     err: f64,
 }
 
-/// The rounding model of `S` and a flag raised when an intermediate may not fit.
-struct Analysis<S> {
+/// The rounding model of one quantity ([`Quantity::UNIT_ROUNDOFF`],
+/// [`Quantity::ABS_RESOLUTION`]) and its range.
+#[derive(Clone, Copy)]
+struct Model {
     unit: f64,
     abs: f64,
+    fits: fn(f64) -> bool,
+}
+
+fn model<Q: Quantity>() -> Model {
+    Model {
+        unit: Q::UNIT_ROUNDOFF,
+        abs: Q::ABS_RESOLUTION,
+        fits: |v| v.is_finite() && Q::try_from_f64(v).is_ok(),
+    }
+}
+
+/// A flag raised when an intermediate may not fit its quantity's range.
+struct Analysis {
     overflow: bool,
-    _s: core::marker::PhantomData<S>,
 }
 
 const NO_CAP: f64 = f64::INFINITY;
 
-impl<S: Scalar> Analysis<S> {
-    fn new() -> Self {
-        Analysis {
-            unit: S::UNIT_ROUNDOFF,
-            abs: S::ABS_RESOLUTION,
-            overflow: false,
-            _s: core::marker::PhantomData,
-        }
-    }
-
-    fn checked(&mut self, t: Tracked) -> Tracked {
-        let reach = t.mag + t.err;
-        if !(reach.is_finite() && S::try_from_f64(reach).is_ok()) {
+impl Analysis {
+    fn checked(&mut self, q: Model, t: Tracked) -> Tracked {
+        if !(q.fits)(t.mag + t.err) {
             self.overflow = true;
         }
         t
     }
 
     /// A value of the run converted from `f64` (measurement, interval, gain).
-    fn input(&mut self, mag: f64) -> Tracked {
+    fn input(&mut self, q: Model, mag: f64) -> Tracked {
         let t = Tracked {
             mag,
-            err: self.unit * mag + self.abs / 2.0,
+            err: q.unit * mag + q.abs / 2.0,
         };
-        self.checked(t)
+        self.checked(q, t)
     }
 
-    /// A value already held exactly in `S` (the state, the constant ½).
-    fn exact(&mut self, mag: f64) -> Tracked {
-        self.checked(Tracked { mag, err: 0.0 })
+    /// A value already held exactly (the state).
+    fn exact(&mut self, q: Model, mag: f64) -> Tracked {
+        self.checked(q, Tracked { mag, err: 0.0 })
     }
 
-    fn add(&mut self, a: Tracked, b: Tracked, cap: f64) -> Tracked {
+    /// `a` converted to another quantity of the same value (rounded once).
+    fn convert(&mut self, q: Model, a: Tracked) -> Tracked {
+        let err = a.err + q.unit * (a.mag + a.err) + q.abs / 2.0;
+        self.checked(q, Tracked { mag: a.mag, err })
+    }
+
+    fn add(&mut self, q: Model, a: Tracked, b: Tracked, cap: f64) -> Tracked {
         let mag = min(a.mag + b.mag, cap);
         let e = a.err + b.err;
         // Fixed-point sums are exact (unit = 0); float sums never underflow
         // inexactly, so no absolute term.
-        let err = e + self.unit * (mag + e);
-        self.checked(Tracked { mag, err })
+        let err = e + q.unit * (mag + e);
+        self.checked(q, Tracked { mag, err })
     }
 
-    fn mul(&mut self, a: Tracked, b: Tracked, cap: f64) -> Tracked {
+    fn mul(&mut self, q: Model, a: Tracked, b: Tracked, cap: f64) -> Tracked {
         let mag = min(a.mag * b.mag, cap);
         let e = a.mag * b.err + b.mag * a.err + a.err * b.err;
-        let err = e + self.unit * (mag + e) + self.abs;
-        self.checked(Tracked { mag, err })
+        let err = e + q.unit * (mag + e) + q.abs;
+        self.checked(q, Tracked { mag, err })
     }
 
     /// `a / d` with the exact divisor `d ≥ d_min > d.err`.
-    fn div(&mut self, a: Tracked, d: Tracked, d_min: f64, cap: f64) -> Tracked {
+    fn div(&mut self, q: Model, a: Tracked, d: Tracked, d_min: f64, cap: f64) -> Tracked {
         let slack = d_min - d.err;
         if slack <= 0.0 {
             self.overflow = true;
@@ -524,8 +536,17 @@ impl<S: Scalar> Analysis<S> {
         }
         let mag = min(a.mag / d_min, cap);
         let e = a.err / slack + a.mag * d.err / (d_min * slack);
-        let err = e + self.unit * (mag + e) + self.abs;
-        self.checked(Tracked { mag, err })
+        let err = e + q.unit * (mag + e) + q.abs;
+        self.checked(q, Tracked { mag, err })
+    }
+
+    /// `a/2`: exact in floating formats, half a step in fixed ones.
+    fn half(&mut self, q: Model, a: Tracked) -> Tracked {
+        let t = Tracked {
+            mag: a.mag / 2.0,
+            err: a.err / 2.0 + q.abs / 2.0,
+        };
+        self.checked(q, t)
     }
 }
 
@@ -536,77 +557,89 @@ struct Local {
     init: [f64; 3],
 }
 
-/// Local errors of `S`, mirroring the evaluation order of
-/// `KinematicFilter::update` operation by operation.
-fn local_errors<S: Scalar>(
+/// Local errors of number system `N`, mirroring the evaluation order of
+/// `StepGains::new` (once per interval) and `KinematicFilter::update_step`
+/// (per update) operation by operation, each result rounded with the model
+/// of its quantity.
+fn local_errors<N: Numeric>(
     order3: bool,
     env: &RunEnvelope,
     gains: &[f64; 3],
 ) -> Result<Local, BudgetError> {
-    let mut an = Analysis::<S>::new();
+    let length = model::<N::Length>();
+    let speed = model::<N::Speed>();
+    let acceleration = model::<N::Acceleration>();
+    let interval = model::<N::Interval>();
+    let interval2 = model::<N::IntervalSquared>();
+    let ratio = model::<N::Ratio>();
+    let gain = model::<N::Gain>();
+    let rate = model::<N::Rate>();
+    let rate2 = model::<N::RateSquared>();
+    let mut an = Analysis { overflow: false };
     let pos_cap = env.max_position;
     let vel_cap = env.max_velocity;
     let acc_cap = if order3 { env.max_acceleration } else { 0.0 };
 
-    let x = an.exact(pos_cap);
-    let v = an.exact(vel_cap);
-    let a = an.exact(acc_cap);
-    let dt = an.input(env.dt_max);
-    let z = an.input(pos_cap);
-    let alpha = an.input(gains[0]);
-    let beta = an.input(gains[1]);
+    let x = an.exact(length, pos_cap);
+    let v = an.exact(speed, vel_cap);
+    let a = an.exact(acceleration, acc_cap);
+    let dt = an.input(interval, env.dt_max);
+    let z = an.input(length, pos_cap);
+
+    // StepGains::new: α (converted to the per-update gain type where that is
+    // another type), β/T, and for αβγ γ/(T² + T²) and T²/2.
+    let alpha_ratio = an.input(ratio, gains[0]);
+    let alpha = if TypeId::of::<N::Gain>() == TypeId::of::<N::Ratio>() {
+        alpha_ratio
+    } else {
+        an.convert(gain, alpha_ratio)
+    };
+    let beta = an.input(ratio, gains[1]);
+    let velocity_gain = an.div(rate, beta, dt, env.dt_min, NO_CAP);
 
     // Filtered update (Tenne & Singh eqs. (1)–(5); Al-Wagih eqs. (3)–(8)).
     let step = if order3 {
-        let gamma = an.input(gains[2]);
-        let half = an.exact(0.5);
-        let two = an.exact(2.0);
-        // x_p = (x + dt·v) + ((½·dt)·dt)·a
-        let dt_v = an.mul(dt, v, NO_CAP);
-        let half_dt = an.mul(half, dt, NO_CAP);
-        let half_dt2 = an.mul(half_dt, dt, NO_CAP);
-        let accel_term = an.mul(half_dt2, a, NO_CAP);
-        let first = an.add(x, dt_v, NO_CAP);
-        let x_p = an.add(first, accel_term, pos_cap);
-        // v_p = v + dt·a
-        let dt_a = an.mul(dt, a, NO_CAP);
-        let v_p = an.add(v, dt_a, vel_cap);
-        let e = an.add(z, x_p, env.max_residual);
-        // x_s = x_p + α·e
-        let alpha_e = an.mul(alpha, e, NO_CAP);
-        let x_s = an.add(x_p, alpha_e, pos_cap);
-        // v_s = v_p + (β·e)/dt
-        let beta_e = an.mul(beta, e, NO_CAP);
-        let dv = an.div(beta_e, dt, env.dt_min, NO_CAP);
-        let v_s = an.add(v_p, dv, vel_cap);
-        // a_s = a + (γ·e)/((2·dt)·dt)
-        let gamma_e = an.mul(gamma, e, NO_CAP);
-        let two_dt = an.mul(two, dt, NO_CAP);
-        let den = an.mul(two_dt, dt, NO_CAP);
-        let da = an.div(gamma_e, den, 2.0 * env.dt_min * env.dt_min, NO_CAP);
-        let a_s = an.add(a, da, acc_cap);
+        let gamma = an.input(ratio, gains[2]);
+        let squared = an.mul(interval2, dt, dt, NO_CAP);
+        let double = an.add(interval2, squared, squared, NO_CAP);
+        let dt_min2 = env.dt_min * env.dt_min;
+        let acceleration_gain = an.div(rate2, gamma, double, 2.0 * dt_min2, NO_CAP);
+        let half_squared = an.half(interval2, squared);
+        // x_p = (x + v·T) + a·(T²/2); v_p = v + a·T
+        let v_t = an.mul(length, v, dt, NO_CAP);
+        let first = an.add(length, x, v_t, NO_CAP);
+        let a_t2 = an.mul(length, a, half_squared, NO_CAP);
+        let x_p = an.add(length, first, a_t2, pos_cap);
+        let a_t = an.mul(speed, a, dt, NO_CAP);
+        let v_p = an.add(speed, v, a_t, vel_cap);
+        let e = an.add(length, z, x_p, env.max_residual);
+        // x_s = x_p + α·e; v_s = v_p + (β/T)·e; a_s = a + (γ/(2T²))·e
+        let alpha_e = an.mul(length, alpha, e, NO_CAP);
+        let x_s = an.add(length, x_p, alpha_e, pos_cap);
+        let dv = an.mul(speed, velocity_gain, e, NO_CAP);
+        let v_s = an.add(speed, v_p, dv, vel_cap);
+        let da = an.mul(acceleration, acceleration_gain, e, NO_CAP);
+        let a_s = an.add(acceleration, a, da, acc_cap);
         [x_s.err, v_s.err, a_s.err]
     } else {
-        // x_p = x + dt·v
-        let dt_v = an.mul(dt, v, NO_CAP);
-        let x_p = an.add(x, dt_v, pos_cap);
-        let e = an.add(z, x_p, env.max_residual);
-        let alpha_e = an.mul(alpha, e, NO_CAP);
-        let x_s = an.add(x_p, alpha_e, pos_cap);
-        let beta_e = an.mul(beta, e, NO_CAP);
-        let dv = an.div(beta_e, dt, env.dt_min, NO_CAP);
-        let v_s = an.add(v, dv, vel_cap);
+        let v_t = an.mul(length, v, dt, NO_CAP);
+        let x_p = an.add(length, x, v_t, pos_cap);
+        let e = an.add(length, z, x_p, env.max_residual);
+        let alpha_e = an.mul(length, alpha, e, NO_CAP);
+        let x_s = an.add(length, x_p, alpha_e, pos_cap);
+        let dv = an.mul(speed, velocity_gain, e, NO_CAP);
+        let v_s = an.add(speed, v, dv, vel_cap);
         [x_s.err, v_s.err, 0.0]
     };
 
     // Two-point initialisation (Al-Wagih eqs. (9)–(10)): x = z₁, then
     // v = (z₂ − x)/(0 + dt), x = z₂; the acceleration starts at zero in both.
-    let z1 = an.input(pos_cap);
-    let z2 = an.input(pos_cap);
-    let zero = an.exact(0.0);
-    let elapsed = an.add(zero, dt, NO_CAP);
-    let diff = an.add(z2, z1, vel_cap * env.dt_max);
-    let v2 = an.div(diff, elapsed, env.dt_min, vel_cap);
+    let z1 = an.input(length, pos_cap);
+    let z2 = an.input(length, pos_cap);
+    let zero = an.exact(interval, 0.0);
+    let elapsed = an.add(interval, zero, dt, NO_CAP);
+    let diff = an.add(length, z2, z1, vel_cap * env.dt_max);
+    let v2 = an.div(speed, diff, elapsed, env.dt_min, vel_cap);
     let init = [z2.err, v2.err, 0.0];
 
     if an.overflow {

@@ -49,7 +49,7 @@
 //!
 //! then `gains.convert::<Fix>()` (or `f32`) for the filter on the target.
 
-use crate::filter::{GainError, Gains};
+use crate::gains::{GainError, Gains};
 
 /// Why a design formula refused its input.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -438,7 +438,7 @@ pub fn benedict_bordner_beta(alpha: f64) -> Result<f64, DesignError> {
     if !(alpha > 0.0 && alpha <= 1.0) {
         return Err(DesignError::AlphaOutOfRange);
     }
-    Ok(crate::gain::al_wagih::beta_from_alpha(alpha))
+    Ok(crate::gains::beta_from_alpha(alpha))
 }
 
 /// Least-squares ("growing memory") gains for the n-th measurement:
@@ -457,7 +457,7 @@ pub fn least_squares_gains(n: u32) -> Result<Gains<f64>, DesignError> {
     if n <= 2 {
         return Err(DesignError::TooFewMeasurements);
     }
-    use crate::gain::al_wagih::{least_squares_alpha, least_squares_beta};
+    use crate::gains::{least_squares_alpha, least_squares_beta};
     Gains::alpha_beta(least_squares_alpha(n), least_squares_beta(n)).map_err(gain_error)
 }
 
@@ -483,7 +483,7 @@ pub fn kalata_beta(alpha: f64) -> Result<f64, DesignError> {
     if !(alpha > 0.0 && alpha <= 1.0) {
         return Err(DesignError::AlphaOutOfRange);
     }
-    Ok(crate::gain::li::li_beta(alpha))
+    Ok(crate::gains::li_beta(alpha))
 }
 
 /// Kalata's tracking index Λ = σ_w T²/σ_v (Kalata 1984, not in the five

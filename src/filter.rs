@@ -12,18 +12,25 @@
 //!
 //! # Contract
 //!
-//! * Gains come with every call ([`Gains`]), so a gain schedule can change them
-//!   from one update to the next. [`Gains`] can only be constructed inside the
+//! * Gains come with every call, so a gain schedule can change them from one
+//!   update to the next. [`Gains`] can only be constructed inside the
 //!   stability region of the filter it is meant for.
 //! * The interval `dt` is the time since the previous call (update or coast)
 //!   and may differ on every call; β is divided by the actual interval
-//!   (Al-Wagih eq. 8, Tenne & Singh eq. 4).
+//!   (Al-Wagih eq. 8, Tenne & Singh eq. 4). The gains that depend on the
+//!   interval (β/T, γ/(2T²)) are formed once per interval in a [`StepGains`]
+//!   (a tracker's interval is the same for all its tracks), so the
+//!   per-update path ([`KinematicFilter::update_step`],
+//!   [`Cartesian::update_step`]) has no division; `update(z, dt, &gains)`
+//!   builds the [`StepGains`] and calls it.
 //! * A measurement or interval that is not a valid number, or an interval ≤ 0,
 //!   is refused with a [`FilterError`] and the state is left untouched. So is
 //!   an update whose arithmetic saturates (fixed point) or overflows (floats):
 //!   it is counted in [`KinematicFilter::saturations`] and discarded.
 
-use crate::num::Scalar;
+use crate::num::{AddProduct, Checked, Guard, Numeric, Quantity, SubGuarded};
+
+pub use crate::gains::{GainError, Gains};
 
 pub mod altitude;
 pub mod range_azimuth;
@@ -53,159 +60,145 @@ impl core::fmt::Display for FilterError {
 
 impl core::error::Error for FilterError {}
 
-/// Why a set of gains was refused.
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
-#[cfg_attr(feature = "defmt", derive(defmt::Format))]
-pub enum GainError {
-    /// A gain is NaN, infinite or not representable.
-    NotFinite,
-    /// Outside 0 < α < 2 (Al-Wagih eq. 12, Tenne & Singh eq. 7).
-    AlphaOutOfRange,
-    /// β ≤ 0 (Al-Wagih eq. 13, Tenne & Singh eq. 7).
-    BetaNotPositive,
-    /// 2α + β ≥ 4 (Al-Wagih eq. 14, Tenne & Singh eq. 8).
-    BetaTooLarge,
-    /// γ ≤ 0 (Tenne & Singh eq. 7).
-    GammaNotPositive,
-    /// γ ≥ 4αβ/(2 − α) (Tenne & Singh eq. 8).
-    GammaTooLarge,
-}
-
-impl core::fmt::Display for GainError {
-    fn fmt(&self, f: &mut core::fmt::Formatter<'_>) -> core::fmt::Result {
-        f.write_str(match self {
-            GainError::NotFinite => "gain is not a finite number",
-            GainError::AlphaOutOfRange => "alpha must satisfy 0 < alpha < 2",
-            GainError::BetaNotPositive => "beta must be > 0",
-            GainError::BetaTooLarge => "gains must satisfy 2*alpha + beta < 4",
-            GainError::GammaNotPositive => "gamma must be > 0",
-            GainError::GammaTooLarge => "gamma must be < 4*alpha*beta/(2 - alpha)",
-        })
-    }
-}
-
-impl core::error::Error for GainError {}
-
-/// Smoothing gains (α, β, γ) that lie inside a stability region.
-///
-/// γ uses Tenne & Singh's convention: the acceleration correction is
-/// γ/(2T²)·e (eq. 5). For αβ gains γ is zero.
+/// The prediction terms of one interval: T and T²/2, checked once.
 #[derive(Debug, Clone, Copy, PartialEq)]
 #[cfg_attr(feature = "defmt", derive(defmt::Format))]
-pub struct Gains<S> {
-    alpha: S,
-    beta: S,
-    gamma: S,
+pub struct IntervalTerms<N: Numeric> {
+    interval: N::Interval,
+    half_squared: N::IntervalSquared,
 }
 
-impl<S: Scalar> Gains<S> {
-    /// αβ gains, checked against the stability triangle 0 < α < 2, β > 0,
-    /// 2α + β < 4 (Al-Wagih & Abdulla eqs. 12–14).
-    pub fn alpha_beta(alpha: S, beta: S) -> Result<Self, GainError> {
-        if !alpha.is_valid() || !beta.is_valid() {
-            return Err(GainError::NotFinite);
+impl<N: Numeric> IntervalTerms<N> {
+    /// T and T²/2; refuses an interval that is not a valid number or is
+    /// ≤ 0, and one whose square is not representable.
+    pub fn new(dt: N::Interval) -> Result<Self, FilterError> {
+        check_interval(dt)?;
+        let half_squared = (dt * dt).half();
+        if !half_squared.is_valid() {
+            return Err(FilterError::Saturated);
         }
-        let two = S::ONE + S::ONE;
-        if alpha <= S::ZERO || alpha >= two {
-            return Err(GainError::AlphaOutOfRange);
-        }
-        if beta <= S::ZERO {
-            return Err(GainError::BetaNotPositive);
-        }
-        if two * alpha + beta >= two * two {
-            return Err(GainError::BetaTooLarge);
-        }
-        Ok(Gains {
-            alpha,
-            beta,
-            gamma: S::ZERO,
+        Ok(IntervalTerms {
+            interval: dt,
+            half_squared,
         })
     }
 
-    /// αβγ gains, checked against the stability volume of Tenne & Singh
-    /// eqs. (7)–(8): the αβ triangle and 0 < γ < 4αβ/(2 − α).
-    pub fn alpha_beta_gamma(alpha: S, beta: S, gamma: S) -> Result<Self, GainError> {
-        let ab = Self::alpha_beta(alpha, beta)?;
-        if !gamma.is_valid() {
-            return Err(GainError::NotFinite);
-        }
-        if gamma <= S::ZERO {
-            return Err(GainError::GammaNotPositive);
-        }
-        let two = S::ONE + S::ONE;
-        // γ(2 − α) < 4αβ, multiplied out to avoid a division (2 − α > 0).
-        if gamma * (two - alpha) >= two * two * alpha * beta {
-            return Err(GainError::GammaTooLarge);
-        }
-        Ok(Gains { gamma, ..ab })
+    /// T.
+    pub fn interval(&self) -> N::Interval {
+        self.interval
     }
 
-    /// αβ gains from `f64` values (for configuration and tools).
-    pub fn alpha_beta_f64(alpha: f64, beta: f64) -> Result<Self, GainError> {
-        let c = |v| S::try_from_f64(v).map_err(|_| GainError::NotFinite);
-        Self::alpha_beta(c(alpha)?, c(beta)?)
+    /// T²/2.
+    pub fn half_squared(&self) -> N::IntervalSquared {
+        self.half_squared
+    }
+}
+
+/// The gains of one update interval T, formed once per interval: α, the
+/// velocity gain β/T (Al-Wagih eq. 8, Tenne & Singh eq. 4) and the
+/// acceleration gain γ/(2T²) (Tenne & Singh eq. 5), with T and T²/2 for the
+/// prediction. The per-update path multiplies by them and never divides.
+#[derive(Debug, Clone, Copy, PartialEq)]
+#[cfg_attr(feature = "defmt", derive(defmt::Format))]
+pub struct StepGains<N: Numeric> {
+    terms: IntervalTerms<N>,
+    alpha: N::Gain,
+    velocity_gain: N::Rate,
+    acceleration_gain: N::RateSquared,
+}
+
+impl<N: Numeric> StepGains<N> {
+    /// The gains of `gains` for interval `dt`. Refuses an interval that is
+    /// not a valid number or is ≤ 0 ([`FilterError::InvalidInterval`]), and
+    /// one for which β/T, γ/(2T²) or T² is not representable
+    /// ([`FilterError::Saturated`]).
+    pub fn new(gains: &Gains<N>, dt: N::Interval) -> Result<Self, FilterError> {
+        let terms = IntervalTerms::new(dt)?;
+        let velocity_gain = gains.beta() / dt;
+        let squared = dt * dt;
+        let acceleration_gain = gains.gamma() / (squared + squared);
+        let alpha = N::gain(gains.alpha());
+        if !(alpha.is_valid() && velocity_gain.is_valid() && acceleration_gain.is_valid()) {
+            return Err(FilterError::Saturated);
+        }
+        Ok(StepGains {
+            terms,
+            alpha,
+            velocity_gain,
+            acceleration_gain,
+        })
     }
 
-    /// αβγ gains from `f64` values (for configuration and tools).
-    pub fn alpha_beta_gamma_f64(alpha: f64, beta: f64, gamma: f64) -> Result<Self, GainError> {
-        let c = |v| S::try_from_f64(v).map_err(|_| GainError::NotFinite);
-        Self::alpha_beta_gamma(c(alpha)?, c(beta)?, c(gamma)?)
+    /// T and T²/2.
+    pub fn terms(&self) -> &IntervalTerms<N> {
+        &self.terms
     }
-
-    pub fn alpha(&self) -> S {
+    /// T.
+    pub fn interval(&self) -> N::Interval {
+        self.terms.interval
+    }
+    /// α.
+    pub fn alpha(&self) -> N::Gain {
         self.alpha
     }
-    pub fn beta(&self) -> S {
-        self.beta
+    /// β/T, 1/s.
+    pub fn velocity_gain(&self) -> N::Rate {
+        self.velocity_gain
     }
-    /// Zero for αβ gains.
-    pub fn gamma(&self) -> S {
-        self.gamma
-    }
-
-    /// The same gains in another representation (rounded to nearest). The
-    /// stability inequalities are strict and a rounding step is far smaller
-    /// than any margin that matters, but the result is re-checked anyway.
-    pub fn convert<T: Scalar>(&self) -> Result<Gains<T>, GainError> {
-        let c = |v: S| T::try_from_f64(v.to_f64()).map_err(|_| GainError::NotFinite);
-        if self.gamma == S::ZERO {
-            Gains::alpha_beta(c(self.alpha)?, c(self.beta)?)
-        } else {
-            Gains::alpha_beta_gamma(c(self.alpha)?, c(self.beta)?, c(self.gamma)?)
-        }
+    /// γ/(2T²), 1/s² (zero for αβ gains).
+    pub fn acceleration_gain(&self) -> N::RateSquared {
+        self.acceleration_gain
     }
 }
 
 /// What an update did.
 #[derive(Debug, Clone, Copy, PartialEq)]
 #[cfg_attr(feature = "defmt", derive(defmt::Format))]
-pub enum UpdateOutcome<S> {
+pub enum UpdateOutcome<N: Numeric> {
     /// First measurement: the position is taken as the estimate (Al-Wagih §3).
     FirstPoint,
     /// Second measurement: velocity from the difference (Al-Wagih eq. 9).
     SecondPoint,
     /// A filtered update with the prediction it corrected and its residual
     /// z − prediction (Al-Wagih eq. 4).
-    Filtered(Innovation<S>),
+    Filtered(Innovation<N>),
+}
+
+/// What an update did, without the innovation (which the filter keeps:
+/// [`KinematicFilter::last_innovation`]).
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+#[cfg_attr(feature = "defmt", derive(defmt::Format))]
+pub enum UpdateKind {
+    FirstPoint,
+    SecondPoint,
+    Filtered,
 }
 
 /// The prediction an update corrected and the innovation (residual).
 #[derive(Debug, Clone, Copy, PartialEq)]
 #[cfg_attr(feature = "defmt", derive(defmt::Format))]
-pub struct Innovation<S> {
+pub struct Innovation<N: Numeric> {
     /// Predicted position x_p (Al-Wagih eq. 3, Tenne & Singh eq. 1).
-    pub predicted: S,
+    pub predicted: N::Length,
     /// e = z − x_p (Al-Wagih eq. 4).
-    pub residual: S,
+    pub residual: N::Length,
 }
 
 /// Predicted kinematic state after an interval, without changing the filter.
 #[derive(Debug, Clone, Copy, PartialEq)]
 #[cfg_attr(feature = "defmt", derive(defmt::Format))]
-pub struct Prediction<S> {
-    pub position: S,
-    pub velocity: S,
-    pub acceleration: S,
+pub struct Prediction<N: Numeric> {
+    pub position: N::Length,
+    pub velocity: N::Speed,
+    pub acceleration: N::Acceleration,
+}
+
+impl<N: Numeric> Prediction<N> {
+    const ZERO: Self = Prediction {
+        position: N::Length::ZERO,
+        velocity: N::Speed::ZERO,
+        acceleration: N::Acceleration::ZERO,
+    };
 }
 
 /// Which stage of two-point initialisation the filter is in.
@@ -220,45 +213,28 @@ pub enum Phase {
     Tracking,
 }
 
-/// What one accepted update writes into a [`KinematicFilter`]: the result
-/// of its first half, before anything is written.
-#[derive(Debug, Clone, Copy)]
-enum PendingUpdate<S> {
-    /// The first measurement becomes the position.
-    First(S),
-    /// Two-point initialisation (Al-Wagih eq. 9).
-    Second { position: S, velocity: S },
-    /// A filtered update.
-    Filtered {
-        position: S,
-        velocity: S,
-        acceleration: S,
-        innovation: Innovation<S>,
-    },
-}
-
 /// A one-axis kinematic filter: αβ for `ORDER = 2`, αβγ for `ORDER = 3`.
 ///
 /// Use the aliases [`AlphaBeta`] and [`AlphaBetaGamma`].
 #[derive(Debug, Clone, Copy, PartialEq)]
 #[cfg_attr(feature = "defmt", derive(defmt::Format))]
-pub struct KinematicFilter<S, const ORDER: usize> {
+pub struct KinematicFilter<N: Numeric, const ORDER: usize> {
     phase: Phase,
-    position: S,
-    velocity: S,
-    acceleration: S,
+    position: N::Length,
+    velocity: N::Speed,
+    acceleration: N::Acceleration,
     /// While `OnePoint`: time since the first measurement (coasts add to it).
-    since_first: S,
-    last: Option<Innovation<S>>,
+    since_first: N::Interval,
+    last: Option<Innovation<N>>,
     saturations: u32,
 }
 
 /// αβ filter, Al-Wagih & Abdulla eqs. (3)–(10).
-pub type AlphaBeta<S> = KinematicFilter<S, 2>;
+pub type AlphaBeta<N> = KinematicFilter<N, 2>;
 /// αβγ filter, Tenne & Singh eqs. (1)–(5).
-pub type AlphaBetaGamma<S> = KinematicFilter<S, 3>;
+pub type AlphaBetaGamma<N> = KinematicFilter<N, 3>;
 
-impl<S: Scalar, const ORDER: usize> Default for KinematicFilter<S, ORDER> {
+impl<N: Numeric, const ORDER: usize> Default for KinematicFilter<N, ORDER> {
     fn default() -> Self {
         Self::new()
     }
@@ -267,15 +243,35 @@ impl<S: Scalar, const ORDER: usize> Default for KinematicFilter<S, ORDER> {
 /// Refuses an interval that is not a valid number or is ≤ 0 (every
 /// filter's contract).
 #[inline]
-pub(crate) fn check_interval<S: Scalar>(dt: S) -> Result<(), FilterError> {
-    if dt.is_valid() && dt > S::ZERO {
+pub(crate) fn check_interval<Q: Quantity>(dt: Q) -> Result<(), FilterError> {
+    if dt.is_valid() && dt > Q::ZERO {
         Ok(())
     } else {
         Err(FilterError::InvalidInterval)
     }
 }
 
-impl<S: Scalar, const ORDER: usize> KinematicFilter<S, ORDER> {
+/// One axis's filtered update, computed before anything is written.
+#[derive(Clone, Copy)]
+struct Filtered<N: Numeric> {
+    position: N::Length,
+    velocity: N::Speed,
+    acceleration: N::Acceleration,
+    predicted: N::Length,
+    residual: N::Length,
+}
+
+impl<N: Numeric> Filtered<N> {
+    const ZERO: Self = Filtered {
+        position: N::Length::ZERO,
+        velocity: N::Speed::ZERO,
+        acceleration: N::Acceleration::ZERO,
+        predicted: N::Length::ZERO,
+        residual: N::Length::ZERO,
+    };
+}
+
+impl<N: Numeric, const ORDER: usize> KinematicFilter<N, ORDER> {
     const HAS_ACCELERATION: bool = {
         assert!(
             ORDER == 2 || ORDER == 3,
@@ -288,10 +284,10 @@ impl<S: Scalar, const ORDER: usize> KinematicFilter<S, ORDER> {
     pub const fn new() -> Self {
         KinematicFilter {
             phase: Phase::Empty,
-            position: S::ZERO,
-            velocity: S::ZERO,
-            acceleration: S::ZERO,
-            since_first: S::ZERO,
+            position: N::Length::ZERO,
+            velocity: N::Speed::ZERO,
+            acceleration: N::Acceleration::ZERO,
+            since_first: N::Interval::ZERO,
             last: None,
             saturations: 0,
         }
@@ -299,7 +295,11 @@ impl<S: Scalar, const ORDER: usize> KinematicFilter<S, ORDER> {
 
     /// A filter already tracking from a known state (e.g. a handed-over
     /// track). The acceleration is ignored for `ORDER = 2`.
-    pub fn from_state(position: S, velocity: S, acceleration: S) -> Result<Self, FilterError> {
+    pub fn from_state(
+        position: N::Length,
+        velocity: N::Speed,
+        acceleration: N::Acceleration,
+    ) -> Result<Self, FilterError> {
         if !(position.is_valid() && velocity.is_valid() && acceleration.is_valid()) {
             return Err(FilterError::InvalidMeasurement);
         }
@@ -310,7 +310,7 @@ impl<S: Scalar, const ORDER: usize> KinematicFilter<S, ORDER> {
             acceleration: if Self::HAS_ACCELERATION {
                 acceleration
             } else {
-                S::ZERO
+                N::Acceleration::ZERO
             },
             ..Self::new()
         })
@@ -320,20 +320,20 @@ impl<S: Scalar, const ORDER: usize> KinematicFilter<S, ORDER> {
         self.phase
     }
     /// Smoothed position x_s.
-    pub fn position(&self) -> S {
+    pub fn position(&self) -> N::Length {
         self.position
     }
     /// Smoothed velocity v_s (zero before the second measurement).
-    pub fn velocity(&self) -> S {
+    pub fn velocity(&self) -> N::Speed {
         self.velocity
     }
     /// Smoothed acceleration a_s (always zero for αβ).
-    pub fn acceleration(&self) -> S {
+    pub fn acceleration(&self) -> N::Acceleration {
         self.acceleration
     }
     /// Prediction and residual of the last filtered update (kept for adaptive
     /// gain schedules and gates); `None` until the first filtered update.
-    pub fn last_innovation(&self) -> Option<Innovation<S>> {
+    pub fn last_innovation(&self) -> Option<Innovation<N>> {
         self.last
     }
     /// How many updates or coasts were discarded because they saturated.
@@ -341,34 +341,92 @@ impl<S: Scalar, const ORDER: usize> KinematicFilter<S, ORDER> {
         self.saturations
     }
 
+    fn count_saturation(&mut self) {
+        self.saturations = self.saturations.saturating_add(1);
+    }
+
     /// The state predicted `dt` ahead, without changing the filter
     /// (Tenne & Singh eqs. 1–2; for αβ, Al-Wagih eq. 3).
-    pub fn predict(&self, dt: S) -> Result<Prediction<S>, FilterError> {
-        check_interval(dt)?;
-        let p = self.extrapolate(dt);
-        if p.position.is_valid() && p.velocity.is_valid() {
+    pub fn predict(&self, dt: N::Interval) -> Result<Prediction<N>, FilterError> {
+        self.predict_terms(&IntervalTerms::new(dt)?)
+    }
+
+    /// [`Self::predict`] with the interval's terms formed already.
+    pub fn predict_terms(&self, terms: &IntervalTerms<N>) -> Result<Prediction<N>, FilterError> {
+        let mut guard = N::Guard::default();
+        let p = self.extrapolate(terms, &mut guard);
+        p.position.check_output(&mut guard);
+        p.velocity.check_output(&mut guard);
+        if guard.passed() {
             Ok(p)
         } else {
             Err(FilterError::Saturated)
         }
     }
 
-    #[inline]
-    fn extrapolate(&self, dt: S) -> Prediction<S> {
+    /// Tenne & Singh eqs. (1)–(2): x + T·v + (T²/2)·a, v + T·a.
+    #[inline(always)]
+    fn extrapolate(&self, terms: &IntervalTerms<N>, guard: &mut N::Guard) -> Prediction<N> {
+        let t = terms.interval;
+        let position = self.position.add_product(self.velocity, t, guard);
         if Self::HAS_ACCELERATION {
-            let half = S::from_f64_lossy(0.5);
             Prediction {
-                position: self.position + dt * self.velocity + half * dt * dt * self.acceleration,
-                velocity: self.velocity + dt * self.acceleration,
+                position: position.add_product(self.acceleration, terms.half_squared, guard),
+                velocity: self.velocity.add_product(self.acceleration, t, guard),
                 acceleration: self.acceleration,
             }
         } else {
             Prediction {
-                position: self.position + dt * self.velocity,
+                position,
                 velocity: self.velocity,
-                acceleration: S::ZERO,
+                acceleration: N::Acceleration::ZERO,
             }
         }
+    }
+
+    /// One filtered update (Tenne & Singh eqs. 1–5, Al-Wagih eqs. 3–8):
+    /// predict, e = z − x_p, x_s = x_p + αe, v_s = v_p + (β/T)e,
+    /// a_s = a + γ/(2T²)·e. Every result goes through `guard`.
+    #[inline(always)]
+    fn filtered(&self, z: N::Length, step: &StepGains<N>, guard: &mut N::Guard) -> Filtered<N> {
+        z.check_input(guard);
+        let p = self.extrapolate(&step.terms, guard);
+        let residual = z.sub_guarded(p.position, guard);
+        let position = p.position.add_product(step.alpha, residual, guard);
+        let velocity = p.velocity.add_product(step.velocity_gain, residual, guard);
+        p.position.check_output(guard);
+        position.check_output(guard);
+        velocity.check_output(guard);
+        residual.check_output(guard);
+        let acceleration = if Self::HAS_ACCELERATION {
+            let a = p
+                .acceleration
+                .add_product(step.acceleration_gain, residual, guard);
+            a.check_output(guard);
+            a
+        } else {
+            N::Acceleration::ZERO
+        };
+        Filtered {
+            position,
+            velocity,
+            acceleration,
+            predicted: p.position,
+            residual,
+        }
+    }
+
+    #[inline(always)]
+    fn commit(&mut self, f: &Filtered<N>) {
+        self.position = f.position;
+        self.velocity = f.velocity;
+        if Self::HAS_ACCELERATION {
+            self.acceleration = f.acceleration;
+        }
+        self.last = Some(Innovation {
+            predicted: f.predicted,
+            residual: f.residual,
+        });
     }
 
     /// Incorporates measurement `z`, taken `dt` after the previous call.
@@ -381,175 +439,258 @@ impl<S: Scalar, const ORDER: usize> KinematicFilter<S, ORDER> {
     /// * Then: predict (Tenne & Singh eqs. 1–2), e = z − x_p (Al-Wagih eq. 4),
     ///   x_s = x_p + αe (eq. 6), v_s = v_p + (β/T)e (eq. 8; Tenne & Singh
     ///   eq. 4), a_s = a_s + γ/(2T²)·e (Tenne & Singh eq. 5).
+    ///
+    /// Forms the [`StepGains`] and calls [`Self::update_step`].
     pub fn update(
         &mut self,
-        z: S,
-        dt: S,
-        gains: &Gains<S>,
-    ) -> Result<UpdateOutcome<S>, FilterError> {
-        match self.prepare(z, dt, gains) {
-            Ok(pending) => Ok(self.commit(pending)),
-            Err(e) => {
-                if e == FilterError::Saturated {
-                    self.count_saturation();
-                }
-                Err(e)
-            }
-        }
+        z: N::Length,
+        dt: N::Interval,
+        gains: &Gains<N>,
+    ) -> Result<UpdateOutcome<N>, FilterError> {
+        let step = step_gains(core::array::from_mut(self), [z], dt, gains)?;
+        let kind = update_axes(core::array::from_mut(self), [z], &step)?;
+        Ok(outcome(kind, self.last))
     }
 
-    fn count_saturation(&mut self) {
-        self.saturations = self.saturations.saturating_add(1);
-    }
-
-    /// The first half of [`Self::update`]: everything it will write, or why
-    /// it refuses, computed without changing the filter (a saturation is
-    /// not counted here). [`Cartesian`] prepares every axis before it
-    /// commits any, which is how it stays all-or-nothing without copying
-    /// its axes.
-    #[inline]
-    fn prepare(&self, z: S, dt: S, gains: &Gains<S>) -> Result<PendingUpdate<S>, FilterError> {
-        if !z.is_valid() {
-            return Err(FilterError::InvalidMeasurement);
-        }
-        check_interval(dt)?;
-        match self.phase {
-            Phase::Empty => Ok(PendingUpdate::First(z)),
-            Phase::OnePoint => {
-                let elapsed = self.since_first + dt;
-                let velocity = (z - self.position) / elapsed;
-                if !velocity.is_valid() {
-                    return Err(FilterError::Saturated);
-                }
-                Ok(PendingUpdate::Second {
-                    position: z,
-                    velocity,
-                })
-            }
-            Phase::Tracking => {
-                let p = self.extrapolate(dt);
-                let residual = z - p.position;
-                let position = p.position + gains.alpha * residual;
-                let velocity = p.velocity + gains.beta * residual / dt;
-                let acceleration = if Self::HAS_ACCELERATION {
-                    let two = S::ONE + S::ONE;
-                    p.acceleration + gains.gamma * residual / (two * dt * dt)
-                } else {
-                    S::ZERO
-                };
-                // Invalid values are sticky, so checking the outputs (and the
-                // residual we report) covers every intermediate.
-                if !(position.is_valid()
-                    && velocity.is_valid()
-                    && acceleration.is_valid()
-                    && residual.is_valid())
-                {
-                    return Err(FilterError::Saturated);
-                }
-                Ok(PendingUpdate::Filtered {
-                    position,
-                    velocity,
-                    acceleration,
-                    innovation: Innovation {
-                        predicted: p.position,
-                        residual,
-                    },
-                })
-            }
-        }
-    }
-
-    /// The second half of [`Self::update`]: writes what [`Self::prepare`]
-    /// computed.
-    #[inline]
-    fn commit(&mut self, pending: PendingUpdate<S>) -> UpdateOutcome<S> {
-        match pending {
-            PendingUpdate::First(z) => {
-                self.position = z;
-                self.velocity = S::ZERO;
-                self.acceleration = S::ZERO;
-                self.since_first = S::ZERO;
-                self.phase = Phase::OnePoint;
-                UpdateOutcome::FirstPoint
-            }
-            PendingUpdate::Second { position, velocity } => {
-                self.position = position;
-                self.velocity = velocity;
-                self.phase = Phase::Tracking;
-                UpdateOutcome::SecondPoint
-            }
-            PendingUpdate::Filtered {
-                position,
-                velocity,
-                acceleration,
-                innovation,
-            } => {
-                self.position = position;
-                self.velocity = velocity;
-                self.acceleration = acceleration;
-                self.last = Some(innovation);
-                UpdateOutcome::Filtered(innovation)
-            }
-        }
+    /// [`Self::update`] with the interval's gains formed already: the
+    /// per-update path. A refused update leaves the filter bit-identical
+    /// (but for the saturation count of a [`FilterError::Saturated`]).
+    pub fn update_step(
+        &mut self,
+        z: N::Length,
+        step: &StepGains<N>,
+    ) -> Result<UpdateKind, FilterError> {
+        update_axes(core::array::from_mut(self), [z], step)
     }
 
     /// No measurement this scan: advance the state by `dt` (predict only).
     /// Before the second measurement there is no velocity to extrapolate with,
     /// so the position holds and the interval is remembered for eq. (9).
-    pub fn coast(&mut self, dt: S) -> Result<(), FilterError> {
-        check_interval(dt)?;
-        match self.phase {
-            Phase::Empty => Ok(()),
-            Phase::OnePoint => {
-                let since_first = self.since_first + dt;
-                if !since_first.is_valid() {
-                    self.saturations = self.saturations.saturating_add(1);
-                    return Err(FilterError::Saturated);
-                }
-                self.since_first = since_first;
-                Ok(())
+    pub fn coast(&mut self, dt: N::Interval) -> Result<(), FilterError> {
+        coast_axes(core::array::from_mut(self), dt)
+    }
+}
+
+/// The step gains of `gains` at `dt`, checking the measurement first (so
+/// that a bad measurement is reported as such whatever the interval); a
+/// saturated β/T or γ/(2T²) counts as a saturated update.
+fn step_gains<N: Numeric, const ORDER: usize, const D: usize>(
+    axes: &mut [KinematicFilter<N, ORDER>; D],
+    z: [N::Length; D],
+    dt: N::Interval,
+    gains: &Gains<N>,
+) -> Result<StepGains<N>, FilterError> {
+    if z.iter().any(|v| !v.is_valid()) {
+        return Err(FilterError::InvalidMeasurement);
+    }
+    StepGains::new(gains, dt).inspect_err(|e| {
+        if *e == FilterError::Saturated {
+            if let Some(first) = axes.first_mut() {
+                first.count_saturation();
             }
-            Phase::Tracking => {
-                let p = self.extrapolate(dt);
-                if !(p.position.is_valid() && p.velocity.is_valid()) {
-                    self.saturations = self.saturations.saturating_add(1);
-                    return Err(FilterError::Saturated);
-                }
-                self.position = p.position;
-                self.velocity = p.velocity;
-                Ok(())
+        }
+    })
+}
+
+fn outcome<N: Numeric>(kind: UpdateKind, last: Option<Innovation<N>>) -> UpdateOutcome<N> {
+    match (kind, last) {
+        (UpdateKind::FirstPoint, _) => UpdateOutcome::FirstPoint,
+        (UpdateKind::SecondPoint, _) => UpdateOutcome::SecondPoint,
+        (UpdateKind::Filtered, Some(i)) => UpdateOutcome::Filtered(i),
+        // A filtered update always leaves an innovation.
+        (UpdateKind::Filtered, None) => UpdateOutcome::SecondPoint,
+    }
+}
+
+/// The update of `D` axes that share one phase, all or nothing: every
+/// axis is computed first, the results are checked once (one [`Guard`]),
+/// and only then written. A refusal leaves every axis bit-identical, except
+/// that a saturation is counted once, on the first axis.
+#[inline(always)]
+fn update_axes<N: Numeric, const ORDER: usize, const D: usize>(
+    axes: &mut [KinematicFilter<N, ORDER>; D],
+    z: [N::Length; D],
+    step: &StepGains<N>,
+) -> Result<UpdateKind, FilterError> {
+    update_axes_each(axes, z, [step; D])
+}
+
+#[inline(always)]
+fn update_axes_each<N: Numeric, const ORDER: usize, const D: usize>(
+    axes: &mut [KinematicFilter<N, ORDER>; D],
+    z: [N::Length; D],
+    steps: [&StepGains<N>; D],
+) -> Result<UpdateKind, FilterError> {
+    let phase = axes.first().map_or(Phase::Empty, |a| a.phase);
+    if phase != Phase::Tracking {
+        let dt = steps.first().map(|s| s.interval());
+        return initialise(axes, z, dt.unwrap_or(N::Interval::ZERO));
+    }
+    // Straight-line code for one to three axes (the slice patterns are
+    // resolved at compile time), so that every result stays in registers
+    // until it is written; the loop covers larger D.
+    let mut guard = N::Guard::default();
+    macro_rules! unrolled {
+        ($(($axis:ident, $z:ident, $step:ident, $f:ident)),+) => {{
+            $(let $f = $axis.filtered(*$z, $step, &mut guard);)+
+            if !guard.passed() {
+                return Err(refuse(axes, &z));
             }
+            $($axis.commit(&$f);)+
+        }};
+    }
+    match (axes.as_mut_slice(), z.as_slice(), steps.as_slice()) {
+        ([a0], [z0], [s0]) => unrolled!((a0, z0, s0, f0)),
+        ([a0, a1], [z0, z1], [s0, s1]) => unrolled!((a0, z0, s0, f0), (a1, z1, s1, f1)),
+        ([a0, a1, a2], [z0, z1, z2], [s0, s1, s2]) => {
+            unrolled!((a0, z0, s0, f0), (a1, z1, s1, f1), (a2, z2, s2, f2))
+        }
+        (all, _, _) => {
+            let mut next = [Filtered::<N>::ZERO; D];
+            for (((slot, axis), z), step) in next.iter_mut().zip(all.iter()).zip(z).zip(steps) {
+                *slot = axis.filtered(z, step, &mut guard);
+            }
+            if !guard.passed() {
+                return Err(refuse(axes, &z));
+            }
+            for (axis, f) in axes.iter_mut().zip(next.iter()) {
+                axis.commit(f);
+            }
+        }
+    }
+    Ok(UpdateKind::Filtered)
+}
+
+/// Why a checked computation failed: an invalid measurement (not counted),
+/// or a saturation (counted on the first axis).
+#[cold]
+fn refuse<N: Numeric, const ORDER: usize, const D: usize>(
+    axes: &mut [KinematicFilter<N, ORDER>; D],
+    z: &[N::Length; D],
+) -> FilterError {
+    if z.iter().any(|v| !v.is_valid()) {
+        return FilterError::InvalidMeasurement;
+    }
+    if let Some(first) = axes.first_mut() {
+        first.count_saturation();
+    }
+    FilterError::Saturated
+}
+
+/// Two-point initialisation (Al-Wagih eqs. 9–10) of `D` axes sharing one
+/// phase (`Empty` or `OnePoint`).
+#[cold]
+fn initialise<N: Numeric, const ORDER: usize, const D: usize>(
+    axes: &mut [KinematicFilter<N, ORDER>; D],
+    z: [N::Length; D],
+    dt: N::Interval,
+) -> Result<UpdateKind, FilterError> {
+    if z.iter().any(|v| !v.is_valid()) {
+        return Err(FilterError::InvalidMeasurement);
+    }
+    check_interval(dt)?;
+    let phase = axes.first().map_or(Phase::Empty, |a| a.phase);
+    if phase == Phase::Empty {
+        for (axis, z) in axes.iter_mut().zip(z) {
+            axis.position = z;
+            axis.velocity = N::Speed::ZERO;
+            axis.acceleration = N::Acceleration::ZERO;
+            axis.since_first = N::Interval::ZERO;
+            axis.phase = Phase::OnePoint;
+        }
+        return Ok(UpdateKind::FirstPoint);
+    }
+    let mut velocity = [N::Speed::ZERO; D];
+    for ((v, axis), z) in velocity.iter_mut().zip(axes.iter()).zip(z) {
+        let elapsed = axis.since_first + dt;
+        *v = (z - axis.position) / elapsed;
+    }
+    if velocity.iter().any(|v| !v.is_valid()) {
+        return Err(refuse(axes, &z));
+    }
+    for ((axis, z), v) in axes.iter_mut().zip(z).zip(velocity) {
+        axis.position = z;
+        axis.velocity = v;
+        axis.phase = Phase::Tracking;
+    }
+    Ok(UpdateKind::SecondPoint)
+}
+
+/// Coasts `D` axes sharing one phase, all or nothing.
+fn coast_axes<N: Numeric, const ORDER: usize, const D: usize>(
+    axes: &mut [KinematicFilter<N, ORDER>; D],
+    dt: N::Interval,
+) -> Result<(), FilterError> {
+    let terms = IntervalTerms::<N>::new(dt).inspect_err(|e| {
+        if *e == FilterError::Saturated {
+            if let Some(first) = axes.first_mut() {
+                first.count_saturation();
+            }
+        }
+    })?;
+    match axes.first().map_or(Phase::Empty, |a| a.phase) {
+        Phase::Empty => Ok(()),
+        Phase::OnePoint => {
+            let mut since = [N::Interval::ZERO; D];
+            for (s, axis) in since.iter_mut().zip(axes.iter()) {
+                *s = axis.since_first + dt;
+            }
+            if since.iter().any(|s| !s.is_valid()) {
+                return Err(refuse(axes, &[N::Length::ZERO; D]));
+            }
+            for (axis, s) in axes.iter_mut().zip(since) {
+                axis.since_first = s;
+            }
+            Ok(())
+        }
+        Phase::Tracking => {
+            let mut guard = N::Guard::default();
+            let mut next = [Prediction::<N>::ZERO; D];
+            for (p, axis) in next.iter_mut().zip(axes.iter()) {
+                *p = axis.extrapolate(&terms, &mut guard);
+                p.position.check_output(&mut guard);
+                p.velocity.check_output(&mut guard);
+            }
+            if !guard.passed() {
+                return Err(refuse(axes, &[N::Length::ZERO; D]));
+            }
+            for (axis, p) in axes.iter_mut().zip(next) {
+                axis.position = p.position;
+                axis.velocity = p.velocity;
+            }
+            Ok(())
         }
     }
 }
 
 /// `D` independent one-axis filters (x, y[, z]) updated together: a 2-D or
 /// 3-D αβ / αβγ tracker. An update either applies to every axis or, if any
-/// axis refuses it, to none.
+/// axis refuses it, to none; a refused update is counted once, on the first
+/// axis.
 #[derive(Debug, Clone, Copy, PartialEq)]
 #[cfg_attr(feature = "defmt", derive(defmt::Format))]
-pub struct Cartesian<S, const ORDER: usize, const D: usize> {
-    axes: [KinematicFilter<S, ORDER>; D],
+pub struct Cartesian<N: Numeric, const ORDER: usize, const D: usize> {
+    axes: [KinematicFilter<N, ORDER>; D],
 }
 
-impl<S: Scalar, const ORDER: usize, const D: usize> Default for Cartesian<S, ORDER, D> {
+impl<N: Numeric, const ORDER: usize, const D: usize> Default for Cartesian<N, ORDER, D> {
     fn default() -> Self {
         Self::new()
     }
 }
 
-impl<S: Scalar, const ORDER: usize, const D: usize> Cartesian<S, ORDER, D> {
+impl<N: Numeric, const ORDER: usize, const D: usize> Cartesian<N, ORDER, D> {
     pub const fn new() -> Self {
         Cartesian {
             axes: [KinematicFilter::new(); D],
         }
     }
 
-    pub fn axes(&self) -> &[KinematicFilter<S, ORDER>; D] {
+    pub fn axes(&self) -> &[KinematicFilter<N, ORDER>; D] {
         &self.axes
     }
 
-    pub fn axis(&self, i: usize) -> Option<&KinematicFilter<S, ORDER>> {
+    pub fn axis(&self, i: usize) -> Option<&KinematicFilter<N, ORDER>> {
         self.axes.get(i)
     }
 
@@ -558,11 +699,11 @@ impl<S: Scalar, const ORDER: usize, const D: usize> Cartesian<S, ORDER, D> {
         self.axes.first().map_or(Phase::Empty, |a| a.phase())
     }
 
-    pub fn position(&self) -> [S; D] {
+    pub fn position(&self) -> [N::Length; D] {
         self.axes.map(|a| a.position())
     }
 
-    pub fn velocity(&self) -> [S; D] {
+    pub fn velocity(&self) -> [N::Speed; D] {
         self.axes.map(|a| a.velocity())
     }
 
@@ -573,85 +714,81 @@ impl<S: Scalar, const ORDER: usize, const D: usize> Cartesian<S, ORDER, D> {
             .fold(0u32, |n, a| n.saturating_add(a.saturations()))
     }
 
-    /// Updates every axis with the same gains.
+    /// Updates every axis with the same gains (forms the [`StepGains`] and
+    /// calls [`Self::update_step`]).
     pub fn update(
         &mut self,
-        z: [S; D],
-        dt: S,
-        gains: &Gains<S>,
-    ) -> Result<[UpdateOutcome<S>; D], FilterError> {
-        self.update_axes(z, dt, core::iter::repeat(gains))
+        z: [N::Length; D],
+        dt: N::Interval,
+        gains: &Gains<N>,
+    ) -> Result<[UpdateOutcome<N>; D], FilterError> {
+        let step = step_gains(&mut self.axes, z, dt, gains)?;
+        let kind = update_axes(&mut self.axes, z, &step)?;
+        Ok(self.outcomes(kind))
+    }
+
+    /// Updates every axis with the interval's gains formed already: the
+    /// per-update path (no division). All or nothing; a refused update
+    /// leaves the filter bit-identical, but for the saturation count.
+    pub fn update_step(
+        &mut self,
+        z: [N::Length; D],
+        step: &StepGains<N>,
+    ) -> Result<UpdateKind, FilterError> {
+        update_axes(&mut self.axes, z, step)
     }
 
     /// Updates each axis with its own gains (schedules that adapt per axis).
     pub fn update_per_axis(
         &mut self,
-        z: [S; D],
-        dt: S,
-        gains: &[Gains<S>; D],
-    ) -> Result<[UpdateOutcome<S>; D], FilterError> {
-        self.update_axes(z, dt, gains.iter())
-    }
-
-    /// All or nothing, without copying the axes: every axis computes its
-    /// update first ([`KinematicFilter::prepare`], which writes nothing), and
-    /// only if all of them succeed are the results written. A refusal by
-    /// axis i leaves every axis as it was, except that a saturation is
-    /// counted on axis i (as a one-axis update counts it).
-    fn update_axes<'g>(
-        &mut self,
-        z: [S; D],
-        dt: S,
-        gains: impl Iterator<Item = &'g Gains<S>>,
-    ) -> Result<[UpdateOutcome<S>; D], FilterError>
-    where
-        S: 'g,
-    {
-        let mut pending = [PendingUpdate::First(S::ZERO); D];
-        let axes = self.axes.iter_mut().zip(pending.iter_mut());
-        for ((axis, slot), (z, gains)) in axes.zip(z.iter().zip(gains)) {
-            match axis.prepare(*z, dt, gains) {
-                Ok(p) => *slot = p,
+        z: [N::Length; D],
+        dt: N::Interval,
+        gains: &[Gains<N>; D],
+    ) -> Result<[UpdateOutcome<N>; D], FilterError> {
+        if z.iter().any(|v| !v.is_valid()) {
+            return Err(FilterError::InvalidMeasurement);
+        }
+        let terms = IntervalTerms::<N>::new(dt)?;
+        let mut steps = [StepGains {
+            terms,
+            alpha: N::Gain::ZERO,
+            velocity_gain: N::Rate::ZERO,
+            acceleration_gain: N::RateSquared::ZERO,
+        }; D];
+        for (s, g) in steps.iter_mut().zip(gains) {
+            match StepGains::new(g, dt) {
+                Ok(v) => *s = v,
                 Err(e) => {
                     if e == FilterError::Saturated {
-                        axis.count_saturation();
+                        if let Some(first) = self.axes.first_mut() {
+                            first.count_saturation();
+                        }
                     }
                     return Err(e);
                 }
             }
         }
-        let mut out = [UpdateOutcome::FirstPoint; D];
-        for ((axis, p), o) in self.axes.iter_mut().zip(pending).zip(out.iter_mut()) {
-            *o = axis.commit(p);
-        }
-        Ok(out)
+        let kind = update_axes_each(&mut self.axes, z, steps.each_ref())?;
+        Ok(self.outcomes(kind))
+    }
+
+    fn outcomes(&self, kind: UpdateKind) -> [UpdateOutcome<N>; D] {
+        self.axes.map(|a| outcome(kind, a.last))
     }
 
     /// The state of every axis predicted `dt` ahead, without changing the
     /// filter ([`KinematicFilter::predict`] per axis).
-    pub fn predict(&self, dt: S) -> Result<[Prediction<S>; D], FilterError> {
-        let mut out = [Prediction {
-            position: S::ZERO,
-            velocity: S::ZERO,
-            acceleration: S::ZERO,
-        }; D];
+    pub fn predict(&self, dt: N::Interval) -> Result<[Prediction<N>; D], FilterError> {
+        let terms = IntervalTerms::new(dt)?;
+        let mut out = [Prediction::ZERO; D];
         for (axis, prediction) in self.axes.iter().zip(out.iter_mut()) {
-            *prediction = axis.predict(dt)?;
+            *prediction = axis.predict_terms(&terms)?;
         }
         Ok(out)
     }
 
-    /// Coasts every axis (no measurement this scan).
-    pub fn coast(&mut self, dt: S) -> Result<(), FilterError> {
-        let mut next = self.axes;
-        for (current, candidate) in self.axes.iter_mut().zip(next.iter_mut()) {
-            if let Err(e) = candidate.coast(dt) {
-                // Keep the saturation count of the refused coast.
-                current.saturations = candidate.saturations;
-                return Err(e);
-            }
-        }
-        self.axes = next;
-        Ok(())
+    /// Coasts every axis (no measurement this scan), all or nothing.
+    pub fn coast(&mut self, dt: N::Interval) -> Result<(), FilterError> {
+        coast_axes(&mut self.axes, dt)
     }
 }

@@ -4,17 +4,19 @@
 //!
 //! | module | what it owns |
 //! |---|---|
-//! | [`num`] | the [`num::Scalar`] abstraction over `f64`, `f32` and Q32.32 fixed point |
+//! | [`num`] | the number systems ([`num::Numeric`]): `f64`, `f32`, Q32.32 and the fast fixed point |
+//! | [`gains`] | the gains (α, β, γ), their stability region and the papers' gain formulas |
 //! | [`filter`] | single-target αβ / αβγ filters, one axis and composed into 2-D/3-D |
 //! | [`budget`] | the error budget: bound on the deviation of an f32 / fixed-point run from f64 |
 //! | [`design`] | closed-form analysis: stability, noise ratio, steady-state and transient errors |
+//! | [`envelope`] | the limits every value is checked against where it enters |
 //! | [`track`] | the fixed-capacity multi-target track table: gating, assignment, lifecycle |
 //! | [`tcas`] | threat measures and advisory levels |
 //! | [`wire`] | the serial frame codec: measurement frames in, report frames out (sans-IO) |
 //! | [`scan`] | the scan loop's core: received bytes and timer ticks to tracks, advisories and reports |
 //!
 //! The specification is five papers, cited in the doc comments by author and
-//! equation number (see README.md, "The papers").
+//! equation number (see docs/papers.md).
 #![no_std]
 #![forbid(unsafe_code)]
 #![warn(missing_debug_implementations)]
@@ -22,8 +24,10 @@
 pub mod bank;
 pub mod budget;
 pub mod design;
+pub mod envelope;
 pub mod filter;
 pub mod gain;
+pub mod gains;
 pub mod num;
 pub mod scan;
 pub mod tcas;
@@ -31,4 +35,4 @@ pub mod track;
 pub mod wire;
 
 pub use filter::{AlphaBeta, AlphaBetaGamma, Cartesian, FilterError, GainError, Gains};
-pub use num::{Fix, NumError, Scalar};
+pub use num::{Fix, Fixed32, NumError, Numeric, Quantity, Scalar};

@@ -46,6 +46,12 @@ use core::ops::{Add, Div, Mul, Neg, Sub};
 use fixed::types::I32F32;
 
 pub mod cordic;
+pub mod fixed32;
+pub mod numeric;
+pub mod scaled;
+
+pub use fixed32::Fixed32;
+pub use numeric::{AddProduct, Checked, Guard, Numeric, Quantity, Real, SubGuarded};
 
 /// Why a value from outside could not be converted into a [`Scalar`].
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -87,8 +93,9 @@ pub trait Scalar:
     + Send
     + Sync
     + 'static
+    + numeric::MaybeFormat
 {
-    /// Short name for reports: "f64", "f32", "fixed".
+    /// Short name for reports: "f64", "f32", "q32".
     const NAME: &'static str;
     const ZERO: Self;
     const ONE: Self;
@@ -145,6 +152,17 @@ pub trait Scalar:
         } else {
             self
         }
+    }
+
+    /// Folds `value` into the running check of the hot path's guard
+    /// ([`numeric::ScalarGuard`]), which passes when `check − check == 0`.
+    /// Floats add (NaN and ±∞ are sticky, and a finite sum of a few outputs
+    /// below `MAX/8` cannot overflow). Q32.32 overrides it: a sum of valid
+    /// values near 2³¹ could saturate, so it keeps zero while every value
+    /// is valid.
+    #[inline]
+    fn accumulate_check(check: Self, value: Self) -> Self {
+        check + value
     }
 }
 
@@ -405,7 +423,7 @@ impl Neg for Fix {
 }
 
 impl Scalar for Fix {
-    const NAME: &'static str = "fixed";
+    const NAME: &'static str = "q32";
     const ZERO: Self = Fix(I32F32::ZERO);
     const ONE: Self = Fix(I32F32::ONE);
     // `fixed` multiplies with an arithmetic shift (rounds toward −∞) and
@@ -468,6 +486,15 @@ impl Scalar for Fix {
         match self.0.checked_sqrt() {
             Some(r) => Fix(r),
             None => Fix::MAX,
+        }
+    }
+
+    #[inline]
+    fn accumulate_check(check: Self, value: Self) -> Self {
+        if !check.is_sentinel() && !value.is_sentinel() {
+            <Fix as Scalar>::ZERO
+        } else {
+            Fix::MAX
         }
     }
 

@@ -189,7 +189,7 @@ impl<'q> Intake<'q> {
 /// [`TrackerConfig`] is kept outside [`TrackTable`]) so that the loop can be
 /// built by a `const fn` in a `static`.
 #[derive(Debug, Clone, Copy, PartialEq)]
-pub struct ScanConfig<S, P> {
+pub struct ScanConfig<S: Scalar, P> {
     pub tracker: TrackerConfig<S, P>,
     /// The own aircraft, for the threat assessment.
     pub own: OwnAircraft<S>,
@@ -244,7 +244,7 @@ struct BatchCounts {
 }
 
 #[derive(Debug, Clone, Copy)]
-struct AltitudeSlot<S> {
+struct AltitudeSlot<S: Scalar> {
     track: TrackId,
     tracker: AltitudeTracker<S>,
     updated: bool,
@@ -285,7 +285,7 @@ fn scaled_i32<S: Scalar>(v: S, scale: f64) -> i32 {
 /// [`AltitudeTracker<S>`] and its id. `host-tests/tests/scan_loop.rs`
 /// prints the sizes; the firmware prints its own at start-up.
 #[derive(Debug)]
-pub struct ScanLoop<S, F, const N: usize, const M: usize> {
+pub struct ScanLoop<S: Scalar, F, const N: usize, const M: usize> {
     table: TrackTable<S, F, N, M>,
     batch: heapless::Vec<Measurement<S>, M>,
     batch_altitudes: heapless::Vec<Option<S>, M>,

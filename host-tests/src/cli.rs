@@ -1,122 +1,67 @@
-//! Command-line arguments of the `replay` tool.
+//! Command line of the `replay` tool ([`ReplayArgs`], clap derive).
 //!
-//! Options are looked up in one table ([`REPLAY_OPTIONS`]) and collected as
-//! text first, then interpreted per filter ([`filter_kind`]): adding an
-//! option is a table row, its name in the filter's list of accepted options
-//! ([`accepted_options`]) and the code that reads it; a new filter kind is
-//! one arm of [`filter_kind`].
-//!
-//! The multi-target `--tracker` (with the flag `--verbose`) is a
-//! [`Command`] of its own ([`Command::Tracker`], run by
-//! [`crate::replay_tracker`]): it takes no `--filter` and accepts the
-//! options of [`accepted_options`]`("tracker")`.
-//!
-//! Both `--name value` and `--name=value` are accepted; `-` as the input means
-//! standard input.
+//! clap parses and checks each option; [`ReplayArgs::into_command`] then checks
+//! which options the chosen mode takes (`--filter ab|abg|range-azimuth` or
+//! `--tracker`) and builds the [`Command`] the runners take. Every refusal
+//! is a clap error: a message, the usage line and exit status 2.
 
-use std::collections::BTreeMap;
-use std::fmt;
 use std::path::PathBuf;
 
 use abtrack::filter::altitude::AltitudeQuantum;
 use abtrack::gain::spec::{ScheduleSpec, SpecError, SpecErrorKind, SCHEDULES};
 use abtrack::gain::ConfigError;
-use abtrack::GainError;
+use clap::error::ErrorKind;
+use clap::{CommandFactory, Parser, ValueEnum};
 
+use crate::csv_input::AngleUnit;
 use crate::replay::{
     FilterKind, Numeric, Order, RangeAzimuthOptions, ReplayBank, ReplayConfig, ReplaySchedule,
     BANK_CAPACITY, WINDOW_CAPACITY,
 };
-use crate::replay_tracker::{TrackerOptions, CAPACITIES, DEFAULT_CAPACITY};
+use crate::replay_tracker::{SensorOptions, TrackerOptions, CAPACITIES, MAX_MEASUREMENTS};
 
-/// The options that take a value, with their help text.
-pub const REPLAY_OPTIONS: &[(&str, &str)] = &[
-    (
-        "--filter",
-        "ab | abg | range-azimuth: αβ (Al-Wagih & Abdulla), αβγ (Tenne & Singh), or the\n\
-         range-azimuth projection filter (He, Peng, Ling & Quan)",
-    ),
-    (
-        "--schedule",
-        "ab, abg, tracker: NAME[:key=value,...], the gain schedule (list below); with\n\
-         --tracker, t,x,y input only and not bank",
-    ),
-    (
-        "--alpha",
-        "ab, abg: fixed position gain α (0 < α < 2); --alpha A --beta B [--gamma G] is\n\
-         shorthand for --schedule fixed:alpha=A,beta=B[,gamma=G]",
-    ),
-    (
-        "--beta",
-        "ab, abg: fixed velocity gain β (β > 0, 2α + β < 4); the update uses β/T",
-    ),
-    (
-        "--gamma",
-        "abg: fixed acceleration gain γ, Tenne & Singh's γ/(2T²) (0 < γ < 4αβ/(2−α))",
-    ),
-    (
-        "--range-sigma",
-        "range-azimuth: range noise σ_R in metres, > 0 (default 100, He et al.'s 100 m)",
-    ),
-    (
-        "--bearing-variance",
-        "range-azimuth: bearing noise variance σ_B² in rad², > 0; the cross-range variance\n\
-         is R²·σ_B² (default 7.569e-3, He et al.'s value, about 5° RMS)",
-    ),
-    (
-        "--process-noise",
-        "range-azimuth: process noise Q in m²/s⁴, ≥ 0: the variance of the white\n\
-         acceleration, along and across range (default 1)",
-    ),
-    (
-        "--alt-quantum",
-        "range-azimuth: quantum of the alt reports in feet, 100 (Mode C, default) or 25\n\
-         (Mode S); sets the altitude tracker's gains",
-    ),
-    (
-        "--own-alt",
-        "range-azimuth, tracker: own pressure altitude in feet; adds the threat columns",
-    ),
-    (
-        "--capacity",
-        "tracker: track table capacity N, 16 | 64 | 256 (default 64); up to 256\n\
-         measurements per scan",
-    ),
-    (
-        "--confirm",
-        "tracker: M/N, confirm a tentative track when M of its first N scans had a\n\
-         measurement (1 <= M <= N <= 32; tentative deletion becomes N - M + 1 misses);\n\
-         default from the design (3/4 for both nominal sensors)",
-    ),
-    (
-        "--delete",
-        "tracker: K, delete a confirmed track after K consecutive misses (1..=255);\n\
-         default from the design (4)",
-    ),
-    ("--numeric", "f64 | f32 | fixed (Q32.32); default f64"),
-];
+/// `--filter`.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, ValueEnum)]
+pub enum FilterName {
+    /// αβ (Al-Wagih & Abdulla).
+    #[value(name = "ab")]
+    AlphaBeta,
+    /// αβγ (Tenne & Singh).
+    #[value(name = "abg")]
+    AlphaBetaGamma,
+    /// The range–azimuth projection filter (He, Peng, Ling & Quan).
+    #[value(name = "range-azimuth")]
+    RangeAzimuth,
+}
 
-/// The options each filter accepts (besides `--filter` and `--numeric`).
-pub fn accepted_options(filter: &str) -> &'static [&'static str] {
-    match filter {
-        "ab" => &["--schedule", "--alpha", "--beta"],
-        "abg" => &["--schedule", "--alpha", "--beta", "--gamma"],
-        "range-azimuth" => &[
-            "--range-sigma",
-            "--bearing-variance",
-            "--process-noise",
-            "--alt-quantum",
-            "--own-alt",
-        ],
-        "tracker" => &[
-            "--schedule",
-            "--own-alt",
-            "--capacity",
-            "--confirm",
-            "--delete",
-        ],
-        _ => &[],
+/// `--alt-quantum`.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, ValueEnum)]
+pub enum QuantumFeet {
+    /// Mode C, 100 ft.
+    #[value(name = "100")]
+    ModeC,
+    /// Mode S, 25 ft.
+    #[value(name = "25")]
+    ModeS,
+}
+
+/// A finite number (clap's `f64` parser also takes `nan` and `inf`).
+fn finite(text: &str) -> Result<f64, String> {
+    match text.trim().parse::<f64>() {
+        Ok(v) if v.is_finite() => Ok(v),
+        _ => Err(format!(
+            "\"{}\" is not a finite number",
+            crate::csv_input::echo(text)
+        )),
     }
+}
+
+/// `M/N` with 1 ≤ M ≤ N ≤ 32.
+fn confirmation(text: &str) -> Result<(u8, u8), String> {
+    text.split_once('/')
+        .and_then(|(m, n)| Some((m.trim().parse::<u8>().ok()?, n.trim().parse::<u8>().ok()?)))
+        .filter(|&(m, n)| m >= 1 && m <= n && n <= 32)
+        .ok_or_else(|| "expected M/N with 1 <= M <= N <= 32".to_string())
 }
 
 /// The schedule list of `--help`, generated from the library's
@@ -132,108 +77,139 @@ pub fn schedule_list() -> String {
     s
 }
 
-/// The `--help` text.
-pub fn replay_usage() -> String {
-    let mut s = String::from(
-        "replay: run the abtrack filters on recorded measurements, exactly as the firmware computes them.\n\
-         \n\
-         usage:\n  \
-           replay --filter ab|abg --schedule NAME[:key=value,...] [--numeric N] <FILE | ->\n  \
-           replay --filter ab|abg --alpha A --beta B [--gamma G] [--numeric N] <FILE | ->\n  \
-           replay --filter range-azimuth [--range-sigma M] [--bearing-variance V] [--process-noise Q]\n         \
-                  [--alt-quantum 100|25] [--own-alt FEET] [--numeric N] <FILE | ->\n  \
-           replay --tracker [--schedule SPEC] [--capacity 16|64|256] [--confirm M/N] [--delete K]\n         \
-                  [--own-alt FEET] [--numeric N] [--verbose] <FILE | ->\n\
-         \n\
-         options (--name value or --name=value; the filters an option applies to come first):\n",
-    );
-    let width = REPLAY_OPTIONS
-        .iter()
-        .map(|(n, _)| n.chars().count())
-        .max()
-        .unwrap_or(0);
-    for (name, help) in REPLAY_OPTIONS {
-        let indent = " ".repeat(width + 3);
-        let help = help.replace('\n', &format!("\n{indent}"));
-        s.push_str(&format!("  {name:<width$} {help}\n"));
-    }
-    s.push_str(&format!(
-        "  {:<width$} multi-target track table (flag; see below)\n",
-        "--tracker"
-    ));
-    s.push_str(&format!(
-        "  {:<width$} tracker: per-scan association counts to stderr (flag)\n",
-        "--verbose"
-    ));
-    s.push_str(&format!("  {:<width$} show this text\n", "-h, --help"));
-    s.push_str(&format!(
-        "\nschedules (--schedule NAME[:key=value,...]; keys not given take the defaults shown):\n\
+/// The text after the options in `--help`.
+fn after_help() -> String {
+    format!(
+        "Schedules (--schedule NAME[:key=value,...]; keys not given take the defaults shown):\n\
          {}\
-         \x20 The schedule starts filtering at the third row (two-point initialisation uses no\n\
-         \x20 gains). With --filter abg, schedules that give αβ gains (every one but tcas-firmness\n\
-         \x20 and fixed with gamma) leave the acceleration at zero; with --filter ab the γ of\n\
-         \x20 tcas-firmness is ignored. bank (M5) needs --filter ab. Windows (window, n) hold at\n\
-         \x20 most {WINDOW_CAPACITY} entries and the bank at most {BANK_CAPACITY} members.\n\
-         \x20 A bad spec is refused with its byte position, e.g. `m1:beta=0.3`: unknown parameter\n\
-         \x20 for this schedule (at byte 3).\n",
-        schedule_list()
-    ));
-    s.push_str(
-        "\ninput (CSV; `-` reads standard input; t in seconds, strictly increasing; blank lines,\n\
-         spaces around fields, \\r\\n and a UTF-8 BOM are accepted):\n  \
-           ab, abg        header t,x or t,x,y or t,x,y,z; positions in metres.\n  \
-           range-azimuth  header t,range,azimuth or t,range,azimuth,alt; range in metres (> 0),\n                 \
-                          azimuth in radians clockwise from +y (x = R sin B, y = R cos B; any\n                 \
-                          finite value, it wraps), alt the intruder's reported pressure altitude\n                 \
-                          in feet, an empty field meaning the reply carried none.\n\
+         The schedule starts filtering at the third row (two-point initialisation uses no\n\
+         gains). With --filter abg, schedules that give αβ gains (every one but tcas-firmness\n\
+         and fixed with gamma) leave the acceleration at zero; with --filter ab the γ of\n\
+         tcas-firmness is ignored. bank (M5) needs --filter ab. Windows (window, n) hold at\n\
+         most {WINDOW_CAPACITY} entries and the bank at most {BANK_CAPACITY} members.\n\
          \n\
-         output (stdout, CSV; f32 values in f32's shortest form, fixed point in decimal; an\n\
-         undefined value is an empty cell):\n  \
-           ab, abg        t, then per axis a (x, y, z): a, va, res_a and, for abg, aa: position,\n                 \
-                          velocity (and acceleration) after the update, residual z − prediction\n                 \
-                          (empty on the two initialisation rows).\n  \
-           bank           per axis a, va, res_a, member_a: the output is that of the member whose\n                 \
-                          prediction of this row had the least |z − prediction| (Al-Wagih &\n                 \
-                          Abdulla Algorithm 3, ties to the lowest index): its position and\n                 \
-                          velocity after the update, its residual, and its index (0-based, α\n                 \
-                          evenly spaced from min to max, β = α²/(2 − α)).\n  \
-           range-azimuth  t,x,vx,res_x,y,vy,res_y,range,azimuth: the relative position (m) and\n                 \
-                          velocity (m/s), res_a = converted measurement (R sin B, R cos B) minus the\n                 \
-                          prediction, and the estimate as range (m) and azimuth (rad, [0, 2π)).\n                 \
-                          With an alt column: alt (ft), alt_rate (ft/s), the altitude tracker's\n                 \
-                          estimate (empty while the intruder is not reporting: no report yet, or\n                 \
-                          none for more than 6 s).\n                 \
-                          With --own-alt: tau (range tau, s; empty when opening), tau_mod\n                 \
-                          (modified tau with the TA DMOD, s; empty when opening outside DMOD),\n                 \
-                          t_cpa (s), d_cpa (m), advisory (none|proximate|ta|ra) and tau_mod_ra\n                 \
-                          (modified tau with the RA DMOD; also empty at SL 2), from abtrack::tcas\n                 \
-                          (TCAS II 7.1: 10 ft/s closure floor, sensitivity level from FEET). All\n                 \
-                          empty on the first row (no velocity yet).\n                 \
-                          Assumed: the own aircraft is at the origin, level at FEET over terrain\n                 \
-                          at sea level (radio altitude = FEET); range and azimuth are relative,\n                 \
-                          so the track is the relative motion (own velocity zero). Without an alt\n                 \
-                          column (or while the tracker has no altitude) the intruder counts as\n                 \
-                          not reporting altitude: at most a TA, proximate within 6 NM.\n\
-         The first row's interval is taken as 1 s (unused by two-point initialisation).\n\
-         Nothing is written unless the whole file runs; errors name the line and column.\n\
-         exit status: 0 success, 1 bad input file or refused row, 2 bad arguments.\n",
-    );
-    s.push_str(
-        "\n--tracker (abtrack::track::TrackTable, issue 5):\n  \
-           input   t,x,y or t,range,azimuth[,alt] (the header chooses); rows sharing a t are one\n          \
-                   scan, a decreasing t is refused naming its line. alt is not used.\n  \
-           config  default: abtrack::track::defaults::default_cartesian (t,x,y: M2 gains, n_max 9,\n          \
-                   uncertainty gate, 3 of 4, deletion 4/2 misses, 10 km square) or default_polar\n          \
-                   (He et al.'s filter, range/azimuth window, 3 of 4, 4/2, 14 NM disc); options\n          \
-                   replace one part each.\n  \
-           time    scan at round((t - t_first) * 1000) ms on the table's u32 clock: at most\n          \
-                   2^32 - 1 ms (49.7 days) after the first scan, scans >= 1 ms apart.\n  \
-           output  t,track_id,status,x,y,vx,vy: one row per live track per scan, by id; status\n          \
-                   tentative|confirmed|coasting. With --own-alt the threat columns above follow\n          \
-                   (tau,tau_mod,t_cpa,d_cpa,advisory,tau_mod_ra); the table keeps no altitude, so\n          \
-                   every track counts as not reporting altitude: horizontal only, at most a TA.\n",
-    );
-    s
+         Input: CSV with a header; columns matched by name, in any order, others ignored.\n\
+         \x20 ab, abg, tracker on x/y data: t (s), x [, y [, z]] (m) [, alt (ft)]\n\
+         \x20 range-azimuth, tracker on polar data: t, range (m), azimuth [, alt]\n\
+         \x20 azimuth clockwise from +y (x = R sin B, y = R cos B), in radians unless\n\
+         \x20 --azimuth-unit deg; alt is the target's reported pressure altitude, empty when\n\
+         \x20 the reply had none. Values outside the envelope (positions and ranges beyond\n\
+         \x20 400 km, altitudes outside -1000..126700 ft, an azimuth beyond one turn, t beyond\n\
+         \x20 2^33 s, intervals outside 0.05..20 s, scans closer than 0.05 s) are refused\n\
+         \x20 naming the line and column. With --tracker, rows sharing a t are one scan.\n\
+         \n\
+         Output (stdout, CSV, written only when the whole file has run; f32 in its shortest\n\
+         form, fixed point in decimal, an undefined value empty; details: docs/host-tools.md):\n\
+         \x20 ab, abg        t, then per axis a: a, va, res_a (and aa for abg)\n\
+         \x20 bank           t, then per axis a: a, va, res_a, member_a (the member selected)\n\
+         \x20 range-azimuth  t,x,vx,res_x,y,vy,res_y,range,azimuth [,alt,alt_rate]\n\
+         \x20 tracker        t,track_id,status,x,y,vx,vy (one row per live track per scan)\n\
+         \x20 --own-alt adds tau,tau_mod,t_cpa,d_cpa,advisory,tau_mod_ra (TCAS II 7.1; the own\n\
+         \x20 aircraft at the origin, level at FEET over sea-level terrain, own velocity zero).\n\
+         An estimate outside the envelope (or not finite) stops the run with its line named.\n\
+         --tracker always reports on stderr the design used and every measurement not used,\n\
+         by reason. Exit status: 0 success (also when stdout is closed early), 1 bad input or a\n\
+         refused row, 2 bad arguments.\n",
+        schedule_list()
+    )
+}
+
+/// Runs the library's filters on recorded measurements, exactly as the
+/// firmware computes them (f64, f32 or Q32.32 fixed point).
+#[derive(Debug, Clone, Parser)]
+#[command(
+    name = "replay",
+    version,
+    allow_negative_numbers = true,
+    group(clap::ArgGroup::new("mode").required(true).args(["filter", "tracker"])),
+    after_long_help = after_help(),
+    after_help = "Schedules, input and output formats: replay --help (long) and docs/host-tools.md."
+)]
+pub struct ReplayArgs {
+    /// The single-target filter to run.
+    #[arg(long, value_enum, help_heading = "Mode")]
+    pub filter: Option<FilterName>,
+    /// The multi-target track table, configured from the sensor's figures.
+    #[arg(long, help_heading = "Mode")]
+    pub tracker: bool,
+    /// f64, f32 or fixed (Q32.32).
+    #[arg(long, value_enum, default_value = "f64")]
+    pub numeric: Numeric,
+
+    /// ab, abg, tracker (x/y input, not bank): the gain schedule, NAME[:key=value,...].
+    #[arg(long, value_name = "SPEC", help_heading = "Gains")]
+    pub schedule: Option<String>,
+    /// ab, abg: fixed position gain α (0 < α < 2); shorthand for --schedule fixed:alpha=A,beta=B.
+    #[arg(long, value_parser = finite, allow_hyphen_values = true, requires = "beta", help_heading = "Gains")]
+    pub alpha: Option<f64>,
+    /// ab, abg: fixed velocity gain β (β > 0, 2α + β < 4); the update uses β/T.
+    #[arg(long, value_parser = finite, allow_hyphen_values = true, requires = "alpha", help_heading = "Gains")]
+    pub beta: Option<f64>,
+    /// abg: fixed acceleration gain γ, Tenne & Singh's γ/(2T²) (0 < γ < 4αβ/(2−α)).
+    #[arg(long, value_parser = finite, allow_hyphen_values = true, requires = "alpha", help_heading = "Gains")]
+    pub gamma: Option<f64>,
+
+    /// range-azimuth, tracker: range noise σ_R, m (range-azimuth default 100, He et al.'s).
+    #[arg(long, value_parser = finite, allow_hyphen_values = true, help_heading = "Sensor")]
+    pub range_sigma_m: Option<f64>,
+    /// range-azimuth, tracker: bearing noise σ_B, degrees (range-azimuth default about 5°).
+    #[arg(long, value_parser = finite, allow_hyphen_values = true, help_heading = "Sensor")]
+    pub bearing_sigma_deg: Option<f64>,
+    /// range-azimuth: bearing noise variance σ_B², rad² (He et al.'s unit; default 7.569e-3).
+    #[arg(long, value_parser = finite, allow_hyphen_values = true, conflicts_with = "bearing_sigma_deg", help_heading = "Sensor")]
+    pub bearing_variance: Option<f64>,
+    /// range-azimuth, tracker: unit of the azimuth column (never guessed).
+    #[arg(long, value_enum, default_value = "rad", help_heading = "Sensor")]
+    pub azimuth_unit: AngleUnit,
+    /// tracker: Cartesian noise σ per axis, m (default 20, or the polar sensor's figures).
+    #[arg(long, value_parser = finite, allow_hyphen_values = true, help_heading = "Sensor")]
+    pub sigma_m: Option<f64>,
+    /// tracker: the region watched, m: half-width of a square (x/y input) or radius of a
+    /// disc (range/azimuth input) around the sensor. Default: none.
+    #[arg(long, value_parser = finite, allow_hyphen_values = true, help_heading = "Sensor")]
+    pub region_m: Option<f64>,
+    /// tracker: scan period T, s (default: the median interval between the file's scans).
+    #[arg(long, value_parser = finite, allow_hyphen_values = true, help_heading = "Sensor")]
+    pub scan_period_s: Option<f64>,
+    /// tracker: detection probability P_D (default 0.9).
+    #[arg(long, value_parser = finite, allow_hyphen_values = true, help_heading = "Sensor")]
+    pub pd: Option<f64>,
+    /// tracker: false measurements per km² per scan (default 0.1 for x/y, 0.00142 for polar).
+    #[arg(long = "clutter-per-km2", value_parser = finite, allow_hyphen_values = true, help_heading = "Sensor")]
+    pub clutter_per_km2: Option<f64>,
+    /// tracker: largest target speed, m/s (default 300 for x/y, 617 for polar).
+    #[arg(long, value_parser = finite, allow_hyphen_values = true, help_heading = "Sensor")]
+    pub max_speed_mps: Option<f64>,
+    /// tracker: manoeuvre level, the largest acceleration, m/s² (default g·tan 30° = 5.66).
+    #[arg(long = "max-accel-mps2", value_parser = finite, allow_hyphen_values = true, help_heading = "Sensor")]
+    pub max_accel_mps2: Option<f64>,
+
+    /// range-azimuth: process noise Q, m²/s⁴ (≥ 0; default 1).
+    #[arg(long, value_parser = finite, allow_hyphen_values = true, help_heading = "Range-azimuth filter")]
+    pub process_noise: Option<f64>,
+    /// range-azimuth: quantum of the alt reports: 100 ft (Mode C) or 25 ft (Mode S).
+    #[arg(long, value_enum, help_heading = "Range-azimuth filter")]
+    pub alt_quantum: Option<QuantumFeet>,
+    /// range-azimuth, tracker: own pressure altitude, ft; adds the TCAS threat columns.
+    #[arg(long = "own-alt", value_parser = finite, allow_hyphen_values = true, value_name = "FEET")]
+    pub own_alt: Option<f64>,
+
+    /// tracker: track table capacity N (16, 64 or 256; up to 256 measurements per scan).
+    #[arg(long, value_parser = ["16", "64", "256"], help_heading = "Tracker")]
+    pub capacity: Option<String>,
+    /// tracker: confirm a tentative track when M of its first N scans had a measurement
+    /// (tentative deletion becomes N − M + 1 misses). Default: from the design.
+    #[arg(long, value_name = "M/N", value_parser = confirmation, help_heading = "Tracker")]
+    pub confirm: Option<(u8, u8)>,
+    /// tracker: delete a confirmed track after K consecutive misses. Default: from the design.
+    #[arg(long, value_name = "K", value_parser = clap::value_parser!(u8).range(1..), help_heading = "Tracker")]
+    pub delete: Option<u8>,
+    /// tracker: one line of association counts per scan on stderr.
+    #[arg(long, help_heading = "Tracker")]
+    pub verbose: bool,
+
+    /// The CSV recording; - reads standard input.
+    pub input: PathBuf,
 }
 
 /// Where the measurements come from.
@@ -243,10 +219,9 @@ pub enum Input {
     Path(PathBuf),
 }
 
-/// A parsed command line.
+/// A checked command line.
 #[derive(Debug, Clone, PartialEq)]
 pub enum Command {
-    Help,
     Replay {
         config: ReplayConfig,
         input: Input,
@@ -259,332 +234,313 @@ pub enum Command {
     },
 }
 
-/// Why the arguments were refused.
-#[derive(Debug, Clone, PartialEq)]
-pub enum UsageError {
-    UnknownOption(String),
-    MissingValue(&'static str),
-    Repeated(&'static str),
-    Missing(&'static str),
-    BadNumber {
-        option: &'static str,
-        text: String,
-    },
-    /// A number outside the option's range.
-    OutOfRange {
-        option: &'static str,
-        text: String,
-        requirement: &'static str,
-    },
-    UnknownFilter(String),
-    UnknownNumeric(String),
-    UnknownQuantum(String),
-    /// An option that the chosen filter does not take.
-    NotForFilter {
-        option: &'static str,
-        filter: String,
-    },
-    /// Two options that choose the same thing.
-    Conflict {
-        option: &'static str,
-        with: &'static str,
-    },
-    /// A `--schedule` spec the library's parser (or the schedule's
-    /// construction) refused; `offset` in `error` is a byte offset in `text`.
-    Spec {
-        text: String,
-        error: SpecError,
-    },
-    /// `--schedule bank` with `--filter abg`.
-    BankNeedsAlphaBeta,
-    Gains(GainError),
-    /// An option that `--tracker` does not take (or `--schedule bank`).
-    NotForTracker(&'static str),
-    /// A flag that needs `--tracker`.
-    TrackerOnly(&'static str),
-    NoInput,
-    ExtraInput(String),
+/// A clap usage error (exit status 2) with `message`.
+fn usage_error(kind: ErrorKind, message: impl std::fmt::Display) -> clap::Error {
+    ReplayArgs::command().error(kind, message)
 }
 
-impl fmt::Display for UsageError {
-    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
-        match self {
-            UsageError::UnknownOption(o) => write!(f, "unknown option {o}"),
-            UsageError::MissingValue(o) => write!(f, "{o} needs a value"),
-            UsageError::Repeated(o) => write!(f, "{o} given twice"),
-            UsageError::Missing(o) => write!(f, "{o} is required"),
-            UsageError::BadNumber { option, text } => {
-                write!(f, "{option}: \"{text}\" is not a finite number")
-            }
-            UsageError::OutOfRange {
-                option,
-                text,
-                requirement,
-            } => write!(
-                f,
-                "{option}: {text} is out of range (must be {requirement})"
+impl ReplayArgs {
+    /// The options given, by name, besides the mode, `--numeric` and the
+    /// input.
+    fn given(&self) -> Vec<&'static str> {
+        let options: [(&'static str, bool); 22] = [
+            ("--schedule", self.schedule.is_some()),
+            ("--alpha", self.alpha.is_some()),
+            ("--beta", self.beta.is_some()),
+            ("--gamma", self.gamma.is_some()),
+            ("--range-sigma-m", self.range_sigma_m.is_some()),
+            ("--bearing-sigma-deg", self.bearing_sigma_deg.is_some()),
+            ("--bearing-variance", self.bearing_variance.is_some()),
+            ("--azimuth-unit", self.azimuth_unit != AngleUnit::default()),
+            ("--sigma-m", self.sigma_m.is_some()),
+            ("--region-m", self.region_m.is_some()),
+            ("--scan-period-s", self.scan_period_s.is_some()),
+            ("--pd", self.pd.is_some()),
+            ("--clutter-per-km2", self.clutter_per_km2.is_some()),
+            ("--max-speed-mps", self.max_speed_mps.is_some()),
+            ("--max-accel-mps2", self.max_accel_mps2.is_some()),
+            ("--process-noise", self.process_noise.is_some()),
+            ("--alt-quantum", self.alt_quantum.is_some()),
+            ("--own-alt", self.own_alt.is_some()),
+            ("--capacity", self.capacity.is_some()),
+            ("--confirm", self.confirm.is_some()),
+            ("--delete", self.delete.is_some()),
+            ("--verbose", self.verbose),
+        ];
+        options
+            .into_iter()
+            .filter(|(_, given)| *given)
+            .map(|(name, _)| name)
+            .collect()
+    }
+
+    /// Checks which options the mode takes and builds the [`Command`].
+    pub fn into_command(self) -> Result<Command, clap::Error> {
+        let input = if self.input.as_os_str() == "-" {
+            Input::Stdin
+        } else {
+            Input::Path(self.input.clone())
+        };
+        let (mode, accepted): (&str, &[&str]) = match self.filter {
+            None => (
+                "--tracker",
+                &[
+                    "--schedule",
+                    "--range-sigma-m",
+                    "--bearing-sigma-deg",
+                    "--azimuth-unit",
+                    "--sigma-m",
+                    "--region-m",
+                    "--scan-period-s",
+                    "--pd",
+                    "--clutter-per-km2",
+                    "--max-speed-mps",
+                    "--max-accel-mps2",
+                    "--own-alt",
+                    "--capacity",
+                    "--confirm",
+                    "--delete",
+                    "--verbose",
+                ],
             ),
-            UsageError::UnknownFilter(n) => {
-                write!(f, "--filter: unknown filter \"{n}\" (ab|abg|range-azimuth)")
-            }
-            UsageError::UnknownNumeric(n) => {
-                write!(f, "--numeric: unknown \"{n}\" ({})", Numeric::NAMES)
-            }
-            UsageError::UnknownQuantum(n) => {
-                write!(f, "--alt-quantum: unknown \"{n}\" (100 or 25)")
-            }
-            UsageError::NotForFilter { option, filter } => {
-                write!(f, "{option} does not apply to --filter {filter}")
-            }
-            UsageError::Conflict { option, with } => write!(
-                f,
-                "{option} and {with} cannot be combined (--alpha/--beta/--gamma are shorthand \
-                 for --schedule fixed:alpha=A,beta=B[,gamma=G])"
+            Some(FilterName::AlphaBeta) => ("--filter ab", &["--schedule", "--alpha", "--beta"]),
+            Some(FilterName::AlphaBetaGamma) => (
+                "--filter abg",
+                &["--schedule", "--alpha", "--beta", "--gamma"],
             ),
-            UsageError::Spec { text, error } => {
-                // The spec, and a caret under the byte the parser points at.
-                let column = text
-                    .get(..error.offset)
-                    .map_or(error.offset, |s| s.chars().count());
-                write!(
-                    f,
-                    "--schedule: {error}\n  {text}\n  {}^",
-                    " ".repeat(column)
-                )
-            }
-            UsageError::BankNeedsAlphaBeta => write!(
-                f,
-                "--schedule bank: the M5 bank is made of αβ filters; use --filter ab"
+            Some(FilterName::RangeAzimuth) => (
+                "--filter range-azimuth",
+                &[
+                    "--range-sigma-m",
+                    "--bearing-sigma-deg",
+                    "--bearing-variance",
+                    "--azimuth-unit",
+                    "--process-noise",
+                    "--alt-quantum",
+                    "--own-alt",
+                ],
             ),
-            UsageError::Gains(e) => write!(f, "gains outside the stability region: {e}"),
-            UsageError::NotForTracker(o) => write!(f, "{o} does not apply to --tracker"),
-            UsageError::TrackerOnly(o) => write!(f, "{o} needs --tracker"),
-            UsageError::NoInput => write!(f, "no input file (give a path, or - for stdin)"),
-            UsageError::ExtraInput(p) => write!(f, "more than one input file ({p})"),
+        };
+        if let Some(option) = self.given().into_iter().find(|o| !accepted.contains(o)) {
+            return Err(usage_error(
+                ErrorKind::ArgumentConflict,
+                format!("{option} does not apply to {mode}"),
+            ));
         }
-    }
-}
-
-impl std::error::Error for UsageError {}
-
-/// Option values as given, before interpretation.
-#[derive(Debug, Default)]
-struct RawOptions {
-    values: BTreeMap<&'static str, String>,
-}
-
-impl RawOptions {
-    fn take(&mut self, name: &'static str) -> Option<String> {
-        self.values.remove(name)
-    }
-
-    fn number(&mut self, name: &'static str) -> Result<Option<f64>, UsageError> {
-        match self.take(name) {
-            None => Ok(None),
-            Some(text) => match text.trim().parse::<f64>() {
-                Ok(v) if v.is_finite() => Ok(Some(v)),
-                _ => Err(UsageError::BadNumber { option: name, text }),
-            },
-        }
-    }
-
-    fn required_number(&mut self, name: &'static str) -> Result<f64, UsageError> {
-        self.number(name)?.ok_or(UsageError::Missing(name))
-    }
-
-    /// A number checked by `ok`, or `default` when not given.
-    fn number_in(
-        &mut self,
-        name: &'static str,
-        default: f64,
-        ok: fn(f64) -> bool,
-        requirement: &'static str,
-    ) -> Result<f64, UsageError> {
-        let text = self.values.get(name).cloned().unwrap_or_default();
-        match self.number(name)? {
-            None => Ok(default),
-            Some(v) if ok(v) => Ok(v),
-            Some(_) => Err(UsageError::OutOfRange {
-                option: name,
-                text,
-                requirement,
+        match self.filter {
+            None => Ok(Command::Tracker {
+                options: self.tracker_options()?,
+                input,
+                verbose: self.verbose,
             }),
-        }
-    }
-}
-
-/// Parses the arguments after the program name.
-pub fn parse_replay_args<I: IntoIterator<Item = String>>(args: I) -> Result<Command, UsageError> {
-    let mut raw = RawOptions::default();
-    let mut input: Option<Input> = None;
-    let mut only_positional = false;
-    let mut tracker = false;
-    let mut verbose = false;
-    let mut args = args.into_iter();
-    while let Some(arg) = args.next() {
-        let positional = only_positional || arg == "-" || !arg.starts_with('-');
-        if positional {
-            let this = if arg == "-" {
-                Input::Stdin
-            } else {
-                Input::Path(PathBuf::from(&arg))
-            };
-            if input.replace(this).is_some() {
-                return Err(UsageError::ExtraInput(arg));
+            Some(FilterName::RangeAzimuth) => Ok(Command::Replay {
+                config: ReplayConfig {
+                    filter: FilterKind::RangeAzimuth(self.range_azimuth()?),
+                    numeric: self.numeric,
+                },
+                input,
+            }),
+            Some(name) => {
+                let order = match name {
+                    FilterName::AlphaBeta => Order::AlphaBeta,
+                    _ => Order::AlphaBetaGamma,
+                };
+                Ok(Command::Replay {
+                    config: ReplayConfig {
+                        filter: self.kinematic(order)?,
+                        numeric: self.numeric,
+                    },
+                    input,
+                })
             }
-            continue;
-        }
-        if arg == "--" {
-            only_positional = true;
-            continue;
-        }
-        if arg == "-h" || arg == "--help" {
-            return Ok(Command::Help);
-        }
-        if arg == "--tracker" || arg == "--verbose" {
-            let flag = if arg == "--tracker" {
-                &mut tracker
-            } else {
-                &mut verbose
-            };
-            if std::mem::replace(flag, true) {
-                return Err(UsageError::Repeated(if arg == "--tracker" {
-                    "--tracker"
-                } else {
-                    "--verbose"
-                }));
-            }
-            continue;
-        }
-        let (name, inline) = match arg.split_once('=') {
-            Some((n, v)) => (n.to_string(), Some(v.to_string())),
-            None => (arg.clone(), None),
-        };
-        let Some(&(known, _)) = REPLAY_OPTIONS.iter().find(|(n, _)| *n == name) else {
-            return Err(UsageError::UnknownOption(arg));
-        };
-        let value = match inline {
-            Some(v) => v,
-            None => args.next().ok_or(UsageError::MissingValue(known))?,
-        };
-        if raw.values.insert(known, value).is_some() {
-            return Err(UsageError::Repeated(known));
         }
     }
 
-    let numeric = match raw.take("--numeric") {
-        None => Numeric::default(),
-        Some(n) => Numeric::from_name(n.trim()).ok_or(UsageError::UnknownNumeric(n))?,
-    };
-    if tracker {
-        let options = tracker_options(&mut raw, numeric)?;
-        let input = input.ok_or(UsageError::NoInput)?;
-        return Ok(Command::Tracker {
-            options,
-            input,
-            verbose,
-        });
-    }
-    if verbose {
-        return Err(UsageError::TrackerOnly("--verbose"));
-    }
-    let filter = filter_kind(&mut raw)?;
-    let input = input.ok_or(UsageError::NoInput)?;
-    Ok(Command::Replay {
-        config: ReplayConfig { filter, numeric },
-        input,
-    })
-}
-
-/// The filter and its settings, checked in `f64` (the chosen representation
-/// checks again after rounding).
-fn filter_kind(raw: &mut RawOptions) -> Result<FilterKind, UsageError> {
-    let name = raw
-        .take("--filter")
-        .ok_or(UsageError::Missing("--filter"))?;
-    let filter = name.trim();
-    if !matches!(filter, "ab" | "abg" | "range-azimuth") {
-        return Err(UsageError::UnknownFilter(name));
-    }
-    let accepted = accepted_options(filter);
-    if let Some(&option) = raw.values.keys().find(|o| !accepted.contains(o)) {
-        return Err(UsageError::NotForFilter {
-            option,
-            filter: name,
-        });
-    }
-    match filter {
-        "ab" => kinematic(raw, Order::AlphaBeta),
-        "abg" => kinematic(raw, Order::AlphaBetaGamma),
-        _ => range_azimuth(raw).map(FilterKind::RangeAzimuth),
-    }
-}
-
-/// `--filter ab|abg`: a `--schedule`, or the `--alpha/--beta/--gamma`
-/// shorthand.
-fn kinematic(raw: &mut RawOptions, order: Order) -> Result<FilterKind, UsageError> {
-    let Some(text) = raw.take("--schedule") else {
-        let kind = match order {
-            Order::AlphaBeta => {
-                if raw.values.contains_key("--alpha") || raw.values.contains_key("--beta") {
-                    FilterKind::AlphaBeta {
-                        alpha: raw.required_number("--alpha")?,
-                        beta: raw.required_number("--beta")?,
-                    }
-                } else {
-                    return Err(UsageError::Missing("--schedule (or --alpha and --beta)"));
+    /// `--filter ab|abg`: a `--schedule`, or the `--alpha/--beta/--gamma`
+    /// shorthand.
+    fn kinematic(&self, order: Order) -> Result<FilterKind, clap::Error> {
+        let Some(text) = &self.schedule else {
+            let kind = match (order, self.alpha, self.beta, self.gamma) {
+                (Order::AlphaBeta, Some(alpha), Some(beta), None) => {
+                    FilterKind::AlphaBeta { alpha, beta }
                 }
-            }
-            Order::AlphaBetaGamma => {
-                if ["--alpha", "--beta", "--gamma"]
-                    .iter()
-                    .any(|o| raw.values.contains_key(o))
-                {
-                    FilterKind::AlphaBetaGamma {
-                        alpha: raw.required_number("--alpha")?,
-                        beta: raw.required_number("--beta")?,
-                        gamma: raw.required_number("--gamma")?,
-                    }
-                } else {
-                    return Err(UsageError::Missing(
-                        "--schedule (or --alpha, --beta and --gamma)",
-                    ));
+                (Order::AlphaBetaGamma, Some(alpha), Some(beta), Some(gamma)) => {
+                    FilterKind::AlphaBetaGamma { alpha, beta, gamma }
                 }
+                _ => {
+                    return Err(usage_error(
+                        ErrorKind::MissingRequiredArgument,
+                        match order {
+                            Order::AlphaBeta => {
+                                "--filter ab needs --schedule (or --alpha and --beta)"
+                            }
+                            Order::AlphaBetaGamma => {
+                                "--filter abg needs --schedule (or --alpha, --beta and --gamma)"
+                            }
+                        },
+                    ))
+                }
+            };
+            if let Some(Err(e)) = kind.fixed_gains::<f64>() {
+                return Err(usage_error(
+                    ErrorKind::ValueValidation,
+                    format!("gains outside the stability region: {e}"),
+                ));
             }
+            return Ok(kind);
         };
-        if let Some(gains) = kind.fixed_gains::<f64>() {
-            gains.map_err(UsageError::Gains)?;
+        if self.alpha.is_some() || self.beta.is_some() || self.gamma.is_some() {
+            return Err(usage_error(
+                ErrorKind::ArgumentConflict,
+                "--schedule and --alpha/--beta/--gamma cannot be combined (--alpha/--beta/--gamma \
+                 are shorthand for --schedule fixed:alpha=A,beta=B[,gamma=G])",
+            ));
         }
-        return Ok(kind);
-    };
-    if let Some(&with) = ["--alpha", "--beta", "--gamma"]
-        .iter()
-        .find(|o| raw.values.contains_key(*o))
-    {
-        return Err(UsageError::Conflict {
-            option: "--schedule",
-            with,
-        });
+        let spec = schedule_arg(text)?;
+        match (spec, order) {
+            (ScheduleSpec::Bank(c), Order::AlphaBeta) => Ok(FilterKind::Bank(c)),
+            (ScheduleSpec::Bank(_), Order::AlphaBetaGamma) => Err(usage_error(
+                ErrorKind::ArgumentConflict,
+                "--schedule bank: the M5 bank is made of αβ filters; use --filter ab",
+            )),
+            (ScheduleSpec::Fixed(c), Order::AlphaBeta) if c.gamma.is_some() => Err(usage_error(
+                ErrorKind::ArgumentConflict,
+                "gamma (in --schedule fixed) does not apply to --filter ab",
+            )),
+            _ => Ok(FilterKind::Scheduled { order, spec }),
+        }
     }
-    let spec = parse_schedule(&text)?;
-    match (spec, order) {
-        (ScheduleSpec::Bank(c), Order::AlphaBeta) => Ok(FilterKind::Bank(c)),
-        (ScheduleSpec::Bank(_), Order::AlphaBetaGamma) => Err(UsageError::BankNeedsAlphaBeta),
-        (ScheduleSpec::Fixed(c), Order::AlphaBeta) if c.gamma.is_some() => {
-            Err(UsageError::NotForFilter {
-                option: "gamma (in --schedule fixed)",
-                filter: order.name().to_string(),
-            })
+
+    /// `--filter range-azimuth`: noise settings, altitude quantum, own
+    /// altitude, azimuth unit.
+    fn range_azimuth(&self) -> Result<RangeAzimuthOptions, clap::Error> {
+        let d = RangeAzimuthOptions::DEFAULT;
+        let out_of_range = |option: &str, v: f64, requirement: &str| {
+            usage_error(
+                ErrorKind::ValueValidation,
+                format!("{option}: {v} is out of range (must be {requirement})"),
+            )
+        };
+        let range_sigma_m = self.range_sigma_m.unwrap_or(d.range_sigma_m);
+        if range_sigma_m <= 0.0 {
+            return Err(out_of_range("--range-sigma-m", range_sigma_m, "> 0"));
         }
-        _ => Ok(FilterKind::Scheduled { order, spec }),
+        let bearing_variance_rad2 = match (self.bearing_variance, self.bearing_sigma_deg) {
+            (Some(v), _) if v <= 0.0 => return Err(out_of_range("--bearing-variance", v, "> 0")),
+            (Some(v), _) => v,
+            (None, Some(deg)) if deg <= 0.0 => {
+                return Err(out_of_range("--bearing-sigma-deg", deg, "> 0"))
+            }
+            (None, Some(deg)) => deg.to_radians().powi(2),
+            (None, None) => d.bearing_variance_rad2,
+        };
+        let process_noise = self.process_noise.unwrap_or(d.process_noise);
+        if process_noise < 0.0 {
+            return Err(out_of_range("--process-noise", process_noise, ">= 0"));
+        }
+        let options = RangeAzimuthOptions {
+            range_sigma_m,
+            bearing_variance_rad2,
+            process_noise,
+            altitude_quantum: match self.alt_quantum {
+                None => d.altitude_quantum,
+                Some(QuantumFeet::ModeC) => AltitudeQuantum::ModeC,
+                Some(QuantumFeet::ModeS) => AltitudeQuantum::ModeS25,
+            },
+            own_altitude_ft: self.own_alt,
+            azimuth_unit: self.azimuth_unit,
+        };
+        // σ_R² and σ_B² must also be finite, representable variances.
+        if options.noise::<f64>().is_err() {
+            return Err(out_of_range(
+                "--range-sigma-m",
+                range_sigma_m,
+                "> 0 with a finite square",
+            ));
+        }
+        Ok(options)
+    }
+
+    /// `--tracker`.
+    fn tracker_options(&self) -> Result<TrackerOptions, clap::Error> {
+        let schedule = match &self.schedule {
+            None => None,
+            Some(text) => match schedule_arg(text)? {
+                ScheduleSpec::Bank(_) => {
+                    return Err(usage_error(
+                        ErrorKind::ArgumentConflict,
+                        "--schedule bank does not apply to --tracker",
+                    ))
+                }
+                spec => Some(spec),
+            },
+        };
+        let capacity = match &self.capacity {
+            None => crate::replay_tracker::DEFAULT_CAPACITY,
+            Some(text) => text
+                .parse::<usize>()
+                .ok()
+                .filter(|n| CAPACITIES.contains(n))
+                .ok_or_else(|| {
+                    usage_error(
+                        ErrorKind::InvalidValue,
+                        format!("--capacity: {text} (16, 64 or 256; {MAX_MEASUREMENTS} measurements per scan)"),
+                    )
+                })?,
+        };
+        Ok(TrackerOptions {
+            numeric: self.numeric,
+            schedule,
+            capacity,
+            confirmation: self.confirm,
+            delete_confirmed: self.delete,
+            own_altitude_ft: self.own_alt,
+            sensor: SensorOptions {
+                region_m: self.region_m,
+                sigma_m: self.sigma_m,
+                range_sigma_m: self.range_sigma_m,
+                bearing_sigma_deg: self.bearing_sigma_deg,
+                scan_period_s: self.scan_period_s,
+                detection_probability: self.pd,
+                clutter_per_km2: self.clutter_per_km2,
+                max_speed_m_per_s: self.max_speed_mps,
+                max_acceleration_m_per_s2: self.max_accel_mps2,
+            },
+            azimuth_unit: self.azimuth_unit,
+        })
+    }
+}
+
+/// A `--schedule` spec the library's parser (or the schedule's
+/// construction) refused; `error.offset` is a byte offset in `text`.
+#[derive(Debug, Clone, PartialEq)]
+pub struct ScheduleArgError {
+    pub text: String,
+    pub error: SpecError,
+}
+
+impl std::fmt::Display for ScheduleArgError {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        // The spec, and a caret under the byte the parser points at.
+        let column = self
+            .text
+            .get(..self.error.offset)
+            .map_or(self.error.offset, |s| s.chars().count());
+        write!(
+            f,
+            "--schedule: {}\n  {}\n  {}^",
+            self.error,
+            self.text,
+            " ".repeat(column)
+        )
     }
 }
 
 /// A `--schedule` spec, parsed and built once in `f64`: capacities are
 /// checked when a schedule is built, not by the parser, so building it here
 /// makes an oversized window or bank an argument error pointing at its key.
-fn parse_schedule(text: &str) -> Result<ScheduleSpec, UsageError> {
-    let spec_error = |error: SpecError| UsageError::Spec {
+pub fn parse_schedule(text: &str) -> Result<ScheduleSpec, ScheduleArgError> {
+    let spec_error = |error: SpecError| ScheduleArgError {
         text: text.to_string(),
         error,
     };
@@ -602,74 +558,9 @@ fn parse_schedule(text: &str) -> Result<ScheduleSpec, UsageError> {
     Ok(spec)
 }
 
-/// `--tracker`: the options of [`accepted_options`]`("tracker")`.
-fn tracker_options(raw: &mut RawOptions, numeric: Numeric) -> Result<TrackerOptions, UsageError> {
-    let accepted = accepted_options("tracker");
-    if let Some(&option) = raw.values.keys().find(|o| !accepted.contains(o)) {
-        return Err(UsageError::NotForTracker(option));
-    }
-    let schedule = match raw.take("--schedule") {
-        None => None,
-        Some(text) => match parse_schedule(&text)? {
-            ScheduleSpec::Bank(_) => return Err(UsageError::NotForTracker("--schedule bank")),
-            spec => Some(spec),
-        },
-    };
-    let capacity = match raw.take("--capacity") {
-        None => DEFAULT_CAPACITY,
-        Some(text) => match text.trim().parse::<usize>() {
-            Ok(n) if CAPACITIES.contains(&n) => n,
-            _ => {
-                return Err(UsageError::OutOfRange {
-                    option: "--capacity",
-                    text,
-                    requirement: "16, 64 or 256",
-                })
-            }
-        },
-    };
-    let confirmation = match raw.take("--confirm") {
-        None => None,
-        Some(text) => {
-            let parsed = text
-                .split_once('/')
-                .and_then(|(m, n)| {
-                    Some((m.trim().parse::<u8>().ok()?, n.trim().parse::<u8>().ok()?))
-                })
-                .filter(|&(m, n)| m >= 1 && m <= n && n <= 32);
-            match parsed {
-                Some(mn) => Some(mn),
-                None => {
-                    return Err(UsageError::OutOfRange {
-                        option: "--confirm",
-                        text,
-                        requirement: "M/N with 1 <= M <= N <= 32",
-                    })
-                }
-            }
-        }
-    };
-    let delete_confirmed = match raw.take("--delete") {
-        None => None,
-        Some(text) => match text.trim().parse::<u8>() {
-            Ok(k) if k >= 1 => Some(k),
-            _ => {
-                return Err(UsageError::OutOfRange {
-                    option: "--delete",
-                    text,
-                    requirement: "an integer in 1..=255",
-                })
-            }
-        },
-    };
-    Ok(TrackerOptions {
-        numeric,
-        schedule,
-        capacity,
-        confirmation,
-        delete_confirmed,
-        own_altitude_ft: raw.number("--own-alt")?,
-    })
+/// [`parse_schedule`] as a usage error.
+fn schedule_arg(text: &str) -> Result<ScheduleSpec, clap::Error> {
+    parse_schedule(text).map_err(|e| usage_error(ErrorKind::ValueValidation, e))
 }
 
 /// The byte offset of the `key=value` part that `error` is about in spec
@@ -692,38 +583,4 @@ fn parameter_offset(text: &str, error: ConfigError) -> usize {
         offset += part.len() + 1;
     }
     0
-}
-
-/// `--filter range-azimuth`: noise settings, altitude quantum, own altitude.
-fn range_azimuth(raw: &mut RawOptions) -> Result<RangeAzimuthOptions, UsageError> {
-    let d = RangeAzimuthOptions::DEFAULT;
-    let positive = |v: f64| v > 0.0;
-    let options = RangeAzimuthOptions {
-        range_sigma_m: raw.number_in("--range-sigma", d.range_sigma_m, positive, "> 0")?,
-        bearing_variance_rad2: raw.number_in(
-            "--bearing-variance",
-            d.bearing_variance_rad2,
-            positive,
-            "> 0",
-        )?,
-        process_noise: raw.number_in("--process-noise", d.process_noise, |v| v >= 0.0, ">= 0")?,
-        altitude_quantum: match raw.take("--alt-quantum") {
-            None => d.altitude_quantum,
-            Some(q) => match q.trim() {
-                "100" => AltitudeQuantum::ModeC,
-                "25" => AltitudeQuantum::ModeS25,
-                _ => return Err(UsageError::UnknownQuantum(q)),
-            },
-        },
-        own_altitude_ft: raw.number("--own-alt")?,
-    };
-    // σ_R² must also be a finite, representable variance.
-    if options.noise::<f64>().is_err() {
-        return Err(UsageError::OutOfRange {
-            option: "--range-sigma",
-            text: options.range_sigma_m.to_string(),
-            requirement: "> 0 with a finite square",
-        });
-    }
-    Ok(options)
 }

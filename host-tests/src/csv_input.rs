@@ -1,101 +1,106 @@
-//! Reader for recorded measurements, in one of two layouts chosen by the
-//! filter ([`InputFormat`]):
+//! Reader for recorded measurements (the `csv` crate, rows deserialised by
+//! header name with serde), in one of two layouts ([`InputFormat`]):
 //!
-//! * Cartesian (`--filter ab|abg`): a header `t,x`, `t,x,y` or `t,x,y,z` and
-//!   one row per measurement (t in seconds, positions in metres);
-//! * range–azimuth (`--filter range-azimuth`): a header `t,range,azimuth` or
-//!   `t,range,azimuth,alt`: slant range in metres (> 0), azimuth in radians
-//!   clockwise from +y (x = R sin B, y = R cos B, any finite value), and the
-//!   intruder's reported pressure altitude in feet, where an empty field means
-//!   the reply carried no altitude.
+//! * Cartesian (`--filter ab|abg`, `--tracker` on x/y data): columns `t` and
+//!   `x`, optionally `y` and `z` (t in seconds, positions in metres);
+//! * range–azimuth (`--filter range-azimuth`, `--tracker` on polar data):
+//!   columns `t`, `range` (slant range, m, > 0) and `azimuth` (clockwise from
+//!   +y: x = R sin B, y = R cos B; radians, or degrees with
+//!   [`AngleUnit::Degrees`]).
 //!
-//! A small hand parser rather than the `csv` crate: the files hold only
-//! numbers (no quoting or embedded separators to handle), and every error must
-//! name the line and column it is on, which is simplest when the parser counts
-//! them itself.
+//! In both, an optional `alt` column holds the target's reported pressure
+//! altitude in feet; an empty field means the reply carried none. The header
+//! is matched by name: the columns may come in any order, and columns with
+//! other names are ignored. Accepted: a UTF-8 byte-order mark, `\r\n` line
+//! ends, spaces around fields, quoted fields, blank lines.
 //!
-//! Accepted: a leading UTF-8 byte-order mark, `\r\n` line ends, spaces around
-//! fields, blank lines (skipped). Refused, with the line (and column) named:
-//! any other header, a row with the wrong number of fields, a field that is
-//! not a finite number (NaN and infinities included; only `alt` may be
-//! empty), a range ≤ 0, and a time that does not increase.
+//! Refused, with the line (and column) named and at most a short prefix of
+//! the field echoed: a header without the required columns, a row with
+//! another number of fields than the header, a field that is not a number,
+//! and a value outside [`abtrack::envelope`] (positions and ranges beyond
+//! 400 km, altitudes outside −1000 … 126 700 ft, an azimuth beyond one turn,
+//! a time stamp beyond 2³³ s, an interval outside 0.05–20 s). A radian
+//! azimuth beyond 2π is refused with a message naming `--azimuth-unit deg`:
+//! the unit is never guessed.
 //!
 //! # Scans
 //!
-//! A single-target filter needs strictly increasing times. A multi-target
-//! tracker reads *scans*: consecutive rows sharing a `t` (the format the
-//! `simulate` binary writes for multi-target scenarios). The readers take a
-//! [`TimeOrder`]; with [`TimeOrder::Scans`] equal times are accepted (only a
-//! decrease is refused) and [`Measurements::scans`] /
-//! [`RangeAzimuthMeasurements::scans`] group the rows.
+//! A single-target filter needs strictly increasing times
+//! ([`TimeOrder::Increasing`]), each interval inside the envelope. A
+//! multi-target tracker reads *scans* ([`TimeOrder::Scans`]): consecutive
+//! rows sharing a `t` are one scan; a time before the previous row's, and a
+//! scan less than the envelope's shortest interval after the previous one,
+//! are refused ([`Measurements::scans`], [`RangeAzimuthMeasurements::scans`]
+//! group the rows).
 
 use std::fmt;
-use std::io::BufRead;
+use std::io::Read;
 
-/// Axis names, in header order.
+use abtrack::envelope::{self, Limit};
+use serde::Deserialize;
+
+/// Axis names, in output order.
 pub const AXIS_NAMES: [&str; 3] = ["x", "y", "z"];
 
-/// Column names of the range–azimuth layout, in header order (`alt` optional).
-pub const RANGE_AZIMUTH_COLUMNS: [&str; 3] = ["range", "azimuth", "alt"];
+/// The longest prefix of a bad field echoed in a message, in characters.
+pub const ECHO_CHARS: usize = 24;
 
-/// Which layout a filter reads.
+/// Which layout a file is read as.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub enum InputFormat {
-    /// `t,x`, `t,x,y` or `t,x,y,z`.
+    /// Columns `t`, `x` and optionally `y`, `z`, `alt`.
     Cartesian,
-    /// `t,range,azimuth` or `t,range,azimuth,alt`.
+    /// Columns `t`, `range`, `azimuth` and optionally `alt`.
     RangeAzimuth,
 }
 
 impl InputFormat {
-    /// The accepted headers, for messages.
-    pub const fn headers(self) -> &'static str {
+    /// The columns this layout needs.
+    pub const fn required(self) -> &'static [&'static str] {
         match self {
-            InputFormat::Cartesian => "t,x or t,x,y or t,x,y,z",
-            InputFormat::RangeAzimuth => "t,range,azimuth or t,range,azimuth,alt",
+            InputFormat::Cartesian => &["t", "x"],
+            InputFormat::RangeAzimuth => &["t", "range", "azimuth"],
         }
     }
 
-    /// The filters that read this layout, for messages.
-    pub const fn filters(self) -> &'static str {
+    /// The columns this layout reads when present.
+    pub const fn optional(self) -> &'static str {
         match self {
-            InputFormat::Cartesian => "--filter ab or abg",
-            InputFormat::RangeAzimuth => "--filter range-azimuth",
-        }
-    }
-
-    /// The layout a header line looks like, if it is one of the accepted
-    /// headers (used to suggest the right `--filter`).
-    fn of_header(line: &str) -> Option<InputFormat> {
-        if parse_cartesian_header(line, 1).is_ok() {
-            Some(InputFormat::Cartesian)
-        } else if parse_range_azimuth_header(line, 1).is_ok() {
-            Some(InputFormat::RangeAzimuth)
-        } else {
-            None
+            InputFormat::Cartesian => "y, z (needs y), alt",
+            InputFormat::RangeAzimuth => "alt",
         }
     }
 }
 
-/// The layout of `text`'s header (its first non-blank line), for a reader
-/// that takes either (`replay --tracker`); `None` if it is neither.
-pub fn sniff_format(text: &str) -> Option<InputFormat> {
-    let line = text
-        .trim_start_matches('\u{feff}')
-        .lines()
-        .map(|l| l.trim_end_matches('\r'))
-        .find(|l| !l.trim().is_empty())?;
-    InputFormat::of_header(line)
+/// The unit of the `azimuth` column.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, clap::ValueEnum)]
+pub enum AngleUnit {
+    /// Radians (the default).
+    #[default]
+    #[value(name = "rad")]
+    Radians,
+    /// Degrees.
+    #[value(name = "deg")]
+    Degrees,
 }
 
 /// Whether rows may share a time.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
 pub enum TimeOrder {
-    /// Every row strictly after the previous one (single-target filters).
+    /// Every row strictly after the previous one, by an interval inside
+    /// [`envelope::INTERVAL_S`] (single-target filters).
     #[default]
     Increasing,
-    /// Rows sharing a `t` form one scan; times never decrease (trackers).
+    /// Rows sharing a `t` form one scan; a new scan comes at least
+    /// [`envelope::INTERVAL_S`]`.min` after the previous one (trackers).
     Scans,
+}
+
+/// How to read a file.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub struct ReadOptions {
+    pub times: TimeOrder,
+    pub azimuth_unit: AngleUnit,
 }
 
 /// One Cartesian measurement row.
@@ -108,6 +113,8 @@ pub struct Row {
     pub t: f64,
     /// One position per axis (`dims` of them are meaningful).
     pub z: [f64; 3],
+    /// The `alt` column (checked, not used by the Cartesian filters).
+    pub alt: Option<f64>,
 }
 
 /// A parsed Cartesian file.
@@ -121,7 +128,7 @@ pub struct Measurements {
 impl Measurements {
     /// The axis names of this file: `["x"]`, `["x", "y"]` or `["x", "y", "z"]`.
     pub fn axis_names(&self) -> &'static [&'static str] {
-        &AXIS_NAMES[..self.dims.min(3)]
+        AXIS_NAMES.get(..self.dims).unwrap_or(&AXIS_NAMES)
     }
 
     /// The rows grouped into scans (consecutive rows sharing a `t`).
@@ -140,7 +147,8 @@ pub struct RangeAzimuthRow {
     pub t: f64,
     /// Slant range, m (> 0).
     pub range: f64,
-    /// Azimuth, rad, clockwise from +y.
+    /// Azimuth, rad, clockwise from +y (converted from degrees when the
+    /// file is read with [`AngleUnit::Degrees`]).
     pub azimuth: f64,
     /// Reported pressure altitude, ft; `None` when the file has no `alt`
     /// column or this row's field is empty.
@@ -162,47 +170,68 @@ impl RangeAzimuthMeasurements {
     }
 }
 
+/// A file in whichever layout its header has ([`read_recording`]).
+#[derive(Debug, Clone, PartialEq)]
+pub enum Recording {
+    Cartesian(Measurements),
+    RangeAzimuth(RangeAzimuthMeasurements),
+}
+
+/// Why a value is refused.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum Refusal {
+    /// Not a number (or empty where a value is required).
+    NotANumber,
+    /// NaN or infinite.
+    NotFinite,
+    /// Outside the envelope (`limit`, in `unit`).
+    OutOfEnvelope { limit: Limit, unit: &'static str },
+    /// A radian azimuth beyond one turn: degrees without the option.
+    LooksLikeDegrees,
+    /// A range ≤ 0.
+    NotPositive,
+}
+
 /// Why a file could not be read. Lines and columns are 1-based.
 #[derive(Debug, Clone, PartialEq)]
 pub enum CsvError {
     Io(String),
-    /// No header line at all (Cartesian layout).
-    Empty,
-    /// Not a Cartesian header.
-    BadHeader {
+    /// Malformed CSV (e.g. invalid UTF-8, an unterminated quote).
+    Malformed {
         line: usize,
+        message: String,
+    },
+    /// No header line at all.
+    Empty {
+        format: Option<InputFormat>,
+    },
+    /// The header lacks columns the layout needs.
+    MissingColumns {
+        format: InputFormat,
+        missing: Vec<&'static str>,
         found: String,
     },
-    /// No header line at all (range–azimuth layout).
-    EmptyRangeAzimuth,
-    /// Not a range–azimuth header.
-    BadRangeAzimuthHeader {
-        line: usize,
+    /// A column name appears twice.
+    DuplicateColumn {
+        name: String,
+    },
+    /// `read_recording`: neither layout's columns, or both.
+    UnknownLayout {
         found: String,
+        both: bool,
     },
     FieldCount {
         line: usize,
         expected: usize,
         found: usize,
     },
-    NotANumber {
+    /// A field refused; `text` is at most [`ECHO_CHARS`] of it.
+    Field {
         line: usize,
         column: usize,
         name: &'static str,
         text: String,
-    },
-    NotFinite {
-        line: usize,
-        column: usize,
-        name: &'static str,
-        text: String,
-    },
-    /// A range ≤ 0.
-    NotPositive {
-        line: usize,
-        column: usize,
-        name: &'static str,
-        text: String,
+        why: Refusal,
     },
     /// A time not after the previous row's ([`TimeOrder::Increasing`]).
     TimeNotIncreasing {
@@ -216,78 +245,133 @@ pub enum CsvError {
         t: String,
         previous: String,
     },
+    /// An interval outside [`envelope::INTERVAL_S`] (single target), or a
+    /// new scan closer than its minimum to the previous one (scans).
+    Interval {
+        line: usize,
+        t: String,
+        previous: String,
+        interval: f64,
+        scans: bool,
+    },
 }
 
-/// " (this header is for --filter …)" when `found` is the other layout's.
-fn header_hint(found: &str, expected: InputFormat) -> String {
-    match InputFormat::of_header(found) {
-        Some(other) if other != expected => {
-            format!(" (this header is for {})", other.filters())
-        }
-        _ => String::new(),
+/// At most [`ECHO_CHARS`] characters of `text`, with `…` when cut.
+pub fn echo(text: &str) -> String {
+    let mut chars = text.chars();
+    let head: String = chars.by_ref().take(ECHO_CHARS).collect();
+    if chars.next().is_some() {
+        format!("{head}…")
+    } else {
+        head
     }
+}
+
+fn columns_text(names: &[&str]) -> String {
+    names.join(", ")
 }
 
 impl fmt::Display for CsvError {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        let required = |format: InputFormat| {
+            format!(
+                "{} (optional: {})",
+                columns_text(format.required()),
+                format.optional()
+            )
+        };
         match self {
             CsvError::Io(e) => write!(f, "cannot read input: {e}"),
-            CsvError::Empty | CsvError::EmptyRangeAzimuth => {
-                let format = if *self == CsvError::Empty {
-                    InputFormat::Cartesian
-                } else {
-                    InputFormat::RangeAzimuth
-                };
+            CsvError::Malformed { line, message } => write!(f, "line {line}: {message}"),
+            CsvError::Empty { format } => match format {
+                Some(format) => write!(
+                    f,
+                    "line 1: empty input, expected a header with the columns {}",
+                    required(*format)
+                ),
+                None => write!(
+                    f,
+                    "line 1: empty input, expected a header with the columns {} or {}",
+                    required(InputFormat::Cartesian),
+                    required(InputFormat::RangeAzimuth)
+                ),
+            },
+            CsvError::MissingColumns {
+                format,
+                missing,
+                found,
+            } => {
                 write!(
                     f,
-                    "line 1: empty input, expected a header {}",
-                    format.headers()
-                )
+                    "line 1: the header \"{found}\" has no column {}; this input needs the \
+                     columns {} in any order, other columns are ignored",
+                    columns_text(missing),
+                    required(*format)
+                )?;
+                let other = match format {
+                    InputFormat::Cartesian => InputFormat::RangeAzimuth,
+                    InputFormat::RangeAzimuth => InputFormat::Cartesian,
+                };
+                if has_columns(found, other.required()) {
+                    let filters = match other {
+                        InputFormat::Cartesian => "--filter ab or abg",
+                        InputFormat::RangeAzimuth => "--filter range-azimuth",
+                    };
+                    write!(f, " (this header is for {filters})")?;
+                }
+                Ok(())
             }
-            CsvError::BadHeader { line, found } => write!(
-                f,
-                "line {line}: bad header \"{found}\", expected {}{}",
-                InputFormat::Cartesian.headers(),
-                header_hint(found, InputFormat::Cartesian)
-            ),
-            CsvError::BadRangeAzimuthHeader { line, found } => write!(
-                f,
-                "line {line}: bad header \"{found}\", expected {}{}",
-                InputFormat::RangeAzimuth.headers(),
-                header_hint(found, InputFormat::RangeAzimuth)
-            ),
+            CsvError::DuplicateColumn { name } => {
+                write!(f, "line 1: the header has the column \"{name}\" twice")
+            }
+            CsvError::UnknownLayout { found, both } => {
+                if *both {
+                    write!(
+                        f,
+                        "line 1: the header \"{found}\" has both x, y and range, azimuth \
+                         columns; keep one pair"
+                    )
+                } else {
+                    write!(
+                        f,
+                        "line 1: the header \"{found}\" has neither t, x, y nor t, range, \
+                         azimuth (columns in any order, other columns ignored)"
+                    )
+                }
+            }
             CsvError::FieldCount {
                 line,
                 expected,
                 found,
-            } => write!(f, "line {line}: {found} fields, expected {expected}"),
-            CsvError::NotANumber {
+            } => write!(
+                f,
+                "line {line}: {found} fields, expected {expected} (one per header column)"
+            ),
+            CsvError::Field {
                 line,
                 column,
                 name,
                 text,
-            } => write!(
-                f,
-                "line {line}, column {column} ({name}): \"{text}\" is not a number"
-            ),
-            CsvError::NotFinite {
-                line,
-                column,
-                name,
-                text,
-            } => write!(
-                f,
-                "line {line}, column {column} ({name}): \"{text}\" is not a finite number"
-            ),
-            CsvError::NotPositive {
-                line,
-                column,
-                name,
-                text,
-            } => write!(
-                f,
-                "line {line}, column {column} ({name}): {text} is not > 0"
-            ),
+                why,
+            } => {
+                write!(f, "line {line}, column {column} ({name}): ")?;
+                match why {
+                    Refusal::NotANumber if text.is_empty() => write!(f, "empty, expected a number"),
+                    Refusal::NotANumber => write!(f, "\"{text}\" is not a number"),
+                    Refusal::NotFinite => write!(f, "\"{text}\" is not a finite number"),
+                    Refusal::NotPositive => write!(f, "{text} is not > 0"),
+                    Refusal::OutOfEnvelope { limit, unit } => write!(
+                        f,
+                        "{text} is outside the envelope {} ..= {} {unit}",
+                        limit.min, limit.max
+                    ),
+                    Refusal::LooksLikeDegrees => write!(
+                        f,
+                        "{text} is beyond one turn in radians (2π); if the column is in \
+                         degrees, say so with --azimuth-unit deg"
+                    ),
+                }
+            }
             CsvError::TimeNotIncreasing { line, t, previous } => write!(
                 f,
                 "line {line}, column 1 (t): time {t} does not increase (previous row: {previous})"
@@ -296,270 +380,494 @@ impl fmt::Display for CsvError {
                 f,
                 "line {line}, column 1 (t): time {t} is before the previous row's ({previous})"
             ),
+            CsvError::Interval {
+                line,
+                t,
+                previous,
+                interval,
+                scans,
+            } => {
+                let limit = envelope::INTERVAL_S;
+                if *scans {
+                    write!(
+                        f,
+                        "line {line}, column 1 (t): scan at {t} is {interval:.3e} s after the \
+                         previous one ({previous}), closer than the envelope's {} s: give \
+                         the rows of one scan the same t",
+                        limit.min
+                    )
+                } else {
+                    write!(
+                        f,
+                        "line {line}, column 1 (t): interval {interval:.3e} s since the previous \
+                         row ({previous}) is outside the envelope {} ..= {} s",
+                        limit.min, limit.max
+                    )
+                }
+            }
         }
     }
 }
 
 impl std::error::Error for CsvError {}
 
-/// Strips the line end and a byte-order mark (first line only).
-fn clean(line: &str, first: bool) -> &str {
-    let line = line.trim_end_matches(['\n', '\r']);
-    if first {
-        line.trim_start_matches('\u{feff}')
-    } else {
-        line
+/// Whether a header line holds every name of `names`.
+fn has_columns(header: &str, names: &[&str]) -> bool {
+    let fields: Vec<&str> = header.split(',').map(str::trim).collect();
+    names.iter().all(|n| fields.contains(n))
+}
+
+/// A Cartesian row as serde reads it by header name.
+#[derive(Debug, Deserialize)]
+struct CartesianFields {
+    t: Option<f64>,
+    x: Option<f64>,
+    y: Option<f64>,
+    z: Option<f64>,
+    alt: Option<f64>,
+}
+
+/// A range–azimuth row as serde reads it by header name.
+#[derive(Debug, Deserialize)]
+struct PolarFields {
+    t: Option<f64>,
+    range: Option<f64>,
+    azimuth: Option<f64>,
+    alt: Option<f64>,
+}
+
+/// The header, parsed: each known column's index.
+struct Header {
+    names: Vec<String>,
+    record: csv::StringRecord,
+    lines: Lines,
+}
+
+impl Header {
+    fn index(&self, name: &str) -> Option<usize> {
+        self.names.iter().position(|n| n == name)
+    }
+    fn has(&self, name: &str) -> bool {
+        self.index(name).is_some()
+    }
+    fn text(&self) -> String {
+        echo(&self.names.join(","))
+    }
+    /// The line a record starts on.
+    fn line_of(&self, record: &csv::StringRecord) -> usize {
+        record.position().map_or(0, |p| self.lines.line(p.byte()))
     }
 }
 
-/// One column after `t`: its name and whether an empty field is allowed
-/// (read as "no value").
-#[derive(Debug, Clone, Copy)]
-struct Column {
-    name: &'static str,
-    optional: bool,
-    positive: bool,
+/// The input's bytes and where its lines start. The `csv` crate's own line
+/// count skips blank lines, so lines are counted here from a record's byte
+/// offset.
+struct Lines {
+    starts: Vec<u64>,
+    /// Whether each byte is a line end (a record's offset can point at the
+    /// blank lines before it).
+    line_end: Vec<bool>,
 }
 
-const fn column(name: &'static str) -> Column {
-    Column {
-        name,
-        optional: false,
-        positive: false,
+impl Lines {
+    fn new(bytes: &[u8]) -> Self {
+        let starts = std::iter::once(0)
+            .chain(
+                bytes
+                    .iter()
+                    .enumerate()
+                    .filter(|(_, b)| **b == b'\n')
+                    .map(|(i, _)| i as u64 + 1),
+            )
+            .collect();
+        let line_end = bytes.iter().map(|b| matches!(b, b'\n' | b'\r')).collect();
+        Lines { starts, line_end }
+    }
+
+    /// The 1-based line of the first byte at or after `offset` that is not
+    /// a line end.
+    fn line(&self, offset: u64) -> usize {
+        let skipped = self
+            .line_end
+            .iter()
+            .skip(offset as usize)
+            .take_while(|end| **end)
+            .count();
+        let offset = offset + skipped as u64;
+        self.starts.partition_point(|&s| s <= offset).max(1)
     }
 }
 
-const CARTESIAN_COLUMNS: [Column; 3] = [column("x"), column("y"), column("z")];
-const RANGE_AZIMUTH_LAYOUT: [Column; 3] = [
-    Column {
-        name: "range",
-        optional: false,
-        positive: true,
-    },
-    column("azimuth"),
-    Column {
-        name: "alt",
-        optional: true,
-        positive: false,
-    },
-];
+type Reader = csv::Reader<std::io::Cursor<Vec<u8>>>;
 
-/// The header's fields if it is `t` followed by the first `n` of `columns`
-/// for some `n` in `counts`.
-fn match_header(
-    line: &str,
-    columns: &'static [Column],
-    counts: core::ops::RangeInclusive<usize>,
-) -> Option<&'static [Column]> {
-    let fields: Vec<&str> = line.split(',').map(str::trim).collect();
-    let n = fields.len().saturating_sub(1);
-    let matches = counts.contains(&n)
-        && fields.first() == Some(&"t")
-        && fields[1..].iter().zip(columns).all(|(f, c)| *f == c.name);
-    if matches {
-        columns.get(..n)
-    } else {
-        None
+/// A CSV reader over the whole input and its header.
+fn open<R: Read>(mut input: R, format: Option<InputFormat>) -> Result<(Reader, Header), CsvError> {
+    let mut bytes = Vec::new();
+    input
+        .read_to_end(&mut bytes)
+        .map_err(|e| CsvError::Io(e.to_string()))?;
+    let lines = Lines::new(&bytes);
+    let mut reader = csv::ReaderBuilder::new()
+        .trim(csv::Trim::All)
+        .has_headers(true)
+        .from_reader(std::io::Cursor::new(bytes));
+    let record = reader.headers().map_err(|e| csv_error(e, &lines))?.clone();
+    let names: Vec<String> = record
+        .iter()
+        .map(|n| n.trim_start_matches('\u{feff}').trim().to_string())
+        .collect();
+    if names.iter().all(String::is_empty) {
+        return Err(CsvError::Empty { format });
     }
-}
-
-fn parse_cartesian_header(line: &str, line_no: usize) -> Result<&'static [Column], CsvError> {
-    match_header(line, &CARTESIAN_COLUMNS, 1..=3).ok_or_else(|| CsvError::BadHeader {
-        line: line_no,
-        found: line.to_string(),
-    })
-}
-
-fn parse_range_azimuth_header(line: &str, line_no: usize) -> Result<&'static [Column], CsvError> {
-    match_header(line, &RANGE_AZIMUTH_LAYOUT, 2..=3).ok_or_else(|| {
-        CsvError::BadRangeAzimuthHeader {
-            line: line_no,
-            found: line.to_string(),
+    for (i, n) in names.iter().enumerate() {
+        if !n.is_empty() && names.iter().skip(i + 1).any(|m| m == n) {
+            return Err(CsvError::DuplicateColumn { name: echo(n) });
         }
-    })
+    }
+    // serde matches the cleaned names (a BOM is not part of the first one).
+    let record = csv::StringRecord::from(names.clone());
+    Ok((
+        reader,
+        Header {
+            names,
+            record,
+            lines,
+        },
+    ))
 }
 
-fn parse_field(
-    text: &str,
+fn csv_error(e: csv::Error, lines: &Lines) -> CsvError {
+    let line = e.position().map_or(0, |p| lines.line(p.byte()));
+    let message = e.to_string();
+    match e.into_kind() {
+        csv::ErrorKind::Io(e) => CsvError::Io(e.to_string()),
+        csv::ErrorKind::UnequalLengths {
+            pos,
+            expected_len,
+            len,
+        } => CsvError::FieldCount {
+            line: pos.map_or(line, |p| lines.line(p.byte())),
+            expected: expected_len as usize,
+            found: len as usize,
+        },
+        _ => CsvError::Malformed { line, message },
+    }
+}
+
+/// Where a value is, for the checks.
+struct Cell<'a> {
     line: usize,
-    column: usize,
-    name: &'static str,
-) -> Result<f64, CsvError> {
-    let v: f64 = text.parse().map_err(|_| CsvError::NotANumber {
-        line,
-        column,
-        name,
-        text: text.to_string(),
-    })?;
-    if v.is_finite() {
-        Ok(v)
-    } else {
-        Err(CsvError::NotFinite {
-            line,
-            column,
+    header: &'a Header,
+    record: &'a csv::StringRecord,
+}
+
+impl Cell<'_> {
+    fn refuse(&self, name: &'static str, why: Refusal) -> CsvError {
+        let index = self.header.index(name).unwrap_or(0);
+        CsvError::Field {
+            line: self.line,
+            column: index + 1,
             name,
-            text: text.to_string(),
-        })
+            text: echo(self.record.get(index).unwrap_or("")),
+            why,
+        }
+    }
+
+    /// A required value, finite and inside `limit`.
+    fn value(
+        &self,
+        name: &'static str,
+        v: Option<f64>,
+        limit: Limit,
+        unit: &'static str,
+    ) -> Result<f64, CsvError> {
+        let v = v.ok_or_else(|| self.refuse(name, Refusal::NotANumber))?;
+        if !v.is_finite() {
+            return Err(self.refuse(name, Refusal::NotFinite));
+        }
+        if !limit.contains(v) {
+            return Err(self.refuse(name, Refusal::OutOfEnvelope { limit, unit }));
+        }
+        Ok(v)
+    }
+
+    /// The row's `t` as written.
+    fn t_text(&self) -> String {
+        let index = self.header.index("t").unwrap_or(0);
+        self.record.get(index).unwrap_or("").to_string()
+    }
+
+    /// `alt`, which may be empty.
+    fn altitude(&self, v: Option<f64>) -> Result<Option<f64>, CsvError> {
+        match v {
+            None => Ok(None),
+            Some(v) => self
+                .value("alt", Some(v), envelope::ALTITUDE_FT, "ft")
+                .map(Some),
+        }
     }
 }
 
-/// A data row before it is given its layout's type.
-struct RawRow {
+/// A serde error of one row, located.
+fn field_error(
+    e: csv::Error,
     line: usize,
-    t_text: String,
-    t: f64,
-    /// One per header column after `t`; `None` only for an empty optional
-    /// field.
-    values: Vec<Option<f64>>,
+    header: &Header,
+    record: &csv::StringRecord,
+) -> CsvError {
+    if let csv::ErrorKind::Deserialize { err, .. } = e.kind() {
+        if let Some(index) = err.field().map(|i| i as usize) {
+            let name = header.names.get(index).map_or("?", String::as_str);
+            let name = KNOWN_COLUMNS
+                .iter()
+                .find(|k| **k == name)
+                .copied()
+                .unwrap_or("?");
+            return CsvError::Field {
+                line,
+                column: index + 1,
+                name,
+                text: echo(record.get(index).unwrap_or("")),
+                why: Refusal::NotANumber,
+            };
+        }
+    }
+    csv_error(e, &header.lines)
 }
 
-/// Reads the header (with `parse_header`) and every row. Stops at the first
-/// error.
-fn read_table<R: BufRead>(
-    input: R,
-    parse_header: fn(&str, usize) -> Result<&'static [Column], CsvError>,
-    empty: CsvError,
+const KNOWN_COLUMNS: [&str; 7] = ["t", "x", "y", "z", "range", "azimuth", "alt"];
+
+/// A row's time (and as written), for the order checks and scans.
+pub trait Timed {
+    fn time(&self) -> (f64, &str);
+}
+
+impl Timed for Row {
+    fn time(&self) -> (f64, &str) {
+        (self.t, &self.t_text)
+    }
+}
+
+impl Timed for RangeAzimuthRow {
+    fn time(&self) -> (f64, &str) {
+        (self.t, &self.t_text)
+    }
+}
+
+/// Every record after the header: deserialised by column name into `F`,
+/// checked and converted by `row`, then its time checked against the
+/// previous row's. Stops at the first error.
+fn read_rows<F: serde::de::DeserializeOwned, T: Timed>(
+    mut reader: Reader,
+    header: &Header,
     times: TimeOrder,
-) -> Result<(&'static [Column], Vec<RawRow>), CsvError> {
-    let mut columns: Option<&'static [Column]> = None;
-    let mut rows: Vec<RawRow> = Vec::new();
-    for (index, line) in input.lines().enumerate() {
-        let line_no = index + 1;
-        let raw = line.map_err(|e| CsvError::Io(format!("line {line_no}: {e}")))?;
-        let line = clean(&raw, index == 0);
-        if line.trim().is_empty() {
-            continue;
-        }
-        let cols = match columns {
-            None => {
-                columns = Some(parse_header(line, line_no)?);
-                continue;
-            }
-            Some(c) => c,
+    row: impl Fn(&Cell<'_>, F) -> Result<T, CsvError>,
+) -> Result<Vec<T>, CsvError> {
+    let mut rows: Vec<T> = Vec::new();
+    for record in reader.records() {
+        let record = record.map_err(|e| csv_error(e, &header.lines))?;
+        let line = header.line_of(&record);
+        let fields: F = record
+            .deserialize(Some(&header.record))
+            .map_err(|e| field_error(e, line, header, &record))?;
+        let cell = Cell {
+            line,
+            header,
+            record: &record,
         };
-        let fields: Vec<&str> = line.split(',').map(str::trim).collect();
-        if fields.len() != cols.len() + 1 {
-            return Err(CsvError::FieldCount {
-                line: line_no,
-                expected: cols.len() + 1,
-                found: fields.len(),
-            });
+        let parsed = row(&cell, fields)?;
+        let (t, t_text) = parsed.time();
+        check_time(times, line, t, t_text, rows.last().map(Timed::time))?;
+        rows.push(parsed);
+    }
+    Ok(rows)
+}
+
+/// Checks the time order (and interval) of a row after `previous`.
+fn check_time(
+    times: TimeOrder,
+    line: usize,
+    t: f64,
+    t_text: &str,
+    previous: Option<(f64, &str)>,
+) -> Result<(), CsvError> {
+    let Some((p, p_text)) = previous else {
+        return Ok(());
+    };
+    let dt = t - p;
+    // The limits hold to 10⁻⁹ relative: 0.15 − 0.1 is 0.04999… in f64.
+    let tolerance = 1e-9;
+    let limit = envelope::INTERVAL_S;
+    let refused = match times {
+        TimeOrder::Increasing if dt <= 0.0 => Some(CsvError::TimeNotIncreasing {
+            line,
+            t: echo(t_text),
+            previous: echo(p_text),
+        }),
+        TimeOrder::Increasing
+            if dt < limit.min * (1.0 - tolerance) || dt > limit.max * (1.0 + tolerance) =>
+        {
+            Some(CsvError::Interval {
+                line,
+                t: echo(t_text),
+                previous: echo(p_text),
+                interval: dt,
+                scans: false,
+            })
         }
-        let t = parse_field(fields[0], line_no, 1, "t")?;
-        let mut values = Vec::with_capacity(cols.len());
-        for (i, (text, col)) in fields[1..].iter().zip(cols).enumerate() {
-            let column = i + 2;
-            if col.optional && text.is_empty() {
-                values.push(None);
-                continue;
-            }
-            let v = parse_field(text, line_no, column, col.name)?;
-            if col.positive && v <= 0.0 {
-                return Err(CsvError::NotPositive {
-                    line: line_no,
-                    column,
-                    name: col.name,
-                    text: text.to_string(),
-                });
-            }
-            values.push(Some(v));
+        TimeOrder::Scans if dt < 0.0 => Some(CsvError::TimeDecreasing {
+            line,
+            t: echo(t_text),
+            previous: echo(p_text),
+        }),
+        TimeOrder::Scans if dt > 0.0 && dt < limit.min * (1.0 - tolerance) => {
+            Some(CsvError::Interval {
+                line,
+                t: echo(t_text),
+                previous: echo(p_text),
+                interval: dt,
+                scans: true,
+            })
         }
-        if let Some(prev) = rows.last() {
-            let refused = match times {
-                TimeOrder::Increasing => (t <= prev.t).then(|| CsvError::TimeNotIncreasing {
-                    line: line_no,
-                    t: fields[0].to_string(),
-                    previous: prev.t_text.clone(),
-                }),
-                TimeOrder::Scans => (t < prev.t).then(|| CsvError::TimeDecreasing {
-                    line: line_no,
-                    t: fields[0].to_string(),
-                    previous: prev.t_text.clone(),
-                }),
-            };
-            if let Some(e) = refused {
-                return Err(e);
-            }
-        }
-        rows.push(RawRow {
-            line: line_no,
-            t_text: fields[0].to_string(),
-            t,
-            values,
+        _ => None,
+    };
+    refused.map_or(Ok(()), Err)
+}
+
+/// Reads a whole Cartesian file. Stops at the first error.
+pub fn read_measurements<R: Read>(
+    input: R,
+    options: ReadOptions,
+) -> Result<Measurements, CsvError> {
+    let (reader, header) = open(input, Some(InputFormat::Cartesian))?;
+    cartesian_rows(reader, header, options)
+}
+
+fn cartesian_rows(
+    reader: Reader,
+    header: Header,
+    options: ReadOptions,
+) -> Result<Measurements, CsvError> {
+    let missing: Vec<&'static str> = ["t", "x"]
+        .into_iter()
+        .chain(if header.has("z") { Some("y") } else { None })
+        .filter(|n| !header.has(n))
+        .collect();
+    if !missing.is_empty() {
+        return Err(CsvError::MissingColumns {
+            format: InputFormat::Cartesian,
+            missing,
+            found: header.text(),
         });
     }
-    match columns {
-        Some(c) => Ok((c, rows)),
-        None => Err(empty),
-    }
-}
-
-/// Reads a whole Cartesian file with strictly increasing times. Stops at the
-/// first error.
-pub fn read_measurements<R: BufRead>(input: R) -> Result<Measurements, CsvError> {
-    read_measurements_with(input, TimeOrder::Increasing)
-}
-
-/// [`read_measurements`] with a choice of [`TimeOrder`].
-pub fn read_measurements_with<R: BufRead>(
-    input: R,
-    times: TimeOrder,
-) -> Result<Measurements, CsvError> {
-    let (columns, raw) = read_table(input, parse_cartesian_header, CsvError::Empty, times)?;
-    let rows = raw
-        .into_iter()
-        .map(|r| {
+    let dims = 1 + usize::from(header.has("y")) + usize::from(header.has("z"));
+    let rows = read_rows(
+        reader,
+        &header,
+        options.times,
+        |cell, fields: CartesianFields| {
+            let t = cell.value("t", fields.t, envelope::TIME_S, "s")?;
             let mut z = [0.0; 3];
-            for (zi, v) in z.iter_mut().zip(&r.values) {
-                *zi = v.unwrap_or(0.0);
+            for ((zi, name), v) in z
+                .iter_mut()
+                .zip(AXIS_NAMES)
+                .zip([fields.x, fields.y, fields.z])
+                .take(dims)
+            {
+                *zi = cell.value(name, v, envelope::POSITION_M, "m")?;
             }
-            Row {
-                line: r.line,
-                t_text: r.t_text,
-                t: r.t,
+            Ok(Row {
+                line: cell.line,
+                t_text: cell.t_text(),
+                t,
                 z,
-            }
-        })
-        .collect();
-    Ok(Measurements {
-        dims: columns.len(),
-        rows,
-    })
-}
-
-/// Reads a whole range–azimuth file with strictly increasing times. Stops at
-/// the first error.
-pub fn read_range_azimuth<R: BufRead>(input: R) -> Result<RangeAzimuthMeasurements, CsvError> {
-    read_range_azimuth_with(input, TimeOrder::Increasing)
-}
-
-/// [`read_range_azimuth`] with a choice of [`TimeOrder`].
-pub fn read_range_azimuth_with<R: BufRead>(
-    input: R,
-    times: TimeOrder,
-) -> Result<RangeAzimuthMeasurements, CsvError> {
-    let (columns, raw) = read_table(
-        input,
-        parse_range_azimuth_header,
-        CsvError::EmptyRangeAzimuth,
-        times,
+                alt: cell.altitude(fields.alt)?,
+            })
+        },
     )?;
-    let rows = raw
-        .into_iter()
-        .map(|r| {
-            let value = |i: usize| r.values.get(i).copied().flatten();
-            RangeAzimuthRow {
-                line: r.line,
-                t: r.t,
-                range: value(0).unwrap_or(0.0),
-                azimuth: value(1).unwrap_or(0.0),
-                alt: value(2),
-                t_text: r.t_text,
-            }
-        })
+    Ok(Measurements { dims, rows })
+}
+
+/// Reads a whole range–azimuth file. Stops at the first error.
+pub fn read_range_azimuth<R: Read>(
+    input: R,
+    options: ReadOptions,
+) -> Result<RangeAzimuthMeasurements, CsvError> {
+    let (reader, header) = open(input, Some(InputFormat::RangeAzimuth))?;
+    polar_rows(reader, header, options)
+}
+
+fn polar_rows(
+    reader: Reader,
+    header: Header,
+    options: ReadOptions,
+) -> Result<RangeAzimuthMeasurements, CsvError> {
+    let missing: Vec<&'static str> = InputFormat::RangeAzimuth
+        .required()
+        .iter()
+        .copied()
+        .filter(|n| !header.has(n))
         .collect();
+    if !missing.is_empty() {
+        return Err(CsvError::MissingColumns {
+            format: InputFormat::RangeAzimuth,
+            missing,
+            found: header.text(),
+        });
+    }
+    let rows = read_rows(
+        reader,
+        &header,
+        options.times,
+        |cell, fields: PolarFields| {
+            let t = cell.value("t", fields.t, envelope::TIME_S, "s")?;
+            let range = cell.value("range", fields.range, envelope::RANGE_M, "m")?;
+            if range <= 0.0 {
+                return Err(cell.refuse("range", Refusal::NotPositive));
+            }
+            let azimuth = match options.azimuth_unit {
+                AngleUnit::Radians => {
+                    let b = fields
+                        .azimuth
+                        .ok_or_else(|| cell.refuse("azimuth", Refusal::NotANumber))?;
+                    if b.is_finite() && !envelope::AZIMUTH_RAD.contains(b) {
+                        return Err(cell.refuse("azimuth", Refusal::LooksLikeDegrees));
+                    }
+                    cell.value("azimuth", Some(b), envelope::AZIMUTH_RAD, "rad")?
+                }
+                AngleUnit::Degrees => cell
+                    .value("azimuth", fields.azimuth, envelope::AZIMUTH_DEG, "°")?
+                    .to_radians(),
+            };
+            Ok(RangeAzimuthRow {
+                line: cell.line,
+                t_text: cell.t_text(),
+                t,
+                range,
+                azimuth,
+                alt: cell.altitude(fields.alt)?,
+            })
+        },
+    )?;
     Ok(RangeAzimuthMeasurements {
-        has_alt: columns.len() == 3,
+        has_alt: header.has("alt"),
         rows,
     })
+}
+
+/// Reads a whole file in the layout its header has: `range` and `azimuth`
+/// columns make it range–azimuth, `x` and `y` Cartesian (both pairs, or
+/// neither, is refused).
+pub fn read_recording<R: Read>(input: R, options: ReadOptions) -> Result<Recording, CsvError> {
+    let (reader, header) = open(input, None)?;
+    let polar = header.has("range") && header.has("azimuth");
+    let cartesian = header.has("x") && header.has("y");
+    match (cartesian, polar) {
+        (true, false) => cartesian_rows(reader, header, options).map(Recording::Cartesian),
+        (false, true) => polar_rows(reader, header, options).map(Recording::RangeAzimuth),
+        (both, _) => Err(CsvError::UnknownLayout {
+            found: header.text(),
+            both,
+        }),
+    }
 }

@@ -7,17 +7,21 @@
 //! * [`scenario`], [`noise`]: the papers' scenarios and measurement noise.
 //! * [`kalman`]: the Kalman-filter baselines; [`metrics`]: RMSE, confidence
 //!   intervals, OSPA and track metrics.
-//! * [`csv_input`], [`replay`], [`cli`]: the `replay` tool's CSV reader,
-//!   runner and command line.
+//! * [`csv_input`], [`replay`], [`replay_tracker`], [`cli`]: the `replay`
+//!   tool's CSV reader, runners and command line; [`output`]: stdout for the
+//!   tools (a closed pipe ends them quietly).
 //! * [`precision`]: runs a representation next to the reference and measures
 //!   the deviation and the run's magnitudes; the documented runs.
 //! * [`tracking`]: runs the track table over the multi-target scenarios for
 //!   the metrics and experiments.
 //! * [`experiments`]: the `experiments` tool's groups and output helpers.
 //! * [`frames`]: wire frames for the demo firmware's UART (the `frames` tool).
+//! * [`bench_report`]: the benchmark firmware's output to bench/results.csv
+//!   and bench/BENCHMARKS.md (the `bench_report` tool).
 //! * [`firmware_elf`]: checks on the release firmware ELFs (panic calls, stack
 //!   layout; the `firmware-check` tool).
 
+pub mod bench_report;
 pub mod cli;
 pub mod csv_input;
 pub mod experiments;
@@ -26,6 +30,7 @@ pub mod frames;
 pub mod kalman;
 pub mod metrics;
 pub mod noise;
+pub mod output;
 pub mod precision;
 pub mod reference;
 pub mod reference_ra;

@@ -47,7 +47,7 @@
 //! (or its own runner, as range–azimuth), and its options in [`crate::cli`].
 
 use std::fmt::{self, Write as _};
-use std::io::BufRead;
+use std::io::Read;
 
 use abtrack::bank::{BankConfig, BankOutcome, CartesianBank};
 use abtrack::filter::altitude::{AltitudeQuantum, AltitudeTracker, AltitudeTrackerConfig};
@@ -61,9 +61,11 @@ use abtrack::tcas::{assess, Intruder, OwnAircraft, TcasError};
 use abtrack::track::{ConfigError as TrackConfigError, ScanError};
 use abtrack::{FilterError, Fix, GainError, NumError, Scalar};
 
+use abtrack::envelope::{self, Limit};
+
 use crate::csv_input::{
-    read_measurements, read_range_azimuth, CsvError, InputFormat, Measurements,
-    RangeAzimuthMeasurements, Row, AXIS_NAMES,
+    read_measurements, read_range_azimuth, AngleUnit, CsvError, InputFormat, Measurements,
+    RangeAzimuthMeasurements, ReadOptions, Row, TimeOrder, AXIS_NAMES,
 };
 
 /// Capacity of the windows of `m3`, `m4`, `liu-residual` and `liu-adaptive`
@@ -122,6 +124,8 @@ pub struct RangeAzimuthOptions {
     /// The own aircraft's pressure altitude, ft (`--own-alt`): enables the
     /// threat columns.
     pub own_altitude_ft: Option<f64>,
+    /// The unit of the `azimuth` column (`--azimuth-unit`).
+    pub azimuth_unit: AngleUnit,
 }
 
 impl RangeAzimuthOptions {
@@ -139,6 +143,7 @@ impl RangeAzimuthOptions {
         process_noise: Self::DEFAULT_PROCESS_NOISE,
         altitude_quantum: AltitudeQuantum::ModeC,
         own_altitude_ft: None,
+        azimuth_unit: AngleUnit::Radians,
     };
 
     /// The measurement and process noise in representation `S`.
@@ -198,10 +203,12 @@ impl FilterKind {
 }
 
 /// The number representation the filter runs in.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, clap::ValueEnum)]
 pub enum Numeric {
     #[default]
+    #[value(name = "f64")]
     F64,
+    #[value(name = "f32")]
     F32,
     /// Q32.32 ([`abtrack::Fix`]).
     Fixed,
@@ -277,6 +284,17 @@ pub enum ReplayError {
         t: String,
         error: ScanError,
     },
+    /// An estimate left the envelope (or is not finite) after the row on
+    /// `line`: the run stops there rather than print it.
+    Estimate {
+        line: usize,
+        name: &'static str,
+        value: f64,
+        limit: Limit,
+        unit: &'static str,
+    },
+    /// `--tracker`: the sensor figures were refused.
+    Design(String),
 }
 
 impl fmt::Display for ReplayError {
@@ -308,8 +326,8 @@ impl fmt::Display for ReplayError {
             }
             ReplayError::WrongLayout { expected } => write!(
                 f,
-                "this filter reads a file with the header {}",
-                expected.headers()
+                "this filter reads a file with the columns {}",
+                expected.required().join(", ")
             ),
             ReplayError::TrackerAxes { dims } => write!(
                 f,
@@ -333,6 +351,20 @@ impl fmt::Display for ReplayError {
                     "line {line}: the track table refused the scan at t = {t}: {error}"
                 )
             }
+            ReplayError::Estimate {
+                line,
+                name,
+                value,
+                limit,
+                unit,
+            } => write!(
+                f,
+                "line {line}: after this row the estimate {name} = {value:.6e} {unit} is outside \
+                 the envelope {} ..= {} {unit} (the filter diverged, or the data are outside \
+                 what it is specified for); nothing is written",
+                limit.min, limit.max
+            ),
+            ReplayError::Design(e) => write!(f, "tracker design: {e}"),
         }
     }
 }
@@ -381,6 +413,53 @@ impl CsvValue for Fix {
     }
 }
 
+/// Any finite value (estimates with no envelope of their own).
+pub const FINITE: Limit = Limit::symmetric(f64::MAX);
+
+/// `Err` unless the estimate `value` (in `S`) is inside `limit`.
+pub(crate) fn check_estimate<S: Scalar>(
+    line: usize,
+    name: &'static str,
+    value: S,
+    limit: Limit,
+    unit: &'static str,
+) -> Result<(), ReplayError> {
+    let v = value.to_f64();
+    if value.is_valid() && limit.contains(v) {
+        Ok(())
+    } else {
+        Err(ReplayError::Estimate {
+            line,
+            name,
+            value: v,
+            limit,
+            unit,
+        })
+    }
+}
+
+/// Position, velocity (and acceleration) estimates of the `D` axes of a
+/// Cartesian filter after the row on `line`.
+fn check_kinematics<S: Scalar>(
+    line: usize,
+    axes: impl IntoIterator<Item = (S, S, Option<S>)>,
+) -> Result<(), ReplayError> {
+    const VELOCITY: [&str; 3] = ["vx", "vy", "vz"];
+    const ACCELERATION: [&str; 3] = ["ax", "ay", "az"];
+    for (((x, v, a), names), (vn, an)) in axes
+        .into_iter()
+        .zip(AXIS_NAMES)
+        .zip(VELOCITY.into_iter().zip(ACCELERATION))
+    {
+        check_estimate(line, names, x, envelope::POSITION_M, "m")?;
+        check_estimate(line, vn, v, envelope::VELOCITY_M_PER_S, "m/s")?;
+        if let Some(a) = a {
+            check_estimate(line, an, a, envelope::ACCELERATION_M_PER_S2, "m/s²")?;
+        }
+    }
+    Ok(())
+}
+
 /// `,value`.
 pub(crate) fn cell<S: CsvValue>(out: &mut String, v: S) {
     out.push(',');
@@ -397,14 +476,18 @@ fn optional_cell<S: CsvValue>(out: &mut String, v: Option<S>) {
 
 /// Reads the layout `config`'s filter needs from `input` and runs it: the
 /// whole output CSV, or the first error (no partial output).
-pub fn replay_reader<R: BufRead>(config: &ReplayConfig, input: R) -> Result<String, Failure> {
+pub fn replay_reader<R: Read>(config: &ReplayConfig, input: R) -> Result<String, Failure> {
     match config.filter {
         FilterKind::RangeAzimuth(options) => {
-            let data = read_range_azimuth(input).map_err(Failure::Input)?;
+            let read = ReadOptions {
+                times: TimeOrder::Increasing,
+                azimuth_unit: options.azimuth_unit,
+            };
+            let data = read_range_azimuth(input, read).map_err(Failure::Input)?;
             run_range_azimuth(&options, config.numeric, &data).map_err(Failure::Replay)
         }
         _ => {
-            let data = read_measurements(input).map_err(Failure::Input)?;
+            let data = read_measurements(input, ReadOptions::default()).map_err(Failure::Input)?;
             run(config, &data).map_err(Failure::Replay)
         }
     }
@@ -550,6 +633,23 @@ fn write_kinematic_row<S: CsvValue, const ORDER: usize, const D: usize>(
     out.push('\n');
 }
 
+/// [`check_kinematics`] of a Cartesian filter.
+fn check_filter<S: Scalar, const ORDER: usize, const D: usize>(
+    line: usize,
+    filter: &Cartesian<S, ORDER, D>,
+) -> Result<(), ReplayError> {
+    check_kinematics(
+        line,
+        filter.axes().iter().map(|a| {
+            (
+                a.position(),
+                a.velocity(),
+                (ORDER == 3).then(|| a.acceleration()),
+            )
+        }),
+    )
+}
+
 fn run_cartesian<S: CsvValue, const ORDER: usize, const D: usize>(
     gains: &Gains<S>,
     data: &Measurements,
@@ -568,6 +668,7 @@ fn run_cartesian<S: CsvValue, const ORDER: usize, const D: usize>(
                 error,
             })?;
         previous_t = Some(row.t);
+        check_filter(row.line, &tracker)?;
         write_kinematic_row(&mut out, &row.t_text, &tracker, &outcomes);
     }
     Ok(out)
@@ -596,6 +697,7 @@ fn run_scheduled<S: CsvValue, const ORDER: usize, const D: usize>(
             },
         })?;
         previous_t = Some(row.t);
+        check_filter(row.line, track.filter())?;
         write_kinematic_row(&mut out, &row.t_text, track.filter(), &update.outcome);
     }
     Ok(out)
@@ -617,6 +719,12 @@ fn run_bank<S: CsvValue, const D: usize>(
             error,
         })?;
         previous_t = Some(row.t);
+        check_kinematics(
+            row.line,
+            bank.axes()
+                .iter()
+                .map(|a| (a.position(), a.velocity(), None)),
+        )?;
         out.push_str(&row.t_text);
         for (axis, outcome) in bank.axes().iter().zip(&outcomes) {
             cell(&mut out, axis.position());
@@ -768,6 +876,21 @@ pub fn run_range_azimuth_in<S: CsvValue>(
                 .map_err(|error| ReplayError::Altitude { line, error })?;
         }
         previous_t = Some(row.t);
+        let position = filter.position();
+        let velocity = filter.velocity();
+        check_kinematics(
+            line,
+            [
+                (position[0], velocity[0], None),
+                (position[1], velocity[1], None),
+            ],
+        )?;
+        check_estimate(line, "range", filter.range(), envelope::RANGE_M, "m")?;
+        let estimate = altitude.estimate();
+        if let Some(e) = estimate {
+            check_estimate(line, "alt", e.altitude_ft, FINITE, "ft")?;
+            check_estimate(line, "alt_rate", e.vertical_rate_ft_per_s, FINITE, "ft/s")?;
+        }
 
         out.push_str(&row.t_text);
         let residual = match outcome {
@@ -782,8 +905,6 @@ pub fn run_range_azimuth_in<S: CsvValue>(
             }
             _ => None,
         };
-        let position = filter.position();
-        let velocity = filter.velocity();
         for axis in 0..2 {
             cell(&mut out, position[axis]);
             cell(&mut out, velocity[axis]);
@@ -791,7 +912,6 @@ pub fn run_range_azimuth_in<S: CsvValue>(
         }
         cell(&mut out, filter.range());
         cell(&mut out, filter.azimuth());
-        let estimate = altitude.estimate();
         if data.has_alt {
             optional_cell(&mut out, estimate.map(|e| e.altitude_ft));
             optional_cell(&mut out, estimate.map(|e| e.vertical_rate_ft_per_s));

@@ -1,85 +1,74 @@
 //! `replay --tracker`: the library's multi-target [`TrackTable`] over a
-//! recording of scans (issue 5), in f64, f32 or Q32.32.
+//! recording of scans, in f64, f32 or Q32.32, configured from the sensor's
+//! figures by [`TrackerDesign`].
 //!
 //! # Input
 //!
-//! The `replay` CSV layouts ([`crate::csv_input`]), read with
-//! [`TimeOrder::Scans`]: consecutive rows sharing a `t` are one scan, and a
-//! time before the previous row's is refused naming its line. The layout is
-//! chosen by the header:
-//!
-//! * `t,x,y` (m): the Cartesian tracker. `t,x` and `t,x,y,z` are refused
-//!   (the table works in the x/y plane).
-//! * `t,range,azimuth[,alt]` (m, rad clockwise from +y): the polar tracker.
-//!   The `alt` column is read but not used: the table keeps no altitude.
+//! The `replay` CSV layouts ([`crate::csv_input`], [`read_recording`]),
+//! read with [`TimeOrder::Scans`]: consecutive rows sharing a `t` are one
+//! scan. The layout is chosen by the header: `x`, `y` columns (m) make the
+//! Cartesian tracker, `range`, `azimuth` the polar one (a `z` column is
+//! refused: the table works in the x/y plane; `alt` is checked but not
+//! used: the table keeps no altitude).
 //!
 //! # Configuration
 //!
-//! With no option, the documented default design
-//! ([`abtrack::track::defaults`]): [`default_cartesian`] (M2 least-squares
-//! gains held at n_max = 9, uncertainty gate, 3-of-4 confirmation, deletion
-//! after 4 / 2 misses, the nominal radar's 10 km square) for `t,x,y`, and
-//! [`default_polar`] (He et al.'s filter with the nominal TCAS sensor's
-//! noise, range/azimuth window, 3 of 4, 4 / 2, the 14 NM disc) for
-//! `t,range,azimuth`. Options change one part and keep the rest:
-//!
-//! * `--schedule SPEC` (Cartesian only): any schedule of
-//!   [`abtrack::gain::spec::SCHEDULES`] but `bank`, run as
-//!   [`ScheduledTrack`] with [`ReplaySchedule`] (`AnySchedule`, windows of
-//!   [`crate::replay::WINDOW_CAPACITY`]); the gate keeps the default's σ,
-//!   threshold and a_max.
-//! * `--capacity 16|64|256`: the table's N (a const generic, so a few sizes
-//!   are compiled in); default [`DEFAULT_CAPACITY`]. Every table takes up to
-//!   [`MAX_MEASUREMENTS`] measurements per scan; more are dropped and
-//!   counted (association code `dropped`, see `--verbose`).
-//! * `--confirm M/N`: M-of-N confirmation; the tentative deletion becomes
-//!   N − M + 1 misses (rule 5 of the default design).
-//! * `--delete K`: a confirmed track is deleted after K consecutive misses.
+//! [`SensorOptions`] give the sensor's figures; each figure not given is
+//! the nominal sensor's ([`TrackerDesign::NOMINAL_RADAR`] for x/y input,
+//! [`TrackerDesign::NOMINAL_TCAS`] for range/azimuth), except the coverage,
+//! which is none unless `--region-m` gives one, and the scan period, which
+//! is the median interval between the file's scans unless given. With no
+//! coverage the design counts clutter over the disc reaching the farthest
+//! measurement of the file. The design derives the filter, gate,
+//! initiation, confirmation, deletion and volume
+//! ([`TrackerDesign::cartesian_config`], [`TrackerDesign::polar_config`]);
+//! `--schedule SPEC` (x/y input only, any schedule but `bank`) replaces the
+//! filter ([`TrackerDesign::tracker_config`]), `--confirm M/N` and
+//! `--delete K` the lifecycle, `--capacity 16|64|256` the table's N.
 //!
 //! # Time
 //!
-//! The table runs on a u32 millisecond clock. A scan at `t` seconds is given
-//! `round((t − t₀)·1000)` ms, t₀ the first scan's time (so any start time
-//! works, epoch seconds included), rounded half away from zero. Limits: a
-//! scan more than 2³² − 1 ms (49.7 days) after the first is refused
-//! ([`ReplayError::ScanTime`]), as are two scans that round to the same
-//! millisecond and intervals over 2³¹ − 1 ms ([`ReplayError::Scan`]).
+//! The table runs on a u32 millisecond clock: a scan at `t` seconds is
+//! given `round((t − t₀)·1000)` ms, t₀ the first scan's time (so epoch
+//! seconds work), at most 2³² − 1 ms after it ([`ReplayError::ScanTime`]).
+//! Where the file skips scans (a gap g between two scans longer than 1.5
+//! scan periods T), empty scans are run, as a sensor would report them: the
+//! gap is cut into round(g/T) equal intervals, so tracks miss one scan per
+//! period and the deletion rule counts scans, not rows.
 //!
 //! # Output
 //!
-//! One row per live track per scan, in increasing id order:
-//! `t,track_id,status,x,y,vx,vy` (`t` echoed as written, status
-//! `tentative|confirmed|coasting`, position m and velocity m/s after the
-//! scan). With `--own-alt FEET` the threat columns of `--filter
-//! range-azimuth` follow ([`crate::replay::THREAT_COLUMNS`], written by the
-//! same code), with the same assumptions (own aircraft at the origin, level
-//! at FEET over sea-level terrain, zero own velocity) and no altitude per
-//! track: every intruder counts as not reporting altitude, so advisories are
-//! horizontal only, at most `ta`, `proximate` within 6 NM.
+//! One row per live track per scan (the added empty scans included, their
+//! `t` written from the clock), in increasing id order:
+//! `t,track_id,status,x,y,vx,vy`. With `--own-alt FEET` the threat columns
+//! of `--filter range-azimuth` follow ([`crate::replay::THREAT_COLUMNS`]),
+//! under the same assumptions, with every track counted as not reporting
+//! altitude (horizontal advisories only: at most `ta`).
 //!
-//! The per-scan summary ([`TrackerReplay::scan_log`], printed by
-//! `--verbose`) counts the association codes of the scan's measurements and
-//! the table's confirmations, deletions and live tracks.
+//! On stderr, always: the design used and the account of every measurement
+//! not used, by reason ([`Unused`]); with `--verbose`, one line per scan
+//! before it ([`TrackerReplay::scan_log`]).
 
 use std::fmt::Write as _;
-use std::io::BufRead;
+use std::io::Read;
 
+use abtrack::envelope::{self, Limit};
 use abtrack::gain::spec::ScheduleSpec;
 use abtrack::tcas::Intruder;
 use abtrack::track::defaults::{
-    default_cartesian, default_polar, DefaultCartesianTrack, DefaultPolarTrack,
+    Coverage, DefaultCartesianTrack, DefaultPolarTrack, DerivedParameters, SensorAccuracy,
+    TrackerDesign,
 };
 use abtrack::track::{
-    Association, Measurement, ScheduledTrack, TrackFilter, TrackTable, TrackerConfig,
+    Association, DropReason, Measurement, Observation, RejectReason, ScanReport, ScheduledTrack,
+    TrackFilter, TrackTable, TrackerConfig,
 };
 use abtrack::{Fix, Scalar};
 
-use crate::csv_input::{
-    read_measurements_with, read_range_azimuth_with, sniff_format, CsvError, InputFormat, TimeOrder,
-};
+use crate::csv_input::{read_recording, AngleUnit, ReadOptions, Recording, TimeOrder, Timed};
 use crate::replay::{
-    cell, own_aircraft, value, write_threat_cells, CsvValue, Failure, Numeric, ReplayError,
-    ReplaySchedule, THREAT_COLUMNS,
+    cell, check_estimate, own_aircraft, value, write_threat_cells, CsvValue, Failure, Numeric,
+    ReplayError, ReplaySchedule, FINITE, THREAT_COLUMNS,
 };
 
 /// The table capacities `--capacity` offers.
@@ -88,6 +77,8 @@ pub const CAPACITIES: [usize; 3] = [16, 64, 256];
 pub const DEFAULT_CAPACITY: usize = 64;
 /// M, the measurements per scan every table takes.
 pub const MAX_MEASUREMENTS: usize = 256;
+/// A gap longer than this many scan periods gets empty scans (module docs).
+pub const GAP_PERIODS: f64 = 1.5;
 
 /// The output header.
 pub fn tracker_header(threat: bool) -> String {
@@ -97,6 +88,31 @@ pub fn tracker_header(threat: bool) -> String {
         h.push_str(THREAT_COLUMNS);
     }
     h
+}
+
+/// The sensor's figures given on the command line; `None` takes the
+/// default (module docs).
+#[derive(Debug, Clone, Copy, PartialEq, Default)]
+pub struct SensorOptions {
+    /// `--region-m`: half-width of the square (x/y input) or radius of the
+    /// disc (range/azimuth input) watched, m.
+    pub region_m: Option<f64>,
+    /// `--sigma-m`: Cartesian σ per axis, m.
+    pub sigma_m: Option<f64>,
+    /// `--range-sigma-m`: range σ, m.
+    pub range_sigma_m: Option<f64>,
+    /// `--bearing-sigma-deg`: bearing σ, degrees.
+    pub bearing_sigma_deg: Option<f64>,
+    /// `--scan-period-s`: T, s.
+    pub scan_period_s: Option<f64>,
+    /// `--pd`: detection probability.
+    pub detection_probability: Option<f64>,
+    /// `--clutter-per-km2`: false measurements per km² per scan.
+    pub clutter_per_km2: Option<f64>,
+    /// `--max-speed-mps`: v_max, m/s.
+    pub max_speed_m_per_s: Option<f64>,
+    /// `--max-accel-mps2`: a_max, the manoeuvre level, m/s².
+    pub max_acceleration_m_per_s2: Option<f64>,
 }
 
 /// What `replay --tracker` runs.
@@ -113,6 +129,9 @@ pub struct TrackerOptions {
     pub delete_confirmed: Option<u8>,
     /// `--own-alt FEET`.
     pub own_altitude_ft: Option<f64>,
+    pub sensor: SensorOptions,
+    /// `--azimuth-unit`.
+    pub azimuth_unit: AngleUnit,
 }
 
 impl Default for TrackerOptions {
@@ -124,6 +143,8 @@ impl Default for TrackerOptions {
             confirmation: None,
             delete_confirmed: None,
             own_altitude_ft: None,
+            sensor: SensorOptions::default(),
+            azimuth_unit: AngleUnit::Radians,
         }
     }
 }
@@ -135,42 +156,487 @@ pub struct TrackerReplay {
     pub csv: String,
     /// One summary line per scan (stderr with `--verbose`).
     pub scan_log: String,
+    /// The design and the account of the measurements not used (stderr,
+    /// always): [`TrackerReplay::report`].
+    pub design: DesignUsed,
+    pub unused: Unused,
 }
 
-/// One scan of the file in the table's number type.
+impl TrackerReplay {
+    /// The stderr report: the design, then every measurement not used by
+    /// reason.
+    pub fn report(&self) -> String {
+        format!("{}{}", self.design, self.unused)
+    }
+}
+
+/// The design a run used, and where its figures came from.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct DesignUsed {
+    pub design: TrackerDesign,
+    pub derived: DerivedParameters,
+    /// The scan period is the file's median scan interval.
+    pub period_from_file: bool,
+}
+
+impl std::fmt::Display for DesignUsed {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        let d = &self.design;
+        let p = &self.derived;
+        let accuracy = match d.accuracy {
+            SensorAccuracy::Cartesian { sigma } => format!("σ {sigma} m per axis"),
+            SensorAccuracy::Polar {
+                range_sigma,
+                bearing_sigma,
+            } => format!(
+                "range σ {range_sigma} m, bearing σ {:.4}°",
+                bearing_sigma.to_degrees()
+            ),
+        };
+        let coverage = match d.coverage {
+            Coverage::None => format!(
+                "no region (clutter counted over the disc to the farthest measurement, {:.1} km)",
+                d.max_range / 1000.0
+            ),
+            Coverage::Square { half_width } => format!("square ±{half_width} m"),
+            Coverage::Disc { radius } => format!("disc of {radius} m"),
+        };
+        writeln!(
+            f,
+            "replay --tracker: sensor {accuracy}, T {} s{}, P_D {}, clutter {} per km², {coverage}, \
+             v_max {} m/s, a_max {:.2} m/s²",
+            d.scan_period,
+            if self.period_from_file {
+                " (median scan interval of the file)"
+            } else {
+                ""
+            },
+            d.detection_probability,
+            short(d.clutter_density * 1e6),
+            d.max_speed,
+            d.max_acceleration,
+        )?;
+        writeln!(
+            f,
+            "replay --tracker: design: gate G {:.2}, initiation within v_max·T + {:.0} m, \
+             confirm {} of {}, delete after {} misses ({} tentative)",
+            p.gate_threshold,
+            p.initiation_margin,
+            p.confirmation.0,
+            p.confirmation.1,
+            p.deletion.0,
+            p.deletion.1
+        )
+    }
+}
+
+/// `v` with at most 6 decimals, trailing zeros dropped.
+fn short(v: f64) -> String {
+    let text = format!("{v:.6}");
+    text.trim_end_matches('0').trim_end_matches('.').to_string()
+}
+
+/// At most this many line numbers are listed per reason.
+pub const LISTED_LINES: usize = 8;
+
+/// Measurements of one reason: how many, and the first lines.
+#[derive(Debug, Clone, PartialEq, Default)]
+pub struct Tally {
+    pub count: usize,
+    pub lines: Vec<usize>,
+}
+
+impl Tally {
+    fn add(&mut self, line: usize) {
+        self.count += 1;
+        if self.lines.len() < LISTED_LINES {
+            self.lines.push(line);
+        }
+    }
+
+    fn lines_text(&self) -> String {
+        if self.lines.is_empty() {
+            return String::new();
+        }
+        let list: Vec<String> = self.lines.iter().map(usize::to_string).collect();
+        let more = if self.count > self.lines.len() {
+            ", …"
+        } else {
+            ""
+        };
+        format!(" (line {}{more})", list.join(", "))
+    }
+}
+
+/// Every measurement of a run, accounted for.
+#[derive(Debug, Clone, PartialEq, Default)]
+pub struct Unused {
+    pub measurements: usize,
+    pub scans: usize,
+    /// Empty scans run for gaps (module docs).
+    pub empty_scans: usize,
+    /// Updated a track.
+    pub updated: usize,
+    /// Started a track (its second point) ...
+    pub started: usize,
+    /// Outside the coverage's volume: used by no track, starts none.
+    pub outside_region: Tally,
+    /// Inside the region but outside every gate (before subtracting those
+    /// that became a new track's first point in the next scan).
+    pub outside_gates: Tally,
+    /// Inside a gate, but the assignment gave that track another one.
+    pub not_assigned: Tally,
+    /// More than `M` measurements in the scan.
+    pub over_scan_capacity: Tally,
+    /// Would have started a track, but the table was full.
+    pub table_full: Tally,
+    /// Refused: not a finite value.
+    pub not_finite: Tally,
+    /// Refused: a negative range.
+    pub negative_range: Tally,
+    /// Refused by the filter (its arithmetic saturated).
+    pub filter_refused: Tally,
+}
+
+impl Unused {
+    /// Measurements that were the first point of a new track: one per track
+    /// started (each start takes one pending point of the previous scan,
+    /// which was outside every gate and inside the region).
+    pub fn first_points(&self) -> usize {
+        self.started
+    }
+
+    /// Outside every gate and never a track's first point.
+    pub fn outside_gates_unused(&self) -> usize {
+        self.outside_gates.count.saturating_sub(self.first_points())
+    }
+
+    /// Measurements used: updates, and both points of every track started.
+    pub fn used(&self) -> usize {
+        self.updated + self.started + self.first_points()
+    }
+
+    /// Measurements not used, every reason summed.
+    pub fn not_used(&self) -> usize {
+        self.outside_region.count
+            + self.outside_gates_unused()
+            + self.not_assigned.count
+            + self.over_scan_capacity.count
+            + self.table_full.count
+            + self.not_finite.count
+            + self.negative_range.count
+            + self.filter_refused.count
+    }
+
+    fn record(&mut self, code: Association, line: usize, outside_region: bool) {
+        match code {
+            Association::Updated(_) => self.updated += 1,
+            Association::Started(_) => self.started += 1,
+            Association::NotAssigned => self.not_assigned.add(line),
+            Association::OutsideGates if outside_region => self.outside_region.add(line),
+            Association::OutsideGates => self.outside_gates.add(line),
+            Association::Rejected(RejectReason::NotFinite) => self.not_finite.add(line),
+            Association::Rejected(RejectReason::NegativeRange) => self.negative_range.add(line),
+            Association::Rejected(RejectReason::FilterRefused) => self.filter_refused.add(line),
+            Association::Dropped(DropReason::ScanOverflow) => self.over_scan_capacity.add(line),
+            Association::Dropped(DropReason::TableFull) => self.table_full.add(line),
+        }
+    }
+}
+
+impl std::fmt::Display for Unused {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        let p = "replay --tracker:";
+        writeln!(
+            f,
+            "{p} {} measurements in {} scans{}: {} used, {} not used",
+            self.measurements,
+            self.scans,
+            if self.empty_scans > 0 {
+                format!(" (and {} empty scans run for gaps)", self.empty_scans)
+            } else {
+                String::new()
+            },
+            self.used(),
+            self.not_used()
+        )?;
+        writeln!(
+            f,
+            "{p}   outside the region: {}{}",
+            self.outside_region.count,
+            self.outside_region.lines_text()
+        )?;
+        writeln!(
+            f,
+            "{p}   outside every gate: {} (of {} outside every gate, {} became the first point \
+             of a new track)",
+            self.outside_gates_unused(),
+            self.outside_gates.count,
+            self.first_points()
+        )?;
+        writeln!(
+            f,
+            "{p}   inside a gate, the track took another measurement: {}{}",
+            self.not_assigned.count,
+            self.not_assigned.lines_text()
+        )?;
+        writeln!(
+            f,
+            "{p}   over capacity: {} more than {MAX_MEASUREMENTS} in a scan{}, {} table full{}",
+            self.over_scan_capacity.count,
+            self.over_scan_capacity.lines_text(),
+            self.table_full.count,
+            self.table_full.lines_text()
+        )?;
+        writeln!(
+            f,
+            "{p}   refused: {} not finite{}, {} negative range{}, {} refused by the filter{}",
+            self.not_finite.count,
+            self.not_finite.lines_text(),
+            self.negative_range.count,
+            self.negative_range.lines_text(),
+            self.filter_refused.count,
+            self.filter_refused.lines_text()
+        )
+    }
+}
+
+/// One scan in the table's number type.
 struct ScanInput<'a, S> {
-    /// Line of the scan's first row.
+    /// Line of the scan's first row (0 for an added empty scan).
+    line: usize,
+    /// The time as written (or, for an added empty scan, from the clock).
+    t_text: std::borrow::Cow<'a, str>,
+    now_ms: u32,
+    measurements: Vec<Measurement<S>>,
+    lines: Vec<usize>,
+}
+
+/// A scan of the file, before conversion.
+struct FileScan<'a> {
     line: usize,
     t_text: &'a str,
     t: f64,
-    measurements: Vec<Measurement<S>>,
+    rows: Vec<(usize, Measurement<f64>)>,
 }
 
-/// The file, parsed.
-enum Data {
-    Cartesian(crate::csv_input::Measurements),
-    Polar(crate::csv_input::RangeAzimuthMeasurements),
+/// A row of either layout as one measurement of a scan.
+trait ScanRow: Timed {
+    fn line(&self) -> usize;
+    fn measurement(&self) -> Measurement<f64>;
+}
+
+impl ScanRow for crate::csv_input::Row {
+    fn line(&self) -> usize {
+        self.line
+    }
+    fn measurement(&self) -> Measurement<f64> {
+        Measurement::Cartesian {
+            x: self.z[0],
+            y: self.z[1],
+        }
+    }
+}
+
+impl ScanRow for crate::csv_input::RangeAzimuthRow {
+    fn line(&self) -> usize {
+        self.line
+    }
+    fn measurement(&self) -> Measurement<f64> {
+        Measurement::Polar {
+            range: self.range,
+            azimuth: self.azimuth,
+        }
+    }
+}
+
+/// Scans of rows (consecutive rows sharing a `t`).
+fn scans_of<'a, R: ScanRow + 'a>(scans: impl Iterator<Item = &'a [R]>) -> Vec<FileScan<'a>> {
+    scans
+        .filter_map(|rows| {
+            let first = rows.first()?;
+            let (t, t_text) = first.time();
+            Some(FileScan {
+                line: first.line(),
+                t_text,
+                t,
+                rows: rows.iter().map(|r| (r.line(), r.measurement())).collect(),
+            })
+        })
+        .collect()
+}
+
+fn file_scans(data: &Recording) -> Result<Vec<FileScan<'_>>, ReplayError> {
+    match data {
+        Recording::Cartesian(m) if m.dims != 2 => Err(ReplayError::TrackerAxes { dims: m.dims }),
+        Recording::Cartesian(m) => Ok(scans_of(m.scans())),
+        Recording::RangeAzimuth(m) => Ok(scans_of(m.scans())),
+    }
+}
+
+/// The median interval between consecutive scans, s (`None` for one scan).
+pub fn median_scan_interval(times: &[f64]) -> Option<f64> {
+    let mut intervals: Vec<f64> = times.windows(2).map(|w| w[1] - w[0]).collect();
+    if intervals.is_empty() {
+        return None;
+    }
+    intervals.sort_by(f64::total_cmp);
+    Some(intervals[intervals.len() / 2])
+}
+
+/// A figure given on the command line, checked against `limit`.
+fn figure(name: &str, v: Option<f64>, default: f64, limit: Limit) -> Result<f64, ReplayError> {
+    let v = v.unwrap_or(default);
+    if v.is_finite() && limit.contains(v) {
+        Ok(v)
+    } else {
+        Err(ReplayError::Design(format!(
+            "{name} {v} is outside {} ..= {}",
+            limit.min, limit.max
+        )))
+    }
+}
+
+/// The design for `scans` of a file in the given layout (module docs).
+pub fn design_for(
+    sensor: &SensorOptions,
+    polar: bool,
+    scan_times: &[f64],
+    farthest_m: f64,
+) -> Result<DesignUsed, ReplayError> {
+    let nominal = if polar {
+        TrackerDesign::NOMINAL_TCAS
+    } else {
+        TrackerDesign::NOMINAL_RADAR
+    };
+    let positive = Limit {
+        min: f64::MIN_POSITIVE,
+        max: envelope::MAX_POSITION_M,
+    };
+    let accuracy = match (
+        sensor.sigma_m,
+        sensor.range_sigma_m,
+        sensor.bearing_sigma_deg,
+    ) {
+        (Some(s), None, None) => SensorAccuracy::Cartesian {
+            sigma: figure("--sigma-m", Some(s), 0.0, positive)?,
+        },
+        (None, None, None) => nominal.accuracy,
+        (None, r, b) => {
+            let (r0, b0) = match TrackerDesign::NOMINAL_TCAS.accuracy {
+                SensorAccuracy::Polar {
+                    range_sigma,
+                    bearing_sigma,
+                } => (range_sigma, bearing_sigma.to_degrees()),
+                SensorAccuracy::Cartesian { sigma } => (sigma, 5.0),
+            };
+            SensorAccuracy::Polar {
+                range_sigma: figure("--range-sigma-m", r, r0, positive)?,
+                bearing_sigma: figure(
+                    "--bearing-sigma-deg",
+                    b,
+                    b0,
+                    Limit {
+                        min: f64::MIN_POSITIVE,
+                        max: 180.0,
+                    },
+                )?
+                .to_radians(),
+            }
+        }
+        (Some(_), _, _) => {
+            return Err(ReplayError::Design(
+                "--sigma-m (a Cartesian sensor) cannot be combined with --range-sigma-m or \
+                 --bearing-sigma-deg (a polar one)"
+                    .into(),
+            ))
+        }
+    };
+    let median = median_scan_interval(scan_times);
+    let scan_period = figure(
+        if sensor.scan_period_s.is_some() {
+            "--scan-period-s"
+        } else {
+            "the scan period (the file's median scan interval; give --scan-period-s)"
+        },
+        sensor.scan_period_s,
+        median.unwrap_or(nominal.scan_period),
+        envelope::INTERVAL_S,
+    )?;
+    let coverage = match sensor.region_m {
+        None => Coverage::None,
+        Some(r) => {
+            let r = figure("--region-m", Some(r), 0.0, positive)?;
+            if polar {
+                Coverage::Disc { radius: r }
+            } else {
+                Coverage::Square { half_width: r }
+            }
+        }
+    };
+    let design = TrackerDesign {
+        accuracy,
+        detection_probability: figure(
+            "--pd",
+            sensor.detection_probability,
+            nominal.detection_probability,
+            Limit {
+                min: 1e-3,
+                max: 1.0,
+            },
+        )?,
+        clutter_density: figure(
+            "--clutter-per-km2",
+            sensor.clutter_per_km2,
+            nominal.clutter_density * 1e6,
+            Limit { min: 0.0, max: 1e6 },
+        )? * 1e-6,
+        coverage,
+        // At least 1 m, so one measurement at the origin still has a disc.
+        max_range: farthest_m.max(1.0),
+        max_speed: figure(
+            "--max-speed-mps",
+            sensor.max_speed_m_per_s,
+            nominal.max_speed,
+            Limit {
+                min: f64::MIN_POSITIVE,
+                max: envelope::VELOCITY_M_PER_S.max,
+            },
+        )?,
+        max_acceleration: figure(
+            "--max-accel-mps2",
+            sensor.max_acceleration_m_per_s2,
+            nominal.max_acceleration,
+            Limit {
+                min: f64::MIN_POSITIVE,
+                max: envelope::ACCELERATION_M_PER_S2.max,
+            },
+        )?,
+        scan_period,
+    };
+    let derived = design.derive().map_err(|e| {
+        ReplayError::Design(format!(
+            "no configuration meets the design rules for these figures: {e}"
+        ))
+    })?;
+    Ok(DesignUsed {
+        design,
+        derived,
+        period_from_file: sensor.scan_period_s.is_none() && median.is_some(),
+    })
 }
 
 /// Reads the whole input, picks the layout from its header and runs the
 /// tracker: the output, or the first error (no partial output).
-pub fn replay_tracker_reader<R: BufRead>(
+pub fn replay_tracker_reader<R: Read>(
     options: &TrackerOptions,
-    mut input: R,
+    input: R,
 ) -> Result<TrackerReplay, Failure> {
-    let mut text = String::new();
-    input
-        .read_to_string(&mut text)
-        .map_err(|e| Failure::Input(CsvError::Io(e.to_string())))?;
-    let data = match sniff_format(&text) {
-        Some(InputFormat::RangeAzimuth) => Data::Polar(
-            read_range_azimuth_with(text.as_bytes(), TimeOrder::Scans).map_err(Failure::Input)?,
-        ),
-        // The Cartesian reader names a bad header (with a hint).
-        _ => Data::Cartesian(
-            read_measurements_with(text.as_bytes(), TimeOrder::Scans).map_err(Failure::Input)?,
-        ),
+    let read = ReadOptions {
+        times: TimeOrder::Scans,
+        azimuth_unit: options.azimuth_unit,
     };
+    let data = read_recording(input, read).map_err(Failure::Input)?;
     with_large_stack(|| match options.numeric {
         Numeric::F64 => run_in::<f64>(options, &data),
         Numeric::F32 => run_in::<f32>(options, &data),
@@ -198,93 +664,124 @@ pub fn with_large_stack<T: Send>(f: impl FnOnce() -> T + Send) -> T {
     })
 }
 
-fn run_in<S: CsvValue>(
-    options: &TrackerOptions,
-    data: &Data,
-) -> Result<TrackerReplay, ReplayError> {
-    let config_error = ReplayError::TrackerConfig;
-    match data {
-        Data::Cartesian(m) => {
-            if m.dims != 2 {
-                return Err(ReplayError::TrackerAxes { dims: m.dims });
-            }
-            let mut scans = Vec::new();
-            for rows in m.scans() {
-                let first = &rows[0];
-                let mut measurements = Vec::with_capacity(rows.len());
-                for r in rows {
-                    measurements.push(Measurement::Cartesian {
-                        x: value(r.z[0], r.line, 2, "x")?,
-                        y: value(r.z[1], r.line, 3, "y")?,
+/// The file's scans on the table's clock, with empty scans added for gaps
+/// (module docs), in `S`.
+fn clocked_scans<'a, S: Scalar>(
+    scans: &'a [FileScan<'a>],
+    period_s: f64,
+) -> Result<(Vec<ScanInput<'a, S>>, usize), ReplayError> {
+    let first_t = scans.first().map_or(0.0, |s| s.t);
+    let mut out: Vec<ScanInput<'a, S>> = Vec::with_capacity(scans.len());
+    let mut added = 0;
+    let mut previous: Option<(f64, u32)> = None;
+    for scan in scans {
+        let now_ms = scan_clock_ms(scan.t, first_t).ok_or_else(|| ReplayError::ScanTime {
+            line: scan.line,
+            t: scan.t_text.to_string(),
+        })?;
+        if let Some((t0, ms0)) = previous {
+            let gap = scan.t - t0;
+            if gap > GAP_PERIODS * period_s {
+                let parts = (gap / period_s).round() as u64;
+                for k in 1..parts {
+                    let ms =
+                        ms0 + ((f64::from(now_ms - ms0) * k as f64) / parts as f64).round() as u32;
+                    out.push(ScanInput {
+                        line: 0,
+                        t_text: clock_text(first_t, ms).into(),
+                        now_ms: ms,
+                        measurements: Vec::new(),
+                        lines: Vec::new(),
                     });
-                }
-                scans.push(ScanInput {
-                    line: first.line,
-                    t_text: &first.t_text,
-                    t: first.t,
-                    measurements,
-                });
-            }
-            let default = default_cartesian::<S>().map_err(config_error)?;
-            match &options.schedule {
-                None => {
-                    let config = with_lifecycle(default, options)?;
-                    by_capacity::<S, DefaultCartesianTrack<S>>(options, &config, &scans)
-                }
-                Some(spec) => {
-                    let schedule =
-                        ReplaySchedule::<S, 2>::from_spec(spec).map_err(ReplayError::Schedule)?;
-                    let config = with_lifecycle(with_params(&default, schedule)?, options)?;
-                    by_capacity::<S, ScheduledTrack<S, ReplaySchedule<S, 2>>>(
-                        options, &config, &scans,
-                    )
+                    added += 1;
                 }
             }
         }
-        Data::Polar(m) => {
-            if options.schedule.is_some() {
-                return Err(ReplayError::TrackerScheduleNeedsCartesian);
-            }
-            let mut scans = Vec::new();
-            for rows in m.scans() {
-                let first = &rows[0];
-                let mut measurements = Vec::with_capacity(rows.len());
-                for r in rows {
-                    measurements.push(Measurement::Polar {
-                        range: value(r.range, r.line, 2, "range")?,
-                        azimuth: value(r.azimuth, r.line, 3, "azimuth")?,
-                    });
-                }
-                scans.push(ScanInput {
-                    line: first.line,
-                    t_text: &first.t_text,
-                    t: first.t,
-                    measurements,
-                });
-            }
-            let config = with_lifecycle(default_polar::<S>().map_err(config_error)?, options)?;
-            by_capacity::<S, DefaultPolarTrack<S>>(options, &config, &scans)
+        let mut measurements = Vec::with_capacity(scan.rows.len());
+        let mut lines = Vec::with_capacity(scan.rows.len());
+        for &(line, m) in &scan.rows {
+            measurements.push(match m {
+                Measurement::Cartesian { x, y } => Measurement::Cartesian {
+                    x: value(x, line, 2, "x")?,
+                    y: value(y, line, 3, "y")?,
+                },
+                Measurement::Polar { range, azimuth } => Measurement::Polar {
+                    range: value(range, line, 2, "range")?,
+                    azimuth: value(azimuth, line, 3, "azimuth")?,
+                },
+            });
+            lines.push(line);
         }
+        out.push(ScanInput {
+            line: scan.line,
+            t_text: scan.t_text.into(),
+            now_ms,
+            measurements,
+            lines,
+        });
+        previous = Some((scan.t, now_ms));
     }
+    Ok((out, added))
 }
 
-/// `config`'s gate, initiation, lifecycle and volume with other filter
-/// parameters.
-pub fn with_params<S: Scalar, P: Copy, Q: Copy>(
-    config: &TrackerConfig<S, P>,
-    params: Q,
-) -> Result<TrackerConfig<S, Q>, ReplayError> {
-    let (hits, window) = config.confirmation();
-    let (confirmed, tentative) = config.deletion();
-    let mut c = TrackerConfig::new(params, *config.gate(), config.max_speed())
-        .and_then(|c| c.with_initiation_margin(config.initiation_margin()))
-        .and_then(|c| c.with_confirmation(hits, window))
-        .and_then(|c| c.with_deletion(confirmed, tentative))
-        .map_err(ReplayError::TrackerConfig)?;
-    if let Some(v) = config.volume() {
-        c = c.with_volume(*v);
+/// An added scan's `t`: the first scan's time plus the clock, to the
+/// millisecond.
+fn clock_text(first_t: f64, ms: u32) -> String {
+    let t = first_t + f64::from(ms) / 1000.0;
+    let text = format!("{t:.3}");
+    text.trim_end_matches('0').trim_end_matches('.').to_string()
+}
+
+fn run_in<S: CsvValue>(
+    options: &TrackerOptions,
+    data: &Recording,
+) -> Result<TrackerReplay, ReplayError> {
+    let scans = file_scans(data)?;
+    let polar = matches!(data, Recording::RangeAzimuth(_));
+    let farthest = scans
+        .iter()
+        .flat_map(|s| s.rows.iter())
+        .map(|(_, m)| match *m {
+            Measurement::Cartesian { x, y } => x.hypot(y),
+            Measurement::Polar { range, .. } => range,
+        })
+        .fold(0.0, f64::max);
+    let first_t = scans.first().map_or(0.0, |s| s.t);
+    if let Some(s) = scans.iter().find(|s| scan_clock_ms(s.t, first_t).is_none()) {
+        return Err(ReplayError::ScanTime {
+            line: s.line,
+            t: s.t_text.to_string(),
+        });
     }
-    Ok(c)
+    let times: Vec<f64> = scans.iter().map(|s| s.t).collect();
+    let design = design_for(&options.sensor, polar, &times, farthest)?;
+    let (inputs, added) = clocked_scans::<S>(&scans, design.design.scan_period)?;
+    let config_error = ReplayError::TrackerConfig;
+    let d = &design.design;
+    if polar {
+        if options.schedule.is_some() {
+            return Err(ReplayError::TrackerScheduleNeedsCartesian);
+        }
+        let config = with_lifecycle(d.polar_config::<S>().map_err(config_error)?, options)?;
+        return by_capacity::<S, DefaultPolarTrack<S>>(options, &config, &inputs, design, added);
+    }
+    match &options.schedule {
+        None => {
+            let config = with_lifecycle(d.cartesian_config::<S>().map_err(config_error)?, options)?;
+            by_capacity::<S, DefaultCartesianTrack<S>>(options, &config, &inputs, design, added)
+        }
+        Some(spec) => {
+            let schedule =
+                ReplaySchedule::<S, 2>::from_spec(spec).map_err(ReplayError::Schedule)?;
+            let config = with_lifecycle(
+                d.tracker_config::<S, _>(schedule).map_err(config_error)?,
+                options,
+            )?;
+            by_capacity::<S, ScheduledTrack<S, ReplaySchedule<S, 2>>>(
+                options, &config, &inputs, design, added,
+            )
+        }
+    }
 }
 
 /// `--confirm` and `--delete` applied to `config`.
@@ -313,11 +810,13 @@ fn by_capacity<S: CsvValue, F: TrackFilter<S>>(
     options: &TrackerOptions,
     config: &TrackerConfig<S, F::Params>,
     scans: &[ScanInput<'_, S>],
+    design: DesignUsed,
+    added: usize,
 ) -> Result<TrackerReplay, ReplayError> {
     match options.capacity {
-        16 => run_scans::<S, F, 16>(options, config, scans),
-        64 => run_scans::<S, F, 64>(options, config, scans),
-        _ => run_scans::<S, F, 256>(options, config, scans),
+        16 => run_scans::<S, F, 16>(options, config, scans, design, added),
+        64 => run_scans::<S, F, 64>(options, config, scans, design, added),
+        _ => run_scans::<S, F, 256>(options, config, scans, design, added),
     }
 }
 
@@ -329,12 +828,7 @@ pub fn scan_clock_ms(t: f64, first_t: f64) -> Option<u32> {
 }
 
 /// The `--verbose` line of one scan.
-fn log_scan(
-    log: &mut String,
-    t_text: &str,
-    codes: &[Association],
-    report: &abtrack::track::ScanReport,
-) {
+fn log_scan(log: &mut String, t_text: &str, codes: &[Association], report: &ScanReport) {
     let count = |f: fn(&Association) -> bool| codes.iter().filter(|c| f(c)).count();
     let _ = writeln!(
         log,
@@ -357,34 +851,51 @@ fn run_scans<S: CsvValue, F: TrackFilter<S>, const N: usize>(
     options: &TrackerOptions,
     config: &TrackerConfig<S, F::Params>,
     scans: &[ScanInput<'_, S>],
+    design: DesignUsed,
+    added: usize,
 ) -> Result<TrackerReplay, ReplayError> {
     let own = own_aircraft::<S>(options.own_altitude_ft)?;
     let mut table: Box<TrackTable<S, F, N, MAX_MEASUREMENTS>> = Box::new(TrackTable::new());
     let mut csv = tracker_header(own.is_some());
     csv.push('\n');
     let mut scan_log = String::new();
-    let first_t = scans.first().map_or(0.0, |s| s.t);
+    let mut unused = Unused {
+        scans: scans.len() - added,
+        empty_scans: added,
+        ..Unused::default()
+    };
     let mut codes = Vec::new();
     for scan in scans {
-        let now_ms = scan_clock_ms(scan.t, first_t).ok_or_else(|| ReplayError::ScanTime {
-            line: scan.line,
-            t: scan.t_text.to_string(),
-        })?;
         codes.clear();
         codes.resize(scan.measurements.len(), Association::OutsideGates);
         let report = table
-            .scan(config, now_ms, &scan.measurements, &mut codes)
+            .scan(config, scan.now_ms, &scan.measurements, &mut codes)
             .map_err(|error| ReplayError::Scan {
                 line: scan.line,
                 t: scan.t_text.to_string(),
                 error,
             })?;
-        log_scan(&mut scan_log, scan.t_text, &codes, &report);
+        log_scan(&mut scan_log, &scan.t_text, &codes, &report);
+        for ((&code, m), &line) in codes.iter().zip(&scan.measurements).zip(&scan.lines) {
+            let outside = config
+                .volume()
+                .is_some_and(|v| Observation::new(*m).is_ok_and(|o| !v.contains(o.xy())));
+            unused.measurements += 1;
+            unused.record(code, line, outside);
+        }
         let mut tracks: Vec<_> = table.tracks().collect();
         tracks.sort_by_key(|t| t.id());
         for track in tracks {
             let [x, y] = track.position();
             let [vx, vy] = track.velocity();
+            // Positions inside the envelope; velocities finite only: young
+            // tracks of a noisy bearing sensor legitimately exceed 1500 m/s
+            // (5° at 25 km is 2 km across range), see docs/host-tools.md.
+            let line = scan.line;
+            check_estimate(line, "x", x, envelope::POSITION_M, "m")?;
+            check_estimate(line, "y", y, envelope::POSITION_M, "m")?;
+            check_estimate(line, "vx", vx, FINITE, "m/s")?;
+            check_estimate(line, "vy", vy, FINITE, "m/s")?;
             let _ = write!(
                 csv,
                 "{},{},{}",
@@ -406,5 +917,10 @@ fn run_scans<S: CsvValue, F: TrackFilter<S>, const N: usize>(
             csv.push('\n');
         }
     }
-    Ok(TrackerReplay { csv, scan_log })
+    Ok(TrackerReplay {
+        csv,
+        scan_log,
+        design,
+        unused,
+    })
 }

@@ -6,7 +6,7 @@
 
 use std::time::{Duration, Instant};
 
-use abtrack::track::defaults::{SensorAccuracy, Surveillance, TrackerDesign};
+use abtrack::track::defaults::{Coverage, SensorAccuracy, TrackerDesign};
 use abtrack::track::{
     Association, Measurement, ScanReport as TableScanReport, TableStats, TrackFilter,
     TrackStatus as TableStatus, TrackTable, TrackerConfig,
@@ -23,7 +23,8 @@ use crate::scenario::{self, MeasurementFrame, Region, ScenarioInfo, ScenarioRun,
 /// [`TrackerDesign::NOMINAL_TCAS`] for polar ones). For `two-crossing` and
 /// `parallel-200m` this is exactly `NOMINAL_RADAR`, for `tcas-30` exactly
 /// `NOMINAL_TCAS`; `dense` differs by its larger square and lower clutter
-/// density. `None` for a scenario without a surveillance region.
+/// density. `None` for a scenario without a surveillance region, or with one
+/// that is not a square or a disc centred on the sensor.
 pub fn design_for(info: &ScenarioInfo) -> Option<TrackerDesign> {
     let accuracy = match info.noise {
         SensorNoise::Cartesian { x, y } => SensorAccuracy::Cartesian {
@@ -34,17 +35,17 @@ pub fn design_for(info: &ScenarioInfo) -> Option<TrackerDesign> {
             bearing_sigma: azimuth.sigma(),
         },
     };
-    let surveillance = match info.surveillance? {
+    let coverage = match info.surveillance? {
         Region::Rectangle {
             x_min,
             x_max,
             y_min,
             y_max,
-        } => Surveillance::Rectangle {
-            min: [x_min, y_min],
-            max: [x_max, y_max],
-        },
-        Region::Disc { radius } => Surveillance::Disc { radius },
+        } if x_min == -x_max && y_min == -y_max && x_max == y_max => {
+            Coverage::Square { half_width: x_max }
+        }
+        Region::Rectangle { .. } => return None,
+        Region::Disc { radius } => Coverage::Disc { radius },
     };
     let nominal = match info.frame {
         MeasurementFrame::Cartesian => TrackerDesign::NOMINAL_RADAR,
@@ -54,7 +55,8 @@ pub fn design_for(info: &ScenarioInfo) -> Option<TrackerDesign> {
         accuracy,
         detection_probability: info.detection_probability,
         clutter_density: info.clutter.map_or(0.0, |c| c.density_per_m2()),
-        surveillance,
+        coverage,
+        max_range: coverage.max_range()?,
         scan_period: info.period_s,
         ..nominal
     })

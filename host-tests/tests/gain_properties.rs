@@ -232,7 +232,7 @@ fn invalid_context_is_refused() {
     ctx.axes[1].innovation = 1.0;
     ctx.dt = 0.0;
     assert!(ctx.check().is_err());
-    let p = abtrack::filter::Prediction {
+    let p = abtrack::filter::Prediction::<f64> {
         position: 0.0,
         velocity: 0.0,
         acceleration: 0.0,

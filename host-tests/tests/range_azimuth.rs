@@ -380,7 +380,7 @@ fn filters_in_every_phase<S: Scalar>() -> Vec<RangeAzimuthFilter<S>> {
 
 fn invalid_inputs_leave_state_untouched<S: Scalar>() {
     let c = |v: f64| S::from_f64_lossy(v);
-    let bad_numbers: Vec<S> = if S::NAME == "fixed" {
+    let bad_numbers: Vec<S> = if S::NAME == "q32" {
         vec![c(f64::INFINITY), c(f64::NEG_INFINITY), c(f64::NAN)] // sentinels
     } else {
         vec![c(f64::NAN), c(f64::INFINITY), c(f64::NEG_INFINITY)]
@@ -504,7 +504,7 @@ fn settled<S: Scalar>(range_variance: f64) -> (RangeAzimuthFilter<S>, [f64; 2], 
     // 1e-6 m at 8.5 km.
     let tol = match S::NAME {
         "f32" => 5e-3,
-        "fixed" => 1e-5,
+        "q32" => 1e-5,
         _ => 1e-9,
     };
     for k in 0..60 {

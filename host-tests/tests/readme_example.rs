@@ -1,5 +1,6 @@
 //! The library example of README.md ("Using the library"), compiled and run
-//! so the README cannot drift from the API. Keep the two in step.
+//! so the README cannot drift from the API; `readme_shows_this_example`
+//! fails when the README's copy differs from this one.
 
 use abtrack::filter::UpdateOutcome;
 use abtrack::gain::{AnySchedule, ScheduleSpec, ScheduledFilter};
@@ -60,4 +61,32 @@ fn readme_example() -> Result<(), Box<dyn std::error::Error>> {
     }
     // --- README example ends ---
     Ok(())
+}
+
+/// The README's ```rust block is this file's `use` lines and the body between
+/// the markers (indented one level less): a README edit that is not made here
+/// too fails the test command.
+#[test]
+fn readme_shows_this_example() {
+    let readme = include_str!("../../README.md");
+    let this = include_str!("readme_example.rs");
+    let shown = readme
+        .split_once("```rust\n")
+        .and_then(|(_, rest)| rest.split_once("```"))
+        .map(|(block, _)| block)
+        .expect("README.md has a ```rust block");
+    let uses: String = this
+        .lines()
+        .filter(|l| l.starts_with("use "))
+        .map(|l| format!("{l}\n"))
+        .collect();
+    let body: String = this
+        .split_once("// --- README example begins ---\n")
+        .and_then(|(_, rest)| rest.split_once("    // --- README example ends ---"))
+        .map(|(body, _)| body)
+        .expect("markers in readme_example.rs")
+        .lines()
+        .map(|l| format!("{}\n", l.strip_prefix("    ").unwrap_or(l)))
+        .collect();
+    assert_eq!(shown, format!("{uses}\n{body}"));
 }

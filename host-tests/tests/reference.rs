@@ -301,9 +301,9 @@ fn damped_gains(rng: &mut ChaCha8Rng, order: usize) -> RefGains {
             }
         };
         let valid = if order == 3 {
-            Gains::alpha_beta_gamma(g.alpha, g.beta, g.gamma).is_ok()
+            Gains::<f64>::alpha_beta_gamma(g.alpha, g.beta, g.gamma).is_ok()
         } else {
-            Gains::alpha_beta(g.alpha, g.beta).is_ok()
+            Gains::<f64>::alpha_beta(g.alpha, g.beta).is_ok()
         };
         if valid {
             return g;

@@ -8,23 +8,29 @@ use std::process::{Command as Process, Stdio};
 
 use abtrack::filter::{Cartesian, Gains, UpdateOutcome};
 use abtrack::{FilterError, Fix, GainError, Scalar};
-use abtrack_host_tests::cli::{parse_replay_args, Command, Input, UsageError};
-use abtrack_host_tests::csv_input::{read_measurements, CsvError};
+use abtrack_host_tests::cli::{Command, Input, ReplayArgs};
+use abtrack_host_tests::csv_input::{
+    read_measurements, read_range_azimuth, AngleUnit, CsvError, InputFormat, Measurements,
+    ReadOptions, Refusal, Row,
+};
 use abtrack_host_tests::replay::{header, run, FilterKind, Numeric, ReplayConfig, ReplayError};
+use clap::error::ErrorKind;
+use clap::Parser;
 
-fn read(text: &str) -> Result<abtrack_host_tests::csv_input::Measurements, CsvError> {
-    read_measurements(text.as_bytes())
+fn read(text: &str) -> Result<Measurements, CsvError> {
+    read_measurements(text.as_bytes(), ReadOptions::default())
 }
 
 // ------------------------------------------------------------- CSV reader
 
 #[test]
-fn accepts_the_three_headers_and_tolerant_spacing() {
+fn accepts_the_three_layouts_and_tolerant_spacing() {
     for (text, dims) in [
         ("t,x\n0,1\n", 1),
         ("t,x,y\n0,1,2\n", 2),
         ("t,x,y,z\n0,1,2,3\n", 3),
         ("\u{feff}t , x\r\n0 , 1\r\n\r\n1,2\n", 1),
+        ("\"t\",\"x\"\n\"0\",1\n", 1),
     ] {
         let m = read(text).unwrap();
         assert_eq!(m.dims, dims, "{text:?}");
@@ -38,61 +44,118 @@ fn accepts_the_three_headers_and_tolerant_spacing() {
     );
 }
 
+/// Issue 12: a header `t,x,y,alt`, extra columns and another column order
+/// were refused; the header is now matched by name.
+#[test]
+fn header_is_matched_by_name_in_any_order_with_extra_columns() {
+    let reference = read("t,x,y\n0,1,2\n1,3,4\n").unwrap();
+    for text in [
+        "t,x,y,alt\n0,1,2,8000\n1,3,4,\n",
+        "callsign,y,t,speed,x\nABC,2,0,250,1\nABC,4,1,251,3\n",
+        "t,x,y,icao24,squawk\n0,1,2,4ca7b4,7000\n1,3,4,4ca7b4,7000\n",
+    ] {
+        let m = read(text).unwrap_or_else(|e| panic!("{text:?}: {e}"));
+        assert_eq!(m.dims, 2, "{text:?}");
+        let z = |m: &Measurements| m.rows.iter().map(|r| (r.t, r.z)).collect::<Vec<_>>();
+        assert_eq!(z(&m), z(&reference), "{text:?}");
+    }
+    // The alt column is read (and checked) when present.
+    let m = read("t,x,y,alt\n0,1,2,8000\n1,3,4,\n").unwrap();
+    assert_eq!(
+        m.rows.iter().map(|r: &Row| r.alt).collect::<Vec<_>>(),
+        [Some(8000.0), None]
+    );
+    // Polar: any order, extra columns, alt optional.
+    let p = read_range_azimuth(
+        "azimuth,alt,range,t,note\n0.5,9000,1000,0,a\n0.6,,1100,1,b\n".as_bytes(),
+        ReadOptions::default(),
+    )
+    .unwrap();
+    assert!(p.has_alt);
+    assert_eq!(
+        (
+            p.rows[1].t,
+            p.rows[1].range,
+            p.rows[1].azimuth,
+            p.rows[1].alt
+        ),
+        (1.0, 1100.0, 0.6, None)
+    );
+}
+
 #[test]
 fn errors_name_the_line_and_column() {
-    let cases: [(&str, CsvError, &str); 9] = [
-        ("", CsvError::Empty, "line 1"),
+    let cases: Vec<(&str, CsvError, &str)> = vec![
+        (
+            "",
+            CsvError::Empty {
+                format: Some(InputFormat::Cartesian),
+            },
+            "line 1: empty input, expected a header with the columns t, x",
+        ),
         (
             "time,x\n0,1\n",
-            CsvError::BadHeader {
-                line: 1,
+            CsvError::MissingColumns {
+                format: InputFormat::Cartesian,
+                missing: vec!["t"],
                 found: "time,x".into(),
             },
-            "line 1: bad header",
+            "line 1: the header \"time,x\" has no column t; this input needs the columns t, x \
+             (optional: y, z (needs y), alt) in any order, other columns are ignored",
         ),
         (
-            "t,y\n0,1\n",
-            CsvError::BadHeader {
-                line: 1,
-                found: "t,y".into(),
+            "t,x,z\n0,1,2\n",
+            CsvError::MissingColumns {
+                format: InputFormat::Cartesian,
+                missing: vec!["y"],
+                found: "t,x,z".into(),
             },
-            "line 1",
+            "has no column y",
         ),
         (
-            "t,x,y,z,w\n",
-            CsvError::BadHeader {
-                line: 1,
-                found: "t,x,y,z,w".into(),
+            "t,x,x\n0,1,2\n",
+            CsvError::DuplicateColumn { name: "x".into() },
+            "the column \"x\" twice",
+        ),
+        (
+            "t,range,azimuth\n0,1,2\n",
+            CsvError::MissingColumns {
+                format: InputFormat::Cartesian,
+                missing: vec!["x"],
+                found: "t,range,azimuth".into(),
             },
-            "line 1",
+            "(this header is for --filter range-azimuth)",
         ),
         (
             "t,x,y\n0,1,2\n1,2,abc\n",
-            CsvError::NotANumber {
+            CsvError::Field {
                 line: 3,
                 column: 3,
                 name: "y",
                 text: "abc".into(),
+                why: Refusal::NotANumber,
             },
             "line 3, column 3 (y): \"abc\" is not a number",
         ),
         (
             "t,x\n0,1\n1,\n",
-            CsvError::NotANumber {
+            CsvError::Field {
                 line: 3,
                 column: 2,
                 name: "x",
                 text: "".into(),
+                why: Refusal::NotANumber,
             },
-            "line 3, column 2 (x)",
+            "line 3, column 2 (x): empty, expected a number",
         ),
         (
             "t,x\n0,NaN\n",
-            CsvError::NotFinite {
+            CsvError::Field {
                 line: 2,
                 column: 2,
                 name: "x",
                 text: "NaN".into(),
+                why: Refusal::NotFinite,
             },
             "line 2, column 2 (x): \"NaN\" is not a finite number",
         ),
@@ -118,14 +181,15 @@ fn errors_name_the_line_and_column() {
     for (text, error, message) in cases {
         let e = read(text).unwrap_err();
         assert_eq!(e, error, "{text:?}");
-        assert!(e.to_string().contains(message), "{e} lacks {message}");
+        assert!(e.to_string().contains(message), "{e}\nlacks\n{message}");
     }
     // Also infinities and a decreasing time.
     assert!(matches!(
         read("t,x\ninf,1\n"),
-        Err(CsvError::NotFinite {
+        Err(CsvError::Field {
             line: 2,
             column: 1,
+            why: Refusal::NotFinite,
             ..
         })
     ));
@@ -133,6 +197,159 @@ fn errors_name_the_line_and_column() {
         read("t,x\n2,1\n1,1\n"),
         Err(CsvError::TimeNotIncreasing { line: 3, .. })
     ));
+}
+
+/// Issue 11: absurd values in f64 ran with exit status 0, and x = 1e308 was
+/// reported one line late. Every value is now checked against the
+/// library's envelope where it is, naming its line and column.
+#[test]
+fn values_outside_the_envelope_are_refused_at_their_line() {
+    let cases: Vec<(&str, usize, usize, &str, &str)> = vec![
+        // (file, line, column, name, message part)
+        (
+            "t,x,y\n0,1,2\n1,1e308,2\n2,3,4\n",
+            3,
+            2,
+            "x",
+            "1e308 is outside the envelope -400000 ..= 400000 m",
+        ),
+        (
+            "t,x,y\n0,1,2\n1,1,400000.5\n",
+            3,
+            3,
+            "y",
+            "outside the envelope",
+        ),
+        (
+            "t,x,y,alt\n0,1,2,8000\n1,3,4,1e12\n",
+            3,
+            4,
+            "alt",
+            "1e12 is outside the envelope -1000 ..= 126700 ft",
+        ),
+        (
+            "t,x,y,alt\n0,1,2,-1001\n",
+            2,
+            4,
+            "alt",
+            "outside the envelope",
+        ),
+        (
+            "t,x\n1e308,1\n",
+            2,
+            1,
+            "t",
+            "1e308 is outside the envelope -8589934592 ..= 8589934592 s",
+        ),
+    ];
+    for (text, line, column, name, message) in cases {
+        let e = read(text).unwrap_err();
+        match &e {
+            CsvError::Field {
+                line: l,
+                column: c,
+                name: n,
+                why: Refusal::OutOfEnvelope { .. },
+                ..
+            } => assert_eq!((*l, *c, *n), (line, column, name), "{text:?}: {e}"),
+            other => panic!("{text:?}: {other:?}"),
+        }
+        let shown = e.to_string();
+        assert!(
+            shown.starts_with(&format!("line {line}, column {column} ({name}): ")),
+            "{shown}"
+        );
+        assert!(shown.contains(message), "{shown}\nlacks {message}");
+    }
+    // Δt = 1e-300 (and 1 ms, where m2 printed 1e190) and a 30 s gap:
+    // outside the 0.05–20 s interval envelope, at the row that makes them.
+    for (text, line) in [
+        ("t,x\n0,1\n1e-300,2\n", 3),
+        ("t,x\n0,1\n1,2\n1.001,2\n", 4),
+        ("t,x\n0,1\n30,2\n", 3),
+    ] {
+        let e = read(text).unwrap_err();
+        assert!(
+            matches!(e, CsvError::Interval { line: l, scans: false, .. } if l == line),
+            "{text:?}: {e:?}"
+        );
+        assert!(
+            e.to_string()
+                .contains("is outside the envelope 0.05 ..= 20 s"),
+            "{e}"
+        );
+    }
+    // 0.15 − 0.1 is 0.0499… in f64: the interval limit is not that strict.
+    assert!(read("t,x\n0.1,1\n0.15,2\n").is_ok());
+    // A bad field is echoed by a short prefix only.
+    let long = format!("t,x\n0,{}\n", "9".repeat(400));
+    let e = read(&long).unwrap_err().to_string();
+    assert!(e.len() < 160, "{e}");
+    assert!(e.contains("999999999999999999999999…"), "{e}");
+    let long = format!("t,x\n0,{}\n", "z".repeat(400));
+    let e = read(&long).unwrap_err().to_string();
+    assert!(
+        e.len() < 120 && e.contains("\"zzzzzzzzzzzzzzzzzzzzzzzz…\" is not a number"),
+        "{e}"
+    );
+}
+
+/// Issue 12: an azimuth in degrees ran without a warning. The unit is
+/// explicit: a radian column beyond 2π is refused naming the option, and
+/// `--azimuth-unit deg` reads degrees.
+#[test]
+fn azimuth_unit_is_explicit_never_guessed() {
+    let degrees = "t,range,azimuth\n0,1000,45\n1,1010,46\n";
+    let e = read_range_azimuth(degrees.as_bytes(), ReadOptions::default()).unwrap_err();
+    assert_eq!(
+        e,
+        CsvError::Field {
+            line: 2,
+            column: 3,
+            name: "azimuth",
+            text: "45".into(),
+            why: Refusal::LooksLikeDegrees
+        }
+    );
+    assert!(e.to_string().contains("--azimuth-unit deg"), "{e}");
+    let as_degrees = ReadOptions {
+        azimuth_unit: AngleUnit::Degrees,
+        ..ReadOptions::default()
+    };
+    let m = read_range_azimuth(degrees.as_bytes(), as_degrees).unwrap();
+    assert_eq!(m.rows[0].azimuth, 45f64.to_radians());
+    // Degrees beyond one turn, radians at 1e308, and a range beyond 400 km.
+    for (text, options, column, name) in [
+        ("t,range,azimuth\n0,1000,361\n", as_degrees, 3, "azimuth"),
+        (
+            "t,range,azimuth\n0,1000,1e308\n",
+            ReadOptions::default(),
+            3,
+            "azimuth",
+        ),
+        (
+            "t,range,azimuth\n0,400001,1\n",
+            ReadOptions::default(),
+            2,
+            "range",
+        ),
+        (
+            "t,range,azimuth,alt\n0,1000,1,1e12\n",
+            ReadOptions::default(),
+            4,
+            "alt",
+        ),
+    ] {
+        match read_range_azimuth(text.as_bytes(), options) {
+            Err(CsvError::Field {
+                line: 2,
+                column: c,
+                name: n,
+                ..
+            }) if (c, n) == (column, name) => {}
+            other => panic!("{text:?}: {other:?}"),
+        }
+    }
 }
 
 // ----------------------------------------------------------------- runner
@@ -213,7 +430,7 @@ fn check<S: Scalar, const ORDER: usize>(filter: FilterKind, numeric: Numeric, ga
                     // Printed in the representation's shortest round-trip form
                     // (f64, f32) or as a decimal of the Q32.32 value, which
                     // reads back within 10⁻¹⁰ relative.
-                    let tol = if S::NAME == "fixed" {
+                    let tol = if S::NAME == "q32" {
                         1e-10 * (1.0 + b.abs())
                     } else {
                         0.0
@@ -287,6 +504,25 @@ fn golden_one_axis() {
     assert_eq!(out, "t,x,vx,res_x\n0,0,0,\n1,10,10,\n2,22.5,11.5,5\n");
 }
 
+/// A file of rows made directly (not through the reader, which refuses
+/// values outside the envelope first).
+fn rows(points: &[(f64, f64)]) -> Measurements {
+    Measurements {
+        dims: 1,
+        rows: points
+            .iter()
+            .enumerate()
+            .map(|(i, &(t, x))| Row {
+                line: i + 2,
+                t_text: t.to_string(),
+                t,
+                z: [x, 0.0, 0.0],
+                alt: None,
+            })
+            .collect(),
+    }
+}
+
 #[test]
 fn refused_rows_and_values_name_the_line() {
     let ab = FilterKind::AlphaBeta {
@@ -294,7 +530,7 @@ fn refused_rows_and_values_name_the_line() {
         beta: 0.3,
     };
     // 3e9 m does not fit Q32.32: the value is refused, naming line and column.
-    let data = read("t,x\n0,0\n1,3e9\n").unwrap();
+    let data = rows(&[(0.0, 0.0), (1.0, 3e9)]);
     let e = run(&config(ab, Numeric::Fixed), &data).unwrap_err();
     assert_eq!(
         e,
@@ -307,7 +543,7 @@ fn refused_rows_and_values_name_the_line() {
     );
     assert!(e.to_string().starts_with("line 3, column 2 (x)"));
     // The second point's velocity overflows Q32.32: refused, naming the line.
-    let data = read("t,x\n0,-2e9\n0.001,2e9\n").unwrap();
+    let data = rows(&[(0.0, 0.0), (0.001, 2e9)]);
     let e = run(&config(ab, Numeric::Fixed), &data).unwrap_err();
     assert_eq!(
         e,
@@ -327,17 +563,62 @@ fn refused_rows_and_values_name_the_line() {
     );
 }
 
+/// Issue 12 / 11: no run ends with status 0 after an absurd estimate. In f64
+/// (where nothing saturates) an estimate outside the envelope stops the run
+/// at the row that produced it.
+#[test]
+fn estimates_outside_the_envelope_stop_the_run_at_their_row() {
+    let ab = FilterKind::AlphaBeta {
+        alpha: 0.5,
+        beta: 0.3,
+    };
+    // Inside the input envelope, but the two points imply 2000 m/s.
+    let text = "t,x\n0,0\n1,2000\n2,4000\n";
+    for numeric in [Numeric::F64, Numeric::F32, Numeric::Fixed] {
+        let e = run(&config(ab, numeric), &read(text).unwrap()).unwrap_err();
+        match e {
+            ReplayError::Estimate {
+                line: 3,
+                name: "vx",
+                value,
+                ..
+            } => assert_eq!(value, 2000.0),
+            other => panic!("{numeric:?}: {other:?}"),
+        }
+        assert!(e.to_string().starts_with("line 3: after this row the estimate vx = 2.000000e3 m/s is outside the envelope -1500 ..= 1500 m/s"), "{e}");
+    }
+    // The issue's divergence: gains inside the stability triangle for one
+    // interval, on irregular report times, grow without bound; the run
+    // stops where the estimate leaves the envelope instead of printing
+    // 834 km with status 0.
+    let diverging = FilterKind::AlphaBeta {
+        alpha: 0.002,
+        beta: 0.1667,
+    };
+    let mut text = String::from("t,x\n");
+    let mut t = 0.0;
+    for k in 0..400 {
+        t += if k % 2 == 0 { 0.05 } else { 3.0 };
+        text.push_str(&format!("{t},{}\n", 100.0 * t));
+    }
+    match run(&config(diverging, Numeric::F64), &read(&text).unwrap()) {
+        Err(ReplayError::Estimate { line, .. }) => assert!(line > 3, "{line}"),
+        other => panic!("{other:?}"),
+    }
+}
+
 // ----------------------------------------------------------- command line
 
-fn args(s: &str) -> Result<Command, UsageError> {
-    parse_replay_args(s.split_whitespace().map(String::from))
+fn args(s: &str) -> Result<Command, clap::Error> {
+    ReplayArgs::try_parse_from(std::iter::once("replay").chain(s.split_whitespace()))?
+        .into_command()
 }
 
 #[test]
 fn command_line() {
     assert_eq!(
-        args("--filter ab --alpha 0.5 --beta 0.3 --numeric f64 data.csv"),
-        Ok(Command::Replay {
+        args("--filter ab --alpha 0.5 --beta 0.3 --numeric f64 data.csv").unwrap(),
+        Command::Replay {
             config: config(
                 FilterKind::AlphaBeta {
                     alpha: 0.5,
@@ -346,11 +627,11 @@ fn command_line() {
                 Numeric::F64
             ),
             input: Input::Path(PathBuf::from("data.csv")),
-        })
+        }
     );
     assert_eq!(
-        args("--filter=abg --alpha=0.5 --beta 0.3 --gamma 0.1 --numeric fixed -"),
-        Ok(Command::Replay {
+        args("--filter=abg --alpha=0.5 --beta 0.3 --gamma 0.1 --numeric fixed -").unwrap(),
+        Command::Replay {
             config: config(
                 FilterKind::AlphaBetaGamma {
                     alpha: 0.5,
@@ -360,7 +641,7 @@ fn command_line() {
                 Numeric::Fixed
             ),
             input: Input::Stdin,
-        })
+        }
     );
     // Default numeric is f64.
     assert!(matches!(
@@ -373,84 +654,79 @@ fn command_line() {
             ..
         })
     ));
-    assert_eq!(args("--help"), Ok(Command::Help));
-    assert_eq!(args("--filter ab -h"), Ok(Command::Help));
+    assert_eq!(args("--help").unwrap_err().kind(), ErrorKind::DisplayHelp);
+    assert_eq!(
+        args("--filter ab -h").unwrap_err().kind(),
+        ErrorKind::DisplayHelp
+    );
     let refused = [
-        (
-            "--filter ab --beta 0.3 d.csv",
-            UsageError::Missing("--alpha"),
-        ),
-        (
-            "--alpha 0.5 --beta 0.3 d.csv",
-            UsageError::Missing("--filter"),
-        ),
-        (
-            "--filter abg --alpha 0.5 --beta 0.3 d.csv",
-            UsageError::Missing("--gamma"),
-        ),
+        ("--filter ab --beta 0.3 d.csv", "--alpha"),
+        ("--alpha 0.5 --beta 0.3 d.csv", "--filter"),
+        ("--filter abg --alpha 0.5 --beta 0.3 d.csv", "--gamma"),
         (
             "--filter ab --alpha 0.5 --beta 0.3 --gamma 0.1 d.csv",
-            UsageError::NotForFilter {
-                option: "--gamma",
-                filter: "ab".into(),
-            },
+            "--gamma does not apply to --filter ab",
         ),
-        (
-            "--filter kalman --alpha 0.5 --beta 0.3 d.csv",
-            UsageError::UnknownFilter("kalman".into()),
-        ),
+        ("--filter kalman --alpha 0.5 --beta 0.3 d.csv", "'kalman'"),
         (
             "--filter ab --alpha 0.5 --beta 0.3 --numeric f16 d.csv",
-            UsageError::UnknownNumeric("f16".into()),
+            "'f16'",
         ),
         (
             "--filter ab --alpha half --beta 0.3 d.csv",
-            UsageError::BadNumber {
-                option: "--alpha",
-                text: "half".into(),
-            },
+            "\"half\" is not a finite number",
         ),
         (
             "--filter ab --alpha NaN --beta 0.3 d.csv",
-            UsageError::BadNumber {
-                option: "--alpha",
-                text: "NaN".into(),
-            },
+            "\"NaN\" is not a finite number",
         ),
-        (
-            "--filter ab --alpha 2 --beta 0.3 d.csv",
-            UsageError::Gains(GainError::AlphaOutOfRange),
-        ),
+        ("--filter ab --alpha 2 --beta 0.3 d.csv", "stability region"),
         (
             "--filter ab --alpha 0.5 --beta 3.1 d.csv",
-            UsageError::Gains(GainError::BetaTooLarge),
+            "stability region",
         ),
         (
             "--filter abg --alpha 0.5 --beta 0.3 --gamma 0.5 d.csv",
-            UsageError::Gains(GainError::GammaTooLarge),
+            "stability region",
         ),
-        ("--filter ab --alpha 0.5 --beta 0.3", UsageError::NoInput),
-        (
-            "--filter ab --alpha 0.5 --beta 0.3 a.csv b.csv",
-            UsageError::ExtraInput("b.csv".into()),
-        ),
+        ("--filter ab --alpha 0.5 --beta 0.3", "<INPUT>"),
+        ("--filter ab --alpha 0.5 --beta 0.3 a.csv b.csv", "'b.csv'"),
         (
             "--filter ab --alpha 0.5 --alpha 0.4 --beta 0.3 a.csv",
-            UsageError::Repeated("--alpha"),
+            "--alpha",
         ),
-        (
-            "--filter ab --alpha 0.5 --beta",
-            UsageError::MissingValue("--beta"),
-        ),
-        // --tracker is a flag now (tests/replay_tracker.rs); it takes no
-        // single-target filter options (the first in name order is named).
+        ("--filter ab --alpha 0.5 --beta", "--beta"),
         (
             "--filter ab --alpha 0.5 --beta 0.3 --tracker a.csv",
-            UsageError::NotForTracker("--alpha"),
+            "--tracker",
+        ),
+        (
+            "--tracker --alpha 0.5 --beta 0.3 a.csv",
+            "--alpha does not apply to --tracker",
+        ),
+        (
+            "--filter ab --alpha 0.5 --beta 0.3 --region-m 5000 a.csv",
+            "--region-m does not apply to --filter ab",
         ),
     ];
-    for (line, error) in refused {
-        assert_eq!(args(line), Err(error), "{line}");
+    for (line, message) in refused {
+        let e = args(line).unwrap_err();
+        let text = e.to_string();
+        assert!(text.contains(message), "{line}: {text}");
+        assert_eq!(e.exit_code(), 2, "{line}");
+    }
+}
+
+/// `--help` names no internal issue number (issue 12).
+#[test]
+fn help_names_no_issue_number() {
+    for long in [false, true] {
+        let flag = if long { "--help" } else { "-h" };
+        let help = args(flag).unwrap_err().render().to_string();
+        assert!(help.contains("--region-m"), "{help}");
+        for word in ["issue", "Issue"] {
+            assert!(!help.contains(word), "{flag} mentions {word}:\n{help}");
+        }
     }
 }
 
@@ -593,4 +869,17 @@ fn binary_rejects_bad_arguments_and_has_help() {
     ] {
         assert!(text.contains(option), "--help lacks {option}");
     }
+}
+
+/// The host tools and the firmware's wire edge refuse the same values: the
+/// wire's limits are the library envelope's (one set of limits).
+#[test]
+fn the_envelope_is_the_wire_edge() {
+    use abtrack::{envelope, wire};
+    assert_eq!(
+        f64::from(wire::MAX_POSITION_CM) / 100.0,
+        envelope::MAX_POSITION_M
+    );
+    assert_eq!(f64::from(wire::MIN_ALTITUDE_FT), envelope::ALTITUDE_FT.min);
+    assert_eq!(f64::from(wire::MAX_ALTITUDE_FT), envelope::ALTITUDE_FT.max);
 }

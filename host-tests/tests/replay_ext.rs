@@ -23,22 +23,31 @@ use abtrack::tcas::{
     assess, Advisory, Intruder, OwnAircraft, METRES_PER_NAUTICAL_MILE, METRES_PER_SECOND_PER_KNOT,
 };
 use abtrack::{Fix, Scalar};
-use abtrack_host_tests::cli::{parse_replay_args, replay_usage, Command, UsageError};
+use abtrack_host_tests::cli::{parse_schedule, Command, ReplayArgs, ScheduleArgError};
 use abtrack_host_tests::csv_input::{
-    read_measurements_with, read_range_azimuth, CsvError, TimeOrder,
+    read_measurements, read_range_azimuth, CsvError, InputFormat, ReadOptions, Refusal, TimeOrder,
 };
 use abtrack_host_tests::replay::{
     replay_reader, Failure, FilterKind, Numeric, Order, RangeAzimuthOptions, ReplayConfig,
 };
 use abtrack_host_tests::scenario;
+use clap::{CommandFactory, Parser};
 
 const NM: f64 = METRES_PER_NAUTICAL_MILE;
 const KT: f64 = METRES_PER_SECOND_PER_KNOT;
 
 // ------------------------------------------------------------------ helpers
 
-fn args(s: &str) -> Result<Command, UsageError> {
-    parse_replay_args(s.split_whitespace().map(String::from))
+fn args(s: &str) -> Result<Command, clap::Error> {
+    ReplayArgs::try_parse_from(std::iter::once("replay").chain(s.split_whitespace()))?
+        .into_command()
+}
+
+/// The message of a refused command line (and that it exits with 2).
+fn refusal(s: &str) -> String {
+    let e = args(s).expect_err(s);
+    assert_eq!(e.exit_code(), 2, "{s}");
+    e.to_string()
 }
 
 fn config_of(s: &str) -> ReplayConfig {
@@ -268,10 +277,8 @@ fn every_schedule_name_runs_in_every_representation_and_matches_the_library() {
                             order.name()
                         );
                         if is_bank && order == Order::AlphaBetaGamma {
-                            assert_eq!(
-                                args(&format!("{line} -")),
-                                Err(UsageError::BankNeedsAlphaBeta)
-                            );
+                            assert!(refusal(&format!("{line} -"))
+                                .contains("the M5 bank is made of αβ filters; use --filter ab"));
                             continue;
                         }
                         let config = config_of(&format!("{line} -"));
@@ -429,9 +436,21 @@ fn shorthand_is_the_fixed_schedule() {
 
 #[test]
 fn bad_specs_give_the_parsers_error_and_position() {
-    let spec_error = |line: &str| match args(line) {
-        Err(UsageError::Spec { text, error }) => (text, error.kind, error.offset),
-        other => panic!("{line}: {other:?}"),
+    let spec_error = |line: &str| {
+        let spec = line
+            .split_whitespace()
+            .skip_while(|w| *w != "--schedule")
+            .nth(1)
+            .unwrap();
+        // The command line refuses it with the same message.
+        let message = refusal(line);
+        match parse_schedule(spec) {
+            Err(e @ ScheduleArgError { .. }) => {
+                assert!(message.contains(&e.to_string()), "{message}");
+                (e.text, e.error.kind, e.error.offset)
+            }
+            other => panic!("{line}: {other:?}"),
+        }
     };
     assert_eq!(
         spec_error("--filter ab --schedule m1:beta=0.3 d.csv"),
@@ -474,10 +493,10 @@ fn bad_specs_give_the_parsers_error_and_position() {
     assert!(args("--filter ab --schedule bank:k=64 d.csv").is_ok());
     assert!(args("--filter ab --schedule liu-residual:n=64 d.csv").is_ok());
     // The message carries the position and a caret under it.
-    let e = args("--filter ab --schedule m1:beta=0.3 d.csv").unwrap_err();
-    assert_eq!(
-        e.to_string(),
-        "--schedule: unknown parameter for this schedule (at byte 3)\n  m1:beta=0.3\n     ^"
+    assert!(
+        refusal("--filter ab --schedule m1:beta=0.3 d.csv").contains(
+            "--schedule: unknown parameter for this schedule (at byte 3)\n  m1:beta=0.3\n     ^"
+        )
     );
 }
 
@@ -485,51 +504,37 @@ fn bad_specs_give_the_parsers_error_and_position() {
 fn schedule_options_are_checked() {
     let refused = [
         (
-            "--filter ab --schedule m1 --alpha 0.5 d.csv",
-            UsageError::Conflict {
-                option: "--schedule",
-                with: "--alpha",
-            },
+            "--filter ab --schedule m1 --alpha 0.5 --beta 0.3 d.csv",
+            "--schedule and --alpha/--beta/--gamma cannot be combined",
         ),
         (
-            "--filter abg --schedule m1 --gamma 0.1 d.csv",
-            UsageError::Conflict {
-                option: "--schedule",
-                with: "--gamma",
-            },
+            "--filter abg --schedule m1 --alpha 0.5 --beta 0.3 --gamma 0.1 d.csv",
+            "--schedule and --alpha/--beta/--gamma cannot be combined",
         ),
         (
             "--filter ab d.csv",
-            UsageError::Missing("--schedule (or --alpha and --beta)"),
+            "--filter ab needs --schedule (or --alpha and --beta)",
         ),
         (
             "--filter abg --schedule bank d.csv",
-            UsageError::BankNeedsAlphaBeta,
+            "the M5 bank is made of αβ filters",
         ),
         (
             "--filter ab --schedule fixed:alpha=0.5,beta=0.3,gamma=0.1 d.csv",
-            UsageError::NotForFilter {
-                option: "gamma (in --schedule fixed)",
-                filter: "ab".into(),
-            },
+            "gamma (in --schedule fixed) does not apply to --filter ab",
         ),
         (
             "--filter range-azimuth --schedule m1 d.csv",
-            UsageError::NotForFilter {
-                option: "--schedule",
-                filter: "range-azimuth".into(),
-            },
+            "--schedule does not apply to --filter range-azimuth",
         ),
         (
             "--filter ab --schedule m1 --own-alt 8000 d.csv",
-            UsageError::NotForFilter {
-                option: "--own-alt",
-                filter: "ab".into(),
-            },
+            "--own-alt does not apply to --filter ab",
         ),
     ];
-    for (line, error) in refused {
-        assert_eq!(args(line), Err(error), "{line}");
+    for (line, message) in refused {
+        let text = refusal(line);
+        assert!(text.contains(message), "{line}: {text}");
     }
     // The issue's examples parse.
     for line in [
@@ -560,7 +565,7 @@ fn expected_range_azimuth<S: Scalar + Display>(
     quantum: AltitudeQuantum,
     own_alt: Option<f64>,
 ) -> String {
-    let data = read_range_azimuth(text.as_bytes()).unwrap();
+    let data = read_range_azimuth(text.as_bytes(), ReadOptions::default()).unwrap();
     let noise =
         RangeAzimuthNoise::<S>::new_f64(range_variance, bearing_variance, process_noise).unwrap();
     let mut filter = RangeAzimuthFilter::new(noise);
@@ -686,7 +691,7 @@ fn range_azimuth_output_is_the_library_arithmetic() {
         assert_eq!(got, want, "{n}");
         // Every option, with the threat columns.
         let line = format!(
-            "--filter range-azimuth --range-sigma 15 --bearing-variance 1e-4 --process-noise 0.5 \
+            "--filter range-azimuth --range-sigma-m 15 --bearing-variance 1e-4 --process-noise 0.5 \
              --alt-quantum 25 --own-alt 9000 --numeric {n}"
         );
         let got = replay(&line, &text).unwrap();
@@ -735,7 +740,7 @@ fn range_azimuth_tracks_through_the_azimuth_wrap() {
     for (_, n) in NUMERICS {
         let out = replay(
             &format!(
-                "--filter range-azimuth --range-sigma 15 --bearing-variance 1e-4 --numeric {n}"
+                "--filter range-azimuth --range-sigma-m 15 --bearing-variance 1e-4 --numeric {n}"
             ),
             &text,
         )
@@ -821,7 +826,7 @@ fn head_on_encounter_gives_ta_then_ra_at_the_analytic_onsets() {
     let text = head_on_file(|_| Some(8000.0), true);
     for (_, n) in NUMERICS {
         let out = replay(
-            &format!("--filter range-azimuth --range-sigma 15 --own-alt 8000 --numeric {n}"),
+            &format!("--filter range-azimuth --range-sigma-m 15 --own-alt 8000 --numeric {n}"),
             &text,
         )
         .unwrap();
@@ -872,7 +877,7 @@ fn without_altitude_the_intruder_raises_at_most_a_ta() {
     let text = head_on_file(|_| None, false);
     for (_, n) in NUMERICS {
         let out = replay(
-            &format!("--filter range-azimuth --range-sigma 15 --own-alt 8000 --numeric {n}"),
+            &format!("--filter range-azimuth --range-sigma-m 15 --own-alt 8000 --numeric {n}"),
             &text,
         )
         .unwrap();
@@ -893,7 +898,7 @@ fn without_altitude_the_intruder_raises_at_most_a_ta() {
     let text = head_on_file(|k| (k <= 10).then_some(8000.0), true);
     for (_, n) in NUMERICS {
         let out = replay(
-            &format!("--filter range-azimuth --range-sigma 15 --own-alt 8000 --numeric {n}"),
+            &format!("--filter range-azimuth --range-sigma-m 15 --own-alt 8000 --numeric {n}"),
             &text,
         )
         .unwrap();
@@ -928,7 +933,7 @@ fn diverging_intruder_has_empty_taus_and_no_alert() {
         let _ = writeln!(text, "{k},{r},4,8000");
     }
     let out = replay(
-        "--filter range-azimuth --range-sigma 15 --own-alt 8000",
+        "--filter range-azimuth --range-sigma-m 15 --own-alt 8000",
         &text,
     )
     .unwrap();
@@ -979,7 +984,7 @@ fn tcas_converging_scenario_advisories_follow_the_truth() {
     for (_, n) in NUMERICS {
         let out = replay(
             &format!(
-                "--filter range-azimuth --range-sigma 15.24 --bearing-variance {bearing_variance} \
+                "--filter range-azimuth --range-sigma-m 15.24 --bearing-variance {bearing_variance} \
                  --own-alt 8000 --numeric {n}"
             ),
             &text,
@@ -1027,52 +1032,38 @@ fn tcas_converging_scenario_advisories_follow_the_truth() {
 
 #[test]
 fn range_azimuth_input_errors_name_line_and_column() {
-    let cases: [(&str, CsvError, &str); 7] = [
+    let field = |line, column, name, text: &str, why| CsvError::Field {
+        line,
+        column,
+        name,
+        text: text.into(),
+        why,
+    };
+    let cases: [(&str, CsvError, &str); 6] = [
         (
             "t,x,y\n0,1,2\n",
-            CsvError::BadRangeAzimuthHeader {
-                line: 1,
+            CsvError::MissingColumns {
+                format: InputFormat::RangeAzimuth,
+                missing: vec!["range", "azimuth"],
                 found: "t,x,y".into(),
             },
-            "line 1: bad header \"t,x,y\", expected t,range,azimuth or t,range,azimuth,alt \
+            "line 1: the header \"t,x,y\" has no column range, azimuth; this input needs the \
+             columns t, range, azimuth (optional: alt) in any order, other columns are ignored \
              (this header is for --filter ab or abg)",
         ),
         (
-            "t,range,azimuth,alt,extra\n",
-            CsvError::BadRangeAzimuthHeader {
-                line: 1,
-                found: "t,range,azimuth,alt,extra".into(),
-            },
-            "line 1: bad header",
-        ),
-        (
             "t,range,azimuth\n0,1000,0.5\n1,0,0.5\n",
-            CsvError::NotPositive {
-                line: 3,
-                column: 2,
-                name: "range",
-                text: "0".into(),
-            },
+            field(3, 2, "range", "0", Refusal::NotPositive),
             "line 3, column 2 (range): 0 is not > 0",
         ),
         (
             "t,range,azimuth,alt\n0,1000,0.5,8000\n1,990,,8000\n",
-            CsvError::NotANumber {
-                line: 3,
-                column: 3,
-                name: "azimuth",
-                text: "".into(),
-            },
+            field(3, 3, "azimuth", "", Refusal::NotANumber),
             "line 3, column 3 (azimuth)",
         ),
         (
             "t,range,azimuth,alt\n0,1000,0.5,FL80\n",
-            CsvError::NotANumber {
-                line: 2,
-                column: 4,
-                name: "alt",
-                text: "FL80".into(),
-            },
+            field(2, 4, "alt", "FL80", Refusal::NotANumber),
             "line 2, column 4 (alt): \"FL80\" is not a number",
         ),
         (
@@ -1086,12 +1077,7 @@ fn range_azimuth_input_errors_name_line_and_column() {
         ),
         (
             "t,range,azimuth\n0,1000,inf\n",
-            CsvError::NotFinite {
-                line: 2,
-                column: 3,
-                name: "azimuth",
-                text: "inf".into(),
-            },
+            field(2, 3, "azimuth", "inf", Refusal::NotFinite),
             "line 2, column 3 (azimuth)",
         ),
     ];
@@ -1123,51 +1109,43 @@ fn range_azimuth_input_errors_name_line_and_column() {
 fn range_azimuth_options_are_checked() {
     let refused = [
         (
-            "--filter range-azimuth --range-sigma 0 d.csv",
-            UsageError::OutOfRange {
-                option: "--range-sigma",
-                text: "0".into(),
-                requirement: "> 0",
-            },
+            "--filter range-azimuth --range-sigma-m 0 d.csv",
+            "--range-sigma-m: 0 is out of range (must be > 0)",
         ),
         (
             "--filter range-azimuth --bearing-variance -1e-3 d.csv",
-            UsageError::OutOfRange {
-                option: "--bearing-variance",
-                text: "-1e-3".into(),
-                requirement: "> 0",
-            },
+            "--bearing-variance: -0.001 is out of range (must be > 0)",
         ),
         (
             "--filter range-azimuth --process-noise -1 d.csv",
-            UsageError::OutOfRange {
-                option: "--process-noise",
-                text: "-1".into(),
-                requirement: ">= 0",
-            },
+            "--process-noise: -1 is out of range (must be >= 0)",
         ),
         (
             "--filter range-azimuth --own-alt high d.csv",
-            UsageError::BadNumber {
-                option: "--own-alt",
-                text: "high".into(),
-            },
+            "\"high\" is not a finite number",
+        ),
+        ("--filter range-azimuth --alt-quantum 50 d.csv", "'50'"),
+        (
+            "--filter range-azimuth --bearing-variance 1e-3 --bearing-sigma-deg 2 d.csv",
+            "cannot be used with",
         ),
         (
-            "--filter range-azimuth --alt-quantum 50 d.csv",
-            UsageError::UnknownQuantum("50".into()),
-        ),
-        (
-            "--filter range-azimuth --alpha 0.5 d.csv",
-            UsageError::NotForFilter {
-                option: "--alpha",
-                filter: "range-azimuth".into(),
-            },
+            "--filter range-azimuth --alpha 0.5 --beta 0.3 d.csv",
+            "--alpha does not apply to --filter range-azimuth",
         ),
     ];
-    for (line, error) in refused {
-        assert_eq!(args(line), Err(error), "{line}");
+    for (line, message) in refused {
+        let text = refusal(line);
+        assert!(text.contains(message), "{line}: {text}");
     }
+    // --bearing-sigma-deg is the same variance in degrees.
+    assert_eq!(
+        config_of("--filter range-azimuth --bearing-sigma-deg 5 d.csv").filter,
+        FilterKind::RangeAzimuth(RangeAzimuthOptions {
+            bearing_variance_rad2: 5f64.to_radians().powi(2),
+            ..RangeAzimuthOptions::DEFAULT
+        })
+    );
     assert_eq!(
         config_of("--filter range-azimuth d.csv").filter,
         FilterKind::RangeAzimuth(RangeAzimuthOptions::DEFAULT)
@@ -1186,16 +1164,20 @@ fn range_azimuth_options_are_checked() {
 
 #[test]
 fn scans_group_rows_sharing_a_time() {
+    let scans = ReadOptions {
+        times: TimeOrder::Scans,
+        ..ReadOptions::default()
+    };
     let text = "t,x,y\n0,1,1\n0,2,2\n1,3,3\n2,4,4\n2,5,5\n2,6,6\n";
-    let m = read_measurements_with(text.as_bytes(), TimeOrder::Scans).unwrap();
+    let m = read_measurements(text.as_bytes(), scans).unwrap();
     let sizes: Vec<usize> = m.scans().map(<[_]>::len).collect();
     assert_eq!(sizes, [2, 1, 3]);
     // Single-target reading refuses the repeated time, naming the line.
     assert!(matches!(
-        read_measurements_with(text.as_bytes(), TimeOrder::Increasing),
+        read_measurements(text.as_bytes(), ReadOptions::default()),
         Err(CsvError::TimeNotIncreasing { line: 3, .. })
     ));
-    let e = read_measurements_with("t,x\n1,0\n0,0\n".as_bytes(), TimeOrder::Scans).unwrap_err();
+    let e = read_measurements("t,x\n1,0\n0,0\n".as_bytes(), scans).unwrap_err();
     assert_eq!(
         e,
         CsvError::TimeDecreasing {
@@ -1204,11 +1186,29 @@ fn scans_group_rows_sharing_a_time() {
             previous: "1".into()
         }
     );
+    // Two scans 1 ms apart: refused at the second, not merged silently.
+    let e = read_measurements("t,x\n1,0\n1.001,0\n".as_bytes(), scans).unwrap_err();
+    assert!(
+        matches!(
+            e,
+            CsvError::Interval {
+                line: 3,
+                scans: true,
+                ..
+            }
+        ),
+        "{e:?}"
+    );
+    assert!(
+        e.to_string()
+            .contains("give the rows of one scan the same t"),
+        "{e}"
+    );
 }
 
 #[test]
 fn help_lists_every_schedule_and_option() {
-    let help = replay_usage();
+    let help = ReplayArgs::command().render_long_help().to_string();
     for info in SCHEDULES {
         // Each entry's names on a line of their own, as "a | b | c".
         let listed = help

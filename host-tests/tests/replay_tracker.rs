@@ -1,5 +1,6 @@
-//! `replay --tracker` (issue 5): the output against the track table driven
-//! directly, ids through a crossing, the threat columns on a TCAS picture,
+//! `replay --tracker`: the output against the track table driven directly,
+//! ids through a crossing, the threat columns on a TCAS picture, the
+//! configuration from sensor figures, the account of unused measurements,
 //! options and errors.
 //!
 //! The expected outputs are built by running `TrackTable` on the scenario's
@@ -15,25 +16,31 @@ use std::process::Command as Process;
 use abtrack::gain::spec::ScheduleSpec;
 use abtrack::tcas::{assess, Intruder, OwnAircraft};
 use abtrack::track::defaults::{
-    default_cartesian, default_polar, DefaultCartesianTrack, DefaultPolarTrack,
+    default_cartesian, default_polar, Coverage, DefaultCartesianTrack, DefaultPolarTrack,
+    SensorAccuracy, TrackerDesign,
 };
 use abtrack::track::{
     Association, Measurement, ScheduledTrack, TrackFilter, TrackTable, TrackerConfig,
 };
 use abtrack::{Fix, Scalar};
-use abtrack_host_tests::cli::{parse_replay_args, replay_usage, Command, UsageError};
+use abtrack_host_tests::cli::{Command, ReplayArgs};
 use abtrack_host_tests::csv_input::CsvError;
 use abtrack_host_tests::replay::{Failure, ReplayError, ReplaySchedule};
-use abtrack_host_tests::replay_tracker::{
-    replay_tracker_reader, with_large_stack, with_params, TrackerReplay,
-};
+use abtrack_host_tests::replay_tracker::{replay_tracker_reader, with_large_stack, TrackerReplay};
 use abtrack_host_tests::scenario::{self, ScenarioRun};
+use clap::{CommandFactory, Parser};
 
 const SEED: u64 = 1;
 
-fn args(s: &str) -> Result<Command, UsageError> {
-    parse_replay_args(s.split_whitespace().map(String::from))
+fn args(s: &str) -> Result<Command, clap::Error> {
+    ReplayArgs::try_parse_from(std::iter::once("replay").chain(s.split_whitespace()))?
+        .into_command()
 }
+
+/// The nominal radar's square and the nominal TCAS sensor's disc: with
+/// these, `replay --tracker` is `default_cartesian` / `default_polar`.
+const NOMINAL_SQUARE: &str = "--region-m 5000";
+const NOMINAL_DISC: &str = "--region-m 25928";
 
 /// Runs `replay <command line> -` on `input` in-process.
 fn tracker(command_line: &str, input: &str) -> Result<TrackerReplay, Failure> {
@@ -57,9 +64,10 @@ fn to_measurement<S: Scalar>(m: &scenario::Measurement) -> Measurement<S> {
 }
 
 /// The table driven directly over the scenario's scans: the expected
-/// `replay --tracker` output (without threat columns). Scans without a
-/// measurement have no row in the CSV, so they are skipped here too; the
-/// clock is round((t − t₀)·1000) ms.
+/// `replay --tracker` output (without threat columns). Empty scans before
+/// the first measurement are not in the CSV; later ones are run by replay
+/// too (it fills gaps of whole scan periods); the clock is
+/// round((t − t₀)·1000) ms.
 fn expected<S: Scalar + Display + Send + Sync, F: TrackFilter<S>, const N: usize>(
     run: &ScenarioRun,
     config: &TrackerConfig<S, F::Params>,
@@ -79,7 +87,7 @@ fn expected_on_this_thread<S: Scalar + Display, F: TrackFilter<S>, const N: usiz
     let scans: Vec<_> = run
         .scans
         .iter()
-        .filter(|s| !s.measurements.is_empty())
+        .skip_while(|s| s.measurements.is_empty())
         .collect();
     let t0 = scans[0].t;
     for scan in scans {
@@ -141,7 +149,11 @@ fn default_cartesian_output_is_the_table_driven_directly_in_every_numeric() {
     fn check<S: Scalar + Display>(run: &ScenarioRun, csv: &str, numeric: &str) {
         let config = default_cartesian::<S>().unwrap();
         let want = expected::<S, DefaultCartesianTrack<S>, 64>(run, &config);
-        let got = tracker(&format!("--tracker --numeric {numeric}"), csv).unwrap();
+        let got = tracker(
+            &format!("--tracker {NOMINAL_SQUARE} --numeric {numeric}"),
+            csv,
+        )
+        .unwrap();
         assert!(got.csv.lines().count() > 100, "{numeric}: too few rows");
         assert_eq!(got.csv, want, "{numeric}");
     }
@@ -254,21 +266,29 @@ fn options_match_the_table_configured_the_same_way() {
         .with_deletion(5, 2)
         .unwrap();
     let want = expected::<f64, DefaultCartesianTrack<f64>, 16>(&run, &config);
-    let got = tracker("--tracker --capacity 16 --confirm 2/3 --delete 5", &csv).unwrap();
+    let got = tracker(
+        &format!("--tracker {NOMINAL_SQUARE} --capacity 16 --confirm 2/3 --delete 5"),
+        &csv,
+    )
+    .unwrap();
     assert_eq!(got.csv, want);
     assert_ne!(
         got.csv,
-        tracker("--tracker", &csv).unwrap().csv,
+        tracker(&format!("--tracker {NOMINAL_SQUARE}"), &csv)
+            .unwrap()
+            .csv,
         "options had no effect"
     );
 
     // --schedule: the same lifecycle with another schedule, in f32.
     let spec = ScheduleSpec::parse("m1:alpha=0.5").unwrap();
     let schedule = ReplaySchedule::<f32, 2>::from_spec(&spec).unwrap();
-    let config = with_params(&default_cartesian::<f32>().unwrap(), schedule).unwrap();
+    let config = TrackerDesign::NOMINAL_RADAR
+        .tracker_config::<f32, _>(schedule)
+        .unwrap();
     let want = expected::<f32, ScheduledTrack<f32, ReplaySchedule<f32, 2>>, 256>(&run, &config);
     let got = tracker(
-        "--tracker --schedule m1:alpha=0.5 --numeric f32 --capacity 256",
+        &format!("--tracker {NOMINAL_SQUARE} --schedule m1:alpha=0.5 --numeric f32 --capacity 256"),
         &csv,
     )
     .unwrap();
@@ -285,10 +305,14 @@ fn polar_tcas_picture_with_own_altitude() {
     // Without --own-alt: the default polar table driven directly.
     let config = default_polar::<f64>().unwrap();
     let want = expected::<f64, DefaultPolarTrack<f64>, 64>(&run, &config);
-    let plain = tracker("--tracker", &csv).unwrap();
+    let plain = tracker(&format!("--tracker {NOMINAL_DISC}"), &csv).unwrap();
     assert_eq!(plain.csv, want);
 
-    let out = tracker(&format!("--tracker --own-alt {own_ft}"), &csv).unwrap();
+    let out = tracker(
+        &format!("--tracker {NOMINAL_DISC} --own-alt {own_ft}"),
+        &csv,
+    )
+    .unwrap();
     let mut lines = out.csv.lines();
     assert_eq!(
         lines.next(),
@@ -400,13 +424,20 @@ fn errors_name_the_line() {
         })
     );
     assert!(e.to_string().starts_with("line 5, column 1 (t)"), "{e}");
-    // Two scans on the same millisecond: the line of the second scan.
+    // Two scans 0.2 ms apart: refused at the line of the second scan.
     let e = tracker("--tracker", "t,x,y\n0,1,1\n1,2,2\n1.0002,3,3\n").unwrap_err();
     assert!(
-        matches!(e, Failure::Replay(ReplayError::Scan { line: 4, .. })),
+        matches!(
+            e,
+            Failure::Input(CsvError::Interval {
+                line: 4,
+                scans: true,
+                ..
+            })
+        ),
         "{e:?}"
     );
-    assert!(e.to_string().starts_with("line 4: "), "{e}");
+    assert!(e.to_string().starts_with("line 4, column 1 (t): "), "{e}");
     // Beyond the u32 millisecond clock.
     let e = tracker("--tracker", "t,x,y\n0,1,1\n4294968,2,2\n").unwrap_err();
     assert!(
@@ -416,16 +447,27 @@ fn errors_name_the_line() {
     // Epoch-like start times are fine (the clock starts at the first scan).
     assert!(tracker("--tracker", "t,x,y\n1700000000,1,1\n1700000001,2,2\n").is_ok());
     // Layouts the 2-D table cannot take.
-    for text in ["t,x\n0,1\n", "t,x,y,z\n0,1,1,1\n"] {
+    let e = tracker("--tracker", "t,x,y,z\n0,1,1,1\n").unwrap_err();
+    assert!(
+        matches!(e, Failure::Replay(ReplayError::TrackerAxes { dims: 3 })),
+        "{e:?}"
+    );
+    for text in ["t,x\n0,1\n", "t,a,b\n0,1,1\n"] {
         let e = tracker("--tracker", text).unwrap_err();
         assert!(
-            matches!(e, Failure::Replay(ReplayError::TrackerAxes { .. })),
+            matches!(
+                e,
+                Failure::Input(CsvError::UnknownLayout { both: false, .. })
+            ),
             "{e:?}"
         );
     }
-    let e = tracker("--tracker", "t,a,b\n0,1,1\n").unwrap_err();
+    let e = tracker("--tracker", "t,x,y,range,azimuth\n0,1,1,1,1\n").unwrap_err();
     assert!(
-        matches!(e, Failure::Input(CsvError::BadHeader { line: 1, .. })),
+        matches!(
+            e,
+            Failure::Input(CsvError::UnknownLayout { both: true, .. })
+        ),
         "{e:?}"
     );
     // --schedule on polar input.
@@ -434,36 +476,55 @@ fn errors_name_the_line() {
         e,
         Failure::Replay(ReplayError::TrackerScheduleNeedsCartesian)
     );
+    // Figures the design rules cannot meet, or outside their envelope.
+    for (line, message) in [
+        ("--tracker --pd 0 -", "--pd 0 is outside"),
+        (
+            "--tracker --scan-period-s 30 -",
+            "--scan-period-s 30 is outside",
+        ),
+        ("--tracker --sigma-m -1 -", "--sigma-m -1 is outside"),
+        (
+            "--tracker --clutter-per-km2 100 -",
+            "no configuration meets the design rules",
+        ),
+        (
+            "--tracker --sigma-m 20 --range-sigma-m 20 -",
+            "cannot be combined",
+        ),
+    ] {
+        let e = match args(line) {
+            Ok(Command::Tracker { options, .. }) => {
+                replay_tracker_reader(&options, "t,x,y\n0,1,1\n1,2,2\n".as_bytes()).unwrap_err()
+            }
+            other => panic!("{line}: {other:?}"),
+        };
+        assert!(
+            matches!(e, Failure::Replay(ReplayError::Design(_))),
+            "{line}: {e:?}"
+        );
+        assert!(e.to_string().contains(message), "{line}: {e}");
+    }
 }
 
 #[test]
 fn tracker_options_are_checked() {
-    for (line, want) in [
+    for (line, message) in [
+        ("--tracker --filter ab x.csv", "--filter"),
         (
-            "--tracker --filter ab x.csv",
-            UsageError::NotForTracker("--filter"),
-        ),
-        (
-            "--tracker --alpha 0.5 x.csv",
-            UsageError::NotForTracker("--alpha"),
+            "--tracker --alpha 0.5 --beta 0.3 x.csv",
+            "--alpha does not apply to --tracker",
         ),
         (
             "--tracker --schedule bank x.csv",
-            UsageError::NotForTracker("--schedule bank"),
+            "--schedule bank does not apply to --tracker",
         ),
         (
             "--filter ab --schedule m1 --verbose x.csv",
-            UsageError::TrackerOnly("--verbose"),
+            "--verbose does not apply to --filter ab",
         ),
-        (
-            "--tracker --tracker x.csv",
-            UsageError::Repeated("--tracker"),
-        ),
-        ("--tracker", UsageError::NoInput),
-    ] {
-        assert_eq!(args(line), Err(want), "{line}");
-    }
-    for (line, option) in [
+        ("--tracker --tracker x.csv", "--tracker"),
+        ("--tracker", "<INPUT>"),
         ("--tracker --capacity 32 x.csv", "--capacity"),
         ("--tracker --confirm 3/2 x.csv", "--confirm"),
         ("--tracker --confirm 0/3 x.csv", "--confirm"),
@@ -471,34 +532,69 @@ fn tracker_options_are_checked() {
         ("--tracker --confirm 3 x.csv", "--confirm"),
         ("--tracker --delete 0 x.csv", "--delete"),
         ("--tracker --delete 256 x.csv", "--delete"),
+        ("--tracker --schedule m3:window=0 x.csv", "--schedule: "),
+        (
+            "--tracker --pd high x.csv",
+            "\"high\" is not a finite number",
+        ),
+        ("--tracker --azimuth-unit grad x.csv", "'grad'"),
     ] {
-        assert!(
-            matches!(args(line), Err(UsageError::OutOfRange { option: o, .. }) if o == option),
-            "{line}: {:?}",
-            args(line)
-        );
+        let e = args(line).expect_err(line);
+        assert_eq!(e.exit_code(), 2, "{line}");
+        assert!(e.to_string().contains(message), "{line}: {e}");
     }
-    assert!(matches!(
-        args("--tracker --schedule m3:window=0 x.csv"),
-        Err(UsageError::Spec { .. })
-    ));
-    match args("--tracker --verbose --numeric fixed --capacity=256 --confirm 2/3 --delete 6 --own-alt 8000 -") {
-        Ok(Command::Tracker { options, verbose, .. }) => {
+    match args(
+        "--tracker --verbose --numeric fixed --capacity=256 --confirm 2/3 --delete 6 \
+         --own-alt 8000 --region-m 50000 --sigma-m 30 --scan-period-s 4.8 --pd 0.8 \
+         --clutter-per-km2 0.5 --max-speed-mps 250 --max-accel-mps2 3 --azimuth-unit deg -",
+    ) {
+        Ok(Command::Tracker {
+            options, verbose, ..
+        }) => {
             assert!(verbose);
             assert_eq!(options.capacity, 256);
             assert_eq!(options.confirmation, Some((2, 3)));
             assert_eq!(options.delete_confirmed, Some(6));
             assert_eq!(options.own_altitude_ft, Some(8000.0));
+            let s = options.sensor;
+            assert_eq!(
+                (
+                    s.region_m,
+                    s.sigma_m,
+                    s.scan_period_s,
+                    s.detection_probability,
+                    s.clutter_per_km2,
+                    s.max_speed_m_per_s,
+                    s.max_acceleration_m_per_s2
+                ),
+                (
+                    Some(50000.0),
+                    Some(30.0),
+                    Some(4.8),
+                    Some(0.8),
+                    Some(0.5),
+                    Some(250.0),
+                    Some(3.0)
+                )
+            );
         }
         other => panic!("{other:?}"),
     }
-    let help = replay_usage();
+    let help = ReplayArgs::command().render_long_help().to_string();
     for s in [
         "--tracker",
         "--verbose",
         "--capacity",
         "--confirm",
         "--delete",
+        "--region-m",
+        "--sigma-m",
+        "--range-sigma-m",
+        "--bearing-sigma-deg",
+        "--scan-period-s",
+        "--pd",
+        "--clutter-per-km2",
+        "--azimuth-unit",
         "t,track_id,status",
     ] {
         assert!(help.contains(s), "--help lacks {s}");
@@ -530,7 +626,11 @@ fn binary_runs_the_tracker_and_names_the_bad_line() {
     );
     let want = tracker("--tracker --numeric fixed", &csv).unwrap();
     assert_eq!(String::from_utf8(out.stdout).unwrap(), want.csv);
-    assert_eq!(String::from_utf8(out.stderr).unwrap(), want.scan_log);
+    // --verbose's lines, then the report printed on every run.
+    assert_eq!(
+        String::from_utf8(out.stderr).unwrap(),
+        format!("{}{}", want.scan_log, want.report())
+    );
     let _ = std::fs::remove_file(path);
 
     let path = temp_file("decreasing.csv", "t,x,y\n0,1,1\n2,2,2\n2,3,3\n1,4,4\n");
@@ -547,4 +647,264 @@ fn binary_runs_the_tracker_and_names_the_bad_line() {
         "{err}"
     );
     let _ = std::fs::remove_file(path);
+}
+
+// ------------------------------------------------- configured from the sensor
+
+/// A 100 km scene like the issue's: six aircraft crossing ±50 km at
+/// 150–250 m/s, σ = 20 m per axis, one scan per second, every aircraft
+/// detected. Returns the CSV and the truth (id → final position).
+fn hundred_km_scene() -> (String, Vec<[f64; 2]>) {
+    // xorshift64* with Box–Muller: reproducible noise without a dependency.
+    let mut state = 0x2545_F491_4F6C_DD1Du64;
+    let mut uniform = move || {
+        state ^= state >> 12;
+        state ^= state << 25;
+        state ^= state >> 27;
+        ((state.wrapping_mul(0x2545_F491_4F6C_DD1D) >> 11) as f64 + 0.5) / (1u64 << 53) as f64
+    };
+    let mut gaussian = move || {
+        let (u, v) = (uniform(), uniform());
+        (-2.0 * u.ln()).sqrt() * (2.0 * std::f64::consts::PI * v).cos()
+    };
+    // (start x, start y, vx, vy)
+    let aircraft = [
+        (-48_000.0, -30_000.0, 240.0, 60.0),
+        (45_000.0, 20_000.0, -200.0, -90.0),
+        (-20_000.0, 47_000.0, 30.0, -230.0),
+        (10_000.0, -46_000.0, -40.0, 210.0),
+        (-40_000.0, 10_000.0, 150.0, 0.0),
+        (30_000.0, -35_000.0, -120.0, 110.0),
+    ];
+    let scans = 120;
+    let mut csv = String::from("t,x,y,alt\n");
+    for k in 0..scans {
+        let t = k as f64;
+        for &(x0, y0, vx, vy) in &aircraft {
+            let (x, y) = (x0 + vx * t, y0 + vy * t);
+            writeln!(
+                csv,
+                "{t},{},{},35000",
+                x + 20.0 * gaussian(),
+                y + 20.0 * gaussian()
+            )
+            .unwrap();
+        }
+    }
+    let last = (scans - 1) as f64;
+    let truth = aircraft
+        .iter()
+        .map(|&(x0, y0, vx, vy)| [x0 + vx * last, y0 + vy * last])
+        .collect();
+    (csv, truth)
+}
+
+/// Issue 12: on a 100 km scene the fixed 10 km square dropped 10,430 of
+/// 10,455 measurements, counted only under --verbose. The default region is
+/// now none, the sensor's σ is an option, every aircraft is tracked, and
+/// the account of unused measurements is printed on every run.
+#[test]
+fn hundred_km_scene_is_tracked_with_no_region_and_drops_are_reported() {
+    let (csv, truth) = hundred_km_scene();
+    let out = tracker("--tracker --sigma-m 20", &csv).unwrap();
+    let rows = rows(&out.csv);
+    let last_t = rows.iter().map(|r| r.0).fold(0.0, f64::max);
+    let last: Vec<&Row> = rows
+        .iter()
+        .filter(|r| r.0 == last_t && r.2 == "confirmed")
+        .collect();
+    for target in &truth {
+        let nearest = last
+            .iter()
+            .map(|r| (r.3 - target[0]).hypot(r.4 - target[1]))
+            .fold(f64::INFINITY, f64::min);
+        assert!(
+            nearest < 60.0,
+            "no confirmed track near {target:?} ({nearest} m)"
+        );
+    }
+    assert_eq!(last.len(), truth.len(), "{last:?}");
+    let u = &out.unused;
+    assert_eq!(u.measurements, 6 * 120);
+    assert_eq!(u.outside_region.count, 0);
+    assert_eq!(u.used() + u.not_used(), u.measurements);
+    // Only the first scan's points wait a scan, and they start the tracks.
+    assert!(u.not_used() <= 6, "{}", out.report());
+    let report = out.report();
+    assert!(report.contains("no region"), "{report}");
+    assert!(report.contains("outside the region: 0"), "{report}");
+    assert!(
+        report.contains(&format!("{} measurements in 120 scans", 6 * 120)),
+        "{report}"
+    );
+
+    // The issue's configuration, a 10 km square: what is dropped is now
+    // said, with the lines, without --verbose.
+    let square = tracker("--tracker --sigma-m 20 --region-m 5000", &csv).unwrap();
+    let u = &square.unused;
+    assert!(
+        u.outside_region.count > u.measurements * 9 / 10,
+        "{}",
+        square.report()
+    );
+    assert_eq!(u.used() + u.not_used(), u.measurements);
+    let report = square.report();
+    assert!(
+        report.contains(&format!(
+            "outside the region: {} (line 2, 3,",
+            u.outside_region.count
+        )),
+        "{report}"
+    );
+}
+
+/// Each sensor option changes the one figure it names: the run equals the
+/// table configured by `TrackerDesign` with those figures, driven directly.
+#[test]
+fn sensor_options_are_the_design_figures() {
+    let run = crossing();
+    let csv = run.measurements_csv();
+    let design = TrackerDesign {
+        accuracy: SensorAccuracy::Cartesian { sigma: 30.0 },
+        detection_probability: 0.8,
+        clutter_density: 0.2e-6,
+        coverage: Coverage::Square { half_width: 6000.0 },
+        scan_period: 1.0,
+        max_speed: 250.0,
+        max_acceleration: 4.0,
+        ..TrackerDesign::NOMINAL_RADAR
+    };
+    let config = design.cartesian_config::<f64>().unwrap();
+    let want = expected::<f64, DefaultCartesianTrack<f64>, 64>(&run, &config);
+    let got = tracker(
+        "--tracker --sigma-m 30 --pd 0.8 --clutter-per-km2 0.2 --region-m 6000 \
+         --scan-period-s 1 --max-speed-mps 250 --max-accel-mps2 4",
+        &csv,
+    )
+    .unwrap();
+    assert_eq!(got.csv, want);
+    // (max_range, the farthest measurement, is not used with a coverage.)
+    let used = got.design.design;
+    assert_eq!(
+        used,
+        TrackerDesign {
+            max_range: used.max_range,
+            ..design
+        }
+    );
+    assert_ne!(
+        got.csv,
+        tracker(&format!("--tracker {NOMINAL_SQUARE}"), &csv)
+            .unwrap()
+            .csv
+    );
+
+    // Polar figures: range σ and bearing σ in degrees, a disc.
+    let run = scenario::generate("tcas-30", SEED).unwrap();
+    let csv = run.measurements_csv();
+    let design = TrackerDesign {
+        accuracy: SensorAccuracy::Polar {
+            range_sigma: 30.0,
+            bearing_sigma: 3f64.to_radians(),
+        },
+        coverage: Coverage::Disc { radius: 30_000.0 },
+        ..TrackerDesign::NOMINAL_TCAS
+    };
+    let config = design.polar_config::<f64>().unwrap();
+    let want = expected::<f64, DefaultPolarTrack<f64>, 64>(&run, &config);
+    let got = tracker(
+        "--tracker --range-sigma-m 30 --bearing-sigma-deg 3 --region-m 30000",
+        &csv,
+    )
+    .unwrap();
+    let used = got.design.design;
+    assert_eq!(
+        used,
+        TrackerDesign {
+            max_range: used.max_range,
+            ..design
+        }
+    );
+    assert_eq!(got.csv, want);
+    // The same file with its azimuths in degrees and the option to say so.
+    let degrees: String = csv
+        .lines()
+        .enumerate()
+        .map(|(i, l)| {
+            if i == 0 {
+                return format!("{l}\n");
+            }
+            let mut f: Vec<String> = l.split(',').map(String::from).collect();
+            f[2] = f[2].parse::<f64>().unwrap().to_degrees().to_string();
+            format!("{}\n", f.join(","))
+        })
+        .collect();
+    let line = "--tracker --range-sigma-m 30 --bearing-sigma-deg 3 --region-m 30000";
+    let e = tracker(line, &degrees).unwrap_err();
+    assert!(e.to_string().contains("--azimuth-unit deg"), "{e}");
+    let got = tracker(&format!("{line} --azimuth-unit deg"), &degrees).unwrap();
+    // Degrees round-trip to radians within an ulp or two; the tracks agree
+    // to far below the noise.
+    let (a, b) = (rows(&got.csv), rows(&want));
+    assert_eq!(a.len(), b.len());
+    for (a, b) in a.iter().zip(&b) {
+        assert_eq!((a.0, a.1, &a.2), (b.0, b.1, &b.2));
+        assert!(
+            (a.3 - b.3).abs() < 1e-6 && (a.4 - b.4).abs() < 1e-6,
+            "{a:?} {b:?}"
+        );
+    }
+}
+
+/// Where the file skips scans, empty scans are run at the scan period: a
+/// target that stops reporting is deleted after the design's K misses,
+/// counted in scans, not kept alive by one long interval.
+#[test]
+fn gaps_are_run_as_empty_scans() {
+    // Two targets for 10 s, then only the second for 1 s more after a 9 s
+    // gap.
+    let mut csv = String::from("t,x,y\n");
+    for k in 0..10 {
+        let t = k as f64;
+        writeln!(csv, "{t},{},0", 100.0 * t).unwrap();
+        writeln!(csv, "{t},0,{}", 3000.0 + 100.0 * t).unwrap();
+    }
+    writeln!(csv, "18,0,4800").unwrap();
+    let out = tracker("--tracker --clutter-per-km2 0 --scan-period-s 1", &csv).unwrap();
+    assert_eq!(out.unused.empty_scans, 8);
+    assert!(
+        out.report().contains("(and 8 empty scans run for gaps)"),
+        "{}",
+        out.report()
+    );
+    // Both tracks coast, then are deleted after K misses: none is left at 18 s
+    // to take the second target's report.
+    let k = TrackerDesign {
+        clutter_density: 0.0,
+        ..TrackerDesign::NOMINAL_RADAR
+    }
+    .derive()
+    .unwrap()
+    .deletion
+    .0;
+    let rows = rows(&out.csv);
+    let last_seen = rows
+        .iter()
+        .filter(|r| r.1 <= 2)
+        .map(|r| r.0)
+        .fold(0.0, f64::max);
+    assert_eq!(last_seen, 9.0 + f64::from(k) - 1.0, "{}", out.csv);
+    // The added scans are written with their times from the clock.
+    for t in 10..(9 + k) {
+        assert!(
+            out.csv.lines().any(|l| l.starts_with(&format!("{t},"))),
+            "no rows at t = {t}:\n{}",
+            out.csv
+        );
+    }
+    assert!(rows.iter().all(|r| r.0 < 18.0 || r.1 > 2));
+    // Without the added scans (a scan period as long as the gap) the two
+    // tracks would have survived the gap with one miss each.
+    let long = tracker("--tracker --clutter-per-km2 0 --scan-period-s 9", &csv).unwrap();
+    assert_eq!(long.unused.empty_scans, 0);
 }

@@ -38,7 +38,7 @@ fn usage_errors_exit_two_with_a_message() {
     assert_eq!(out.status.code(), Some(2));
     let err = String::from_utf8_lossy(&out.stderr);
     assert!(
-        err.starts_with("simulate: error: unknown scenario 'no-such'"),
+        err.starts_with("error: invalid value 'no-such' for '--scenario <NAME>'"),
         "{err}"
     );
     assert!(out.stdout.is_empty());

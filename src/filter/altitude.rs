@@ -113,7 +113,7 @@ impl core::error::Error for AltitudeConfigError {}
 /// coasts through missing reports.
 #[derive(Debug, Clone, Copy, PartialEq)]
 #[cfg_attr(feature = "defmt", derive(defmt::Format))]
-pub struct AltitudeTrackerConfig<S> {
+pub struct AltitudeTrackerConfig<S: Scalar> {
     gains: Gains<S>,
     tracking_index: S,
     max_coast: S,
@@ -212,7 +212,7 @@ pub enum AltitudeStatus {
 /// αβ altitude tracker (see the module docs).
 #[derive(Debug, Clone, Copy, PartialEq)]
 #[cfg_attr(feature = "defmt", derive(defmt::Format))]
-pub struct AltitudeTracker<S> {
+pub struct AltitudeTracker<S: Scalar> {
     config: AltitudeTrackerConfig<S>,
     filter: AlphaBeta<S>,
     /// Time since the last report, s.

@@ -10,40 +10,21 @@
 //! * M4, [`MovingWindowGains`]: the α of a grid that minimises the innovation
 //!   error over a moving window, β from eq. (23b) (Algorithm 2).
 
-use super::window::{argmin, grid_point, Window};
-use super::{check_range, config_scalar, ConfigError, GainContext, GainSchedule, ScheduleError};
+use super::window::{argmin, Window};
+use super::{check_range, config_quantity, ConfigError, GainContext, GainSchedule, ScheduleError};
 use crate::filter::Gains;
-use crate::num::Scalar;
+use crate::gains::grid_point;
+use crate::num::{Numeric, Quantity, Real};
 
-/// β = α²/(2 − α) (Al-Wagih & Abdulla eq. 23b; Liu, Wang & Yang eqs. 10–11).
-pub fn beta_from_alpha<S: Scalar>(alpha: S) -> S {
-    let two = S::ONE + S::ONE;
-    alpha * alpha / (two - alpha)
-}
-
-/// α̂(n) = 2(2n − 1)/(n(n + 1)) (Al-Wagih & Abdulla eq. 24a; Li et al.
-/// eq. 4; Liu, Wang & Yang eq. 5). Divided in two steps so that n(n + 1)
-/// is never formed (it would overflow Q32.32 beyond n ≈ 46 000).
-pub fn least_squares_alpha<S: Scalar>(n: u32) -> S {
-    let n = S::from_f64_lossy(f64::from(n));
-    let two = S::ONE + S::ONE;
-    two * (two * n - S::ONE) / n / (n + S::ONE)
-}
-
-/// β̂(n) = 6/(n(n + 1)) (Al-Wagih & Abdulla eq. 24b; Li et al. eq. 5;
-/// Liu, Wang & Yang eq. 5).
-pub fn least_squares_beta<S: Scalar>(n: u32) -> S {
-    let n = S::from_f64_lossy(f64::from(n));
-    S::from_f64_lossy(6.0) / n / (n + S::ONE)
-}
+pub use crate::gains::{beta_from_alpha, least_squares_alpha, least_squares_beta};
 
 /// Constant gains: M1 (Al-Wagih & Abdulla eq. 23), Liu, Wang & Yang's
 /// §2.1.3 (α = 0.5, β = 0.3), or any pair / triple inside the stability
 /// region.
 #[derive(Debug, Clone, Copy, PartialEq)]
 #[cfg_attr(feature = "defmt", derive(defmt::Format))]
-pub struct FixedGains<S> {
-    gains: Gains<S>,
+pub struct FixedGains<N: Numeric> {
+    gains: Gains<N>,
 }
 
 /// Configuration of [`FixedGains`] (`fixed:alpha=A,beta=B[,gamma=G]`).
@@ -90,14 +71,14 @@ impl FixedConfig {
     }
 }
 
-impl<S: Scalar> FixedGains<S> {
-    pub const fn new(gains: Gains<S>) -> Self {
+impl<N: Numeric> FixedGains<N> {
+    pub const fn new(gains: Gains<N>) -> Self {
         FixedGains { gains }
     }
 
     /// M1: α̃ ∈ (0, 1] and β̃ = α̃²/(2 − α̃) (Al-Wagih & Abdulla eq. 23).
-    pub fn m1(alpha: S) -> Result<Self, ConfigError> {
-        if !(alpha > S::ZERO && alpha <= S::ONE) {
+    pub fn m1(alpha: N::Ratio) -> Result<Self, ConfigError> {
+        if !(alpha > N::Ratio::ZERO && alpha <= N::Ratio::ONE) {
             return Err(ConfigError::OutOfRange { parameter: "alpha" });
         }
         Gains::alpha_beta(alpha, beta_from_alpha(alpha))
@@ -122,19 +103,19 @@ impl<S: Scalar> FixedGains<S> {
 
     pub fn from_m1_config(c: &FixedAlphaConfig) -> Result<Self, ConfigError> {
         c.validate()?;
-        Self::m1(config_scalar(c.alpha, "alpha")?)
+        Self::m1(config_quantity(c.alpha, "alpha")?)
     }
 
-    pub fn fixed(&self) -> Gains<S> {
+    pub fn fixed(&self) -> Gains<N> {
         self.gains
     }
 }
 
-impl<S: Scalar, const D: usize> GainSchedule<S, D> for FixedGains<S> {
-    fn gains(&self, _ctx: &GainContext<S, D>) -> Result<[Gains<S>; D], ScheduleError> {
+impl<N: Numeric, const D: usize> GainSchedule<N, D> for FixedGains<N> {
+    fn gains(&self, _ctx: &GainContext<N, D>) -> Result<[Gains<N>; D], ScheduleError> {
         Ok([self.gains; D])
     }
-    fn accepted(&mut self, _ctx: &GainContext<S, D>, _used: &[Gains<S>; D]) {}
+    fn accepted(&mut self, _ctx: &GainContext<N, D>, _used: &[Gains<N>; D]) {}
     fn reset(&mut self) {}
 }
 
@@ -165,7 +146,8 @@ impl LeastSquaresConfig {
     /// n clamped to 3..=n_max: the first filtered update is n = 3 (eq. 24,
     /// "n > 2"); a filter handed over already tracking is treated the same.
     fn effective(&self, n: u32) -> u32 {
-        n.clamp(3, self.n_max.max(3))
+        // (No `clamp`: its argument check is a panic path.)
+        n.max(3).min(self.n_max.max(3))
     }
 }
 
@@ -191,7 +173,7 @@ impl LeastSquaresGains {
     }
 
     /// The gains for measurement `n` (clamped to 3..=n_max).
-    pub fn gains_at<S: Scalar>(&self, n: u32) -> Result<Gains<S>, ScheduleError> {
+    pub fn gains_at<N: Numeric>(&self, n: u32) -> Result<Gains<N>, ScheduleError> {
         let n = self.config.effective(n);
         Ok(Gains::alpha_beta(
             least_squares_alpha(n),
@@ -208,11 +190,11 @@ impl Default for LeastSquaresGains {
     }
 }
 
-impl<S: Scalar, const D: usize> GainSchedule<S, D> for LeastSquaresGains {
-    fn gains(&self, ctx: &GainContext<S, D>) -> Result<[Gains<S>; D], ScheduleError> {
+impl<N: Numeric, const D: usize> GainSchedule<N, D> for LeastSquaresGains {
+    fn gains(&self, ctx: &GainContext<N, D>) -> Result<[Gains<N>; D], ScheduleError> {
         Ok([self.gains_at(ctx.n)?; D])
     }
-    fn accepted(&mut self, _ctx: &GainContext<S, D>, _used: &[Gains<S>; D]) {}
+    fn accepted(&mut self, _ctx: &GainContext<N, D>, _used: &[Gains<N>; D]) {}
     fn reset(&mut self) {}
 }
 
@@ -285,16 +267,16 @@ impl LinearCombinationConfig {
 /// between β̃ ≤ 1 and β̂(n) ≤ 1/2, both > 0, so 2α + β < 4.
 #[derive(Debug, Clone, Copy, PartialEq)]
 #[cfg_attr(feature = "defmt", derive(defmt::Format))]
-pub struct LinearCombinationGains<S, const D: usize, const W: usize> {
-    beta_tilde: S,
-    initial_w: S,
+pub struct LinearCombinationGains<N: Numeric, const D: usize, const W: usize> {
+    beta_tilde: N::Ratio,
+    initial_w: N::Ratio,
     steps: u16,
     least_squares: LeastSquaresConfig,
-    w: [S; D],
-    window: Window<S, D, W>,
+    w: [N::Ratio; D],
+    window: Window<N, D, W>,
 }
 
-impl<S: Scalar, const D: usize, const W: usize> LinearCombinationGains<S, D, W> {
+impl<N: Numeric, const D: usize, const W: usize> LinearCombinationGains<N, D, W> {
     pub fn new(c: &LinearCombinationConfig) -> Result<Self, ConfigError> {
         c.validate()?;
         if usize::from(c.window) > W {
@@ -303,8 +285,8 @@ impl<S: Scalar, const D: usize, const W: usize> LinearCombinationGains<S, D, W> 
                 capacity: W,
             });
         }
-        let alpha0: S = config_scalar(c.alpha0, "alpha0")?;
-        let w: S = config_scalar(c.w, "w")?;
+        let alpha0: N::Ratio = config_quantity(c.alpha0, "alpha0")?;
+        let w: N::Ratio = config_quantity(c.w, "w")?;
         Ok(LinearCombinationGains {
             beta_tilde: beta_from_alpha(alpha0),
             initial_w: w,
@@ -316,26 +298,26 @@ impl<S: Scalar, const D: usize, const W: usize> LinearCombinationGains<S, D, W> 
     }
 
     /// The weight w in use on each axis.
-    pub fn weights(&self) -> [S; D] {
+    pub fn weights(&self) -> [N::Ratio; D] {
         self.w
     }
 
-    fn alpha_beta(&self, w: S, n: u32) -> (S, S) {
+    fn alpha_beta(&self, w: N::Ratio, n: u32) -> (N::Ratio, N::Ratio) {
         let n = self.least_squares.effective(n);
-        let beta = w * self.beta_tilde + (S::ONE - w) * least_squares_beta::<S>(n);
+        let beta = w * self.beta_tilde + (N::Ratio::ONE - w) * least_squares_beta::<N::Ratio>(n);
         (least_squares_alpha(n), beta)
     }
 
-    fn candidate(&self, i: usize) -> S {
-        grid_point(S::ZERO, S::ONE, i, usize::from(self.steps))
+    fn candidate(&self, i: usize) -> N::Ratio {
+        grid_point(N::Ratio::ZERO, N::Ratio::ONE, i, usize::from(self.steps))
     }
 }
 
-impl<S: Scalar, const D: usize, const W: usize> GainSchedule<S, D>
-    for LinearCombinationGains<S, D, W>
+impl<N: Numeric, const D: usize, const W: usize> GainSchedule<N, D>
+    for LinearCombinationGains<N, D, W>
 {
-    fn gains(&self, ctx: &GainContext<S, D>) -> Result<[Gains<S>; D], ScheduleError> {
-        let mut out = [Gains::alpha_beta(S::ONE, S::ONE)?; D];
+    fn gains(&self, ctx: &GainContext<N, D>) -> Result<[Gains<N>; D], ScheduleError> {
+        let mut out = [Gains::alpha_beta(N::Ratio::ONE, N::Ratio::ONE)?; D];
         for (g, w) in out.iter_mut().zip(self.w) {
             let (a, b) = self.alpha_beta(w, ctx.n);
             *g = Gains::alpha_beta(a, b)?;
@@ -343,7 +325,7 @@ impl<S: Scalar, const D: usize, const W: usize> GainSchedule<S, D>
         Ok(out)
     }
 
-    fn accepted(&mut self, ctx: &GainContext<S, D>, _used: &[Gains<S>; D]) {
+    fn accepted(&mut self, ctx: &GainContext<N, D>, _used: &[Gains<N>; D]) {
         if self.steps == 0 {
             return;
         }
@@ -359,7 +341,7 @@ impl<S: Scalar, const D: usize, const W: usize> GainSchedule<S, D>
                     .squared_innovation_sum(axis, |n| self.alpha_beta(w, n))
             });
             if let (Some(i), Some(w)) = (best, self.w.get_mut(axis)) {
-                *w = grid_point(S::ZERO, S::ONE, i, steps);
+                *w = grid_point(N::Ratio::ZERO, N::Ratio::ONE, i, steps);
             }
         }
     }
@@ -436,16 +418,16 @@ impl MovingWindowConfig {
 /// e).
 #[derive(Debug, Clone, Copy, PartialEq)]
 #[cfg_attr(feature = "defmt", derive(defmt::Format))]
-pub struct MovingWindowGains<S, const D: usize, const W: usize> {
-    initial: Gains<S>,
-    alpha_min: S,
-    alpha_max: S,
+pub struct MovingWindowGains<N: Numeric, const D: usize, const W: usize> {
+    initial: Gains<N>,
+    alpha_min: N::Ratio,
+    alpha_max: N::Ratio,
     steps: u16,
-    current: [Gains<S>; D],
-    window: Window<S, D, W>,
+    current: [Gains<N>; D],
+    window: Window<N, D, W>,
 }
 
-impl<S: Scalar, const D: usize, const W: usize> MovingWindowGains<S, D, W> {
+impl<N: Numeric, const D: usize, const W: usize> MovingWindowGains<N, D, W> {
     pub fn new(c: &MovingWindowConfig) -> Result<Self, ConfigError> {
         c.validate()?;
         if usize::from(c.window) > W {
@@ -454,18 +436,18 @@ impl<S: Scalar, const D: usize, const W: usize> MovingWindowGains<S, D, W> {
                 capacity: W,
             });
         }
-        let alpha0: S = config_scalar(c.alpha0, "alpha0")?;
+        let alpha0: N::Ratio = config_quantity(c.alpha0, "alpha0")?;
         let initial = Gains::alpha_beta(alpha0, beta_from_alpha(alpha0)).map_err(|_| {
             ConfigError::NotRepresentable {
                 parameter: "alpha0",
             }
         })?;
-        let alpha_min: S = config_scalar(c.alpha_min, "min")?;
-        let alpha_max: S = config_scalar(c.alpha_max, "max")?;
+        let alpha_min: N::Ratio = config_quantity(c.alpha_min, "min")?;
+        let alpha_max: N::Ratio = config_quantity(c.alpha_max, "max")?;
         // Every grid point must give representable stable gains.
         for i in 0..usize::from(c.steps) {
             let a = grid_point(alpha_min, alpha_max, i, usize::from(c.steps));
-            Gains::alpha_beta(a, beta_from_alpha(a))
+            Gains::<N>::alpha_beta(a, beta_from_alpha(a))
                 .map_err(|_| ConfigError::NotRepresentable { parameter: "min" })?;
         }
         Ok(MovingWindowGains {
@@ -479,21 +461,21 @@ impl<S: Scalar, const D: usize, const W: usize> MovingWindowGains<S, D, W> {
     }
 
     /// The gains in use on each axis.
-    pub fn current(&self) -> [Gains<S>; D] {
+    pub fn current(&self) -> [Gains<N>; D] {
         self.current
     }
 
-    fn candidate(&self, i: usize) -> S {
+    fn candidate(&self, i: usize) -> N::Ratio {
         grid_point(self.alpha_min, self.alpha_max, i, usize::from(self.steps))
     }
 }
 
-impl<S: Scalar, const D: usize, const W: usize> GainSchedule<S, D> for MovingWindowGains<S, D, W> {
-    fn gains(&self, _ctx: &GainContext<S, D>) -> Result<[Gains<S>; D], ScheduleError> {
+impl<N: Numeric, const D: usize, const W: usize> GainSchedule<N, D> for MovingWindowGains<N, D, W> {
+    fn gains(&self, _ctx: &GainContext<N, D>) -> Result<[Gains<N>; D], ScheduleError> {
         Ok(self.current)
     }
 
-    fn accepted(&mut self, ctx: &GainContext<S, D>, _used: &[Gains<S>; D]) {
+    fn accepted(&mut self, ctx: &GainContext<N, D>, _used: &[Gains<N>; D]) {
         self.window.push(ctx);
         if !self.window.is_full() {
             return;

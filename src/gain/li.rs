@@ -4,20 +4,12 @@
 
 use super::al_wagih::{least_squares_alpha, LeastSquaresConfig};
 use super::{
-    check_range, config_scalar, norm, ConfigError, GainContext, GainSchedule, ScheduleError,
+    check_range, config_quantity, norm, ConfigError, GainContext, GainSchedule, ScheduleError,
 };
 use crate::filter::Gains;
-use crate::num::Scalar;
+use crate::num::{Numeric, Quantity, Real};
 
-/// β = 2(1 − √(1 − α))² (Li et al. eq. 7), evaluated as
-/// 2(α/(1 + √(1 − α)))², the same number without the cancellation of
-/// 1 − √(1 − α) when α is small (which costs f32 four digits at α = 0.004).
-/// For α = α(k) of eq. (4) this is eq. (8).
-pub fn li_beta<S: Scalar>(alpha: S) -> S {
-    let two = S::ONE + S::ONE;
-    let q = alpha / (S::ONE + (S::ONE - alpha).sqrt());
-    two * q * q
-}
+pub use crate::gains::li_beta;
 
 /// Configuration of [`LiImprovedGains`] (`li-improved`). The paper gives
 /// none of these values.
@@ -95,25 +87,25 @@ impl LiImprovedConfig {
 /// and [`Self::distance_error`]; gating itself is the tracker's.
 #[derive(Debug, Clone, Copy, PartialEq)]
 #[cfg_attr(feature = "defmt", derive(defmt::Format))]
-pub struct LiImprovedGains<S> {
-    max_ratio: S,
-    range_error: S,
-    bearing_error: S,
+pub struct LiImprovedGains<N: Numeric> {
+    max_ratio: N::Ratio,
+    range_error: N::Length,
+    bearing_error: N::Ratio,
     k_max: u32,
     count: u32,
-    last_ratio: Option<S>,
+    last_ratio: Option<N::Ratio>,
 }
 
 /// The effective scan count at the first filtered update.
 const FIRST_COUNT: u32 = 3;
 
-impl<S: Scalar> LiImprovedGains<S> {
+impl<N: Numeric> LiImprovedGains<N> {
     pub fn new(c: &LiImprovedConfig) -> Result<Self, ConfigError> {
         c.validate()?;
         Ok(LiImprovedGains {
-            max_ratio: config_scalar(c.max_ratio, "r")?,
-            range_error: config_scalar(c.range_error, "range-error")?,
-            bearing_error: config_scalar(c.bearing_error, "bearing-error")?,
+            max_ratio: config_quantity(c.max_ratio, "r")?,
+            range_error: config_quantity(c.range_error, "range-error")?,
+            bearing_error: config_quantity(c.bearing_error, "bearing-error")?,
             k_max: c.k_max,
             count: FIRST_COUNT,
             last_ratio: None,
@@ -126,37 +118,37 @@ impl<S: Scalar> LiImprovedGains<S> {
     }
 
     /// The ratio r = d/Δd of the last accepted update (eq. 13).
-    pub fn last_ratio(&self) -> Option<S> {
+    pub fn last_ratio(&self) -> Option<N::Ratio> {
         self.last_ratio
     }
 
     /// α and β for the effective count k (eqs. 4, 8).
-    pub fn gains_for_count(k: u32) -> Result<Gains<S>, ScheduleError> {
-        let alpha = least_squares_alpha::<S>(k);
+    pub fn gains_for_count(k: u32) -> Result<Gains<N>, ScheduleError> {
+        let alpha = least_squares_alpha::<N::Ratio>(k);
         Ok(Gains::alpha_beta(alpha, li_beta(alpha))?)
     }
 
     /// λ = √α (eq. 12) of the next update: the factor by which the wave
     /// gate is scaled.
-    pub fn gate_scale(&self) -> S {
-        least_squares_alpha::<S>(self.count).sqrt()
+    pub fn gate_scale(&self) -> N::Ratio {
+        least_squares_alpha::<N::Ratio>(self.count).sqrt()
     }
 
     /// Δd = λ·√(Δρ² + ρ²Δθ²) (eq. 11) of the next update at predicted range
     /// ρ. Computed as a scaled norm, so ρΔθ may be large in fixed point.
-    pub fn distance_error(&self, predicted_range: S) -> S {
-        self.gate_scale() * norm(&[self.range_error, predicted_range * self.bearing_error])
+    pub fn distance_error(&self, predicted_range: N::Length) -> N::Length {
+        self.gate_scale() * norm::<N>(&[self.range_error, self.bearing_error * predicted_range])
     }
 }
 
-impl<S: Scalar, const D: usize> GainSchedule<S, D> for LiImprovedGains<S> {
-    fn gains(&self, _ctx: &GainContext<S, D>) -> Result<[Gains<S>; D], ScheduleError> {
+impl<N: Numeric, const D: usize> GainSchedule<N, D> for LiImprovedGains<N> {
+    fn gains(&self, _ctx: &GainContext<N, D>) -> Result<[Gains<N>; D], ScheduleError> {
         Ok([Self::gains_for_count(self.count)?; D])
     }
 
-    fn accepted(&mut self, ctx: &GainContext<S, D>, _used: &[Gains<S>; D]) {
-        let d = norm(&ctx.innovations());
-        let range = norm(&ctx.predicted_positions());
+    fn accepted(&mut self, ctx: &GainContext<N, D>, _used: &[Gains<N>; D]) {
+        let d = norm::<N>(&ctx.innovations());
+        let range = norm::<N>(&ctx.predicted_positions());
         let ratio = d / self.distance_error(range);
         self.last_ratio = Some(ratio);
         if ratio.is_valid() && ratio <= self.max_ratio {

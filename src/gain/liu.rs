@@ -19,10 +19,10 @@ use super::al_wagih::{
     beta_from_alpha, least_squares_alpha, least_squares_beta, LeastSquaresConfig,
 };
 use super::{
-    check_range, config_scalar, ConfigError, FixedGains, GainContext, GainSchedule, ScheduleError,
+    check_range, config_quantity, ConfigError, FixedGains, GainContext, GainSchedule, ScheduleError,
 };
 use crate::filter::Gains;
-use crate::num::Scalar;
+use crate::num::{Numeric, Quantity, Real};
 
 /// Configuration of [`ScanCountAdjustedGains`] (`liu-count-adjusted`).
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -65,18 +65,18 @@ impl ScanCountAdjustedConfig {
 /// without a measurement leaves k unchanged.
 #[derive(Debug, Clone, Copy, PartialEq)]
 #[cfg_attr(feature = "defmt", derive(defmt::Format))]
-pub struct ScanCountAdjustedGains<S> {
-    threshold: S,
+pub struct ScanCountAdjustedGains<N: Numeric> {
+    threshold: N::Length,
     k_max: u32,
     /// k of the last filtered update (2 before the first).
     k: u32,
 }
 
-impl<S: Scalar> ScanCountAdjustedGains<S> {
+impl<N: Numeric> ScanCountAdjustedGains<N> {
     pub fn new(c: &ScanCountAdjustedConfig) -> Result<Self, ConfigError> {
         c.validate()?;
         Ok(ScanCountAdjustedGains {
-            threshold: config_scalar(c.threshold, "threshold")?,
+            threshold: config_quantity(c.threshold, "threshold")?,
             k_max: c.k_max,
             k: 2,
         })
@@ -87,7 +87,7 @@ impl<S: Scalar> ScanCountAdjustedGains<S> {
         self.k
     }
 
-    fn next_count<const D: usize>(&self, ctx: &GainContext<S, D>) -> u32 {
+    fn next_count<const D: usize>(&self, ctx: &GainContext<N, D>) -> u32 {
         let manoeuvre = ctx.axes.iter().any(|a| {
             let e = a.innovation.abs();
             // An invalid innovation is no evidence of steady motion.
@@ -96,18 +96,19 @@ impl<S: Scalar> ScanCountAdjustedGains<S> {
         if manoeuvre {
             self.k.saturating_sub(1).max(3)
         } else {
-            self.k.saturating_add(1).clamp(3, self.k_max)
+            // (No `clamp`: its argument check is a panic path.)
+            self.k.saturating_add(1).max(3).min(self.k_max.max(3))
         }
     }
 }
 
-impl<S: Scalar, const D: usize> GainSchedule<S, D> for ScanCountAdjustedGains<S> {
-    fn gains(&self, ctx: &GainContext<S, D>) -> Result<[Gains<S>; D], ScheduleError> {
+impl<N: Numeric, const D: usize> GainSchedule<N, D> for ScanCountAdjustedGains<N> {
+    fn gains(&self, ctx: &GainContext<N, D>) -> Result<[Gains<N>; D], ScheduleError> {
         let k = self.next_count(ctx);
         Ok([Gains::alpha_beta(least_squares_alpha(k), least_squares_beta(k))?; D])
     }
 
-    fn accepted(&mut self, ctx: &GainContext<S, D>, _used: &[Gains<S>; D]) {
+    fn accepted(&mut self, ctx: &GainContext<N, D>, _used: &[Gains<N>; D]) {
         self.k = self.next_count(ctx);
     }
 
@@ -173,76 +174,84 @@ impl ResidualAccumulationConfig {
 /// s = mean((V/σ_m)²), which is eq. (8) rearranged.
 #[derive(Debug, Clone, Copy, PartialEq)]
 #[cfg_attr(feature = "defmt", derive(defmt::Format))]
-pub struct ResidualAccumulationGains<S, const D: usize, const N: usize> {
-    sigma_m: S,
-    alpha_min: S,
+pub struct ResidualAccumulationGains<N: Numeric, const D: usize, const H: usize> {
+    sigma_m: N::Length,
+    alpha_min: N::Ratio,
     n: usize,
     /// (V/σ_m)² of past accepted updates, per axis, oldest at `start`.
-    history: [[S; D]; N],
+    history: [[N::Ratio; D]; H],
     start: usize,
     len: usize,
 }
 
-impl<S: Scalar, const D: usize, const N: usize> ResidualAccumulationGains<S, D, N> {
+impl<N: Numeric, const D: usize, const H: usize> ResidualAccumulationGains<N, D, H> {
     pub fn new(c: &ResidualAccumulationConfig) -> Result<Self, ConfigError> {
         c.validate()?;
-        if usize::from(c.n) > N {
+        if usize::from(c.n) > H {
             return Err(ConfigError::ExceedsCapacity {
                 parameter: "n",
-                capacity: N,
+                capacity: H,
             });
         }
-        let sigma_m2: S = config_scalar(c.sigma_m2, "sigma-m2")?;
-        let sigma_m = sigma_m2.sqrt();
-        if !(sigma_m.is_valid() && sigma_m > S::ZERO) {
+        // σ_m = √σ_m², taken once in f64 (configuration).
+        let sigma_m: N::Length = config_quantity(libm::sqrt(c.sigma_m2), "sigma-m2")?;
+        if !(sigma_m.is_valid() && sigma_m > N::Length::ZERO) {
             return Err(ConfigError::NotRepresentable {
                 parameter: "sigma-m2",
             });
         }
         Ok(ResidualAccumulationGains {
             sigma_m,
-            alpha_min: config_scalar(c.alpha_min, "alpha-min")?,
+            alpha_min: config_quantity(c.alpha_min, "alpha-min")?,
             n: usize::from(c.n),
-            history: [[S::ZERO; D]; N],
+            history: [[N::Ratio::ZERO; D]; H],
             start: 0,
             len: 0,
         })
     }
 
     /// The n − 1 most recent stored terms of `axis`, newest first.
-    fn recent(&self, axis: usize) -> impl Iterator<Item = S> + '_ {
+    fn recent(&self, axis: usize) -> impl Iterator<Item = N::Ratio> + '_ {
         let keep = self.len.min(self.n.saturating_sub(1));
         (0..keep).filter_map(move |back| {
-            let slot = (self.start + self.len - 1 - back) % self.n.max(1);
+            // start + len − 1 − back ≥ start ≥ 0 (back < len); n ≥ 1.
+            let slot = self
+                .start
+                .wrapping_add(self.len)
+                .wrapping_sub(1)
+                .wrapping_sub(back)
+                .checked_rem(self.n.max(1))?;
             self.history.get(slot).and_then(|h| h.get(axis)).copied()
         })
     }
 
-    fn normalised_square(&self, innovation: S) -> S {
+    fn normalised_square(&self, innovation: N::Length) -> N::Ratio {
         let u = innovation / self.sigma_m;
         u * u
     }
 
     /// α, β of eqs. (8), (10) for one axis with current innovation `v`.
-    fn axis_gains(&self, axis: usize, v: S) -> Result<Gains<S>, ScheduleError> {
+    fn axis_gains(&self, axis: usize, v: N::Length) -> Result<Gains<N>, ScheduleError> {
         let mut sum = self.normalised_square(v);
-        let mut count = 1u32;
+        let mut count = 1u64;
         for term in self.recent(axis) {
             sum = sum + term;
-            count += 1;
+            count = count.saturating_add(1);
         }
-        let s = sum / S::from_f64_lossy(f64::from(count));
+        let s = sum / N::Ratio::from_ratio(count, 1);
         let alpha = if s.is_valid() {
-            (s / (s + S::ONE)).max_of(self.alpha_min).min_of(S::ONE)
+            (s / (s + N::Ratio::ONE))
+                .max_of(self.alpha_min)
+                .min_of(N::Ratio::ONE)
         } else {
             // A squared innovation overflowed: eq. (8) at its limit.
-            S::ONE
+            N::Ratio::ONE
         };
         Ok(Gains::alpha_beta(alpha, beta_from_alpha(alpha))?)
     }
 
-    fn gains_for(&self, ctx: &GainContext<S, D>) -> Result<[Gains<S>; D], ScheduleError> {
-        let mut out = [Gains::alpha_beta(S::ONE, S::ONE)?; D];
+    fn gains_for(&self, ctx: &GainContext<N, D>) -> Result<[Gains<N>; D], ScheduleError> {
+        let mut out = [Gains::alpha_beta(N::Ratio::ONE, N::Ratio::ONE)?; D];
         for (axis, g) in out.iter_mut().enumerate() {
             let v = ctx
                 .axes
@@ -254,32 +263,38 @@ impl<S: Scalar, const D: usize, const N: usize> ResidualAccumulationGains<S, D, 
         Ok(out)
     }
 
-    fn push(&mut self, innovations: &[S]) {
-        let mut terms = [S::ZERO; D];
+    fn push(&mut self, innovations: &[N::Length]) {
+        let mut terms = [N::Ratio::ZERO; D];
         for (t, v) in terms.iter_mut().zip(innovations) {
             *t = self.normalised_square(*v);
         }
         let cap = self.n.max(1);
+        let start = self.start;
+        let slot = |k: usize| start.wrapping_add(k).checked_rem(cap).unwrap_or(0);
         if self.len < cap {
-            if let Some(h) = self.history.get_mut((self.start + self.len) % cap) {
+            let next = slot(self.len);
+            if let Some(h) = self.history.get_mut(next) {
                 *h = terms;
-                self.len += 1;
+                self.len = self.len.saturating_add(1);
             }
-        } else if let Some(h) = self.history.get_mut(self.start) {
-            *h = terms;
-            self.start = (self.start + 1) % cap;
+        } else {
+            let next = slot(1);
+            if let Some(h) = self.history.get_mut(start) {
+                *h = terms;
+                self.start = next;
+            }
         }
     }
 }
 
-impl<S: Scalar, const D: usize, const N: usize> GainSchedule<S, D>
-    for ResidualAccumulationGains<S, D, N>
+impl<N: Numeric, const D: usize, const H: usize> GainSchedule<N, D>
+    for ResidualAccumulationGains<N, D, H>
 {
-    fn gains(&self, ctx: &GainContext<S, D>) -> Result<[Gains<S>; D], ScheduleError> {
+    fn gains(&self, ctx: &GainContext<N, D>) -> Result<[Gains<N>; D], ScheduleError> {
         self.gains_for(ctx)
     }
 
-    fn accepted(&mut self, ctx: &GainContext<S, D>, _used: &[Gains<S>; D]) {
+    fn accepted(&mut self, ctx: &GainContext<N, D>, _used: &[Gains<N>; D]) {
         self.push(&ctx.innovations());
     }
 
@@ -344,18 +359,18 @@ pub enum SwitchMode {
 /// fixed branch; eqs. (12)–(15) use ≤, which we follow.
 #[derive(Debug, Clone, Copy, PartialEq)]
 #[cfg_attr(feature = "defmt", derive(defmt::Format))]
-pub struct AdaptiveSwitchGains<S, const D: usize, const N: usize> {
-    limit: S,
-    fixed: FixedGains<S>,
-    residual: ResidualAccumulationGains<S, D, N>,
+pub struct AdaptiveSwitchGains<N: Numeric, const D: usize, const H: usize> {
+    limit: N::Length,
+    fixed: FixedGains<N>,
+    residual: ResidualAccumulationGains<N, D, H>,
     last_mode: Option<SwitchMode>,
 }
 
-impl<S: Scalar, const D: usize, const N: usize> AdaptiveSwitchGains<S, D, N> {
+impl<N: Numeric, const D: usize, const H: usize> AdaptiveSwitchGains<N, D, H> {
     pub fn new(c: &AdaptiveSwitchConfig) -> Result<Self, ConfigError> {
         c.validate()?;
         Ok(AdaptiveSwitchGains {
-            limit: config_scalar(c.limit, "limit")?,
+            limit: config_quantity(c.limit, "limit")?,
             fixed: FixedGains::from_config(&super::al_wagih::FixedConfig {
                 alpha: c.alpha,
                 beta: c.beta,
@@ -372,7 +387,7 @@ impl<S: Scalar, const D: usize, const N: usize> AdaptiveSwitchGains<S, D, N> {
     }
 
     /// The branch eqs. (12)–(15) choose for `ctx`.
-    pub fn mode(&self, ctx: &GainContext<S, D>) -> SwitchMode {
+    pub fn mode(&self, ctx: &GainContext<N, D>) -> SwitchMode {
         let over = ctx.axes.iter().any(|a| {
             let e = a.innovation.abs();
             !e.is_valid() || e > self.limit
@@ -385,17 +400,17 @@ impl<S: Scalar, const D: usize, const N: usize> AdaptiveSwitchGains<S, D, N> {
     }
 }
 
-impl<S: Scalar, const D: usize, const N: usize> GainSchedule<S, D>
-    for AdaptiveSwitchGains<S, D, N>
+impl<N: Numeric, const D: usize, const H: usize> GainSchedule<N, D>
+    for AdaptiveSwitchGains<N, D, H>
 {
-    fn gains(&self, ctx: &GainContext<S, D>) -> Result<[Gains<S>; D], ScheduleError> {
+    fn gains(&self, ctx: &GainContext<N, D>) -> Result<[Gains<N>; D], ScheduleError> {
         match self.mode(ctx) {
             SwitchMode::Steady => Ok([self.fixed.fixed(); D]),
             SwitchMode::Manoeuvre => self.residual.gains_for(ctx),
         }
     }
 
-    fn accepted(&mut self, ctx: &GainContext<S, D>, used: &[Gains<S>; D]) {
+    fn accepted(&mut self, ctx: &GainContext<N, D>, used: &[Gains<N>; D]) {
         self.last_mode = Some(self.mode(ctx));
         self.residual.accepted(ctx, used);
     }

@@ -70,7 +70,7 @@
 use core::fmt;
 
 use crate::filter::{Cartesian, FilterError, GainError, Gains, Phase, Prediction, UpdateOutcome};
-use crate::num::Scalar;
+use crate::num::{Numeric, Quantity};
 
 pub mod al_wagih;
 pub mod li;
@@ -78,8 +78,6 @@ pub mod liu;
 pub mod spec;
 pub mod tcas;
 mod window;
-
-pub(crate) use window::grid_point as window_grid_point;
 
 pub use al_wagih::{FixedGains, LeastSquaresGains, LinearCombinationGains, MovingWindowGains};
 pub use li::LiImprovedGains;
@@ -91,44 +89,44 @@ pub use tcas::FirmnessGains;
 /// incorporated.
 #[derive(Debug, Clone, Copy, PartialEq, Default)]
 #[cfg_attr(feature = "defmt", derive(defmt::Format))]
-pub struct AxisObservation<S> {
+pub struct AxisObservation<N: Numeric> {
     /// z, the measurement.
-    pub measurement: S,
+    pub measurement: N::Length,
     /// x_p, the predicted position for this measurement (Al-Wagih eq. 3).
-    pub predicted: S,
+    pub predicted: N::Length,
     /// v_p, the predicted velocity (the smoothed velocity carried forward).
-    pub predicted_velocity: S,
+    pub predicted_velocity: N::Speed,
     /// e = z − x_p (Al-Wagih eq. 4; Liu eq. 3).
-    pub innovation: S,
+    pub innovation: N::Length,
 }
 
 /// The context of one filtered update, given to [`GainSchedule::gains`].
 #[derive(Debug, Clone, Copy, PartialEq)]
 #[cfg_attr(feature = "defmt", derive(defmt::Format))]
-pub struct GainContext<S, const D: usize> {
+pub struct GainContext<N: Numeric, const D: usize> {
     /// The number of this measurement since the track was (re)initialised,
     /// counting from 1: the first filtered update after two-point
     /// initialisation has n = 3 (Al-Wagih eq. 24, "n > 2").
     pub n: u32,
     /// T, the interval since the previous update or coast.
-    pub dt: S,
-    pub axes: [AxisObservation<S>; D],
+    pub dt: N::Interval,
+    pub axes: [AxisObservation<N>; D],
 }
 
-impl<S: Scalar, const D: usize> GainContext<S, D> {
+impl<N: Numeric, const D: usize> GainContext<N, D> {
     /// The context of measurement `z` against the filter's `predictions`
     /// (from [`crate::filter::KinematicFilter::predict`]).
     pub fn new(
         n: u32,
-        dt: S,
-        z: [S; D],
-        predictions: &[Prediction<S>; D],
+        dt: N::Interval,
+        z: [N::Length; D],
+        predictions: &[Prediction<N>; D],
     ) -> Result<Self, ScheduleError> {
         let mut axes = [AxisObservation {
-            measurement: S::ZERO,
-            predicted: S::ZERO,
-            predicted_velocity: S::ZERO,
-            innovation: S::ZERO,
+            measurement: N::Length::ZERO,
+            predicted: N::Length::ZERO,
+            predicted_velocity: N::Speed::ZERO,
+            innovation: N::Length::ZERO,
         }; D];
         for ((axis, z), p) in axes.iter_mut().zip(z).zip(predictions) {
             *axis = AxisObservation {
@@ -144,12 +142,12 @@ impl<S: Scalar, const D: usize> GainContext<S, D> {
     }
 
     /// e per axis.
-    pub fn innovations(&self) -> [S; D] {
+    pub fn innovations(&self) -> [N::Length; D] {
         self.axes.map(|a| a.innovation)
     }
 
     /// x_p per axis.
-    pub fn predicted_positions(&self) -> [S; D] {
+    pub fn predicted_positions(&self) -> [N::Length; D] {
         self.axes.map(|a| a.predicted)
     }
 
@@ -202,66 +200,8 @@ impl fmt::Display for ScheduleError {
 
 impl core::error::Error for ScheduleError {}
 
-/// Why a schedule's configuration was refused.
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
-#[cfg_attr(feature = "defmt", derive(defmt::Format))]
-pub enum ConfigError {
-    /// The parameter is outside its documented range (or not a number).
-    OutOfRange { parameter: &'static str },
-    /// The parameter cannot be represented in the chosen number type.
-    NotRepresentable { parameter: &'static str },
-    /// The parameter asks for more storage than the type's const capacity.
-    ExceedsCapacity {
-        parameter: &'static str,
-        capacity: usize,
-    },
-    /// The spec names a bank of filters, not a schedule
-    /// (build it with [`crate::bank`]).
-    NotASchedule,
-}
-
-impl fmt::Display for ConfigError {
-    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
-        match self {
-            ConfigError::OutOfRange { parameter } => {
-                write!(f, "parameter `{parameter}` is out of range")
-            }
-            ConfigError::NotRepresentable { parameter } => {
-                write!(f, "parameter `{parameter}` is not representable")
-            }
-            ConfigError::ExceedsCapacity {
-                parameter,
-                capacity,
-            } => write!(f, "parameter `{parameter}` exceeds the capacity {capacity}"),
-            ConfigError::NotASchedule => {
-                f.write_str("a filter bank is an estimator, not a gain schedule")
-            }
-        }
-    }
-}
-
-impl core::error::Error for ConfigError {}
-
-/// Converts a configuration value into the schedule's number type.
-pub(crate) fn config_scalar<S: Scalar>(v: f64, parameter: &'static str) -> Result<S, ConfigError> {
-    S::try_from_f64(v).map_err(|_| ConfigError::NotRepresentable { parameter })
-}
-
-/// Checks lo < v ≤ hi (or lo ≤ v ≤ hi when `closed_low`), refusing NaN.
-pub(crate) fn check_range(
-    v: f64,
-    lo: f64,
-    hi: f64,
-    closed_low: bool,
-    parameter: &'static str,
-) -> Result<(), ConfigError> {
-    let low_ok = if closed_low { v >= lo } else { v > lo };
-    if low_ok && v <= hi {
-        Ok(())
-    } else {
-        Err(ConfigError::OutOfRange { parameter })
-    }
-}
+pub use crate::gains::ConfigError;
+pub(crate) use crate::gains::{check_range, config_quantity};
 
 /// A gain schedule: a small state machine that gives the gains of each
 /// filtered update.
@@ -276,13 +216,13 @@ pub(crate) fn check_range(
 ///
 /// `gains` does not change the schedule, so a refused update leaves it as it
 /// was. Schedules are `Copy`: a track table stores them by value.
-pub trait GainSchedule<S: Scalar, const D: usize>: Copy {
+pub trait GainSchedule<N: Numeric, const D: usize>: Copy {
     /// The gains, one per axis, for the update described by `ctx`.
-    fn gains(&self, ctx: &GainContext<S, D>) -> Result<[Gains<S>; D], ScheduleError>;
+    fn gains(&self, ctx: &GainContext<N, D>) -> Result<[Gains<N>; D], ScheduleError>;
 
     /// The filter applied the update described by `ctx` with `used` (the
     /// gains `gains` returned).
-    fn accepted(&mut self, ctx: &GainContext<S, D>, used: &[Gains<S>; D]);
+    fn accepted(&mut self, ctx: &GainContext<N, D>, used: &[Gains<N>; D]);
 
     /// Measurement `n` (1 or 2) initialised the filter; no gains were used.
     fn initialised(&mut self, _n: u32) {}
@@ -336,11 +276,11 @@ impl core::error::Error for ScheduledError {}
 /// What a [`ScheduledFilter::update`] did.
 #[derive(Debug, Clone, Copy, PartialEq)]
 #[cfg_attr(feature = "defmt", derive(defmt::Format))]
-pub struct ScheduledUpdate<S, const D: usize> {
+pub struct ScheduledUpdate<N: Numeric, const D: usize> {
     /// The filter's outcome per axis.
-    pub outcome: [UpdateOutcome<S>; D],
+    pub outcome: [UpdateOutcome<N>; D],
     /// The gains applied; `None` during two-point initialisation.
-    pub gains: Option<[Gains<S>; D]>,
+    pub gains: Option<[Gains<N>; D]>,
     /// The schedule restarted the track before this measurement, which
     /// became its first point.
     pub restarted: bool,
@@ -353,16 +293,16 @@ pub struct ScheduledUpdate<S, const D: usize> {
 /// αβ; with an αβ filter the γ of αβγ gains (TCAS) is ignored.
 #[derive(Debug, Clone, Copy, PartialEq)]
 #[cfg_attr(feature = "defmt", derive(defmt::Format))]
-pub struct ScheduledFilter<S, G, const ORDER: usize, const D: usize> {
-    filter: Cartesian<S, ORDER, D>,
+pub struct ScheduledFilter<N: Numeric, G, const ORDER: usize, const D: usize> {
+    filter: Cartesian<N, ORDER, D>,
     schedule: G,
     measurements: u32,
 }
 
-impl<S, G, const ORDER: usize, const D: usize> ScheduledFilter<S, G, ORDER, D>
+impl<N, G, const ORDER: usize, const D: usize> ScheduledFilter<N, G, ORDER, D>
 where
-    S: Scalar,
-    G: GainSchedule<S, D>,
+    N: Numeric,
+    G: GainSchedule<N, D>,
 {
     /// An empty track driven by `schedule`.
     pub const fn new(schedule: G) -> Self {
@@ -377,7 +317,7 @@ where
     /// with `measurements` counted so far (schedules that count treat
     /// n < 3 as 3).
     pub const fn from_parts(
-        filter: Cartesian<S, ORDER, D>,
+        filter: Cartesian<N, ORDER, D>,
         schedule: G,
         measurements: u32,
     ) -> Self {
@@ -388,7 +328,7 @@ where
         }
     }
 
-    pub fn filter(&self) -> &Cartesian<S, ORDER, D> {
+    pub fn filter(&self) -> &Cartesian<N, ORDER, D> {
         &self.filter
     }
 
@@ -411,7 +351,11 @@ where
     /// schedule hears that the update was [accepted](GainSchedule::accepted).
     /// A refused update changes neither the filter (but for its saturation
     /// count) nor the schedule.
-    pub fn update(&mut self, z: [S; D], dt: S) -> Result<ScheduledUpdate<S, D>, ScheduledError> {
+    pub fn update(
+        &mut self,
+        z: [N::Length; D],
+        dt: N::Interval,
+    ) -> Result<ScheduledUpdate<N, D>, ScheduledError> {
         let restarted = self.schedule.restart_required(self.filter.phase());
         let mut filter = if restarted {
             Cartesian::new()
@@ -426,7 +370,7 @@ where
 
         if filter.phase() != Phase::Tracking {
             // Two-point initialisation ignores gains; any valid pair will do.
-            let unused = Gains::alpha_beta(S::ONE, S::ONE).map_err(ScheduleError::Gain)?;
+            let unused = unused_gains::<N>()?;
             match filter.update(z, dt, &unused) {
                 Ok(outcome) => {
                     self.filter = filter;
@@ -450,9 +394,9 @@ where
             }
         } else {
             let mut predictions = [Prediction {
-                position: S::ZERO,
-                velocity: S::ZERO,
-                acceleration: S::ZERO,
+                position: N::Length::ZERO,
+                velocity: N::Speed::ZERO,
+                acceleration: N::Acceleration::ZERO,
             }; D];
             for (p, axis) in predictions.iter_mut().zip(filter.axes()) {
                 match axis.predict(dt) {
@@ -498,11 +442,11 @@ where
     /// is discarded all the same.
     fn refuse_overflow(
         &mut self,
-        mut filter: Cartesian<S, ORDER, D>,
-        z: [S; D],
-        dt: S,
-    ) -> Result<ScheduledUpdate<S, D>, ScheduledError> {
-        let unused = Gains::alpha_beta(S::ONE, S::ONE).map_err(ScheduleError::Gain)?;
+        mut filter: Cartesian<N, ORDER, D>,
+        z: [N::Length; D],
+        dt: N::Interval,
+    ) -> Result<ScheduledUpdate<N, D>, ScheduledError> {
+        let unused = unused_gains::<N>()?;
         match filter.update(z, dt, &unused) {
             Err(e) => {
                 if e == FilterError::Saturated {
@@ -516,33 +460,25 @@ where
 
     /// No measurement this scan: the filter coasts and the schedule hears of
     /// the miss.
-    pub fn coast(&mut self, dt: S) -> Result<(), FilterError> {
+    pub fn coast(&mut self, dt: N::Interval) -> Result<(), FilterError> {
         self.filter.coast(dt)?;
         self.schedule.missed();
         Ok(())
     }
 }
 
-/// Euclidean norm of a vector, scaled by its largest component so that
-/// squaring cannot overflow Q32.32 (|x| up to 2³¹ rather than 46 341).
-pub(crate) fn norm<S: Scalar>(v: &[S]) -> S {
-    let mut largest = S::ZERO;
-    for x in v {
-        let a = x.abs();
-        if !a.is_valid() {
-            return a;
-        }
-        largest = largest.max_of(a);
-    }
-    if largest == S::ZERO {
-        return S::ZERO;
-    }
-    let mut sum = S::ZERO;
-    for x in v {
-        let q = *x / largest;
-        sum = sum + q * q;
-    }
-    largest * sum.sqrt()
+/// Gains for the updates that ignore them (two-point initialisation): any
+/// valid pair will do.
+fn unused_gains<N: Numeric>() -> Result<Gains<N>, ScheduledError> {
+    use crate::num::Real;
+    Gains::alpha_beta(N::Ratio::ONE, N::Ratio::ONE)
+        .map_err(|e| ScheduledError::Schedule(ScheduleError::Gain(e)))
+}
+
+/// Euclidean norm of a vector (a chain of [`Numeric::hypot`], which never
+/// squares its arguments).
+pub(crate) fn norm<N: Numeric>(v: &[N::Length]) -> N::Length {
+    v.iter().fold(N::Length::ZERO, |acc, &x| N::hypot(acc, x))
 }
 
 /// Any schedule a [`ScheduleSpec`] can name, in one `Copy` type, so a tool or
@@ -550,19 +486,19 @@ pub(crate) fn norm<S: Scalar>(v: &[S]) -> S {
 /// windows of M3, M4 and Liu's residual accumulation.
 #[derive(Debug, Clone, Copy, PartialEq)]
 #[cfg_attr(feature = "defmt", derive(defmt::Format))]
-pub enum AnySchedule<S, const D: usize, const W: usize> {
-    Fixed(FixedGains<S>),
+pub enum AnySchedule<N: Numeric, const D: usize, const W: usize> {
+    Fixed(FixedGains<N>),
     LeastSquares(LeastSquaresGains),
-    LinearCombination(LinearCombinationGains<S, D, W>),
-    MovingWindow(MovingWindowGains<S, D, W>),
-    LiImproved(LiImprovedGains<S>),
-    ScanCountAdjusted(ScanCountAdjustedGains<S>),
-    ResidualAccumulation(ResidualAccumulationGains<S, D, W>),
-    AdaptiveSwitch(AdaptiveSwitchGains<S, D, W>),
+    LinearCombination(LinearCombinationGains<N, D, W>),
+    MovingWindow(MovingWindowGains<N, D, W>),
+    LiImproved(LiImprovedGains<N>),
+    ScanCountAdjusted(ScanCountAdjustedGains<N>),
+    ResidualAccumulation(ResidualAccumulationGains<N, D, W>),
+    AdaptiveSwitch(AdaptiveSwitchGains<N, D, W>),
     Firmness(FirmnessGains),
 }
 
-impl<S: Scalar, const D: usize, const W: usize> AnySchedule<S, D, W> {
+impl<N: Numeric, const D: usize, const W: usize> AnySchedule<N, D, W> {
     /// The schedule `spec` names, configured as it says.
     /// [`ScheduleSpec::Bank`] is refused with [`ConfigError::NotASchedule`].
     pub fn from_spec(spec: &ScheduleSpec) -> Result<Self, ConfigError> {
@@ -606,23 +542,23 @@ macro_rules! dispatch {
     };
 }
 
-impl<S: Scalar, const D: usize, const W: usize> GainSchedule<S, D> for AnySchedule<S, D, W> {
-    fn gains(&self, ctx: &GainContext<S, D>) -> Result<[Gains<S>; D], ScheduleError> {
+impl<N: Numeric, const D: usize, const W: usize> GainSchedule<N, D> for AnySchedule<N, D, W> {
+    fn gains(&self, ctx: &GainContext<N, D>) -> Result<[Gains<N>; D], ScheduleError> {
         dispatch!(self, s => s.gains(ctx))
     }
-    fn accepted(&mut self, ctx: &GainContext<S, D>, used: &[Gains<S>; D]) {
+    fn accepted(&mut self, ctx: &GainContext<N, D>, used: &[Gains<N>; D]) {
         dispatch!(self, s => s.accepted(ctx, used))
     }
     fn initialised(&mut self, n: u32) {
-        dispatch!(self, s => GainSchedule::<S, D>::initialised(s, n))
+        dispatch!(self, s => GainSchedule::<N, D>::initialised(s, n))
     }
     fn missed(&mut self) {
-        dispatch!(self, s => GainSchedule::<S, D>::missed(s))
+        dispatch!(self, s => GainSchedule::<N, D>::missed(s))
     }
     fn restart_required(&self, phase: Phase) -> bool {
-        dispatch!(self, s => GainSchedule::<S, D>::restart_required(s, phase))
+        dispatch!(self, s => GainSchedule::<N, D>::restart_required(s, phase))
     }
     fn reset(&mut self) {
-        dispatch!(self, s => GainSchedule::<S, D>::reset(s))
+        dispatch!(self, s => GainSchedule::<N, D>::reset(s))
     }
 }

@@ -3,7 +3,7 @@
 
 use super::{GainContext, GainSchedule, ScheduleError};
 use crate::filter::{Gains, Phase};
-use crate::num::Scalar;
+use crate::num::{Numeric, Real};
 
 /// α by firmness 0..=8.
 pub const FIRMNESS_ALPHA: [f64; 9] = [1.0, 1.0, 0.83, 0.7, 0.6, 0.46, 0.4, 0.4, 0.4];
@@ -74,8 +74,9 @@ impl FirmnessGains {
     }
 
     /// The gains of table entry `firmness` ≥ 2 (αβγ).
-    pub fn table_gains<S: Scalar>(firmness: u8) -> Result<Gains<S>, ScheduleError> {
-        let i = usize::from(firmness.clamp(2, MAX_FIRMNESS));
+    pub fn table_gains<N: Numeric>(firmness: u8) -> Result<Gains<N>, ScheduleError> {
+        // (No `clamp`: its argument check is a panic path.)
+        let i = usize::from(firmness.max(2).min(MAX_FIRMNESS));
         match (
             FIRMNESS_ALPHA.get(i),
             FIRMNESS_BETA.get(i),
@@ -91,17 +92,17 @@ impl FirmnessGains {
     }
 }
 
-impl<S: Scalar, const D: usize> GainSchedule<S, D> for FirmnessGains {
-    fn gains(&self, _ctx: &GainContext<S, D>) -> Result<[Gains<S>; D], ScheduleError> {
+impl<N: Numeric, const D: usize> GainSchedule<N, D> for FirmnessGains {
+    fn gains(&self, _ctx: &GainContext<N, D>) -> Result<[Gains<N>; D], ScheduleError> {
         let g = match self.firmness {
             0 => return Err(ScheduleError::RestartRequired),
-            1 => Gains::alpha_beta(S::ONE, S::ONE)?,
+            1 => Gains::alpha_beta(N::Ratio::ONE, N::Ratio::ONE)?,
             f => Self::table_gains(f)?,
         };
         Ok([g; D])
     }
 
-    fn accepted(&mut self, _ctx: &GainContext<S, D>, _used: &[Gains<S>; D]) {
+    fn accepted(&mut self, _ctx: &GainContext<N, D>, _used: &[Gains<N>; D]) {
         self.count_report();
     }
 

@@ -122,7 +122,7 @@ fn filter_error(e: ScheduledError) -> FilterError {
 /// coasts until the table deletes it for its misses.
 #[derive(Debug, Clone, Copy, PartialEq)]
 #[cfg_attr(feature = "defmt", derive(defmt::Format))]
-pub struct ScheduledTrack<S, G> {
+pub struct ScheduledTrack<S: Scalar, G> {
     filter: ScheduledFilter<S, G, 2, 2>,
     uncertainty: [Uncertainty<S>; 2],
 }

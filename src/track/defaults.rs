@@ -9,10 +9,13 @@
 //!
 //! * sensor accuracy: per-axis σ (Cartesian) or σ_R, σ_B (polar);
 //! * detection probability P_D and false-measurement (clutter) density λ per
-//!   m² per scan, and the surveillance region (its area gives the clutter
-//!   count per scan, its extent the largest range);
+//!   m² per scan;
+//! * the coverage ([`Coverage`]): a square, a disc, or none (the default).
+//!   The rules count clutter over the coverage's area and take its farthest
+//!   point as the largest range; with none, over the disc of the sensor's
+//!   largest range [`TrackerDesign::max_range`];
 //! * target envelope: largest speed v_max (relative speed for a TCAS
-//!   sensor) and largest acceleration a_max;
+//!   sensor) and largest acceleration a_max (the manoeuvre level);
 //! * the nominal scan period T.
 //!
 //! # Rules (in [`TrackerDesign::derive`])
@@ -62,8 +65,10 @@
 //!    deleted after N − M + 1 consecutive misses, the first point at which
 //!    M-of-N can become unreachable (the table also deletes it whenever it
 //!    does).
-//! 6. **Surveillance volume**: the region's bounding box; tracks leaving it
-//!    are deleted.
+//! 6. **Surveillance volume**: the coverage's bounding box (a disc's
+//!    bounding square); tracks leaving it are deleted and measurements
+//!    outside it start none. With no coverage, no volume: nothing is
+//!    dropped for where it is.
 //!
 //! # The two nominal sensors
 //!
@@ -137,43 +142,46 @@ pub enum SensorAccuracy {
     },
 }
 
-/// The region watched, centred on the sensor for a polar sensor.
-#[derive(Debug, Clone, Copy, PartialEq)]
+/// The region watched, centred on the sensor (at the origin).
+#[derive(Debug, Clone, Copy, PartialEq, Default)]
 #[cfg_attr(feature = "defmt", derive(defmt::Format))]
-pub enum Surveillance {
-    /// An axis-aligned rectangle `min ..= max` (m).
-    Rectangle { min: [f64; 2], max: [f64; 2] },
-    /// A disc of radius `radius` (m) around the origin.
+pub enum Coverage {
+    /// No region: measurements are used and tracks kept wherever they are.
+    #[default]
+    None,
+    /// The square `-half_width ..= half_width` on x and y (m).
+    Square { half_width: f64 },
+    /// The disc of radius `radius` (m).
     Disc { radius: f64 },
 }
 
-impl Surveillance {
-    /// Area (m²).
-    pub fn area(&self) -> f64 {
+impl Coverage {
+    /// Area (m²); `None` for no coverage.
+    pub fn area(&self) -> Option<f64> {
         match *self {
-            Surveillance::Rectangle { min, max } => (max[0] - min[0]) * (max[1] - min[1]),
-            Surveillance::Disc { radius } => core::f64::consts::PI * radius * radius,
+            Coverage::None => None,
+            Coverage::Square { half_width } => Some(4.0 * half_width * half_width),
+            Coverage::Disc { radius } => Some(core::f64::consts::PI * radius * radius),
         }
     }
 
-    /// The largest distance from the origin.
-    pub fn max_range(&self) -> f64 {
+    /// The largest distance from the origin; `None` for no coverage.
+    pub fn max_range(&self) -> Option<f64> {
         match *self {
-            Surveillance::Rectangle { min, max } => {
-                let x = libm::fabs(min[0]).max(libm::fabs(max[0]));
-                let y = libm::fabs(min[1]).max(libm::fabs(max[1]));
-                libm::hypot(x, y)
-            }
-            Surveillance::Disc { radius } => radius,
+            Coverage::None => None,
+            Coverage::Square { half_width } => Some(core::f64::consts::SQRT_2 * half_width),
+            Coverage::Disc { radius } => Some(radius),
         }
     }
 
-    /// The bounding box as (min, max).
-    pub fn bounds(&self) -> ([f64; 2], [f64; 2]) {
-        match *self {
-            Surveillance::Rectangle { min, max } => (min, max),
-            Surveillance::Disc { radius } => ([-radius, -radius], [radius, radius]),
-        }
+    /// The bounding box as (min, max); `None` for no coverage.
+    pub fn bounds(&self) -> Option<([f64; 2], [f64; 2])> {
+        let half = match *self {
+            Coverage::None => return None,
+            Coverage::Square { half_width } => half_width,
+            Coverage::Disc { radius } => radius,
+        };
+        Some(([-half, -half], [half, half]))
     }
 }
 
@@ -186,10 +194,15 @@ pub struct TrackerDesign {
     pub detection_probability: f64,
     /// λ, false measurements per m² per scan, ≥ 0.
     pub clutter_density: f64,
-    pub surveillance: Surveillance,
+    /// The region watched (default: none).
+    pub coverage: Coverage,
+    /// The sensor's largest range (m), > 0: with [`Coverage::None`] the
+    /// rules count clutter over the disc of this radius and take it as the
+    /// largest range; with a coverage, the coverage is used instead.
+    pub max_range: f64,
     /// v_max (m/s), > 0.
     pub max_speed: f64,
-    /// a_max (m/s²), > 0.
+    /// a_max (m/s²), > 0: the manoeuvre level.
     pub max_acceleration: f64,
     /// Nominal T (s), > 0.
     pub scan_period: f64,
@@ -249,10 +262,13 @@ fn at_least(need: u32, trials: u32, p: f64) -> f64 {
     let mut binom = 1.0; // C(trials, k), built up from k = 0
     for k in 0..=trials {
         if k > 0 {
-            binom = binom * f64::from(trials - k + 1) / f64::from(k);
+            // k ≤ trials here, so these never saturate.
+            binom = binom * f64::from(trials.saturating_sub(k).saturating_add(1)) / f64::from(k);
         }
         if k >= need {
-            total += binom * libm::pow(p, f64::from(k)) * libm::pow(1.0 - p, f64::from(trials - k));
+            total += binom
+                * libm::pow(p, f64::from(k))
+                * libm::pow(1.0 - p, f64::from(trials.saturating_sub(k)));
         }
     }
     total.min(1.0)
@@ -282,10 +298,9 @@ impl TrackerDesign {
         accuracy: SensorAccuracy::Cartesian { sigma: 20.0 },
         detection_probability: 0.9,
         clutter_density: 1e-7,
-        surveillance: Surveillance::Rectangle {
-            min: [-5000.0, -5000.0],
-            max: [5000.0, 5000.0],
-        },
+        coverage: Coverage::Square { half_width: 5000.0 },
+        // The square's corner.
+        max_range: 5000.0 * core::f64::consts::SQRT_2,
         max_speed: 300.0,
         max_acceleration: BANK_30_ACCELERATION,
         scan_period: 1.0,
@@ -304,7 +319,8 @@ impl TrackerDesign {
         detection_probability: 0.9,
         // 3 / (π·25 928²)
         clutter_density: 3.0 / (core::f64::consts::PI * 25_928.0 * 25_928.0),
-        surveillance: Surveillance::Disc { radius: 25_928.0 },
+        coverage: Coverage::Disc { radius: 25_928.0 },
+        max_range: 25_928.0,
         max_speed: 1200.0 * 1852.0 / 3600.0,
         max_acceleration: BANK_30_ACCELERATION,
         scan_period: 1.0,
@@ -329,8 +345,13 @@ impl TrackerDesign {
         let v_max = positive(self.max_speed)?;
         let a_max = positive(self.max_acceleration)?;
         let t = positive(self.scan_period)?;
-        let area = positive(self.surveillance.area())?;
-        let max_range = self.surveillance.max_range();
+        // The region the rules count clutter over (module docs, inputs).
+        let max_range = positive(self.coverage.max_range().unwrap_or(self.max_range))?;
+        let area = positive(
+            self.coverage
+                .area()
+                .unwrap_or(core::f64::consts::PI * max_range * max_range),
+        )?;
         let (sigma_axis, max_sigma, across_first) = match self.accuracy {
             SensorAccuracy::Cartesian { sigma } => {
                 let s = positive(sigma)?;
@@ -364,7 +385,8 @@ impl TrackerDesign {
         while n_max < LeastSquaresConfig::N_MAX_LIMIT
             && least_squares_alpha::<f64>(n_max) > steady_state_alpha
         {
-            n_max += 1;
+            // Bounded by N_MAX_LIMIT.
+            n_max = n_max.saturating_add(1);
         }
         let process_noise = manoeuvre_sigma * manoeuvre_sigma;
 
@@ -389,8 +411,9 @@ impl TrackerDesign {
         let mut chosen = None;
         'search: for m in 2..=MAX_CONFIRMATION_WINDOW {
             for n in m..=MAX_CONFIRMATION_WINDOW {
-                let need = u32::from(m - 1);
-                let trials = u32::from(n - 1);
+                // m ≥ 2 and n ≥ m: no saturation.
+                let need = u32::from(m.saturating_sub(1));
+                let trials = u32::from(n.saturating_sub(1));
                 let p_true = at_least(need, trials, p_hit);
                 let p_false = false_starts * at_least(need, trials, q);
                 if p_true >= MIN_TRUE_CONFIRMATION && p_false <= MAX_FALSE_CONFIRMATIONS_PER_SCAN {
@@ -410,9 +433,17 @@ impl TrackerDesign {
             if k == u8::MAX {
                 return Err(ConfigError::Deletion);
             }
-            k += 1;
+            // k < u8::MAX here.
+            k = k.saturating_add(1);
         }
-        let deletion = (k, confirmation.1 - confirmation.0 + 1);
+        // N ≥ M ≥ 2: N − M + 1 is in 1..=7.
+        let deletion = (
+            k,
+            confirmation
+                .1
+                .saturating_sub(confirmation.0)
+                .saturating_add(1),
+        );
 
         Ok(DerivedParameters {
             gate_threshold,
@@ -435,7 +466,7 @@ impl TrackerDesign {
         })
     }
 
-    /// The lifecycle part shared by both filters: gate, initiation,
+    /// The lifecycle part shared by every filter: gate, initiation,
     /// confirmation, deletion, volume.
     fn config_with<S: Scalar, P: Copy>(
         &self,
@@ -448,16 +479,29 @@ impl TrackerDesign {
             scalar(d.gate_threshold)?,
             scalar(d.max_acceleration)?,
         )?;
-        let (min, max) = self.surveillance.bounds();
-        let volume = Volume::new(
-            [scalar(min[0])?, scalar(min[1])?],
-            [scalar(max[0])?, scalar(max[1])?],
-        )?;
-        Ok(TrackerConfig::new(params, gate, scalar(self.max_speed)?)?
+        let config = TrackerConfig::new(params, gate, scalar(self.max_speed)?)?
             .with_initiation_margin(scalar(d.initiation_margin)?)?
             .with_confirmation(d.confirmation.0, d.confirmation.1)?
-            .with_deletion(d.deletion.0, d.deletion.1)?
-            .with_volume(volume))
+            .with_deletion(d.deletion.0, d.deletion.1)?;
+        match self.coverage.bounds() {
+            None => Ok(config),
+            Some((min, max)) => Ok(config.with_volume(Volume::new(
+                [scalar(min[0])?, scalar(min[1])?],
+                [scalar(max[0])?, scalar(max[1])?],
+            )?)),
+        }
+    }
+
+    /// The designed gate, initiation, lifecycle and volume around filter
+    /// parameters of the caller's choice (e.g. fixed gains or another
+    /// schedule): the uncertainty gate for σ_max (rule 3), so a Cartesian
+    /// filter of either sensor.
+    pub fn tracker_config<S: Scalar, P: Copy>(
+        &self,
+        params: P,
+    ) -> Result<TrackerConfig<S, P>, ConfigError> {
+        let d = self.derive()?;
+        self.config_with(params, d.max_sigma, &d)
     }
 
     /// The default Cartesian tracker: [`ScheduledTrack`] with M2's
@@ -490,9 +534,10 @@ impl TrackerDesign {
                 range_sigma,
                 bearing_sigma,
             } => (range_sigma, bearing_sigma),
-            SensorAccuracy::Cartesian { sigma } => {
-                (sigma, sigma / positive(self.surveillance.max_range())?)
-            }
+            SensorAccuracy::Cartesian { sigma } => (
+                sigma,
+                sigma / positive(self.coverage.max_range().unwrap_or(self.max_range))?,
+            ),
         };
         let noise = RangeAzimuthNoise::new_f64(
             range_sigma * range_sigma,

@@ -311,7 +311,7 @@ impl<S: Scalar> Uncertainty<S> {
 /// gains for every track (`Params = Gains<S>`), plus the error covariance
 /// that sizes its gate.
 #[derive(Debug, Clone, Copy, PartialEq)]
-pub struct FixedGainTrack<S> {
+pub struct FixedGainTrack<S: Scalar> {
     filter: Cartesian<S, 2, 2>,
     uncertainty: Uncertainty<S>,
 }

@@ -9,61 +9,46 @@ use std::path::PathBuf;
 use std::process::ExitCode;
 
 use abtrack_host_tests::experiments::{common::Context, GROUPS};
+use clap::Parser;
 
-fn usage() -> String {
-    let mut s = String::from(
-        "usage: experiments [--only GROUP[,GROUP...]] [--runs N] [--out DIR]\n\n\
-         Reproduces the papers' experiments; writes CSV/Markdown tables, SVG plots and a\n\
-         summary.md per group under DIR (default: ../results, the repository's results folder).\n\
-         --runs N overrides every group's documented Monte Carlo run count.\n\ngroups:\n",
-    );
+/// The groups' names and descriptions for `--help`.
+fn groups_help() -> String {
+    let mut s = String::from("Groups:\n");
     for g in GROUPS {
         s.push_str(&format!("  {:<16} {}\n", g.name, g.about));
     }
     s
 }
 
+/// Reproduces the papers' experiments: writes CSV/Markdown tables, SVG plots
+/// and a summary.md per group under DIR.
+#[derive(Debug, Parser)]
+#[command(name = "experiments", after_help = groups_help())]
+struct ExperimentsArgs {
+    /// Run only these groups (comma-separated).
+    #[arg(
+        long,
+        value_name = "GROUP[,GROUP...]",
+        value_delimiter = ',',
+        value_parser = clap::builder::PossibleValuesParser::new(GROUPS.iter().map(|g| g.name)),
+        hide_possible_values = true
+    )]
+    only: Vec<String>,
+    /// Override every group's documented Monte Carlo run count (at least 2).
+    #[arg(long, value_name = "N", value_parser = clap::value_parser!(u64).range(2..))]
+    runs: Option<u64>,
+    /// Output directory (default: the repository's results/).
+    #[arg(long, value_name = "DIR", default_value = concat!(env!("CARGO_MANIFEST_DIR"), "/../results"))]
+    out: PathBuf,
+}
+
 fn main() -> ExitCode {
-    let mut only: Option<Vec<String>> = None;
-    let mut ctx = Context {
-        out_dir: PathBuf::from(concat!(env!("CARGO_MANIFEST_DIR"), "/../results")),
-        runs_override: None,
+    let args = ExperimentsArgs::parse();
+    let ctx = Context {
+        out_dir: args.out,
+        runs_override: args.runs.map(|n| n as usize),
     };
-    let mut args = std::env::args().skip(1);
-    while let Some(a) = args.next() {
-        let mut value = |name: &str| args.next().ok_or_else(|| format!("{name} needs a value"));
-        let r = match a.as_str() {
-            "--only" => {
-                value("--only").map(|v| only = Some(v.split(',').map(str::to_owned).collect()))
-            }
-            "--runs" => value("--runs").and_then(|v| match v.parse::<usize>() {
-                Ok(n) if n >= 2 => {
-                    ctx.runs_override = Some(n);
-                    Ok(())
-                }
-                _ => Err(format!("--runs takes a whole number >= 2, not {v:?}")),
-            }),
-            "--out" => value("--out").map(|v| ctx.out_dir = PathBuf::from(v)),
-            "-h" | "--help" => {
-                print!("{}", usage());
-                return ExitCode::SUCCESS;
-            }
-            other => Err(format!("unknown argument {other:?}")),
-        };
-        if let Err(e) = r {
-            eprintln!("experiments: error: {e}\n\n{}", usage());
-            return ExitCode::from(2);
-        }
-    }
-    if let Some(names) = &only {
-        if let Some(bad) = names
-            .iter()
-            .find(|n| !GROUPS.iter().any(|g| g.name == n.as_str()))
-        {
-            eprintln!("experiments: error: no group named {bad:?}\n\n{}", usage());
-            return ExitCode::from(2);
-        }
-    }
+    let only = (!args.only.is_empty()).then_some(args.only);
     let mut failed = false;
     for g in GROUPS
         .iter()

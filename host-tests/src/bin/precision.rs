@@ -8,10 +8,20 @@
 //! host-tests/Cargo.toml --target host-tuple --bin precision`).
 
 use abtrack::{Fix, Scalar};
+use abtrack_host_tests::output::write_stdout;
 use abtrack_host_tests::precision::{documented_runs, measure_documented, DocumentedRun};
+use clap::Parser;
+use std::fmt::Write as _;
 use std::process::ExitCode;
 
-fn row<S: Scalar>(run: &DocumentedRun) -> Result<bool, String> {
+/// Prints the deviation of the f32 and Q32.32 filters from the independent
+/// f64 reference on the documented runs, next to the error budget (a
+/// Markdown table on stdout; exit status 1 if a run exceeds its budget).
+#[derive(Debug, Parser)]
+#[command(name = "precision")]
+struct PrecisionArgs {}
+
+fn row<S: Scalar>(out: &mut String, run: &DocumentedRun) -> Result<bool, String> {
     let report = measure_documented::<S>(run)?;
     let d = &report.deviation;
     let rms = d.rms();
@@ -42,7 +52,8 @@ fn row<S: Scalar>(run: &DocumentedRun) -> Result<bool, String> {
     if axes == 2 {
         cells.push("- | - | - | -".into());
     }
-    println!(
+    let _ = writeln!(
+        out,
         "| {} | {} | {} | {} |",
         run.name,
         S::NAME,
@@ -53,20 +64,22 @@ fn row<S: Scalar>(run: &DocumentedRun) -> Result<bool, String> {
 }
 
 fn main() -> ExitCode {
-    println!("Deviation from the f64 reference over 10 000 updates (max, RMS), error budget and budget/max.");
-    println!(
-        "x in m, v in m/s, a in m/s². Budget: abtrack::budget::error_budget_around_reference.\n"
+    PrecisionArgs::parse();
+    let mut out = String::new();
+    out.push_str("Deviation from the f64 reference over 10 000 updates (max, RMS), error budget and budget/max.\n");
+    out.push_str(
+        "x in m, v in m/s, a in m/s². Budget: abtrack::budget::error_budget_around_reference.\n\n",
     );
     let runs = documented_runs();
     for run in &runs {
-        println!("* {}: {}", run.name, run.description);
+        let _ = writeln!(out, "* {}: {}", run.name, run.description);
     }
-    println!();
-    println!("| run | numeric | max Δx | RMS Δx | budget x | ratio | max Δv | RMS Δv | budget v | ratio | max Δa | RMS Δa | budget a | ratio | within |");
-    println!("|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|");
+    out.push('\n');
+    out.push_str("| run | numeric | max Δx | RMS Δx | budget x | ratio | max Δv | RMS Δv | budget v | ratio | max Δa | RMS Δa | budget a | ratio | within |\n");
+    out.push_str("|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|\n");
     let mut ok = true;
     for run in &runs {
-        for result in [row::<f32>(run), row::<Fix>(run)] {
+        for result in [row::<f32>(&mut out, run), row::<Fix>(&mut out, run)] {
             match result {
                 Ok(within) => ok &= within,
                 Err(e) => {
@@ -76,8 +89,9 @@ fn main() -> ExitCode {
             }
         }
     }
+    let written = write_stdout("precision", out.as_bytes());
     if ok {
-        ExitCode::SUCCESS
+        written
     } else {
         eprintln!("some run exceeded its budget or could not be bounded");
         ExitCode::FAILURE

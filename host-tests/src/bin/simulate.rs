@@ -6,47 +6,63 @@
 //! simulate --help
 //! ```
 //!
+//! A closed stdout (`simulate --list | head -1`) ends it quietly with status
+//! 0.
+//!
 //! Writes `DIR/measurements.csv` (the `replay` input format) and
 //! `DIR/truth.csv`; the formats are documented in
 //! `abtrack_host_tests::scenario`. The same scenario and seed always give
 //! byte-identical files.
 
+use abtrack_host_tests::output::write_all_or_closed;
 use abtrack_host_tests::scenario::{self, SCENARIO_NAMES};
+use clap::error::ErrorKind;
+use clap::Parser;
 use std::io::Write;
 use std::path::{Path, PathBuf};
 use std::process::ExitCode;
 
-const USAGE: &str = "\
-simulate: write one seeded run of a tracking scenario as CSV
-
-USAGE:
-    simulate --scenario NAME [--seed N] --out-dir DIR
-    simulate --list
-    simulate --help
-
-OPTIONS:
-    --scenario NAME   scenario to generate (see --list)
-    --seed N          unsigned 64-bit seed of the noise, detections, clutter and
-                      row order (default 0); the truth does not depend on it
-    --out-dir DIR     directory for measurements.csv and truth.csv (created if
-                      missing; existing files are overwritten)
-    --list            list the scenarios with a one-line description
-    -h, --help        this text
-
-OUTPUT:
-    measurements.csv  t,x,y (Cartesian) or t,range,azimuth[,alt] (polar: range m,
-                      azimuth rad clockwise from +y, alt = Mode C feet, empty when
-                      not reported); several rows share t in multi-target scenarios
-    truth.csv         t,x,y,vx,vy; multi-target scenarios add a target column after
-                      t; polar scenarios add range,azimuth,range_rate,tau; scenarios
-                      with altitude add alt,own_alt (feet)
-";
+/// Writes one seeded run of a tracking scenario as CSV: DIR/measurements.csv
+/// (the replay input format) and DIR/truth.csv.
+#[derive(Debug, Parser)]
+#[command(
+    name = "simulate",
+    after_help = "Output:\n  \
+    measurements.csv  t,x,y (Cartesian) or t,range,azimuth[,alt] (polar: range m, azimuth\n                    \
+    rad clockwise from +y, alt = Mode C feet, empty when not reported);\n                    \
+    several rows share t in multi-target scenarios\n  \
+    truth.csv         t,x,y,vx,vy; multi-target scenarios add a target column after t;\n                    \
+    polar scenarios add range,azimuth,range_rate,tau; scenarios with altitude\n                    \
+    add alt,own_alt (feet)"
+)]
+struct SimulateArgs {
+    /// Scenario to generate (see --list).
+    #[arg(
+        long,
+        value_name = "NAME",
+        value_parser = clap::builder::PossibleValuesParser::new(SCENARIO_NAMES),
+        hide_possible_values = true,
+        required_unless_present = "list"
+    )]
+    scenario: Option<String>,
+    /// Seed of the noise, detections, clutter and row order; the truth does
+    /// not depend on it.
+    #[arg(long, value_name = "N", default_value_t = 0)]
+    seed: u64,
+    /// Directory for measurements.csv and truth.csv (created if missing;
+    /// existing files are overwritten).
+    #[arg(long, value_name = "DIR", required_unless_present = "list")]
+    out_dir: Option<PathBuf>,
+    /// List the scenarios with a one-line description.
+    #[arg(long)]
+    list: bool,
+}
 
 /// What went wrong, and the exit code it maps to.
-#[derive(Debug, PartialEq)]
+#[derive(Debug)]
 enum CliError {
-    /// Bad command line: exit 2.
-    Usage(String),
+    /// Bad command line: exit 2 (clap's message).
+    Usage(clap::Error),
     /// Could not write the output: exit 1.
     Io(String),
 }
@@ -58,78 +74,12 @@ impl CliError {
             CliError::Io(_) => 1,
         }
     }
-    fn message(&self) -> &str {
+    fn message(&self) -> String {
         match self {
-            CliError::Usage(m) | CliError::Io(m) => m,
+            CliError::Usage(e) => e.to_string(),
+            CliError::Io(m) => m.clone(),
         }
     }
-}
-
-#[derive(Debug, PartialEq)]
-enum Command {
-    Help,
-    List,
-    Generate {
-        scenario: String,
-        seed: u64,
-        out_dir: PathBuf,
-    },
-}
-
-fn parse(args: &[String]) -> Result<Command, CliError> {
-    let mut scenario = None;
-    let mut seed = None;
-    let mut out_dir = None;
-    let mut list = false;
-    let mut it = args.iter();
-    while let Some(arg) = it.next() {
-        let (key, inline) = match arg.split_once('=') {
-            Some((k, v)) if k.starts_with("--") => (k, Some(v.to_string())),
-            _ => (arg.as_str(), None),
-        };
-        let mut value = |name: &str| -> Result<String, CliError> {
-            match inline.clone().or_else(|| it.next().cloned()) {
-                Some(v) if !v.is_empty() => Ok(v),
-                _ => Err(CliError::Usage(format!("{name} needs a value"))),
-            }
-        };
-        match key {
-            "-h" | "--help" => return Ok(Command::Help),
-            "--list" => list = true,
-            "--scenario" => scenario = Some(value("--scenario")?),
-            "--seed" => {
-                let v = value("--seed")?;
-                seed = Some(v.parse::<u64>().map_err(|_| {
-                    CliError::Usage(format!(
-                        "--seed must be an unsigned 64-bit integer, got '{v}'"
-                    ))
-                })?);
-            }
-            "--out-dir" => out_dir = Some(PathBuf::from(value("--out-dir")?)),
-            other => {
-                return Err(CliError::Usage(format!(
-                    "unknown argument '{other}' (try --help)"
-                )))
-            }
-        }
-    }
-    if list {
-        return Ok(Command::List);
-    }
-    let scenario = scenario
-        .ok_or_else(|| CliError::Usage("--scenario NAME is required (see --list)".into()))?;
-    if scenario::info(&scenario).is_none() {
-        return Err(CliError::Usage(format!(
-            "unknown scenario '{scenario}' (known: {})",
-            SCENARIO_NAMES.join(", ")
-        )));
-    }
-    let out_dir = out_dir.ok_or_else(|| CliError::Usage("--out-dir DIR is required".into()))?;
-    Ok(Command::Generate {
-        scenario,
-        seed: seed.unwrap_or(0),
-        out_dir,
-    })
 }
 
 fn list_text() -> String {
@@ -145,38 +95,52 @@ fn write_file(path: &Path, contents: &str) -> Result<(), CliError> {
         .map_err(|e| CliError::Io(format!("cannot write {}: {e}", path.display())))
 }
 
+/// Writes `text` to `out`; a closed pipe is not an error (the reader took
+/// what it wanted).
+fn emit(out: &mut dyn Write, text: &str) -> Result<(), CliError> {
+    write_all_or_closed(out, text.as_bytes())
+        .map(|_| ())
+        .map_err(|e| CliError::Io(format!("cannot write to stdout: {e}")))
+}
+
 /// Runs the command line `args` (without the program name), writing normal
 /// output to `out`.
 fn run(args: &[String], out: &mut dyn Write) -> Result<(), CliError> {
-    let io = |e: std::io::Error| CliError::Io(format!("cannot write to stdout: {e}"));
-    match parse(args)? {
-        Command::Help => out.write_all(USAGE.as_bytes()).map_err(io),
-        Command::List => out.write_all(list_text().as_bytes()).map_err(io),
-        Command::Generate {
-            scenario,
-            seed,
-            out_dir,
-        } => {
-            let run =
-                scenario::generate(&scenario, seed).map_err(|e| CliError::Usage(e.to_string()))?;
-            std::fs::create_dir_all(&out_dir)
-                .map_err(|e| CliError::Io(format!("cannot create {}: {e}", out_dir.display())))?;
-            let measurements = out_dir.join("measurements.csv");
-            let truth = out_dir.join("truth.csv");
-            write_file(&measurements, &run.measurements_csv())?;
-            write_file(&truth, &run.truth_csv())?;
-            writeln!(
-                out,
-                "{scenario} seed {seed}: {} scans, {} measurements -> {}, {} truth rows -> {}",
-                run.scans.len(),
-                run.measurements().count(),
-                measurements.display(),
-                run.truth().count(),
-                truth.display()
-            )
-            .map_err(io)
+    let parsed = match SimulateArgs::try_parse_from(
+        std::iter::once("simulate".to_string()).chain(args.iter().cloned()),
+    ) {
+        Ok(p) => p,
+        Err(e) if matches!(e.kind(), ErrorKind::DisplayHelp | ErrorKind::DisplayVersion) => {
+            return emit(out, &e.render().to_string());
         }
+        Err(e) => return Err(CliError::Usage(e)),
+    };
+    if parsed.list {
+        return emit(out, &list_text());
     }
+    let (Some(scenario), Some(out_dir)) = (parsed.scenario, parsed.out_dir) else {
+        unreachable!("clap requires --scenario and --out-dir without --list")
+    };
+    let seed = parsed.seed;
+    let run = scenario::generate(&scenario, seed)
+        .map_err(|e| CliError::Io(format!("{scenario}: {e}")))?;
+    std::fs::create_dir_all(&out_dir)
+        .map_err(|e| CliError::Io(format!("cannot create {}: {e}", out_dir.display())))?;
+    let measurements = out_dir.join("measurements.csv");
+    let truth = out_dir.join("truth.csv");
+    write_file(&measurements, &run.measurements_csv())?;
+    write_file(&truth, &run.truth_csv())?;
+    emit(
+        out,
+        &format!(
+            "{scenario} seed {seed}: {} scans, {} measurements -> {}, {} truth rows -> {}\n",
+            run.scans.len(),
+            run.measurements().count(),
+            measurements.display(),
+            run.truth().count(),
+            truth.display()
+        ),
+    )
 }
 
 fn main() -> ExitCode {
@@ -184,6 +148,7 @@ fn main() -> ExitCode {
     let stdout = std::io::stdout();
     match run(&args, &mut stdout.lock()) {
         Ok(()) => ExitCode::SUCCESS,
+        Err(CliError::Usage(e)) => e.exit(),
         Err(e) => {
             eprintln!("simulate: error: {}", e.message());
             ExitCode::from(e.exit_code())
@@ -316,7 +281,8 @@ mod tests {
         assert_eq!(text.lines().count(), SCENARIO_NAMES.len());
         let mut out = Vec::new();
         run(&args(&["--help"]), &mut out).unwrap();
-        assert!(String::from_utf8(out).unwrap().contains("--out-dir DIR"));
+        let help = String::from_utf8(out).unwrap();
+        assert!(help.contains("--out-dir <DIR>"), "{help}");
     }
 
     #[test]
@@ -325,28 +291,30 @@ mod tests {
         let e = err(&["--scenario", "nope", "--out-dir", "x"]);
         assert_eq!(e.exit_code(), 2);
         assert!(
-            e.message().contains("unknown scenario 'nope'") && e.message().contains("li-maneuver")
+            e.message().contains("invalid value 'nope'") && e.message().contains("--scenario"),
+            "{}",
+            e.message()
         );
-        assert!(err(&[
+        let e = err(&[
             "--scenario",
             "li-maneuver",
             "--seed",
-            "-1",
+            "x1",
             "--out-dir",
-            "x"
-        ])
-        .message()
-        .contains("--seed must be an unsigned"));
+            "x",
+        ]);
+        assert_eq!(e.exit_code(), 2);
+        assert!(e.message().contains("--seed"), "{}", e.message());
         assert!(err(&["--scenario", "li-maneuver"])
             .message()
-            .contains("--out-dir DIR is required"));
+            .contains("--out-dir <DIR>"));
         assert!(err(&["--out-dir", "x"])
             .message()
-            .contains("--scenario NAME is required"));
-        assert!(err(&["--seed"]).message().contains("--seed needs a value"));
+            .contains("--scenario <NAME>"));
+        assert!(err(&["--seed"]).message().contains("--seed <N>"));
         assert!(err(&["--frobnicate"])
             .message()
-            .contains("unknown argument '--frobnicate'"));
+            .contains("unexpected argument '--frobnicate'"));
         assert!(err(&[]).message().contains("--scenario"));
         // --key=value form.
         let d = TempDir::new("eq");

@@ -56,7 +56,7 @@ pub const GROUPS: &[Group] = &[
     },
     Group {
         name: tcas_advisory::NAME,
-        about: "TCAS converging encounter: estimated vs true tau and advisory timeline (issue 4)",
+        about: "TCAS converging encounter: estimated vs true tau and advisory timeline",
         run: tcas_advisory::run,
     },
 ];

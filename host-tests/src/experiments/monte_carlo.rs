@@ -29,6 +29,8 @@
 
 use std::path::Path;
 
+use rayon::prelude::*;
+
 use abtrack::bank::{BankConfig, BankOutcome, CartesianBank};
 use abtrack::filter::{Phase, UpdateOutcome};
 use abtrack::gain::spec::ScheduleSpec;
@@ -554,7 +556,8 @@ fn run_one(
 }
 
 /// Runs every method on `runs` Monte Carlo runs of `scenario` (seeds
-/// `monte_carlo_seed(base_seed, 0..runs)`), spread over the machine's cores.
+/// `monte_carlo_seed(base_seed, 0..runs)`), spread over the cores by rayon
+/// (its global pool, or the pool `run` is called in).
 pub fn run(
     scenario: &str,
     base_seed: u64,
@@ -578,32 +581,13 @@ pub fn run(
             .map_err(|e| e.to_string())
     };
     let sample = generate(0)?;
-    let workers = std::thread::available_parallelism()
-        .map_or(1, |n| n.get())
-        .clamp(1, runs);
-    let per_run: Vec<Result<Vec<Vec<StepRecord>>, String>> = std::thread::scope(|scope| {
-        let handles: Vec<_> = (0..workers)
-            .map(|w| {
-                let truth = &truth;
-                let generate = &generate;
-                scope.spawn(move || {
-                    (w..runs)
-                        .step_by(workers)
-                        .map(|r| (r, generate(r).and_then(|run| run_one(methods, &run, truth))))
-                        .collect::<Vec<_>>()
-                })
-            })
-            .collect();
-        let mut all: Vec<(usize, Result<_, String>)> = handles
-            .into_iter()
-            .flat_map(|h| {
-                h.join()
-                    .unwrap_or_else(|_| vec![(0, Err("worker panicked".into()))])
-            })
-            .collect();
-        all.sort_by_key(|(r, _)| *r);
-        all.into_iter().map(|(_, x)| x).collect()
-    });
+    // Each run depends only on its own seed, and rayon's indexed collect
+    // keeps run order: the results are the same, bit for bit, on any number
+    // of threads (`tests/monte_carlo.rs`).
+    let per_run: Vec<Result<Vec<Vec<StepRecord>>, String>> = (0..runs)
+        .into_par_iter()
+        .map(|r| generate(r).and_then(|run| run_one(methods, &run, &truth)))
+        .collect();
     let mut results: Vec<MethodResult> = methods
         .iter()
         .map(|m| MethodResult {

@@ -38,7 +38,7 @@ use crate::tracking::{
 
 pub const NAME: &str = "multi-target";
 pub const ABOUT: &str =
-    "issue 5: default tracker on two-crossing, parallel-200m, tcas-30, dense (f64/f32/fixed)";
+    "default tracker on two-crossing, parallel-200m, tcas-30, dense (f64/f32/fixed)";
 
 /// Base seed of the group's Monte Carlo runs (run r uses
 /// `monte_carlo_seed(BASE_SEED, r)`).

@@ -30,7 +30,7 @@ use abtrack::{Gains, Scalar};
 pub fn representation_bound(name: &str, scale: f64, steps: usize) -> f64 {
     let eps = match name {
         "f32" => 2f64.powi(-24),
-        "fixed" => 2f64.powi(-32),
+        "q32" => 2f64.powi(-32),
         _ => 2f64.powi(-53),
     };
     8.0 * eps * scale.max(1.0) * steps as f64

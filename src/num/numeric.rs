@@ -1,0 +1,330 @@
+//! Number systems with typed quantities ([`Numeric`]): what a filter computes
+//! with, one associated type per physical quantity, so that a fixed-point
+//! system can give each quantity its own format (see
+//! `docs/numerics-fixed-point.md`) while `f64`, `f32` and Q32.32 use one type
+//! for all of them (the blanket implementation over [`Scalar`]).
+//!
+//! # The guarded hot path
+//!
+//! The per-update arithmetic of the filters goes through [`AddProduct`] and
+//! [`SubGuarded`] with a [`Guard`] of the number system: `q + a·b` and
+//! `a − b`, each rounded once. The guard records what the results need to be
+//! trusted, so the filter checks validity once, after computing everything:
+//!
+//! * floats: NaN and ±∞ are sticky, so the guard sums the outputs
+//!   ([`Checked::check_output`]) and [`Guard::passed`] tests `s − s == 0`,
+//!   true exactly when the sum is finite. A finite sum of at most eight
+//!   outputs, each of magnitude below `MAX/8`, cannot overflow, so the test
+//!   refuses exactly the updates with a non-finite output, and those with an
+//!   output beyond `MAX/8` (3.7·10³⁷ for `f32`, far outside any envelope),
+//!   which are refused as saturated;
+//! * Q32.32 ([`crate::Fix`]): a sum of valid values near 2³¹ could
+//!   saturate, so its guard keeps zero while every output is valid and a
+//!   sentinel otherwise ([`Scalar::accumulate_check`]);
+//! * the fast fixed point ([`super::fixed32`]): products and sums are formed
+//!   in 64 bits and narrowed once; a result that does not fit its format,
+//!   or an input that is a saturation sentinel ([`Checked::check_input`]),
+//!   raises the guard's flag. Nothing is sticky there, which is why every
+//!   operation reports to the guard.
+
+use core::fmt;
+use core::ops::{Add, Div, Mul, Neg, Sub};
+
+use super::{NumError, Scalar};
+
+/// `defmt::Format` when the `defmt` feature is on, nothing otherwise: lets
+/// the quantity types carry the bound the derived `Format` impls need.
+#[cfg(feature = "defmt")]
+pub trait MaybeFormat: defmt::Format {}
+#[cfg(feature = "defmt")]
+impl<T: defmt::Format> MaybeFormat for T {}
+/// See the `defmt` variant.
+#[cfg(not(feature = "defmt"))]
+pub trait MaybeFormat {}
+#[cfg(not(feature = "defmt"))]
+impl<T> MaybeFormat for T {}
+
+/// A value of one physical quantity in one number system (a position, a
+/// speed, a gain, ...). Arithmetic never panics and never wraps: a result
+/// outside the representable range is an invalid value ([`Self::is_valid`]),
+/// which propagates through later operators (it is sticky).
+pub trait Quantity:
+    Copy
+    + Default
+    + PartialEq
+    + PartialOrd
+    + fmt::Debug
+    + Send
+    + Sync
+    + 'static
+    + MaybeFormat
+    + Add<Output = Self>
+    + Sub<Output = Self>
+    + Neg<Output = Self>
+{
+    const ZERO: Self;
+
+    /// Rounding model of this quantity, used by the error budget
+    /// ([`crate::budget`]): a result rounded to this quantity errs by at most
+    /// `UNIT_ROUNDOFF·|exact| + ABS_RESOLUTION`, a conversion from `f64` by at
+    /// most `UNIT_ROUNDOFF·|v| + ABS_RESOLUTION/2`, and a sum of two values of
+    /// this quantity by at most `UNIT_ROUNDOFF·|exact|`.
+    const UNIT_ROUNDOFF: f64;
+    /// See [`Self::UNIT_ROUNDOFF`].
+    const ABS_RESOLUTION: f64;
+
+    /// Converts an outside value (SI units), refusing NaN, infinities and
+    /// values beyond the representable range.
+    fn try_from_f64(v: f64) -> Result<Self, NumError>;
+
+    /// Converts a constant, rounding to nearest; out-of-range values become
+    /// invalid values.
+    fn from_f64_lossy(v: f64) -> Self;
+
+    /// The value in SI units (an invalid value gives ±∞ or NaN).
+    fn to_f64(self) -> f64;
+
+    /// False for NaN, ±∞ and the fixed-point saturation sentinels.
+    fn is_valid(self) -> bool;
+
+    fn abs(self) -> Self;
+
+    /// Half the value (exact in floating formats, rounded to nearest in
+    /// fixed formats).
+    fn half(self) -> Self;
+
+    /// The smaller of two valid values.
+    #[inline]
+    fn min_of(self, other: Self) -> Self {
+        if other < self {
+            other
+        } else {
+            self
+        }
+    }
+
+    /// The larger of two valid values.
+    #[inline]
+    fn max_of(self, other: Self) -> Self {
+        if other > self {
+            other
+        } else {
+            self
+        }
+    }
+}
+
+/// A dimensionless real number with a wide range: gains, ratios, sines.
+pub trait Real: Quantity + Mul<Output = Self> + Div<Output = Self> {
+    const ONE: Self;
+
+    /// `numerator / denominator`, rounded once (invalid for a zero
+    /// denominator). Used for the gain formulas of integer counts.
+    fn from_ratio(numerator: u64, denominator: u64) -> Self;
+
+    /// Square root; invalid for a negative argument.
+    fn sqrt(self) -> Self;
+}
+
+/// The hot path's validity check (see the module docs).
+pub trait Guard: Default + fmt::Debug {
+    /// True when every value reported to the guard is valid.
+    fn passed(&self) -> bool;
+}
+
+/// How a value reports itself to its number system's [`Guard`].
+pub trait Checked<G> {
+    /// An input of the computation (a measurement): fixed point flags a
+    /// saturation sentinel; floats need nothing (every input reaches an
+    /// output, and NaN/∞ are sticky).
+    fn check_input(self, guard: &mut G);
+    /// A result that will be stored or returned: floats add it to the
+    /// guard's sum; fixed point needs nothing (its operations report).
+    fn check_output(self, guard: &mut G);
+}
+
+/// `self + a·b`, rounded once, with overflow reported to the guard `G`.
+pub trait AddProduct<A, B, G>: Sized {
+    fn add_product(self, a: A, b: B, guard: &mut G) -> Self;
+}
+
+/// `self − b`, with overflow reported to the guard `G`.
+pub trait SubGuarded<G>: Sized {
+    fn sub_guarded(self, b: Self, guard: &mut G) -> Self;
+}
+
+/// A number system: one type per quantity the filters use, and the
+/// operations between them (the bounds below are the whole algebra a
+/// generic filter may use).
+///
+/// `f64`, `f32` and Q32.32 implement it with every quantity the type itself
+/// (the blanket implementation over [`Scalar`]); the fast fixed point
+/// ([`super::fixed32::Fixed32`]) with a format per quantity.
+pub trait Numeric:
+    Copy + Default + fmt::Debug + PartialEq + Send + Sync + 'static + MaybeFormat
+{
+    /// Short name for reports: "f64", "f32", "q32", "fixed".
+    const NAME: &'static str;
+
+    /// Metres (feet where a tracker works in feet): positions, residuals.
+    type Length: Quantity
+        + Checked<Self::Guard>
+        + SubGuarded<Self::Guard>
+        + AddProduct<Self::Speed, Self::Interval, Self::Guard>
+        + AddProduct<Self::Acceleration, Self::IntervalSquared, Self::Guard>
+        + AddProduct<Self::Gain, Self::Length, Self::Guard>
+        + Div<Self::Interval, Output = Self::Speed>
+        + Div<Self::Length, Output = Self::Ratio>;
+    /// Metres per second.
+    type Speed: Quantity
+        + Checked<Self::Guard>
+        + AddProduct<Self::Acceleration, Self::Interval, Self::Guard>
+        + AddProduct<Self::Rate, Self::Length, Self::Guard>
+        + Mul<Self::Interval, Output = Self::Length>;
+    /// Metres per second².
+    type Acceleration: Quantity
+        + Checked<Self::Guard>
+        + AddProduct<Self::RateSquared, Self::Length, Self::Guard>
+        + Mul<Self::Interval, Output = Self::Speed>
+        + Mul<Self::IntervalSquared, Output = Self::Length>;
+    /// Seconds: the interval T between updates.
+    type Interval: Quantity + Mul<Self::Interval, Output = Self::IntervalSquared>;
+    /// Seconds², e.g. T²/2 of the αβγ prediction.
+    type IntervalSquared: Quantity;
+    /// Dimensionless: the gains α, β, γ and ratios. `From<Length>` gives a
+    /// length's number of metres (for sums of squares, which would
+    /// overflow a length format).
+    type Ratio: Real
+        + From<Self::Length>
+        + Mul<Self::Length, Output = Self::Length>
+        + Div<Self::Interval, Output = Self::Rate>
+        + Div<Self::IntervalSquared, Output = Self::RateSquared>;
+    /// A gain of the per-update path, |g| < 8, where a fixed format is
+    /// enough (the smoothing gain α, in (0, 2)); [`Self::gain`] converts.
+    type Gain: Quantity;
+    /// Per second: the velocity gain β/T.
+    type Rate: Quantity + Mul<Self::Length, Output = Self::Speed>;
+    /// Per second²: the acceleration gain γ/(2T²).
+    type RateSquared: Quantity + Mul<Self::Length, Output = Self::Acceleration>;
+    /// The hot path's validity check (module docs).
+    type Guard: Guard;
+
+    /// A [`Self::Ratio`] as a [`Self::Gain`] (invalid beyond the gain's
+    /// range).
+    fn gain(r: Self::Ratio) -> Self::Gain;
+
+    /// √(a² + b²), never overflowing on the way (invalid arguments give an
+    /// invalid result).
+    fn hypot(a: Self::Length, b: Self::Length) -> Self::Length;
+}
+
+// ---------------------------------------------------------------------------
+// f64, f32 and Q32.32: every quantity is the scalar type itself.
+
+/// The [`Guard`] of a [`Scalar`]: the sum of the outputs (module docs).
+#[derive(Debug, Clone, Copy, Default)]
+pub struct ScalarGuard<S> {
+    sum: S,
+}
+
+impl<S: Scalar> Guard for ScalarGuard<S> {
+    #[inline]
+    fn passed(&self) -> bool {
+        self.sum - self.sum == S::ZERO
+    }
+}
+
+impl<S: Scalar> Checked<ScalarGuard<S>> for S {
+    #[inline]
+    fn check_input(self, _guard: &mut ScalarGuard<S>) {}
+    #[inline]
+    fn check_output(self, guard: &mut ScalarGuard<S>) {
+        guard.sum = S::accumulate_check(guard.sum, self);
+    }
+}
+
+impl<S: Scalar> AddProduct<S, S, ScalarGuard<S>> for S {
+    #[inline]
+    fn add_product(self, a: S, b: S, _guard: &mut ScalarGuard<S>) -> S {
+        self + a * b
+    }
+}
+
+impl<S: Scalar> SubGuarded<ScalarGuard<S>> for S {
+    #[inline]
+    fn sub_guarded(self, b: S, _guard: &mut ScalarGuard<S>) -> S {
+        self - b
+    }
+}
+
+impl<S: Scalar> Quantity for S {
+    const ZERO: Self = <S as Scalar>::ZERO;
+    const UNIT_ROUNDOFF: f64 = <S as Scalar>::UNIT_ROUNDOFF;
+    const ABS_RESOLUTION: f64 = <S as Scalar>::ABS_RESOLUTION;
+
+    #[inline]
+    fn try_from_f64(v: f64) -> Result<Self, NumError> {
+        <S as Scalar>::try_from_f64(v)
+    }
+    #[inline]
+    fn from_f64_lossy(v: f64) -> Self {
+        <S as Scalar>::from_f64_lossy(v)
+    }
+    #[inline]
+    fn to_f64(self) -> f64 {
+        <S as Scalar>::to_f64(self)
+    }
+    #[inline]
+    fn is_valid(self) -> bool {
+        <S as Scalar>::is_valid(self)
+    }
+    #[inline]
+    fn abs(self) -> Self {
+        <S as Scalar>::abs(self)
+    }
+    #[inline]
+    fn half(self) -> Self {
+        self * <S as Scalar>::from_f64_lossy(0.5)
+    }
+}
+
+impl<S: Scalar> Real for S {
+    const ONE: Self = <S as Scalar>::ONE;
+
+    /// Rounded once in `f64`, then to `S` (exact for `f64`).
+    fn from_ratio(numerator: u64, denominator: u64) -> Self {
+        if denominator == 0 {
+            return <S as Scalar>::from_f64_lossy(f64::NAN);
+        }
+        <S as Scalar>::from_f64_lossy(numerator as f64 / denominator as f64)
+    }
+
+    #[inline]
+    fn sqrt(self) -> Self {
+        <S as Scalar>::sqrt(self)
+    }
+}
+
+impl<S: Scalar> Numeric for S {
+    const NAME: &'static str = <S as Scalar>::NAME;
+    type Length = S;
+    type Speed = S;
+    type Acceleration = S;
+    type Interval = S;
+    type IntervalSquared = S;
+    type Ratio = S;
+    type Gain = S;
+    type Rate = S;
+    type RateSquared = S;
+    type Guard = ScalarGuard<S>;
+
+    #[inline]
+    fn gain(r: S) -> S {
+        r
+    }
+
+    #[inline]
+    fn hypot(a: S, b: S) -> S {
+        super::hypot(a, b)
+    }
+}
