@@ -84,6 +84,11 @@ report() {
     local target=$1 what=$2 log=$3 used available
     read -r used available < <(sed -n 's/.*stack: \([0-9]*\) of \([0-9]*\) bytes used.*/\1 \2/p' "$log" | tail -n 1) || true
     if [ -z "${used:-}" ]; then
+        # The benchmark reports in its CSV lines.
+        used=$(sed -n 's/.*bench-meta,.*,stack_bytes,\([0-9]*\).*/\1/p' "$log" | tail -n 1)
+        available=$(sed -n 's/.*bench-meta,.*,stack_available_bytes,\([0-9]*\).*/\1/p' "$log" | tail -n 1)
+    fi
+    if [ -z "${used:-}" ]; then
         printf '%-22s %-11s %-34s %s\n' "$target" "$(board_for_target "$target")" "$what" "no stack line in the output"
         failures=$((failures + 1))
         return
@@ -120,7 +125,7 @@ for t in "${targets[@]}"; do
     fi
     if [ -n "$all" ]; then
         for bin in selftest selftest-tracking bench; do
-            cargo run --quiet --release --target "$t" --bin "$bin" >"$log" 2>&1 || true
+            cargo run --quiet --release --target "$t" --features bench-anchors --bin "$bin" >"$log" 2>&1 || true
             report "$t" "$bin (deepest)" "$log"
         done
     fi

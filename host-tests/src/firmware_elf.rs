@@ -38,12 +38,20 @@ pub fn demangle(symbol: &str) -> String {
     format!("{:#}", rustc_demangle::demangle(symbol))
 }
 
-/// The panic calls in `llvm-objdump -d` output (mangled names): every branch
-/// (`bl`, `b`, `b.w`, conditional forms, `blx`) whose target symbol is a
-/// panic symbol, made from a function that is not one itself (the
-/// machinery calling itself is not a new path).
-pub fn panic_calls(disassembly: &str) -> Vec<PanicCall> {
-    let mut calls = Vec::new();
+/// A branch (`bl`, `b`, `b.w`, conditional forms, `blx`) to a symbol's start,
+/// from `llvm-objdump -d` output; names demangled.
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub struct Branch {
+    pub address: u64,
+    /// The function holding the branch.
+    pub function: String,
+    pub target: String,
+}
+
+/// Every branch to a symbol's start in `llvm-objdump -d` output (mangled
+/// names), with the function it is in.
+pub fn branches(disassembly: &str) -> Vec<Branch> {
+    let mut found = Vec::new();
     let mut function: Option<String> = None;
     for line in disassembly.lines() {
         if let Some(name) = function_header(line) {
@@ -54,26 +62,33 @@ pub fn panic_calls(disassembly: &str) -> Vec<PanicCall> {
             }
             continue;
         }
-        let Some(current) = function.as_deref() else {
+        let (Some(current), Some((address, mnemonic, target))) = (&function, branch(line)) else {
             continue;
         };
-        if is_panic_symbol(current) {
-            continue;
+        if mnemonic.starts_with('b') {
+            found.push(Branch {
+                address,
+                function: current.clone(),
+                target: demangle(target),
+            });
         }
-        let Some((address, mnemonic, target)) = branch(line) else {
-            continue;
-        };
-        let target = demangle(target);
-        if !mnemonic.starts_with('b') || !is_panic_symbol(&target) {
-            continue;
-        }
-        calls.push(PanicCall {
-            address,
-            function: current.to_string(),
-            target,
-        });
     }
-    calls
+    found
+}
+
+/// The panic calls among `branches`: every branch whose target is a panic
+/// symbol, made from a function that is not one itself (the machinery
+/// calling itself is not a new path).
+pub fn panic_calls(branches: &[Branch]) -> Vec<PanicCall> {
+    branches
+        .iter()
+        .filter(|b| !is_panic_symbol(&b.function) && is_panic_symbol(&b.target))
+        .map(|b| PanicCall {
+            address: b.address,
+            function: b.function.clone(),
+            target: b.target.clone(),
+        })
+        .collect()
 }
 
 /// Arm ELF mapping symbols (`$a`, `$t`, `$d`, `$x`, maybe with `.N`): they
@@ -84,26 +99,13 @@ fn is_mapping_symbol(name: &str) -> bool {
 }
 
 /// The functions that branch to `callee` (demangled, as [`PanicCall`]
-/// names it), from `llvm-objdump -d` output.
-pub fn callers_of(disassembly: &str, callee: &str) -> BTreeSet<String> {
-    let mut callers = BTreeSet::new();
-    let mut function: Option<String> = None;
-    for line in disassembly.lines() {
-        if let Some(name) = function_header(line) {
-            if !is_mapping_symbol(name) {
-                function = Some(demangle(name));
-            }
-            continue;
-        }
-        let (Some(current), Some((_, mnemonic, target))) = (function.as_deref(), branch(line))
-        else {
-            continue;
-        };
-        if mnemonic.starts_with('b') && current != callee && demangle(target) == callee {
-            callers.insert(current.to_string());
-        }
-    }
-    callers
+/// names it).
+pub fn callers_of(branches: &[Branch], callee: &str) -> BTreeSet<String> {
+    branches
+        .iter()
+        .filter(|b| b.function != callee && b.target == callee)
+        .map(|b| b.function.clone())
+        .collect()
 }
 
 /// `00001234 <name>:` → `name`.
@@ -115,8 +117,10 @@ fn function_header(line: &str) -> Option<&str> {
     rest.strip_prefix('<')?.strip_suffix(">:")
 }
 
-/// `    1240:      bl  0x1000 <name+0x4>` → (0x1240, "bl", "name"): an
-/// instruction whose operand names a symbol.
+/// `    1240:      bl  0x1000 <name>` → (0x1240, "bl", "name"): an
+/// instruction whose operand is a symbol's start. An operand inside a
+/// function (`<name+0x4>`) is not a call: at best a branch within it, at
+/// worst padding or data decoded as an instruction.
 fn branch(line: &str) -> Option<(u64, &str, &str)> {
     let (address, rest) = line.trim_start().split_once(':')?;
     let address = u64::from_str_radix(address, 16).ok()?;
@@ -125,11 +129,9 @@ fn branch(line: &str) -> Option<(u64, &str, &str)> {
     let open = rest.find('<')?;
     let close = rest.rfind('>')?;
     let symbol = rest.get(open + 1..close)?;
-    // Strip a `+0x..` offset.
-    let symbol = match symbol.rfind("+0x") {
-        Some(i) => symbol.get(..i)?,
-        None => symbol,
-    };
+    if symbol.contains("+0x") {
+        return None;
+    }
     Some((address, mnemonic, symbol))
 }
 
@@ -186,7 +188,19 @@ fn shorten_path(location: &str, root: &str) -> String {
         .strip_prefix(root)
         .and_then(|r| r.strip_prefix('/'))
     {
-        return relative.to_string();
+        // The firmware packages name their sources from boards/<package>/
+        // (`boards/qemu/../../src/main.rs`): drop the detour.
+        let mut parts: Vec<&str> = Vec::new();
+        for part in relative.split('/') {
+            match part {
+                ".." => {
+                    parts.pop();
+                }
+                "." => {}
+                _ => parts.push(part),
+            }
+        }
+        return parts.join("/");
     }
     if let Some((_, tail)) = location.split_once("/registry/src/") {
         // Drop the registry's index directory (`index.crates.io-…/`).
@@ -391,19 +405,18 @@ pub fn find_llvm_tool(name: &str) -> Option<PathBuf> {
     })
 }
 
-/// Runs a tool and returns its standard output, or a one-line error.
-pub fn run_tool(tool: &Path, args: &[&str], elf: &Path) -> Result<String, String> {
+/// Runs a tool with `args` and returns its standard output, or a one-line
+/// error.
+pub fn run_tool(tool: &Path, args: &[&str]) -> Result<String, String> {
     let output = Command::new(tool)
         .args(args)
-        .arg(elf)
         .output()
         .map_err(|e| format!("cannot run {}: {e}", tool.display()))?;
     if !output.status.success() {
         return Err(format!(
-            "{} {} {} failed: {}",
+            "{} {} failed: {}",
             tool.display(),
             args.join(" "),
-            elf.display(),
             String::from_utf8_lossy(&output.stderr).trim()
         ));
     }

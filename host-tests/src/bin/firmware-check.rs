@@ -20,8 +20,8 @@ use std::path::{Path, PathBuf};
 use std::process::ExitCode;
 
 use abtrack_host_tests::firmware_elf::{
-    callers_of, check_layout, find_llvm_tool, panic_calls, panic_symbols, parse_sections,
-    parse_symbolizer, run_tool, SourceFrame,
+    branches, callers_of, check_layout, find_llvm_tool, panic_calls, panic_symbols, parse_sections,
+    parse_symbolizer, run_tool, Branch, SourceFrame,
 };
 
 const USAGE: &str = "usage: firmware-check panics <elf>...\n       firmware-check layout --ram-origin <hex address> <elf>...";
@@ -66,9 +66,13 @@ fn panics(elves: &[String]) -> Result<bool, String> {
     let mut clean = true;
     for elf in elves {
         let elf = Path::new(elf);
-        let disassembly = run_tool(&objdump, &["-d", "--no-show-raw-insn"], elf)?;
-        let calls = panic_calls(&disassembly);
-        let symbols = panic_symbols(&run_tool(&nm, &["--defined-only"], elf)?);
+        let elf_arg = elf.to_string_lossy();
+        let branches = branches(&run_tool(
+            &objdump,
+            &["-d", "--no-show-raw-insn", &elf_arg],
+        )?);
+        let calls = panic_calls(&branches);
+        let symbols = panic_symbols(&run_tool(&nm, &["--defined-only", &elf_arg])?);
         if calls.is_empty() && symbols.is_empty() {
             println!("{}: no panic calls", elf.display());
             continue;
@@ -87,7 +91,7 @@ fn panics(elves: &[String]) -> Result<bool, String> {
         let elf_str = elf.to_string_lossy();
         args.push(&elf_str);
         args.extend(addresses.iter().map(String::as_str));
-        let symbolized = run_symbolizer(&symbolizer, &args)?;
+        let symbolized = run_tool(&symbolizer, &args)?;
         let frames = parse_symbolizer(&symbolized, &root);
         println!(
             "{}: {} call(s) into the panic machinery",
@@ -116,7 +120,7 @@ fn panics(elves: &[String]) -> Result<bool, String> {
                 None => {
                     // Code of core or a dependency, not inlined into ours:
                     // name who calls it.
-                    let callers = outside_callers(&disassembly, &call.function);
+                    let callers = outside_callers(&branches, &call.function);
                     if !callers.is_empty() {
                         println!("      called from {}", callers.join(", "));
                     }
@@ -150,14 +154,14 @@ fn is_rust_library(function: &str) -> bool {
 
 /// The nearest callers of `function` outside Rust's own libraries, walking
 /// up through callers that are in them (a few levels at most).
-fn outside_callers(disassembly: &str, function: &str) -> Vec<String> {
+fn outside_callers(branches: &[Branch], function: &str) -> Vec<String> {
     let mut visited = BTreeSet::from([function.to_string()]);
     let mut frontier = vec![function.to_string()];
     let mut found = BTreeSet::new();
     for _ in 0..4 {
         let mut next = Vec::new();
         for f in &frontier {
-            for caller in callers_of(disassembly, f) {
+            for caller in callers_of(branches, f) {
                 if !visited.insert(caller.clone()) {
                     continue;
                 }
@@ -176,22 +180,6 @@ fn outside_callers(disassembly: &str, function: &str) -> Vec<String> {
     found.into_iter().collect()
 }
 
-/// llvm-symbolizer takes the addresses as arguments (after the options).
-fn run_symbolizer(symbolizer: &Path, args: &[&str]) -> Result<String, String> {
-    let output = std::process::Command::new(symbolizer)
-        .args(args)
-        .output()
-        .map_err(|e| format!("cannot run {}: {e}", symbolizer.display()))?;
-    if !output.status.success() {
-        return Err(format!(
-            "{} failed: {}",
-            symbolizer.display(),
-            String::from_utf8_lossy(&output.stderr).trim()
-        ));
-    }
-    String::from_utf8(output.stdout).map_err(|e| e.to_string())
-}
-
 /// True if every ELF has the protected layout.
 fn layout(args: &[String]) -> Result<bool, String> {
     let [flag, origin, elves @ ..] = args else {
@@ -207,8 +195,9 @@ fn layout(args: &[String]) -> Result<bool, String> {
     let mut ok = true;
     for elf in elves {
         let elf = Path::new(elf);
-        let sections = parse_sections(&run_tool(&objdump, &["-h"], elf)?);
-        let symbols = run_tool(&nm, &[], elf)?;
+        let elf_arg = elf.to_string_lossy();
+        let sections = parse_sections(&run_tool(&objdump, &["-h", &elf_arg])?);
+        let symbols = run_tool(&nm, &[&elf_arg])?;
         match check_layout(&symbols, &sections, ram_origin) {
             Ok(l) => {
                 let statics = match l.statics {
