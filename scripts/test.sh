@@ -43,17 +43,19 @@ failures=0
 log_dir=$(mktemp -d "${TMPDIR:-/tmp}/abtrack-test.XXXXXX")
 trap 'rm -rf "$log_dir"' EXIT
 
-# step <name> <command...>: runs one step, records PASS/FAIL.
+# step <name> <command...>: runs one step, records PASS/FAIL and its wall
+# time.
 step() {
     local name=$1
     shift
     say "== $name"
-    local status=0
+    local status=0 start=$SECONDS
     "$@" || status=$?
+    local took=$((SECONDS - start))
     if [ "$status" -eq 0 ]; then
-        results+=("PASS  $name")
+        results+=("PASS  $name (${took} s)")
     else
-        results+=("FAIL  $name (exit status $status)")
+        results+=("FAIL  $name (exit status $status, ${took} s)")
         failures=$((failures + 1))
     fi
 }
@@ -152,7 +154,7 @@ for t in "${ABTRACK_TARGETS[@]}"; do
     step "library alone for $t" cargo build --release --lib --no-default-features --target "$t"
 done
 # The library's no-panic lints (Cargo.toml [lints.clippy], .clippy.toml).
-# Off until the library's rewrite removes its violations (150 when the lints
+# Off until the library's rewrite removes its violations (152 when the lints
 # were added: indexing in budget.rs, integer arithmetic elsewhere; see
 # docs/safety.md); switch it on then:
 # step "library: clippy, no panic paths (indexing, unwrap, arithmetic)" \
