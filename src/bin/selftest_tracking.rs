@@ -55,7 +55,7 @@ use abtrack::track::{
     ScanReport, Track, TrackId, TrackStatus, TrackTable, TrackerConfig,
 };
 use abtrack::Scalar;
-use board::Native;
+use board::TableScalar as Native;
 use propagation::{ErrorPropagation, Lag, Matrix};
 use support::{never, value, Failure, Test, TestResult, TestScalar};
 use synth::Lcg;
