@@ -74,9 +74,12 @@ ensure_cargo() {
         die "cargo/rustc not found: install Rust with rustup (https://rustup.rs), then re-run"
 }
 
-# Rust targets, given as arguments (default: all three firmware targets).
+# Rust targets, given as arguments (default: all three firmware targets),
+# and the firmware's linker, flip-link: what a firmware build needs (every
+# script that builds firmware calls this first).
 ensure_targets() {
     ensure_cargo
+    ensure_flip_link
     local wanted=("$@")
     [ ${#wanted[@]} -gt 0 ] || wanted=("${ABTRACK_TARGETS[@]}")
     local missing=() t
@@ -143,4 +146,85 @@ ensure_defmt_print() {
     defmt_print_ok || PATH="$CARGO_BIN_DIR:$PATH"
     defmt_print_ok ||
         die "defmt-print was installed in $CARGO_BIN_DIR but does not run from there; put that directory first on PATH, then re-run"
+}
+
+# The firmware binaries, as declared in boards/qemu/Cargo.toml (the
+# `name = ...` of each [[bin]]): one list, read where it is declared.
+firmware_bins() {
+    awk '/^\[\[bin\]\]/ { in_bin = 1; next }
+         /^\[/ { in_bin = 0 }
+         in_bin && $1 == "name" { gsub(/"/, "", $3); print $3 }' \
+        "$(dirname "${BASH_SOURCE[0]}")/../boards/qemu/Cargo.toml"
+}
+
+# flip-link, the firmware's linker (.cargo/config.toml): places the stack
+# below the static data. 0.1.10 or later sets _stack_end, which cortex-m-rt
+# 0.7.5's layout check needs.
+ensure_flip_link() {
+    command -v flip-link >/dev/null &&
+        cargo install --list 2>/dev/null | grep -Eq '^flip-link v0\.1\.(1[0-9]|[2-9][0-9])' && return 0
+    ensure_cargo
+    ensure_host_linker
+    say "cargo install flip-link --locked (the firmware's linker, once)"
+    cargo install flip-link --version '^0.1.10' --locked ||
+        die "installing flip-link failed; install it with 'cargo install flip-link --locked', then re-run"
+}
+
+# llvm-objdump, llvm-symbolizer, llvm-nm for the firmware checks
+# (host-tests' firmware-check): Debian's llvm package, else rustup's
+# llvm-tools component.
+llvm_tools_ok() {
+    local tool
+    for tool in llvm-objdump llvm-symbolizer llvm-nm; do
+        command -v "$tool" >/dev/null || compgen -c "$tool-" | grep -Eq "^$tool-[0-9]+$" || return 1
+    done
+}
+
+ensure_llvm_tools() {
+    llvm_tools_ok && return 0
+    if is_root && command -v apt-get >/dev/null; then
+        apt_install llvm
+        llvm_tools_ok && return 0
+    fi
+    if command -v rustup >/dev/null; then
+        say "rustup component add llvm-tools"
+        rustup component add llvm-tools
+        local dir
+        dir="$(rustc --print sysroot)/lib/rustlib/$(rustc -vV | sed -n 's/^host: //p')/bin"
+        [ -x "$dir/llvm-objdump" ] && {
+            export LLVM_TOOLS_DIR=$dir
+            return 0
+        }
+    fi
+    install_packages_or_die "llvm-objdump, llvm-symbolizer and llvm-nm" llvm
+}
+
+# Builds host-tests' firmware-check (the panic and stack-layout checks on
+# the firmware ELFs) and prints its path.
+firmware_check_tool() {
+    local root
+    root=$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)
+    (cd "$root/host-tests" && cargo build --release --quiet --bin firmware-check) >&2 || return
+    (cd "$root/host-tests" && cargo metadata --format-version 1 --no-deps >/dev/null) || return
+    local host
+    host=$(rustc -vV | sed -n 's/^host: //p')
+    echo "$root/host-tests/target/$host/release/firmware-check"
+}
+
+# A nightly toolchain and cargo-fuzz, for the fuzz targets (fuzz/,
+# scripts/fuzz.sh): cargo-fuzz needs nightly's sanitizer flags; everything
+# else builds with the stable toolchain.
+ensure_cargo_fuzz() {
+    ensure_cargo
+    if ! rustup run nightly rustc --version >/dev/null 2>&1; then
+        command -v rustup >/dev/null ||
+            die "the fuzz targets need a nightly toolchain: install rustup, then 'rustup toolchain install nightly --profile minimal'"
+        say "rustup toolchain install nightly --profile minimal (for cargo-fuzz)"
+        rustup toolchain install nightly --profile minimal
+    fi
+    cargo fuzz --version >/dev/null 2>&1 && return 0
+    ensure_host_linker
+    say "cargo install cargo-fuzz --locked (a few minutes, once)"
+    cargo install cargo-fuzz --locked ||
+        die "installing cargo-fuzz failed; install it with 'cargo install cargo-fuzz --locked', then re-run"
 }

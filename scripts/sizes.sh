@@ -1,11 +1,13 @@
 #!/usr/bin/env bash
 # Flash and RAM used by each release firmware build, per target.
 #
-#   scripts/sizes.sh
+#   scripts/sizes.sh                  the three emulated boards, every binary
+#   scripts/sizes.sh --nrf52840-dk    the nRF52840-DK's demo (boards/nrf52840-dk)
 #
 # flash = .vector_table + .text + .rodata + .data (its initial values) +
 #         .gnu.sgstubs; RAM = .data + .bss + .uninit (static data only: the
-# stack comes on top, from the end of RAM down). Builds the firmware first.
+# stack takes the rest of RAM, below the statics: flip-link). Builds the
+# firmware first.
 # Needs an llvm-size: the rustup component llvm-tools (installed if missing),
 # or llvm-size / arm-none-eabi-size on PATH.
 set -euo pipefail
@@ -42,17 +44,27 @@ size_tool=$(find_size_tool) || {
     size_tool=$(find_size_tool) || die "llvm-tools installed but llvm-size not found"
 }
 
-bins=(abtrack-firmware selftest selftest-tracking bench)
+# size_row <target> <board> <binary> <elf>
+size_row() {
+    "$size_tool" -A "$4" | awk -v t="$1" -v board="$2" -v b="$3" '
+        $1 == ".vector_table" || $1 == ".text" || $1 == ".rodata" || $1 == ".gnu.sgstubs" { flash += $2 }
+        $1 == ".data" { flash += $2; ram += $2 }
+        $1 == ".bss" || $1 == ".uninit" { ram += $2 }
+        END { printf "%-22s %-11s %-17s %10d %10d\n", t, board, b, flash, ram }'
+}
+
 printf '%-22s %-11s %-17s %10s %10s\n' target board binary "flash (B)" "RAM (B)"
+if [ "${1:-}" = --nrf52840-dk ]; then
+    # The real board's demo, built by its own package (boards/nrf52840-dk).
+    (cd boards/nrf52840-dk && cargo build --quiet --release)
+    size_row thumbv7em-none-eabihf nrf52840-dk abtrack-firmware \
+        boards/nrf52840-dk/target/thumbv7em-none-eabihf/release/abtrack-firmware
+    exit
+fi
+mapfile -t bins < <(firmware_bins)
 for t in "${ABTRACK_TARGETS[@]}"; do
-    cargo build --quiet --release --target "$t"
-    cargo build --quiet --release --target "$t" --bin bench --features bench-anchors
+    cargo build --quiet --release --target "$t" --features bench-anchors
     for b in "${bins[@]}"; do
-        elf="target/$t/release/$b"
-        "$size_tool" -A "$elf" | awk -v t="$t" -v board="$(board_for_target "$t")" -v b="$b" '
-            $1 == ".vector_table" || $1 == ".text" || $1 == ".rodata" || $1 == ".gnu.sgstubs" { flash += $2 }
-            $1 == ".data" { flash += $2; ram += $2 }
-            $1 == ".bss" || $1 == ".uninit" { ram += $2 }
-            END { printf "%-22s %-11s %-17s %10d %10d\n", t, board, b, flash, ram }'
+        size_row "$t" "$(board_for_target "$t")" "$b" "target/$t/release/$b"
     done
 done

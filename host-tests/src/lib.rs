@@ -20,6 +20,8 @@
 //! * [`frames`]: wire frames for the demo firmware's UART (the `frames` tool).
 //! * [`bench_report`]: the benchmark firmware's output to bench/results.csv
 //!   and bench/BENCHMARKS.md (the `bench_report` tool).
+//! * [`firmware_elf`]: checks on the release firmware ELFs (panic calls, stack
+//!   layout; the `firmware-check` tool).
 
 pub mod altitude_figures;
 pub mod bench_report;
@@ -27,6 +29,7 @@ pub mod cli;
 pub mod csv_input;
 pub mod encounters;
 pub mod experiments;
+pub mod firmware_elf;
 pub mod frames;
 pub mod kalman;
 pub mod metrics;

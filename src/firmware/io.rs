@@ -46,7 +46,7 @@ const TX_SPIN_LIMIT: u32 = 100_000;
 // MPS2 (AN385 / AN386): CMSDK APB UART, FPGAIO LEDs
 // ---------------------------------------------------------------------------
 
-#[cfg(not(abtrack_board = "microbit"))]
+#[cfg(any(abtrack_board = "mps2-an386", abtrack_board = "mps2-an385"))]
 mod board_io {
     use super::{Reg, TX_SPIN_LIMIT};
 
@@ -223,6 +223,11 @@ mod board_io {
     pub const TA_PIN: u8 = 13;
     pub const RA_PIN: u8 = 14;
 }
+
+// The real board, nRF52840-DK (boards/nrf52840-dk): in its own file.
+#[cfg(abtrack_board = "nrf52840-dk")]
+#[path = "io_nrf52840.rs"]
+mod board_io;
 
 pub use board_io::{
     uart_init, uart_overrun, uart_read, uart_write, CORE_CLOCK_HZ, PINS_NAME, UART_NAME,
