@@ -100,7 +100,7 @@ use crate::num::{hypot, Scalar};
 use crate::tcas::{self, Advisory, Intruder, OwnAircraft};
 use crate::track::{
     Association, ConfigError, DropReason, GateRegion, Measurement, Observation, ScanError,
-    ScanReport, TrackFilter, TrackId, TrackTable, TrackerConfig,
+    ScanInterval, ScanReport, TrackFilter, TrackId, TrackNumeric, TrackTable, TrackerConfig,
 };
 use crate::wire::{
     Decoder, DecoderStats, EndOfInput, Health, IntakeCounters, LoopCounters, MeasurementReport,
@@ -501,7 +501,7 @@ impl<S: Scalar> Priority<S> {
 /// A confirmed track's gate for the next scan, and its best measurement so
 /// far.
 #[derive(Debug, Clone, Copy)]
-struct TrackGate<S> {
+struct TrackGate<S: TrackNumeric> {
     region: GateRegion<S>,
     /// (batch index, gate cost) of the nearest measurement in the gate.
     champion: Option<(usize, u16)>,
@@ -930,15 +930,17 @@ impl<S: Scalar, F: TrackFilter<S>, const N: usize, const M: usize> ScanLoop<S, F
     fn prepare_gates(&mut self, config: &ScanConfig<S, F::Params>) {
         self.gates = [const { None }; N];
         let params = config.tracker.params();
-        let Ok(dt) = S::try_from_f64(f64::from(config.clock.period_ms) / 1000.0) else {
+        let Some(step) = ScanInterval::from_ms(config.clock.period_ms)
+            .and_then(|interval| F::step(params, &interval).ok())
+        else {
             return;
         };
         let confirmed = self.table.tracks().filter(|t| t.is_confirmed());
         for (gate, track) in self.gates.iter_mut().zip(confirmed) {
-            let region = track.filter().predict(params, dt).ok().and_then(|p| {
+            let region = track.filter().predict(params, &step).ok().and_then(|p| {
                 track
                     .filter()
-                    .gate_region(params, &p, dt, config.tracker.gate())
+                    .gate_region(params, &p, &step, config.tracker.gate())
             });
             *gate = region.map(|region| TrackGate {
                 region,
