@@ -56,7 +56,10 @@ use abtrack::filter::range_azimuth::{
 };
 use abtrack::filter::{Cartesian, Gains, Phase, UpdateOutcome};
 use abtrack::gain::spec::ScheduleSpec;
-use abtrack::gain::{AnySchedule, ConfigError, ScheduleError, ScheduledError, ScheduledFilter};
+use abtrack::gain::{
+    AnySchedule, ConfigError, FixedGains, GainSchedule, ScheduleError, ScheduledError,
+    ScheduledFilter,
+};
 use abtrack::tcas::{assess, Intruder, OwnAircraft, TcasError};
 use abtrack::track::{ConfigError as TrackConfigError, ScanError};
 use abtrack::{FilterError, Fix, GainError, NumError, Scalar};
@@ -650,28 +653,13 @@ fn check_filter<S: Scalar, const ORDER: usize, const D: usize>(
     )
 }
 
+/// Fixed gains, run by [`ScheduledFilter`] so that real timing gets the
+/// same bounds as every schedule ([`abtrack::gain::robust_gains`]).
 fn run_cartesian<S: CsvValue, const ORDER: usize, const D: usize>(
     gains: &Gains<S>,
     data: &Measurements,
 ) -> Result<String, ReplayError> {
-    let mut out = header(ORDER, D);
-    out.push('\n');
-    let mut tracker = Cartesian::<S, ORDER, D>::new();
-    let mut previous_t: Option<f64> = None;
-    for row in &data.rows {
-        let dt = interval::<S>(previous_t, row.t, row.line)?;
-        let z = positions::<S, D>(row)?;
-        let outcomes = tracker
-            .update(z, dt, gains)
-            .map_err(|error| ReplayError::Filter {
-                line: row.line,
-                error,
-            })?;
-        previous_t = Some(row.t);
-        check_filter(row.line, &tracker)?;
-        write_kinematic_row(&mut out, &row.t_text, &tracker, &outcomes);
-    }
-    Ok(out)
+    run_schedule::<S, _, ORDER, D>(FixedGains::new(*gains), data)
 }
 
 fn run_scheduled<S: CsvValue, const ORDER: usize, const D: usize>(
@@ -679,6 +667,13 @@ fn run_scheduled<S: CsvValue, const ORDER: usize, const D: usize>(
     data: &Measurements,
 ) -> Result<String, ReplayError> {
     let schedule = ReplaySchedule::<S, D>::from_spec(spec).map_err(ReplayError::Schedule)?;
+    run_schedule::<S, _, ORDER, D>(schedule, data)
+}
+
+fn run_schedule<S: CsvValue, G: GainSchedule<S, D>, const ORDER: usize, const D: usize>(
+    schedule: G,
+    data: &Measurements,
+) -> Result<String, ReplayError> {
     let mut track = ScheduledFilter::<S, _, ORDER, D>::new(schedule);
     let mut out = header(ORDER, D);
     out.push('\n');
@@ -690,6 +685,10 @@ fn run_scheduled<S: CsvValue, const ORDER: usize, const D: usize>(
             ScheduledError::Filter(error) => ReplayError::Filter {
                 line: row.line,
                 error,
+            },
+            ScheduledError::IntervalTooShort => ReplayError::Filter {
+                line: row.line,
+                error: FilterError::InvalidInterval,
             },
             ScheduledError::Schedule(error) => ReplayError::ScheduledGains {
                 line: row.line,

@@ -17,13 +17,15 @@
 //!
 //! Examples: `m1:alpha=0.05`, `least-squares`, `m3:w=0.3,steps=0`,
 //! `m4:window=10,steps=19`, `bank:k=8`, `li-improved:r=2.5`,
-//! `liu-adaptive:limit=19`, `tcas-firmness`.
+//! `liu-adaptive:limit=19`, `tcas-firmness`, `auto:sigma=20`,
+//! `auto:range-sigma=15,bearing-sigma-deg=5`.
 
 use core::fmt;
 
 use super::al_wagih::{
     FixedAlphaConfig, FixedConfig, LeastSquaresConfig, LinearCombinationConfig, MovingWindowConfig,
 };
+use super::auto::AutoConfig;
 use super::li::LiImprovedConfig;
 use super::liu::{AdaptiveSwitchConfig, ResidualAccumulationConfig, ScanCountAdjustedConfig};
 use super::ConfigError;
@@ -103,6 +105,11 @@ pub const SCHEDULES: &[ScheduleInfo] = &[
         parameters: "(none)",
         summary: "TCAS range tracker: alpha, beta, gamma by track firmness 0..8 (DO-185B)",
     },
+    ScheduleInfo {
+        names: &["auto"],
+        parameters: "sigma=S | range-sigma=R,bearing-sigma-deg=B (required), n-max=1000",
+        summary: "least-squares gains, count cut by innovation tests: given only the sensor noise",
+    },
 ];
 
 /// A parsed spec: which schedule, with which configuration.
@@ -131,6 +138,8 @@ pub enum ScheduleSpec {
     AdaptiveSwitch(AdaptiveSwitchConfig),
     /// `tcas-firmness`.
     Firmness,
+    /// `auto`.
+    Auto(AutoConfig),
 }
 
 /// What is wrong with a spec string.
@@ -228,6 +237,7 @@ impl ScheduleSpec {
             }
             "liu-adaptive" => ScheduleSpec::AdaptiveSwitch(AdaptiveSwitchConfig::DEFAULT),
             "tcas-firmness" => ScheduleSpec::Firmness,
+            "auto" => ScheduleSpec::Auto(AutoConfig::UNSET),
             _ => return None,
         })
     }
@@ -246,6 +256,7 @@ impl ScheduleSpec {
             ScheduleSpec::ResidualAccumulation(_) => "liu-residual",
             ScheduleSpec::AdaptiveSwitch(_) => "liu-adaptive",
             ScheduleSpec::Firmness => "tcas-firmness",
+            ScheduleSpec::Auto(_) => "auto",
         }
     }
 
@@ -265,6 +276,7 @@ impl ScheduleSpec {
                 &["limit", "alpha", "beta", "n", "sigma-m2", "alpha-min"]
             }
             ScheduleSpec::Firmness => &[],
+            ScheduleSpec::Auto(_) => &["sigma", "range-sigma", "bearing-sigma-deg", "n-max"],
         }
     }
 
@@ -304,6 +316,10 @@ impl ScheduleSpec {
             (ScheduleSpec::AdaptiveSwitch(c), 3) => c.residual.n = integer(value)?,
             (ScheduleSpec::AdaptiveSwitch(c), 4) => c.residual.sigma_m2 = number(value)?,
             (ScheduleSpec::AdaptiveSwitch(c), 5) => c.residual.alpha_min = number(value)?,
+            (ScheduleSpec::Auto(c), 0) => c.sigma = Some(number(value)?),
+            (ScheduleSpec::Auto(c), 1) => c.range_sigma = Some(number(value)?),
+            (ScheduleSpec::Auto(c), 2) => c.bearing_sigma_deg = Some(number(value)?),
+            (ScheduleSpec::Auto(c), 3) => c.n_max = integer(value)?,
             _ => return Err(SpecErrorKind::UnknownParameter),
         }
         Ok(())
@@ -324,6 +340,7 @@ impl ScheduleSpec {
             ScheduleSpec::ResidualAccumulation(c) => c.validate(),
             ScheduleSpec::AdaptiveSwitch(c) => c.validate(),
             ScheduleSpec::Firmness => Ok(()),
+            ScheduleSpec::Auto(c) => c.validate(),
         }
     }
 
@@ -376,6 +393,15 @@ impl ScheduleSpec {
                         spec.len(),
                     ));
                 }
+            }
+        }
+        if let ScheduleSpec::Auto(c) = &parsed {
+            // `auto` has no sensor default: σ, or σ_R with σ_B, is required.
+            if !c.has_sensor() {
+                return Err(err(
+                    SpecErrorKind::MissingParameter { parameter: "sigma" },
+                    spec.len(),
+                ));
             }
         }
         parsed.validate().map_err(|e| {
@@ -448,6 +474,21 @@ impl fmt::Display for ScheduleSpec {
                 c.limit, c.alpha, c.beta, c.residual.n, c.residual.sigma_m2, c.residual.alpha_min
             ),
             ScheduleSpec::Firmness => Ok(()),
+            ScheduleSpec::Auto(c) => {
+                let mut separator = ':';
+                let figures = [
+                    ("sigma", c.sigma),
+                    ("range-sigma", c.range_sigma),
+                    ("bearing-sigma-deg", c.bearing_sigma_deg),
+                ];
+                for (key, value) in figures {
+                    if let Some(v) = value {
+                        write!(f, "{separator}{key}={v}")?;
+                        separator = ',';
+                    }
+                }
+                write!(f, "{separator}n-max={}", c.n_max)
+            }
         }
     }
 }
