@@ -55,6 +55,7 @@ use abtrack::filter::range_azimuth::{
     NoiseError, RangeAzimuthFilter, RangeAzimuthNoise, RangeAzimuthOutcome, PAPER_BEARING_VARIANCE,
 };
 use abtrack::filter::{Cartesian, Gains, Phase, UpdateOutcome};
+use abtrack::gain::auto::AutoConfig;
 use abtrack::gain::spec::ScheduleSpec;
 use abtrack::gain::{
     AnySchedule, ConfigError, FixedGains, GainSchedule, ScheduleError, ScheduledError,
@@ -181,6 +182,13 @@ pub enum FilterKind {
     Bank(BankConfig),
     /// He et al.'s range–azimuth projection filter.
     RangeAzimuth(RangeAzimuthOptions),
+    /// `auto` (`--filter auto`) on `t,range,azimuth` rows, converted to
+    /// x = R sin B, y = R cos B (a polar sensor's σ_R and σ_B in `config`);
+    /// on `t,x,y` rows `--filter auto` is [`FilterKind::Scheduled`].
+    AutoPolar {
+        config: AutoConfig,
+        azimuth_unit: AngleUnit,
+    },
 }
 
 impl FilterKind {
@@ -199,7 +207,7 @@ impl FilterKind {
     /// The input layout this filter reads.
     pub fn input_format(&self) -> InputFormat {
         match self {
-            FilterKind::RangeAzimuth(_) => InputFormat::RangeAzimuth,
+            FilterKind::RangeAzimuth(_) | FilterKind::AutoPolar { .. } => InputFormat::RangeAzimuth,
             _ => InputFormat::Cartesian,
         }
     }
@@ -489,6 +497,42 @@ pub fn replay_reader<R: Read>(config: &ReplayConfig, input: R) -> Result<String,
             let data = read_range_azimuth(input, read).map_err(Failure::Input)?;
             run_range_azimuth(&options, config.numeric, &data).map_err(Failure::Replay)
         }
+        FilterKind::AutoPolar {
+            config: auto,
+            azimuth_unit,
+        } => {
+            let read = ReadOptions {
+                times: TimeOrder::Increasing,
+                azimuth_unit,
+            };
+            let data = read_range_azimuth(input, read).map_err(Failure::Input)?;
+            let converted = Measurements {
+                dims: 2,
+                rows: data
+                    .rows
+                    .iter()
+                    .map(|r| {
+                        let (s, c) = r.azimuth.sin_cos();
+                        Row {
+                            line: r.line,
+                            t_text: r.t_text.clone(),
+                            t: r.t,
+                            z: [r.range * s, r.range * c, 0.0],
+                            alt: r.alt,
+                        }
+                    })
+                    .collect(),
+            };
+            let filter = FilterKind::Scheduled {
+                order: Order::AlphaBeta,
+                spec: ScheduleSpec::Auto(auto),
+            };
+            let config = ReplayConfig {
+                filter,
+                numeric: config.numeric,
+            };
+            run(&config, &converted).map_err(Failure::Replay)
+        }
         _ => {
             let data = read_measurements(input, ReadOptions::default()).map_err(Failure::Input)?;
             run(config, &data).map_err(Failure::Replay)
@@ -544,9 +588,11 @@ pub fn run_in<S: CsvValue>(
             2 => run_bank::<S, 2>(config, data),
             _ => run_bank::<S, 3>(config, data),
         },
-        FilterKind::RangeAzimuth(_) => Err(ReplayError::WrongLayout {
-            expected: InputFormat::RangeAzimuth,
-        }),
+        FilterKind::RangeAzimuth(_) | FilterKind::AutoPolar { .. } => {
+            Err(ReplayError::WrongLayout {
+                expected: InputFormat::RangeAzimuth,
+            })
+        }
     }
 }
 

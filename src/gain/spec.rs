@@ -112,6 +112,62 @@ pub const SCHEDULES: &[ScheduleInfo] = &[
     },
 ];
 
+/// The sensor and target figures that set the defaults the papers tied to
+/// their own noise levels ([`ScheduleSpec::parse_scaled`]; issue 12: `m2`
+/// with n-max 1000 or `m1` with α = 0.05 lag by kilometres in a turn, Li's
+/// Δρ = 1 m and Liu's σ_m² = 25 m² misjudge every innovation of another
+/// sensor).
+///
+/// * `m1` α and `m3` α₀: α_K, Kalata's steady-state α for the tracking
+///   index Λ = σ_w·T²/σ with σ_w = a_max/2 (the rule of the default tracker,
+///   `crate::track::defaults` rule 2); `least-squares` and `m3` n-max: the
+///   first n with α̂(n) ≤ α_K (the least-squares gains held at α_K);
+/// * `li-improved` Δρ = σ; `liu-residual`, `liu-adaptive` σ_m² = σ²;
+///   `liu-count-adjusted` threshold = 14σ and `liu-adaptive` limit = 3.8σ
+///   (the paper's 70 m and 19 m at its σ = 5 m);
+/// * `auto`: σ.
+///
+/// `fixed`, `m4`, `bank` and `tcas-firmness` have no such defaults.
+#[derive(Debug, Clone, Copy, PartialEq)]
+#[cfg_attr(feature = "defmt", derive(defmt::Format))]
+pub struct SensorScale {
+    /// σ per axis, m, > 0.
+    pub sigma: f64,
+    /// The nominal interval T, s, > 0.
+    pub period: f64,
+    /// a_max, the manoeuvre level, m/s², > 0.
+    pub max_acceleration: f64,
+}
+
+impl SensorScale {
+    /// Liu, Wang & Yang's §3.2.2 threshold (70 m) over their σ (5 m).
+    pub const LIU_THRESHOLD_SIGMAS: f64 = 14.0;
+    /// Liu, Wang & Yang's §2.1.5 limit (19 m) over their σ (5 m).
+    pub const LIU_LIMIT_SIGMAS: f64 = 3.8;
+
+    /// α_K for Λ = (a_max/2)·T²/σ.
+    pub fn steady_state_alpha(&self) -> Result<f64, ConfigError> {
+        let lambda =
+            crate::design::tracking_index(0.5 * self.max_acceleration, self.sigma, self.period)
+                .map_err(|_| ConfigError::OutOfRange { parameter: "sigma" })?;
+        crate::design::kalata_gains(lambda)
+            .map(|g| g.alpha().min(1.0))
+            .map_err(|_| ConfigError::OutOfRange { parameter: "sigma" })
+    }
+
+    /// The first n ≥ 3 with α̂(n) ≤ α_K (at most the n-max limit).
+    pub fn least_squares_n_max(&self) -> Result<u32, ConfigError> {
+        let alpha = self.steady_state_alpha()?;
+        let mut n = 3u32;
+        while n < LeastSquaresConfig::N_MAX_LIMIT
+            && crate::gains::least_squares_alpha::<f64>(n) > alpha
+        {
+            n = n.saturating_add(1);
+        }
+        Ok(n)
+    }
+}
+
 /// A parsed spec: which schedule, with which configuration.
 #[derive(Debug, Clone, Copy, PartialEq)]
 #[cfg_attr(feature = "defmt", derive(defmt::Format))]
@@ -346,6 +402,45 @@ impl ScheduleSpec {
 
     /// Parses `name[:key=value,...]`.
     pub fn parse(spec: &str) -> Result<Self, SpecError> {
+        Self::parse_with(spec, None)
+    }
+
+    /// [`Self::parse`] with the defaults that the papers tied to their own
+    /// noise levels taken from `sensor` instead ([`SensorScale`]); keys the
+    /// spec gives keep their values.
+    pub fn parse_scaled(spec: &str, sensor: &SensorScale) -> Result<Self, SpecError> {
+        Self::parse_with(spec, Some(sensor))
+    }
+
+    /// Replaces the defaults [`SensorScale`] covers (see there).
+    fn scale_defaults(&mut self, sensor: &SensorScale) -> Result<(), ConfigError> {
+        let sigma = sensor.sigma;
+        match self {
+            ScheduleSpec::FixedAlpha(c) => c.alpha = sensor.steady_state_alpha()?,
+            ScheduleSpec::LeastSquares(c) => c.n_max = sensor.least_squares_n_max()?,
+            ScheduleSpec::LinearCombination(c) => {
+                c.alpha0 = sensor.steady_state_alpha()?;
+                c.n_max = sensor.least_squares_n_max()?;
+            }
+            ScheduleSpec::LiImproved(c) => c.range_error = sigma,
+            ScheduleSpec::ScanCountAdjusted(c) => {
+                c.threshold = sigma * SensorScale::LIU_THRESHOLD_SIGMAS;
+            }
+            ScheduleSpec::ResidualAccumulation(c) => c.sigma_m2 = sigma * sigma,
+            ScheduleSpec::AdaptiveSwitch(c) => {
+                c.limit = sigma * SensorScale::LIU_LIMIT_SIGMAS;
+                c.residual.sigma_m2 = sigma * sigma;
+            }
+            ScheduleSpec::Auto(c) => *c = AutoConfig::cartesian(sigma),
+            ScheduleSpec::Fixed(_)
+            | ScheduleSpec::MovingWindow(_)
+            | ScheduleSpec::Bank(_)
+            | ScheduleSpec::Firmness => {}
+        }
+        Ok(())
+    }
+
+    fn parse_with(spec: &str, sensor: Option<&SensorScale>) -> Result<Self, SpecError> {
         let err = |kind, offset| SpecError { kind, offset };
         let (name, params) = match spec.split_once(':') {
             Some((n, p)) => (n, Some(p)),
@@ -355,6 +450,11 @@ impl ScheduleSpec {
             return Err(err(SpecErrorKind::Empty, 0));
         }
         let mut parsed = Self::default_for(name).ok_or(err(SpecErrorKind::UnknownSchedule, 0))?;
+        if let Some(sensor) = sensor {
+            parsed
+                .scale_defaults(sensor)
+                .map_err(|e| err(SpecErrorKind::Config(e), 0))?;
+        }
         let keys = parsed.keys();
         // Byte offset of each key given, to point config errors at it.
         let mut given: [Option<usize>; MAX_KEYS] = [None; MAX_KEYS];

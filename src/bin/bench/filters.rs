@@ -11,7 +11,9 @@ use abtrack::filter::range_azimuth::{RangeAzimuthFilter, RangeAzimuthNoise};
 use abtrack::filter::{Cartesian, Gains, KinematicFilter};
 use abtrack::gain::al_wagih::LeastSquaresConfig;
 use abtrack::gain::liu::AdaptiveSwitchConfig;
-use abtrack::gain::{AdaptiveSwitchGains, GainSchedule, LeastSquaresGains, ScheduledFilter};
+use abtrack::gain::{
+    AdaptiveSwitchGains, AutoConfig, AutoGains, GainSchedule, LeastSquaresGains, ScheduledFilter,
+};
 use abtrack::tcas::{assess, Advisory, Intruder, OwnAircraft};
 use abtrack::Scalar;
 
@@ -139,9 +141,10 @@ fn kinematic<S: Numeric>(bench: &mut Bench) {
     );
 }
 
-/// Scheduled 2-D αβ: Al-Wagih's least-squares gains and Liu's adaptive
-/// switch, on Liu, Wang & Yang's σ = 5 m (so that the switch sees both
-/// steady stretches and the turnarounds of the out-and-back track).
+/// Scheduled 2-D αβ: Al-Wagih's least-squares gains, Liu's adaptive
+/// switch and `auto` (configured with the data's σ), on Liu, Wang & Yang's
+/// σ = 5 m (so that the adaptive schedules see both steady stretches and the
+/// turnarounds of the out-and-back track).
 #[inline(never)]
 fn scheduled<S: Numeric>(bench: &mut Bench) {
     let numeric = S::LABEL;
@@ -166,6 +169,17 @@ fn scheduled<S: Numeric>(bench: &mut Bench) {
         numeric,
         "ab2d_liu_adaptive_update",
         |k| update_scheduled(&mut liu_track, target.get(k), dt),
+        |k| target.fetch(k),
+    );
+    let Ok(auto) = AutoGains::<S, 2>::new(&AutoConfig::cartesian(5.0)) else {
+        bench.fail(numeric, "auto2d_update", "schedule refused");
+        return;
+    };
+    let mut auto_track: ScheduledFilter<S, _, 2, 2> = ScheduledFilter::new(auto);
+    bench.per_accepted_call(
+        numeric,
+        "auto2d_update",
+        |k| update_scheduled(&mut auto_track, target.get(k), dt),
         |k| target.fetch(k),
     );
 }
