@@ -31,7 +31,6 @@ fn interval<N: Numeric>(v: f64) -> N::Interval {
 /// One accepted update: the gains (α, β per axis) and the state after it.
 struct Stepped {
     gains: Option<[(f64, f64); 2]>,
-    position: [f64; 2],
     axes: [AutoAxis<f64>; 2],
 }
 
@@ -39,7 +38,6 @@ fn step(t: &mut AutoTrack<f64>, z: [f64; 2], dt: f64) -> Stepped {
     let u = t.update(z, dt).expect("update accepted");
     Stepped {
         gains: u.gains.map(|g| g.map(|g| (g.alpha(), g.beta()))),
-        position: t.filter().position(),
         axes: *t.schedule().axes(),
     }
 }
@@ -496,4 +494,163 @@ fn a_miss_widens_the_expected_innovation() {
     let used = missed.gains(&ctx).unwrap();
     missed.accepted(&ctx, &used);
     assert!(missed.axes()[0].fast < plain.axes()[0].fast);
+}
+
+// ---------------------------------------------------------------- replay
+
+mod replay_cli {
+    use abtrack::gain::auto::AutoConfig;
+    use abtrack::gain::spec::ScheduleSpec;
+    use abtrack::gain::{AnySchedule, ScheduledFilter};
+    use abtrack_host_tests::cli::{Command, ReplayArgs};
+    use abtrack_host_tests::replay::{replay_reader, FilterKind, Order};
+    use clap::Parser;
+
+    use super::gain_common::Noise;
+
+    fn command(line: &str) -> Result<Command, clap::Error> {
+        ReplayArgs::try_parse_from(std::iter::once("replay").chain(line.split_whitespace()))?
+            .into_command()
+    }
+
+    fn run(line: &str, input: &str) -> String {
+        match command(&format!("{line} -")) {
+            Ok(Command::Replay { config, .. }) => {
+                replay_reader(&config, input.as_bytes()).unwrap_or_else(|e| panic!("{line}: {e}"))
+            }
+            other => panic!("{line}: {other:?}"),
+        }
+    }
+
+    fn flight(seed: u64) -> (String, Vec<[f64; 2]>, String) {
+        let mut noise = Noise::new(seed);
+        let mut xy = String::from("t,x,y\n");
+        let mut polar = String::from("t,range,azimuth\n");
+        let mut z = Vec::new();
+        for k in 0..60 {
+            let p = [8000.0 - 150.0 * k as f64, 3000.0 + 60.0 * k as f64];
+            let m = [
+                p[0] + 20.0 * noise.gaussian(),
+                p[1] + 20.0 * noise.gaussian(),
+            ];
+            xy.push_str(&format!("{k},{},{}\n", m[0], m[1]));
+            z.push(m);
+            polar.push_str(&format!("{k},{},{}\n", m[0].hypot(m[1]), m[0].atan2(m[1])));
+        }
+        (xy, z, polar)
+    }
+
+    /// `replay --filter auto --sigma-m S` is `--filter ab --schedule
+    /// auto:sigma=S`, and matches the library run.
+    #[test]
+    fn filter_auto_runs_the_schedule_with_the_sensor_sigma() {
+        let (xy, z, _) = flight(1);
+        let out = run("--filter auto --sigma-m 20", &xy);
+        assert_eq!(out, run("--filter ab --schedule auto:sigma=20", &xy));
+        let spec = ScheduleSpec::Auto(AutoConfig::cartesian(20.0));
+        let mut t: ScheduledFilter<f64, AnySchedule<f64, 2, 64>, 2, 2> =
+            ScheduledFilter::new(AnySchedule::from_spec(&spec).unwrap());
+        let last = out.lines().last().unwrap().to_string();
+        for z in &z {
+            t.update(*z, 1.0).unwrap();
+        }
+        let x: f64 = last.split(',').nth(1).unwrap().parse().unwrap();
+        assert_eq!(x, t.filter().position()[0]);
+        assert!(matches!(
+            command("--filter auto --sigma-m 20 -"),
+            Ok(Command::Replay { config, .. })
+                if matches!(config.filter, FilterKind::Scheduled { order: Order::AlphaBeta, .. })
+        ));
+    }
+
+    /// Polar input: range and bearing σ, the azimuth unit as given.
+    #[test]
+    fn filter_auto_takes_a_polar_sensor() {
+        let (xy, _, polar) = flight(2);
+        let out = run(
+            "--filter auto --range-sigma-m 20 --bearing-sigma-deg 0.1",
+            &polar,
+        );
+        assert_eq!(out.lines().next(), Some("t,x,vx,res_x,y,vy,res_y"));
+        assert_eq!(out.lines().count(), xy.lines().count());
+        let deg: String = polar
+            .lines()
+            .enumerate()
+            .map(|(i, l)| {
+                if i == 0 {
+                    format!("{l}\n")
+                } else {
+                    let f: Vec<f64> = l.split(',').map(|v| v.parse().unwrap()).collect();
+                    format!("{},{},{}\n", f[0], f[1], f[2].to_degrees())
+                }
+            })
+            .collect();
+        let out_deg = run(
+            "--filter auto --range-sigma-m 20 --bearing-sigma-deg 0.1 --azimuth-unit deg",
+            &deg,
+        );
+        let last = |s: &str| -> Vec<f64> {
+            s.lines()
+                .last()
+                .unwrap()
+                .split(',')
+                .map(|v| v.parse().unwrap_or(0.0))
+                .collect()
+        };
+        let (a, b) = (last(&out), last(&out_deg));
+        assert!((a[1] - b[1]).abs() < 1e-6 && (a[4] - b[4]).abs() < 1e-6);
+    }
+
+    #[test]
+    fn filter_auto_needs_the_sensor() {
+        for line in [
+            "--filter auto -",
+            "--filter auto --range-sigma-m 20 -",
+            "--filter auto --sigma-m 20 --range-sigma-m 20 --bearing-sigma-deg 1 -",
+            "--filter auto --sigma-m 0 -",
+            "--filter auto --sigma-m 20 --schedule m2 -",
+            "--filter ab --schedule m2 --scan-period-s 2 -",
+        ] {
+            let e = command(line).expect_err(line);
+            assert_eq!(e.exit_code(), 2, "{line}");
+        }
+    }
+
+    /// `--sigma-m` with `--filter ab` scales the schedule's defaults.
+    #[test]
+    fn sigma_scales_the_schedule_defaults() {
+        let (xy, _, _) = flight(3);
+        let scaled = run("--filter ab --schedule m2 --sigma-m 50", &xy);
+        let scale = abtrack::gain::spec::SensorScale {
+            sigma: 50.0,
+            period: 1.0,
+            max_acceleration: abtrack::track::defaults::BANK_30_ACCELERATION,
+        };
+        let n = scale.least_squares_n_max().unwrap();
+        assert!(n < 60, "the cap binds within the file");
+        assert_eq!(
+            scaled,
+            run(
+                &format!("--filter ab --schedule least-squares:n-max={n}"),
+                &xy
+            )
+        );
+        assert_ne!(scaled, run("--filter ab --schedule m2", &xy));
+    }
+
+    /// `--tracker --schedule auto:sigma=S` drives the track table.
+    #[test]
+    fn the_tracker_takes_auto() {
+        let run = abtrack_host_tests::scenario::generate("two-crossing", 5).unwrap();
+        let csv = run.measurements_csv();
+        let Ok(Command::Tracker { options, .. }) =
+            command("--tracker --schedule auto:sigma=20 --sigma-m 20 -")
+        else {
+            panic!("tracker command refused");
+        };
+        let out =
+            abtrack_host_tests::replay_tracker::replay_tracker_reader(&options, csv.as_bytes())
+                .unwrap();
+        assert!(out.csv.lines().count() > 60, "no tracks reported");
+    }
 }

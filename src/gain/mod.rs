@@ -315,6 +315,10 @@ pub struct ScheduledFilter<N: Numeric, G, const ORDER: usize, const D: usize> {
     measurements: u32,
     /// T of the last update that left the filter tracking (zero before).
     previous_interval: N::Interval,
+    /// The reference interval of [`robust_gains`]: the longest recent
+    /// interval, relaxing toward shorter ones by a quarter of the gap per
+    /// update.
+    reference_interval: N::Interval,
 }
 
 impl<N, G, const ORDER: usize, const D: usize> ScheduledFilter<N, G, ORDER, D>
@@ -329,6 +333,7 @@ where
             schedule,
             measurements: 0,
             previous_interval: N::Interval::ZERO,
+            reference_interval: N::Interval::ZERO,
         }
     }
 
@@ -345,6 +350,7 @@ where
             schedule,
             measurements,
             previous_interval: N::Interval::ZERO,
+            reference_interval: N::Interval::ZERO,
         }
     }
 
@@ -376,10 +382,11 @@ where
     ///
     /// A measurement less than [`MIN_INTERVAL_S`] after the previous one is
     /// refused ([`ScheduledError::IntervalTooShort`]). When the interval
-    /// differs from the previous update's, the schedule's gains are bounded
-    /// for this update ([`robust_gains`]): the velocity correction is at
-    /// most what the previous interval would give, and β at most Kalata's
-    /// steady-state β for α. Equal intervals leave the gains as they are.
+    /// differs from the previous ones, the schedule's gains are bounded for
+    /// this update ([`robust_gains`]): α at most 1, β at most Kalata's
+    /// steady-state β for α, and the velocity correction of a short
+    /// interval at most what the recent longer ones would give. Equal
+    /// intervals leave the gains as they are.
     pub fn update(
         &mut self,
         z: [N::Length; D],
@@ -416,6 +423,7 @@ where
                     } else {
                         N::Interval::ZERO
                     };
+                    self.reference_interval = self.previous_interval;
                     if restarted {
                         self.schedule.reset();
                     }
@@ -455,12 +463,18 @@ where
                 // overflowed.
                 Err(_) => return self.refuse_overflow(filter, z, dt),
             };
-            let gains = robust_gains(self.schedule.gains(&ctx)?, dt, self.previous_interval)?;
+            let gains = robust_gains(
+                self.schedule.gains(&ctx)?,
+                dt,
+                self.previous_interval,
+                self.reference_interval,
+            )?;
             match filter.update_per_axis(z, dt, &gains) {
                 Ok(outcome) => {
                     self.filter = filter;
                     self.measurements = n;
                     self.previous_interval = dt;
+                    self.reference_interval = next_reference(self.reference_interval, dt);
                     self.schedule.accepted(&ctx, &gains);
                     Ok(ScheduledUpdate {
                         outcome,
@@ -509,48 +523,49 @@ where
     }
 }
 
-/// The gains of an update at interval `dt` after one at `previous` (zero:
-/// none), bounded so that no sequence of intervals makes the filter diverge
-/// (issue 12; the reasoning and the measurements are in `docs/auto.md`):
+/// The gains of an update at interval `dt`, after one at `previous` (zero:
+/// none) with reference interval `reference` (the longest recent interval,
+/// [`next_reference`]), bounded so that irregular intervals do not make the
+/// filter diverge (issue 12; the reasoning and the tests are in
+/// `docs/auto.md`). When `dt` equals both (every experiment of the papers)
+/// the gains are returned unchanged. Otherwise:
 ///
-/// * the velocity gain β/T becomes β/max(T, T_prev) (β scaled by T/T_prev
-///   when T is shorter): in units of the last interval the error dynamics
-///   multiply the velocity error by T_prev/T otherwise, and alternating
-///   short and long intervals then grow it without bound, whatever the
-///   gains;
+/// * α is at most 1 (a gain above 1 overshoots the measurement, and its
+///   stable β shrink to nothing on irregular intervals);
 /// * β is at most Kalata's steady-state β for α, 2(α/(1 + √(1 − α)))²
 ///   ([`li_beta`]; Li et al. eq. 7), the least-damped pairing a
 ///   steady-state Kalman filter uses: pairs far above it (α = 0.002,
 ///   β = 0.1667) have poles within 10⁻³ of the unit circle, and irregular
-///   intervals pump them (α ≥ 1 is left alone: the position is then reset
-///   to the measurement and β < 2 is stable);
-/// * γ is scaled as β, and once more by T/T_prev (its gain is γ/(2T²)).
-///
-/// Equal intervals (the papers' experiments) return the gains unchanged.
+///   intervals pump them;
+/// * when `dt` is shorter than the reference, β is scaled by dt/reference,
+///   so that the velocity gain is β/reference: in units of the last
+///   interval the error dynamics multiply the velocity error by
+///   T_prev/T, and a short interval after long ones (or a burst of short
+///   ones) would otherwise grow it without bound, whatever the gains;
+/// * γ in proportion to β, and once more by dt/reference (its gain is
+///   γ/(2T²)), at most half its bound 4αβ/(2 − α).
 pub fn robust_gains<N: Numeric, const D: usize>(
     gains: [Gains<N>; D],
     dt: N::Interval,
     previous: N::Interval,
+    reference: N::Interval,
 ) -> Result<[Gains<N>; D], ScheduleError> {
-    if previous <= N::Interval::ZERO || dt == previous {
+    if previous <= N::Interval::ZERO || (dt == previous && dt == reference) {
         return Ok(gains);
     }
     let one = N::Ratio::ONE;
-    // T/T_prev as (1 m/T_prev)·T in metres (the algebra has no
+    // dt/reference as (1 m/reference)·dt in metres (the algebra has no
     // interval-by-interval division).
-    let shorter = if dt < previous {
-        N::Ratio::from((N::Length::from_f64_lossy(1.0) / previous) * dt).min_of(one)
+    let shorter = if dt < reference {
+        N::Ratio::from((N::Length::from_f64_lossy(1.0) / reference) * dt).min_of(one)
     } else {
         one
     };
     let smallest = N::Ratio::from_ratio(1, 1 << 30);
     let mut out = gains;
     for g in out.iter_mut() {
-        let (alpha, beta, gamma) = (g.alpha(), g.beta(), g.gamma());
-        let mut bounded = beta * shorter;
-        if alpha < one {
-            bounded = bounded.min_of(li_beta(alpha));
-        }
+        let (alpha, beta, gamma) = (g.alpha().min_of(one), g.beta(), g.gamma());
+        let mut bounded = beta.min_of(li_beta(alpha)) * shorter;
         if !bounded.is_valid() {
             bounded = smallest;
         }
@@ -558,10 +573,23 @@ pub fn robust_gains<N: Numeric, const D: usize>(
         *g = if gamma == N::Ratio::ZERO {
             Gains::alpha_beta(alpha, bounded)?
         } else {
-            Gains::alpha_beta_gamma(alpha, bounded, gamma * (bounded / beta) * shorter)?
+            let two = one + one;
+            let limit = two * alpha * bounded / (two - alpha);
+            let scaled = (gamma * (bounded / beta) * shorter).min_of(limit);
+            Gains::alpha_beta_gamma(alpha, bounded, scaled.max_of(smallest))?
         };
     }
     Ok(out)
+}
+
+/// The reference interval after an update at `dt`: `dt` if it is not
+/// shorter, else the reference moved a quarter of the way toward `dt`.
+pub fn next_reference<Q: Quantity>(reference: Q, dt: Q) -> Q {
+    if dt >= reference {
+        dt
+    } else {
+        reference - (reference - dt).half().half()
+    }
 }
 
 /// Gains for the updates that ignore them (two-point initialisation): any
