@@ -243,12 +243,15 @@ fn robust_gains_leave_equal_intervals_alone_and_bound_the_others() {
     assert!((longer[1].beta() - kalata).abs() < 1e-15);
     assert!((longer[1].gamma() - 0.05 * kalata / 0.5).abs() < 1e-15);
     assert!((longer[0].beta() - li_beta(0.002)).abs() < 1e-15);
-    // Equal to the previous interval but shorter than the reference: the
-    // same bounds, and β, γ scaled by T/reference (γ twice).
+    // Equal to the previous interval but shorter than half the reference:
+    // the same bounds, and β, γ scaled by 2T/reference (γ twice).
     let shorter = robust_gains(g, 0.5, 0.5, 2.0).unwrap();
-    assert!((shorter[1].beta() - kalata / 4.0).abs() < 1e-15);
-    assert!((shorter[1].gamma() - 0.05 * (kalata / 4.0 / 0.5) / 4.0).abs() < 1e-15);
-    assert!((shorter[0].beta() - li_beta(0.002) / 4.0).abs() < 1e-15);
+    assert!((shorter[1].beta() - kalata / 2.0).abs() < 1e-15);
+    assert!((shorter[1].gamma() - 0.05 * (kalata / 2.0 / 0.5) / 2.0).abs() < 1e-15);
+    assert!((shorter[0].beta() - li_beta(0.002) / 2.0).abs() < 1e-15);
+    // Half the reference (the scan after a missed one): bounds only.
+    let after_miss = robust_gains(g, 1.0, 2.0, 2.0).unwrap();
+    assert!((after_miss[1].beta() - kalata).abs() < 1e-15);
     // Gains already below the bounds pass a longer interval unchanged; α
     // above 1 is held at 1.
     let damped = [Gains::<f64>::alpha_beta(0.5, 0.1).unwrap(); 2];

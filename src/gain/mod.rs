@@ -537,12 +537,13 @@ where
 ///   steady-state Kalman filter uses: pairs far above it (α = 0.002,
 ///   β = 0.1667) have poles within 10⁻³ of the unit circle, and irregular
 ///   intervals pump them;
-/// * when `dt` is shorter than the reference, β is scaled by dt/reference,
-///   so that the velocity gain is β/reference: in units of the last
-///   interval the error dynamics multiply the velocity error by
-///   T_prev/T, and a short interval after long ones (or a burst of short
-///   ones) would otherwise grow it without bound, whatever the gains;
-/// * γ in proportion to β, and once more by dt/reference (its gain is
+/// * when `dt` is shorter than half the reference, β is scaled by
+///   2·dt/reference, so that the velocity gain is at most 2β/reference: in
+///   units of the last interval the error dynamics multiply the velocity
+///   error by T_prev/T, and a short interval after long ones (or a burst
+///   of short ones) would otherwise grow it without bound, whatever the
+///   gains (the factor 2 leaves the interval after a missed scan alone);
+/// * γ in proportion to β, and once more by the same factor (its gain is
 ///   γ/(2T²)), at most half its bound 4αβ/(2 − α).
 pub fn robust_gains<N: Numeric, const D: usize>(
     gains: [Gains<N>; D],
@@ -554,10 +555,10 @@ pub fn robust_gains<N: Numeric, const D: usize>(
         return Ok(gains);
     }
     let one = N::Ratio::ONE;
-    // dt/reference as (1 m/reference)·dt in metres (the algebra has no
+    // 2·dt/reference as (2 m/reference)·dt in metres (the algebra has no
     // interval-by-interval division).
-    let shorter = if dt < reference {
-        N::Ratio::from((N::Length::from_f64_lossy(1.0) / reference) * dt).min_of(one)
+    let shorter = if dt + dt < reference {
+        N::Ratio::from((N::Length::from_f64_lossy(2.0) / reference) * dt).min_of(one)
     } else {
         one
     };

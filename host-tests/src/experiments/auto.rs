@@ -292,7 +292,9 @@ fn documented_kalman_or_method(label: &str) -> Role {
     }
 }
 
-fn alwagih_cases(runs: Option<usize>) -> Result<Vec<Case>, String> {
+/// Al-Wagih & Abdulla's white and coloured scenarios: one-step prediction
+/// per axis (their eq. 26).
+pub fn alwagih_cases(runs: Option<usize>) -> Result<Vec<Case>, String> {
     let mut out = Vec::new();
     for (label, scenario) in [
         ("alwagih-cv (white)", "alwagih-cv"),
@@ -315,7 +317,8 @@ fn alwagih_cases(runs: Option<usize>) -> Result<Vec<Case>, String> {
     Ok(out)
 }
 
-fn li_cases(runs: Option<usize>) -> Result<Vec<Case>, String> {
+/// Li et al.'s manoeuvring target: filtered position per axis.
+pub fn li_cases(runs: Option<usize>) -> Result<Vec<Case>, String> {
     let info = scenario::info(li::SCENARIO).ok_or("li scenario missing")?;
     single_target(
         "li-maneuver",
@@ -328,7 +331,8 @@ fn li_cases(runs: Option<usize>) -> Result<Vec<Case>, String> {
     )
 }
 
-fn liu_cases(runs: Option<usize>) -> Result<Vec<Case>, String> {
+/// Liu et al.'s turning target: filtered position distance.
+pub fn liu_cases(runs: Option<usize>) -> Result<Vec<Case>, String> {
     let info = scenario::info(liu::SCENARIO).ok_or("liu scenario missing")?;
     single_target(
         "liu-turn",
@@ -372,7 +376,10 @@ fn he_auto_run(spec: &str, run: usize) -> Result<f64, String> {
     Ok((sum / n.max(1) as f64).sqrt())
 }
 
-fn he_cases(runs: Option<usize>) -> Result<Vec<Case>, String> {
+/// He et al.'s scenario: the group's estimators (and its Kalman filter
+/// over the σ_a grid) and auto, filtered position over the group's overall
+/// window.
+pub fn he_cases(runs: Option<usize>) -> Result<Vec<Case>, String> {
     let info = scenario::info(he_tcas::SCENARIO).ok_or("he-tcas scenario missing")?;
     let runs = runs.unwrap_or(info.monte_carlo_runs);
     let config = HeTcasConfig {
@@ -626,7 +633,8 @@ fn scene_run(info: &ScenarioInfo, methods: &[Method], run: usize) -> Result<Vec<
         .collect()
 }
 
-fn scene_cases(runs: Option<usize>) -> Result<Vec<Case>, String> {
+/// The multi-target scenes, each target filtered on its own detections.
+pub fn scene_cases(runs: Option<usize>) -> Result<Vec<Case>, String> {
     let runs = runs.unwrap_or(MULTI_TARGET_RUNS);
     let mut out = Vec::new();
     for scenario in ["two-crossing", "parallel-200m", "dense", "tcas-30"] {
