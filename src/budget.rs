@@ -27,10 +27,13 @@
 //! ```
 //!
 //! **Step 1: the local error `δ_k`** (running error analysis). Each
-//! intermediate of the update, in the library's evaluation order (see
-//! `KinematicFilter::update`), is tracked as a pair (bound `M` on its exact
-//! magnitude, bound `E` on its computed error), using the rounding model of
-//! [`Scalar::UNIT_ROUNDOFF`] and [`Scalar::ABS_RESOLUTION`] (`u`, `ε`):
+//! intermediate of the update, in the library's evaluation order
+//! (`StepGains::new` once per interval, then `KinematicFilter::update_step`),
+//! is tracked as a pair (bound `M` on its exact magnitude, bound `E` on its
+//! computed error), using the rounding model of the intermediate's own
+//! quantity, [`Quantity::UNIT_ROUNDOFF`] and [`Quantity::ABS_RESOLUTION`]
+//! (`u`, `ε`; per quantity for the fast fixed point, see
+//! `docs/numerics-fixed-point.md`):
 //!
 //! * input (conversion from `f64`): `E = u·M + ε/2`;
 //! * `a ± b`: `E = E_a + E_b + u·(M + E_a + E_b)` (fixed point: exact);
@@ -41,11 +44,12 @@
 //! The magnitudes come from the [`RunEnvelope`] (`M` of a sum is the smaller of
 //! `M_a + M_b` and the envelope's bound on the quantity it is, e.g. a
 //! predicted position). So for floats every operation injects
-//! (unit roundoff × the magnitude it handles), and for Q32.32 every product and
-//! quotient injects one step 2⁻³², divisions by `T` amplify the error of their
-//! numerator by `1/T` (`β·e/T`, and `γ·e/(2T²)` by `1/(2T²)`), and the inputs
-//! are quantised to 2⁻³³. The rounding of the gains multiplies the residual, so
-//! the residual's magnitude is part of the envelope.
+//! (unit roundoff × the magnitude it handles), and for fixed formats every
+//! product and quotient injects one step of its result's format, the
+//! per-interval gains β/T and γ/(2T²) carry the rounding of their division,
+//! and the inputs are quantised to half a step. The rounding of the gains
+//! multiplies the residual, so the residual's magnitude is part of the
+//! envelope.
 //!
 //! The first two updates (two-point initialisation, Al-Wagih eqs. (9)–(10))
 //! inject the initial error `d_2 = (E_z, E[(z₂ − z₁)/T], 0)`.
@@ -140,9 +144,6 @@
 //! factor of about 2 of it (the `precision` tool and the tests in host-tests
 //! print both and their ratio). It bounds arithmetic deviation only, not the
 //! tracking error of the filter itself.
-
-// Matrix code below indexes `m[i][j]` as the formulas do.
-#![allow(clippy::needless_range_loop)]
 
 use core::any::TypeId;
 
@@ -362,8 +363,14 @@ pub fn error_budget_varying_gains<N: Numeric, const ORDER: usize>(
     let propagate = |local: &Local| -> Result<[f64; 3], BudgetError> {
         let w = [1.0, t0, t0 * t0];
         let mut eta = [0.0; 3];
-        for i in 0..n {
-            eta[i] = w[i] * max(local.step[i], local.init[i]);
+        for (((e, w), step), init) in eta
+            .iter_mut()
+            .zip(w)
+            .zip(local.step)
+            .zip(local.init)
+            .take(n)
+        {
+            *e = w * max(step, init);
         }
         let direct = mat_vec(n, &l1, &eta);
         if perturbed {
@@ -389,9 +396,10 @@ pub fn error_budget_varying_gains<N: Numeric, const ORDER: usize>(
         },
     ];
     let mut total = [0.0; 3];
-    for i in 0..n {
-        let y = (y_s[i] + 2.0 * y_f64[i]) * (1.0 + OWN_ROUNDING);
-        total[i] = y * scale[i] + to_f64 * magnitude[i];
+    let parts = y_s.iter().zip(y_f64).zip(scale).zip(magnitude);
+    for (t, (((s, f), scale), magnitude)) in total.iter_mut().zip(parts).take(n) {
+        let y = (s + 2.0 * f) * (1.0 + OWN_ROUNDING);
+        *t = y * scale + to_f64 * magnitude;
     }
     if total.iter().any(|t| !t.is_finite()) {
         return Err(BudgetError::MayOverflow);
@@ -540,6 +548,22 @@ impl Analysis {
         self.checked(q, Tracked { mag, err })
     }
 
+    /// The product `a·b` of a guarded `q + a·b` (rounded like a product);
+    /// when the number system forms the sum in a wider word (`fused`), the
+    /// product alone need not fit its quantity, only the sum is checked.
+    fn term(&mut self, fused: bool, q: Model, a: Tracked, b: Tracked, cap: f64) -> Tracked {
+        if fused {
+            let mag = min(a.mag * b.mag, cap);
+            let e = a.mag * b.err + b.mag * a.err + a.err * b.err;
+            Tracked {
+                mag,
+                err: e + q.unit * (mag + e) + q.abs,
+            }
+        } else {
+            self.mul(q, a, b, cap)
+        }
+    }
+
     /// `a/2`: exact in floating formats, half a step in fixed ones.
     fn half(&mut self, q: Model, a: Tracked) -> Tracked {
         let t = Tracked {
@@ -576,6 +600,9 @@ fn local_errors<N: Numeric>(
     let rate = model::<N::Rate>();
     let rate2 = model::<N::RateSquared>();
     let mut an = Analysis { overflow: false };
+    // Whether the hot path's q + a·b narrows only the sum (the fast fixed
+    // point) or also the product (sticky operators).
+    let fused = N::FUSED_PRODUCTS;
     let pos_cap = env.max_position;
     let vel_cap = env.max_velocity;
     let acc_cap = if order3 { env.max_acceleration } else { 0.0 };
@@ -606,28 +633,28 @@ fn local_errors<N: Numeric>(
         let acceleration_gain = an.div(rate2, gamma, double, 2.0 * dt_min2, NO_CAP);
         let half_squared = an.half(interval2, squared);
         // x_p = (x + v·T) + a·(T²/2); v_p = v + a·T
-        let v_t = an.mul(length, v, dt, NO_CAP);
+        let v_t = an.term(fused, length, v, dt, NO_CAP);
         let first = an.add(length, x, v_t, NO_CAP);
-        let a_t2 = an.mul(length, a, half_squared, NO_CAP);
+        let a_t2 = an.term(fused, length, a, half_squared, NO_CAP);
         let x_p = an.add(length, first, a_t2, pos_cap);
-        let a_t = an.mul(speed, a, dt, NO_CAP);
+        let a_t = an.term(fused, speed, a, dt, NO_CAP);
         let v_p = an.add(speed, v, a_t, vel_cap);
         let e = an.add(length, z, x_p, env.max_residual);
         // x_s = x_p + α·e; v_s = v_p + (β/T)·e; a_s = a + (γ/(2T²))·e
-        let alpha_e = an.mul(length, alpha, e, NO_CAP);
+        let alpha_e = an.term(fused, length, alpha, e, NO_CAP);
         let x_s = an.add(length, x_p, alpha_e, pos_cap);
-        let dv = an.mul(speed, velocity_gain, e, NO_CAP);
+        let dv = an.term(fused, speed, velocity_gain, e, NO_CAP);
         let v_s = an.add(speed, v_p, dv, vel_cap);
-        let da = an.mul(acceleration, acceleration_gain, e, NO_CAP);
+        let da = an.term(fused, acceleration, acceleration_gain, e, NO_CAP);
         let a_s = an.add(acceleration, a, da, acc_cap);
         [x_s.err, v_s.err, a_s.err]
     } else {
-        let v_t = an.mul(length, v, dt, NO_CAP);
+        let v_t = an.term(fused, length, v, dt, NO_CAP);
         let x_p = an.add(length, x, v_t, pos_cap);
         let e = an.add(length, z, x_p, env.max_residual);
-        let alpha_e = an.mul(length, alpha, e, NO_CAP);
+        let alpha_e = an.term(fused, length, alpha, e, NO_CAP);
         let x_s = an.add(length, x_p, alpha_e, pos_cap);
-        let dv = an.mul(speed, velocity_gain, e, NO_CAP);
+        let dv = an.term(fused, speed, velocity_gain, e, NO_CAP);
         let v_s = an.add(speed, v, dv, vel_cap);
         [x_s.err, v_s.err, 0.0]
     };
@@ -681,24 +708,45 @@ fn power(r: f64, p: i32) -> f64 {
     }
 }
 
+/// Entry (i, j) of a matrix; zero outside it. (Reads and writes go through
+/// these so that no index can panic.)
+fn at(m: &Mat, i: usize, j: usize) -> f64 {
+    m.get(i).and_then(|row| row.get(j)).copied().unwrap_or(0.0)
+}
+
+fn put(m: &mut Mat, i: usize, j: usize, v: f64) {
+    if let Some(x) = m.get_mut(i).and_then(|row| row.get_mut(j)) {
+        *x = v;
+    }
+}
+
+/// Entry i of a vector; zero outside it.
+fn entry(v: &[f64; 3], i: usize) -> f64 {
+    v.get(i).copied().unwrap_or(0.0)
+}
+
 /// `Φ̄_ij − g_i c_j` (module docs, step 2).
 fn gain_part(i: usize, j: usize, g: &[f64; 3]) -> f64 {
-    let phi = match j as i32 - i as i32 {
+    let phi = match j.wrapping_sub(i) {
         0 | 1 => 1.0,
         2 => 0.5,
         _ => 0.0,
     };
     let c = if j == 2 { 0.5 } else { 1.0 };
-    phi - g[i] * c
+    phi - entry(g, i) * c
+}
+
+/// `r^(j − i)`.
+fn power_of(r: f64, i: usize, j: usize) -> f64 {
+    power(r, j as i32 - i as i32)
 }
 
 /// The closed-loop error matrix Ā(r, g) in scaled coordinates.
 fn scaled_matrix(n: usize, r: f64, g: &[f64; 3]) -> Mat {
-    let n = n.min(3); // keeps every index below in bounds
     let mut m = [[0.0; 3]; 3];
     for i in 0..n {
         for j in 0..n {
-            m[i][j] = power(r, j as i32 - i as i32) * gain_part(i, j, g);
+            put(&mut m, i, j, power_of(r, i, j) * gain_part(i, j, g));
         }
     }
     m
@@ -708,57 +756,49 @@ fn scaled_matrix(n: usize, r: f64, g: &[f64; 3]) -> Mat {
 /// `g ∈ g₀ ± spread`: each entry is bilinear in `r^(j−i)` and `g_i`, so the
 /// supremum is at one of four corners.
 fn deviation_bound(n: usize, r_lo: f64, r_hi: f64, g0: &[f64; 3], spread: &[f64; 3]) -> Mat {
-    let n = n.min(3); // keeps every index below in bounds
     let mut d = [[0.0; 3]; 3];
     for i in 0..n {
         let mut g_lo = *g0;
         let mut g_hi = *g0;
-        g_lo[i] -= spread[i];
-        g_hi[i] += spread[i];
+        if let (Some(lo), Some(hi)) = (g_lo.get_mut(i), g_hi.get_mut(i)) {
+            *lo -= entry(spread, i);
+            *hi += entry(spread, i);
+        }
         for j in 0..n {
-            let p = j as i32 - i as i32;
             let nominal = gain_part(i, j, g0);
             let mut worst: f64 = 0.0;
             for r in [r_lo, r_hi] {
                 for g in [&g_lo, &g_hi] {
-                    let v = power(r, p) * gain_part(i, j, g) - nominal;
+                    let v = power_of(r, i, j) * gain_part(i, j, g) - nominal;
                     worst = max(worst, libm::fabs(v));
                 }
             }
-            d[i][j] = worst;
+            put(&mut d, i, j, worst);
         }
     }
     d
 }
 
 fn mat_mul(n: usize, a: &Mat, b: &Mat) -> Mat {
-    let n = n.min(3); // keeps every index below in bounds
     let mut c = [[0.0; 3]; 3];
     for i in 0..n {
         for j in 0..n {
-            let mut s = 0.0;
-            for k in 0..n {
-                s += a[i][k] * b[k][j];
-            }
-            c[i][j] = s;
+            let s = (0..n).map(|k| at(a, i, k) * at(b, k, j)).sum();
+            put(&mut c, i, j, s);
         }
     }
     c
 }
 
 fn mat_vec(n: usize, a: &Mat, x: &[f64; 3]) -> [f64; 3] {
-    let n = n.min(3); // keeps every index below in bounds
     let mut y = [0.0; 3];
-    for i in 0..n {
-        for j in 0..n {
-            y[i] += a[i][j] * x[j];
-        }
+    for (i, y_i) in y.iter_mut().enumerate().take(n) {
+        *y_i = (0..n).map(|j| at(a, i, j) * entry(x, j)).sum();
     }
     y
 }
 
 fn inf_norm(n: usize, a: &Mat) -> f64 {
-    let n = n.min(3); // keeps every index below in bounds
     let mut worst: f64 = 0.0;
     for row in a.iter().take(n) {
         let s: f64 = row.iter().take(n).map(|v| libm::fabs(*v)).sum();
@@ -770,16 +810,15 @@ fn inf_norm(n: usize, a: &Mat) -> f64 {
 /// `L = Σ_{n≥0} |Āⁿ|` with the tail bound of the module docs, and the number
 /// of terms summed.
 fn impulse_l1(n: usize, a: &Mat) -> Result<(Mat, u32), BudgetError> {
-    let n = n.min(3); // keeps every index below in bounds
     let mut power_n = [[0.0; 3]; 3];
-    for (i, row) in power_n.iter_mut().enumerate().take(n) {
-        row[i] = 1.0;
+    for i in 0..n {
+        put(&mut power_n, i, i, 1.0);
     }
     let mut sum = [[0.0; 3]; 3];
     for term in 1..=MAX_TERMS {
-        for i in 0..n {
-            for j in 0..n {
-                sum[i][j] += libm::fabs(power_n[i][j]);
+        for (sum_row, power_row) in sum.iter_mut().zip(power_n.iter()).take(n) {
+            for (s, p) in sum_row.iter_mut().zip(power_row.iter()).take(n) {
+                *s += libm::fabs(*p);
             }
         }
         power_n = mat_mul(n, a, &power_n);
@@ -800,42 +839,63 @@ fn impulse_l1(n: usize, a: &Mat) -> Result<(Mat, u32), BudgetError> {
     Err(BudgetError::SlowDecay)
 }
 
-/// Solves `(I − m)·y = c` by Gaussian elimination with partial pivoting.
+/// Solves `(I − m)·y = c` by Gaussian elimination with partial pivoting
+/// (the augmented matrix's rows are `[I − m | c]`).
 fn solve_i_minus(n: usize, m: &Mat, c: &[f64; 3]) -> Option<[f64; 3]> {
-    let n = n.min(3); // keeps every index below in bounds
+    let n = n.min(3);
     let mut a = [[0.0; 4]; 3];
-    for i in 0..n {
-        for j in 0..n {
-            a[i][j] = if i == j { 1.0 } else { 0.0 } - m[i][j];
+    for (i, row) in a.iter_mut().enumerate().take(n) {
+        for (j, v) in row.iter_mut().enumerate().take(n) {
+            *v = if i == j { 1.0 } else { 0.0 } - at(m, i, j);
         }
-        a[i][3] = c[i];
+        if let Some(last) = row.get_mut(3) {
+            *last = entry(c, i);
+        }
     }
+    let get = |a: &[[f64; 4]; 3], i: usize, j: usize| {
+        a.get(i).and_then(|r| r.get(j)).copied().unwrap_or(0.0)
+    };
     for col in 0..n {
         let mut pivot = col;
-        for row in col + 1..n {
-            if libm::fabs(a[row][col]) > libm::fabs(a[pivot][col]) {
+        for row in col.saturating_add(1)..n {
+            if libm::fabs(get(&a, row, col)) > libm::fabs(get(&a, pivot, col)) {
                 pivot = row;
             }
         }
-        a.swap(col, pivot);
-        let p = a[col][col];
+        // Swap rows `col` and `pivot`.
+        if let (Some(&pivot_row), Some(&col_row)) = (a.get(pivot), a.get(col)) {
+            if let Some(r) = a.get_mut(col) {
+                *r = pivot_row;
+            }
+            if let Some(r) = a.get_mut(pivot) {
+                *r = col_row;
+            }
+        }
+        let p = get(&a, col, col);
         if p == 0.0 || p.is_nan() {
             return None;
         }
-        for row in col + 1..n {
-            let f = a[row][col] / p;
-            for k in col..4 {
-                a[row][k] -= f * a[col][k];
+        let pivot_row = a.get(col).copied().unwrap_or([0.0; 4]);
+        for row in a
+            .iter_mut()
+            .skip(col.saturating_add(1))
+            .take(n.saturating_sub(col.saturating_add(1)))
+        {
+            let f = row.get(col).copied().unwrap_or(0.0) / p;
+            for (v, pv) in row.iter_mut().zip(pivot_row.iter()).skip(col) {
+                *v -= f * pv;
             }
         }
     }
     let mut y = [0.0; 3];
     for i in (0..n).rev() {
-        let mut s = a[i][3];
-        for j in i + 1..n {
-            s -= a[i][j] * y[j];
+        let s = get(&a, i, 3)
+            - (i.saturating_add(1)..n)
+                .map(|j| get(&a, i, j) * entry(&y, j))
+                .sum::<f64>();
+        if let Some(y_i) = y.get_mut(i) {
+            *y_i = s / get(&a, i, i);
         }
-        y[i] = s / a[i][i];
     }
     if y.iter().all(|v| v.is_finite()) {
         Some(y)
@@ -847,12 +907,11 @@ fn solve_i_minus(n: usize, m: &Mat, c: &[f64; 3]) -> Option<[f64; 3]> {
 /// `(I − m)⁻¹·c` for a nonnegative `m` (= LĒ) after certifying ρ(m) < 1 with
 /// `x = (I − m)⁻¹·1 > 0` and `m·x ≤ (1 − margin)·x`.
 fn small_gain(n: usize, m: &Mat, c: &[f64; 3]) -> Result<[f64; 3], BudgetError> {
-    let n = n.min(3); // keeps every index below in bounds
     let ones = [1.0; 3];
     let x = solve_i_minus(n, m, &ones).ok_or(BudgetError::NotContractive)?;
     let mx = mat_vec(n, m, &x);
-    for i in 0..n {
-        if !(x[i] > 0.0 && mx[i] <= (1.0 - CONTRACTION_MARGIN) * x[i]) {
+    for (x_i, mx_i) in x.iter().zip(mx.iter()).take(n) {
+        if !(*x_i > 0.0 && *mx_i <= (1.0 - CONTRACTION_MARGIN) * *x_i) {
             return Err(BudgetError::NotContractive);
         }
     }

@@ -37,6 +37,8 @@
 //! * eq. (22), J_αβ: the cross term is `−v·a_s·T⁴/β²`, not `+`
 //!   ([`alpha_beta_transient_cost`]).
 //!
+//! Tenne & Singh's optimal design (§3, eqs. 23–35) is in [`optimal`].
+//!
 //! # Designing gains from sensor noise and manoeuvre level
 //!
 //! ```ignore
@@ -50,6 +52,8 @@
 //! then `gains.convert::<Fix>()` (or `f32`) for the filter on the target.
 
 use crate::gains::{GainError, Gains};
+
+pub mod optimal;
 
 /// Why a design formula refused its input.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -71,6 +75,12 @@ pub enum DesignError {
     Unstable(GainError),
     /// The result does not fit in a finite `f64`.
     Overflow,
+    /// An optimisation found no point where its cost is defined, or its
+    /// stationarity condition has no root in the formula's domain.
+    NoOptimum,
+    /// A printed formula gave a negative variance or sum of squares: it is
+    /// not a cost there (Tenne & Singh's misprinted eqs. 10, 16, 21).
+    Negative,
 }
 
 impl core::fmt::Display for DesignError {
@@ -84,6 +94,8 @@ impl core::fmt::Display for DesignError {
             }
             DesignError::Unstable(e) => write!(f, "gains are not stable: {e}"),
             DesignError::Overflow => f.write_str("result overflows f64"),
+            DesignError::NoOptimum => f.write_str("no optimum found in the stability region"),
+            DesignError::Negative => f.write_str("a printed variance or squared error is negative"),
         }
     }
 }
@@ -652,6 +664,12 @@ pub fn alpha_beta_gamma_predicted_position_noise_ratio(
 /// Errors: [`DesignError::Unstable`] if the (α, β, γ) image of (a, b, c)
 /// (eq. 12) is outside the stability volume.
 pub fn abc_predicted_position_noise_ratio(abc: AbcParameters) -> Result<f64, DesignError> {
+    abc_noise_ratio(abc, 1.0)
+}
+
+/// Eq. (10) with the factor `k1_factor` on its (1 + c)k₁ numerator term:
+/// 1 is the corrected form, 4b the printed one ([`optimal::printed_abc_noise_ratio`]).
+fn abc_noise_ratio(abc: AbcParameters, k1_factor: f64) -> Result<f64, DesignError> {
     let g = abc_to_alpha_beta_gamma(abc)?;
     require_stable_alpha_beta_gamma(g.alpha, g.beta, g.gamma)?;
     let AbcParameters { a, b, c } = abc;
@@ -660,7 +678,7 @@ pub fn abc_predicted_position_noise_ratio(abc: AbcParameters) -> Result<f64, Des
     let k13 = 6.0 * a * a - 2.0 * a * b * b - 4.0 * b * a * a + 4.0 * a - 2.0 * b * b + 7.0 * a * b;
     let k1 = (k11 * c + k12) * c + k13;
     let k2 = (b + 2.0 * a - 4.0) * (c * c * a - c * a - c * c - 2.0 * b + b * c + 1.0);
-    let numerator = -(4.0 * b * a * a + 2.0 * a * b * b + 4.0 * b * b) - (1.0 + c) * k1;
+    let numerator = -(4.0 * b * a * a + 2.0 * a * b * b + 4.0 * b * b) - k1_factor * (1.0 + c) * k1;
     let denominator = 2.0 * a * (b + 2.0 * a - 4.0) * b + a * (1.0 + c) * k2;
     result(numerator / denominator)
 }
@@ -823,6 +841,18 @@ pub fn abc_transient_cost(
     velocity: f64,
     acceleration: f64,
 ) -> Result<f64, DesignError> {
+    abc_transient(abc, dt, velocity, acceleration, 1.0)
+}
+
+/// Eq. (21) with Q = c(a + b + ca) − (1 + `sign`·c)²: `sign` 1 is the
+/// corrected form, −1 the printed one ([`optimal::printed_abc_transient_cost`]).
+fn abc_transient(
+    abc: AbcParameters,
+    dt: f64,
+    velocity: f64,
+    acceleration: f64,
+    sign: f64,
+) -> Result<f64, DesignError> {
     let g = abc_to_alpha_beta_gamma(abc)?;
     require_stable_alpha_beta_gamma(g.alpha, g.beta, g.gamma)?;
     finite(&[velocity, acceleration])?;
@@ -831,7 +861,7 @@ pub fn abc_transient_cost(
     let (t, v, acc) = (dt, velocity, acceleration);
     let t2 = t * t;
     let t3 = t2 * t;
-    let q = c * (a + b + c * a) - (1.0 + c) * (1.0 + c);
+    let q = c * (a + b + c * a) - (1.0 + sign * c) * (1.0 + sign * c);
     let velocity_term =
         2.0 * (c - c * a - 1.0) * t3 * v * v / (a * (2.0 * a + b - 4.0) * (c - 1.0) * q);
     let acceleration_term =

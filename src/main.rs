@@ -47,7 +47,7 @@ use abtrack::track::FixedGainTrack;
 use abtrack::wire::{LinkStatus, MeasurementReport, Message, ScanSummary, TrackReport};
 use abtrack::wire::{MAX_FRAMES_PER_BYTE, MAX_FRAME_LEN};
 use abtrack::Scalar;
-use board::Native;
+use board::TableScalar as Native;
 use cortex_m::interrupt::{free, Mutex};
 use cortex_m::peripheral::syst::SystClkSource;
 use cortex_m::peripheral::NVIC;

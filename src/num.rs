@@ -1,6 +1,11 @@
-//! The numeric representations: one [`Scalar`] abstraction over `f64`, `f32`
-//! and the fixed-point type [`Fix`]. This is the only module that knows how a
-//! number is stored; every filter, schedule and tracker is generic over it.
+//! The numeric representations. [`Numeric`] is a number system with one
+//! type per quantity ([`numeric`]); [`Scalar`] is a single type used for
+//! every quantity (`f64`, `f32` and the Q32.32 fixed point [`Fix`]), which
+//! implements [`Numeric`] through a blanket implementation; [`Fixed32`]
+//! ([`fixed32`]) is the fast fixed point, with a 32-bit format per quantity.
+//! This is the only module that knows how a number is stored; every filter,
+//! schedule and tracker is generic over it. The formats, the envelope and
+//! how to port code are in `docs/numerics-fixed-point.md`.
 //!
 //! # Invalid values
 //!
@@ -270,6 +275,24 @@ pub fn hypot<S: Scalar>(a: S, b: S) -> S {
     }
     let k = small / large;
     large * (S::ONE + k * k).sqrt()
+}
+
+/// Azimuth of (x, y), clockwise from the y axis, in [0, 2π).
+pub fn azimuth_of<S: Scalar>(x: S, y: S) -> S {
+    let two_pi = S::from_f64_lossy(core::f64::consts::TAU);
+    let a = x.atan2(y);
+    if a < S::ZERO {
+        let wrapped = a + two_pi;
+        // A tiny negative angle plus 2π can round to 2π in f32/f64: that
+        // direction is azimuth 0.
+        if wrapped >= two_pi {
+            S::ZERO
+        } else {
+            wrapped
+        }
+    } else {
+        a
+    }
 }
 
 /// Q32.32 saturating fixed point with sticky saturation (see the module docs).

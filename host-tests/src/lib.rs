@@ -2,7 +2,9 @@
 //!
 //! * [`reference`]: the independent `f64` reference filters, written straight
 //!   from the papers; [`reference_ra`] the same for He et al.'s range-azimuth
-//!   filter.
+//!   filter; [`reference_tcas`] the TCAS II v7.1 logic on true states.
+//! * [`encounters`]: the TCAS encounter suite and the demo scenario;
+//!   [`altitude_figures`]: the altitude tracker's figures.
 //! * [`trajectory`]: seeded random trajectories for the precision checks.
 //! * [`scenario`], [`noise`]: the papers' scenarios and measurement noise.
 //! * [`kalman`]: the Kalman-filter baselines; [`metrics`]: RMSE, confidence
@@ -19,9 +21,11 @@
 //! * [`bench_report`]: the benchmark firmware's output to bench/results.csv
 //!   and bench/BENCHMARKS.md (the `bench_report` tool).
 
+pub mod altitude_figures;
 pub mod bench_report;
 pub mod cli;
 pub mod csv_input;
+pub mod encounters;
 pub mod experiments;
 pub mod frames;
 pub mod kalman;
@@ -31,6 +35,7 @@ pub mod output;
 pub mod precision;
 pub mod reference;
 pub mod reference_ra;
+pub mod reference_tcas;
 pub mod replay;
 pub mod replay_tracker;
 pub mod scenario;

@@ -7,7 +7,8 @@ use abtrack::budget::{
     error_budget_around_reference, BudgetError, ErrorBound, GainSpread, RunEnvelope,
 };
 use abtrack::filter::{Gains, KinematicFilter, UpdateOutcome};
-use abtrack::{FilterError, Scalar};
+use abtrack::num::{Numeric, Quantity};
+use abtrack::FilterError;
 
 use crate::reference::{RefFilter, RefGains, RefStep};
 use crate::trajectory::{ScenarioSpec, Step};
@@ -121,23 +122,26 @@ pub struct Comparison {
     pub refused: usize,
 }
 
-/// Runs axis `axis` of `steps` through `KinematicFilter<S, ORDER>` and the
-/// reference with the same gains. Inputs are converted to `S` with
-/// `try_from_f64` (the conversion a user's code does at its edge).
-pub fn compare_axis<S: Scalar, const ORDER: usize, const D: usize>(
+/// Runs axis `axis` of `steps` through `KinematicFilter<N, ORDER>` and the
+/// reference with the same gains. Inputs are converted to `N`'s quantities
+/// with `try_from_f64` (the conversion a user's code does at its edge).
+pub fn compare_axis<N: Numeric, const ORDER: usize, const D: usize>(
     steps: &[Step<D>],
     axis: usize,
     gains: &RefGains,
 ) -> Result<Comparison, String> {
-    let lib_gains: Gains<S> = if ORDER == 3 {
+    let lib_gains: Gains<N> = if ORDER == 3 {
         Gains::alpha_beta_gamma_f64(gains.alpha, gains.beta, gains.gamma)
     } else {
         Gains::alpha_beta_f64(gains.alpha, gains.beta)
     }
     .map_err(|e| format!("gains: {e}"))?;
-    let to_s = |v: f64| S::try_from_f64(v).map_err(|e| format!("{v} in {}: {e}", S::NAME));
+    let length =
+        |v: f64| N::Length::try_from_f64(v).map_err(|e| format!("{v} m in {}: {e}", N::NAME));
+    let interval =
+        |v: f64| N::Interval::try_from_f64(v).map_err(|e| format!("{v} s in {}: {e}", N::NAME));
 
-    let mut filter = KinematicFilter::<S, ORDER>::new();
+    let mut filter = KinematicFilter::<N, ORDER>::new();
     let mut reference = RefFilter::new(ORDER);
     let mut deviation = Deviation::default();
     let mut envelope = EnvelopeTracker::new();
@@ -145,7 +149,7 @@ pub fn compare_axis<S: Scalar, const ORDER: usize, const D: usize>(
     let mut updates = 0usize;
 
     for step in steps {
-        let dt = to_s(step.dt)?;
+        let dt = interval(step.dt)?;
         match step.z {
             Some(z) => {
                 let z = z[axis];
@@ -170,7 +174,7 @@ pub fn compare_axis<S: Scalar, const ORDER: usize, const D: usize>(
                 envelope.velocity(v);
                 envelope.acceleration(a);
 
-                match filter.update(to_s(z)?, dt, &lib_gains) {
+                match filter.update(length(z)?, dt, &lib_gains) {
                     Ok(UpdateOutcome::FirstPoint)
                     | Ok(UpdateOutcome::SecondPoint)
                     | Ok(UpdateOutcome::Filtered(_)) => {}
@@ -341,15 +345,15 @@ pub struct RunReport {
 /// The library's gains for reference gains, as `f64` (what the budget takes).
 pub fn budget_gains(order: usize, g: &RefGains) -> Result<Gains<f64>, abtrack::GainError> {
     if order == 3 {
-        Gains::alpha_beta_gamma(g.alpha, g.beta, g.gamma)
+        Gains::<f64>::alpha_beta_gamma(g.alpha, g.beta, g.gamma)
     } else {
-        Gains::alpha_beta(g.alpha, g.beta)
+        Gains::<f64>::alpha_beta(g.alpha, g.beta)
     }
 }
 
-/// Runs `steps` (axis `axis`) in `S` and the reference, and computes the
+/// Runs `steps` (axis `axis`) in `N` and the reference, and computes the
 /// budget for the reference's magnitudes.
-pub fn measure<S: Scalar, const D: usize>(
+pub fn measure<N: Numeric, const D: usize>(
     order: usize,
     gains: &RefGains,
     steps: &[Step<D>],
@@ -357,9 +361,9 @@ pub fn measure<S: Scalar, const D: usize>(
     spread: &GainSpread,
 ) -> Result<RunReport, String> {
     let comparison = if order == 3 {
-        compare_axis::<S, 3, D>(steps, axis, gains)?
+        compare_axis::<N, 3, D>(steps, axis, gains)?
     } else {
-        compare_axis::<S, 2, D>(steps, axis, gains)?
+        compare_axis::<N, 2, D>(steps, axis, gains)?
     };
     let envelope = comparison
         .envelope
@@ -367,9 +371,9 @@ pub fn measure<S: Scalar, const D: usize>(
         .ok_or_else(|| "run has fewer than two updates".to_string())?;
     let g = budget_gains(order, gains).map_err(|e| format!("gains: {e}"))?;
     let budget = if order == 3 {
-        error_budget_around_reference::<S, 3>(&g, spread, &envelope)
+        error_budget_around_reference::<N, 3>(&g, spread, &envelope)
     } else {
-        error_budget_around_reference::<S, 2>(&g, spread, &envelope)
+        error_budget_around_reference::<N, 2>(&g, spread, &envelope)
     };
     Ok(RunReport {
         deviation: comparison.deviation,
@@ -379,7 +383,7 @@ pub fn measure<S: Scalar, const D: usize>(
 }
 
 /// [`measure`] on a documented run.
-pub fn measure_documented<S: Scalar>(run: &DocumentedRun) -> Result<RunReport, String> {
+pub fn measure_documented<N: Numeric>(run: &DocumentedRun) -> Result<RunReport, String> {
     let steps = crate::trajectory::generate::<1>(run.seed, &run.spec);
-    measure::<S, 1>(run.order, &run.gains, &steps, 0, &GainSpread::default())
+    measure::<N, 1>(run.order, &run.gains, &steps, 0, &GainSpread::default())
 }

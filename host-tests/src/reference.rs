@@ -236,3 +236,115 @@ impl RefFilter {
         }
     }
 }
+
+/// Which innovations Liu, Wang & Yang's residual accumulation (§2.1.4,
+/// eqs. 6–7) averages.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum LiuWindow {
+    /// V(k), V(k − 1), …, V(k − n + 1): the current innovation and the n − 1
+    /// before it (the library's `liu-residual` reading).
+    IncludingCurrent,
+    /// V(k − 1), …, V(k − n): "the n measurement–prediction differences
+    /// before the current time" (the text of §2.1.4), the current one left
+    /// out. At the first filtered update, where no earlier innovation
+    /// exists, the current one is used (both readings agree there).
+    ExcludingCurrent,
+}
+
+/// Liu, Wang & Yang §2.1.4 in plain f64, per axis: σ_p² the mean of n
+/// squared innovations (eqs. 6–7, read as innovations like the library),
+/// α = σ_p²/(σ_p² + σ_m²) (eqs. 8–9) floored at `alpha_min` (the library's
+/// default 0.01), β = α²/(2 − α) (eqs. 10–11), driving [`RefAlphaBeta`].
+#[derive(Debug, Clone, PartialEq)]
+pub struct RefLiuResidual {
+    pub window: LiuWindow,
+    pub n: usize,
+    pub sigma_m2: f64,
+    pub alpha_min: f64,
+    pub axes: Vec<RefAlphaBeta>,
+    /// Past innovations per axis, newest last (at most n kept).
+    history: Vec<Vec<f64>>,
+}
+
+/// What one [`RefLiuResidual`] update did on one axis.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct RefLiuStep {
+    pub predicted: f64,
+    pub innovation: f64,
+    pub alpha: f64,
+    pub beta: f64,
+}
+
+impl RefLiuResidual {
+    pub fn new(window: LiuWindow, n: usize, sigma_m2: f64, alpha_min: f64, axes: usize) -> Self {
+        RefLiuResidual {
+            window,
+            n,
+            sigma_m2,
+            alpha_min,
+            axes: vec![RefAlphaBeta::new(); axes],
+            history: vec![Vec::new(); axes],
+        }
+    }
+
+    /// One measurement per axis, `t` after the previous one. `None` per axis
+    /// while initialising (two-point start).
+    pub fn update(&mut self, z: &[f64], t: f64) -> Vec<Option<RefLiuStep>> {
+        let (n, sigma_m2, alpha_min, window) = (self.n, self.sigma_m2, self.alpha_min, self.window);
+        self.axes
+            .iter_mut()
+            .zip(self.history.iter_mut())
+            .zip(z)
+            .map(|((axis, past), &z)| {
+                if axis.stage != Stage::Tracking {
+                    axis.update(
+                        z,
+                        t,
+                        &RefGains {
+                            alpha: 1.0,
+                            beta: 1.0,
+                            gamma: 0.0,
+                        },
+                    );
+                    return None;
+                }
+                // Eq. (3): the prediction, and the innovation V(k).
+                let predicted = axis.x_s + t * axis.v_s;
+                let v = z - predicted;
+                let terms: Vec<f64> = match window {
+                    LiuWindow::IncludingCurrent => past
+                        .iter()
+                        .rev()
+                        .take(n - 1)
+                        .copied()
+                        .chain(std::iter::once(v))
+                        .collect(),
+                    LiuWindow::ExcludingCurrent if past.is_empty() => vec![v],
+                    LiuWindow::ExcludingCurrent => past.iter().rev().take(n).copied().collect(),
+                };
+                let sigma_p2 = terms.iter().map(|e| e * e).sum::<f64>() / terms.len() as f64;
+                let alpha = (sigma_p2 / (sigma_p2 + sigma_m2)).clamp(alpha_min, 1.0);
+                let beta = alpha * alpha / (2.0 - alpha);
+                axis.update(
+                    z,
+                    t,
+                    &RefGains {
+                        alpha,
+                        beta,
+                        gamma: 0.0,
+                    },
+                );
+                past.push(v);
+                if past.len() > n {
+                    past.remove(0);
+                }
+                Some(RefLiuStep {
+                    predicted,
+                    innovation: v,
+                    alpha,
+                    beta,
+                })
+            })
+            .collect()
+    }
+}

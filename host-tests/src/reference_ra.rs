@@ -13,6 +13,14 @@
 //!
 //! with two-point initialisation. It does not apply the library's 1 m floor
 //! on √VAR (tests keep R above 11.5 m, where the two agree).
+//!
+//! [`Eq9Reading::AsPrinted`] is the other reading of slip 3: eq. (9) exactly
+//! as printed, dividing by PCOV₁₁ + VAR like eq. (10). Then the range
+//! direction has the cross-range measurement variance VAR everywhere (two-
+//! point start, gains, covariance update), its covariance equals the
+//! cross-range one, α = W1 and β/T = W2 at every scan, and eqs. (12)–(13)
+//! reduce to x += α(z_x − x_p), y += α(z_y − y_p): a per-axis filter on the
+//! converted measurements with gains from the cross-range variance.
 
 type Mat = [[f64; 2]; 2];
 
@@ -84,9 +92,20 @@ enum Stage {
     Tracking,
 }
 
+/// Which measurement variance He et al.'s eq. (9) divides by.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Eq9Reading {
+    /// PCOV₁₁ + σ_R² (the library's reading 3).
+    RangeVariance,
+    /// PCOV₁₁ + VAR, exactly as printed.
+    AsPrinted,
+}
+
 /// The reference filter.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct ReferenceRangeAzimuth {
+    /// Which eq. (9) (see [`Eq9Reading`]).
+    pub eq9: Eq9Reading,
     /// σ_R², m².
     pub range_variance: f64,
     /// σ_B², rad².
@@ -106,6 +125,7 @@ pub struct ReferenceRangeAzimuth {
 impl ReferenceRangeAzimuth {
     pub fn new(range_variance: f64, bearing_variance: f64, q: f64) -> Self {
         ReferenceRangeAzimuth {
+            eq9: Eq9Reading::RangeVariance,
             range_variance,
             bearing_variance,
             q,
@@ -114,6 +134,23 @@ impl ReferenceRangeAzimuth {
             y: [0.0; 2],
             p_range: [[0.0; 2]; 2],
             p_cross: [[0.0; 2]; 2],
+        }
+    }
+
+    /// The same filter with eq. (9) exactly as printed.
+    pub fn as_printed(range_variance: f64, bearing_variance: f64, q: f64) -> Self {
+        ReferenceRangeAzimuth {
+            eq9: Eq9Reading::AsPrinted,
+            ..Self::new(range_variance, bearing_variance, q)
+        }
+    }
+
+    /// The measurement variance along the line of sight that eq. (9) uses
+    /// when the cross-range one is `var`.
+    fn range_measurement_variance(&self, var: f64) -> f64 {
+        match self.eq9 {
+            Eq9Reading::RangeVariance => self.range_variance,
+            Eq9Reading::AsPrinted => var,
         }
     }
 
@@ -149,8 +186,11 @@ impl ReferenceRangeAzimuth {
                 self.x = [zx, (zx - x) / tt];
                 self.y = [zy, (zy - y) / tt];
                 let s2 = self.range_variance;
-                self.p_range = [[s2, s2 / tt], [s2 / tt, 2.0 * s2 / (tt * tt)]];
                 self.p_cross = [[var, var / tt], [var / tt, (var1 + var) / (tt * tt)]];
+                self.p_range = match self.eq9 {
+                    Eq9Reading::RangeVariance => [[s2, s2 / tt], [s2 / tt, 2.0 * s2 / (tt * tt)]],
+                    Eq9Reading::AsPrinted => self.p_cross,
+                };
                 self.stage = Stage::Tracking;
                 None
             }
@@ -160,9 +200,10 @@ impl ReferenceRangeAzimuth {
                 let yp = [self.y[0] + t * self.y[1], self.y[1]];
                 let pr = predict_covariance(&self.p_range, t, self.q);
                 let pc = predict_covariance(&self.p_cross, t, self.q);
-                // Eq. (9) with σ_R², eq. (10) with VAR.
-                let alpha = pr[0][0] / (pr[0][0] + self.range_variance);
-                let beta = t * pr[0][1] / (pr[0][0] + self.range_variance);
+                // Eq. (9) with σ_R² (or VAR as printed), eq. (10) with VAR.
+                let range_var = self.range_measurement_variance(var);
+                let alpha = pr[0][0] / (pr[0][0] + range_var);
+                let beta = t * pr[0][1] / (pr[0][0] + range_var);
                 let w1 = pc[0][0] / (pc[0][0] + var);
                 let w2 = pc[0][1] / (pc[0][0] + var);
                 // Eq. (11).
@@ -178,7 +219,7 @@ impl ReferenceRangeAzimuth {
                     yp[0] + alpha * resid_r * cb + w1 * resid_cr * sb,
                     yp[1] + beta / t * resid_r * cb + w2 * resid_cr * sb,
                 ];
-                self.p_range = update_covariance(&pr, [alpha, beta / t], self.range_variance);
+                self.p_range = update_covariance(&pr, [alpha, beta / t], range_var);
                 self.p_cross = update_covariance(&pc, [w1, w2], var);
                 Some(ReferenceStep {
                     predicted: [xp[0], yp[0]],

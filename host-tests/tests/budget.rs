@@ -41,6 +41,27 @@ fn ref_gains(alpha: f64, beta: f64, gamma: f64) -> RefGains {
 
 // ------------------------------------------------------------ documented runs
 
+/// Issue 8: on every documented run the fast fixed point is at least ten
+/// times closer to f64 than f32 is, in position, velocity and (αβγ)
+/// acceleration.
+#[test]
+fn fast_fixed_point_is_ten_times_closer_than_f32() {
+    for run in documented_runs() {
+        let f32_max = measure_documented::<f32>(&run).unwrap().deviation.max;
+        let fixed = measure_documented::<abtrack::Fixed32>(&run).unwrap();
+        assert_eq!(fixed.refused, 0, "{}: updates refused", run.name);
+        let components = if run.order == 3 { 3 } else { 2 };
+        for i in 0..components {
+            let ratio = f32_max[i] / fixed.deviation.max[i];
+            assert!(
+                ratio >= 10.0,
+                "{} component {i}: only {ratio:.1} times closer than f32",
+                run.name
+            );
+        }
+    }
+}
+
 /// The runs the README quotes: within budget, and the budget is not vacuous
 /// (at most 1000 times the measured maximum on every component).
 #[test]
@@ -49,7 +70,11 @@ fn documented_runs_stay_within_budget() {
         assert_eq!(run.spec.steps, 10_000);
         for (name, report) in [
             ("f32", measure_documented::<f32>(&run).unwrap()),
-            ("fixed", measure_documented::<Fix>(&run).unwrap()),
+            ("q32", measure_documented::<Fix>(&run).unwrap()),
+            (
+                "fixed",
+                measure_documented::<abtrack::Fixed32>(&run).unwrap(),
+            ),
         ] {
             let what = format!("{} {name}", run.name);
             let b = within(&report, &what);

@@ -1537,3 +1537,435 @@ fn no_input_panics_and_every_ok_is_finite() {
         Err(DesignError::Overflow)
     );
 }
+
+// ---------------------------------------------------------------------------
+// Tenne & Singh §3: optimal design (abtrack::design::optimal)
+
+mod optimal_design {
+    use super::{assert_abs, assert_close, printed_eq_10, printed_eq_16, printed_eq_21};
+    use super::{printed_eq_22, stable_alpha_beta_gamma_samples, stable_alpha_beta_samples};
+    use abtrack::design::optimal::*;
+    use abtrack::design::{alpha_beta_gamma_to_abc, DesignError};
+
+    fn penalty(kappa: f64, noise_variance: f64) -> Penalty {
+        Penalty {
+            kappa,
+            noise_variance,
+        }
+    }
+
+    fn line(s: StraightLine) -> Manoeuvre {
+        Manoeuvre::StraightLine(s)
+    }
+
+    #[test]
+    fn penalty_and_costs_golden() {
+        assert_eq!(penalty(2.0, 200.0).weight(), Ok(400.0));
+        assert_eq!(penalty(-1.0, 1.0).weight(), Err(DesignError::NotPositive));
+        assert_eq!(penalty(1.0, f64::NAN).weight(), Err(DesignError::NotFinite));
+        // Eq. 26 at (0.5, 0.2), v = 3, T = 0.7: J = 9·0.343·1.5/(0.1·2.8)
+        // = 16.5375; ρ² (eq. 13) = 1.0/1.4; κx̄o² = 400.
+        let cv = line(StraightLine::constant_velocity(3.0, 0.7));
+        let c = alpha_beta_cost(&cv, &penalty(2.0, 200.0), Forms::Consistent, 0.5, 0.2).unwrap();
+        assert_close(c.manoeuvre, 16.5375, 1e-14);
+        assert_close(c.noise, 400.0 / 1.4, 1e-14);
+        assert_eq!(c.steady_state, 0.0);
+        assert_close(c.total(), 16.5375 + 400.0 / 1.4, 1e-14);
+        // Steady-state term (eq. 19): (2·0.49/0.2)² = 24.01.
+        let ss = line(StraightLine::steady_state(2.0, 0.7));
+        let c = alpha_beta_cost(&ss, &penalty(0.0, 1.0), Forms::Consistent, 0.5, 0.2).unwrap();
+        assert_close(c.steady_state, 24.01, 1e-14);
+        assert_eq!((c.manoeuvre, c.noise), (0.0, 0.0));
+        // Eq. 25 with v and a: the printed eq. 22 (cross term +) against the
+        // consistent one, 94.57 vs 22.54 (the documented example).
+        let both = line(StraightLine {
+            velocity: 3.0,
+            acceleration: 2.0,
+            ..StraightLine::constant_velocity(0.0, 0.7)
+        });
+        let p = penalty(0.0, 1.0);
+        let consistent = alpha_beta_cost(&both, &p, Forms::Consistent, 0.5, 0.2).unwrap();
+        let printed = alpha_beta_cost(&both, &p, Forms::AsPrinted, 0.5, 0.2).unwrap();
+        assert_close(
+            printed.manoeuvre,
+            printed_eq_22(0.5, 0.2, 0.7, 3.0, 2.0),
+            1e-14,
+        );
+        assert_abs(consistent.manoeuvre, 22.54, 0.005);
+        // Circle (eq. 24): e² from eq. 17 at ωT = π/2, R = 100: 200²/1.94.
+        let circle = Manoeuvre::Circle(Circle {
+            radius: 100.0,
+            angular_rate: core::f64::consts::FRAC_PI_2,
+            dt: 1.0,
+        });
+        let c = alpha_beta_cost(&circle, &penalty(1.0, 3.0), Forms::Consistent, 0.5, 0.2).unwrap();
+        assert_close(c.manoeuvre, 40000.0 / 1.94, 1e-13);
+        assert_close(c.noise, 3.0 / 1.4, 1e-14);
+        // Outside the triangle, or bad inputs: typed errors.
+        assert!(matches!(
+            alpha_beta_cost(&cv, &p, Forms::Consistent, 1.5, 1.2),
+            Err(DesignError::Unstable(_))
+        ));
+        let bad = line(StraightLine::constant_velocity(3.0, 0.0));
+        assert_eq!(
+            alpha_beta_cost(&bad, &p, Forms::Consistent, 0.5, 0.2),
+            Err(DesignError::NotPositive)
+        );
+    }
+
+    #[test]
+    fn printed_forms_are_the_printed_equations() {
+        let circle = Circle {
+            radius: 100.0,
+            angular_rate: core::f64::consts::FRAC_PI_3,
+            dt: 1.0,
+        };
+        let mut compared = 0;
+        for (alpha, beta, gamma) in stable_alpha_beta_gamma_samples().into_iter().step_by(7) {
+            let abc = alpha_beta_gamma_to_abc(alpha, beta, gamma).unwrap();
+            let pairs = [
+                (printed_abc_noise_ratio(abc), printed_eq_10(abc)),
+                (
+                    printed_abc_transient_cost(abc, 0.7, 3.0, 2.0),
+                    printed_eq_21(abc, 0.7, 3.0, 2.0),
+                ),
+                (
+                    printed_alpha_beta_gamma_circular_error(alpha, beta, gamma, &circle),
+                    printed_eq_16(alpha, beta, gamma, 100.0, core::f64::consts::FRAC_PI_3),
+                ),
+            ];
+            for (library, helper) in pairs {
+                match library {
+                    Ok(v) => {
+                        assert_close(v, helper, 1e-9);
+                        compared += 1;
+                    }
+                    // A printed "variance" or magnitude below zero is refused.
+                    Err(e) => {
+                        assert_eq!(e, DesignError::Negative);
+                        assert!(helper < 0.0, "{helper}");
+                    }
+                }
+            }
+        }
+        assert!(compared > 100, "{compared}");
+        // The golden point of `circular_error_golden`: printed 98.18.
+        assert_abs(
+            printed_alpha_beta_gamma_circular_error(0.5, 0.2, 0.04, &circle).unwrap(),
+            98.18,
+            0.01,
+        );
+    }
+
+    #[test]
+    fn stationarity_conditions_golden() {
+        // Eq. 29 at (0.5, 0.2), v = 3, T = 0.7, κx̄o² = 1:
+        // 2·0.2·0.64 + 2·9·0.343·(−2.05) = 0.256 − 12.6567.
+        let p = penalty(1.0, 1.0);
+        assert_close(
+            constant_velocity_condition(0.5, 0.2, 3.0, 0.7, &p).unwrap(),
+            0.256 - 12.6567,
+            1e-14,
+        );
+        // Eq. 31 at (0.5, 0.2), a = 2, T = 1: 4·0.008·0.64 + 4·0.05·(−2.8)²
+        // = 0.02048 + 1.568.
+        assert_close(
+            constant_acceleration_condition(0.5, 0.2, 2.0, 1.0, &p).unwrap(),
+            0.02048 + 1.568,
+            1e-14,
+        );
+        // Eq. 33: 2κ·0.64; and ∂f/∂β: 4·0.008 − 4·0.5·7.84 (a = 2, T = 1).
+        assert_close(
+            steady_state_alpha_condition(0.5, 0.2, &p).unwrap(),
+            1.28,
+            1e-15,
+        );
+        assert_close(
+            steady_state_beta_condition(0.5, 0.2, 2.0, 1.0, &p).unwrap(),
+            0.032 - 15.68,
+            1e-14,
+        );
+        assert_eq!(
+            constant_velocity_condition(0.5, f64::INFINITY, 3.0, 0.7, &p),
+            Err(DesignError::NotFinite)
+        );
+    }
+
+    /// Central difference of the total cost along α or β.
+    fn slope(m: &Manoeuvre, p: &Penalty, alpha: f64, beta: f64, along_alpha: bool) -> f64 {
+        let h = 1e-6;
+        let f = |a: f64, b: f64| {
+            alpha_beta_cost(m, p, Forms::Consistent, a, b)
+                .unwrap()
+                .total()
+        };
+        if along_alpha {
+            (f(alpha + h, beta) - f(alpha - h, beta)) / (2.0 * h)
+        } else {
+            (f(alpha, beta + h) - f(alpha, beta - h)) / (2.0 * h)
+        }
+    }
+
+    #[test]
+    fn conditions_are_the_cost_gradient_times_the_papers_factors() {
+        // Eq. 29 = α²β(2α+β−4)²·∂f/∂α, eq. 31 = 2α²β³(2α+β−4)²·∂f/∂α,
+        // eq. 33 = α²(2α+β−4)²·∂f/∂α, the β condition = αβ³(2α+β−4)²/2·∂f/∂β
+        // (sympy), for any stable point, any κ.
+        let p = penalty(0.7, 3.0);
+        let k = p.weight().unwrap();
+        let (v, a, t) = (3.0, 2.0, 0.7);
+        for (alpha, beta) in stable_alpha_beta_samples().into_iter().step_by(11) {
+            let d2 = (2.0 * alpha + beta - 4.0).powi(2);
+            let cv = line(StraightLine::constant_velocity(v, t));
+            let ca = line(StraightLine::constant_acceleration(a, t));
+            let ss = line(StraightLine::steady_state(a, t));
+            let checks = [
+                (
+                    constant_velocity_condition(alpha, beta, v, t, &p).unwrap(),
+                    alpha * alpha * beta * d2 * slope(&cv, &p, alpha, beta, true),
+                ),
+                (
+                    constant_acceleration_condition(alpha, beta, a, t, &p).unwrap(),
+                    2.0 * alpha * alpha * beta.powi(3) * d2 * slope(&ca, &p, alpha, beta, true),
+                ),
+                (
+                    steady_state_alpha_condition(alpha, beta, &p).unwrap(),
+                    alpha * alpha * d2 * slope(&ss, &p, alpha, beta, true),
+                ),
+                (
+                    steady_state_beta_condition(alpha, beta, a, t, &p).unwrap(),
+                    alpha * beta.powi(3) * d2 / 2.0 * slope(&ss, &p, alpha, beta, false),
+                ),
+            ];
+            for (condition, gradient) in checks {
+                let scale = condition.abs().max(gradient.abs()).max(k * 1e-3);
+                assert!(
+                    (condition - gradient).abs() <= 1e-5 * scale,
+                    "({alpha}, {beta}): {condition} vs {gradient}"
+                );
+            }
+        }
+    }
+
+    #[test]
+    fn optimal_curves_golden() {
+        // Eq. 30 at α = 0.5: √(36 − 30 + 0.25) = 2.5, β = 3 − 1.25 − 1.25.
+        assert_close(
+            constant_acceleration_beta(0.5, Branch::Lower).unwrap(),
+            0.5,
+            1e-15,
+        );
+        assert_eq!(
+            constant_acceleration_beta(0.5, Branch::Upper),
+            Err(DesignError::AlphaOutOfRange)
+        );
+        // α = 0.6: √0.36 = 0.6, β = 1.5 ∓ 0.3; both satisfy
+        // 6α² + 5αβ + β² − 6β = 0.
+        for (branch, beta) in [(Branch::Lower, 1.2), (Branch::Upper, 1.8)] {
+            let b = constant_acceleration_beta(0.6, branch).unwrap();
+            assert_close(b, beta, 1e-14);
+            assert_abs(6.0 * 0.36 + 3.0 * b + b * b - 6.0 * b, 0.0, 1e-13);
+        }
+        assert_eq!(
+            constant_acceleration_beta(0.61, Branch::Lower),
+            Err(DesignError::AlphaOutOfRange)
+        );
+        // Small α: β ≈ α² (twice Benedict–Bordner), no cancellation.
+        assert_close(
+            constant_acceleration_beta(1e-6, Branch::Lower).unwrap(),
+            1e-12,
+            1e-5,
+        );
+        // Eq. 32 at α = 0.32: √(1 − 0.64) = 0.6, β = 1.36 ∓ 1.2.
+        assert_close(steady_state_beta(0.32, Branch::Lower).unwrap(), 0.16, 1e-14);
+        assert_close(steady_state_beta(0.32, Branch::Upper).unwrap(), 2.56, 1e-15);
+        assert_eq!(
+            steady_state_beta(0.51, Branch::Upper),
+            Err(DesignError::AlphaOutOfRange)
+        );
+        // The consistent αβγ curve at α = 0.75: √0.25 = 0.5, β = 2·0.25,
+        // γ = β²/α = 1/3 = 4αβ/(8 − 4α − β) = 1.5/4.5.
+        let (b, g) = alpha_beta_gamma_acceleration_curve(0.75).unwrap();
+        assert_close(b, 0.5, 1e-15);
+        assert_close(g, 1.0 / 3.0, 1e-15);
+        assert_eq!(
+            alpha_beta_gamma_acceleration_curve(1.5),
+            Err(DesignError::AlphaOutOfRange)
+        );
+        // Eqs. 34–35 at a = c = 0.5: b₁ = (2.25·(−0.5) + 0.125)/0.75 = −4/3,
+        // b₂ = 1.5·1/0.5 = 3.
+        let [b1, b2] = printed_abc_optimal_b(0.5, 0.5).unwrap();
+        assert_close(b1, -4.0 / 3.0, 1e-15);
+        assert_close(b2, 3.0, 1e-15);
+        // b₂ puts −c on the quadratic factor: a repeated pole.
+        assert_abs(0.25 + (0.5 + b2 - 2.0) * -0.5 + 0.5, 0.0, 1e-15);
+        assert_eq!(printed_abc_optimal_b(0.5, 0.0), Err(DesignError::Overflow));
+        // Eq. 34's surface in α-β-γ terms: β = α(4α + γ)/(4(2 − α)).
+        assert_close(printed_eq_34_beta(0.5, 0.2).unwrap(), 1.1 / 6.0, 1e-15);
+    }
+
+    #[test]
+    fn eq_34_is_the_surface_4a2_4ab_ag_8b_and_holds_the_consistent_curve() {
+        for (a, c) in [(0.5, 0.5), (0.3, -0.4), (1.2, 0.7), (0.9, -0.95)] {
+            let [b1, _] = printed_abc_optimal_b(a, c).unwrap();
+            let g = abtrack::design::abc_to_alpha_beta_gamma(abtrack::design::AbcParameters {
+                a,
+                b: b1,
+                c,
+            })
+            .unwrap();
+            assert_close(printed_eq_34_beta(g.alpha, g.gamma).unwrap(), g.beta, 1e-12);
+        }
+        for alpha in [0.05, 0.3, 0.75, 0.99] {
+            let (beta, gamma) = alpha_beta_gamma_acceleration_curve(alpha).unwrap();
+            assert_close(printed_eq_34_beta(alpha, gamma).unwrap(), beta, 1e-12);
+        }
+    }
+
+    const KAPPAS: [f64; 6] = [0.001, 0.01, 0.1, 1.0, 10.0, 100.0];
+
+    #[track_caller]
+    fn same_optimum(closed: &AlphaBetaOptimum, numeric: &AlphaBetaOptimum) {
+        assert_abs(closed.alpha, numeric.alpha, 2e-6);
+        assert_abs(closed.beta, numeric.beta, 2e-6);
+        assert_close(closed.cost.total(), numeric.cost.total(), 1e-10);
+    }
+
+    #[test]
+    fn closed_forms_agree_with_the_optimiser_alpha_beta() {
+        for kappa in KAPPAS {
+            let p = penalty(kappa, 4.0);
+            let (v, a, t) = (10.0, 2.0, 1.0);
+            let cv = optimal_constant_velocity(v, t, &p).unwrap();
+            let numeric = minimise_alpha_beta(
+                &line(StraightLine::constant_velocity(v, t)),
+                &p,
+                Forms::Consistent,
+            )
+            .unwrap();
+            same_optimum(&cv, &numeric);
+            // On Benedict–Bordner (eq. 28), at a root of eq. 29.
+            assert_close(cv.beta, cv.alpha * cv.alpha / (2.0 - cv.alpha), 1e-14);
+            let ca = optimal_constant_acceleration(a, t, &p).unwrap();
+            let numeric = minimise_alpha_beta(
+                &line(StraightLine::constant_acceleration(a, t)),
+                &p,
+                Forms::Consistent,
+            )
+            .unwrap();
+            same_optimum(&ca, &numeric);
+            let ss = optimal_steady_state(a, t, &p).unwrap();
+            let numeric = minimise_alpha_beta(
+                &line(StraightLine::steady_state(a, t)),
+                &p,
+                Forms::Consistent,
+            )
+            .unwrap();
+            same_optimum(&ss, &numeric);
+        }
+        // κ = 0: the constant-velocity optimum is deadbeat, α = β = 1.
+        let o = optimal_constant_velocity(10.0, 1.0, &penalty(0.0, 1.0)).unwrap();
+        assert_eq!((o.alpha, o.beta), (1.0, 1.0));
+        // Without a noise penalty the acceleration optima run to the edge of
+        // the triangle: no interior optimum.
+        assert_eq!(
+            optimal_constant_acceleration(2.0, 1.0, &penalty(0.0, 1.0)),
+            Err(DesignError::NoOptimum)
+        );
+        assert_eq!(
+            optimal_constant_velocity(0.0, 1.0, &penalty(1.0, 1.0)),
+            Err(DesignError::NotPositive)
+        );
+    }
+
+    #[test]
+    fn optima_move_monotonically_with_kappa() {
+        // Fig. 2: a larger noise penalty means smaller gains on every curve.
+        let mut previous = [(f64::INFINITY, f64::INFINITY); 3];
+        for kappa in KAPPAS {
+            let p = penalty(kappa, 4.0);
+            let now = [
+                optimal_constant_velocity(10.0, 1.0, &p).unwrap(),
+                optimal_constant_acceleration(2.0, 1.0, &p).unwrap(),
+                optimal_steady_state(2.0, 1.0, &p).unwrap(),
+            ]
+            .map(|o| (o.alpha, o.beta));
+            for ((a, b), (pa, pb)) in now.iter().zip(previous) {
+                assert!(*b < pb, "β {b} after {pb} at κ = {kappa}");
+                assert!(*a <= pa + 1e-9 || *b < pb, "α {a} after {pa}");
+            }
+            previous = now;
+        }
+    }
+
+    #[test]
+    fn closed_form_agrees_with_the_optimiser_alpha_beta_gamma() {
+        let m = line(StraightLine::constant_acceleration(2.0, 1.0));
+        for kappa in KAPPAS {
+            let p = penalty(kappa, 4.0);
+            let closed = optimal_alpha_beta_gamma_constant_acceleration(2.0, 1.0, &p).unwrap();
+            let numeric = minimise_alpha_beta_gamma(&m, &p, Forms::Consistent).unwrap();
+            assert_abs(closed.alpha, numeric.alpha, 2e-6);
+            assert_abs(closed.beta, numeric.beta, 2e-6);
+            assert_abs(closed.gamma, numeric.gamma, 2e-6);
+            assert_close(closed.cost.total(), numeric.cost.total(), 1e-10);
+            // Eq. 34's surface holds the optimum; eq. 35's does not.
+            let on_34 = minimise_alpha_beta_gamma_on_printed_surface(
+                &m,
+                &p,
+                Forms::Consistent,
+                PrintedSurface::Eq34,
+            )
+            .unwrap();
+            assert_close(on_34.cost.total(), closed.cost.total(), 1e-6);
+            let on_35 = minimise_alpha_beta_gamma_on_printed_surface(
+                &m,
+                &p,
+                Forms::Consistent,
+                PrintedSurface::Eq35,
+            )
+            .unwrap();
+            assert!(
+                on_35.cost.total() > closed.cost.total() * (1.0 + 1e-4),
+                "κ = {kappa}: {} vs {}",
+                on_35.cost.total(),
+                closed.cost.total()
+            );
+        }
+    }
+
+    #[test]
+    fn circle_optimum_golden_properties() {
+        // The worked example's circle (R = 45 m, ω = 0.034 rad/s, T = 1 s,
+        // x̄o² = 200 m²): the optimum is a true minimum of eq. 24 and the
+        // αβγ optimum is never worse than the αβ one.
+        let circle = Manoeuvre::Circle(Circle {
+            radius: 45.0,
+            angular_rate: 0.034,
+            dt: 1.0,
+        });
+        for kappa in [0.01, 0.1, 1.0, 2.0, 10.0] {
+            let p = penalty(kappa, 200.0);
+            let ab = minimise_alpha_beta(&circle, &p, Forms::Consistent).unwrap();
+            for (da, db) in [(1e-3, 0.0), (-1e-3, 0.0), (0.0, 1e-4), (0.0, -1e-4)] {
+                let nearby =
+                    alpha_beta_cost(&circle, &p, Forms::Consistent, ab.alpha + da, ab.beta + db)
+                        .unwrap();
+                assert!(nearby.total() > ab.cost.total());
+            }
+            let abg = minimise_alpha_beta_gamma(&circle, &p, Forms::Consistent).unwrap();
+            assert!(abg.cost.total() <= ab.cost.total() * (1.0 + 1e-12));
+        }
+        // Only R²/(κx̄o²) matters: scaling the radius is scaling κ.
+        let p = penalty(1.0, 200.0);
+        let doubled = Manoeuvre::Circle(Circle {
+            radius: 90.0,
+            angular_rate: 0.034,
+            dt: 1.0,
+        });
+        let a = minimise_alpha_beta(&doubled, &p, Forms::Consistent).unwrap();
+        let b = minimise_alpha_beta(&circle, &penalty(0.25, 200.0), Forms::Consistent).unwrap();
+        assert_abs(a.alpha, b.alpha, 1e-6);
+        assert_abs(a.beta, b.beta, 1e-6);
+    }
+}

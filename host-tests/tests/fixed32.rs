@@ -40,7 +40,7 @@ proptest! {
     #[test]
     fn fixed_products_round_or_saturate(a in word(), b in word()) {
         let got = Speed::from_bits(a) * Interval::from_bits(b);
-        let exact = round_shift(i128::from(a) * i128::from(b), 20 + 24 - 12);
+        let exact = round_shift(i128::from(a) * i128::from(b), 18 + 24 - 12);
         if fits(exact) {
             prop_assert_eq!(i128::from(got.to_bits()), exact);
         } else {
@@ -55,7 +55,7 @@ proptest! {
     fn guarded_product_matches_or_flags(x in word(), a in word(), b in word()) {
         let mut g = G::default();
         let got = Length::from_bits(x).add_product(Speed::from_bits(a), Interval::from_bits(b), &mut g);
-        let exact = i128::from(x) + round_shift(i128::from(a) * i128::from(b), 32);
+        let exact = i128::from(x) + round_shift(i128::from(a) * i128::from(b), 18 + 24 - 12);
         if fits(exact) {
             prop_assert!(g.passed());
             prop_assert_eq!(i128::from(got.to_bits()), exact);
@@ -93,8 +93,8 @@ proptest! {
         let rate: abtrack::num::fixed32::Rate = rate.cast();
         let mut g = G::default();
         let got = Speed::from_bits(v).add_product(rate, Length::from_bits(e), &mut g);
-        // Speed bits = m·e·2^(exponent − 12 + 20).
-        let shift = -(exponent + 8);
+        // Speed bits = m·e·2^(exponent − 12 + 18).
+        let shift = -(exponent + 6);
         let product = i128::from(rate.mantissa()) * i128::from(e);
         let term = if shift >= 1 {
             if shift > 62 { None } else { Some(round_shift(product, shift as u32)) }
@@ -164,7 +164,7 @@ proptest! {
     fn division_rounds_or_saturates(a in word(), b in word()) {
         prop_assume!(b != 0);
         let got = Length::from_bits(a) / Interval::from_bits(b);
-        let num = i128::from(a) << 32;
+        let num = i128::from(a) << 30;
         let den = i128::from(b);
         let q = num / den;
         let r = num % den;

@@ -1,4 +1,5 @@
-//! Every schedule driving the αβ filter in f32 and Q32.32 stays within the
+//! Every schedule driving the αβ filter in f32, Q32.32 and the fast fixed
+//! point (`Fixed32`) stays within the
 //! representation bound of the same schedule in f64
 //! ([`gain_common::representation_bound`]), on the papers' scenarios, and
 //! takes the same discrete decisions (the gains agree to rounding).
@@ -7,7 +8,7 @@ mod gain_common;
 
 use abtrack::bank::BankOutcome;
 use abtrack::bank::{BankConfig, CartesianBank};
-use abtrack::{Fix, Scalar};
+use abtrack::{Fix, Fixed32, Numeric};
 use gain_common::{li_maneuver, liu_turn, representation_bound, run_scheduled, ALL_SCHEDULES};
 
 /// Largest |coordinate| of the run: the scale of the rounding budget.
@@ -29,7 +30,7 @@ const GAIN_AGREEMENT: f64 = 1e-3;
 
 /// Runs `spec` in `S` and in f64 and compares step by step. Returns the
 /// largest position error seen, and its ratio to the bound.
-fn compare<S: Scalar>(spec: &str, meas: &[[f64; 2]], dt: f64) -> (f64, f64) {
+fn compare<S: Numeric>(spec: &str, meas: &[[f64; 2]], dt: f64) -> (f64, f64) {
     let reference = run_scheduled::<f64>(spec, meas, dt);
     let other = run_scheduled::<S>(spec, meas, dt);
     let scale = scale(meas);
@@ -91,7 +92,7 @@ fn scenarios() -> Vec<(&'static str, Vec<[f64; 2]>, f64)> {
     v
 }
 
-fn all_schedules<S: Scalar>() {
+fn all_schedules<S: Numeric>() {
     for spec in ALL_SCHEDULES {
         for (name, meas, dt) in scenarios() {
             let (err, ratio) = compare::<S>(spec, &meas, dt);
@@ -112,8 +113,13 @@ fn schedules_f32_within_bound_of_f64() {
 }
 
 #[test]
-fn schedules_fixed_within_bound_of_f64() {
+fn schedules_q32_within_bound_of_f64() {
     all_schedules::<Fix>();
+}
+
+#[test]
+fn schedules_fast_fixed_within_bound_of_f64() {
+    all_schedules::<Fixed32>();
 }
 
 /// One bank step, per axis: the selected member, and every member's
@@ -124,12 +130,13 @@ struct BankStep {
     innovations: [[f64; 8]; 2],
 }
 
-fn run_bank<S: Scalar>(meas: &[[f64; 2]], dt: f64) -> Vec<BankStep> {
+fn run_bank<S: Numeric>(meas: &[[f64; 2]], dt: f64) -> Vec<BankStep> {
+    use abtrack::num::Quantity;
     let mut bank = CartesianBank::<S, 8, 2>::from_config(&BankConfig::DEFAULT).unwrap();
-    let dt = S::try_from_f64(dt).unwrap();
+    let dt = S::Interval::try_from_f64(dt).unwrap();
     meas.iter()
         .map(|z| {
-            let z = z.map(|x| S::try_from_f64(x).unwrap());
+            let z = z.map(|x| S::Length::try_from_f64(x).unwrap());
             let out = bank.update(z, dt).unwrap();
             let mut step = BankStep {
                 selected: out.map(|o| match o {
@@ -157,7 +164,7 @@ fn run_bank<S: Scalar>(meas: &[[f64; 2]], dt: f64) -> Vec<BankStep> {
 /// selection may differ only where the two candidates' |innovations| are
 /// closer in f64 than the rounding budget can tell apart (each innovation
 /// is a measurement minus a member's prediction, both within the bound).
-fn bank_within_bound<S: Scalar>() {
+fn bank_within_bound<S: Numeric>() {
     for (name, meas, dt) in scenarios() {
         let reference = run_bank::<f64>(&meas, dt);
         let other = run_bank::<S>(&meas, dt);
@@ -203,6 +210,11 @@ fn bank_f32_within_bound_of_f64() {
 }
 
 #[test]
-fn bank_fixed_within_bound_of_f64() {
+fn bank_q32_within_bound_of_f64() {
     bank_within_bound::<Fix>();
+}
+
+#[test]
+fn bank_fast_fixed_within_bound_of_f64() {
+    bank_within_bound::<Fixed32>();
 }

@@ -155,9 +155,12 @@ fn non_reporting_intruder_raises_at_most_a_traffic_advisory() {
 // altitude, SL 5. With s = 6 − 0.1 t the along-track distance to CPA,
 // r² = s² + 1, r ṙ = −0.1 s, so τ_mod = (s² + 1 − DMOD²)/(0.1 s):
 //   TA (0.75 NM): s² − 4 s + 0.4375 = 0, s = 2 ± √3.5625 = 2 ± 1.887 459:
-//       TA from s = 3.887 459 (t = 21.1254 s) to s = 0.112 541 (t = 58.8746 s);
-//   RA (0.55 NM): s² − 2.5 s + 0.6975 = 0, s = 1.25 ± √0.865 = 1.25 ± 0.930 054:
-//       RA from s = 2.180 054 (t = 38.1995 s) to s = 0.319 946 (t = 56.8005 s).
+//       TA from s = 3.887 459 (t = 21.1254 s) to s = 0.112 541 (t = 58.8746 s).
+//   RA (0.55 NM): the range test passes from s = 2.180 054 (t = 38.1995 s)
+//       to s = 0.319 946 (t = 56.8005 s), but the miss distance, 1 NM =
+//       6076 ft, exceeds SL 5's HMD threshold of 3342 ft (DAIDALUS
+//       `RA_HMD`): the HMD filter removes it, so no RA (issue 10; before,
+//       this pass raised an RA).
 // Near CPA the closure falls under 10 ft/s only for s < 0.0165 NM, where the
 // floored τ_mod ≈ 0.56/0.001 646 = 340 s: no alert. After CPA the range
 // opens from 1 NM, outside both DMODs: no alert, proximate until r > 6 NM.
@@ -214,8 +217,8 @@ fn crossing<S: Scalar>() {
     };
     within(ta.0, 21.1254);
     within(ta.1, 58.8746);
-    within(ra.0, 38.1995);
-    within(ra.1, 56.8005);
+    assert_eq!(ra, (None, None), "{}: RA despite the HMD filter", S::NAME);
+    assert!(at(45.0).miss_distance_filtered, "{}", S::NAME);
     // Proximate until 6 NM opening: s = −√35 = −5.916 080, t = 119.1608 s.
     assert_eq!(at(119.15).advisory, Advisory::ProximateTraffic);
     assert_eq!(at(119.17).advisory, Advisory::None);
@@ -249,10 +252,11 @@ fn diverging<S: Scalar>() {
         };
         assert_eq!(a.advisory, expected, "{}: t = {t}", S::NAME);
     }
-    // The floor applies to slow closure only: 50 m outside the TA DMOD
-    // (1389 m), closing at 0.5 m/s is a TA — (1439 − 1389²/1439)/3.048
-    // = (1439 − 1340.7373)/3.048 = 98.2627/3.048 = 32.2384 s ≤ 40 — while
-    // opening at 0.5 m/s is not.
+    // Within 10 ft/s (3.048 m/s) of zero the range rate counts as closing
+    // at 10 ft/s (DO-185B `RDTHR`), opening or not: 50 m outside the TA DMOD
+    // (1389 m), (1439 − 1389²/1439)/3.048 = 98.2627/3.048 = 32.2384 s < 40
+    // is a TA at ṙ = −0.5 m/s and at +0.5 m/s; opening at 5 m/s (beyond
+    // RDTHR) outside DMOD is not.
     let slow = |rate: f64| assess_at::<S>(8000.0, [0.0, 1439.0], [0.0, rate], Some((8000.0, 0.0)));
     let a = slow(-0.5);
     assert_eq!(a.advisory, Advisory::Traffic);
@@ -260,7 +264,18 @@ fn diverging<S: Scalar>() {
         (a.ta_modified_tau_s.unwrap().to_f64() - 32.2384).abs() < 1e-3,
         "{a:?}"
     );
-    assert_eq!(slow(0.5).advisory, Advisory::ProximateTraffic);
+    assert_eq!(slow(0.5).advisory, Advisory::Traffic);
+    assert_eq!(slow(5.0).advisory, Advisory::ProximateTraffic);
+    // Issue 10: "an RA at 0.5 NM while diverging at 250 m/s". Inside the RA
+    // DMOD (0.55 NM) a diverging intruder stays a range hit only while
+    // r·ṙ ≤ H1 = 0.00278 NM²/s = 9535 m²/s (DO-185B `H1TBL`, SL 5):
+    // 926 m · 250 m/s = 231 500 m²/s is far beyond, so no RA; at 926 m
+    // opening at 10 m/s (9260 m²/s ≤ 9535) it still is one.
+    let opening =
+        |rate: f64| assess_at::<S>(8000.0, [0.0, 0.5 * NM], [0.0, rate], Some((8000.0, 0.0)));
+    assert_eq!(opening(250.0).advisory, Advisory::ProximateTraffic);
+    assert_eq!(opening(10.0).advisory, Advisory::Resolution);
+    assert_eq!(opening(10.5).advisory, Advisory::Traffic);
 }
 
 #[test]
@@ -271,23 +286,37 @@ fn diverging_intruder_never_alerts() {
 }
 
 fn vertical<S: Scalar>() {
-    // Head-on at 3 NM: τ_mod = (3 − 0.3025/3)·6 = 17.395 s ≤ 25 (RA) and
-    // (3 − 0.5625/3)·6 = 16.875 s ≤ 40 (TA): the horizontal tests pass; the
-    // vertical ones decide.
+    // Head-on at 3 NM: τ_mod = (3 − 0.3025/3)·6 = 17.395 s < 25 (RA) and
+    // (3 − 0.5625/3)·6 = 16.875 s < 40 (TA); the true range tau is 18 s. The
+    // horizontal tests pass; the vertical ones decide. Own level, so the RA
+    // vertical threshold is SL 5's level-own TVVTT = 20 s (DO-185B), not 25.
     let at = |h: f64, hdot: f64| head_on::<S>(3.0 * NM, Some((8000.0 + h, hdot))).advisory;
     // 1000 ft above, level: outside both ZTHRs, not converging; within
     // ±1200 ft: proximate.
     assert_eq!(at(1000.0, 0.0), Advisory::ProximateTraffic);
     // 2000 ft above, level: nothing.
     assert_eq!(at(2000.0, 0.0), Advisory::None);
-    // 1000 ft above descending 25 ft/s: τ_v = 40 s ≤ 40 (TA), > 25 (RA).
-    assert_eq!(at(1000.0, -25.0), Advisory::Traffic);
-    // 700 ft above descending 30 ft/s: τ_v = 23.3 s ≤ 25: RA.
-    assert_eq!(at(700.0, -30.0), Advisory::Resolution);
-    // 600 ft below, climbing away: |h| ≤ 600 (RA ZTHR) still gives an RA.
-    assert_eq!(at(-600.0, -10.0), Advisory::Resolution);
-    // 700 ft below, descending: outside the RA ZTHR, within the TA's.
-    assert_eq!(at(-700.0, -10.0), Advisory::Traffic);
+    // 1000 ft above descending 25 ft/s: τ_v = 40 s, not < 40 (TA); 26 ft/s:
+    // 38.5 s, a TA; > 20 s, no RA.
+    assert_eq!(at(1000.0, -25.0), Advisory::ProximateTraffic);
+    assert_eq!(at(1000.0, -26.0), Advisory::Traffic);
+    // 700 ft above descending 30 ft/s: τ_v = 23.3 s < 25 but not < 20: TA.
+    assert_eq!(at(700.0, -30.0), Advisory::Traffic);
+    // 650 ft above descending 40 ft/s: τ_v = 16.25 s < 20, and the vertical
+    // miss at closest approach is 650 − 40·17.395 = −45.8 ft (at τ_mod) and
+    // 650 − 40·18 = −70 ft (at τ): same sign, |−45.8| < ZTHR 600: RA.
+    assert_eq!(at(650.0, -40.0), Advisory::Resolution);
+    // 500 ft above, level: inside ZTHR and the miss stays 500 < 600: RA.
+    assert_eq!(at(500.0, 0.0), Advisory::Resolution);
+    // 500 ft above climbing away at 10 ft/s: the miss at τ_mod is
+    // 500 + 10·17.395 = 674 ft ≥ 600: no RA, a TA (|h| < 850).
+    assert_eq!(at(500.0, 10.0), Advisory::Traffic);
+    // 600 ft below, descending away: |h| = 600 is not < ZTHR (DO-185B's
+    // strict test) and it is diverging: TA only.
+    assert_eq!(at(-600.0, -10.0), Advisory::Traffic);
+    // 10 000 ft/min is the most an intruder's rate is believed for an RA
+    // (DO-185B `MAXZDINT`): 300 ft above, 170 ft/s down, no RA.
+    assert_eq!(at(300.0, -170.0), Advisory::Traffic);
 }
 
 #[test]

@@ -11,9 +11,11 @@
 //!   TCAS-like encounter with irregular intervals and missed scans: within a
 //!   bound derived from the filter's operations and propagated along its
 //!   closed loop ([`compare_range_azimuth`]); bad inputs refused;
-//! * the altitude tracker: Kalata's gains against hand-computed values, a
-//!   quantised climb within the library's error budget, coasting through
-//!   missing reports and reverting to non-reporting, bad inputs refused;
+//! * the altitude tracker: a quantised climb against f64 (the same
+//!   classification every scan, altitude and rate within 0.05 ft and
+//!   0.05 ft/s: a provisional tolerance until the quantisation-aware
+//!   tracker of issue 10 gets a derived bound), coasting through missing
+//!   reports and reverting to non-reporting, bad inputs refused;
 //! * TCAS threat assessment on the analytic head-on encounter (600 kt
 //!   closure, 8000 ft, SL 5: TA from 6.75 NM, RA from 4.238 NM, range tau,
 //!   CPA), through the filters, on a diverging intruder and on a
@@ -53,12 +55,9 @@ use abtrack::track::{
     ScanReport, Track, TrackId, TrackStatus, TrackTable, TrackerConfig,
 };
 use abtrack::Scalar;
-use board::Native;
+use board::TableScalar as Native;
 use propagation::{ErrorPropagation, Lag, Matrix};
-use support::{
-    fixed_gain_budget_computed_gains, never, value, Failure, Magnitudes, Test, TestResult,
-    TestScalar,
-};
+use support::{never, value, Failure, Test, TestResult, TestScalar};
 use synth::Lcg;
 
 const TESTS: &[Test] = &[
@@ -74,7 +73,6 @@ const TESTS: &[Test] = &[
         "range_azimuth_invalid_inputs_refused",
         range_azimuth_invalid_inputs_refused,
     ),
-    ("altitude_gains_golden", altitude_gains_golden),
     (
         "altitude_quantised_climb_vs_f64",
         altitude_quantised_climb_vs_f64,
@@ -676,42 +674,6 @@ fn altitude_config<S: TestScalar>(
     }
 }
 
-fn altitude_gains_golden() -> TestResult {
-    altitude_gains::<Native>()?;
-    altitude_gains::<f64>()
-}
-
-/// Kalata's gains for the default design (σ_a = 0.1 g, T = 1 s), by hand:
-/// σ_a = 0.1·9.80665/0.3048 = 3.217 405 ft/s².
-/// Mode C: σ_v = 100/√12 = 28.867 513 ft, λ = σ_a/σ_v = 0.111 454,
-///   r = √(λ² + 8λ) = √(0.012 422 + 0.891 633) = 0.950 818,
-///   α = 2r/(λ + 4 + r) = 1.901 636/5.062 272 = 0.375 649,
-///   β = 4λ/(λ + 4 + r) = 0.445 817/5.062 272 = 0.088 067.
-/// Mode S (25 ft): σ_v = 7.216 878 ft, λ = 0.445 817,
-///   r = √(0.198 753 + 3.566 533) = 1.940 435,
-///   α = 3.880 869/6.386 251 = 0.607 691, β = 1.783 267/6.386 251 = 0.279 235.
-/// Q32.32 and f32 carry these to 10⁻⁶ (their own rounding is far below).
-fn altitude_gains<S: TestScalar>() -> TestResult {
-    for (quantum, alpha, beta) in [
-        (AltitudeQuantum::ModeC, 0.375_649, 0.088_067),
-        (AltitudeQuantum::ModeS25, 0.607_691, 0.279_235),
-    ] {
-        let c = altitude_config::<S>(quantum)?;
-        let (a, b) = (c.gains().alpha().to_f64(), c.gains().beta().to_f64());
-        ensure!(
-            libm::fabs(a - alpha) < 2e-6 && libm::fabs(b - beta) < 2e-6,
-            "{=str} {}: alpha {=f64} beta {=f64}, want {=f64} {=f64}",
-            S::NAME,
-            quantum,
-            a,
-            b,
-            alpha,
-            beta
-        );
-    }
-    Ok(())
-}
-
 /// The altitude of a climbing intruder: level at 9000 ft, climbing
 /// 1500 ft/min (25 ft/s) from t = 20 s to t = 60 s, level at 10 000 ft
 /// after; reported in Mode C (rounded to 100 ft) once a second.
@@ -726,43 +688,30 @@ fn altitude_quantised_climb_vs_f64() -> TestResult {
 }
 
 /// The tracker in `S` against f64 on the quantised climb, 80 reports: the
-/// tracker is a fixed-gain αβ filter (its gains computed in `S` by
-/// Kalata's formula), so the library's budget applies
-/// ([`fixed_gain_budget_computed_gains`], in ft and ft/s).
+/// same status, class and firmness every scan, and altitude and rate within
+/// [`ALTITUDE_TOLERANCE`] (provisional: the tracker's branches compare
+/// times, so a derived bound needs the decision margins, which issue 10's
+/// second round adds).
 fn altitude_climb<S: TestScalar>() -> TestResult {
     let cs = altitude_config::<S>(AltitudeQuantum::ModeC)?;
     let cf = altitude_config::<f64>(AltitudeQuantum::ModeC)?;
     let mut ts = AltitudeTracker::new(cs);
     let mut tf = AltitudeTracker::new(cf);
     let one = value::<S>(1.0)?;
-    let mut m = Magnitudes::default();
     let mut worst = [0.0f64; 2];
     for k in 0..80 {
         let z = climb_report(k);
-        let before = tf.estimate();
         let (a, b) = (ts.scan(Some(value::<S>(z)?), one), tf.scan(Some(z), 1.0));
         ensure!(
-            a.is_ok() && a == b,
+            a.is_ok() && a == b && ts.class() == tf.class() && ts.firmness() == tf.firmness(),
             "{=str} altitude scan {=u32}: native {}, f64 {}",
             S::NAME,
             k,
             a,
             b
         );
-        m.position(z);
-        if let Some(e) = before {
-            m.position(e.altitude_ft);
-            m.velocity(e.vertical_rate_ft_per_s);
-            // The prediction and its residual.
-            m.position(e.altitude_ft + e.vertical_rate_ft_per_s);
-            m.residual(z - (e.altitude_ft + e.vertical_rate_ft_per_s));
-        }
         match (ts.estimate(), tf.estimate()) {
             (Some(es), Some(ef)) => {
-                m.position(ef.altitude_ft);
-                m.velocity(ef.vertical_rate_ft_per_s);
-                m.position(es.altitude_ft.to_f64());
-                m.velocity(es.vertical_rate_ft_per_s.to_f64());
                 worst[0] = worst[0].max(libm::fabs(es.altitude_ft.to_f64() - ef.altitude_ft));
                 worst[1] = worst[1].max(libm::fabs(
                     es.vertical_rate_ft_per_s.to_f64() - ef.vertical_rate_ft_per_s,
@@ -774,42 +723,25 @@ fn altitude_climb<S: TestScalar>() -> TestResult {
             }
         }
     }
-    // The residual magnitudes are those of the f64 run widened by the budget
-    // itself (error_budget_around_reference); the prediction's residual is
-    // known exactly only for f64.
-    let gs = cs.gains();
-    let gf = cf.gains();
-    let exact_s = match Gains::<f64>::alpha_beta(gs.alpha().to_f64(), gs.beta().to_f64()) {
-        Ok(g) => g,
-        Err(e) => {
-            defmt::error!("{=str}: gains refused: {}", S::NAME, e);
-            return Err(Failure);
-        }
-    };
-    let delta = [
-        gs.alpha().to_f64() - gf.alpha(),
-        gs.beta().to_f64() - gf.beta(),
-        0.0,
-    ];
-    let b = fixed_gain_budget_computed_gains::<S, 2>(&exact_s, delta, &m.envelope(1.0, 1.0))?;
     ensure!(
-        b.covers(worst[0], worst[1], 0.0),
-        "{=str} altitude: |dh| {=f64} ft, |dh/dt| {=f64} ft/s beyond the budget {=f64} ft, {=f64} ft/s",
+        worst[0] <= ALTITUDE_TOLERANCE && worst[1] <= ALTITUDE_TOLERANCE,
+        "{=str} altitude: |dh| {=f64} ft, |dh/dt| {=f64} ft/s beyond {=f64}",
         S::NAME,
         worst[0],
         worst[1],
-        b.position,
-        b.velocity
+        ALTITUDE_TOLERANCE
     );
     defmt::println!(
-        "       {=str} altitude climb: 80 reports, max |dh| {=f64} ft, |dh/dt| {=f64} ft/s; worst deviation = {=f32} of the budget",
+        "       {=str} altitude climb: 80 reports, max |dh| {=f64} ft, |dh/dt| {=f64} ft/s",
         S::NAME,
         worst[0],
-        worst[1],
-        (worst[0] / b.position).max(worst[1] / b.velocity) as f32
+        worst[1]
     );
     Ok(())
 }
+
+/// Altitude (ft) and rate (ft/s) tolerance of [`altitude_climb`].
+const ALTITUDE_TOLERANCE: f64 = 0.05;
 
 fn altitude_missing_reports_and_bad_input() -> TestResult {
     altitude_gaps::<Native>()?;

@@ -1,60 +1,132 @@
-//! Altitude tracker for TCAS intruders: an αβ filter (Al-Wagih & Abdulla
-//! eqs. 3–10) on the pressure altitude the intruder's transponder reports,
-//! giving altitude and vertical rate.
+//! Altitude tracker for TCAS intruders on quantised reports (100 ft Mode C,
+//! 25 ft Mode S): altitude, vertical rate, vertical firmness 0–3 and rate
+//! bounds, after the bin-crossing tracker of RTCA DO-185B as transcribed in
+//! ledieuke/tcas_simulator `tracking.py` (`one_hundred_ft_tracking` and the
+//! functions it calls; constants from `tcasConstant.py`).
 //!
-//! Units are feet and seconds (ft, ft/s), not metres: the reports are
-//! quantised in feet (100 ft Mode C, 25 ft Mode S) and every vertical
-//! threshold the tracker feeds (TCAS ZTHR, ALIM, the ±1200 ft proximate
-//! band) is in feet, so converting would only add a rounding.
+//! A quantised report changes only when the altitude crosses a bin
+//! boundary (report ± q/2), so the rate comes from the times between those
+//! transitions (the bin time), averaged over up to [`MAX_BINS`] bins; a
+//! transition that does not come when due first slows the rate and then
+//! declares the track level; the estimate is always kept inside the
+//! reported bin. DO-185B tracks 25 ft reports with a separate αβ tracker;
+//! this one runs the same bin logic with q = 25 ft (one mechanism; the
+//! figures are in docs/tcas.md).
 //!
-//! # Gains
-//!
-//! Fixed steady-state gains from Kalata's tracking index (P. R. Kalata,
-//! "The tracking index: a generalized parameter for α-β and α-β-γ target
-//! trackers", IEEE Trans. AES-20(2), 1984):
-//!
-//! * measurement noise: the quantisation error, uniform over one quantum q,
-//!   so σ_v² = q²/12 (σ_v = 28.9 ft for Mode C, 7.2 ft for Mode S);
-//! * manoeuvre: white vertical acceleration of standard deviation σ_a,
-//!   0.1 g = 3.22 ft/s² by default ([`DEFAULT_MANOEUVRE_G`]): a level-off or
-//!   the start of a climb, and less than the 0.25 g of an RA response, so
-//!   the tracker smooths hard and lags such a response by a few seconds;
-//! * λ = σ_a·T²/σ_v ([`crate::design::tracking_index`]), and the Kalman
-//!   steady state of the αβ filter ([`crate::design::kalata_gains`], computed
-//!   once in f64 and rounded to the tracker's type):
-//!   α = −(λ² + 8λ − (λ + 4)·√(λ² + 8λ))/8,
-//!   β = (λ² + 4λ − λ·√(λ² + 8λ))/4, which satisfy λ² = β²/(1 − α).
-//!
-//! With T = 1 s: Mode C λ = 0.1115, α = 0.3756, β = 0.0881; Mode S
-//! λ = 0.4458, α = 0.6077, β = 0.2792 (golden values in host-tests
-//! `tcas_altitude.rs`).
-//!
-//! The q²/12 model assumes the altitude moves through several quanta
-//! between reports' errors decorrelating; for a level intruder the
-//! quantisation error is a constant of at most q/2, which the filter passes
-//! through as a constant altitude offset with zero vertical rate — the right
-//! rate, an altitude no worse than the report.
-//!
-//! # Missing altitude
-//!
-//! An intruder that never reports altitude (Mode A only, or altitude
-//! reporting switched off) is a valid, permanent state: [`AltitudeTracker::estimate`]
-//! is `None` and the threat logic treats the intruder as non-altitude
-//! reporting. A tracked intruder whose reports stop is coasted for at most
-//! `max_coast` seconds, then reverts to that state.
+//! Units are feet and seconds: the reports and every vertical threshold
+//! they feed are in feet.
 
-use crate::design;
-use crate::filter::{check_interval, AlphaBeta, FilterError, GainError, Gains, Phase};
+use crate::filter::{check_interval, FilterError};
 use crate::num::Scalar;
 
-/// Standard gravity in ft/s² (9.80665 m/s² / 0.3048 m/ft).
-pub const STANDARD_GRAVITY_FT_PER_S2: f64 = 9.80665 / 0.3048;
-/// Default vertical manoeuvre level σ_a, in g.
-pub const DEFAULT_MANOEUVRE_G: f64 = 0.1;
-/// Default design interval T, s (TCAS surveillance updates once a second).
+/// `a·b` and `a/b` out of line, for logic that runs once a second per
+/// intruder: Q32.32's 64×64-bit product and quotient, inlined at every use,
+/// would otherwise cost the Cortex-M0's flash (measured: the altitude
+/// tracker alone took 49 KiB in Q32.32 with the operators inlined). Used by
+/// this tracker and by `crate::tcas`.
+pub(crate) trait OutOfLine: Scalar {
+    #[inline(never)]
+    fn times(self, other: Self) -> Self {
+        self * other
+    }
+    #[inline(never)]
+    fn over(self, other: Self) -> Self {
+        self / other
+    }
+}
+
+impl<S: Scalar> OutOfLine for S {}
+
+/// Default nominal scan interval T, s (TCAS surveillance updates once a
+/// second; DO-185B `DT`).
 pub const DEFAULT_INTERVAL_S: f64 = 1.0;
 /// Default longest coast before an intruder counts as non-reporting, s.
 pub const DEFAULT_MAX_COAST_S: f64 = 6.0;
+/// Seconds per minute, for the ft/min figures of DO-185B.
+const S_PER_MIN: f64 = 60.0;
+
+/// Overdue time after which a trend's rate starts to slow, s (`LATESLACK`).
+pub const LATE_SLACK_S: f64 = 0.5;
+/// Overdue time after which a trend is declared level, s (`LATELEVEL`).
+pub const LATE_LEVEL_S: f64 = 4.5;
+/// Overdue time that restores firmness 2 on a slowing trend, s (`OVERDUE`).
+pub const OVERDUE_S: f64 = 3.5;
+/// Time without a transition after which a new, guessed or oscillating
+/// track is level, s (`TGOLEV`).
+pub const GO_LEVEL_S: f64 = 20.5;
+/// Bin occupancy times that raise a new or guessed track's firmness to 1,
+/// 2, 3, s (`GUESDU1..3`).
+pub const OCCUPANCY_FIRMNESS_S: [f64; 3] = [4.5, 9.5, 14.5];
+/// Time after which an oscillating track is firm, s (`GUESDU2`).
+pub const OSCILLATION_FIRM_S: f64 = 9.5;
+/// Rate assumed after a single transition from level, ft/s (`GUESRATE`,
+/// 480 ft/min).
+pub const GUESS_RATE_FT_PER_S: f64 = 480.0 / S_PER_MIN;
+/// Decay of a guessed rate per scan without a transition (`ZDDECAY`).
+pub const GUESS_DECAY: f64 = 0.9;
+/// A gap between reports this long makes a multi-bin change a rate
+/// measurement, s (`LONGCOAST`).
+pub const LONG_COAST_S: f64 = 3.5;
+/// Most likely rate after a transition, ft/s (`ZDLIKELY`, 3000 ft/min).
+pub const LIKELY_RATE_FT_PER_S: f64 = 3000.0 / S_PER_MIN;
+/// Steepest rate bound, ft/s (`ZDLARGE`, 12 000 ft/min).
+pub const LARGE_RATE_FT_PER_S: f64 = 12000.0 / S_PER_MIN;
+/// Time to a reasonable rate estimate, s (`TINITZD`).
+pub const RATE_SETTLING_S: f64 = 5.5;
+/// Shortest first bin time of a mature track, s (`TBINMIN`).
+pub const MIN_FIRST_BIN_S: f64 = 2.0;
+/// Shortest time for a trend to be reliable, s (`TTRENDMIN`).
+pub const MIN_TREND_S: f64 = 2.5;
+/// Transition earlier or later than expected by more than this restarts
+/// the averaging, s (`EARLYLATE`).
+pub const EARLY_LATE_S: f64 = 1.5;
+/// Accumulated lateness that shortens the averaging, s (`SLITEOFF`).
+pub const SLIGHTLY_OFF_S: f64 = 1.35;
+/// Decay of the accumulated lateness per transition (`RESIDIMIN`).
+pub const LATENESS_MEMORY: f64 = 0.8;
+/// Decay of the accumulated lateness after a shortening (`RESIDECAY`).
+pub const LATENESS_DECAY: f64 = 0.5;
+/// Most bins averaged into the rate (`MAXBINS`).
+pub const MAX_BINS: u8 = 8;
+/// Longest time averaged into the rate, s (`MAXZDTIME`).
+pub const MAX_RATE_TIME_S: f64 = 17.0;
+/// Bins assumed when switching back from αβ smoothing (`NBINSNL`).
+pub const BINS_AFTER_ALPHA_BETA: u8 = 5;
+/// Bin times that switch to αβ smoothing (below `TBINLO` per bin observed,
+/// `TBINHI` estimated) and back, s.
+pub const ALPHA_BETA_BELOW_S: f64 = 0.9;
+/// See [`ALPHA_BETA_BELOW_S`].
+pub const BIN_OCCUPANCY_ABOVE_S: f64 = 1.1;
+/// αβ gains when transitions come every scan (`ALPHAZ[1]`, `BETAZ[1]`).
+pub const ALPHA_BETA_GAINS: (f64, f64) = (0.5, 0.167);
+/// A reversal this early in the bin (fraction of the bin time) is taken as
+/// jitter at the boundary and ignored (`ZRJIT`).
+pub const REVERSAL_JITTER: f64 = 0.24;
+/// Margin of the rate bounds for possible acceleration (`ZDFRACC`).
+pub const RATE_BOUND_MARGIN: f64 = 1.3;
+/// Shortest time over which a prediction error corrects the rate, s
+/// (`DELZDT`).
+pub const MIN_CORRECTION_TIME_S: f64 = 4.0;
+/// Prediction error that lowers a trend's firmness to 1, ft (`DELZTHR`).
+pub const PREDICTION_ERROR_FT: f64 = 20.0;
+/// Ratios of observed to expected bin time that keep firmness 3, 2, 1
+/// (`LO3..HI1`).
+pub const BIN_RATIO_FIRMNESS: [(f64, f64); 3] = [(0.8, 1.25), (0.667, 1.5), (0.0, 2.0)];
+/// Lateness that gives firmness 3, at least 2, s (`OUT3`, `OUT2`).
+pub const LATENESS_FIRMNESS_S: (f64, f64) = (0.55, 1.1);
+/// Bin times that give at least firmness 1, 2, s (`SLACKEN1`, `SLACKEN2`).
+pub const SLOW_BIN_FIRMNESS_S: (f64, f64) = (3.5, 6.5);
+/// Credibility of a report (`credible`): within q + this rate error ·Δt
+/// (ft/s, `CREDZDERR`) + this acceleration/2 ·Δt² (ft/s², `CREDACCDIV`) of
+/// the prediction; while the rate is settling, within this rate ·Δt
+/// (`CREDINIT`, ft/s).
+pub const CREDIBLE_RATE_ERROR_FT_PER_S: f64 = 30.0;
+/// See [`CREDIBLE_RATE_ERROR_FT_PER_S`].
+pub const CREDIBLE_HALF_ACCELERATION_FT_PER_S2: f64 = 20.0;
+/// See [`CREDIBLE_RATE_ERROR_FT_PER_S`].
+pub const CREDIBLE_INITIAL_RATE_FT_PER_S: f64 = 200.0;
+/// Largest vertical firmness.
+pub const MAX_VERTICAL_FIRMNESS: u8 = 3;
 
 /// The altitude quantum of the transponder's reports.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -74,111 +146,85 @@ impl AltitudeQuantum {
             AltitudeQuantum::ModeS25 => 25.0,
         }
     }
+
+    /// Residual of the αβ smoothing that costs firmness, ft (`DZTHR_100`,
+    /// `DZTHR_25`).
+    const fn residual_threshold_ft(self) -> f64 {
+        match self {
+            AltitudeQuantum::ModeC => 60.0,
+            AltitudeQuantum::ModeS25 => 22.5,
+        }
+    }
 }
 
 /// Why an altitude-tracker configuration was refused.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 #[cfg_attr(feature = "defmt", derive(defmt::Format))]
 pub enum AltitudeConfigError {
-    /// The design interval is not a finite number > 0.
+    /// The nominal interval is not a finite number > 0, or not representable.
     IntervalNotPositive,
-    /// The manoeuvre level σ_a is not a finite number > 0.
-    ManoeuvreNotPositive,
     /// The longest coast is not a finite number ≥ 0, or not representable.
     InvalidCoast,
-    /// The derived gains were refused (tracking index out of range).
-    Gains(GainError),
 }
 
 impl core::fmt::Display for AltitudeConfigError {
     fn fmt(&self, f: &mut core::fmt::Formatter<'_>) -> core::fmt::Result {
-        match self {
+        f.write_str(match self {
             AltitudeConfigError::IntervalNotPositive => {
-                f.write_str("design interval must be a finite number > 0 s")
+                "nominal interval must be a finite number > 0 s"
             }
-            AltitudeConfigError::ManoeuvreNotPositive => {
-                f.write_str("manoeuvre level must be a finite number > 0 ft/s²")
-            }
-            AltitudeConfigError::InvalidCoast => {
-                f.write_str("longest coast must be a finite number >= 0 s")
-            }
-            AltitudeConfigError::Gains(e) => write!(f, "derived gains refused: {e}"),
-        }
+            AltitudeConfigError::InvalidCoast => "longest coast must be a finite number >= 0 s",
+        })
     }
 }
 
 impl core::error::Error for AltitudeConfigError {}
 
-/// Configuration of an [`AltitudeTracker`]: its gains and how long it
-/// coasts through missing reports.
+/// Configuration of an [`AltitudeTracker`].
 #[derive(Debug, Clone, Copy, PartialEq)]
 #[cfg_attr(feature = "defmt", derive(defmt::Format))]
-pub struct AltitudeTrackerConfig<S: Scalar> {
-    gains: Gains<S>,
-    tracking_index: S,
+pub struct AltitudeTrackerConfig<S> {
+    quantum: AltitudeQuantum,
+    interval: S,
     max_coast: S,
 }
 
 impl<S: Scalar> AltitudeTrackerConfig<S> {
-    /// Gains from the quantisation noise σ_v = q/√12 and the manoeuvre level
-    /// `manoeuvre_ft_per_s2` (σ_a) at the design interval `interval_s`, via
-    /// [`design::kalata_gains`]; `max_coast_s` (≥ 0) is the longest run of missing
-    /// reports that is coasted through.
+    /// Reports quantised to `quantum`, a nominal scan interval `interval_s`
+    /// (> 0; DO-185B's `DT`, used for the half-scan uncertainty of a
+    /// transition time), coasting through up to `max_coast_s` (≥ 0) seconds
+    /// of missing reports.
     pub fn new(
         quantum: AltitudeQuantum,
-        manoeuvre_ft_per_s2: f64,
         interval_s: f64,
         max_coast_s: f64,
     ) -> Result<Self, AltitudeConfigError> {
-        // λ uses T², so a negative interval would pass unnoticed: check it.
         if !(interval_s.is_finite() && interval_s > 0.0) {
             return Err(AltitudeConfigError::IntervalNotPositive);
-        }
-        if !(manoeuvre_ft_per_s2.is_finite() && manoeuvre_ft_per_s2 > 0.0) {
-            return Err(AltitudeConfigError::ManoeuvreNotPositive);
         }
         if !(max_coast_s.is_finite() && max_coast_s >= 0.0) {
             return Err(AltitudeConfigError::InvalidCoast);
         }
-        // The inputs are checked above, so the design functions can only
-        // fail by overflow; the gains are computed once, in f64, and rounded
-        // to S (design::kalata_gains, Kalata 1984).
-        let overflow = |_| AltitudeConfigError::Gains(GainError::NotFinite);
-        let sigma_v = quantum.feet() / libm::sqrt(12.0);
-        let lambda =
-            design::tracking_index(manoeuvre_ft_per_s2, sigma_v, interval_s).map_err(overflow)?;
-        let gains = design::kalata_gains(lambda)
-            .map_err(overflow)?
-            .convert::<S>()
-            .map_err(AltitudeConfigError::Gains)?;
-        let tracking_index = S::try_from_f64(lambda)
-            .map_err(|_| AltitudeConfigError::Gains(GainError::NotFinite))?;
-        let max_coast =
-            S::try_from_f64(max_coast_s).map_err(|_| AltitudeConfigError::InvalidCoast)?;
         Ok(AltitudeTrackerConfig {
-            gains,
-            tracking_index,
-            max_coast,
+            quantum,
+            interval: S::try_from_f64(interval_s)
+                .map_err(|_| AltitudeConfigError::IntervalNotPositive)?,
+            max_coast: S::try_from_f64(max_coast_s)
+                .map_err(|_| AltitudeConfigError::InvalidCoast)?,
         })
     }
 
-    /// The documented defaults for a quantum: σ_a = 0.1 g, T = 1 s, coast
-    /// up to 6 s.
+    /// The documented defaults for a quantum: T = 1 s, coast up to 6 s.
     pub fn default_for(quantum: AltitudeQuantum) -> Result<Self, AltitudeConfigError> {
-        Self::new(
-            quantum,
-            DEFAULT_MANOEUVRE_G * STANDARD_GRAVITY_FT_PER_S2,
-            DEFAULT_INTERVAL_S,
-            DEFAULT_MAX_COAST_S,
-        )
+        Self::new(quantum, DEFAULT_INTERVAL_S, DEFAULT_MAX_COAST_S)
     }
 
-    pub fn gains(&self) -> &Gains<S> {
-        &self.gains
+    pub fn quantum(&self) -> AltitudeQuantum {
+        self.quantum
     }
-    /// Kalata's λ the gains were derived from.
-    pub fn tracking_index(&self) -> S {
-        self.tracking_index
+    /// Nominal scan interval, s.
+    pub fn interval(&self) -> S {
+        self.interval
     }
     /// Longest coast through missing reports, s.
     pub fn max_coast(&self) -> S {
@@ -192,8 +238,17 @@ impl<S: Scalar> AltitudeTrackerConfig<S> {
 pub struct AltitudeEstimate<S> {
     /// Pressure altitude, ft.
     pub altitude_ft: S,
-    /// Vertical rate, ft/s (positive climbing); zero until the second report.
+    /// Vertical rate, ft/s (positive climbing).
     pub vertical_rate_ft_per_s: S,
+}
+
+/// Bounds on the intruder's vertical rate, ft/s (DO-185B `ZDINNER`,
+/// `ZDOUTER`, sorted).
+#[derive(Debug, Clone, Copy, PartialEq)]
+#[cfg_attr(feature = "defmt", derive(defmt::Format))]
+pub struct RateBounds<S> {
+    pub lowest_ft_per_s: S,
+    pub highest_ft_per_s: S,
 }
 
 /// Whether and how well the intruder's altitude is known.
@@ -205,20 +260,62 @@ pub enum AltitudeStatus {
     NotReporting,
     /// One report: altitude known, vertical rate taken as zero.
     OneReport,
-    /// Two or more: altitude and vertical rate filtered.
+    /// Two or more reports.
     Tracking,
 }
 
-/// αβ altitude tracker (see the module docs).
+/// What the reports have shown so far (DO-185B `CLASS`).
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+#[cfg_attr(feature = "defmt", derive(defmt::Format))]
+pub enum VerticalClass {
+    /// No transition since the track started.
+    New,
+    /// No transition for a long time, or a trend that stopped: rate zero.
+    Level,
+    /// One transition: the rate is a guess.
+    Guess,
+    /// Transitions back and forth across one boundary: rate zero.
+    Oscillating,
+    /// Transitions in one direction: the rate is measured.
+    Trend,
+}
+
+/// Quantisation-aware altitude tracker (see the module docs).
 #[derive(Debug, Clone, Copy, PartialEq)]
 #[cfg_attr(feature = "defmt", derive(defmt::Format))]
-pub struct AltitudeTracker<S: Scalar> {
+pub struct AltitudeTracker<S> {
     config: AltitudeTrackerConfig<S>,
-    filter: AlphaBeta<S>,
+    /// Reports since the track (re)started, saturating at 2.
+    reports: u8,
+    altitude_ft: S,
+    rate_ft_per_s: S,
+    /// The last report taken (DO-185B `ZSAVE`), ft.
+    report_ft: S,
+    class: VerticalClass,
+    /// −1, 0 or +1: the direction of the last transition.
+    direction: i8,
+    since_start_s: S,
+    since_transition_s: S,
     /// Time since the last report, s.
-    coasted: S,
-    /// Saturations counted by filters dropped when reports stopped.
-    earlier_saturations: u32,
+    coasted_s: S,
+    /// Smoothed time per bin, s (`TBIN`).
+    bin_time_s: S,
+    /// Bins averaged into the rate (`BINSTHISZD`).
+    bins_in_rate: u8,
+    /// Accumulated lateness of the transitions, s (`RESID`).
+    lateness_s: S,
+    alpha_beta: bool,
+    firmness: u8,
+    bounds: RateBounds<S>,
+    incredible_reports: u32,
+    saturations: u32,
+}
+
+// Not inlined: each call site would otherwise carry the f64-to-S
+// conversion (soft-float on the M0), which costs flash.
+#[inline(never)]
+fn c<S: Scalar>(v: f64) -> S {
+    S::from_f64_lossy(v)
 }
 
 impl<S: Scalar> AltitudeTracker<S> {
@@ -226,9 +323,26 @@ impl<S: Scalar> AltitudeTracker<S> {
     pub fn new(config: AltitudeTrackerConfig<S>) -> Self {
         AltitudeTracker {
             config,
-            filter: AlphaBeta::new(),
-            coasted: S::ZERO,
-            earlier_saturations: 0,
+            reports: 0,
+            altitude_ft: S::ZERO,
+            rate_ft_per_s: S::ZERO,
+            report_ft: S::ZERO,
+            class: VerticalClass::New,
+            direction: 0,
+            since_start_s: S::ZERO,
+            since_transition_s: S::ZERO,
+            coasted_s: S::ZERO,
+            bin_time_s: S::ZERO,
+            bins_in_rate: 1,
+            lateness_s: S::ZERO,
+            alpha_beta: false,
+            firmness: 0,
+            bounds: RateBounds {
+                lowest_ft_per_s: S::ZERO,
+                highest_ft_per_s: S::ZERO,
+            },
+            incredible_reports: 0,
+            saturations: 0,
         }
     }
 
@@ -237,64 +351,559 @@ impl<S: Scalar> AltitudeTracker<S> {
     }
 
     pub fn status(&self) -> AltitudeStatus {
-        match self.filter.phase() {
-            Phase::Empty => AltitudeStatus::NotReporting,
-            Phase::OnePoint => AltitudeStatus::OneReport,
-            Phase::Tracking => AltitudeStatus::Tracking,
+        match self.reports {
+            0 => AltitudeStatus::NotReporting,
+            1 => AltitudeStatus::OneReport,
+            _ => AltitudeStatus::Tracking,
         }
     }
 
     /// The current estimate; `None` for a non-reporting intruder.
     pub fn estimate(&self) -> Option<AltitudeEstimate<S>> {
-        match self.filter.phase() {
-            Phase::Empty => None,
-            _ => Some(AltitudeEstimate {
-                altitude_ft: self.filter.position(),
-                vertical_rate_ft_per_s: self.filter.velocity(),
-            }),
-        }
+        (self.reports > 0).then_some(AltitudeEstimate {
+            altitude_ft: self.altitude_ft,
+            vertical_rate_ft_per_s: self.rate_ft_per_s,
+        })
+    }
+
+    /// Vertical firmness 0–3 (DO-185B `CASFIRM`): how much the rate can be
+    /// trusted; the threat logic needs 2 for a new RA.
+    pub fn firmness(&self) -> u8 {
+        self.firmness
+    }
+
+    /// What the reports have shown so far.
+    pub fn class(&self) -> VerticalClass {
+        self.class
+    }
+
+    /// The rate bounds; `None` for a non-reporting intruder.
+    pub fn rate_bounds(&self) -> Option<RateBounds<S>> {
+        (self.reports > 0).then_some(self.bounds)
     }
 
     /// Time since the last altitude report, s (zero right after one).
     pub fn since_last_report(&self) -> S {
-        self.coasted
+        self.coasted_s
     }
 
-    /// How many updates or coasts were discarded because they saturated.
+    /// Reports refused as not credible (a jump the track cannot have made);
+    /// each was coasted through instead.
+    pub fn incredible_reports(&self) -> u32 {
+        self.incredible_reports
+    }
+
+    /// Scans discarded because their arithmetic saturated.
     pub fn saturations(&self) -> u32 {
-        self.filter
-            .saturations()
-            .saturating_add(self.earlier_saturations)
+        self.saturations
     }
 
     /// One surveillance scan, `dt` seconds after the previous one:
     /// `Some(altitude_ft)` if the reply carried an altitude, `None` if it did
-    /// not. A missing altitude coasts the track; after more than
-    /// `max_coast` seconds without one the tracker forgets the altitude and
-    /// becomes `NotReporting`. Invalid input is refused with the filter's
-    /// error and changes nothing.
+    /// not. A missing or incredible altitude coasts the track; after more
+    /// than `max_coast` seconds without one the tracker forgets the altitude
+    /// and becomes `NotReporting`. Invalid input is refused with the
+    /// filter's error and changes nothing; so is a scan whose arithmetic
+    /// saturates (counted).
     pub fn scan(&mut self, altitude_ft: Option<S>, dt: S) -> Result<AltitudeStatus, FilterError> {
+        if altitude_ft.is_some_and(|z| !z.is_valid()) {
+            return Err(FilterError::InvalidMeasurement);
+        }
+        check_interval(dt)?;
+        let mut next = *self;
         match altitude_ft {
-            Some(z) => {
-                self.filter.update(z, dt, &self.config.gains)?;
-                self.coasted = S::ZERO;
+            Some(z) if self.reports == 0 => next.start(z),
+            Some(z) if self.credible(z, dt) => next.take(z, dt),
+            Some(_) => {
+                next.incredible_reports = next.incredible_reports.saturating_add(1);
+                next.coast(dt);
             }
-            None => {
-                check_interval(dt)?;
-                if self.filter.phase() == Phase::Empty {
-                    return Ok(AltitudeStatus::NotReporting);
-                }
-                let coasted = self.coasted + dt;
-                if !coasted.is_valid() || coasted > self.config.max_coast {
-                    self.earlier_saturations = self.saturations();
-                    self.filter = AlphaBeta::new();
-                    self.coasted = S::ZERO;
-                    return Ok(AltitudeStatus::NotReporting);
-                }
-                self.filter.coast(dt)?;
-                self.coasted = coasted;
+            None => next.coast(dt),
+        }
+        if !next.is_valid() {
+            self.saturations = self.saturations.saturating_add(1);
+            return Err(FilterError::Saturated);
+        }
+        *self = next;
+        Ok(self.status())
+    }
+
+    fn is_valid(&self) -> bool {
+        [
+            self.altitude_ft,
+            self.rate_ft_per_s,
+            self.since_start_s,
+            self.since_transition_s,
+            self.coasted_s,
+            self.bin_time_s,
+            self.lateness_s,
+            self.bounds.lowest_ft_per_s,
+            self.bounds.highest_ft_per_s,
+        ]
+        .iter()
+        .all(|v| v.is_valid())
+    }
+
+    fn q(&self) -> S {
+        c(self.config.quantum.feet())
+    }
+
+    fn start(&mut self, z: S) {
+        let kept = (self.incredible_reports, self.saturations);
+        *self = Self::new(self.config);
+        (self.incredible_reports, self.saturations) = kept;
+        self.reports = 1;
+        self.altitude_ft = z;
+        self.report_ft = z;
+        self.bounds = RateBounds {
+            lowest_ft_per_s: -c::<S>(LARGE_RATE_FT_PER_S),
+            highest_ft_per_s: c(LARGE_RATE_FT_PER_S),
+        };
+    }
+
+    /// DO-185B `credible`: the report is within what the track could have
+    /// done since the last report.
+    fn credible(&self, z: S, dt: S) -> bool {
+        let change = z - self.report_ft;
+        if change == S::ZERO {
+            return true;
+        }
+        let elapsed = self.coasted_s + dt;
+        if self.since_start_s + dt < c(RATE_SETTLING_S) {
+            return change.abs() <= c::<S>(CREDIBLE_INITIAL_RATE_FT_PER_S).times(elapsed);
+        }
+        let predicted_change = self.rate_ft_per_s.times(elapsed);
+        (change - predicted_change).abs()
+            <= self.q()
+                + c::<S>(CREDIBLE_RATE_ERROR_FT_PER_S).times(elapsed)
+                + c::<S>(CREDIBLE_HALF_ACCELERATION_FT_PER_S2)
+                    .times(elapsed)
+                    .times(elapsed)
+    }
+
+    fn coast(&mut self, dt: S) {
+        if self.reports == 0 {
+            return;
+        }
+        let coasted = self.coasted_s + dt;
+        if !coasted.is_valid() || coasted > self.config.max_coast {
+            let kept = (self.incredible_reports, self.saturations);
+            *self = Self::new(self.config);
+            (self.incredible_reports, self.saturations) = kept;
+            return;
+        }
+        self.coasted_s = coasted;
+        self.since_start_s = self.since_start_s + dt;
+        self.since_transition_s = self.since_transition_s + dt;
+        self.altitude_ft = self.altitude_ft + self.rate_ft_per_s.times(dt);
+        self.firmness = self.firmness.saturating_sub(1);
+    }
+
+    /// A credible report `z`, `dt` after the previous scan.
+    fn take(&mut self, z: S, dt: S) {
+        self.reports = 2;
+        self.since_start_s = self.since_start_s + dt;
+        self.since_transition_s = self.since_transition_s + dt;
+        let since_report = self.coasted_s + dt;
+        self.coasted_s = S::ZERO;
+        let change = z - self.report_ft;
+        let keep_report = if change == S::ZERO {
+            self.no_transition(z, dt);
+            true
+        } else {
+            self.transition(z, change, dt, since_report)
+        };
+        if keep_report {
+            self.report_ft = z;
+        }
+        self.clamp_to_bin(z);
+    }
+
+    /// The estimate stays inside the reported bin.
+    fn clamp_to_bin(&mut self, z: S) {
+        let half = self.q().times(c(0.5));
+        self.altitude_ft = self.altitude_ft.max_of(z - half).min_of(z + half);
+    }
+
+    fn signed(&self, v: S) -> S {
+        match self.direction {
+            d if d < 0 => -v,
+            0 => S::ZERO,
+            _ => v,
+        }
+    }
+
+    fn set_bounds(&mut self, a: S, b: S) {
+        self.bounds = RateBounds {
+            lowest_ft_per_s: a.min_of(b),
+            highest_ft_per_s: a.max_of(b),
+        };
+    }
+
+    fn occupancy_firmness(&mut self) {
+        for (firmness, &t) in (1u8..).zip(OCCUPANCY_FIRMNESS_S.iter()) {
+            if self.since_transition_s > c(t) {
+                self.firmness = self.firmness.max(firmness);
             }
         }
-        Ok(self.status())
+    }
+
+    fn go_level(&mut self, z: S) {
+        self.altitude_ft = z;
+        self.rate_ft_per_s = S::ZERO;
+        self.class = VerticalClass::Level;
+        self.firmness = MAX_VERTICAL_FIRMNESS;
+        let outer = self.signed(
+            self.q()
+                .over(self.since_transition_s.max_of(self.config.interval)),
+        );
+        self.set_bounds(S::ZERO, outer);
+    }
+
+    /// DO-185B `no_transition_update` and `no_transition_firmness`.
+    fn no_transition(&mut self, z: S, dt: S) {
+        let q = self.q();
+        let t = self.config.interval;
+        let since = self.since_transition_s;
+        match self.class {
+            VerticalClass::New | VerticalClass::Guess | VerticalClass::Oscillating
+                if since > c(GO_LEVEL_S) =>
+            {
+                self.go_level(z)
+            }
+            VerticalClass::Level => self.go_level(z),
+            VerticalClass::New => {
+                self.altitude_ft = z;
+                self.rate_ft_per_s = S::ZERO;
+                let bound = q.over(self.since_start_s);
+                self.set_bounds(-bound, bound);
+                self.occupancy_firmness();
+            }
+            VerticalClass::Oscillating => {
+                self.rate_ft_per_s = S::ZERO;
+                self.set_bounds(S::ZERO, S::ZERO);
+                if since > c(OSCILLATION_FIRM_S) {
+                    self.firmness = MAX_VERTICAL_FIRMNESS;
+                }
+            }
+            VerticalClass::Guess => {
+                self.rate_ft_per_s = self.rate_ft_per_s.times(c(GUESS_DECAY));
+                self.altitude_ft = self.altitude_ft + self.rate_ft_per_s.times(dt);
+                let outer = if self.since_start_s > c(RATE_SETTLING_S) {
+                    q.over(since).min_of(c(LIKELY_RATE_FT_PER_S))
+                } else {
+                    q.over(since)
+                };
+                let outer = self.signed(outer);
+                self.set_bounds(S::ZERO, outer);
+                self.occupancy_firmness();
+            }
+            VerticalClass::Trend => {
+                let overdue = since - self.bin_time_s;
+                let late_level = c::<S>(LATE_LEVEL_S);
+                if overdue > late_level {
+                    self.go_level(z);
+                } else if overdue > c(LATE_SLACK_S) {
+                    // No transition when due: the rate that would just have
+                    // missed it, tapering to zero at LATELEVEL.
+                    let half_t = t.times(c(0.5));
+                    let taper = (late_level + half_t - overdue).over(late_level + half_t);
+                    self.rate_ft_per_s = self.signed(q.over(since + t).times(taper));
+                    self.bins_in_rate = self.bins_in_rate.saturating_sub(1).max(1);
+                    self.altitude_ft = z + self.signed(q.times(c(0.5)));
+                    self.set_bounds(S::ZERO, self.signed(q.over(since)));
+                    self.firmness = if overdue > c(OVERDUE_S) {
+                        self.firmness.saturating_add(1).min(2)
+                    } else {
+                        1
+                    };
+                } else {
+                    let predicted = self.altitude_ft + self.rate_ft_per_s.times(dt);
+                    let half = q.times(c(0.5));
+                    if predicted > z + half || predicted < z - half {
+                        // Ahead of the reports: hold the estimate at the bin
+                        // edge and take the difference out of the rate.
+                        self.altitude_ft = z + self.signed(half);
+                        let error = self.altitude_ft - predicted;
+                        self.rate_ft_per_s =
+                            self.rate_ft_per_s + error.over(since.max_of(c(MIN_CORRECTION_TIME_S)));
+                        self.bins_in_rate = self.bins_in_rate.saturating_sub(1).max(1);
+                        if error.abs() > c(PREDICTION_ERROR_FT) {
+                            self.firmness = 1;
+                        }
+                    } else {
+                        self.altitude_ft = predicted;
+                    }
+                }
+            }
+        }
+    }
+
+    /// A change of report by `change`; false when the transition is taken
+    /// as jitter and the previous report stays the reference.
+    fn transition(&mut self, z: S, change: S, dt: S, since_report: S) -> bool {
+        let q = self.q();
+        let sign: i8 = if change > S::ZERO { 1 } else { -1 };
+        let bins = bins_of(change.abs().over(q));
+        let bins_s = c::<S>(f64::from(bins));
+        let time_per_bin = self.since_transition_s.over(bins_s);
+        let same_direction = self.direction == sign;
+        let mut keep = true;
+        match self.class {
+            VerticalClass::New | VerticalClass::Level => {
+                self.start_guess(z, change, sign, since_report)
+            }
+            VerticalClass::Guess if same_direction => {
+                self.start_trend(z, change, sign, time_per_bin)
+            }
+            VerticalClass::Guess => self.start_oscillation(z, sign),
+            VerticalClass::Oscillating if same_direction => {
+                self.start_trend(z, change, sign, time_per_bin)
+            }
+            VerticalClass::Oscillating => {
+                let qs = if sign > 0 { q } else { -q };
+                self.altitude_ft = z - qs.over(c(3.0));
+                self.firmness = MAX_VERTICAL_FIRMNESS;
+            }
+            VerticalClass::Trend if same_direction => {
+                self.continue_trend(z, change, bins, time_per_bin, dt)
+            }
+            VerticalClass::Trend if bins > 1 => self.start_guess(z, change, sign, since_report),
+            VerticalClass::Trend => {
+                if self.bin_time_s > S::ZERO
+                    && time_per_bin <= c::<S>(REVERSAL_JITTER).times(self.bin_time_s)
+                {
+                    // Right after a transition: jitter at the boundary.
+                    self.altitude_ft = self.altitude_ft + self.rate_ft_per_s.times(dt);
+                    self.firmness = 0;
+                    keep = false;
+                } else {
+                    self.start_oscillation(z, sign);
+                }
+            }
+        }
+        if keep {
+            self.direction = sign;
+            self.since_transition_s = S::ZERO;
+        }
+        keep
+    }
+
+    /// DO-185B `guess_track_init`.
+    fn start_guess(&mut self, z: S, change: S, sign: i8, since_report: S) {
+        let q = self.q();
+        let qs = if sign > 0 { q } else { -q };
+        let t = self.config.interval;
+        // After a long gap over several bins the change itself is a rate.
+        self.rate_ft_per_s = if since_report > c(LONG_COAST_S) && change.abs() > q {
+            (change - qs).over(since_report)
+        } else if sign > 0 {
+            c(GUESS_RATE_FT_PER_S)
+        } else {
+            -c::<S>(GUESS_RATE_FT_PER_S)
+        };
+        let outer = if self.since_start_s < c(RATE_SETTLING_S) {
+            (change + qs).over(self.since_start_s)
+        } else if sign > 0 {
+            c(LIKELY_RATE_FT_PER_S)
+        } else {
+            -c::<S>(LIKELY_RATE_FT_PER_S)
+        };
+        self.set_bounds(S::ZERO, outer);
+        self.altitude_ft = z - qs.times(c(0.5)) + self.rate_ft_per_s.times(t).times(c(0.5));
+        self.firmness = 0;
+        self.class = VerticalClass::Guess;
+    }
+
+    /// DO-185B `oscil_track_init`.
+    fn start_oscillation(&mut self, z: S, sign: i8) {
+        let qs = if sign > 0 { self.q() } else { -self.q() };
+        self.altitude_ft = z - qs.over(c(3.0));
+        self.rate_ft_per_s = S::ZERO;
+        self.firmness = 2;
+        self.set_bounds(S::ZERO, S::ZERO);
+        self.class = VerticalClass::Oscillating;
+    }
+
+    /// DO-185B `trend_track_init`: the second transition in one direction.
+    fn start_trend(&mut self, z: S, change: S, sign: i8, time_per_bin: S) {
+        let q = self.q();
+        let qs = if sign > 0 { q } else { -q };
+        let t = self.config.interval;
+        let since = self.since_transition_s;
+        self.alpha_beta = false;
+        self.bin_time_s = if self.since_start_s < c(RATE_SETTLING_S) {
+            time_per_bin
+        } else {
+            time_per_bin.max_of(c(MIN_FIRST_BIN_S))
+        };
+        self.rate_ft_per_s = qs.over(self.bin_time_s);
+        self.altitude_ft = if self.bin_time_s > S::ONE {
+            z - qs.times(c(0.5)) + self.rate_ft_per_s.times(t).times(c(0.5))
+        } else {
+            z
+        };
+        self.lateness_s = S::ZERO;
+        self.bins_in_rate = 1;
+        if since > c(MIN_TREND_S) {
+            self.firmness = 2;
+            let outer_time = (since - t).max_of(t);
+            self.set_bounds(
+                change.over(since + t),
+                c::<S>(RATE_BOUND_MARGIN).times(change).over(outer_time),
+            );
+        } else {
+            self.firmness = 1;
+            self.set_bounds(
+                change.over(c::<S>(MIN_TREND_S) + t),
+                (change + qs).over(since),
+            );
+        }
+        self.class = VerticalClass::Trend;
+    }
+
+    /// DO-185B `smoothing_method_selection`, `expected_transition`,
+    /// `alpha_beta_smoothing`, `transition_set_casfirm`,
+    /// `transition_set_rate_limits`: another transition along the trend.
+    fn continue_trend(&mut self, z: S, change: S, bins: u8, time_per_bin: S, dt: S) {
+        let q = self.q();
+        let t = self.config.interval;
+        let sign_q = self.signed(q);
+        let since = self.since_transition_s;
+        let bins_s = c::<S>(f64::from(bins));
+        let previous_bin_time = self.bin_time_s;
+        if self.alpha_beta {
+            if self.bin_time_s > c(ALPHA_BETA_BELOW_S) && time_per_bin > c(BIN_OCCUPANCY_ABOVE_S) {
+                self.alpha_beta = false;
+                self.lateness_s = S::ZERO;
+                self.bins_in_rate = BINS_AFTER_ALPHA_BETA;
+            }
+        } else if self.bin_time_s < c(BIN_OCCUPANCY_ABOVE_S) && time_per_bin < c(ALPHA_BETA_BELOW_S)
+        {
+            self.alpha_beta = true;
+            self.firmness = self.firmness.min(1);
+        }
+        if self.alpha_beta {
+            let (alpha, beta) = ALPHA_BETA_GAINS;
+            let previous = self.altitude_ft;
+            let predicted = previous + self.rate_ft_per_s.times(dt);
+            let residual = z - predicted;
+            self.altitude_ft = predicted + c::<S>(alpha).times(residual);
+            self.rate_ft_per_s = self.rate_ft_per_s + c::<S>(beta).times(residual).over(dt);
+            let after = z - (previous + self.rate_ft_per_s.times(dt));
+            if after.abs() >= c(self.config.quantum.residual_threshold_ft()) {
+                self.firmness = self.firmness.saturating_sub(2);
+                self.bins_in_rate = self.bins_in_rate.saturating_sub(1).max(3);
+            } else {
+                self.firmness = self.firmness.saturating_add(1).min(MAX_VERTICAL_FIRMNESS);
+                self.bins_in_rate = self.bins_in_rate.saturating_add(bins).min(MAX_BINS);
+            }
+            if self.rate_ft_per_s != S::ZERO {
+                self.bin_time_s = q.over(self.rate_ft_per_s).abs();
+            }
+            // Bounds: the measured rate ± half a bin per averaged bin.
+            let n = c::<S>(f64::from(self.bins_in_rate.max(1)));
+            let half = c::<S>(0.5);
+            self.set_bounds(
+                self.rate_ft_per_s.times(n - half).over(n),
+                self.rate_ft_per_s.times(n + half).over(n),
+            );
+            return;
+        }
+        // Bin occupancy: average the time per bin.
+        let late = since - previous_bin_time.times(bins_s);
+        let restart_bins = if time_per_bin > c(MIN_TREND_S) {
+            bins
+        } else {
+            bins.saturating_add(1)
+        };
+        if late.abs() > c(EARLY_LATE_S) {
+            self.bins_in_rate = restart_bins;
+            self.lateness_s = S::ZERO;
+        } else {
+            self.lateness_s = c::<S>(LATENESS_MEMORY).times(self.lateness_s) + late;
+            if self.lateness_s.abs() <= c(SLIGHTLY_OFF_S) {
+                let max_time = c::<S>(MAX_RATE_TIME_S);
+                if time_per_bin.times(c(2.0)) >= max_time {
+                    self.bins_in_rate = 1;
+                } else {
+                    // The most bins whose time fits in MAXZDTIME.
+                    let mut most = 1u8;
+                    for n in 2..=MAX_BINS {
+                        if c::<S>(f64::from(n)).times(time_per_bin) <= max_time {
+                            most = n;
+                        }
+                    }
+                    self.bins_in_rate = self.bins_in_rate.saturating_add(bins).min(most);
+                }
+            } else {
+                self.bins_in_rate = restart_bins;
+                self.lateness_s = self.lateness_s.times(c(LATENESS_DECAY));
+            }
+        }
+        let weight = bins_s.over(c::<S>(f64::from(self.bins_in_rate.max(1))));
+        self.bin_time_s = previous_bin_time
+            + weight
+                .min_of(S::ONE)
+                .times(time_per_bin - previous_bin_time);
+        self.rate_ft_per_s = sign_q.over(self.bin_time_s);
+        self.altitude_ft = self.altitude_ft + self.rate_ft_per_s.times(dt);
+        // Firmness from how regular the bin crossings are.
+        let ratio = time_per_bin.over(previous_bin_time);
+        self.firmness = [3u8, 2, 1]
+            .iter()
+            .zip(BIN_RATIO_FIRMNESS.iter())
+            .find(|(_, &(lo, hi))| ratio >= c(lo) && ratio <= c(hi))
+            .map_or(0, |(&firmness, _)| firmness);
+        let (out3, out2) = LATENESS_FIRMNESS_S;
+        if late.abs() < c(out3) {
+            self.firmness = MAX_VERTICAL_FIRMNESS;
+        } else if late.abs() < c(out2) {
+            self.firmness = self.firmness.max(2);
+        }
+        let (slow1, slow2) = SLOW_BIN_FIRMNESS_S;
+        if time_per_bin > c(slow2) {
+            self.firmness = self.firmness.max(2);
+        } else if time_per_bin > c(slow1) {
+            self.firmness = self.firmness.max(1);
+        }
+        if self.since_start_s < c(RATE_SETTLING_S) {
+            self.firmness = 1;
+        }
+        // Rate bounds: ± one scan of timing over the averaged bins when the
+        // crossings are regular; wider otherwise.
+        if self.firmness == MAX_VERTICAL_FIRMNESS || late.abs() < c(out2) {
+            let span = c::<S>(f64::from(self.bins_in_rate)).times(since);
+            self.set_bounds(
+                self.rate_ft_per_s.times(span - t).over(span),
+                self.rate_ft_per_s.times(span + t).over(span),
+            );
+        } else if ratio < S::ONE {
+            self.set_bounds(
+                sign_q.over(previous_bin_time),
+                c::<S>(RATE_BOUND_MARGIN)
+                    .times(change)
+                    .over((since - t).max_of(t)),
+            );
+        } else {
+            let outer = q
+                .over(time_per_bin)
+                .max_of(self.bounds.highest_ft_per_s.abs());
+            self.set_bounds(S::ZERO, self.signed(outer));
+        }
+    }
+}
+
+/// Whole bins in a change of `ratio` quanta (reports are whole quanta, so
+/// the ratio is an integer up to rounding), at least 1, saturating.
+fn bins_of<S: Scalar>(ratio: S) -> u8 {
+    let r = libm::round(ratio.to_f64());
+    if r >= 255.0 {
+        u8::MAX
+    } else if r >= 1.0 {
+        // 1 ≤ r < 255 after the checks, so the cast is exact.
+        r as u8
+    } else {
+        1
     }
 }

@@ -101,13 +101,24 @@
 //! products R·sin B stay within the ranges of the αβ filter. A saturated
 //! step is refused and counted like [`crate::filter::KinematicFilter`].
 //!
+//! In a [`Numeric`] system the covariance factors, the noise's standard
+//! deviations and the velocity are [`Numeric::Ratio`] numbers in SI units:
+//! their range spans decades, and in the fast fixed point
+//! ([`crate::Fixed32`]) a ratio carries its own exponent (2⁻³⁰ relative).
+//! The velocity is one of them because a two-point velocity from polar
+//! measurements carries the cross-range noise over T (34 km/s for the
+//! paper's 5° at 280 km), beyond a speed format. Positions are
+//! [`Numeric::Length`]; sin and cos come from [`Numeric::sin_cos`] (CORDIC on
+//! a binary angle in the fast fixed point).
+//!
 //! Accuracy against the independent f64 reference (host-tests
 //! `range_azimuth.rs`, the paper's 280 km scenario over 500 scans and a
 //! TCAS encounter with coasts): f32 within 0.11 m and 0.03 m/s, Q32.32
-//! within 3 mm and 6.3·10⁻⁵ m/s, gains within 5·10⁻⁹.
+//! within 3 mm and 6.3·10⁻⁵ m/s, gains within 5·10⁻⁹; the fast fixed point
+//! within 1.7 mm and 2.6·10⁻⁴ m/s, gains within 1.1·10⁻⁷.
 
 use crate::filter::{check_interval, FilterError, Phase};
-use crate::num::Scalar;
+use crate::num::{Numeric, Quantity, Real};
 
 /// σ_B² used by He et al. (VAR = R²·7.569·10⁻³, about 5° RMS).
 pub const PAPER_BEARING_VARIANCE: f64 = 7.569e-3;
@@ -139,22 +150,24 @@ impl core::fmt::Display for NoiseError {
 
 impl core::error::Error for NoiseError {}
 
-/// Measurement and process noise of a [`RangeAzimuthFilter`].
+/// Measurement and process noise of a [`RangeAzimuthFilter`]. Variances and
+/// standard deviations are [`Numeric::Ratio`] numbers in SI units (m², rad²,
+/// m²/s⁴; m, rad, m/s²): their range spans decades.
 #[derive(Debug, Clone, Copy, PartialEq)]
 #[cfg_attr(feature = "defmt", derive(defmt::Format))]
-pub struct RangeAzimuthNoise<S> {
-    range_variance: S,
-    bearing_variance: S,
-    process_noise: S,
+pub struct RangeAzimuthNoise<N: Numeric> {
+    range_variance: N::Ratio,
+    bearing_variance: N::Ratio,
+    process_noise: N::Ratio,
     /// σ_R, m.
-    range_sigma: S,
+    range_sigma: N::Ratio,
     /// σ_B, rad.
-    bearing_sigma: S,
+    bearing_sigma: N::Ratio,
     /// √Q, m/s².
-    process_sigma: S,
+    process_sigma: N::Ratio,
 }
 
-impl<S: Scalar> RangeAzimuthNoise<S> {
+impl<N: Numeric> RangeAzimuthNoise<N> {
     /// * `range_variance` σ_R², m², > 0: the along-range measurement
     ///   variance (reading 3 of the module docs).
     /// * `bearing_variance` σ_B², rad², > 0: VAR = R²·σ_B² (He et al. use
@@ -163,22 +176,23 @@ impl<S: Scalar> RangeAzimuthNoise<S> {
     ///   acceleration u_k of eq. (1), the Q of eqs. (7)–(8), the same along
     ///   and across range.
     pub fn new(
-        range_variance: S,
-        bearing_variance: S,
-        process_noise: S,
+        range_variance: N::Ratio,
+        bearing_variance: N::Ratio,
+        process_noise: N::Ratio,
     ) -> Result<Self, NoiseError> {
         if !(range_variance.is_valid() && bearing_variance.is_valid() && process_noise.is_valid()) {
             return Err(NoiseError::NotFinite);
         }
-        if range_variance <= S::ZERO || bearing_variance <= S::ZERO || process_noise < S::ZERO {
+        let zero = N::Ratio::ZERO;
+        if range_variance <= zero || bearing_variance <= zero || process_noise < zero {
             return Err(NoiseError::OutOfRange);
         }
         let range_sigma = range_variance.sqrt();
         let bearing_sigma = bearing_variance.sqrt();
         let process_sigma = process_noise.sqrt();
         if !(range_sigma.is_valid() && bearing_sigma.is_valid() && process_sigma.is_valid())
-            || range_sigma == S::ZERO
-            || bearing_sigma == S::ZERO
+            || range_sigma == zero
+            || bearing_sigma == zero
         {
             // A variance below the representation's resolution.
             return Err(NoiseError::OutOfRange);
@@ -199,7 +213,7 @@ impl<S: Scalar> RangeAzimuthNoise<S> {
         bearing_variance: f64,
         process_noise: f64,
     ) -> Result<Self, NoiseError> {
-        let c = |v| S::try_from_f64(v).map_err(|_| NoiseError::NotFinite);
+        let c = |v| N::Ratio::try_from_f64(v).map_err(|_| NoiseError::NotFinite);
         Self::new(c(range_variance)?, c(bearing_variance)?, c(process_noise)?)
     }
 
@@ -210,33 +224,34 @@ impl<S: Scalar> RangeAzimuthNoise<S> {
     }
 
     /// σ_R², m².
-    pub fn range_variance(&self) -> S {
+    pub fn range_variance(&self) -> N::Ratio {
         self.range_variance
     }
     /// σ_B², rad².
-    pub fn bearing_variance(&self) -> S {
+    pub fn bearing_variance(&self) -> N::Ratio {
         self.bearing_variance
     }
     /// Q, m²/s⁴.
-    pub fn process_noise(&self) -> S {
+    pub fn process_noise(&self) -> N::Ratio {
         self.process_noise
     }
 
     /// Cross-range standard deviation √VAR = R·σ_B at range R (m), floored
     /// at [`CROSS_RANGE_SIGMA_FLOOR`].
-    pub fn cross_range_sigma(&self, range: S) -> S {
-        (range * self.bearing_sigma).max_of(S::from_f64_lossy(CROSS_RANGE_SIGMA_FLOOR))
+    pub fn cross_range_sigma(&self, range: N::Length) -> N::Ratio {
+        (N::Ratio::from(range) * self.bearing_sigma)
+            .max_of(N::Ratio::from_f64_lossy(CROSS_RANGE_SIGMA_FLOOR))
     }
 }
 
-pub use crate::num::hypot;
+pub use crate::num::{azimuth_of, hypot};
 
 /// A Givens rotation of two columns of a two-row array that zeroes the
 /// first row's second entry: returns the first row's new first entry (its
 /// length, ≥ 0) and the second row's two new entries.
-fn givens<S: Scalar>(r0p: S, r0q: S, r1p: S, r1q: S) -> (S, S, S) {
-    let r = hypot(r0p, r0q);
-    if r == S::ZERO {
+fn givens<R: Real>(r0p: R, r0q: R, r1p: R, r1q: R) -> (R, R, R) {
+    let r = r0p.hypot(r0q);
+    if r == R::ZERO {
         return (r, r1p, r1q);
     }
     let (cos, sin) = (r0p / r, r0q / r);
@@ -245,24 +260,25 @@ fn givens<S: Scalar>(r0p: S, r0q: S, r1p: S, r1q: S) -> (S, S, S) {
 
 /// A position/velocity covariance along one direction, as its lower
 /// Cholesky factor L = [a 0; b c] (P = L·Lᵀ): P₁₁ = a² (m²),
-/// P₁₂ = a·b (m²/s), P₂₂ = b² + c² (m²/s²); a, c ≥ 0 in m and m/s.
+/// P₁₂ = a·b (m²/s), P₂₂ = b² + c² (m²/s²); a, c ≥ 0 in m and m/s, held as
+/// [`Numeric::Ratio`] numbers (their range spans decades).
 #[derive(Debug, Clone, Copy, PartialEq)]
 #[cfg_attr(feature = "defmt", derive(defmt::Format))]
-pub struct CovarianceFactor<S> {
-    pub a: S,
-    pub b: S,
-    pub c: S,
+pub struct CovarianceFactor<N: Numeric> {
+    pub a: N::Ratio,
+    pub b: N::Ratio,
+    pub c: N::Ratio,
 }
 
-impl<S: Scalar> CovarianceFactor<S> {
+impl<N: Numeric> CovarianceFactor<N> {
     const ZERO: Self = CovarianceFactor {
-        a: S::ZERO,
-        b: S::ZERO,
-        c: S::ZERO,
+        a: N::Ratio::ZERO,
+        b: N::Ratio::ZERO,
+        c: N::Ratio::ZERO,
     };
 
     /// The covariance [P₁₁, P₁₂, P₂₂] in f64 (for tools and tests; in m²
-    /// units it may exceed what `S` can hold).
+    /// units it may exceed what `N` can hold).
     pub fn covariance_f64(&self) -> [f64; 3] {
         let (a, b, c) = (self.a.to_f64(), self.b.to_f64(), self.c.to_f64());
         [a * a, a * b, b * b + c * c]
@@ -270,7 +286,7 @@ impl<S: Scalar> CovarianceFactor<S> {
 
     /// Two-point differencing: P = [σ², σ²/T; σ²/T, (σ₁² + σ²)/T²], whose
     /// factor is a = σ, b = σ/T, c = σ₁/T.
-    fn two_point(sigma: S, first_sigma: S, elapsed: S) -> Self {
+    fn two_point(sigma: N::Ratio, first_sigma: N::Ratio, elapsed: N::Ratio) -> Self {
         CovarianceFactor {
             a: sigma,
             b: sigma / elapsed,
@@ -282,18 +298,17 @@ impl<S: Scalar> CovarianceFactor<S> {
     /// Γ = [T²/2; T], in factor form: [Φ·L | Γ·√Q] =
     /// [a + T b, T c, T² √Q/2; b, c, T √Q] triangularised by two Givens
     /// rotations (which leave M·Mᵀ = PCOV unchanged).
-    fn predict(&self, dt: S, process_sigma: S) -> Self {
-        let half = S::from_f64_lossy(0.5);
+    fn predict(&self, dt: N::Ratio, process_sigma: N::Ratio) -> Self {
         let m00 = self.a + dt * self.b;
         let m01 = dt * self.c;
-        let m02 = dt * dt * process_sigma * half;
+        let m02 = (dt * dt * process_sigma).half();
         let m12 = dt * process_sigma;
         let (r0, r10, r11) = givens(m00, m01, self.b, self.c);
         let (a, b, r12) = givens(r0, m02, r10, m12);
         CovarianceFactor {
             a,
             b,
-            c: hypot(r11, r12),
+            c: r11.hypot(r12),
         }
     }
 
@@ -302,11 +317,12 @@ impl<S: Scalar> CovarianceFactor<S> {
     /// W1 and W2), and the factor of the updated covariance (I − K D)·PCOV:
     /// with s = 1 + (a/σ)², a and b shrink by √s and c is unchanged. The
     /// branch keeps the ratio of a and σ at most 1 so no square exceeds 1.
-    fn update(&self, sigma: S) -> (S, S, Self) {
+    fn update(&self, sigma: N::Ratio) -> (N::Ratio, N::Ratio, Self) {
         let CovarianceFactor { a, b, c } = *self;
+        let one = N::Ratio::ONE;
         if a <= sigma {
             let u = a / sigma;
-            let s = S::ONE + u * u;
+            let s = one + u * u;
             let root = s.sqrt();
             let kp = u * u / s;
             let kv = b * (u / s) / sigma;
@@ -321,10 +337,10 @@ impl<S: Scalar> CovarianceFactor<S> {
             )
         } else {
             let w = sigma / a;
-            let s = S::ONE + w * w;
+            let s = one + w * w;
             let root = s.sqrt();
             let b_over_a = b / a;
-            let kp = S::ONE / s;
+            let kp = one / s;
             let kv = b_over_a / s;
             let shrunk = CovarianceFactor {
                 a: sigma / root,
@@ -343,100 +359,86 @@ impl<S: Scalar> CovarianceFactor<S> {
 /// The gains an update used.
 #[derive(Debug, Clone, Copy, PartialEq)]
 #[cfg_attr(feature = "defmt", derive(defmt::Format))]
-pub struct RangeAzimuthGains<S> {
+pub struct RangeAzimuthGains<N: Numeric> {
     /// α along range (eq. 9).
-    pub alpha: S,
+    pub alpha: N::Ratio,
     /// β along range (eq. 9: T·PCOV₁₂/(PCOV₁₁ + σ_R²); the velocity gain is β/T).
-    pub beta: S,
+    pub beta: N::Ratio,
     /// W1, position gain across range (eq. 10).
-    pub w1: S,
+    pub w1: N::Ratio,
     /// W2, velocity gain across range (eq. 10), in 1/s.
-    pub w2: S,
+    pub w2: N::Ratio,
 }
 
 /// The prediction an update corrected and its residuals.
 #[derive(Debug, Clone, Copy, PartialEq)]
 #[cfg_attr(feature = "defmt", derive(defmt::Format))]
-pub struct RangeAzimuthInnovation<S> {
+pub struct RangeAzimuthInnovation<N: Numeric> {
     /// Predicted position (x, y), m.
-    pub predicted: [S; 2],
+    pub predicted: [N::Length; 2],
     /// RESID_R = R − (x_p sin B + y_p cos B), m (eq. 11, reading 1).
-    pub range_residual: S,
+    pub range_residual: N::Length,
     /// RESID_CR = x_p cos B − y_p sin B, m (eq. 11, reading 1): prediction
     /// minus measurement across the line of sight.
-    pub cross_range_residual: S,
-    pub gains: RangeAzimuthGains<S>,
+    pub cross_range_residual: N::Length,
+    pub gains: RangeAzimuthGains<N>,
 }
 
 /// What an update did.
 #[derive(Debug, Clone, Copy, PartialEq)]
 #[cfg_attr(feature = "defmt", derive(defmt::Format))]
-pub enum RangeAzimuthOutcome<S> {
+pub enum RangeAzimuthOutcome<N: Numeric> {
     /// First measurement: position only.
     FirstPoint,
     /// Second measurement: velocity from the difference, covariances set.
     SecondPoint,
     /// A filtered update (eqs. 7–13).
-    Filtered(RangeAzimuthInnovation<S>),
+    Filtered(RangeAzimuthInnovation<N>),
 }
 
 /// Predicted position and velocity after an interval.
 #[derive(Debug, Clone, Copy, PartialEq)]
 #[cfg_attr(feature = "defmt", derive(defmt::Format))]
-pub struct PlanarPrediction<S> {
+pub struct PlanarPrediction<N: Numeric> {
     /// (x, y), m.
-    pub position: [S; 2],
-    /// (ẋ, ẏ), m/s.
-    pub velocity: [S; 2],
+    pub position: [N::Length; 2],
+    /// (ẋ, ẏ), m/s, as [`Numeric::Ratio`] numbers
+    /// ([`RangeAzimuthFilter::velocity`]).
+    pub velocity: [N::Ratio; 2],
 }
 
 /// The range–azimuth projection filter (He, Peng, Ling & Quan, eqs. 7–13).
 /// See the module docs for the readings implemented.
 #[derive(Debug, Clone, Copy, PartialEq)]
 #[cfg_attr(feature = "defmt", derive(defmt::Format))]
-pub struct RangeAzimuthFilter<S> {
-    noise: RangeAzimuthNoise<S>,
+pub struct RangeAzimuthFilter<N: Numeric> {
+    noise: RangeAzimuthNoise<N>,
     phase: Phase,
-    position: [S; 2],
-    velocity: [S; 2],
+    position: [N::Length; 2],
+    /// m/s, as [`Numeric::Ratio`] numbers: a two-point velocity from
+    /// polar measurements carries the cross-range noise divided by T (34 km/s
+    /// for He et al.'s 5° bearing noise at 280 km), beyond a speed format.
+    velocity: [N::Ratio; 2],
     /// While `OnePoint`: time since the first measurement (coasts add to it).
-    since_first: S,
+    since_first: N::Interval,
     /// While `OnePoint`: √VAR of the first measurement.
-    first_cross_sigma: S,
-    range_factor: CovarianceFactor<S>,
-    cross_factor: CovarianceFactor<S>,
-    last: Option<RangeAzimuthInnovation<S>>,
+    first_cross_sigma: N::Ratio,
+    range_factor: CovarianceFactor<N>,
+    cross_factor: CovarianceFactor<N>,
+    last: Option<RangeAzimuthInnovation<N>>,
     saturations: u32,
 }
 
-/// Azimuth of (x, y), clockwise from the y axis, in [0, 2π).
-pub fn azimuth_of<S: Scalar>(x: S, y: S) -> S {
-    let two_pi = S::from_f64_lossy(core::f64::consts::TAU);
-    let a = x.atan2(y);
-    if a < S::ZERO {
-        let wrapped = a + two_pi;
-        // A tiny negative angle plus 2π can round to 2π in f32/f64: that
-        // direction is azimuth 0.
-        if wrapped >= two_pi {
-            S::ZERO
-        } else {
-            wrapped
-        }
-    } else {
-        a
-    }
-}
-
-impl<S: Scalar> RangeAzimuthFilter<S> {
+impl<N: Numeric> RangeAzimuthFilter<N> {
     /// An empty filter, waiting for its first measurement.
-    pub fn new(noise: RangeAzimuthNoise<S>) -> Self {
+    pub fn new(noise: RangeAzimuthNoise<N>) -> Self {
         RangeAzimuthFilter {
             noise,
             phase: Phase::Empty,
-            position: [S::ZERO; 2],
-            velocity: [S::ZERO; 2],
-            since_first: S::ZERO,
-            first_cross_sigma: S::ZERO,
+            position: [N::Length::ZERO; 2],
+            velocity: [N::Ratio::ZERO; 2],
+            since_first: N::Interval::ZERO,
+            first_cross_sigma: N::Ratio::ZERO,
             range_factor: CovarianceFactor::ZERO,
             cross_factor: CovarianceFactor::ZERO,
             last: None,
@@ -444,53 +446,54 @@ impl<S: Scalar> RangeAzimuthFilter<S> {
         }
     }
 
-    pub fn noise(&self) -> &RangeAzimuthNoise<S> {
+    pub fn noise(&self) -> &RangeAzimuthNoise<N> {
         &self.noise
     }
     pub fn phase(&self) -> Phase {
         self.phase
     }
     /// Estimated (x, y), m (x = R sin B, y = R cos B).
-    pub fn position(&self) -> [S; 2] {
+    pub fn position(&self) -> [N::Length; 2] {
         self.position
     }
-    /// Estimated (ẋ, ẏ), m/s (zero before the second measurement).
-    pub fn velocity(&self) -> [S; 2] {
+    /// Estimated (ẋ, ẏ), m/s, as [`Numeric::Ratio`] numbers (zero before
+    /// the second measurement; see the field's note on why not a speed).
+    pub fn velocity(&self) -> [N::Ratio; 2] {
         self.velocity
     }
     /// Estimated range √(x² + y²), m: the re-synthesis of He et al. §3.
-    /// Invalid only if the position is beyond 1.5·10⁹ m (fixed point).
-    pub fn range(&self) -> S {
+    /// Invalid only if the position is beyond the length format.
+    pub fn range(&self) -> N::Length {
         let [x, y] = self.position;
-        hypot(x, y)
+        N::hypot(x, y)
     }
     /// Estimated azimuth atan2(x, y) in [0, 2π), rad.
-    pub fn azimuth(&self) -> S {
+    pub fn azimuth(&self) -> N::Angle {
         let [x, y] = self.position;
-        azimuth_of(x, y)
+        N::azimuth(x, y)
     }
     /// Estimated range rate ṙ = (x ẋ + y ẏ)/r, m/s (negative when closing),
     /// computed as the velocity's component along the unit line of sight so
     /// no product of a position and a velocity is formed. Zero at r = 0.
-    pub fn range_rate(&self) -> S {
+    pub fn range_rate(&self) -> N::Speed {
         let [x, y] = self.position;
         let [vx, vy] = self.velocity;
-        let r = hypot(x, y);
-        if r == S::ZERO {
-            return S::ZERO;
+        let r = N::hypot(x, y);
+        if r == N::Length::ZERO {
+            return N::Speed::ZERO;
         }
-        (x / r) * vx + (y / r) * vy
+        N::Speed::from((x / r) * vx + (y / r) * vy)
     }
     /// Covariance factor along range (zero before tracking).
-    pub fn range_covariance(&self) -> CovarianceFactor<S> {
+    pub fn range_covariance(&self) -> CovarianceFactor<N> {
         self.range_factor
     }
     /// Covariance factor across range (zero before tracking).
-    pub fn cross_range_covariance(&self) -> CovarianceFactor<S> {
+    pub fn cross_range_covariance(&self) -> CovarianceFactor<N> {
         self.cross_factor
     }
     /// Prediction, residuals and gains of the last filtered update.
-    pub fn last_innovation(&self) -> Option<RangeAzimuthInnovation<S>> {
+    pub fn last_innovation(&self) -> Option<RangeAzimuthInnovation<N>> {
         self.last
     }
     /// How many updates or coasts were discarded because they saturated.
@@ -505,15 +508,16 @@ impl<S: Scalar> RangeAzimuthFilter<S> {
 
     /// The position and velocity predicted `dt` ahead, without changing the
     /// filter (constant velocity, eq. 4).
-    pub fn predict(&self, dt: S) -> Result<PlanarPrediction<S>, FilterError> {
+    pub fn predict(&self, dt: N::Interval) -> Result<PlanarPrediction<N>, FilterError> {
         check_interval(dt)?;
         let [x, y] = self.position;
         let [vx, vy] = self.velocity;
-        let p = PlanarPrediction {
-            position: [x + dt * vx, y + dt * vy],
+        let t = N::Ratio::from(dt);
+        let p = PlanarPrediction::<N> {
+            position: [x + N::Length::from(vx * t), y + N::Length::from(vy * t)],
             velocity: self.velocity,
         };
-        if p.position[0].is_valid() && p.position[1].is_valid() {
+        if p.position.iter().all(|v| v.is_valid()) {
             Ok(p)
         } else {
             Err(FilterError::Saturated)
@@ -530,41 +534,42 @@ impl<S: Scalar> RangeAzimuthFilter<S> {
     /// refused and leaves the filter unchanged (the last is counted).
     pub fn update(
         &mut self,
-        range: S,
-        azimuth: S,
-        dt: S,
-    ) -> Result<RangeAzimuthOutcome<S>, FilterError> {
-        if !(range.is_valid() && azimuth.is_valid()) || range <= S::ZERO {
+        range: N::Length,
+        azimuth: N::Angle,
+        dt: N::Interval,
+    ) -> Result<RangeAzimuthOutcome<N>, FilterError> {
+        if !(range.is_valid() && azimuth.is_valid()) || range <= N::Length::ZERO {
             return Err(FilterError::InvalidMeasurement);
         }
         check_interval(dt)?;
-        let (sin_b, cos_b) = azimuth.sin_cos();
-        let measured = [range * sin_b, range * cos_b];
+        let (sin_b, cos_b) = N::sin_cos(azimuth);
+        let measured = [sin_b * range, cos_b * range];
         let cross_sigma = self.noise.cross_range_sigma(range);
-        if !(measured[0].is_valid() && measured[1].is_valid() && cross_sigma.is_valid()) {
+        if !(measured.iter().all(|v| v.is_valid()) && cross_sigma.is_valid()) {
             return Err(self.saturated());
         }
         match self.phase {
             Phase::Empty => {
                 self.position = measured;
-                self.velocity = [S::ZERO; 2];
-                self.since_first = S::ZERO;
+                self.velocity = [N::Ratio::ZERO; 2];
+                self.since_first = N::Interval::ZERO;
                 self.first_cross_sigma = cross_sigma;
                 self.phase = Phase::OnePoint;
                 Ok(RangeAzimuthOutcome::FirstPoint)
             }
             Phase::OnePoint => {
                 let elapsed = self.since_first + dt;
+                let [x, y] = self.position;
+                let t = N::Ratio::from(elapsed);
                 let velocity = [
-                    (measured[0] - self.position[0]) / elapsed,
-                    (measured[1] - self.position[1]) / elapsed,
+                    N::Ratio::from(measured[0] - x) / t,
+                    N::Ratio::from(measured[1] - y) / t,
                 ];
                 let sigma_r = self.noise.range_sigma;
-                let range_factor = CovarianceFactor::two_point(sigma_r, sigma_r, elapsed);
+                let range_factor = CovarianceFactor::two_point(sigma_r, sigma_r, t);
                 let cross_factor =
-                    CovarianceFactor::two_point(cross_sigma, self.first_cross_sigma, elapsed);
-                if !(velocity[0].is_valid()
-                    && velocity[1].is_valid()
+                    CovarianceFactor::two_point(cross_sigma, self.first_cross_sigma, t);
+                if !(velocity.iter().all(|v| v.is_valid())
                     && range_factor.is_valid()
                     && cross_factor.is_valid())
                 {
@@ -583,54 +588,57 @@ impl<S: Scalar> RangeAzimuthFilter<S> {
 
     fn filter(
         &mut self,
-        range: S,
-        sin_b: S,
-        cos_b: S,
-        cross_sigma: S,
-        dt: S,
-    ) -> Result<RangeAzimuthOutcome<S>, FilterError> {
+        range: N::Length,
+        sin_b: N::Ratio,
+        cos_b: N::Ratio,
+        cross_sigma: N::Ratio,
+        dt: N::Interval,
+    ) -> Result<RangeAzimuthOutcome<N>, FilterError> {
         let [x, y] = self.position;
         let [vx, vy] = self.velocity;
+        let t = N::Ratio::from(dt);
         // Prediction (eq. 4 of the paper's αβ section; reading 2).
-        let (xp, yp) = (x + dt * vx, y + dt * vy);
+        let (xp, yp) = (x + N::Length::from(vx * t), y + N::Length::from(vy * t));
         // Eqs. (7)–(8), then eq. (9) with σ_R (reading 3) and eq. (10) with
         // √VAR, and the covariance update (reading 4).
         let q = self.noise.process_sigma;
         let (alpha, range_velocity_gain, range_factor) = self
             .range_factor
-            .predict(dt, q)
+            .predict(t, q)
             .update(self.noise.range_sigma);
-        let (w1, w2, cross_factor) = self.cross_factor.predict(dt, q).update(cross_sigma);
+        let (w1, w2, cross_factor) = self.cross_factor.predict(t, q).update(cross_sigma);
         // Eq. (11) with the predicted position (reading 1).
-        let range_residual = range - (xp * sin_b + yp * cos_b);
-        let cross_residual = xp * cos_b - yp * sin_b;
+        let range_residual = range - (sin_b * xp + cos_b * yp);
+        let cross_residual = cos_b * xp - sin_b * yp;
         // Eqs. (12)–(13).
-        let along_x = range_residual * sin_b;
-        let along_y = range_residual * cos_b;
-        let across_x = cross_residual * cos_b;
-        let across_y = cross_residual * sin_b;
+        let along_x = sin_b * range_residual;
+        let along_y = cos_b * range_residual;
+        let across_x = cos_b * cross_residual;
+        let across_y = sin_b * cross_residual;
         let position = [
             xp + alpha * along_x - w1 * across_x,
             yp + alpha * along_y + w1 * across_y,
         ];
+        let metres = |l: N::Length| N::Ratio::from(l);
         let velocity = [
-            vx + range_velocity_gain * along_x - w2 * across_x,
-            vy + range_velocity_gain * along_y + w2 * across_y,
+            vx + range_velocity_gain * metres(along_x) - w2 * metres(across_x),
+            vy + range_velocity_gain * metres(along_y) + w2 * metres(across_y),
         ];
-        let innovation = RangeAzimuthInnovation {
+        let innovation = RangeAzimuthInnovation::<N> {
             predicted: [xp, yp],
             range_residual,
             cross_range_residual: cross_residual,
-            gains: RangeAzimuthGains {
+            gains: RangeAzimuthGains::<N> {
                 alpha,
-                beta: range_velocity_gain * dt,
+                beta: range_velocity_gain * t,
                 w1,
                 w2,
             },
         };
         // Invalid values are sticky: checking the results covers every
         // intermediate.
-        if !(position.iter().chain(velocity.iter()).all(|v| v.is_valid())
+        if !(position.iter().all(|v| v.is_valid())
+            && velocity.iter().all(|v| v.is_valid())
             && range_factor.is_valid()
             && cross_factor.is_valid()
             && innovation.gains.beta.is_valid())
@@ -648,7 +656,7 @@ impl<S: Scalar> RangeAzimuthFilter<S> {
     /// No measurement this scan: advance the state and both covariances by
     /// `dt` (eqs. 4 and 8). Before the second measurement the position holds
     /// and the interval is remembered for the velocity difference.
-    pub fn coast(&mut self, dt: S) -> Result<(), FilterError> {
+    pub fn coast(&mut self, dt: N::Interval) -> Result<(), FilterError> {
         check_interval(dt)?;
         match self.phase {
             Phase::Empty => Ok(()),
@@ -661,9 +669,10 @@ impl<S: Scalar> RangeAzimuthFilter<S> {
                 Ok(())
             }
             Phase::Tracking => {
+                let t = N::Ratio::from(dt);
                 let q = self.noise.process_sigma;
-                let range_factor = self.range_factor.predict(dt, q);
-                let cross_factor = self.cross_factor.predict(dt, q);
+                let range_factor = self.range_factor.predict(t, q);
+                let cross_factor = self.cross_factor.predict(t, q);
                 let position = self.predict(dt).map(|p| p.position);
                 match position {
                     Ok(position) if range_factor.is_valid() && cross_factor.is_valid() => {

@@ -28,15 +28,29 @@ pub const BOARD: &str = env!("ABTRACK_BOARD");
 /// The core of [`BOARD`].
 pub const CORE: &str = env!("ABTRACK_CORE");
 
-/// The core's natural numeric type: `f32` where the core has a hardware FPU
-/// (the hard-float ABI, thumbv7em-none-eabihf: Cortex-M4F), Q32.32 fixed point
-/// ([`abtrack::Fix`]) on cores without one (Cortex-M3, Cortex-M0), where every
-/// float operation would be a software library call.
+/// The core's natural number system for the filters, the gain schedules
+/// and the bank: `f32` where the core has a hardware FPU (the hard-float
+/// ABI, thumbv7em-none-eabihf: Cortex-M4F), the fast fixed point
+/// ([`abtrack::Fixed32`]) on cores without one (Cortex-M3, Cortex-M0),
+/// where every float operation would be a software library call.
 #[cfg(target_abi = "eabihf")]
+#[allow(dead_code)] // the demo uses `TableScalar` until src/track is ported
 pub type Native = f32;
 /// See the hard-float definition.
 #[cfg(not(target_abi = "eabihf"))]
-pub type Native = abtrack::Fix;
+#[allow(dead_code)] // the demo uses `TableScalar` until src/track is ported
+pub type Native = abtrack::Fixed32;
+
+/// The type of the code still written for `Scalar` (the track table, TCAS,
+/// the altitude tracker, the demo) until it is ported to
+/// [`abtrack::Numeric`]: `f32` with an FPU, Q32.32 without.
+#[cfg(target_abi = "eabihf")]
+#[allow(dead_code)] // the filter self-test uses `Native` only
+pub type TableScalar = f32;
+/// See the hard-float definition.
+#[cfg(not(target_abi = "eabihf"))]
+#[allow(dead_code)] // the filter self-test uses `Native` only
+pub type TableScalar = abtrack::Fix;
 
 /// Leaves QEMU through semihosting `SYS_EXIT_EXTENDED`: status 0 on success,
 /// 1 on failure. Needs `-semihosting-config enable=on` (scripts/qemu-run.sh).

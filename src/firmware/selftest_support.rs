@@ -42,7 +42,7 @@ pub fn run(title: &str, tests: &[Test]) -> ! {
         title,
         board::BOARD,
         board::CORE,
-        board::Native::NAME
+        <board::Native as abtrack::Numeric>::NAME
     );
     let mut passed = 0u32;
     let mut failed = 0u32;
@@ -120,6 +120,91 @@ impl TestScalar for Fix {
     }
 }
 
+/// A quantity's stored bit pattern, for "bit-identical" checks.
+pub trait Bits: Copy {
+    fn bits(self) -> u64;
+}
+
+impl<S: TestScalar> Bits for S {
+    fn bits(self) -> u64 {
+        TestScalar::bits(self)
+    }
+}
+
+macro_rules! fixed_bits {
+    ($($t:ty),*) => {$(
+        impl Bits for $t {
+            fn bits(self) -> u64 {
+                u64::from(self.to_bits() as u32)
+            }
+        }
+    )*};
+}
+fixed_bits!(
+    abtrack::num::fixed32::Length,
+    abtrack::num::fixed32::Speed,
+    abtrack::num::fixed32::Acceleration
+);
+
+/// What the tests need to know about a number system beyond
+/// [`abtrack::Numeric`] (whose per-quantity rounding model the error budget
+/// uses).
+pub trait TestNumeric:
+    abtrack::Numeric<Length: Bits, Speed: Bits, Acceleration: Bits> + defmt::Format
+{
+    /// A representable measurement large enough that the αβ velocity
+    /// correction β·e/T (β = 0.25, T = 0.05 s) overflows.
+    const HUGE: f64;
+    /// A representable state (position, velocity) and interval whose coast
+    /// overflows the position.
+    const OVERFLOWING_COAST: [f64; 3];
+    /// The envelope of the estimates (docs/numerics-fixed-point.md): the
+    /// largest |velocity| and |acceleration|, and |z − x_p|; infinite where
+    /// the format holds every value the tests reach.
+    const SPEED_LIMIT: f64 = f64::INFINITY;
+    const ACCELERATION_LIMIT: f64 = f64::INFINITY;
+    const RESIDUAL_LIMIT: f64 = f64::INFINITY;
+}
+
+impl TestNumeric for f64 {
+    const HUGE: f64 = <f64 as TestScalar>::HUGE;
+    const OVERFLOWING_COAST: [f64; 3] = [0.0, <f64 as TestScalar>::HUGE, 100.0];
+}
+impl TestNumeric for f32 {
+    const HUGE: f64 = <f32 as TestScalar>::HUGE;
+    const OVERFLOWING_COAST: [f64; 3] = [0.0, <f32 as TestScalar>::HUGE, 100.0];
+}
+impl TestNumeric for Fix {
+    const HUGE: f64 = <Fix as TestScalar>::HUGE;
+    const OVERFLOWING_COAST: [f64; 3] = [0.0, <Fix as TestScalar>::HUGE, 100.0];
+}
+impl TestNumeric for abtrack::Fixed32 {
+    // Representable (< 524 288 m), but 0.25·5e5/0.05 = 2.5·10⁶ m/s is not.
+    const HUGE: f64 = 5.0e5;
+    // 5·10⁵ m + 100 s · 2000 m/s is beyond the ±524 288 m of a length.
+    const OVERFLOWING_COAST: [f64; 3] = [5.0e5, 2000.0, 100.0];
+    // The formats' ranges (±8192 m/s, ±8192 m/s², ±524 288 m), less a margin.
+    const SPEED_LIMIT: f64 = 8000.0;
+    const ACCELERATION_LIMIT: f64 = 8000.0;
+    const RESIDUAL_LIMIT: f64 = 5.0e5;
+}
+
+/// A constant in any quantity (rounded to nearest; out of range: invalid).
+pub fn q<Q: abtrack::num::Quantity>(v: f64) -> Q {
+    Q::from_f64_lossy(v)
+}
+
+/// A value converted into a quantity, refusing what does not fit.
+pub fn quantity<Q: abtrack::num::Quantity>(v: f64) -> Result<Q, Failure> {
+    match Q::try_from_f64(v) {
+        Ok(x) => Ok(x),
+        Err(e) => {
+            defmt::error!("{=f64} not representable: {}", v, e);
+            Err(Failure)
+        }
+    }
+}
+
 pub fn value<S: TestScalar>(v: f64) -> Result<S, Failure> {
     match S::try_from_f64(v) {
         Ok(x) => Ok(x),
@@ -134,8 +219,13 @@ pub fn never(_: u32) -> bool {
     false
 }
 
-pub fn gain_values<S: Scalar>(g: &Gains<S>) -> [f64; 3] {
-    [g.alpha().to_f64(), g.beta().to_f64(), g.gamma().to_f64()]
+pub fn gain_values<N: abtrack::Numeric>(g: &Gains<N>) -> [f64; 3] {
+    use abtrack::num::Quantity as Q;
+    [
+        Q::to_f64(g.alpha()),
+        Q::to_f64(g.beta()),
+        Q::to_f64(g.gamma()),
+    ]
 }
 
 /// The largest magnitudes one run reached, as the budget's envelope wants
@@ -214,7 +304,7 @@ pub fn merge(into: &mut Magnitudes, m: &Magnitudes) {
 /// (it refuses only interval or gain spreads it cannot certify, gains
 /// within about 10⁻⁴ of the stability boundary, and runs that may
 /// overflow).
-pub fn fixed_gain_budget<S: TestScalar, const ORDER: usize>(
+pub fn fixed_gain_budget<S: abtrack::Numeric, const ORDER: usize>(
     gains: &Gains<f64>,
     envelope: &RunEnvelope,
 ) -> Result<ErrorBound, Failure> {
@@ -245,7 +335,7 @@ pub fn fixed_gain_budget<S: TestScalar, const ORDER: usize>(
 /// their gains: d ← A(g_S)·d + ΔK·e, so in the budget's scaled coordinates
 /// (x, vT, aT²), where W·ΔK = (Δα, Δβ, Δγ/2), each component is at most
 /// ‖L‖∞·max(|Δα|, |Δβ|, |Δγ|/2)·max|e| (`amplification` is ‖L‖∞).
-pub fn fixed_gain_budget_computed_gains<S: TestScalar, const ORDER: usize>(
+pub fn fixed_gain_budget_computed_gains<S: abtrack::Numeric, const ORDER: usize>(
     gains_s: &Gains<f64>,
     delta: [f64; 3],
     envelope: &RunEnvelope,

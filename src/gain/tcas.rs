@@ -76,6 +76,7 @@ impl FirmnessGains {
     /// The gains of table entry `firmness` ≥ 2 (αβγ).
     pub fn table_gains<N: Numeric>(firmness: u8) -> Result<Gains<N>, ScheduleError> {
         // (No `clamp`: its argument check is a panic path.)
+        #[allow(clippy::manual_clamp)]
         let i = usize::from(firmness.max(2).min(MAX_FIRMNESS));
         match (
             FIRMNESS_ALPHA.get(i),

@@ -7,8 +7,8 @@
 //! | quantity | type | format | range | resolution |
 //! |---|---|---|---|---|
 //! | length (m) | [`Length`] | I20F12 | ±524 288 | 2.4·10⁻⁴ |
-//! | speed (m/s) | [`Speed`] | I12F20 | ±2 048 | 9.5·10⁻⁷ |
-//! | acceleration (m/s²) | [`Acceleration`] | I10F22 | ±512 | 2.4·10⁻⁷ |
+//! | speed (m/s) | [`Speed`] | I14F18 | ±8 192 | 3.8·10⁻⁶ |
+//! | acceleration (m/s²) | [`Acceleration`] | I14F18 | ±8 192 | 3.8·10⁻⁶ |
 //! | interval (s) | [`Interval`] | I8F24 | ±128 | 6.0·10⁻⁸ |
 //! | α in the per-update path | [`Gain`] | I4F28 | ±8 | 3.7·10⁻⁹ |
 //! | gains, ratios | [`Ratio`] | [`Scaled`] | 2⁻¹⁷⁰…2¹³¹ | 2⁻³⁰ relative |
@@ -26,7 +26,7 @@
 use core::fmt;
 use core::ops::{Add, Div, Mul, Neg, Sub};
 
-use fixed::types::{I10F22, I12F20, I20F12, I4F28, I8F24};
+use fixed::types::{I14F18, I20F12, I4F28, I8F24};
 
 use super::numeric::{AddProduct, Checked, Guard, Numeric, Quantity, SubGuarded};
 use super::scaled::{isqrt_u64, unit, Scaled};
@@ -40,6 +40,8 @@ pub type Rate = Scaled<unit::PerSecond>;
 pub type RateSquared = Scaled<unit::PerSecondSquared>;
 /// s².
 pub type IntervalSquared = Scaled<unit::SecondSquared>;
+/// Radians.
+pub type Angle = Scaled<unit::Radian>;
 
 /// The fast fixed-point number system (module docs).
 #[derive(Debug, Clone, Copy, Default, PartialEq, Eq)]
@@ -361,8 +363,8 @@ macro_rules! fixed_quantity {
 }
 
 fixed_quantity!(Length, I20F12, 12, "A length in metres");
-fixed_quantity!(Speed, I12F20, 20, "A speed in m/s");
-fixed_quantity!(Acceleration, I10F22, 22, "An acceleration in m/s²");
+fixed_quantity!(Speed, I14F18, 18, "A speed in m/s");
+fixed_quantity!(Acceleration, I14F18, 18, "An acceleration in m/s²");
 fixed_quantity!(Interval, I8F24, 24, "An interval in seconds");
 fixed_quantity!(Gain, I4F28, 28, "A gain of the per-update path (α)");
 
@@ -435,6 +437,7 @@ macro_rules! fixed_times_scaled {
 
 fixed_times_scaled! {
     Ratio, Length => Length;
+    Ratio, Speed => Speed;
     Rate, Length => Speed;
     RateSquared, Length => Acceleration;
 }
@@ -546,8 +549,69 @@ impl From<Length> for Ratio {
     }
 }
 
+/// A scaled number as a fixed-format word with `frac` fractional bits,
+/// rounded to nearest; a sentinel when invalid or out of range.
+fn scaled_to_word<U>(v: Scaled<U>, frac: u32) -> i32 {
+    if v.is_invalid() {
+        return i32::MAX;
+    }
+    let shift = -(frac as i32) - v.exponent();
+    saturate(shift_round(i64::from(v.mantissa()), shift))
+}
+
+impl From<Ratio> for Length {
+    /// A number of metres.
+    fn from(r: Ratio) -> Length {
+        Length(scaled_to_word(r, Length::FRAC_BITS))
+    }
+}
+
+impl From<Ratio> for Speed {
+    /// A number of m/s.
+    fn from(r: Ratio) -> Speed {
+        Speed(scaled_to_word(r, Speed::FRAC_BITS))
+    }
+}
+
+impl From<Interval> for Ratio {
+    /// The number of seconds.
+    fn from(t: Interval) -> Ratio {
+        t.scaled()
+    }
+}
+
+impl From<Ratio> for Rate {
+    /// A ratio computed in 1/s, as a rate.
+    fn from(r: Ratio) -> Rate {
+        r.cast()
+    }
+}
+
+/// 2³⁴/(2π), rounded: radians to binary-angle units (2³² per turn), with
+/// two extra bits (relative error 1.1·10⁻¹⁰).
+const TURNS_PER_RADIAN_Q34: i64 = 2_734_261_102;
+
+/// 2π in Q32.32.
+const TWO_PI_Q32: i64 = 26_986_075_409;
+
+/// The binary angle (2³² per turn) of a valid angle: any angle maps to one
+/// direction (the reduction modulo a turn is the wrap of the u32).
+fn turns(theta: Angle) -> u32 {
+    // θ·2³²/(2π) = m·2^e·C·2⁻² with C = 2³⁴/(2π); |m·C| < 2⁶³.
+    let wide = i64::from(theta.mantissa()).wrapping_mul(TURNS_PER_RADIAN_Q34);
+    let shift = 2i32.wrapping_sub(theta.exponent());
+    let turns = if shift >= 0 {
+        shift_round(wide, shift)
+    } else {
+        // |θ| ≥ 2³¹·…: only the wrapped low bits are a direction.
+        wide.wrapping_shl(shift.unsigned_abs())
+    };
+    turns as u32
+}
+
 impl Numeric for Fixed32 {
     const NAME: &'static str = "fixed";
+    const FUSED_PRODUCTS: bool = true;
     type Length = Length;
     type Speed = Speed;
     type Acceleration = Acceleration;
@@ -557,15 +621,36 @@ impl Numeric for Fixed32 {
     type Gain = Gain;
     type Rate = Rate;
     type RateSquared = RateSquared;
+    type Angle = Angle;
     type Guard = Fixed32Guard;
+
+    /// CORDIC on the binary angle ([`super::cordic`]): within 2⁻³⁰ plus the
+    /// rounding to 31-bit mantissas. An invalid angle gives invalid values.
+    fn sin_cos(theta: Angle) -> (Ratio, Ratio) {
+        if theta.is_invalid() {
+            return (Ratio::INVALID, Ratio::INVALID);
+        }
+        let (s, c) = super::cordic::sin_cos_turns(turns(theta));
+        (Ratio::from_wide(s, -61), Ratio::from_wide(c, -61))
+    }
+
+    /// CORDIC in vectoring mode on the exact words (lengths in Q32.32 are
+    /// the words shifted by 20 bits), within 2⁻³² rad plus the rounding to
+    /// a 31-bit mantissa; a sentinel gives the invalid angle.
+    fn azimuth(x: Length, y: Length) -> Angle {
+        if is_sentinel(x.0) || is_sentinel(y.0) {
+            return Angle::INVALID;
+        }
+        let shift = 32 - Length::FRAC_BITS;
+        let a = super::cordic::atan2_bits(i64::from(x.0) << shift, i64::from(y.0) << shift);
+        let a = if a < 0 { a.wrapping_add(TWO_PI_Q32) } else { a };
+        let a = if a >= TWO_PI_Q32 { 0 } else { a };
+        Angle::from_wide(a, -32)
+    }
 
     /// Rounded to nearest; a sentinel beyond ±8.
     fn gain(r: Ratio) -> Gain {
-        if r.is_invalid() {
-            return Gain::MAX;
-        }
-        let shift = -(Gain::FRAC_BITS as i32) - r.exponent();
-        Gain(saturate(shift_round(i64::from(r.mantissa()), shift)))
+        Gain(scaled_to_word(r, Gain::FRAC_BITS))
     }
 
     /// Exact to the nearest step: the sum of the squared words (below 2⁶³)

@@ -124,6 +124,21 @@ pub trait Real: Quantity + Mul<Output = Self> + Div<Output = Self> {
 
     /// Square root; invalid for a negative argument.
     fn sqrt(self) -> Self;
+
+    /// √(a² + b²) without forming a² (the larger magnitude times
+    /// √(1 + k²), k ≤ 1); invalid arguments give an invalid result.
+    fn hypot(self, other: Self) -> Self {
+        let (a, b) = (self.abs(), other.abs());
+        if !(a.is_valid() && b.is_valid()) {
+            return a + b;
+        }
+        let (large, small) = if a >= b { (a, b) } else { (b, a) };
+        if large == Self::ZERO {
+            return small;
+        }
+        let k = small / large;
+        large * (Self::ONE + k * k).sqrt()
+    }
 }
 
 /// The hot path's validity check (see the module docs).
@@ -166,8 +181,16 @@ pub trait Numeric:
     /// Short name for reports: "f64", "f32", "q32", "fixed".
     const NAME: &'static str;
 
+    /// Whether [`AddProduct`] forms `q + a·b` in a wider word and checks
+    /// only the sum (the fast fixed point), rather than rounding and
+    /// checking the product on its own (the sticky operators): the error
+    /// budget's range checks follow it.
+    const FUSED_PRODUCTS: bool = false;
+
     /// Metres (feet where a tracker works in feet): positions, residuals.
+    /// `From<Ratio>` reads a number of metres (invalid beyond the range).
     type Length: Quantity
+        + From<Self::Ratio>
         + Checked<Self::Guard>
         + SubGuarded<Self::Guard>
         + AddProduct<Self::Speed, Self::Interval, Self::Guard>
@@ -175,8 +198,10 @@ pub trait Numeric:
         + AddProduct<Self::Gain, Self::Length, Self::Guard>
         + Div<Self::Interval, Output = Self::Speed>
         + Div<Self::Length, Output = Self::Ratio>;
-    /// Metres per second.
+    /// Metres per second. `From<Ratio>` reads a number of m/s (invalid
+    /// beyond the range).
     type Speed: Quantity
+        + From<Self::Ratio>
         + Checked<Self::Guard>
         + AddProduct<Self::Acceleration, Self::Interval, Self::Guard>
         + AddProduct<Self::Rate, Self::Length, Self::Guard>
@@ -196,18 +221,29 @@ pub trait Numeric:
     /// overflow a length format).
     type Ratio: Real
         + From<Self::Length>
+        + From<Self::Interval>
         + Mul<Self::Length, Output = Self::Length>
+        + Mul<Self::Speed, Output = Self::Speed>
         + Div<Self::Interval, Output = Self::Rate>
         + Div<Self::IntervalSquared, Output = Self::RateSquared>;
     /// A gain of the per-update path, |g| < 8, where a fixed format is
     /// enough (the smoothing gain α, in (0, 2)); [`Self::gain`] converts.
     type Gain: Quantity;
-    /// Per second: the velocity gain β/T.
-    type Rate: Quantity + Mul<Self::Length, Output = Self::Speed>;
+    /// Per second: the velocity gain β/T. `From<Ratio>` reads a ratio
+    /// computed in 1/s (a covariance's velocity gain) as a rate.
+    type Rate: Quantity + From<Self::Ratio> + Mul<Self::Length, Output = Self::Speed>;
     /// Per second²: the acceleration gain γ/(2T²).
     type RateSquared: Quantity + Mul<Self::Length, Output = Self::Acceleration>;
+    /// Radians: azimuths.
+    type Angle: Quantity;
     /// The hot path's validity check (module docs).
     type Guard: Guard;
+
+    /// (sin θ, cos θ).
+    fn sin_cos(theta: Self::Angle) -> (Self::Ratio, Self::Ratio);
+
+    /// The azimuth of (x, y), clockwise from the y axis, in [0, 2π).
+    fn azimuth(x: Self::Length, y: Self::Length) -> Self::Angle;
 
     /// A [`Self::Ratio`] as a [`Self::Gain`] (invalid beyond the gain's
     /// range).
@@ -228,7 +264,9 @@ pub struct ScalarGuard<S> {
 }
 
 impl<S: Scalar> Guard for ScalarGuard<S> {
+    /// `s − s == 0` exactly when `s` is finite (module docs).
     #[inline]
+    #[allow(clippy::eq_op)] // the subtraction of equal operands is the test
     fn passed(&self) -> bool {
         self.sum - self.sum == S::ZERO
     }
@@ -316,7 +354,18 @@ impl<S: Scalar> Numeric for S {
     type Gain = S;
     type Rate = S;
     type RateSquared = S;
+    type Angle = S;
     type Guard = ScalarGuard<S>;
+
+    #[inline]
+    fn sin_cos(theta: S) -> (S, S) {
+        <S as Scalar>::sin_cos(theta)
+    }
+
+    #[inline]
+    fn azimuth(x: S, y: S) -> S {
+        super::azimuth_of(x, y)
+    }
 
     #[inline]
     fn gain(r: S) -> S {

@@ -49,6 +49,9 @@ pub mod unit {
     /// s².
     #[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
     pub struct SecondSquared;
+    /// Radians.
+    #[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+    pub struct Radian;
 }
 
 /// A number `mantissa · 2^exponent` in unit `U` (module docs).

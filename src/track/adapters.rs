@@ -385,7 +385,7 @@ fn position_gain<S: Scalar>(a: S, sigma: S) -> S {
 /// by cross-range speed·T/R per scan).
 #[derive(Debug, Clone, Copy, PartialEq)]
 #[cfg_attr(feature = "defmt", derive(defmt::Format))]
-pub struct RangeAzimuthTrack<S> {
+pub struct RangeAzimuthTrack<S: Scalar> {
     filter: RangeAzimuthFilter<S>,
 }
 

@@ -16,6 +16,7 @@
 
 use abtrack::bank::BankConfig;
 
+use super::alwagih_trajectories as trajectories;
 use super::common::{fmt_ci, write_file, Context, Table};
 use super::monte_carlo::{
     self, claims_markdown, claims_table, compare, f, plot_against_time, plot_tracks, rmse_table,
@@ -104,7 +105,7 @@ pub const PAPER_TABLE_4: [[[f64; 3]; 2]; 2] = [
 ];
 
 /// Labels of the paper's five methods in our tables (M1 with α = 0.05).
-const PAPER_METHODS: [&str; 5] = [M1, M2, M3, M4, M5];
+pub const PAPER_METHODS: [&str; 5] = [M1, M2, M3, M4, M5];
 
 /// Every method of the group.
 pub fn methods(info: &scenario::ScenarioInfo) -> Result<Vec<Method>, String> {
@@ -557,10 +558,171 @@ pub fn run(ctx: &Context) -> Result<(), String> {
         }
     }
     paper_table(&r)?.write(&dir, "paper_vs_ours")?;
-    let claims = claims(&r)?;
+    let mut claims = claims(&r)?;
+    let fits = trajectory_fits(ctx.runs(trajectories::REPORT_RUNS))?;
+    trajectory_tables(&fits).0.write(&dir, "trajectories")?;
+    trajectory_tables(&fits).1.write(&dir, "trajectory_cells")?;
+    claims.push(trajectory_claim(&fits));
     claims_table(&claims).write(&dir, "claims")?;
     write_file(&dir.join("summary.md"), &summary(&r, &claims)?)?;
     Ok(())
+}
+
+/// The trajectory fits of issue 13: on all ten cells, and on M2–M3 only.
+pub struct TrajectoryFits {
+    pub all: Vec<trajectories::Fit>,
+    pub line_fit: Vec<trajectories::Fit>,
+}
+
+pub fn trajectory_fits(report_runs: usize) -> Result<TrajectoryFits, String> {
+    Ok(TrajectoryFits {
+        all: trajectories::fit(report_runs, &trajectories::ALL_METHODS)?,
+        line_fit: trajectories::fit(report_runs, &trajectories::LINE_FIT_METHODS)?,
+    })
+}
+
+fn scopes(f: &TrajectoryFits) -> [(&'static str, &'static [usize], &Vec<trajectories::Fit>); 2] {
+    [
+        ("all cells (M1–M5)", &trajectories::ALL_METHODS, &f.all),
+        (
+            "M2 and M3 cells",
+            &trajectories::LINE_FIT_METHODS,
+            &f.line_fit,
+        ),
+    ]
+}
+
+fn trajectory_tables(fits_of: &TrajectoryFits) -> (Table, Table) {
+    let mut t = Table::new([
+        "cells fitted",
+        "family",
+        "best trajectory",
+        "σ (m)",
+        "distance to Table 1 (white)",
+        "distance to Table 2 (coloured, same parameters)",
+        "fit threshold 2s/√5 (Table 1 / Table 2)",
+        "fits Table 1",
+    ]);
+    let mut cells = Table::new([
+        "cells fitted",
+        "family",
+        "method",
+        "paper X (mean of 5 sets)",
+        "ours X",
+        "paper Y",
+        "ours Y",
+    ]);
+    let paper = trajectories::paper_means(&PAPER_TABLE_1);
+    for (scope, counted, fits) in scopes(fits_of) {
+        let limit1 = trajectories::fit_threshold(&PAPER_TABLE_1, counted);
+        let limit2 = trajectories::fit_threshold(&PAPER_TABLE_2, counted);
+        for fit in fits {
+            t.push([
+                scope.to_string(),
+                fit.trajectory.family().to_string(),
+                fit.trajectory.describe(),
+                f(fit.sigma, 1),
+                f(fit.white_distance, 3),
+                f(fit.coloured_distance, 3),
+                format!("{} / {}", f(limit1, 3), f(limit2, 3)),
+                if fit.white_distance <= limit1 {
+                    "yes"
+                } else {
+                    "no"
+                }
+                .to_string(),
+            ]);
+            for ((label, ours), p) in PAPER_METHODS.iter().zip(&fit.white).zip(&paper) {
+                cells.push([
+                    scope.to_string(),
+                    fit.trajectory.family().to_string(),
+                    label.to_string(),
+                    f(p[0], 1),
+                    fmt_ci(&ours[0], 1),
+                    f(p[1], 1),
+                    fmt_ci(&ours[1], 1),
+                ]);
+            }
+        }
+    }
+    (t, cells)
+}
+
+/// Each family's best fit by distance, the threshold, and those within it.
+fn describe_fits<'a>(
+    fits: &'a [trajectories::Fit],
+    counted: &[usize],
+) -> (String, f64, Vec<&'a trajectories::Fit>) {
+    let limit = trajectories::fit_threshold(&PAPER_TABLE_1, counted);
+    let mut v: Vec<&trajectories::Fit> = fits.iter().collect();
+    v.sort_by(|a, b| a.white_distance.total_cmp(&b.white_distance));
+    let text = v
+        .iter()
+        .map(|x| {
+            format!(
+                "{} {:.3} ({}, σ = {:.0} m)",
+                x.trajectory.family(),
+                x.white_distance,
+                x.trajectory.describe(),
+                x.sigma
+            )
+        })
+        .collect::<Vec<_>>()
+        .join("; ");
+    let fitting = v
+        .into_iter()
+        .filter(|x| x.white_distance <= limit)
+        .collect();
+    (text, limit, fitting)
+}
+
+fn trajectory_claim(f: &TrajectoryFits) -> Claim {
+    let describe = describe_fits;
+    let (all_text, all_limit, all_fit) = describe(&f.all, &trajectories::ALL_METHODS);
+    let (line_text, line_limit, line_fit) = describe(&f.line_fit, &trajectories::LINE_FIT_METHODS);
+    let coloured = line_fit
+        .first()
+        .map(|x| {
+            format!(
+                " With the same parameters and AR(1) noise (ρ = {}) the distance to Table 2 is {:.3} \
+                 (threshold {:.3}).",
+                trajectories::RHO,
+                x.coloured_distance,
+                trajectories::fit_threshold(&PAPER_TABLE_2, &trajectories::LINE_FIT_METHODS)
+            )
+        })
+        .unwrap_or_default();
+    Claim {
+        id: "A5".into(),
+        source: "§6, Tables 1–2 (issue 13)".into(),
+        claim: "the tables come from some target trajectory (the paper gives none): which of the \
+                plausible ones do they fit?"
+            .into(),
+        comparisons: Vec::new(),
+        ours: format!(
+            "distance (RMS of ln(ours/paper) over the cells) of each family's best fit to Table 1, \
+             all ten cells (fits if ≤ {all_limit:.3}): {all_text}. M2 and M3 cells only (fits if ≤ \
+             {line_limit:.3}): {line_text}.{coloured}"
+        ),
+        verdict: super::monte_carlo::Verdict::of_parts(&[!all_fit.is_empty(), !line_fit.is_empty()]),
+        reason: format!(
+            "No trajectory fits all five methods ({} of 4 families within the threshold): M1's X error \
+             (≈ 40 m in the paper) is far below what the two-point start's velocity error leaves an \
+             α = 0.05 filter with at any σ that also gives M2's errors, and M4 (≈ 272 m in Y) and M5 \
+             (≈ 11–18 m) do not follow from any trajectory with our M4 and M5 — the paper specifies \
+             neither M4's window search nor M5's bank. The M2 and M3 columns alone fit {}.",
+            all_fit.len(),
+            line_fit
+                .first()
+                .map_or("no family".to_string(), |x| format!(
+                    "a {} target, {}, σ = {:.0} m (distance {:.3})",
+                    x.trajectory.family(),
+                    x.trajectory.describe(),
+                    x.sigma,
+                    x.white_distance
+                ))
+        ),
+    }
 }
 
 fn summary(r: &Results, claims: &[Claim]) -> Result<String, String> {
@@ -652,6 +814,8 @@ fn summary(r: &Results, claims: &[Claim]) -> Result<String, String> {
          M1/M2, percentage change PC) with the paper's values beside ours\n\
          - `paper_vs_ours.md`: the paper's five-set means beside ours\n\
          - `claims.md`: every paired comparison behind the verdicts\n\
+         - `trajectories.md`, `trajectory_cells.md`: claim A5, the best trajectory of each family \
+         fitted to Table 1 (grid search, `alwagih_trajectories.rs`) and its cells beside the paper's\n\
          - `track_white.svg`, `track_coloured.svg`: Figures 5–6 (run 0, predicted tracks)\n\
          - `rmse_time_{white,coloured}_{x,y}.svg`: Figures 7–8 as prediction RMSE against time\n",
     );

@@ -43,6 +43,11 @@
 //! * **Batch ML (yardstick)** — the maximum-likelihood straight line through
 //!   all polar measurements so far ([`track_batch_ml`]): the truth is exactly
 //!   straight, so this is what the data allow.
+//! * **Eq. (9) as printed** (host f64, [`crate::reference_ra`] with
+//!   [`crate::reference_ra::Eq9Reading::AsPrinted`]): α, β divided by PCOV₁₁ + VAR as printed,
+//!   instead of σ_R². The range direction then carries the cross-range
+//!   variance and the filter reduces to per-axis gains α = W1 on the
+//!   converted measurements (issue 13's reading).
 //! * **Diagnostic variants** (host f64): αβ M2 on the debiased conversion
 //!   e^{σ_B²/2}·R·(sin B, cos B), and the range–azimuth filter with the range
 //!   residual R − |p̂| ([`RangeResidualVariant`]). They isolate the two
@@ -121,6 +126,8 @@ pub enum Method {
     /// Diagnostic variant (host f64): eq. (11)'s range residual taken as
     /// R − |p̂| instead of the projection R − p̂·u(B).
     RangeAzimuthRangeResidual,
+    /// He et al. eq. (9) exactly as printed (VAR for σ_R²), host f64.
+    RangeAzimuthEq9AsPrinted,
     AlphaBetaM2,
     /// αβ M2 on the debiased conversion e^{σ_B²/2}·R·(sin B, cos B).
     AlphaBetaM2Debiased,
@@ -131,8 +138,9 @@ pub enum Method {
 }
 
 impl Method {
-    pub const ALL: [Method; 9] = [
+    pub const ALL: [Method; 10] = [
         Method::RangeAzimuthF64,
+        Method::RangeAzimuthEq9AsPrinted,
         Method::AlphaBetaM2,
         Method::BatchMl,
         Method::KalmanCv,
@@ -149,6 +157,7 @@ impl Method {
             Method::RangeAzimuthF32 => "range-azimuth (f32)",
             Method::RangeAzimuthFix => "range-azimuth (Q32.32)",
             Method::RangeAzimuthRangeResidual => "range-azimuth, RESID_R = R - r_pred (variant)",
+            Method::RangeAzimuthEq9AsPrinted => "range-azimuth, eq. 9 as printed (VAR)",
             Method::AlphaBetaM2 => "alpha-beta M2 (eq. 6 gains)",
             Method::AlphaBetaM2Debiased => "alpha-beta M2, debiased conversion",
             Method::AlphaBetaKalata => "alpha-beta Kalata steady-state only",
@@ -370,20 +379,43 @@ impl RangeResidualVariant {
     }
 }
 
+/// Runs an f64 host filter over the measurements: `update` takes
+/// (R, B, dt) and returns the estimate (position, velocity) after it.
+fn track_host_f64(
+    meas: &[Polar],
+    mut update: impl FnMut(f64, f64, f64) -> ([f64; 2], [f64; 2]),
+) -> (Estimates, usize) {
+    let out = meas
+        .iter()
+        .map(|m| update(m.range, m.azimuth, m.dt))
+        .collect();
+    (out, 0)
+}
+
 fn track_range_residual_variant(meas: &[Polar], accel_sigma: f64) -> (Estimates, usize) {
     let mut f = RangeResidualVariant::new(
         RANGE_SIGMA_M * RANGE_SIGMA_M,
         HE_AZIMUTH_VARIANCE,
         accel_sigma * accel_sigma,
     );
-    let out = meas
-        .iter()
-        .map(|m| {
-            f.update(m.range, m.azimuth, m.dt);
-            (f.position(), f.velocity())
-        })
-        .collect();
-    (out, 0)
+    track_host_f64(meas, |r, b, dt| {
+        f.update(r, b, dt);
+        (f.position(), f.velocity())
+    })
+}
+
+/// He et al.'s filter with eq. (9) exactly as printed (the f64 reference,
+/// [`crate::reference_ra::Eq9Reading::AsPrinted`]).
+fn track_eq9_as_printed(meas: &[Polar], accel_sigma: f64) -> (Estimates, usize) {
+    let mut f = ReferenceRangeAzimuth::as_printed(
+        RANGE_SIGMA_M * RANGE_SIGMA_M,
+        HE_AZIMUTH_VARIANCE,
+        accel_sigma * accel_sigma,
+    );
+    track_host_f64(meas, |r, b, dt| {
+        f.update(r, b, dt);
+        ([f.x[0], f.y[0]], [f.x[1], f.y[1]])
+    })
 }
 
 /// Per-axis αβ on the converted measurements with the least-squares gains
@@ -730,6 +762,10 @@ fn simulate_run(config: &HeTcasConfig, run: usize) -> Result<RunResult, String> 
     put(
         Method::RangeAzimuthRangeResidual,
         track_range_residual_variant(&meas, config.accel_sigma),
+    );
+    put(
+        Method::RangeAzimuthEq9AsPrinted,
+        track_eq9_as_printed(&meas, config.accel_sigma),
     );
     put(
         Method::AlphaBetaKalata,
@@ -1116,6 +1152,24 @@ fn write_outputs(dir: &Path, out: &HeTcasOutcome, elapsed_s: f64) -> Result<(), 
             }
         }
     }
+    if let Some(printed) = out.method(Method::RangeAzimuthEq9AsPrinted) {
+        for (a, b) in [(printed, m2), (printed, ra)] {
+            for q in Quantity::ALL {
+                for (w, wl) in [(Window::Overall, "t >= 2 s"), (Window::Late, "t >= 400 s")] {
+                    if let Some((d, rel)) = paired(a, b, w, q) {
+                        pairs.push([
+                            format!("{} - {}", a.method.label(), b.method.label()),
+                            q.label().to_string(),
+                            wl.to_string(),
+                            fmt_ci_m(&d),
+                            format!("{rel:+.1}"),
+                            format!("eq. 9 as printed {}", verdict_of(&d)),
+                        ]);
+                    }
+                }
+            }
+        }
+    }
     pairs.write(dir, "paired_differences")?;
 
     // Numeric types.
@@ -1193,7 +1247,13 @@ fn write_outputs(dir: &Path, out: &HeTcasOutcome, elapsed_s: f64) -> Result<(), 
             "position_error_vs_time.svg",
             "He et al. scenario: position error RMSE vs time (range-azimuth under alpha-beta M2)",
             "RMSE across runs (m)",
-            &[RangeAzimuthF64, AlphaBetaM2, KalmanCv, BatchMl],
+            &[
+                RangeAzimuthF64,
+                RangeAzimuthEq9AsPrinted,
+                AlphaBetaM2,
+                KalmanCv,
+                BatchMl,
+            ],
         ),
         (
             Quantity::Range,
@@ -1215,6 +1275,7 @@ fn write_outputs(dir: &Path, out: &HeTcasOutcome, elapsed_s: f64) -> Result<(), 
             "mean over runs (m)",
             &[
                 RangeAzimuthF64,
+                RangeAzimuthEq9AsPrinted,
                 AlphaBetaM2,
                 RangeAzimuthRangeResidual,
                 AlphaBetaM2Debiased,
@@ -1461,6 +1522,7 @@ fn summary(out: &HeTcasOutcome, elapsed_s: f64) -> Result<String, String> {
     rows.push(kf);
     rows.extend(
         [
+            Method::RangeAzimuthEq9AsPrinted,
             Method::RangeAzimuthRangeResidual,
             Method::AlphaBetaM2Debiased,
         ]
@@ -1562,6 +1624,40 @@ fn summary(out: &HeTcasOutcome, elapsed_s: f64) -> Result<String, String> {
         out.method(Method::AlphaBetaM2Debiased).map_or("-".into(), |m| c(m, Window::Late, Quantity::Position)),
         out.method(Method::RangeAzimuthRangeResidual).map_or("-".into(), |m| c(m, Window::Late, Quantity::Position)),
     );
+    if let Some(printed) = out.method(Method::RangeAzimuthEq9AsPrinted) {
+        let (po, po_rel) =
+            paired(printed, m2, Window::Overall, Quantity::Position).ok_or("paired")?;
+        let (pl, pl_rel) = paired(printed, m2, Window::Late, Quantity::Position).ok_or("paired")?;
+        let (co, co_rel) =
+            paired(printed, ra, Window::Overall, Quantity::Position).ok_or("paired")?;
+        let (rl, rl_rel) = paired(printed, ra, Window::Late, Quantity::Range).ok_or("paired")?;
+        let printed_verdict = if better(&po, Window::Overall) && better(&pl, Window::Late) {
+            "reproduced"
+        } else if not_better(&po, Window::Overall) && not_better(&pl, Window::Late) {
+            "not reproduced"
+        } else {
+            "partly reproduced"
+        };
+        let _ = writeln!(
+            s,
+            "- **Eq. (9) exactly as printed** (VAR = R²·7.569e-3 in place of σ_R², the reading issue 13 asks for; the \
+             f64 reference `reference_ra` with `Eq9Reading::AsPrinted`): the range direction then has the cross-range \
+             variance, α = W1 and β/T = W2 at every scan, and eqs. (12)–(13) reduce to a per-axis filter on x = R sin B, \
+             y = R cos B. Position RMSE {} m overall, {} m late; minus αβ M2, paired: {} m ({po_rel:+.1} %) overall, {} m \
+             ({pl_rel:+.1} %) late; minus the consistent reading: {} m ({co_rel:+.1} %) overall; late range RMSE minus the \
+             consistent reading's {} m ({rl_rel:+.1} %), range bias late {} m. **Claim 1 under this reading: \
+             {printed_verdict}** (same {:.0} % rule): it is the per-axis αβ filter the paper compares against, with \
+             Kalman instead of least-squares gains.",
+            c(printed, Window::Overall, Quantity::Position),
+            c(printed, Window::Late, Quantity::Position),
+            fmt_ci_m(&po),
+            fmt_ci_m(&pl),
+            fmt_ci_m(&co),
+            fmt_ci_m(&rl),
+            c(printed, Window::Late, Quantity::RangeBias),
+            100.0 * MEANINGFUL_IMPROVEMENT,
+        );
+    }
     if let Some(ml) = ml {
         let (d, rel) = paired(ra, ml, Window::Late, Quantity::Position).ok_or("paired")?;
         let _ = writeln!(

@@ -12,9 +12,10 @@
 use super::common::{fmt_ci, plot, write_file, Context, PlotSpec, Series, Table};
 use super::monte_carlo::{
     self, claims_markdown, claims_table, compare, manoeuvring_scans, plot_against_time,
-    plot_tracks, rmse_table, Claim, Comparison, Experiment, Method, MethodResult, Metric, Segment,
-    Verdict, ALL_SCANS, FIRST_FILTERED,
+    plot_tracks, rmse_table, Claim, Comparison, Estimator, Experiment, Method, MethodResult,
+    Metric, Output, Segment, Verdict, ALL_SCANS, FIRST_FILTERED,
 };
+use crate::reference::{LiuWindow, RefLiuResidual};
 use crate::scenario;
 
 pub const GROUP: &str = "liu";
@@ -27,6 +28,9 @@ pub const COUNT: &str = "2.1.1 scan count";
 pub const COUNT_ADJUSTED: &str = "2.1.2 count ±1 (70 m)";
 pub const FIXED: &str = "2.1.3 fixed 0.5/0.3";
 pub const RESIDUAL: &str = "2.1.4 residual (n=3)";
+/// 2.1.4 with the window of the n innovations before the current one
+/// (issue 13), from the f64 reference.
+pub const RESIDUAL_BEFORE: &str = "2.1.4 residual, n scans before now";
 pub const ADAPTIVE: &str = "2.1.5 adaptive (19 m)";
 pub const ADAPTIVE_F32: &str = "2.1.5 adaptive, f32";
 pub const ADAPTIVE_FIX: &str = "2.1.5 adaptive, Q32.32";
@@ -45,12 +49,51 @@ pub fn methods(info: &scenario::ScenarioInfo) -> Result<Vec<Method>, String> {
         Method::schedule::<f64>(COUNT_ADJUSTED, "liu-count-adjusted")?,
         Method::schedule::<f64>(FIXED, "liu-fixed")?,
         Method::schedule::<f64>(RESIDUAL, "liu-residual")?,
+        Method::estimator(
+            RESIDUAL_BEFORE,
+            "f64 reference (`reference::RefLiuResidual`), n = 3, σ_m² = 25, α ≥ 0.01, \
+             σ_p² over V(k−1)…V(k−3)",
+            || {
+                Ok(Box::new(LiuResidualReference::new(
+                    LiuWindow::ExcludingCurrent,
+                )))
+            },
+        )?,
         Method::schedule::<f64>(ADAPTIVE, "liu-adaptive")?,
         Method::schedule::<f32>(ADAPTIVE_F32, "liu-adaptive")?,
         Method::schedule::<abtrack::Fix>(ADAPTIVE_FIX, "liu-adaptive")?,
         Method::kalman_cv(KF_CV, info)?,
         Method::kalman_ca(KF_CA, info)?,
     ])
+}
+
+/// Liu et al.'s 2.1.4 from the f64 reference, with either window
+/// ([`LiuWindow`]): n = 3, σ_m² = 25 and the library's α ≥ 0.01.
+pub struct LiuResidualReference(RefLiuResidual);
+
+impl LiuResidualReference {
+    pub fn new(window: LiuWindow) -> Self {
+        LiuResidualReference(RefLiuResidual::new(window, 3, 25.0, 0.01, 2))
+    }
+}
+
+impl Estimator for LiuResidualReference {
+    fn step(&mut self, z: [f64; 2], dt: f64) -> Result<Output, String> {
+        let steps = self.0.update(&z, dt);
+        let both = match steps.as_slice() {
+            [Some(x), Some(y)] => Some((*x, *y)),
+            _ => None,
+        };
+        let axes = &self.0.axes;
+        Ok(Output {
+            predicted: both.map(|(x, y)| [x.predicted, y.predicted]),
+            position: [axes[0].x_s, axes[1].x_s],
+            velocity: [axes[0].v_s, axes[1].v_s],
+            gains: both.map(|(x, y)| [(x.alpha, x.beta), (y.alpha, y.beta)]),
+            innovation: both.map(|(x, y)| [x.innovation, y.innovation]),
+            steady: None,
+        })
+    }
 }
 
 pub fn evaluate(runs: Option<usize>) -> Result<Experiment, String> {
@@ -356,6 +399,71 @@ pub fn claims(exp: &Experiment) -> Result<Vec<Claim>, String> {
             mech.fixed_over_limit_turn > mech.fixed_over_limit_straight,
         ],
         "Two parts: under one half straight, and more often turning than straight.",
+    ));
+    // Issue 13: 2.1.4 with "the n scans before now" (the current innovation
+    // left out of σ_p²).
+    let u3b = vec![
+        cmp(FIXED, RESIDUAL_BEFORE, straight)?,
+        cmp(RESIDUAL_BEFORE, FIXED, turn)?,
+    ];
+    let versus = [
+        cmp(RESIDUAL, RESIDUAL_BEFORE, ALL_SCANS)?,
+        cmp(RESIDUAL, RESIDUAL_BEFORE, straight)?,
+        cmp(RESIDUAL, RESIDUAL_BEFORE, turn)?,
+    ];
+    claims.push(Claim::judged(
+        "U3b",
+        "§2.1.4 read as \"the n scans before now\", §3.2.1",
+        "U3 with 2.1.4's σ_p² over the three innovations before the current one: 2.1.3 beats \
+         2.1.4 in uniform motion, 2.1.4 beats 2.1.3 in the manoeuvre",
+        u3b.clone(),
+        format!(
+            "{}. The two readings of 2.1.4 against each other (current-included minus \
+             before-now, as better/worse): {}.",
+            line(&u3b),
+            line(&versus)
+        ),
+        format!(
+            "{}. Leaving the current innovation out delays the gain's reaction to the turn by \
+             a scan.",
+            tally(&u3b)
+        ),
+    ));
+    let u5b: Vec<Comparison> = vec![
+        cmp(ADAPTIVE, RESIDUAL_BEFORE, straight)?,
+        cmp(ADAPTIVE, RESIDUAL_BEFORE, ALL_SCANS)?,
+    ];
+    claims.push(Claim::judged(
+        "U5b",
+        "§2.1.4 read as \"the n scans before now\", §3.2.3",
+        "U4–U5 against that reading: 2.1.5 beats 2.1.4 in uniform motion and overall",
+        u5b.clone(),
+        format!("{}.", line(&u5b)),
+        format!(
+            "{}. 2.1.5 keeps the library's (current-included) residual branch.",
+            tally(&u5b)
+        ),
+    ));
+    let straight_fn2 = |k: usize| seg.straight(k);
+    let before = exp.method(RESIDUAL_BEFORE)?;
+    let share_b = 0.5
+        * (fraction(before, &straight_fn2, &|s| {
+            s.output.gains.map(|g| g[0].0 > 0.5)
+        }) + fraction(before, &straight_fn2, &|s| {
+            s.output.gains.map(|g| g[1].0 > 0.5)
+        }));
+    claims.push(descriptive(
+        "U6b",
+        "§2.1.4 read as \"the n scans before now\", §3.2.1, Figure 2",
+        "U6 for that reading: in uniform motion most of 2.1.4's α values are above 0.5",
+        format!(
+            "{} of its straight-flight α (both axes, all runs) exceed 0.5 (current-included \
+             reading: {}).",
+            share(share_b),
+            share(mech.residual_alpha_above_half_straight)
+        ),
+        &[share_b > 0.5],
+        "Judged as a share above one half.",
     ));
     Ok(claims)
 }

@@ -8,6 +8,7 @@
 //! the README's results section quotes the generated `summary.md` files.
 
 pub mod alwagih;
+pub mod alwagih_trajectories;
 pub mod auto;
 pub mod common;
 pub mod he_tcas;
@@ -16,6 +17,7 @@ pub mod liu;
 pub mod monte_carlo;
 pub mod multi_target;
 pub mod tcas_advisory;
+pub mod tenne_singh;
 
 use common::Context;
 
@@ -62,7 +64,12 @@ pub const GROUPS: &[Group] = &[
     },
     Group {
         name: tcas_advisory::NAME,
-        about: "TCAS converging encounter: estimated vs true tau and advisory timeline",
+        about: "TCAS: encounter suite vs the v7.1 reference, altitude tracker; converging encounter: estimated vs true tau",
         run: tcas_advisory::run,
+    },
+    Group {
+        name: tenne_singh::GROUP,
+        about: "Tenne & Singh s3: optimal gains (Figs. 1-2, eqs. 28-35) and the simulated worked example",
+        run: tenne_singh::run,
     },
 ];

@@ -359,6 +359,21 @@ impl Method {
         })
     }
 
+    /// Any other estimator (e.g. an f64 reference of a reading the library
+    /// does not implement), built fresh for every run by `make`.
+    pub fn estimator(
+        label: &str,
+        detail: &str,
+        make: impl Fn() -> Result<Box<dyn Estimator>, String> + Send + Sync + 'static,
+    ) -> Result<Self, String> {
+        make()?;
+        Ok(Method {
+            label: label.to_string(),
+            detail: detail.to_string(),
+            make: Box::new(make),
+        })
+    }
+
     pub fn build(&self) -> Result<Box<dyn Estimator>, String> {
         (self.make)()
     }

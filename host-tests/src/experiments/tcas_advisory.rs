@@ -1,4 +1,7 @@
-//! Group `tcas-advisory`: the TCAS-realistic encounter `tcas-converging`
+//! Group `tcas-advisory`. Issue 10's part ([`encounter_suite`]): the
+//! encounter suite against the independent reference and the altitude
+//! tracker's figures. Issue 4's part, below: the TCAS-realistic encounter
+//! `tcas-converging`
 //! (see [`crate::scenario`]: own aircraft level at 8000 ft, SL 5; intruder
 //! head-on from 14 NM with a 0.2 NM offset, 500 kt closure, climbing from
 //! 7500 ft to co-altitude at closest approach (t = 100.8 s); 1 s updates,
@@ -47,6 +50,8 @@ use abtrack::tcas::{assess, Advisory, Intruder, OwnAircraft};
 use abtrack::{Fix, Scalar};
 
 use super::common::{fmt_ci, plot, write_file, Context, PlotSpec, Series, Table};
+
+pub mod encounter_suite;
 use super::he_tcas::RangeResidualVariant;
 use crate::metrics::{mean_ci95, MeanCi};
 use crate::scenario::{self, Measurement, TruthState, FOOT};
@@ -79,6 +84,14 @@ pub const FILES: &[&str] = &[
     "bearing_sensitivity.csv",
     "bearing_sensitivity.md",
     "timeline_run0.csv",
+    "encounters_exact.csv",
+    "encounters_exact.md",
+    "encounters_noise.csv",
+    "encounters_noise.md",
+    "altitude_tracker.csv",
+    "altitude_tracker.md",
+    "range_acceleration.csv",
+    "range_acceleration.md",
     "tau_vs_time.svg",
     "tau_mod_vs_time.svg",
     "d_cpa_vs_time.svg",
@@ -658,7 +671,8 @@ pub fn run(ctx: &Context) -> Result<(), String> {
         .collect::<Result<Vec<_>, _>>()?;
     let elapsed = started.elapsed().as_secs_f64();
     let dir = ctx.group_dir(NAME)?;
-    write_outputs(&dir, &timelines, &sensitivity, elapsed)
+    let issue10 = encounter_suite::write(&dir, ctx.runs(encounter_suite::RUNS))?;
+    write_outputs(&dir, &timelines, &sensitivity, elapsed, &issue10)
 }
 
 fn write_outputs(
@@ -666,6 +680,7 @@ fn write_outputs(
     runs: &[RunTimelines],
     sensitivity: &[BearingSensitivity],
     elapsed_s: f64,
+    issue10: &str,
 ) -> Result<(), String> {
     let run0 = runs.first().ok_or("no runs")?;
     let n = runs.len();
@@ -1064,10 +1079,13 @@ fn write_outputs(
         ],
     )?;
 
-    write_file(
-        &dir.join("summary.md"),
-        &summary(runs, sensitivity, elapsed_s)?,
-    )
+    // Issue 10's section goes before the closing "Regenerate" line.
+    let regenerate = "Regenerate: `cd host-tests && cargo run --release --bin experiments -- --only tcas-advisory`.";
+    let mut text = summary(runs, sensitivity, elapsed_s)?.replace(regenerate, "");
+    text.push_str(issue10);
+    text.push_str(regenerate);
+    text.push('\n');
+    write_file(&dir.join("summary.md"), &text)
 }
 
 fn summary(

@@ -31,6 +31,9 @@ pub fn representation_bound(name: &str, scale: f64, steps: usize) -> f64 {
     let eps = match name {
         "f32" => 2f64.powi(-24),
         "q32" => 2f64.powi(-32),
+        // The fast fixed point rounds positions to absolute steps of 2⁻¹²
+        // m and its gains and rates to 2⁻³⁰ relative.
+        "fixed" => 2f64.powi(-30) + 2f64.powi(-12) / scale.max(1.0),
         _ => 2f64.powi(-53),
     };
     8.0 * eps * scale.max(1.0) * steps as f64
@@ -131,7 +134,7 @@ pub fn li_maneuver(seed: u64) -> (Vec<[f64; 2]>, Vec<[f64; 2]>, f64) {
 /// Window capacity used by the tests' [`AnySchedule`].
 pub const W: usize = 16;
 
-pub type Track<S> = ScheduledFilter<S, AnySchedule<S, 2, W>, 2, 2>;
+pub type Track<N> = ScheduledFilter<N, AnySchedule<N, 2, W>, 2, 2>;
 
 /// One step of a scheduled run, in f64 whatever the representation.
 #[derive(Debug, Clone, Copy)]
@@ -142,25 +145,23 @@ pub struct Step {
     pub gains: Option<[(f64, f64); 2]>,
 }
 
-/// Runs `spec` on `meas` with an αβ filter in representation `S`.
-pub fn run_scheduled<S: Scalar>(spec: &str, meas: &[[f64; 2]], dt: f64) -> Vec<Step> {
+/// Runs `spec` on `meas` with an αβ filter in number system `N`.
+pub fn run_scheduled<N: abtrack::Numeric>(spec: &str, meas: &[[f64; 2]], dt: f64) -> Vec<Step> {
+    use abtrack::num::Quantity as Q;
     let spec = ScheduleSpec::parse(spec).expect("spec parses");
-    let schedule = AnySchedule::<S, 2, W>::from_spec(&spec).expect("schedule builds");
-    let mut track: Track<S> = ScheduledFilter::new(schedule);
-    let dt_s = S::try_from_f64(dt).unwrap();
+    let schedule = AnySchedule::<N, 2, W>::from_spec(&spec).expect("schedule builds");
+    let mut track: Track<N> = ScheduledFilter::new(schedule);
+    let dt_s = <N::Interval as Q>::try_from_f64(dt).unwrap();
     meas.iter()
         .map(|z| {
-            let zs = [
-                S::try_from_f64(z[0]).unwrap(),
-                S::try_from_f64(z[1]).unwrap(),
-            ];
+            let zs = z.map(|v| <N::Length as Q>::try_from_f64(v).unwrap());
             let u = track.update(zs, dt_s).expect("update accepted");
             Step {
-                position: track.filter().position().map(|x| x.to_f64()),
-                velocity: track.filter().velocity().map(|x| x.to_f64()),
+                position: track.filter().position().map(Q::to_f64),
+                velocity: track.filter().velocity().map(Q::to_f64),
                 gains: u
                     .gains
-                    .map(|g| g.map(|g| (g.alpha().to_f64(), g.beta().to_f64()))),
+                    .map(|g| g.map(|g| (Q::to_f64(g.alpha()), Q::to_f64(g.beta())))),
             }
         })
         .collect()
@@ -193,8 +194,13 @@ pub fn context<S: Scalar, const D: usize>(
 }
 
 /// (α, β, γ) in f64.
-pub fn abg<S: Scalar>(g: &Gains<S>) -> (f64, f64, f64) {
-    (g.alpha().to_f64(), g.beta().to_f64(), g.gamma().to_f64())
+pub fn abg<N: abtrack::Numeric>(g: &Gains<N>) -> (f64, f64, f64) {
+    use abtrack::num::Quantity as Q;
+    (
+        Q::to_f64(g.alpha()),
+        Q::to_f64(g.beta()),
+        Q::to_f64(g.gamma()),
+    )
 }
 
 pub fn assert_close(got: f64, want: f64, tol: f64, what: &str) {

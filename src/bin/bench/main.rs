@@ -100,5 +100,5 @@ fn bench_numeric<S: Numeric>(bench: &mut Bench) {
 /// linked.
 fn scans_fit<S: Numeric>() -> bool {
     !cfg!(abtrack_board = "microbit")
-        || core::any::TypeId::of::<S>() == core::any::TypeId::of::<board::Native>()
+        || core::any::TypeId::of::<S>() == core::any::TypeId::of::<board::TableScalar>()
 }

@@ -1,0 +1,172 @@
+//! One TCAS cycle put together: the system's state (sensitivity selection
+//! with hysteresis, low-altitude inhibits, the active RA) and one intruder's
+//! state (range tracker, altitude tracker, threat logic).
+//!
+//! A cycle, every scan: [`CollisionAvoidance::begin_cycle`] with the own
+//! aircraft; for each intruder [`IntruderTrack::scan`] with its reply (or
+//! none) and [`IntruderTrack::assess`]; then
+//! [`CollisionAvoidance::resolve`] with the geometries of the RA threats.
+
+use super::detection::{Cycle, IntruderObservation, ThreatGeometry, ThreatState, ThreatStatus};
+use super::measures::line_miss_distance;
+use super::range_tracker::RangeTracker;
+use super::resolution::{LowAltitudeInhibits, ResolutionOutput, ResolutionState};
+use super::sensitivity::{OwnAircraft, SensitivitySelector};
+use super::TcasError;
+use crate::filter::altitude::{AltitudeTracker, AltitudeTrackerConfig};
+use crate::filter::range_azimuth::RangeAzimuthFilter;
+use crate::filter::{FilterError, Phase};
+use crate::num::Scalar;
+
+/// The system-wide state of the collision-avoidance logic.
+#[derive(Debug, Clone, Copy, PartialEq)]
+#[cfg_attr(feature = "defmt", derive(defmt::Format))]
+pub struct CollisionAvoidance<S> {
+    selector: SensitivitySelector,
+    inhibits: LowAltitudeInhibits,
+    resolution: ResolutionState<S>,
+}
+
+impl<S: Scalar> Default for CollisionAvoidance<S> {
+    fn default() -> Self {
+        Self::new()
+    }
+}
+
+impl<S: Scalar> CollisionAvoidance<S> {
+    pub const fn new() -> Self {
+        CollisionAvoidance {
+            selector: SensitivitySelector::new(),
+            inhibits: LowAltitudeInhibits::new(),
+            resolution: ResolutionState::new(),
+        }
+    }
+
+    /// Starts a cycle: the sensitivity level and layer (with hysteresis)
+    /// and the inhibits for the own aircraft; `climb_inhibited` is the
+    /// aircraft's performance limit.
+    pub fn begin_cycle(
+        &mut self,
+        own: &OwnAircraft<S>,
+        climb_inhibited: bool,
+    ) -> Result<Cycle<S>, TcasError> {
+        let params = self.selector.select(own)?;
+        let inhibits = self.inhibits.update(own.radio_altitude_ft, climb_inhibited);
+        Ok(Cycle {
+            own: *own,
+            params,
+            inhibits,
+        })
+    }
+
+    /// Ends a cycle: the RA against this cycle's RA threats
+    /// ([`ResolutionState::resolve`]).
+    pub fn resolve(
+        &mut self,
+        cycle: &Cycle<S>,
+        threats: &[ThreatGeometry<S>],
+        dt: S,
+    ) -> Result<ResolutionOutput<S>, TcasError> {
+        self.resolution.resolve(cycle, threats, dt)
+    }
+
+    /// Whether an RA is in force.
+    pub fn ra_active(&self) -> bool {
+        self.resolution.is_active()
+    }
+}
+
+/// One reply of an intruder: its slant range and, if it reports one, its
+/// altitude.
+#[derive(Debug, Clone, Copy, PartialEq)]
+#[cfg_attr(feature = "defmt", derive(defmt::Format))]
+pub struct Reply<S> {
+    /// Slant range, m.
+    pub range_m: S,
+    /// Reported pressure altitude, ft (quantised).
+    pub altitude_ft: Option<S>,
+}
+
+/// One intruder as the TCAS logic keeps it.
+#[derive(Debug, Clone, Copy, PartialEq)]
+#[cfg_attr(feature = "defmt", derive(defmt::Format))]
+pub struct IntruderTrack<S> {
+    range: RangeTracker<S>,
+    altitude: AltitudeTracker<S>,
+    threat: ThreatState<S>,
+}
+
+impl<S: Scalar> IntruderTrack<S> {
+    pub fn new(altitude: AltitudeTrackerConfig<S>) -> Self {
+        IntruderTrack {
+            range: RangeTracker::new(),
+            altitude: AltitudeTracker::new(altitude),
+            threat: ThreatState::new(),
+        }
+    }
+
+    pub fn range_tracker(&self) -> &RangeTracker<S> {
+        &self.range
+    }
+    pub fn altitude_tracker(&self) -> &AltitudeTracker<S> {
+        &self.altitude
+    }
+    pub fn threat_state(&self) -> &ThreatState<S> {
+        &self.threat
+    }
+
+    /// One scan `dt` s after the previous: the reply, or `None` when the
+    /// intruder did not answer. Invalid input is refused; the range and
+    /// altitude trackers are each all-or-nothing, and the range is checked
+    /// before either changes.
+    pub fn scan(&mut self, reply: Option<Reply<S>>, dt: S) -> Result<(), FilterError> {
+        match reply {
+            Some(r) => {
+                if r.altitude_ft.is_some_and(|z| !z.is_valid()) {
+                    return Err(FilterError::InvalidMeasurement);
+                }
+                self.range.update(r.range_m, dt)?;
+                self.altitude.scan(r.altitude_ft, dt)?;
+            }
+            None => {
+                if self.range.phase() != Phase::Empty {
+                    self.range.coast(dt)?;
+                }
+                self.altitude.scan(None, dt)?;
+            }
+        }
+        Ok(())
+    }
+
+    /// What the threat logic sees; `None` before the range rate is known.
+    /// `bearing_track` is the intruder's range–azimuth track, for the
+    /// miss-distance cross-check.
+    pub fn observation(
+        &self,
+        bearing_track: Option<&RangeAzimuthFilter<S>>,
+    ) -> Option<IntruderObservation<S>> {
+        let range = self.range.estimate()?;
+        let bearing_miss_distance_m = bearing_track
+            .filter(|t| t.phase() == Phase::Tracking)
+            .and_then(|t| line_miss_distance(t.position(), t.velocity()));
+        Some(IntruderObservation {
+            range,
+            bearing_miss_distance_m,
+            altitude: self.altitude.estimate(),
+            altitude_firmness: self.altitude.firmness(),
+        })
+    }
+
+    /// This cycle's threat status (`None` before the range rate is known).
+    pub fn assess(
+        &mut self,
+        cycle: &Cycle<S>,
+        bearing_track: Option<&RangeAzimuthFilter<S>>,
+        dt: S,
+    ) -> Result<Option<ThreatStatus<S>>, TcasError> {
+        match self.observation(bearing_track) {
+            None => Ok(None),
+            Some(o) => self.threat.assess(cycle, &o, dt).map(Some),
+        }
+    }
+}

@@ -1,0 +1,169 @@
+//! Threat measures: range tau, modified tau, closest point of approach and
+//! vertical tau (FAA, "Introduction to TCAS II Version 7.1", 2011; DAIDALUS
+//! `TCAS2D.cpp` `tau_mod`), computed without squares of ranges.
+
+use super::{TcasError, CLOSURE_RATE_FLOOR_M_PER_S};
+use crate::filter::altitude::OutOfLine;
+use crate::num::{hypot, Scalar};
+
+/// Closure speed for the taus: max(−ṙ, floor), or `None` when diverging.
+pub(crate) fn floored_closure<S: Scalar>(range_rate: S) -> Option<S> {
+    if range_rate > S::ZERO {
+        None
+    } else {
+        Some((-range_rate).max_of(S::from_f64_lossy(CLOSURE_RATE_FLOOR_M_PER_S)))
+    }
+}
+
+pub(crate) fn all_valid<S: Scalar>(values: &[S]) -> Result<(), TcasError> {
+    if values.iter().all(|v| v.is_valid()) {
+        Ok(())
+    } else {
+        Err(TcasError::InvalidInput)
+    }
+}
+
+pub(crate) fn valid_result<S: Scalar>(v: S) -> Result<S, TcasError> {
+    if v.is_valid() {
+        Ok(v)
+    } else {
+        Err(TcasError::Saturated)
+    }
+}
+
+/// Range tau τ = r/max(−ṙ, 10 ft/s), s, for range `range_m` (m, ≥ 0) and
+/// range rate `range_rate_m_per_s` (negative closing); `None` when the
+/// intruder is diverging (ṙ > 0). See the module docs for the floor.
+pub fn range_tau<S: Scalar>(range_m: S, range_rate_m_per_s: S) -> Result<Option<S>, TcasError> {
+    all_valid(&[range_m, range_rate_m_per_s])?;
+    if range_m < S::ZERO {
+        return Err(TcasError::InvalidInput);
+    }
+    match floored_closure(range_rate_m_per_s) {
+        None => Ok(None),
+        Some(closure) => valid_result(range_m.over(closure)).map(Some),
+    }
+}
+
+/// Modified tau τ_mod = (DMOD² − r²)/(r·ṙ), s, with the closure floor: 0
+/// when r ≤ DMOD (diverging or not), `None` when diverging outside DMOD.
+/// `dmod_m` in metres.
+pub fn modified_tau<S: Scalar>(
+    range_m: S,
+    range_rate_m_per_s: S,
+    dmod_m: S,
+) -> Result<Option<S>, TcasError> {
+    all_valid(&[range_m, range_rate_m_per_s, dmod_m])?;
+    if range_m < S::ZERO || dmod_m < S::ZERO {
+        return Err(TcasError::InvalidInput);
+    }
+    if range_m <= dmod_m {
+        return Ok(Some(S::ZERO));
+    }
+    match floored_closure(range_rate_m_per_s) {
+        None => Ok(None),
+        // r > DMOD ≥ 0, so the division by r is safe and r − DMOD²/r > 0.
+        Some(closure) => {
+            valid_result((range_m - dmod_m.times(dmod_m.over(range_m))).over(closure)).map(Some)
+        }
+    }
+}
+
+/// Closest point of approach of a straight relative track.
+#[derive(Debug, Clone, Copy, PartialEq)]
+#[cfg_attr(feature = "defmt", derive(defmt::Format))]
+pub struct ClosestApproach<S> {
+    /// t_cpa ≥ 0, s from now (0 when the range is already opening or the
+    /// relative velocity is zero).
+    pub time_s: S,
+    /// d_cpa, m: the horizontal miss distance.
+    pub distance_m: S,
+}
+
+/// The closest point of approach from the relative position
+/// `position_m` (intruder minus own, m) and relative velocity
+/// `velocity_m_per_s` (m/s), from now on (see the module docs).
+/// `None` when the time is beyond the representation's range (a relative
+/// speed of less than r/2³¹ m/s in fixed point).
+pub fn closest_approach<S: Scalar>(
+    position_m: [S; 2],
+    velocity_m_per_s: [S; 2],
+) -> Result<Option<ClosestApproach<S>>, TcasError> {
+    let [px, py] = position_m;
+    let [vx, vy] = velocity_m_per_s;
+    all_valid(&[px, py, vx, vy])?;
+    let range = valid_result(hypot(px, py))?;
+    let speed = valid_result(hypot(vx, vy))?;
+    if speed == S::ZERO || range == S::ZERO {
+        return Ok(Some(ClosestApproach {
+            time_s: S::ZERO,
+            distance_m: range,
+        }));
+    }
+    // Unit vectors: every product below is bounded by 1.
+    let (ux, uy) = (px.over(range), py.over(range));
+    let (wx, wy) = (vx.over(speed), vy.over(speed));
+    let cos = ux.times(wx) + uy.times(wy);
+    if cos >= S::ZERO {
+        // Opening (or tangential): the closest approach is now.
+        return Ok(Some(ClosestApproach {
+            time_s: S::ZERO,
+            distance_m: range,
+        }));
+    }
+    // t = −(p·v)/|v|² = −cos θ · r/|v|; d = r·|sin θ|.
+    let time = (-cos).times(range.over(speed));
+    if !time.is_valid() {
+        return Ok(None);
+    }
+    let sin = ux.times(wy) - uy.times(wx);
+    let distance = valid_result(range.times(sin.abs()))?;
+    Ok(Some(ClosestApproach {
+        time_s: time,
+        distance_m: distance,
+    }))
+}
+
+/// Vertical tau τ_v = −h/ḣ, s, for relative altitude `relative_altitude_ft`
+/// (intruder minus own, ft) and relative vertical rate
+/// `relative_rate_ft_per_s` (ft/s): 0 at co-altitude, `None` when the two
+/// are not converging (or the time is beyond the representation's range).
+pub fn vertical_tau<S: Scalar>(
+    relative_altitude_ft: S,
+    relative_rate_ft_per_s: S,
+) -> Result<Option<S>, TcasError> {
+    let (h, hdot) = (relative_altitude_ft, relative_rate_ft_per_s);
+    all_valid(&[h, hdot])?;
+    if h == S::ZERO {
+        return Ok(Some(S::ZERO));
+    }
+    if !converging(h, hdot) {
+        return Ok(None);
+    }
+    let tau = (-h).over(hdot);
+    Ok(if tau.is_valid() { Some(tau) } else { None })
+}
+
+fn converging<S: Scalar>(h: S, hdot: S) -> bool {
+    (h > S::ZERO && hdot < S::ZERO) || (h < S::ZERO && hdot > S::ZERO)
+}
+
+/// The miss distance of the straight line through `position_m` along
+/// `velocity_m_per_s` (|p × v|/|v|, DO-185B's bearing-tracker `HMDRB`),
+/// m, computed as r·|sin θ| with unit vectors (no r²); the range itself
+/// when there is no relative motion. `None` for invalid input.
+pub fn line_miss_distance<S: Scalar>(position_m: [S; 2], velocity_m_per_s: [S; 2]) -> Option<S> {
+    let [px, py] = position_m;
+    let [vx, vy] = velocity_m_per_s;
+    let range = hypot(px, py);
+    let speed = hypot(vx, vy);
+    if !(range.is_valid() && speed.is_valid()) {
+        return None;
+    }
+    if speed == S::ZERO || range == S::ZERO {
+        return Some(range);
+    }
+    let sin = px.over(range).times(vy.over(speed)) - py.over(range).times(vx.over(speed));
+    let d = range.times(sin.abs());
+    d.is_valid().then_some(d)
+}

@@ -1,0 +1,237 @@
+//! TCAS II collision-avoidance logic, version 7.1 as published: threat
+//! measures, sensitivity levels, the range tracker, threat detection and
+//! resolution advisories, written from the public sources and cited per
+//! rule in each submodule:
+//!
+//! * FAA, "Introduction to TCAS II Version 7.1", 2011 (the booklet);
+//! * NASA DAIDALUS, `C++/src/TCAS2D.cpp`, `TCAS3D.cpp`, `TCASTable.cpp`
+//!   (RA detection with the HMD filter; Muñoz, Narkawicz & Chamberlain,
+//!   "A TCAS-II Resolution Advisory Detection Algorithm", AIAA GNC 2013);
+//! * ledieuke/tcas_simulator, an unofficial transcription of RTCA DO-185B
+//!   (`tracking.py`, `tracking_intruders.py`, `detect.py`,
+//!   `tcasConstant.py`): trackers, detection details and constants;
+//! * FlightGear `src/Instrumentation/tcas.cxx` (a simplified v7 emulation:
+//!   RA sense and crossing).
+//!
+//! docs/tcas.md says which source each rule follows, where they disagree,
+//! and what is not modelled (coordination with another TCAS aircraft among
+//! it).
+//!
+//! # Units
+//!
+//! Horizontal quantities are metres and seconds (range m, range rate m/s);
+//! vertical ones feet and ft/s, as transponders report altitude. Tables in
+//! NM, ft and s are converted with the constants below. No square of a
+//! range is formed (Q32.32's range is ±2.1·10⁹): τ ≤ TAU tests are decided
+//! as products, and DMOD²/r as DMOD·(DMOD/r).
+//!
+//! # Layers
+//!
+//! [`RangeTracker`] and [`crate::filter::altitude::AltitudeTracker`] track
+//! one intruder; [`ThreatState::assess`] decides its advisory level;
+//! [`ResolutionState::resolve`] turns the RA threats into one RA;
+//! [`CollisionAvoidance`] and [`IntruderTrack`] put a cycle together.
+//! [`assess`] is the stateless assessment of a relative state vector (no
+//! firmness, no hysteresis), for tools and the scan loop of issue 4.
+
+use crate::filter::altitude::{AltitudeEstimate, OutOfLine};
+use crate::filter::range_azimuth::{hypot, RangeAzimuthFilter};
+use crate::num::Scalar;
+
+pub mod detection;
+pub mod logic;
+pub mod measures;
+pub mod range_tracker;
+pub mod resolution;
+pub mod sensitivity;
+
+pub use detection::{
+    Cycle, IntruderObservation, MissDistanceFilter, ThreatGeometry, ThreatState, ThreatStatus,
+    VerticalMeasures,
+};
+pub use logic::{CollisionAvoidance, IntruderTrack, Reply};
+pub use measures::{
+    closest_approach, line_miss_distance, modified_tau, range_tau, vertical_tau, ClosestApproach,
+};
+pub use range_tracker::{RangeEstimate, RangeTracker};
+pub use resolution::{
+    Inhibits, LowAltitudeInhibits, RaSense, RaStrength, ResolutionAdvisory, ResolutionOutput,
+    ResolutionState,
+};
+pub use sensitivity::{
+    parameters, sensitivity, AlertThresholds, AltitudeLayer, OwnAircraft, ResolutionLimits,
+    SensitivityLevel, SensitivityParameters, SensitivitySelector, SENSITIVITY_TABLE,
+    SL3_RADIO_ALTITUDE_FT, SL4_RADIO_ALTITUDE_FT, SL5_PRESSURE_ALTITUDE_FT,
+    SL6_PRESSURE_ALTITUDE_FT, SL7_HIGH_PRESSURE_ALTITUDE_FT, SL7_PRESSURE_ALTITUDE_FT,
+};
+
+/// Metres per international nautical mile.
+pub const METRES_PER_NAUTICAL_MILE: f64 = 1852.0;
+/// Metres per international foot.
+pub const METRES_PER_FOOT: f64 = 0.3048;
+/// Metres per second per knot (1 NM/h).
+pub const METRES_PER_SECOND_PER_KNOT: f64 = METRES_PER_NAUTICAL_MILE / 3600.0;
+/// Floor on the closure speed used in range tau and modified tau, ft/s
+/// (DO-185B `RDTHR`).
+pub const CLOSURE_RATE_FLOOR_FT_PER_S: f64 = 10.0;
+/// The same floor in m/s.
+pub const CLOSURE_RATE_FLOOR_M_PER_S: f64 = CLOSURE_RATE_FLOOR_FT_PER_S * METRES_PER_FOOT;
+/// Proximate traffic: within this range, NM … (DO-185B `PROXR`)
+pub const PROXIMATE_RANGE_NM: f64 = 6.0;
+/// … and within this relative altitude, ft (DO-185B `PROXA`).
+pub const PROXIMATE_ALTITUDE_FT: f64 = 1200.0;
+
+/// Why an assessment was refused.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+#[cfg_attr(feature = "defmt", derive(defmt::Format))]
+pub enum TcasError {
+    /// An input is NaN, infinite or a saturated fixed-point value, or a
+    /// range or interval is negative.
+    InvalidInput,
+    /// An intermediate left the representable range.
+    Saturated,
+}
+
+impl core::fmt::Display for TcasError {
+    fn fmt(&self, f: &mut core::fmt::Formatter<'_>) -> core::fmt::Result {
+        f.write_str(match self {
+            TcasError::InvalidInput => "threat assessment input is not a valid number",
+            TcasError::Saturated => "threat assessment overflowed the number format",
+        })
+    }
+}
+
+impl core::error::Error for TcasError {}
+
+/// An intruder as the threat logic sees it.
+#[derive(Debug, Clone, Copy, PartialEq)]
+#[cfg_attr(feature = "defmt", derive(defmt::Format))]
+pub struct Intruder<S> {
+    /// Horizontal position relative to the own aircraft, m.
+    pub relative_position_m: [S; 2],
+    /// Horizontal velocity relative to the own aircraft, m/s.
+    pub relative_velocity_m_per_s: [S; 2],
+    /// Tracked pressure altitude and vertical rate; `None` for an intruder
+    /// that does not report altitude.
+    pub altitude: Option<AltitudeEstimate<S>>,
+}
+
+impl<S: Scalar> Intruder<S> {
+    /// From a range–azimuth track (its x/y state is already relative to the
+    /// own aircraft) and the intruder's altitude track.
+    pub fn from_track(
+        track: &RangeAzimuthFilter<S>,
+        altitude: Option<AltitudeEstimate<S>>,
+    ) -> Self {
+        Intruder {
+            relative_position_m: track.position(),
+            relative_velocity_m_per_s: track.velocity(),
+            altitude,
+        }
+    }
+}
+
+/// Advisory level, ordered by severity.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, PartialOrd, Ord, Hash)]
+#[cfg_attr(feature = "defmt", derive(defmt::Format))]
+pub enum Advisory {
+    None,
+    /// Within 6 NM and ±1200 ft.
+    ProximateTraffic,
+    /// Traffic advisory.
+    Traffic,
+    /// Resolution advisory (level only: the climb/descend sense is not
+    /// chosen here).
+    Resolution,
+}
+
+impl Advisory {
+    /// Short name for reports: none, proximate, ta, ra.
+    pub const fn name(self) -> &'static str {
+        match self {
+            Advisory::None => "none",
+            Advisory::ProximateTraffic => "proximate",
+            Advisory::Traffic => "ta",
+            Advisory::Resolution => "ra",
+        }
+    }
+}
+
+/// Everything the stateless assessment computed for one intruder.
+#[derive(Debug, Clone, Copy, PartialEq)]
+#[cfg_attr(feature = "defmt", derive(defmt::Format))]
+pub struct ThreatAssessment<S> {
+    pub sensitivity: SensitivityLevel,
+    /// Horizontal range, m.
+    pub range_m: S,
+    /// Range rate, m/s (negative closing).
+    pub range_rate_m_per_s: S,
+    /// Range tau, s ([`range_tau`]).
+    pub range_tau_s: Option<S>,
+    /// Modified tau with the TA DMOD, s ([`modified_tau`]).
+    pub ta_modified_tau_s: Option<S>,
+    /// Modified tau with the RA DMOD, s; `None` also at SL 2.
+    pub ra_modified_tau_s: Option<S>,
+    /// Closest point of approach ([`closest_approach`]).
+    pub closest_approach: Option<ClosestApproach<S>>,
+    /// `None` for a non-altitude-reporting intruder.
+    pub vertical: Option<VerticalMeasures<S>>,
+    /// The RA range test passed and the HMD filter removed it.
+    pub miss_distance_filtered: bool,
+    pub advisory: Advisory,
+}
+
+/// Assesses one intruder from its relative state, without memory: the
+/// band's sensitivity level (no hysteresis), the detection tests of
+/// [`ThreatState`] for a new intruder (no TA hysteresis, no minimum TA
+/// time, no firmness gate), and the HMD filter on the straight-line miss
+/// distance d_cpa of [`closest_approach`] (DAIDALUS `TCAS3D::TCASII_RA`
+/// uses the same state-vector form).
+pub fn assess<S: Scalar>(
+    own: &OwnAircraft<S>,
+    intruder: &Intruder<S>,
+) -> Result<ThreatAssessment<S>, TcasError> {
+    let params = sensitivity(own)?;
+    let [px, py] = intruder.relative_position_m;
+    let [vx, vy] = intruder.relative_velocity_m_per_s;
+    measures::all_valid(&[px, py, vx, vy])?;
+    let range = measures::valid_result(hypot(px, py))?;
+    // ṙ = p̂·v, with ṙ = 0 at r = 0.
+    let range_rate = if range == S::ZERO {
+        S::ZERO
+    } else {
+        measures::valid_result(px.over(range).times(vx) + py.over(range).times(vy))?
+    };
+    let closest = closest_approach(
+        intruder.relative_position_m,
+        intruder.relative_velocity_m_per_s,
+    )?;
+    let cycle = Cycle {
+        own: *own,
+        params,
+        inhibits: LowAltitudeInhibits::new().update(own.radio_altitude_ft, false),
+    };
+    let status = ThreatState::new().assess_state(
+        &cycle,
+        range,
+        range_rate,
+        closest.map(|c| c.distance_m),
+        intruder.altitude,
+    )?;
+    let c = |v: f64| S::from_f64_lossy(v);
+    Ok(ThreatAssessment {
+        sensitivity: params.level,
+        range_m: range,
+        range_rate_m_per_s: range_rate,
+        range_tau_s: range_tau(range, range_rate)?,
+        ta_modified_tau_s: modified_tau(range, range_rate, c(params.ta.dmod_m()))?,
+        ra_modified_tau_s: match params.ra {
+            Some(ra) => modified_tau(range, range_rate, c(ra.dmod_m()))?,
+            None => None,
+        },
+        closest_approach: closest,
+        vertical: status.vertical,
+        miss_distance_filtered: status.miss_distance_filtered,
+        advisory: status.advisory,
+    })
+}
