@@ -33,10 +33,11 @@ use crate::num::{Numeric, Quantity, Real};
 pub const DETECTION_LEVEL: u64 = 7;
 /// The slow average's threshold: twice the expected NIS.
 pub const SUSTAINED_LEVEL: u64 = 2;
-/// The slow average's weight of the newest NIS is 1/`SLOW_MEMORY`.
+/// The slow average's weight of the newest NIS is 1/`SLOW_MEMORY` (a power
+/// of two: the weight is formed by halvings).
 pub const SLOW_MEMORY: u64 = 16;
 /// The ceiling grows by 1/`CEILING_GROWTH` of itself per update without a
-/// sustained manoeuvre.
+/// sustained manoeuvre (a power of two).
 pub const CEILING_GROWTH: u64 = 64;
 /// The first filtered update has count 3 (Al-Wagih eq. 24, "n > 2").
 pub const FIRST_COUNT: u64 = 3;
@@ -171,28 +172,66 @@ pub struct AutoGains<N: Numeric, const D: usize> {
     per_last_interval: N::Speed,
 }
 
-/// The integer `k` as a ratio (exact for the small constants used here).
-#[inline]
+/// The integer `k` as a ratio, by doubling and adding one (exact; no
+/// conversion from a float, which costs a fixed-point core code and time).
 fn int<R: Real>(k: u64) -> R {
-    R::from_ratio(k, 1)
+    let mut out = R::ZERO;
+    let bits = u64::BITS.saturating_sub(k.leading_zeros());
+    for bit in (0..bits).rev() {
+        out = out + out;
+        if (k >> bit) & 1 == 1 {
+            out = out + R::ONE;
+        }
+    }
+    out
+}
+
+/// 1/2^k (k halvings of one).
+fn inverse_power_of_two<R: Real>(k: u32) -> R {
+    (0..k).fold(R::ONE, |r, _| r.half())
 }
 
 /// (α̂(n), β̂(n)) = (2(2n − 1), 6)/(n(n + 1)) (Al-Wagih & Abdulla eq. 24) for
 /// a real count n ≥ 3.
-#[inline]
+#[inline(never)]
 fn least_squares<R: Real>(n: R) -> (R, R) {
     let q = R::ONE / (n * (n + R::ONE));
     let two = R::ONE + R::ONE;
-    ((two * (two * n - R::ONE)) * q, int::<R>(6) * q)
+    let six = two + two + two;
+    ((two * (two * n - R::ONE)) * q, six * q)
 }
 
 /// The count whose least-squares α is `alpha` ∈ (0, 1): the larger root of
 /// αn² + (α − 4)n + 2 = 0 (eq. 24a solved for n).
+#[inline(never)]
 fn count_for_alpha<R: Real>(alpha: R) -> R {
-    let four = int::<R>(4);
+    let two = R::ONE + R::ONE;
+    let four = two + two;
     let b = four - alpha;
-    let root = (b * b - int::<R>(8) * alpha).sqrt();
-    (b + root) / (int::<R>(2) * alpha)
+    let root = (b * b - (four + four) * alpha).sqrt();
+    (b + root) / (two * alpha)
+}
+
+/// The thresholds and weights of the rules, in the schedule's ratio type.
+#[derive(Clone, Copy)]
+struct Constants<R> {
+    floor: R,
+    detection: R,
+    sustained: R,
+    slow_weight: R,
+    growth: R,
+}
+
+impl<R: Real> Constants<R> {
+    fn new() -> Self {
+        Constants {
+            floor: int(FIRST_COUNT),
+            detection: int(DETECTION_LEVEL),
+            sustained: int(SUSTAINED_LEVEL),
+            slow_weight: inverse_power_of_two(SLOW_MEMORY.trailing_zeros()),
+            growth: R::ONE + inverse_power_of_two(CEILING_GROWTH.trailing_zeros()),
+        }
+    }
 }
 
 impl<N: Numeric, const D: usize> AutoGains<N, D> {
@@ -223,7 +262,7 @@ impl<N: Numeric, const D: usize> AutoGains<N, D> {
 
     fn fresh_axis(n_max: N::Ratio) -> AutoAxis<N> {
         AutoAxis {
-            count: int(FIRST_COUNT),
+            count: int::<N::Ratio>(FIRST_COUNT),
             fast: N::Ratio::ONE,
             slow: N::Ratio::ONE,
             ceiling: n_max,
@@ -283,64 +322,73 @@ impl<N: Numeric, const D: usize> AutoGains<N, D> {
         &self,
         ctx: &GainContext<N, D>,
     ) -> Result<([Gains<N>; D], [AutoAxis<N>; D]), ScheduleError> {
-        let one = N::Ratio::ONE;
-        let floor = int::<N::Ratio>(FIRST_COUNT);
-        let detection = int::<N::Ratio>(DETECTION_LEVEL);
-        let sustained = int::<N::Ratio>(SUSTAINED_LEVEL);
-        let slow_weight = one / int::<N::Ratio>(SLOW_MEMORY);
-        let growth = one + one / int::<N::Ratio>(CEILING_GROWTH);
+        let constants = Constants::new();
         let span = self.span_squared(ctx.dt);
         let nu = self.normalised_innovations(ctx);
-
+        let one = N::Ratio::ONE;
         let mut gains = [Gains::alpha_beta(one, one)?; D];
         let mut next = self.axes;
         for ((g, s), nu) in gains.iter_mut().zip(next.iter_mut()).zip(nu) {
-            let (alpha, _) = least_squares(s.count);
-            // NIS = e²/S with S = σ²(1 − α + αh²)/(1 − α): the least-squares
-            // prediction variance is σ²α/(1 − α), its velocity part scaled
-            // by the span h².
-            let keep = one - alpha;
-            let nis = match span {
-                None => nu * nu * keep,
-                Some(h2) => nu * nu * keep / (keep + alpha * h2),
-            };
-            let fast = (s.fast + nis).half();
-            let slow = s.slow + (nis - s.slow) * slow_weight;
-            let mut count = s.count;
-            if slow.is_valid() && slow <= sustained {
-                s.slow = slow;
-                s.ceiling = (s.ceiling * growth).min_of(self.n_max);
-            } else {
-                // A sustained manoeuvre: halve the ceiling (below the count).
-                s.slow = one;
-                s.ceiling = s.ceiling.min_of(count).half().max_of(floor);
-            }
-            if fast.is_valid() && fast <= detection {
-                s.fast = fast;
-            } else {
-                // The onset of a manoeuvre: cut the count so that the
-                // prediction variance absorbs the excess of the NIS over
-                // the threshold, 1 − α* = (1 − α)·level/m.
-                s.fast = one;
-                count = if fast.is_valid() {
-                    let target = one - keep * detection / fast;
-                    count.min_of(count_for_alpha(target)).max_of(floor)
-                } else {
-                    floor
-                };
-                if !count.is_valid() {
-                    count = floor;
-                }
-            }
-            let (a, b) = least_squares(count);
-            *g = Gains::alpha_beta(a, b)?;
-            s.count = (count + one)
-                .min_of(s.ceiling)
-                .min_of(self.n_max)
-                .max_of(floor);
+            *g = step_axis(s, nu, span, self.n_max, &constants)?;
         }
         Ok((gains, next))
     }
+}
+
+/// One axis's update of the rules (module docs): the gains, and `s` moved
+/// to the state after the update. `nu` = e/σ, `span` = h² when above 1.
+#[inline(never)]
+fn step_axis<N: Numeric>(
+    s: &mut AutoAxis<N>,
+    nu: N::Ratio,
+    span: Option<N::Ratio>,
+    n_max: N::Ratio,
+    c: &Constants<N::Ratio>,
+) -> Result<Gains<N>, ScheduleError> {
+    let one = N::Ratio::ONE;
+    let (alpha, _) = least_squares(s.count);
+    // NIS = e²/S with S = σ²(1 − α + αh²)/(1 − α): the least-squares
+    // prediction variance is σ²α/(1 − α), its velocity part scaled by the
+    // span h².
+    let keep = one - alpha;
+    let nis = match span {
+        None => nu * nu * keep,
+        Some(h2) => nu * nu * keep / (keep + alpha * h2),
+    };
+    let fast = (s.fast + nis).half();
+    let slow = s.slow + (nis - s.slow) * c.slow_weight;
+    let mut count = s.count;
+    if slow.is_valid() && slow <= c.sustained {
+        s.slow = slow;
+        s.ceiling = (s.ceiling * c.growth).min_of(n_max);
+    } else {
+        // A sustained manoeuvre: halve the ceiling (below the count).
+        s.slow = one;
+        s.ceiling = s.ceiling.min_of(count).half().max_of(c.floor);
+    }
+    if fast.is_valid() && fast <= c.detection {
+        s.fast = fast;
+    } else {
+        // The onset of a manoeuvre: cut the count so that the prediction
+        // variance absorbs the excess of the NIS over the threshold,
+        // 1 − α* = (1 − α)·level/m.
+        s.fast = one;
+        count = if fast.is_valid() {
+            let target = one - keep * c.detection / fast;
+            count.min_of(count_for_alpha(target)).max_of(c.floor)
+        } else {
+            c.floor
+        };
+        if !count.is_valid() {
+            count = c.floor;
+        }
+    }
+    let (a, b) = least_squares(count);
+    s.count = (count + one)
+        .min_of(s.ceiling)
+        .min_of(n_max)
+        .max_of(c.floor);
+    Ok(Gains::alpha_beta(a, b)?)
 }
 
 impl<N: Numeric, const D: usize> GainSchedule<N, D> for AutoGains<N, D> {

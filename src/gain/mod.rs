@@ -545,6 +545,7 @@ where
 ///   gains (the factor 2 leaves the interval after a missed scan alone);
 /// * γ in proportion to β, and once more by the same factor (its gain is
 ///   γ/(2T²)), at most half its bound 4αβ/(2 − α).
+#[inline(never)]
 pub fn robust_gains<N: Numeric, const D: usize>(
     gains: [Gains<N>; D],
     dt: N::Interval,
@@ -562,22 +563,27 @@ pub fn robust_gains<N: Numeric, const D: usize>(
     } else {
         one
     };
-    let smallest = N::Ratio::from_ratio(1, 1 << 30);
     let mut out = gains;
     for g in out.iter_mut() {
         let (alpha, beta, gamma) = (g.alpha().min_of(one), g.beta(), g.gamma());
-        let mut bounded = beta.min_of(li_beta(alpha)) * shorter;
-        if !bounded.is_valid() {
-            bounded = smallest;
+        let capped = beta.min_of(li_beta(alpha));
+        let mut bounded = capped * shorter;
+        if !(bounded.is_valid() && bounded > N::Ratio::ZERO) {
+            // Rounded to nothing (fixed point, a tiny β): the cap alone.
+            bounded = capped;
         }
-        bounded = bounded.max_of(smallest).min_of(beta);
         *g = if gamma == N::Ratio::ZERO {
             Gains::alpha_beta(alpha, bounded)?
         } else {
             let two = one + one;
             let limit = two * alpha * bounded / (two - alpha);
             let scaled = (gamma * (bounded / beta) * shorter).min_of(limit);
-            Gains::alpha_beta_gamma(alpha, bounded, scaled.max_of(smallest))?
+            let scaled = if scaled > N::Ratio::ZERO {
+                scaled
+            } else {
+                limit
+            };
+            Gains::alpha_beta_gamma(alpha, bounded, scaled)?
         };
     }
     Ok(out)
