@@ -530,6 +530,10 @@ pub const OPERATIONS: &[(&str, &str)] = &[
         "2-D αβ with Liu's adaptive switch (`ScheduledFilter`)",
     ),
     (
+        "auto2d_update",
+        "2-D αβ with the self-tuning `auto` schedule (`ScheduledFilter`, docs/auto.md)",
+    ),
+    (
         "range_azimuth_update",
         "He et al.'s range–azimuth filter, one polar measurement",
     ),
@@ -573,6 +577,7 @@ const COMPARED: &[&str] = &[
     "abg2d_update",
     "ab2d_least_squares_update",
     "ab2d_liu_adaptive_update",
+    "auto2d_update",
     "axis_kalman_cv2d_update",
 ];
 const FLOOR: &str = "floor_ab2d_update";

@@ -8,8 +8,10 @@
 use std::path::PathBuf;
 
 use abtrack::filter::altitude::AltitudeQuantum;
-use abtrack::gain::spec::{ScheduleSpec, SpecError, SpecErrorKind, SCHEDULES};
+use abtrack::gain::auto::AutoConfig;
+use abtrack::gain::spec::{ScheduleSpec, SensorScale, SpecError, SpecErrorKind, SCHEDULES};
 use abtrack::gain::ConfigError;
+use abtrack::track::defaults::BANK_30_ACCELERATION;
 use clap::error::ErrorKind;
 use clap::{CommandFactory, Parser, ValueEnum};
 
@@ -32,6 +34,9 @@ pub enum FilterName {
     /// The range–azimuth projection filter (He, Peng, Ling & Quan).
     #[value(name = "range-azimuth")]
     RangeAzimuth,
+    /// αβ with the self-tuning `auto` schedule, from the sensor's σ alone.
+    #[value(name = "auto")]
+    Auto,
 }
 
 /// `--alt-quantum`.
@@ -86,7 +91,11 @@ fn after_help() -> String {
          gains). With --filter abg, schedules that give αβ gains (every one but tcas-firmness\n\
          and fixed with gamma) leave the acceleration at zero; with --filter ab the γ of\n\
          tcas-firmness is ignored. bank (M5) needs --filter ab. Windows (window, n) hold at\n\
-         most {WINDOW_CAPACITY} entries and the bank at most {BANK_CAPACITY} members.\n\
+         most {WINDOW_CAPACITY} entries and the bank at most {BANK_CAPACITY} members. With\n\
+         --sigma-m, the defaults the papers tied to their own noise scale with the sensor.\n\
+         --filter auto is --filter ab with the auto schedule: --sigma-m on x/y input, or\n\
+         --range-sigma-m and --bearing-sigma-deg on range/azimuth input (x = R sin B,\n\
+         y = R cos B).\n\
          \n\
          Input: CSV with a header; columns matched by name, in any order, others ignored.\n\
          \x20 ab, abg, tracker on x/y data: t (s), x [, y [, z]] (m) [, alt (ft)]\n\
@@ -100,7 +109,7 @@ fn after_help() -> String {
          \n\
          Output (stdout, CSV, written only when the whole file has run; f32 in its shortest\n\
          form, fixed point in decimal, an undefined value empty; details: docs/host-tools.md):\n\
-         \x20 ab, abg        t, then per axis a: a, va, res_a (and aa for abg)\n\
+         \x20 ab, abg, auto  t, then per axis a: a, va, res_a (and aa for abg)\n\
          \x20 bank           t, then per axis a: a, va, res_a, member_a (the member selected)\n\
          \x20 range-azimuth  t,x,vx,res_x,y,vy,res_y,range,azimuth [,alt,alt_rate]\n\
          \x20 tracker        t,track_id,status,x,y,vx,vy (one row per live track per scan)\n\
@@ -149,26 +158,29 @@ pub struct ReplayArgs {
     #[arg(long, value_parser = finite, allow_hyphen_values = true, requires = "alpha", help_heading = "Gains")]
     pub gamma: Option<f64>,
 
-    /// range-azimuth, tracker: range noise σ_R, m (range-azimuth default 100, He et al.'s).
+    /// range-azimuth, tracker, auto: range noise σ_R, m (range-azimuth default 100, He et al.'s).
     #[arg(long, value_parser = finite, allow_hyphen_values = true, help_heading = "Sensor")]
     pub range_sigma_m: Option<f64>,
-    /// range-azimuth, tracker: bearing noise σ_B, degrees (range-azimuth default about 5°).
+    /// range-azimuth, tracker, auto: bearing noise σ_B, degrees (range-azimuth default about 5°).
     #[arg(long, value_parser = finite, allow_hyphen_values = true, help_heading = "Sensor")]
     pub bearing_sigma_deg: Option<f64>,
     /// range-azimuth: bearing noise variance σ_B², rad² (He et al.'s unit; default 7.569e-3).
     #[arg(long, value_parser = finite, allow_hyphen_values = true, conflicts_with = "bearing_sigma_deg", help_heading = "Sensor")]
     pub bearing_variance: Option<f64>,
-    /// range-azimuth, tracker: unit of the azimuth column (never guessed).
+    /// range-azimuth, tracker, auto: unit of the azimuth column (never guessed).
     #[arg(long, value_enum, default_value = "rad", help_heading = "Sensor")]
     pub azimuth_unit: AngleUnit,
-    /// tracker: Cartesian noise σ per axis, m (default 20, or the polar sensor's figures).
+    /// tracker, auto: Cartesian noise σ per axis, m (tracker default 20, or the polar sensor's
+    /// figures); ab, abg: scales the schedule's paper-tied defaults (Li's Δρ, Liu's σ_m², the
+    /// m1/m3 α and n-max: docs/auto.md).
     #[arg(long, value_parser = finite, allow_hyphen_values = true, help_heading = "Sensor")]
     pub sigma_m: Option<f64>,
     /// tracker: the region watched, m: half-width of a square (x/y input) or radius of a
     /// disc (range/azimuth input) around the sensor. Default: none.
     #[arg(long, value_parser = finite, allow_hyphen_values = true, help_heading = "Sensor")]
     pub region_m: Option<f64>,
-    /// tracker: scan period T, s (default: the median interval between the file's scans).
+    /// tracker: scan period T, s (default: the median interval between the file's scans);
+    /// ab, abg with --sigma-m: T of the scaled defaults (default 1 s).
     #[arg(long, value_parser = finite, allow_hyphen_values = true, help_heading = "Sensor")]
     pub scan_period_s: Option<f64>,
     /// tracker: detection probability P_D (default 0.9).
@@ -180,7 +192,8 @@ pub struct ReplayArgs {
     /// tracker: largest target speed, m/s (default 300 for x/y, 617 for polar).
     #[arg(long, value_parser = finite, allow_hyphen_values = true, help_heading = "Sensor")]
     pub max_speed_mps: Option<f64>,
-    /// tracker: manoeuvre level, the largest acceleration, m/s² (default g·tan 30° = 5.66).
+    /// tracker, and ab, abg with --sigma-m: manoeuvre level, the largest acceleration, m/s²
+    /// (default g·tan 30° = 5.66).
     #[arg(long = "max-accel-mps2", value_parser = finite, allow_hyphen_values = true, help_heading = "Sensor")]
     pub max_accel_mps2: Option<f64>,
 
@@ -303,10 +316,37 @@ impl ReplayArgs {
                     "--verbose",
                 ],
             ),
-            Some(FilterName::AlphaBeta) => ("--filter ab", &["--schedule", "--alpha", "--beta"]),
+            Some(FilterName::AlphaBeta) => (
+                "--filter ab",
+                &[
+                    "--schedule",
+                    "--alpha",
+                    "--beta",
+                    "--sigma-m",
+                    "--scan-period-s",
+                    "--max-accel-mps2",
+                ],
+            ),
             Some(FilterName::AlphaBetaGamma) => (
                 "--filter abg",
-                &["--schedule", "--alpha", "--beta", "--gamma"],
+                &[
+                    "--schedule",
+                    "--alpha",
+                    "--beta",
+                    "--gamma",
+                    "--sigma-m",
+                    "--scan-period-s",
+                    "--max-accel-mps2",
+                ],
+            ),
+            Some(FilterName::Auto) => (
+                "--filter auto",
+                &[
+                    "--sigma-m",
+                    "--range-sigma-m",
+                    "--bearing-sigma-deg",
+                    "--azimuth-unit",
+                ],
             ),
             Some(FilterName::RangeAzimuth) => (
                 "--filter range-azimuth",
@@ -336,6 +376,13 @@ impl ReplayArgs {
             Some(FilterName::RangeAzimuth) => Ok(Command::Replay {
                 config: ReplayConfig {
                     filter: FilterKind::RangeAzimuth(self.range_azimuth()?),
+                    numeric: self.numeric,
+                },
+                input,
+            }),
+            Some(FilterName::Auto) => Ok(Command::Replay {
+                config: ReplayConfig {
+                    filter: self.auto()?,
                     numeric: self.numeric,
                 },
                 input,
@@ -396,7 +443,10 @@ impl ReplayArgs {
                  are shorthand for --schedule fixed:alpha=A,beta=B[,gamma=G])",
             ));
         }
-        let spec = schedule_arg(text)?;
+        let spec = match self.sensor_scale()? {
+            None => schedule_arg(text)?,
+            Some(scale) => schedule_arg_scaled(text, &scale)?,
+        };
         match (spec, order) {
             (ScheduleSpec::Bank(c), Order::AlphaBeta) => Ok(FilterKind::Bank(c)),
             (ScheduleSpec::Bank(_), Order::AlphaBetaGamma) => Err(usage_error(
@@ -409,6 +459,76 @@ impl ReplayArgs {
             )),
             _ => Ok(FilterKind::Scheduled { order, spec }),
         }
+    }
+
+    /// `--filter auto`: `--sigma-m` (x/y input), or `--range-sigma-m` with
+    /// `--bearing-sigma-deg` (range/azimuth input).
+    fn auto(&self) -> Result<FilterKind, clap::Error> {
+        let config = match (self.sigma_m, self.range_sigma_m, self.bearing_sigma_deg) {
+            (Some(sigma), None, None) => AutoConfig::cartesian(sigma),
+            (None, Some(r), Some(b)) => AutoConfig::polar(r, b),
+            _ => {
+                return Err(usage_error(
+                    ErrorKind::MissingRequiredArgument,
+                    "--filter auto needs --sigma-m (x/y input), or --range-sigma-m and \
+                     --bearing-sigma-deg (range/azimuth input)",
+                ))
+            }
+        };
+        let spec = ScheduleSpec::Auto(config);
+        // Checked as the spec parser would, with the option named.
+        schedule_arg(&spec.to_string()).map_err(|_| {
+            usage_error(
+                ErrorKind::ValueValidation,
+                "--filter auto: the sensor σ must be > 0 (at most 10^6 m; the bearing σ at \
+                 most 90°)",
+            )
+        })?;
+        Ok(if config.sigma.is_some() {
+            FilterKind::Scheduled {
+                order: Order::AlphaBeta,
+                spec,
+            }
+        } else {
+            FilterKind::AutoPolar {
+                config,
+                azimuth_unit: self.azimuth_unit,
+            }
+        })
+    }
+
+    /// `--filter ab|abg --sigma-m S`: the figures that scale the schedules'
+    /// paper-tied defaults ([`SensorScale`]); T from `--scan-period-s`
+    /// (default 1 s), a_max from `--max-accel-mps2` (default g·tan 30°).
+    fn sensor_scale(&self) -> Result<Option<SensorScale>, clap::Error> {
+        let Some(sigma) = self.sigma_m else {
+            if self.scan_period_s.is_some() || self.max_accel_mps2.is_some() {
+                return Err(usage_error(
+                    ErrorKind::MissingRequiredArgument,
+                    "--scan-period-s and --max-accel-mps2 scale the schedule's defaults with \
+                     --sigma-m; give --sigma-m",
+                ));
+            }
+            return Ok(None);
+        };
+        let scale = SensorScale {
+            sigma,
+            period: self.scan_period_s.unwrap_or(1.0),
+            max_acceleration: self.max_accel_mps2.unwrap_or(BANK_30_ACCELERATION),
+        };
+        for (option, v) in [
+            ("--sigma-m", scale.sigma),
+            ("--scan-period-s", scale.period),
+            ("--max-accel-mps2", scale.max_acceleration),
+        ] {
+            if v <= 0.0 {
+                return Err(usage_error(
+                    ErrorKind::ValueValidation,
+                    format!("{option}: {v} is out of range (must be > 0)"),
+                ));
+            }
+        }
+        Ok(Some(scale))
     }
 
     /// `--filter range-azimuth`: noise settings, altitude quantum, own
@@ -561,6 +681,23 @@ pub fn parse_schedule(text: &str) -> Result<ScheduleSpec, ScheduleArgError> {
 /// [`parse_schedule`] as a usage error.
 fn schedule_arg(text: &str) -> Result<ScheduleSpec, clap::Error> {
     parse_schedule(text).map_err(|e| usage_error(ErrorKind::ValueValidation, e))
+}
+
+/// [`schedule_arg`] with the defaults scaled to the sensor
+/// ([`ScheduleSpec::parse_scaled`]).
+fn schedule_arg_scaled(text: &str, scale: &SensorScale) -> Result<ScheduleSpec, clap::Error> {
+    let spec = ScheduleSpec::parse_scaled(text, scale).map_err(|error| {
+        usage_error(
+            ErrorKind::ValueValidation,
+            ScheduleArgError {
+                text: text.to_string(),
+                error,
+            },
+        )
+    })?;
+    // Built once, as `parse_schedule` does, for the capacity checks.
+    parse_schedule(&spec.to_string()).map_err(|e| usage_error(ErrorKind::ValueValidation, e))?;
+    Ok(spec)
 }
 
 /// The byte offset of the `key=value` part that `error` is about in spec

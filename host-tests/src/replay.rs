@@ -55,8 +55,12 @@ use abtrack::filter::range_azimuth::{
     NoiseError, RangeAzimuthFilter, RangeAzimuthNoise, RangeAzimuthOutcome, PAPER_BEARING_VARIANCE,
 };
 use abtrack::filter::{Cartesian, Gains, Phase, UpdateOutcome};
+use abtrack::gain::auto::AutoConfig;
 use abtrack::gain::spec::ScheduleSpec;
-use abtrack::gain::{AnySchedule, ConfigError, ScheduleError, ScheduledError, ScheduledFilter};
+use abtrack::gain::{
+    AnySchedule, ConfigError, FixedGains, GainSchedule, ScheduleError, ScheduledError,
+    ScheduledFilter,
+};
 use abtrack::tcas::{assess, Intruder, OwnAircraft, TcasError};
 use abtrack::track::{ConfigError as TrackConfigError, ScanError};
 use abtrack::{FilterError, Fix, GainError, NumError, Scalar};
@@ -178,6 +182,13 @@ pub enum FilterKind {
     Bank(BankConfig),
     /// He et al.'s range–azimuth projection filter.
     RangeAzimuth(RangeAzimuthOptions),
+    /// `auto` (`--filter auto`) on `t,range,azimuth` rows, converted to
+    /// x = R sin B, y = R cos B (a polar sensor's σ_R and σ_B in `config`);
+    /// on `t,x,y` rows `--filter auto` is [`FilterKind::Scheduled`].
+    AutoPolar {
+        config: AutoConfig,
+        azimuth_unit: AngleUnit,
+    },
 }
 
 impl FilterKind {
@@ -196,7 +207,7 @@ impl FilterKind {
     /// The input layout this filter reads.
     pub fn input_format(&self) -> InputFormat {
         match self {
-            FilterKind::RangeAzimuth(_) => InputFormat::RangeAzimuth,
+            FilterKind::RangeAzimuth(_) | FilterKind::AutoPolar { .. } => InputFormat::RangeAzimuth,
             _ => InputFormat::Cartesian,
         }
     }
@@ -486,6 +497,42 @@ pub fn replay_reader<R: Read>(config: &ReplayConfig, input: R) -> Result<String,
             let data = read_range_azimuth(input, read).map_err(Failure::Input)?;
             run_range_azimuth(&options, config.numeric, &data).map_err(Failure::Replay)
         }
+        FilterKind::AutoPolar {
+            config: auto,
+            azimuth_unit,
+        } => {
+            let read = ReadOptions {
+                times: TimeOrder::Increasing,
+                azimuth_unit,
+            };
+            let data = read_range_azimuth(input, read).map_err(Failure::Input)?;
+            let converted = Measurements {
+                dims: 2,
+                rows: data
+                    .rows
+                    .iter()
+                    .map(|r| {
+                        let (s, c) = r.azimuth.sin_cos();
+                        Row {
+                            line: r.line,
+                            t_text: r.t_text.clone(),
+                            t: r.t,
+                            z: [r.range * s, r.range * c, 0.0],
+                            alt: r.alt,
+                        }
+                    })
+                    .collect(),
+            };
+            let filter = FilterKind::Scheduled {
+                order: Order::AlphaBeta,
+                spec: ScheduleSpec::Auto(auto),
+            };
+            let config = ReplayConfig {
+                filter,
+                numeric: config.numeric,
+            };
+            run(&config, &converted).map_err(Failure::Replay)
+        }
         _ => {
             let data = read_measurements(input, ReadOptions::default()).map_err(Failure::Input)?;
             run(config, &data).map_err(Failure::Replay)
@@ -541,9 +588,11 @@ pub fn run_in<S: CsvValue>(
             2 => run_bank::<S, 2>(config, data),
             _ => run_bank::<S, 3>(config, data),
         },
-        FilterKind::RangeAzimuth(_) => Err(ReplayError::WrongLayout {
-            expected: InputFormat::RangeAzimuth,
-        }),
+        FilterKind::RangeAzimuth(_) | FilterKind::AutoPolar { .. } => {
+            Err(ReplayError::WrongLayout {
+                expected: InputFormat::RangeAzimuth,
+            })
+        }
     }
 }
 
@@ -650,28 +699,13 @@ fn check_filter<S: Scalar, const ORDER: usize, const D: usize>(
     )
 }
 
+/// Fixed gains, run by [`ScheduledFilter`] so that real timing gets the
+/// same bounds as every schedule ([`abtrack::gain::robust_gains`]).
 fn run_cartesian<S: CsvValue, const ORDER: usize, const D: usize>(
     gains: &Gains<S>,
     data: &Measurements,
 ) -> Result<String, ReplayError> {
-    let mut out = header(ORDER, D);
-    out.push('\n');
-    let mut tracker = Cartesian::<S, ORDER, D>::new();
-    let mut previous_t: Option<f64> = None;
-    for row in &data.rows {
-        let dt = interval::<S>(previous_t, row.t, row.line)?;
-        let z = positions::<S, D>(row)?;
-        let outcomes = tracker
-            .update(z, dt, gains)
-            .map_err(|error| ReplayError::Filter {
-                line: row.line,
-                error,
-            })?;
-        previous_t = Some(row.t);
-        check_filter(row.line, &tracker)?;
-        write_kinematic_row(&mut out, &row.t_text, &tracker, &outcomes);
-    }
-    Ok(out)
+    run_schedule::<S, _, ORDER, D>(FixedGains::new(*gains), data)
 }
 
 fn run_scheduled<S: CsvValue, const ORDER: usize, const D: usize>(
@@ -679,6 +713,13 @@ fn run_scheduled<S: CsvValue, const ORDER: usize, const D: usize>(
     data: &Measurements,
 ) -> Result<String, ReplayError> {
     let schedule = ReplaySchedule::<S, D>::from_spec(spec).map_err(ReplayError::Schedule)?;
+    run_schedule::<S, _, ORDER, D>(schedule, data)
+}
+
+fn run_schedule<S: CsvValue, G: GainSchedule<S, D>, const ORDER: usize, const D: usize>(
+    schedule: G,
+    data: &Measurements,
+) -> Result<String, ReplayError> {
     let mut track = ScheduledFilter::<S, _, ORDER, D>::new(schedule);
     let mut out = header(ORDER, D);
     out.push('\n');
@@ -690,6 +731,10 @@ fn run_scheduled<S: CsvValue, const ORDER: usize, const D: usize>(
             ScheduledError::Filter(error) => ReplayError::Filter {
                 line: row.line,
                 error,
+            },
+            ScheduledError::IntervalTooShort => ReplayError::Filter {
+                line: row.line,
+                error: FilterError::InvalidInterval,
             },
             ScheduledError::Schedule(error) => ReplayError::ScheduledGains {
                 line: row.line,

@@ -248,6 +248,7 @@ fn spec_text(name: &str, order: Order) -> String {
     match (name, order) {
         ("fixed", Order::AlphaBeta) => "fixed:alpha=0.6,beta=0.25".into(),
         ("fixed", Order::AlphaBetaGamma) => "fixed:alpha=0.6,beta=0.25,gamma=0.05".into(),
+        ("auto", _) => "auto:sigma=5".into(),
         _ => name.into(),
     }
 }

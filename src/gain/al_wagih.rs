@@ -264,7 +264,8 @@ impl LinearCombinationConfig {
 /// With `steps = 0` w is fixed.
 ///
 /// Every gain lies in the stability triangle: α̂(n) ≤ 5/6 and β_LC lies
-/// between β̃ ≤ 1 and β̂(n) ≤ 1/2, both > 0, so 2α + β < 4.
+/// between β̃ ≤ 1 and β̂(n) ≤ 1/2, both > 0, so 2α + β < 4; and β_LC is held
+/// at Kalata's β for α̂(n) (see `alpha_beta`), which β̂(n) never exceeds.
 #[derive(Debug, Clone, Copy, PartialEq)]
 #[cfg_attr(feature = "defmt", derive(defmt::Format))]
 pub struct LinearCombinationGains<N: Numeric, const D: usize, const W: usize> {
@@ -302,10 +303,18 @@ impl<N: Numeric, const D: usize, const W: usize> LinearCombinationGains<N, D, W>
         self.w
     }
 
+    /// α̂(n) and β_LC(w, n), the latter at most Kalata's β for α̂(n)
+    /// ([`crate::gains::li_beta`]; issue 12): β̃ is fixed while α̂(n) falls
+    /// as 4/n, so without the bound the pair drifts to poles within 10⁻³
+    /// of the unit circle (α₀ = 0.2: α = 0.004, β = 0.011 at n = 1000) and
+    /// the weight search, switching β every update, pumps them to
+    /// divergence. The bound binds only where β_LC exceeds it (with the
+    /// default α₀ = 0.05, w > ½ and n ≳ 110).
     fn alpha_beta(&self, w: N::Ratio, n: u32) -> (N::Ratio, N::Ratio) {
         let n = self.least_squares.effective(n);
+        let alpha = least_squares_alpha::<N::Ratio>(n);
         let beta = w * self.beta_tilde + (N::Ratio::ONE - w) * least_squares_beta::<N::Ratio>(n);
-        (least_squares_alpha(n), beta)
+        (alpha, beta.min_of(crate::gains::li_beta(alpha)))
     }
 
     fn candidate(&self, i: usize) -> N::Ratio {

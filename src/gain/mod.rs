@@ -20,6 +20,7 @@
 //! | | [`ResidualAccumulationGains`] | Liu, Wang & Yang eqs. (6)–(11) |
 //! | | [`AdaptiveSwitchGains`] | Liu, Wang & Yang eqs. (12)–(15) |
 //! | [`tcas`] | [`FirmnessGains`] | TCAS range tracker (DO-185B firmness table) |
+//! | [`auto`] | [`AutoGains`] | beyond the papers: least-squares gains cut by NIS tests (`docs/auto.md`) |
 //!
 //! Al-Wagih & Abdulla's M5 (a bank of K fixed-gain trackers) is not a
 //! schedule: it owns K filter states and outputs one of their predictions, so
@@ -70,9 +71,11 @@
 use core::fmt;
 
 use crate::filter::{Cartesian, FilterError, GainError, Gains, Phase, Prediction, UpdateOutcome};
-use crate::num::{Numeric, Quantity};
+use crate::gains::li_beta;
+use crate::num::{Numeric, Quantity, Real};
 
 pub mod al_wagih;
+pub mod auto;
 pub mod li;
 pub mod liu;
 pub mod spec;
@@ -80,6 +83,7 @@ pub mod tcas;
 mod window;
 
 pub use al_wagih::{FixedGains, LeastSquaresGains, LinearCombinationGains, MovingWindowGains};
+pub use auto::{AutoConfig, AutoGains};
 pub use li::LiImprovedGains;
 pub use liu::{AdaptiveSwitchGains, ResidualAccumulationGains, ScanCountAdjustedGains, SwitchMode};
 pub use spec::{ScheduleSpec, SpecError, SpecErrorKind};
@@ -248,7 +252,15 @@ pub trait GainSchedule<N: Numeric, const D: usize>: Copy {
 pub enum ScheduledError {
     Filter(FilterError),
     Schedule(ScheduleError),
+    /// The measurement came less than [`MIN_INTERVAL_S`] after the previous
+    /// one: two reports that close carry no velocity information, and the
+    /// velocity gain β/T would multiply their noise by up to 1/T.
+    IntervalTooShort,
 }
+
+/// The shortest interval a [`ScheduledFilter`] accepts between two
+/// measurements of a track, s: the envelope's ([`crate::envelope::INTERVAL_S`]).
+pub const MIN_INTERVAL_S: f64 = crate::envelope::INTERVAL_S.min;
 
 impl From<FilterError> for ScheduledError {
     fn from(e: FilterError) -> Self {
@@ -267,6 +279,10 @@ impl fmt::Display for ScheduledError {
         match self {
             ScheduledError::Filter(e) => fmt::Display::fmt(e, f),
             ScheduledError::Schedule(e) => fmt::Display::fmt(e, f),
+            ScheduledError::IntervalTooShort => write!(
+                f,
+                "measurement less than {MIN_INTERVAL_S} s after the previous one"
+            ),
         }
     }
 }
@@ -297,6 +313,12 @@ pub struct ScheduledFilter<N: Numeric, G, const ORDER: usize, const D: usize> {
     filter: Cartesian<N, ORDER, D>,
     schedule: G,
     measurements: u32,
+    /// T of the last update that left the filter tracking (zero before).
+    previous_interval: N::Interval,
+    /// The reference interval of [`robust_gains`]: the longest recent
+    /// interval, relaxing toward shorter ones by a quarter of the gap per
+    /// update.
+    reference_interval: N::Interval,
 }
 
 impl<N, G, const ORDER: usize, const D: usize> ScheduledFilter<N, G, ORDER, D>
@@ -310,6 +332,8 @@ where
             filter: Cartesian::new(),
             schedule,
             measurements: 0,
+            previous_interval: N::Interval::ZERO,
+            reference_interval: N::Interval::ZERO,
         }
     }
 
@@ -325,6 +349,8 @@ where
             filter,
             schedule,
             measurements,
+            previous_interval: N::Interval::ZERO,
+            reference_interval: N::Interval::ZERO,
         }
     }
 
@@ -351,6 +377,16 @@ where
     /// schedule hears that the update was [accepted](GainSchedule::accepted).
     /// A refused update changes neither the filter (but for its saturation
     /// count) nor the schedule.
+    ///
+    /// # Real timing
+    ///
+    /// A measurement less than [`MIN_INTERVAL_S`] after the previous one is
+    /// refused ([`ScheduledError::IntervalTooShort`]). When the interval
+    /// differs from the previous ones, the schedule's gains are bounded for
+    /// this update ([`robust_gains`]): α at most 1, β at most Kalata's
+    /// steady-state β for α, and the velocity correction of a short
+    /// interval at most what the recent longer ones would give. Equal
+    /// intervals leave the gains as they are.
     pub fn update(
         &mut self,
         z: [N::Length; D],
@@ -368,6 +404,13 @@ where
             self.measurements.saturating_add(1)
         };
 
+        if filter.phase() != Phase::Empty
+            && dt.is_valid()
+            && dt < N::Interval::from_f64_lossy(MIN_INTERVAL_S)
+        {
+            return Err(ScheduledError::IntervalTooShort);
+        }
+
         if filter.phase() != Phase::Tracking {
             // Two-point initialisation ignores gains; any valid pair will do.
             let unused = unused_gains::<N>()?;
@@ -375,6 +418,12 @@ where
                 Ok(outcome) => {
                     self.filter = filter;
                     self.measurements = n;
+                    self.previous_interval = if filter.phase() == Phase::Tracking {
+                        dt
+                    } else {
+                        N::Interval::ZERO
+                    };
+                    self.reference_interval = self.previous_interval;
                     if restarted {
                         self.schedule.reset();
                     }
@@ -414,11 +463,18 @@ where
                 // overflowed.
                 Err(_) => return self.refuse_overflow(filter, z, dt),
             };
-            let gains = self.schedule.gains(&ctx)?;
+            let gains = robust_gains(
+                self.schedule.gains(&ctx)?,
+                dt,
+                self.previous_interval,
+                self.reference_interval,
+            )?;
             match filter.update_per_axis(z, dt, &gains) {
                 Ok(outcome) => {
                     self.filter = filter;
                     self.measurements = n;
+                    self.previous_interval = dt;
+                    self.reference_interval = next_reference(self.reference_interval, dt);
                     self.schedule.accepted(&ctx, &gains);
                     Ok(ScheduledUpdate {
                         outcome,
@@ -467,6 +523,82 @@ where
     }
 }
 
+/// The gains of an update at interval `dt`, after one at `previous` (zero:
+/// none) with reference interval `reference` (the longest recent interval,
+/// [`next_reference`]), bounded so that irregular intervals do not make the
+/// filter diverge (issue 12; the reasoning and the tests are in
+/// `docs/auto.md`). When `dt` equals both (every experiment of the papers)
+/// the gains are returned unchanged. Otherwise:
+///
+/// * α is at most 1 (a gain above 1 overshoots the measurement, and its
+///   stable β shrink to nothing on irregular intervals);
+/// * β is at most Kalata's steady-state β for α, 2(α/(1 + √(1 − α)))²
+///   ([`li_beta`]; Li et al. eq. 7), the least-damped pairing a
+///   steady-state Kalman filter uses: pairs far above it (α = 0.002,
+///   β = 0.1667) have poles within 10⁻³ of the unit circle, and irregular
+///   intervals pump them;
+/// * when `dt` is shorter than half the reference, β is scaled by
+///   2·dt/reference, so that the velocity gain is at most 2β/reference: in
+///   units of the last interval the error dynamics multiply the velocity
+///   error by T_prev/T, and a short interval after long ones (or a burst
+///   of short ones) would otherwise grow it without bound, whatever the
+///   gains (the factor 2 leaves the interval after a missed scan alone);
+/// * γ in proportion to β, and once more by the same factor (its gain is
+///   γ/(2T²)), at most half its bound 4αβ/(2 − α).
+#[inline(never)]
+pub fn robust_gains<N: Numeric, const D: usize>(
+    gains: [Gains<N>; D],
+    dt: N::Interval,
+    previous: N::Interval,
+    reference: N::Interval,
+) -> Result<[Gains<N>; D], ScheduleError> {
+    if previous <= N::Interval::ZERO || (dt == previous && dt == reference) {
+        return Ok(gains);
+    }
+    let one = N::Ratio::ONE;
+    // 2·dt/reference as (2 m/reference)·dt in metres (the algebra has no
+    // interval-by-interval division).
+    let shorter = if dt + dt < reference {
+        N::Ratio::from((N::Length::from_f64_lossy(2.0) / reference) * dt).min_of(one)
+    } else {
+        one
+    };
+    let mut out = gains;
+    for g in out.iter_mut() {
+        let (alpha, beta, gamma) = (g.alpha().min_of(one), g.beta(), g.gamma());
+        let capped = beta.min_of(li_beta(alpha));
+        let mut bounded = capped * shorter;
+        if !(bounded.is_valid() && bounded > N::Ratio::ZERO) {
+            // Rounded to nothing (fixed point, a tiny β): the cap alone.
+            bounded = capped;
+        }
+        *g = if gamma == N::Ratio::ZERO {
+            Gains::alpha_beta(alpha, bounded)?
+        } else {
+            let two = one + one;
+            let limit = two * alpha * bounded / (two - alpha);
+            let scaled = (gamma * (bounded / beta) * shorter).min_of(limit);
+            let scaled = if scaled > N::Ratio::ZERO {
+                scaled
+            } else {
+                limit
+            };
+            Gains::alpha_beta_gamma(alpha, bounded, scaled)?
+        };
+    }
+    Ok(out)
+}
+
+/// The reference interval after an update at `dt`: `dt` if it is not
+/// shorter, else the reference moved a quarter of the way toward `dt`.
+pub fn next_reference<Q: Quantity>(reference: Q, dt: Q) -> Q {
+    if dt >= reference {
+        dt
+    } else {
+        reference - (reference - dt).half().half()
+    }
+}
+
 /// Gains for the updates that ignore them (two-point initialisation): any
 /// valid pair will do.
 fn unused_gains<N: Numeric>() -> Result<Gains<N>, ScheduledError> {
@@ -496,6 +628,7 @@ pub enum AnySchedule<N: Numeric, const D: usize, const W: usize> {
     ResidualAccumulation(ResidualAccumulationGains<N, D, W>),
     AdaptiveSwitch(AdaptiveSwitchGains<N, D, W>),
     Firmness(FirmnessGains),
+    Auto(AutoGains<N, D>),
 }
 
 impl<N: Numeric, const D: usize, const W: usize> AnySchedule<N, D, W> {
@@ -521,6 +654,7 @@ impl<N: Numeric, const D: usize, const W: usize> AnySchedule<N, D, W> {
                 AnySchedule::AdaptiveSwitch(AdaptiveSwitchGains::new(c)?)
             }
             ScheduleSpec::Firmness => AnySchedule::Firmness(FirmnessGains::new()),
+            ScheduleSpec::Auto(c) => AnySchedule::Auto(AutoGains::new(c)?),
             ScheduleSpec::Bank(_) => return Err(ConfigError::NotASchedule),
         })
     }
@@ -538,6 +672,7 @@ macro_rules! dispatch {
             AnySchedule::ResidualAccumulation($s) => $e,
             AnySchedule::AdaptiveSwitch($s) => $e,
             AnySchedule::Firmness($s) => $e,
+            AnySchedule::Auto($s) => $e,
         }
     };
 }

@@ -17,13 +17,15 @@
 //!
 //! Examples: `m1:alpha=0.05`, `least-squares`, `m3:w=0.3,steps=0`,
 //! `m4:window=10,steps=19`, `bank:k=8`, `li-improved:r=2.5`,
-//! `liu-adaptive:limit=19`, `tcas-firmness`.
+//! `liu-adaptive:limit=19`, `tcas-firmness`, `auto:sigma=20`,
+//! `auto:range-sigma=15,bearing-sigma-deg=5`.
 
 use core::fmt;
 
 use super::al_wagih::{
     FixedAlphaConfig, FixedConfig, LeastSquaresConfig, LinearCombinationConfig, MovingWindowConfig,
 };
+use super::auto::AutoConfig;
 use super::li::LiImprovedConfig;
 use super::liu::{AdaptiveSwitchConfig, ResidualAccumulationConfig, ScanCountAdjustedConfig};
 use super::ConfigError;
@@ -103,7 +105,68 @@ pub const SCHEDULES: &[ScheduleInfo] = &[
         parameters: "(none)",
         summary: "TCAS range tracker: alpha, beta, gamma by track firmness 0..8 (DO-185B)",
     },
+    ScheduleInfo {
+        names: &["auto"],
+        parameters: "sigma=S | range-sigma=R,bearing-sigma-deg=B (required), n-max=1000",
+        summary: "least-squares gains, count cut by innovation tests: given only the sensor noise",
+    },
 ];
+
+/// The sensor and target figures that set the defaults the papers tied to
+/// their own noise levels ([`ScheduleSpec::parse_scaled`]; issue 12: `m2`
+/// with n-max 1000 or `m1` with α = 0.05 lag by kilometres in a turn, Li's
+/// Δρ = 1 m and Liu's σ_m² = 25 m² misjudge every innovation of another
+/// sensor).
+///
+/// * `m1` α and `m3` α₀: α_K, Kalata's steady-state α for the tracking
+///   index Λ = σ_w·T²/σ with σ_w = a_max/2 (the rule of the default tracker,
+///   `crate::track::defaults` rule 2); `least-squares` and `m3` n-max: the
+///   first n with α̂(n) ≤ α_K (the least-squares gains held at α_K);
+/// * `li-improved` Δρ = σ; `liu-residual`, `liu-adaptive` σ_m² = σ²;
+///   `liu-count-adjusted` threshold = 14σ and `liu-adaptive` limit = 3.8σ
+///   (the paper's 70 m and 19 m at its σ = 5 m);
+/// * `auto`: σ.
+///
+/// `fixed`, `m4`, `bank` and `tcas-firmness` have no such defaults.
+#[derive(Debug, Clone, Copy, PartialEq)]
+#[cfg_attr(feature = "defmt", derive(defmt::Format))]
+pub struct SensorScale {
+    /// σ per axis, m, > 0.
+    pub sigma: f64,
+    /// The nominal interval T, s, > 0.
+    pub period: f64,
+    /// a_max, the manoeuvre level, m/s², > 0.
+    pub max_acceleration: f64,
+}
+
+impl SensorScale {
+    /// Liu, Wang & Yang's §3.2.2 threshold (70 m) over their σ (5 m).
+    pub const LIU_THRESHOLD_SIGMAS: f64 = 14.0;
+    /// Liu, Wang & Yang's §2.1.5 limit (19 m) over their σ (5 m).
+    pub const LIU_LIMIT_SIGMAS: f64 = 3.8;
+
+    /// α_K for Λ = (a_max/2)·T²/σ.
+    pub fn steady_state_alpha(&self) -> Result<f64, ConfigError> {
+        let lambda =
+            crate::design::tracking_index(0.5 * self.max_acceleration, self.sigma, self.period)
+                .map_err(|_| ConfigError::OutOfRange { parameter: "sigma" })?;
+        crate::design::kalata_gains(lambda)
+            .map(|g| g.alpha().min(1.0))
+            .map_err(|_| ConfigError::OutOfRange { parameter: "sigma" })
+    }
+
+    /// The first n ≥ 3 with α̂(n) ≤ α_K (at most the n-max limit).
+    pub fn least_squares_n_max(&self) -> Result<u32, ConfigError> {
+        let alpha = self.steady_state_alpha()?;
+        let mut n = 3u32;
+        while n < LeastSquaresConfig::N_MAX_LIMIT
+            && crate::gains::least_squares_alpha::<f64>(n) > alpha
+        {
+            n = n.saturating_add(1);
+        }
+        Ok(n)
+    }
+}
 
 /// A parsed spec: which schedule, with which configuration.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -131,6 +194,8 @@ pub enum ScheduleSpec {
     AdaptiveSwitch(AdaptiveSwitchConfig),
     /// `tcas-firmness`.
     Firmness,
+    /// `auto`.
+    Auto(AutoConfig),
 }
 
 /// What is wrong with a spec string.
@@ -228,6 +293,7 @@ impl ScheduleSpec {
             }
             "liu-adaptive" => ScheduleSpec::AdaptiveSwitch(AdaptiveSwitchConfig::DEFAULT),
             "tcas-firmness" => ScheduleSpec::Firmness,
+            "auto" => ScheduleSpec::Auto(AutoConfig::UNSET),
             _ => return None,
         })
     }
@@ -246,6 +312,7 @@ impl ScheduleSpec {
             ScheduleSpec::ResidualAccumulation(_) => "liu-residual",
             ScheduleSpec::AdaptiveSwitch(_) => "liu-adaptive",
             ScheduleSpec::Firmness => "tcas-firmness",
+            ScheduleSpec::Auto(_) => "auto",
         }
     }
 
@@ -265,6 +332,7 @@ impl ScheduleSpec {
                 &["limit", "alpha", "beta", "n", "sigma-m2", "alpha-min"]
             }
             ScheduleSpec::Firmness => &[],
+            ScheduleSpec::Auto(_) => &["sigma", "range-sigma", "bearing-sigma-deg", "n-max"],
         }
     }
 
@@ -304,6 +372,10 @@ impl ScheduleSpec {
             (ScheduleSpec::AdaptiveSwitch(c), 3) => c.residual.n = integer(value)?,
             (ScheduleSpec::AdaptiveSwitch(c), 4) => c.residual.sigma_m2 = number(value)?,
             (ScheduleSpec::AdaptiveSwitch(c), 5) => c.residual.alpha_min = number(value)?,
+            (ScheduleSpec::Auto(c), 0) => c.sigma = Some(number(value)?),
+            (ScheduleSpec::Auto(c), 1) => c.range_sigma = Some(number(value)?),
+            (ScheduleSpec::Auto(c), 2) => c.bearing_sigma_deg = Some(number(value)?),
+            (ScheduleSpec::Auto(c), 3) => c.n_max = integer(value)?,
             _ => return Err(SpecErrorKind::UnknownParameter),
         }
         Ok(())
@@ -324,11 +396,51 @@ impl ScheduleSpec {
             ScheduleSpec::ResidualAccumulation(c) => c.validate(),
             ScheduleSpec::AdaptiveSwitch(c) => c.validate(),
             ScheduleSpec::Firmness => Ok(()),
+            ScheduleSpec::Auto(c) => c.validate(),
         }
     }
 
     /// Parses `name[:key=value,...]`.
     pub fn parse(spec: &str) -> Result<Self, SpecError> {
+        Self::parse_with(spec, None)
+    }
+
+    /// [`Self::parse`] with the defaults that the papers tied to their own
+    /// noise levels taken from `sensor` instead ([`SensorScale`]); keys the
+    /// spec gives keep their values.
+    pub fn parse_scaled(spec: &str, sensor: &SensorScale) -> Result<Self, SpecError> {
+        Self::parse_with(spec, Some(sensor))
+    }
+
+    /// Replaces the defaults [`SensorScale`] covers (see there).
+    fn scale_defaults(&mut self, sensor: &SensorScale) -> Result<(), ConfigError> {
+        let sigma = sensor.sigma;
+        match self {
+            ScheduleSpec::FixedAlpha(c) => c.alpha = sensor.steady_state_alpha()?,
+            ScheduleSpec::LeastSquares(c) => c.n_max = sensor.least_squares_n_max()?,
+            ScheduleSpec::LinearCombination(c) => {
+                c.alpha0 = sensor.steady_state_alpha()?;
+                c.n_max = sensor.least_squares_n_max()?;
+            }
+            ScheduleSpec::LiImproved(c) => c.range_error = sigma,
+            ScheduleSpec::ScanCountAdjusted(c) => {
+                c.threshold = sigma * SensorScale::LIU_THRESHOLD_SIGMAS;
+            }
+            ScheduleSpec::ResidualAccumulation(c) => c.sigma_m2 = sigma * sigma,
+            ScheduleSpec::AdaptiveSwitch(c) => {
+                c.limit = sigma * SensorScale::LIU_LIMIT_SIGMAS;
+                c.residual.sigma_m2 = sigma * sigma;
+            }
+            ScheduleSpec::Auto(c) => *c = AutoConfig::cartesian(sigma),
+            ScheduleSpec::Fixed(_)
+            | ScheduleSpec::MovingWindow(_)
+            | ScheduleSpec::Bank(_)
+            | ScheduleSpec::Firmness => {}
+        }
+        Ok(())
+    }
+
+    fn parse_with(spec: &str, sensor: Option<&SensorScale>) -> Result<Self, SpecError> {
         let err = |kind, offset| SpecError { kind, offset };
         let (name, params) = match spec.split_once(':') {
             Some((n, p)) => (n, Some(p)),
@@ -338,6 +450,11 @@ impl ScheduleSpec {
             return Err(err(SpecErrorKind::Empty, 0));
         }
         let mut parsed = Self::default_for(name).ok_or(err(SpecErrorKind::UnknownSchedule, 0))?;
+        if let Some(sensor) = sensor {
+            parsed
+                .scale_defaults(sensor)
+                .map_err(|e| err(SpecErrorKind::Config(e), 0))?;
+        }
         let keys = parsed.keys();
         // Byte offset of each key given, to point config errors at it.
         let mut given: [Option<usize>; MAX_KEYS] = [None; MAX_KEYS];
@@ -376,6 +493,15 @@ impl ScheduleSpec {
                         spec.len(),
                     ));
                 }
+            }
+        }
+        if let ScheduleSpec::Auto(c) = &parsed {
+            // `auto` has no sensor default: σ, or σ_R with σ_B, is required.
+            if !c.has_sensor() {
+                return Err(err(
+                    SpecErrorKind::MissingParameter { parameter: "sigma" },
+                    spec.len(),
+                ));
             }
         }
         parsed.validate().map_err(|e| {
@@ -448,6 +574,21 @@ impl fmt::Display for ScheduleSpec {
                 c.limit, c.alpha, c.beta, c.residual.n, c.residual.sigma_m2, c.residual.alpha_min
             ),
             ScheduleSpec::Firmness => Ok(()),
+            ScheduleSpec::Auto(c) => {
+                let mut separator = ':';
+                let figures = [
+                    ("sigma", c.sigma),
+                    ("range-sigma", c.range_sigma),
+                    ("bearing-sigma-deg", c.bearing_sigma_deg),
+                ];
+                for (key, value) in figures {
+                    if let Some(v) = value {
+                        write!(f, "{separator}{key}={v}")?;
+                        separator = ',';
+                    }
+                }
+                write!(f, "{separator}n-max={}", c.n_max)
+            }
         }
     }
 }

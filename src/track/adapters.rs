@@ -71,6 +71,7 @@ fn filter_error(e: ScheduledError) -> FilterError {
     match e {
         ScheduledError::Filter(e) => e,
         ScheduledError::Schedule(_) => FilterError::Saturated,
+        ScheduledError::IntervalTooShort => FilterError::InvalidInterval,
     }
 }
 

@@ -9,6 +9,7 @@
 
 pub mod alwagih;
 pub mod alwagih_trajectories;
+pub mod auto;
 pub mod common;
 pub mod he_tcas;
 pub mod li;
@@ -55,6 +56,11 @@ pub const GROUPS: &[Group] = &[
         name: he_tcas::NAME,
         about: "He et al. s4: range-azimuth filter vs per-axis alpha-beta, 200 runs (seed 003)",
         run: he_tcas::run,
+    },
+    Group {
+        name: auto::NAME,
+        about: auto::ABOUT,
+        run: auto::run,
     },
     Group {
         name: tcas_advisory::NAME,

@@ -299,15 +299,23 @@ impl Method {
     /// The 4-state constant-velocity Kalman filter with the scenario's
     /// documented process noise (DWNA σ_a) and R = σ²I.
     pub fn kalman_cv(label: &str, info: &ScenarioInfo) -> Result<Self, String> {
-        let sigma_a = info.kalman.cv_sigma_acceleration;
+        Self::kalman_cv_with(
+            label,
+            info.kalman.cv_sigma_acceleration,
+            measurement_sigma(info)?,
+        )
+    }
+
+    /// The 4-state constant-velocity Kalman filter with DWNA σ_a
+    /// (`sigma_a`, m/s²) and R = σ²I (`sigma`, m).
+    pub fn kalman_cv_with(label: &str, sigma_a: f64, sigma: f64) -> Result<Self, String> {
         let noise = ProcessNoise::DiscreteWhiteAcceleration { sigma: sigma_a };
-        let r = isotropic(measurement_sigma(info)?);
+        let r = isotropic(sigma);
         ConstantVelocityKf::new(noise, r).map_err(|e| e.to_string())?;
         Ok(Method {
             label: label.to_string(),
             detail: format!(
-                "4-state CV Kalman (f64), DWNA σ_a = {sigma_a} m/s², R = ({} m)²·I",
-                measurement_sigma(info)?
+                "4-state CV Kalman (f64), DWNA σ_a = {sigma_a} m/s², R = ({sigma} m)²·I"
             ),
             make: Box::new(move || {
                 Ok(Box::new(KalmanEstimator {
@@ -315,6 +323,19 @@ impl Method {
                 }))
             }),
         })
+    }
+
+    /// A method from its parts: `make` builds a fresh estimator per run.
+    pub fn from_factory(
+        label: &str,
+        detail: &str,
+        make: impl Fn() -> Result<Box<dyn Estimator>, String> + Send + Sync + 'static,
+    ) -> Self {
+        Method {
+            label: label.to_string(),
+            detail: detail.to_string(),
+            make: Box::new(make),
+        }
     }
 
     /// The 6-state constant-acceleration Kalman filter (Wiener-sequence

@@ -226,4 +226,6 @@ pub const ALL_SCHEDULES: &[&str] = &[
     "liu-residual",
     "liu-adaptive",
     "tcas-firmness",
+    "auto:sigma=5",
+    "auto:range-sigma=5,bearing-sigma-deg=0.01",
 ];
