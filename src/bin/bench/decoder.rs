@@ -4,7 +4,7 @@
 
 use core::hint::black_box;
 
-use abtrack::wire::{Decoder, MeasurementReport, Message, MAX_FRAME_LEN};
+use abtrack::wire::{Decoder, Encoder, MeasurementReport, Message, MAX_FRAME_LEN};
 
 use crate::counter::Bench;
 use crate::synth::Lcg;
@@ -25,6 +25,7 @@ fn stream() -> Option<([u8; FRAMES * MAX_FRAME_LEN], usize)> {
     let mut bytes = [0u8; FRAMES * MAX_FRAME_LEN];
     let mut len = 0;
     let mut rng = Lcg::new(7);
+    let mut encoder = Encoder::new();
     for i in 0..FRAMES {
         let t = 1000 * i as u32;
         let report = match i % 3 {
@@ -51,8 +52,8 @@ fn stream() -> Option<([u8; FRAMES * MAX_FRAME_LEN], usize)> {
             ),
         }
         .ok()?;
-        len += Message::Measurement(report)
-            .emit(bytes.get_mut(len..)?)
+        len += encoder
+            .encode(&Message::Measurement(report), bytes.get_mut(len..)?)
             .ok()?;
     }
     Some((bytes, len))
