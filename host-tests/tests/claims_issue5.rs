@@ -150,7 +150,9 @@ fn design_refuses_bad_figures() {
 }
 
 // ---------------------------------------------------------------------------
-// Bytes per track (the table in abtrack::track::adapters)
+// Bytes per track (the table in abtrack::track::adapters). A scheduled
+// track carries two intervals for robust_gains (the last one and the
+// reference; issue 12 item 2): 16 B in f64 and Q32.32, 8 B in f32.
 
 #[test]
 fn bytes_per_track() {
@@ -204,11 +206,11 @@ fn bytes_per_track() {
         rows,
         [
             ("FixedGainTrack", 88, 56, 88),
-            ("Scheduled<M2>", 224, 136, 224),
-            ("Scheduled<M1>", 248, 144, 248),
-            ("Scheduled<Li>", 272, 160, 272),
-            ("Scheduled<TCAS>", 224, 136, 224),
-            ("Scheduled<Any<2,8>>", 864, 472, 864),
+            ("Scheduled<M2>", 240, 144, 240),
+            ("Scheduled<M1>", 264, 152, 264),
+            ("Scheduled<Li>", 288, 168, 288),
+            ("Scheduled<TCAS>", 240, 144, 240),
+            ("Scheduled<Any<2,8>>", 880, 480, 880),
             ("RangeAzimuth", 248, 140, 248),
         ]
     );
