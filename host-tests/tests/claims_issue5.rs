@@ -8,17 +8,16 @@
 //! test; the measured rates are printed (`--nocapture`).
 
 use std::collections::BTreeSet;
-use std::mem::size_of;
 
 use abtrack::filter::range_azimuth::RangeAzimuthNoise;
-use abtrack::gain::{AnySchedule, FirmnessGains, FixedGains, LeastSquaresGains, LiImprovedGains};
+use abtrack::gain::{FirmnessGains, FixedGains, LeastSquaresGains, LiImprovedGains};
 use abtrack::track::defaults::{
     default_cartesian, default_polar, DerivedParameters, TrackerDesign,
 };
 use abtrack::track::{
     Association, DropReason, FixedGainTrack, Gate, GateRegion, Measurement, Observation,
-    PolarWindow, PredictedState, RangeAzimuthTrack, ScanInterval, ScheduledTrack, Track,
-    TrackFilter, TrackTable, TrackerConfig,
+    PolarWindow, PredictedState, RangeAzimuthTrack, ScanInterval, ScheduledTrack, TrackFilter,
+    TrackTable, TrackerConfig,
 };
 use abtrack::{Fix, Gains, Scalar};
 use abtrack_host_tests::experiments::multi_target::{BASE_SEED, PLANS};
@@ -149,72 +148,8 @@ fn design_refuses_bad_figures() {
     assert!(d.derive().is_err());
 }
 
-// ---------------------------------------------------------------------------
-// Bytes per track (the table in abtrack::track::adapters). A scheduled
-// track carries two intervals for robust_gains (the last one and the
-// reference; issue 12 item 2): 16 B in f64 and Q32.32, 8 B in f32.
-
-#[test]
-fn bytes_per_track() {
-    type Slot<S, F> = Option<Track<S, F>>;
-    let rows = [
-        (
-            "FixedGainTrack",
-            size_of::<Slot<f64, FixedGainTrack<f64>>>(),
-            size_of::<Slot<f32, FixedGainTrack<f32>>>(),
-            size_of::<Slot<Fix, FixedGainTrack<Fix>>>(),
-        ),
-        (
-            "Scheduled<M2>",
-            size_of::<Slot<f64, ScheduledTrack<f64, LeastSquaresGains>>>(),
-            size_of::<Slot<f32, ScheduledTrack<f32, LeastSquaresGains>>>(),
-            size_of::<Slot<Fix, ScheduledTrack<Fix, LeastSquaresGains>>>(),
-        ),
-        (
-            "Scheduled<M1>",
-            size_of::<Slot<f64, ScheduledTrack<f64, FixedGains<f64>>>>(),
-            size_of::<Slot<f32, ScheduledTrack<f32, FixedGains<f32>>>>(),
-            size_of::<Slot<Fix, ScheduledTrack<Fix, FixedGains<Fix>>>>(),
-        ),
-        (
-            "Scheduled<Li>",
-            size_of::<Slot<f64, ScheduledTrack<f64, LiImprovedGains<f64>>>>(),
-            size_of::<Slot<f32, ScheduledTrack<f32, LiImprovedGains<f32>>>>(),
-            size_of::<Slot<Fix, ScheduledTrack<Fix, LiImprovedGains<Fix>>>>(),
-        ),
-        (
-            "Scheduled<TCAS>",
-            size_of::<Slot<f64, ScheduledTrack<f64, FirmnessGains>>>(),
-            size_of::<Slot<f32, ScheduledTrack<f32, FirmnessGains>>>(),
-            size_of::<Slot<Fix, ScheduledTrack<Fix, FirmnessGains>>>(),
-        ),
-        (
-            "Scheduled<Any<2,8>>",
-            size_of::<Slot<f64, ScheduledTrack<f64, AnySchedule<f64, 2, 8>>>>(),
-            size_of::<Slot<f32, ScheduledTrack<f32, AnySchedule<f32, 2, 8>>>>(),
-            size_of::<Slot<Fix, ScheduledTrack<Fix, AnySchedule<Fix, 2, 8>>>>(),
-        ),
-        (
-            "RangeAzimuth",
-            size_of::<Slot<f64, RangeAzimuthTrack<f64>>>(),
-            size_of::<Slot<f32, RangeAzimuthTrack<f32>>>(),
-            size_of::<Slot<Fix, RangeAzimuthTrack<Fix>>>(),
-        ),
-    ];
-    println!("{rows:#?}");
-    assert_eq!(
-        rows,
-        [
-            ("FixedGainTrack", 88, 56, 88),
-            ("Scheduled<M2>", 240, 144, 240),
-            ("Scheduled<M1>", 264, 152, 264),
-            ("Scheduled<Li>", 288, 168, 288),
-            ("Scheduled<TCAS>", 240, 144, 240),
-            ("Scheduled<Any<2,8>>", 880, 480, 880),
-            ("RangeAzimuth", 248, 140, 248),
-        ]
-    );
-}
+// Bytes per track of every filter and number system: host-tests/tests/
+// track_static.rs (bytes_per_track_of_every_filter).
 
 // ---------------------------------------------------------------------------
 // Adapters
