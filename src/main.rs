@@ -68,21 +68,12 @@ use cortex_m::peripheral::syst::SystClkSource;
 use cortex_m::peripheral::NVIC;
 use cortex_m_rt::exception;
 
-/// Capacities. The micro:bit's 16 KiB of RAM set its own: the scenario
-/// has at most 20 measurements per scan (2 targets + Poisson clutter).
-#[cfg(not(abtrack_board = "microbit"))]
-mod capacity {
-    pub const TRACKS: usize = 256;
-    pub const MEASUREMENTS_PER_SCAN: usize = 256;
-    /// heapless queues hold one item less than their length.
-    pub const QUEUE_LEN: usize = 128;
-}
+#[path = "firmware/capacity.rs"]
+mod capacities;
 #[cfg(abtrack_board = "microbit")]
-mod capacity {
-    pub const TRACKS: usize = 16;
-    pub const MEASUREMENTS_PER_SCAN: usize = 24;
-    pub const QUEUE_LEN: usize = 32;
-}
+use capacities::microbit as capacity;
+#[cfg(not(abtrack_board = "microbit"))]
+use capacities::mps2 as capacity;
 use capacity::{MEASUREMENTS_PER_SCAN, QUEUE_LEN, TRACKS};
 
 type DemoLoop = ScanLoop<Native, FixedGainTrack<Native>, TRACKS, MEASUREMENTS_PER_SCAN>;

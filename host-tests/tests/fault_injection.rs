@@ -19,8 +19,11 @@
 //! cd host-tests && cargo test --release --test fault_injection -- --ignored mps2_an386
 //! ```
 
+#[path = "../../src/firmware/capacity.rs"]
+mod capacity;
 #[path = "../../src/firmware/demo_config.rs"]
 mod demo_config;
+use capacity::{microbit, mps2};
 
 use abtrack::scan::RunVerdict;
 use abtrack::wire::{Health, Message, ScanSummary, TrackReport};
@@ -123,18 +126,24 @@ fn run_firmware(board: &Board, elf: &Path, input: &[u8], name: &str) -> Run {
 /// The same input through the scan-loop core on the host.
 fn model(board: &Board, input: &[u8]) -> FirmwareRun {
     match board.machine {
-        "mps2-an386" => frames::run_like_the_firmware::<f32, 32, 64, 128>(
-            input,
-            &demo_config::demo_config::<f32>().unwrap(),
-        ),
-        "mps2-an385" => frames::run_like_the_firmware::<Fix, 32, 64, 128>(
-            input,
-            &demo_config::demo_config::<Fix>().unwrap(),
-        ),
-        _ => frames::run_like_the_firmware::<Fix, 8, 24, 32>(
-            input,
-            &demo_config::demo_config::<Fix>().unwrap(),
-        ),
+        "mps2-an386" => frames::run_like_the_firmware::<
+            f32,
+            { mps2::TRACKS },
+            { mps2::MEASUREMENTS_PER_SCAN },
+            { mps2::QUEUE_LEN },
+        >(input, &demo_config::demo_config::<f32>().unwrap()),
+        "mps2-an385" => frames::run_like_the_firmware::<
+            Fix,
+            { mps2::TRACKS },
+            { mps2::MEASUREMENTS_PER_SCAN },
+            { mps2::QUEUE_LEN },
+        >(input, &demo_config::demo_config::<Fix>().unwrap()),
+        _ => frames::run_like_the_firmware::<
+            Fix,
+            { microbit::TRACKS },
+            { microbit::MEASUREMENTS_PER_SCAN },
+            { microbit::QUEUE_LEN },
+        >(input, &demo_config::demo_config::<Fix>().unwrap()),
     }
 }
 
