@@ -68,6 +68,8 @@ use cortex_m::peripheral::syst::SystClkSource;
 use cortex_m::peripheral::NVIC;
 use cortex_m_rt::exception;
 
+// Every board's capacities; this build uses its own board's.
+#[allow(dead_code)]
 #[path = "firmware/capacity.rs"]
 mod capacities;
 #[cfg(abtrack_board = "microbit")]
