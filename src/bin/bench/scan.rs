@@ -174,7 +174,7 @@ fn run_scan<S: Scalar, const N: usize, const M: usize>(
 
 /// Both scenes at N tracks, M measurements per scan.
 #[inline(never)]
-pub fn run<S: Numeric, const N: usize, const M: usize>(bench: &mut Bench) {
+pub fn run<S: Numeric + Scalar, const N: usize, const M: usize>(bench: &mut Bench) {
     scene::<S, N, M>(bench, Scene::Separated);
     scene::<S, N, M>(bench, Scene::Crowded);
 }
@@ -186,7 +186,7 @@ pub fn run<S: Numeric, const N: usize, const M: usize>(bench: &mut Bench) {
 /// filters' `update`) on the table's tracks. The scan's other work (intake,
 /// bookkeeping, lifecycle, initiation) is the difference.
 #[inline(never)]
-fn scene<S: Numeric, const N: usize, const M: usize>(bench: &mut Bench, scene: Scene) {
+fn scene<S: Numeric + Scalar, const N: usize, const M: usize>(bench: &mut Bench, scene: Scene) {
     let numeric = S::LABEL;
     let operation = scene.operation();
     let size = Size { n: N, m: M };
