@@ -227,7 +227,7 @@ proptest! {
     /// operands of any sign and scale: the product within half an ulp
     /// (exact i128), the quotient and the square root correctly rounded
     /// (f64's 53 bits leave 2⁻⁵² of slack), hypot within half an ulp plus
-    /// 2⁻⁵⁰.
+    /// 2⁻⁵⁰, the sum within half an ulp (plus 2⁻³⁰ of one).
     #[test]
     fn scaled_primitives_round_to_nearest(
         ma in scaled_mantissa(), ea in -50i32..34, mb in scaled_mantissa(), eb in -50i32..34,
@@ -250,6 +250,24 @@ proptest! {
         let h = x.hypot(y);
         let exact = xf.hypot(yf);
         prop_assert!((h.to_f64() - exact).abs() <= 0.5 * ulp(h) + exact * 2f64.powi(-50));
+        // The sum against the exact i128 sum, in units of 2^base (exponents
+        // within 60 of each other keep every term below 2¹²²): within half
+        // an ulp plus 2⁻³⁰ of one (the bit beyond the 31 guard bits when the
+        // signs differ and the gap is 32).
+        if (ea - eb).abs() <= 60 {
+            let base = ea.min(eb) - 31;
+            let units = |m: i32, e: i32| i128::from(m) << (e - base);
+            let exact = units(ma, ea) + units(mb, eb);
+            let s = x + y;
+            if s.mantissa() == 0 {
+                prop_assert_eq!(exact, 0);
+            } else {
+                prop_assert!(s.exponent() >= base);
+                let ulp_units = 1i128 << (s.exponent() - base);
+                let error = (units(s.mantissa(), s.exponent()) - exact).abs();
+                prop_assert!(2 * error <= ulp_units + (ulp_units >> 29), "{} {}", error, ulp_units);
+            }
+        }
     }
 
     /// hypot: the integer square root of the exact sum of squares, to the

@@ -165,6 +165,9 @@ pub struct RangeAzimuthNoise<N: Numeric> {
     bearing_sigma: N::Ratio,
     /// √Q, m/s².
     process_sigma: N::Ratio,
+    /// [`CROSS_RANGE_SIGMA_FLOOR`] in `N`, converted once here rather than
+    /// on every update.
+    cross_range_sigma_floor: N::Ratio,
 }
 
 impl<N: Numeric> RangeAzimuthNoise<N> {
@@ -204,6 +207,7 @@ impl<N: Numeric> RangeAzimuthNoise<N> {
             range_sigma,
             bearing_sigma,
             process_sigma,
+            cross_range_sigma_floor: N::Ratio::from_f64_lossy(CROSS_RANGE_SIGMA_FLOOR),
         })
     }
 
@@ -239,8 +243,7 @@ impl<N: Numeric> RangeAzimuthNoise<N> {
     /// Cross-range standard deviation √VAR = R·σ_B at range R (m), floored
     /// at [`CROSS_RANGE_SIGMA_FLOOR`].
     pub fn cross_range_sigma(&self, range: N::Length) -> N::Ratio {
-        (N::Ratio::from(range) * self.bearing_sigma)
-            .max_of(N::Ratio::from_f64_lossy(CROSS_RANGE_SIGMA_FLOOR))
+        (N::Ratio::from(range) * self.bearing_sigma).max_of(self.cross_range_sigma_floor)
     }
 }
 

@@ -405,14 +405,82 @@ impl<U> Scaled<U> {
             // 2³⁰·2³¹ − x, x < 2²⁹, rounds back to 2³⁰ at the new scale).
             return high;
         }
-        // Both mantissas times 2³¹ (below 2⁶²); the smaller one aligned by an
-        // arithmetic shift (its dropped bits are below 2⁻³¹ of an ulp).
-        let wide_high = i64::from(high.mantissa) << 31;
-        let wide_low = (i64::from(low.mantissa) << 31) >> gap;
-        Self::from_wide(
-            wide_high.wrapping_add(wide_low),
-            high.exponent().wrapping_sub(31),
+        if (high.mantissa ^ low.mantissa) >= 0 {
+            Self::sum_of_magnitudes(high, low, gap)
+        } else {
+            Self::difference_of_magnitudes(high, low, gap)
+        }
+    }
+
+    /// |m_low|·2^(32 − `gap`) split into the word above 2³² and the word
+    /// below (`gap` ≤ 32): the smaller magnitude aligned to the larger's
+    /// exponent, with the 32 bits shifted out kept.
+    #[inline(always)]
+    fn aligned(low: Self, gap: u32) -> (u32, u32) {
+        let magnitude = low.mantissa.unsigned_abs();
+        (
+            magnitude.checked_shr(gap).unwrap_or(0),
+            magnitude.checked_shl(32u32.wrapping_sub(gap)).unwrap_or(0),
         )
+    }
+
+    /// The sum of two nonzero numbers of the same sign, `high`'s exponent
+    /// `gap` ≤ 32 above `low`'s, correctly rounded on 32-bit words: the
+    /// exact sum of the magnitudes is (`word` + `fraction`/2³²)·2^e_high,
+    /// `word` = |m_high| + ⌊|m_low|/2^gap⌋ < 2³² and `fraction` the bits
+    /// shifted out, so its leading bit is bit 30 or 31 of `word`.
+    #[inline(always)]
+    fn sum_of_magnitudes(high: Self, low: Self, gap: u32) -> Self {
+        let (low_word, fraction) = Self::aligned(low, gap);
+        let word = high.mantissa.unsigned_abs().wrapping_add(low_word);
+        let negative = high.mantissa < 0;
+        if word >> 31 != 0 {
+            // word/2 rounded half up: the half bit is word's last bit.
+            Self::finish(
+                negative,
+                (word >> 1).wrapping_add(word & 1),
+                high.exponent().wrapping_add(1),
+            )
+        } else {
+            Self::finish(negative, word.wrapping_add(fraction >> 31), high.exponent())
+        }
+    }
+
+    /// The sum of two nonzero numbers of opposite signs, `high`'s exponent
+    /// `gap` ≤ 32 above `low`'s, correctly rounded: the exact difference of
+    /// the magnitudes (`word` + `fraction`/2³²)·2^e_high. For `gap` ≥ 2 the
+    /// smaller is below 2²⁹ units, so `word`'s leading bit is bit 29 or 30
+    /// and the rounding takes one or two bits of `fraction`; a closer gap
+    /// (cancellation to any depth) is normalised by [`Self::from_wide`] on
+    /// the exact 64-bit difference.
+    #[inline(always)]
+    fn difference_of_magnitudes(high: Self, low: Self, gap: u32) -> Self {
+        let (low_word, low_fraction) = Self::aligned(low, gap);
+        let high_magnitude = high.mantissa.unsigned_abs();
+        let negative = high.mantissa < 0;
+        if gap < 2 {
+            // Both below 2⁶³: exact in i64, of either sign.
+            let wide = (i64::from(high_magnitude) << 32)
+                .wrapping_sub((i64::from(low_word) << 32) | i64::from(low_fraction));
+            let signed = if negative { wide.wrapping_neg() } else { wide };
+            return Self::from_wide(signed, high.exponent().wrapping_sub(32));
+        }
+        // (high − low_word)·2³² − low_fraction, borrowing from the word.
+        let fraction = 0u32.wrapping_sub(low_fraction);
+        let word = high_magnitude
+            .wrapping_sub(low_word)
+            .wrapping_sub(u32::from(low_fraction != 0));
+        if word >> 30 != 0 {
+            Self::finish(negative, word.wrapping_add(fraction >> 31), high.exponent())
+        } else {
+            // One bit up from the fraction, the next one rounds.
+            let m = (word << 1) | (fraction >> 31);
+            Self::finish(
+                negative,
+                m.wrapping_add((fraction >> 30) & 1),
+                high.exponent().wrapping_sub(1),
+            )
+        }
     }
 
     /// |self| (the invalid value stays invalid).
