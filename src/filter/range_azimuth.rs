@@ -126,6 +126,10 @@ pub const PAPER_BEARING_VARIANCE: f64 = 7.569e-3;
 /// Smallest cross-range standard deviation used, in metres (see the module
 /// docs: keeps the cross-range gains defined as R → 0).
 pub const CROSS_RANGE_SIGMA_FLOOR: f64 = 1.0;
+const _: () = assert!(
+    CROSS_RANGE_SIGMA_FLOOR == 1.0,
+    "cross_range_sigma uses Ratio::ONE"
+);
 
 /// Why a noise configuration was refused.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -165,9 +169,6 @@ pub struct RangeAzimuthNoise<N: Numeric> {
     bearing_sigma: N::Ratio,
     /// √Q, m/s².
     process_sigma: N::Ratio,
-    /// [`CROSS_RANGE_SIGMA_FLOOR`] in `N`, converted once here rather than
-    /// on every update.
-    cross_range_sigma_floor: N::Ratio,
 }
 
 impl<N: Numeric> RangeAzimuthNoise<N> {
@@ -207,7 +208,6 @@ impl<N: Numeric> RangeAzimuthNoise<N> {
             range_sigma,
             bearing_sigma,
             process_sigma,
-            cross_range_sigma_floor: N::Ratio::from_f64_lossy(CROSS_RANGE_SIGMA_FLOOR),
         })
     }
 
@@ -243,7 +243,9 @@ impl<N: Numeric> RangeAzimuthNoise<N> {
     /// Cross-range standard deviation √VAR = R·σ_B at range R (m), floored
     /// at [`CROSS_RANGE_SIGMA_FLOOR`].
     pub fn cross_range_sigma(&self, range: N::Length) -> N::Ratio {
-        (N::Ratio::from(range) * self.bearing_sigma).max_of(self.cross_range_sigma_floor)
+        // The floor is one metre (checked at compile time below): `ONE`,
+        // not a conversion from f64 on every update.
+        (N::Ratio::from(range) * self.bearing_sigma).max_of(N::Ratio::ONE)
     }
 }
 
@@ -300,14 +302,13 @@ impl<N: Numeric> CovarianceFactor<N> {
     /// He et al. eq. (8), PCOV = Φ P Φᵀ + Γ Q Γᵀ with Φ = [1 T; 0 1],
     /// Γ = [T²/2; T], in factor form: [Φ·L | Γ·√Q] =
     /// [a + T b, T c, T² √Q/2; b, c, T √Q] triangularised by two Givens
-    /// rotations (which leave M·Mᵀ = PCOV unchanged).
-    fn predict(&self, dt: N::Ratio, process_sigma: N::Ratio) -> Self {
+    /// rotations (which leave M·Mᵀ = PCOV unchanged). `noise` is Γ·√Q,
+    /// formed once per interval for both directions.
+    fn predict(&self, dt: N::Ratio, noise: &ProcessNoiseColumn<N>) -> Self {
         let m00 = self.a + dt * self.b;
         let m01 = dt * self.c;
-        let m02 = (dt * dt * process_sigma).half();
-        let m12 = dt * process_sigma;
         let (r0, r10, r11) = givens(m00, m01, self.b, self.c);
-        let (a, b, r12) = givens(r0, m02, r10, m12);
+        let (a, b, r12) = givens(r0, noise.position, r10, noise.velocity);
         CovarianceFactor {
             a,
             b,
@@ -317,45 +318,45 @@ impl<N: Numeric> CovarianceFactor<N> {
 
     /// Position and velocity gains K = PCOV·Dᵀ/(PCOV₁₁ + σ²) for a position
     /// measurement of standard deviation `sigma` (eq. 9: α and β/T; eq. 10:
-    /// W1 and W2), and the factor of the updated covariance (I − K D)·PCOV:
-    /// with s = 1 + (a/σ)², a and b shrink by √s and c is unchanged. The
-    /// branch keeps the ratio of a and σ at most 1 so no square exceeds 1.
+    /// W1 and W2), and the factor of the updated covariance (I − K D)·PCOV.
+    /// With h = √(a² + σ²) (a hypot: no square is formed): the gains are
+    /// (a/h)² and (b/h)·(a/h), and a, b shrink by σ/h (P₁₁⁺ = a²σ²/h²), c
+    /// unchanged. Every ratio formed is ≤ 1 or b/h ≤ b/σ.
     fn update(&self, sigma: N::Ratio) -> (N::Ratio, N::Ratio, Self) {
         let CovarianceFactor { a, b, c } = *self;
-        let one = N::Ratio::ONE;
-        if a <= sigma {
-            let u = a / sigma;
-            let s = one + u * u;
-            let root = s.sqrt();
-            let kp = u * u / s;
-            let kv = b * (u / s) / sigma;
-            (
-                kp,
-                kv,
-                CovarianceFactor {
-                    a: a / root,
-                    b: b / root,
-                    c,
-                },
-            )
-        } else {
-            let w = sigma / a;
-            let s = one + w * w;
-            let root = s.sqrt();
-            let b_over_a = b / a;
-            let kp = one / s;
-            let kv = b_over_a / s;
-            let shrunk = CovarianceFactor {
-                a: sigma / root,
-                b: b_over_a * sigma / root,
+        let h = a.hypot(sigma);
+        let a_over_h = a / h;
+        let shrink = sigma / h;
+        (
+            a_over_h * a_over_h,
+            (b / h) * a_over_h,
+            CovarianceFactor {
+                a: a * shrink,
+                b: b * shrink,
                 c,
-            };
-            (kp, kv, shrunk)
-        }
+            },
+        )
     }
 
     fn is_valid(&self) -> bool {
         self.a.is_valid() && self.b.is_valid() && self.c.is_valid()
+    }
+}
+
+/// Γ·√Q of eq. (8) for one interval T: (T²·√Q/2, T·√Q), the same along
+/// and across range.
+struct ProcessNoiseColumn<N: Numeric> {
+    position: N::Ratio,
+    velocity: N::Ratio,
+}
+
+impl<N: Numeric> ProcessNoiseColumn<N> {
+    fn new(dt: N::Ratio, process_sigma: N::Ratio) -> Self {
+        let velocity = dt * process_sigma;
+        ProcessNoiseColumn {
+            position: (dt * velocity).half(),
+            velocity,
+        }
     }
 }
 
@@ -604,12 +605,12 @@ impl<N: Numeric> RangeAzimuthFilter<N> {
         let (xp, yp) = (x + N::Length::from(vx * t), y + N::Length::from(vy * t));
         // Eqs. (7)–(8), then eq. (9) with σ_R (reading 3) and eq. (10) with
         // √VAR, and the covariance update (reading 4).
-        let q = self.noise.process_sigma;
+        let noise = ProcessNoiseColumn::new(t, self.noise.process_sigma);
         let (alpha, range_velocity_gain, range_factor) = self
             .range_factor
-            .predict(t, q)
+            .predict(t, &noise)
             .update(self.noise.range_sigma);
-        let (w1, w2, cross_factor) = self.cross_factor.predict(t, q).update(cross_sigma);
+        let (w1, w2, cross_factor) = self.cross_factor.predict(t, &noise).update(cross_sigma);
         // Eq. (11) with the predicted position (reading 1).
         let range_residual = range - (sin_b * xp + cos_b * yp);
         let cross_residual = cos_b * xp - sin_b * yp;
@@ -673,9 +674,9 @@ impl<N: Numeric> RangeAzimuthFilter<N> {
             }
             Phase::Tracking => {
                 let t = N::Ratio::from(dt);
-                let q = self.noise.process_sigma;
-                let range_factor = self.range_factor.predict(t, q);
-                let cross_factor = self.cross_factor.predict(t, q);
+                let noise = ProcessNoiseColumn::new(t, self.noise.process_sigma);
+                let range_factor = self.range_factor.predict(t, &noise);
+                let cross_factor = self.cross_factor.predict(t, &noise);
                 let position = self.predict(dt).map(|p| p.position);
                 match position {
                     Ok(position) if range_factor.is_valid() && cross_factor.is_valid() => {
