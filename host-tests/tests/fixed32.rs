@@ -227,7 +227,8 @@ proptest! {
     /// operands of any sign and scale: the product within half an ulp
     /// (exact i128), the quotient and the square root correctly rounded
     /// (f64's 53 bits leave 2⁻⁵² of slack), hypot within half an ulp plus
-    /// 2⁻⁵⁰, the sum within half an ulp (plus 2⁻³⁰ of one).
+    /// 2⁻⁵⁰ (hypot3 too, and equal to hypot with a zero), the sum within
+    /// half an ulp (plus 2⁻³⁰ of one).
     #[test]
     fn scaled_primitives_round_to_nearest(
         ma in scaled_mantissa(), ea in -50i32..34, mb in scaled_mantissa(), eb in -50i32..34,
@@ -250,6 +251,12 @@ proptest! {
         let h = x.hypot(y);
         let exact = xf.hypot(yf);
         prop_assert!((h.to_f64() - exact).abs() <= 0.5 * ulp(h) + exact * 2f64.powi(-50));
+        // Three lengths: x, y and their product (another scale).
+        let z = x * y;
+        let h3 = x.hypot3(y, z);
+        let exact = xf.hypot(yf).hypot(z.to_f64());
+        prop_assert!((h3.to_f64() - exact).abs() <= 0.5 * ulp(h3) + exact * 2f64.powi(-50));
+        prop_assert_eq!(x.hypot3(y, Ratio::ZERO), h);
         // The sum against the exact i128 sum, in units of 2^base (exponents
         // within 60 of each other keep every term below 2¹²²): within half
         // an ulp plus 2⁻³⁰ of one (the bit beyond the 31 guard bits when the

@@ -84,9 +84,10 @@
 //! 10⁻¹⁹ to 4·10¹⁸. Nothing of size R² is ever formed (√VAR = R·σ_B is
 //! used, and σ_B = √σ_B² is taken once). The algebra is the same filter:
 //!
-//! * eq. (8) becomes L⁻ = the triangularisation of [Φ·L | Γ·√Q] by two
-//!   Givens rotations (L⁻L⁻ᵀ = ΦPΦᵀ + ΓQΓᵀ exactly), every length taken
-//!   with a hypot that never squares its arguments;
+//! * eq. (8) becomes L⁻ = the Cholesky factor of M·Mᵀ for
+//!   M = [Φ·L | Γ·√Q] (L⁻L⁻ᵀ = ΦPΦᵀ + ΓQΓᵀ exactly), formed from M's rows:
+//!   their lengths, dot product and 2×2 minors (Lagrange's identity),
+//!   every length taken with a hypot that never squares its arguments;
 //! * eqs. (9)–(10) and the update P⁺ = (I − KD)·PCOV become, with
 //!   u = a/σ (a = √PCOV₁₁, σ the direction's measurement standard
 //!   deviation): gains u²/(1 + u²) and (b/σ)·u/(1 + u²); a and b divided
@@ -108,14 +109,15 @@
 //! The velocity is one of them because a two-point velocity from polar
 //! measurements carries the cross-range noise over T (34 km/s for the
 //! paper's 5° at 280 km), beyond a speed format. Positions are
-//! [`Numeric::Length`]; sin and cos come from [`Numeric::sin_cos`] (CORDIC on
-//! a binary angle in the fast fixed point).
+//! [`Numeric::Length`]; sin and cos come from [`Numeric::sin_cos`] (a sine
+//! table with a Taylor correction on a binary angle in the fast fixed
+//! point).
 //!
 //! Accuracy against the independent f64 reference (host-tests
 //! `range_azimuth.rs`, the paper's 280 km scenario over 500 scans and a
-//! TCAS encounter with coasts): f32 within 0.11 m and 0.03 m/s, Q32.32
-//! within 3 mm and 6.3·10⁻⁵ m/s, gains within 5·10⁻⁹; the fast fixed point
-//! within 1.7 mm and 2.6·10⁻⁴ m/s, gains within 1.1·10⁻⁷.
+//! TCAS encounter with coasts): f32 within 0.15 m and 0.03 m/s, Q32.32
+//! within 3.8 mm and 6.6·10⁻⁵ m/s, gains within 5.6·10⁻⁹; the fast fixed
+//! point within 1.8 mm and 2.6·10⁻⁴ m/s, gains within 1.1·10⁻⁷.
 
 use crate::filter::{check_interval, FilterError, Phase};
 use crate::num::{Numeric, Quantity, Real};
@@ -251,18 +253,6 @@ impl<N: Numeric> RangeAzimuthNoise<N> {
 
 pub use crate::num::{azimuth_of, hypot};
 
-/// A Givens rotation of two columns of a two-row array that zeroes the
-/// first row's second entry: returns the first row's new first entry (its
-/// length, ≥ 0) and the second row's two new entries.
-fn givens<R: Real>(r0p: R, r0q: R, r1p: R, r1q: R) -> (R, R, R) {
-    let r = r0p.hypot(r0q);
-    if r == R::ZERO {
-        return (r, r1p, r1q);
-    }
-    let (cos, sin) = (r0p / r, r0q / r);
-    (r, cos * r1p + sin * r1q, cos * r1q - sin * r1p)
-}
-
 /// A position/velocity covariance along one direction, as its lower
 /// Cholesky factor L = [a 0; b c] (P = L·Lᵀ): P₁₁ = a² (m²),
 /// P₁₂ = a·b (m²/s), P₂₂ = b² + c² (m²/s²); a, c ≥ 0 in m and m/s, held as
@@ -300,19 +290,34 @@ impl<N: Numeric> CovarianceFactor<N> {
     }
 
     /// He et al. eq. (8), PCOV = Φ P Φᵀ + Γ Q Γᵀ with Φ = [1 T; 0 1],
-    /// Γ = [T²/2; T], in factor form: [Φ·L | Γ·√Q] =
-    /// [a + T b, T c, T² √Q/2; b, c, T √Q] triangularised by two Givens
-    /// rotations (which leave M·Mᵀ = PCOV unchanged). `noise` is Γ·√Q,
-    /// formed once per interval for both directions.
+    /// Γ = [T²/2; T], in factor form: the rows of M = [Φ·L | Γ·√Q] =
+    /// [a + T b, T c, g₀; b, c, g₁] (`noise` = (g₀, g₁), formed once per
+    /// interval) give PCOV = M·Mᵀ, whose factor is a' = |row₀|,
+    /// b' = row₀·row₁/a' and c' = |row₀ × row₁|/a' (Lagrange's identity,
+    /// c'² = |row₀|²|row₁|² − (row₀·row₁)² over a'², without the
+    /// subtraction). The 2×2 minors of M are a·c (det Φ = 1), a g₁ + b g₀
+    /// and c g₀ (T g₁ = 2 g₀): no cancellation. Every product is of a
+    /// quantity and a ratio to a' (a fixed-range format would overflow on
+    /// a·c); lengths by hypots that never square their arguments.
     fn predict(&self, dt: N::Ratio, noise: &ProcessNoiseColumn<N>) -> Self {
-        let m00 = self.a + dt * self.b;
-        let m01 = dt * self.c;
-        let (r0, r10, r11) = givens(m00, m01, self.b, self.c);
-        let (a, b, r12) = givens(r0, noise.position, r10, noise.velocity);
+        let CovarianceFactor { a, b, c } = *self;
+        let (g0, g1) = (noise.position, noise.velocity);
+        let m00 = a + dt * b;
+        let m01 = dt * c;
+        let a_new = m00.hypot3(m01, g0);
+        if a_new == N::Ratio::ZERO {
+            // Row 0 is zero: PCOV = [0 0; 0 |row₁|²].
+            return CovarianceFactor {
+                a: a_new,
+                b: N::Ratio::ZERO,
+                c: b.hypot3(c, g1),
+            };
+        }
+        let (u, v, w, s) = (m00 / a_new, m01 / a_new, g0 / a_new, a / a_new);
         CovarianceFactor {
-            a,
-            b,
-            c: r11.hypot(r12),
+            a: a_new,
+            b: u * b + v * c + w * g1,
+            c: (c * s).hypot3(g1 * s + b * w, c * w),
         }
     }
 

@@ -555,11 +555,51 @@ impl<U> Scaled<U> {
             0
         };
         // Below 2⁶² + 2⁶² = 2⁶³, and at least 2⁶⁰.
-        let sum = square(high.mantissa).wrapping_add(low_square);
+        Self::root_of_squares(
+            square(high.mantissa).wrapping_add(low_square),
+            high.exponent(),
+        )
+    }
+
+    /// √(a² + b² + c²) as [`Self::hypot_of`]: the squares of the mantissas
+    /// aligned to the largest exponent (each truncated below 2⁻⁶² of the
+    /// largest square), one correctly rounded square root: within half an
+    /// ulp plus 2⁻⁵⁹ relative.
+    fn hypot3_of(self, b: Self, c: Self) -> Self {
+        if self.is_invalid() || b.is_invalid() || c.is_invalid() {
+            return Self::INVALID;
+        }
+        // Zero carries the smallest exponent: the largest is a nonzero
+        // one's unless all three are zero.
+        let top = self.exponent.max(b.exponent).max(c.exponent);
+        let square_at_top = |v: Self| {
+            let gap = (top as i32).wrapping_sub(v.exponent()) as u32; // ≥ 0
+            let magnitude = u64::from(v.mantissa.unsigned_abs());
+            if gap < 32 {
+                magnitude.wrapping_mul(magnitude) >> (gap << 1)
+            } else {
+                0
+            }
+        };
+        // Each below 2⁶²: the sum is below 3·2⁶² < 2⁶⁴.
+        let sum = square_at_top(self)
+            .wrapping_add(square_at_top(b))
+            .wrapping_add(square_at_top(c));
+        if sum == 0 {
+            return Self::ZERO_VALUE;
+        }
+        Self::root_of_squares(sum, i32::from(top))
+    }
+
+    /// √(`sum`)·2^`exponent` for a sum of squared mantissas in [2⁶⁰, 2⁶⁴)
+    /// (at scale 2^(2·`exponent`)), correctly rounded: normalised to
+    /// [2⁶², 2⁶⁴) by an even shift, its floor root has 32 bits and its last
+    /// bit is the rounding bit.
+    fn root_of_squares(sum: u64, exponent: i32) -> Self {
         let (n, exponent) = if sum >> 62 == 0 {
-            (sum << 2, high.exponent().wrapping_sub(1))
+            (sum << 2, exponent.wrapping_sub(1))
         } else {
-            (sum, high.exponent())
+            (sum, exponent)
         };
         let r = isqrt_floor_normalized(n);
         // √n·2^exponent with √n = r + f, f < 1: r/2 rounded, one bit up.
@@ -753,5 +793,10 @@ impl Real for Scaled<One> {
     /// holds them): within half an ulp, one square root.
     fn hypot(self, other: Self) -> Self {
         self.hypot_of(other)
+    }
+
+    /// The same with three squares: within half an ulp plus 2⁻⁵⁹ relative.
+    fn hypot3(self, b: Self, c: Self) -> Self {
+        self.hypot3_of(b, c)
     }
 }
