@@ -257,6 +257,8 @@ proptest! {
         let exact = xf.hypot(yf).hypot(z.to_f64());
         prop_assert!((h3.to_f64() - exact).abs() <= 0.5 * ulp(h3) + exact * 2f64.powi(-50));
         prop_assert_eq!(x.hypot3(y, Ratio::ZERO), h);
+        // Halving is exact.
+        prop_assert_eq!(x.half().to_f64(), xf / 2.0);
         // The sum against the exact i128 sum, in units of 2^base (exponents
         // within 60 of each other keep every term below 2¹²²): within half
         // an ulp plus 2⁻³⁰ of one (the bit beyond the 31 guard bits when the

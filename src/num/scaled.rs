@@ -763,7 +763,17 @@ where
         if self.is_invalid() || self.is_zero() {
             return self;
         }
-        Self::from_wide(i64::from(self.mantissa), self.exponent().wrapping_sub(1))
+        // Exact: the same mantissa one exponent down (flushed to zero
+        // below the range, as every result).
+        let exponent = self.exponent().wrapping_sub(1);
+        if exponent < EXPONENT_MIN {
+            return Self::ZERO_VALUE;
+        }
+        Scaled {
+            mantissa: self.mantissa,
+            exponent: exponent as i16,
+            unit: PhantomData,
+        }
     }
 }
 
