@@ -253,32 +253,18 @@ impl<U> Scaled<U> {
         let top = 63u32.wrapping_sub(magnitude.leading_zeros());
         let (magnitude, exponent) = if top > TOP_BIT {
             let shift = top.wrapping_sub(TOP_BIT); // 1..=33
-                                                   // Round half away from zero: drop all but one extra bit, add it.
+                                                   // Round half away from zero: drop all but one extra bit, add it
+                                                   // (at most 2³¹, which `finish` takes as one bit more).
             let rounded = (magnitude >> shift.wrapping_sub(1)).wrapping_add(1) >> 1;
-            let exponent = exponent.saturating_add(shift as i32);
-            if rounded >> 31 != 0 {
-                // Rounded up to 2³¹: one bit more, exactly.
-                (rounded >> 1, exponent.saturating_add(1))
-            } else {
-                (rounded, exponent)
-            }
+            (rounded as u32, exponent.saturating_add(shift as i32))
         } else {
             let shift = TOP_BIT.wrapping_sub(top); // 0..=30
-            (magnitude << shift, exponent.saturating_sub(shift as i32))
+            (
+                (magnitude << shift) as u32,
+                exponent.saturating_sub(shift as i32),
+            )
         };
-        if exponent > EXPONENT_MAX {
-            return Self::INVALID;
-        }
-        if exponent < EXPONENT_MIN {
-            return Self::ZERO_VALUE;
-        }
-        // magnitude < 2³¹: the cast is exact and the negation cannot wrap.
-        let m = magnitude as i32;
-        Scaled {
-            mantissa: if negative { m.wrapping_neg() } else { m },
-            exponent: exponent as i16,
-            unit: PhantomData,
-        }
+        Self::finish(negative, magnitude, exponent)
     }
 
     /// The integer `v`.
@@ -313,7 +299,7 @@ impl<U> Scaled<U> {
     #[inline(always)]
     fn finish(negative: bool, magnitude: u32, exponent: i32) -> Self {
         let (m, exponent) = if magnitude >> 31 != 0 {
-            (magnitude >> 1, exponent.wrapping_add(1))
+            (magnitude >> 1, exponent.saturating_add(1))
         } else {
             (magnitude, exponent)
         };
