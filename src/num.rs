@@ -441,7 +441,8 @@ impl Neg for Fix {
         if self.is_sentinel() {
             Fix::saturated(!self.0.is_negative())
         } else {
-            Fix(-self.0)
+            // Not a sentinel, so not i64::MIN: the negation cannot wrap.
+            Fix(self.0.wrapping_neg())
         }
     }
 }

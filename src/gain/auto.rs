@@ -318,10 +318,7 @@ impl<N: Numeric, const D: usize> AutoGains<N, D> {
     }
 
     /// The gains of the update `ctx` and the state after it.
-    fn plan(
-        &self,
-        ctx: &GainContext<N, D>,
-    ) -> Result<([Gains<N>; D], [AutoAxis<N>; D]), ScheduleError> {
+    fn plan(&self, ctx: &GainContext<N, D>) -> Result<Plan<N, D>, ScheduleError> {
         let constants = Constants::new();
         let span = self.span_squared(ctx.dt);
         let nu = self.normalised_innovations(ctx);
@@ -427,3 +424,6 @@ impl<N: Numeric, const D: usize> GainSchedule<N, D> for AutoGains<N, D> {
         self.per_last_interval = N::Speed::ZERO;
     }
 }
+
+// The gains of an update and the axes' state after it (`AutoGains::plan`).
+type Plan<N, const D: usize> = ([Gains<N>; D], [AutoAxis<N>; D]);

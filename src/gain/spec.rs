@@ -459,7 +459,8 @@ impl ScheduleSpec {
         // Byte offset of each key given, to point config errors at it.
         let mut given: [Option<usize>; MAX_KEYS] = [None; MAX_KEYS];
         if let Some(params) = params {
-            let mut offset = name.len() + 1;
+            // Offsets within a string's length: saturation never happens.
+            let mut offset = name.len().saturating_add(1);
             for part in params.split(',') {
                 if part.is_empty() {
                     return Err(err(SpecErrorKind::EmptyParameter, offset));
@@ -478,10 +479,10 @@ impl ScheduleSpec {
                     return Err(err(SpecErrorKind::DuplicateParameter, offset));
                 }
                 *slot = Some(offset);
-                parsed
-                    .set(index, value)
-                    .map_err(|kind| err(kind, offset + key.len() + 1))?;
-                offset += part.len() + 1;
+                parsed.set(index, value).map_err(|kind| {
+                    err(kind, offset.saturating_add(key.len()).saturating_add(1))
+                })?;
+                offset = offset.saturating_add(part.len()).saturating_add(1);
             }
         }
         if name == "fixed" {
