@@ -5,8 +5,9 @@
 use std::collections::BTreeSet;
 
 use abtrack_host_tests::firmware_elf::{
-    branches, callers_of, check_layout, crate_of, demangle, is_panic_symbol, owner_of, panic_calls,
-    panic_symbols, parse_sections, parse_symbolizer, Allowance, LayoutError, Owner, PanicCall,
+    branches, callers_of, check_layout, crate_of, demangle, frame_kind, is_panic_symbol, owner_of,
+    panic_calls, panic_symbols, parse_sections, parse_symbolizer, Allowance, FrameKind,
+    LayoutError, Owner, PanicCall, SourceFrame,
 };
 
 const DISASSEMBLY: &str = "
