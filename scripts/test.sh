@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
 # Runs every test of the project:
 #   1. formatting (cargo fmt --check, root crate and host-tests),
-#   2. host tests (cd host-tests && cargo test --release),
+#   2. host tests (cd host-tests && cargo test --release) and the library's
+#      doc examples (cargo test --doc, run from host-tests for the host target),
 #   3. the library alone for the three thumb targets (no default features),
 #      its dependency tree (no firmware crates) and `cargo publish --dry-run`,
 #   4. the firmware (every binary of boards/qemu, the benchmark with its
@@ -173,6 +174,7 @@ build_nrf52840_dk() {
 step "cargo fmt --check" cargo fmt --check
 step "cargo fmt --check (host-tests)" in_host_tests cargo fmt --check
 step "host tests (cargo test --release)" in_host_tests cargo test --release
+step "library doc examples (cargo test --doc)" in_host_tests cargo test --release --doc --manifest-path ../Cargo.toml -p abtrack
 for t in "${ABTRACK_TARGETS[@]}"; do
     step "library alone for $t" cargo build --release --lib --no-default-features --target "$t"
 done
