@@ -65,10 +65,15 @@ pub struct AutoConfig {
 #[cfg_attr(feature = "defmt", derive(defmt::Format))]
 pub enum AutoSensor {
     /// σ per axis, m.
-    Cartesian { sigma: f64 },
+    Cartesian {
+        /// σ, m.
+        sigma: f64,
+    },
     /// σ_R (m) and σ_B (rad) of a sensor at the origin.
     Polar {
+        /// σ_R, m.
         range_sigma: f64,
+        /// σ_B, rad.
         bearing_sigma: f64,
     },
 }
@@ -125,6 +130,7 @@ impl AutoConfig {
         })
     }
 
+    /// Checks the sensor figures and `n_max`.
     pub fn validate(&self) -> Result<(), ConfigError> {
         self.sensor()?;
         LeastSquaresConfig { n_max: self.n_max }.validate()
@@ -235,6 +241,7 @@ impl<R: Real> Constants<R> {
 }
 
 impl<N: Numeric, const D: usize> AutoGains<N, D> {
+    /// The schedule for the sensor `c` describes (`docs/auto.md`).
     pub fn new(c: &AutoConfig) -> Result<Self, ConfigError> {
         c.validate()?;
         let noise = match c.sensor()? {

@@ -38,6 +38,7 @@ pub struct ScheduleInfo {
     pub names: &'static [&'static str],
     /// The keys and their defaults.
     pub parameters: &'static str,
+    /// One line: what the schedule is and where it comes from.
     pub summary: &'static str,
 }
 
@@ -217,7 +218,10 @@ pub enum SpecErrorKind {
     /// The value does not parse as the key's kind of number.
     InvalidNumber,
     /// A parameter without a default was not given.
-    MissingParameter { parameter: &'static str },
+    MissingParameter {
+        /// The parameter's key.
+        parameter: &'static str,
+    },
     /// The values parse but the configuration is refused.
     Config(ConfigError),
 }
@@ -226,7 +230,9 @@ pub enum SpecErrorKind {
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 #[cfg_attr(feature = "defmt", derive(defmt::Format))]
 pub struct SpecError {
+    /// What is wrong.
     pub kind: SpecErrorKind,
+    /// Byte offset in the spec string of the part at fault.
     pub offset: usize,
 }
 

@@ -44,6 +44,27 @@ pub type IntervalSquared = Scaled<unit::SecondSquared>;
 pub type Angle = Scaled<unit::Radian>;
 
 /// The fast fixed-point number system (module docs).
+///
+/// Values enter and leave through [`Quantity`]'s conversions, in SI units,
+/// rounded to the quantity's format:
+///
+/// ```
+/// use abtrack::num::fixed32::{Fixed32, Length, Speed};
+/// use abtrack::{NumError, Numeric, Quantity};
+///
+/// let x: <Fixed32 as Numeric>::Length = Length::try_from_f64(1234.5678)?;
+/// assert_eq!(Length::FRAC_BITS, 12); // I20F12: steps of 2⁻¹² m
+/// assert!((x.to_f64() - 1234.5678).abs() <= 0.5 / 4096.0);
+/// assert_eq!(x.to_bits(), (1234.5678f64 * 4096.0).round() as i32);
+/// // Beyond ±524 288 m, or not a number: refused, never wrapped.
+/// assert_eq!(Length::try_from_f64(6.0e5), Err(NumError::OutOfRange));
+/// assert_eq!(Speed::try_from_f64(f64::NAN), Err(NumError::NotFinite));
+/// // A result out of range is a sticky sentinel, caught by `is_valid`.
+/// let far = Length::try_from_f64(500_000.0)?;
+/// assert!(!(far + far).is_valid());
+/// assert!(!(far + far - far).is_valid());
+/// # Ok::<(), NumError>(())
+/// ```
 #[derive(Debug, Clone, Copy, Default, PartialEq, Eq)]
 #[cfg_attr(feature = "defmt", derive(defmt::Format))]
 pub struct Fixed32;

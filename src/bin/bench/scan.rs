@@ -156,7 +156,9 @@ impl Scene {
     /// Where target `i` of `targets` starts (it then flies along +x), m.
     fn start(self, i: usize, targets: usize) -> (f64, f64) {
         let grid = |cell: usize, cells: usize| {
-            let side = 1 + libm::sqrt(cells as f64) as usize;
+            // Never 0: no division by zero.
+            let side =
+                core::num::NonZeroUsize::MIN.saturating_add(libm::sqrt(cells as f64) as usize);
             (
                 (cell % side) as f64 * APART_M,
                 (cell / side) as f64 * APART_M,
