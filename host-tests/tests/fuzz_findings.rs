@@ -4,9 +4,9 @@
 //!
 //! F1 (tracker_scan, `fuzz/corpus/tracker_scan/finding-outside-gates-empty-scan`):
 //! `ScanReport::outside_gates` counts the table's unused measurement slots,
-//! not measurements: a scan with no measurement reports `M` of them. The
-//! fix belongs to track/table.rs (#11, "Counters that lie"); the test is
-//! ignored until it lands, then un-ignore it.
+//! not measurements: a scan with no measurement reported `M` of them.
+//! Fixed in track/table.rs (#11, "Counters that lie": only this scan's
+//! codes are counted).
 
 #[path = "../../src/firmware/demo_config.rs"]
 #[allow(dead_code)]
@@ -32,7 +32,6 @@ fn scan(
 }
 
 #[test]
-#[ignore = "F1: open until track/table.rs counts measurements, not slots (#11 'Counters that lie')"]
 fn f1_outside_gates_counts_measurements_not_free_slots() {
     let mut table: Box<Table> = Box::new(TrackTable::new());
     // The fuzzer's input: one scan, no measurement.
