@@ -56,7 +56,7 @@ use abtrack::scan::{
     AdvisoryLines, Collected, Intake, MeasurementSource, RunVerdict, ScanConfig, ScanLoop,
 };
 use abtrack::tcas::Advisory;
-use abtrack::track::FixedGainTrack;
+use abtrack::track::RangeAzimuthTrack;
 use abtrack::wire::{
     DecoderStats, Encoder, EndOfInput, Health, IntakeCounters, MeasurementReport, Message,
     ScanSummary, TrackReport, MAX_FRAMES_PER_BYTE, MAX_FRAME_LEN,
@@ -85,8 +85,8 @@ mod capacity {
 }
 use capacity::{MEASUREMENTS_PER_SCAN, QUEUE_LEN, TRACKS};
 
-type DemoLoop = ScanLoop<Native, FixedGainTrack<Native>, TRACKS, MEASUREMENTS_PER_SCAN>;
-type DemoConfig = ScanConfig<Native, abtrack::Gains<Native>>;
+type DemoLoop = ScanLoop<Native, RangeAzimuthTrack<Native>, TRACKS, MEASUREMENTS_PER_SCAN>;
+type DemoConfig = ScanConfig<Native, abtrack::filter::range_azimuth::RangeAzimuthNoise<Native>>;
 type DemoIntake = Intake<QUEUE_LEN>;
 
 /// SysTick period (QEMU's virtual clock, real time without `-icount`).

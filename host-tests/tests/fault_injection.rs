@@ -23,6 +23,7 @@
 mod demo_config;
 
 use abtrack::scan::RunVerdict;
+use abtrack::track::RangeAzimuthTrack;
 use abtrack::wire::{Health, Message, ScanSummary, TrackReport};
 use abtrack::Fix;
 use abtrack_host_tests::frames::{self, Fault, FaultStream, Faults, FirmwareRun};
@@ -123,15 +124,19 @@ fn run_firmware(board: &Board, elf: &Path, input: &[u8], name: &str) -> Run {
 /// The same input through the scan-loop core on the host.
 fn model(board: &Board, input: &[u8]) -> FirmwareRun {
     match board.machine {
-        "mps2-an386" => frames::run_like_the_firmware::<f32, 32, 64, 128>(
-            input,
-            &demo_config::demo_config::<f32>().unwrap(),
-        ),
-        "mps2-an385" => frames::run_like_the_firmware::<Fix, 32, 64, 128>(
-            input,
-            &demo_config::demo_config::<Fix>().unwrap(),
-        ),
-        _ => frames::run_like_the_firmware::<Fix, 8, 24, 32>(
+        "mps2-an386" => {
+            frames::run_like_the_firmware::<f32, RangeAzimuthTrack<f32>, 256, 256, 128>(
+                input,
+                &demo_config::demo_config::<f32>().unwrap(),
+            )
+        }
+        "mps2-an385" => {
+            frames::run_like_the_firmware::<Fix, RangeAzimuthTrack<Fix>, 256, 256, 128>(
+                input,
+                &demo_config::demo_config::<Fix>().unwrap(),
+            )
+        }
+        _ => frames::run_like_the_firmware::<Fix, RangeAzimuthTrack<Fix>, 16, 24, 32>(
             input,
             &demo_config::demo_config::<Fix>().unwrap(),
         ),
@@ -484,7 +489,7 @@ fn without_stack_line(log: &str) -> String {
 /// measurements.)
 fn demo_runs_are_identical(board: &Board) {
     let elf = firmware(board);
-    let reports = frames::scenario_reports("two-crossing", 1, 1).unwrap();
+    let reports = frames::scenario_reports(frames::TCAS_DEMO, 1, 1).unwrap();
     let input = frames::encode(
         &reports,
         Faults {

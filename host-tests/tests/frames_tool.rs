@@ -19,6 +19,8 @@ fn cartesian_csv_becomes_reports() {
                 y_cm: 300
             },
             altitude_ft: None,
+            altitude_25ft: false,
+            address: None,
         }
     );
     assert_eq!(r[2].time_ms, 1250);

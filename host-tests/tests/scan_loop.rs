@@ -118,7 +118,7 @@ impl<S: Scalar, const N: usize, const M: usize> Rig<S, N, M> {
 /// Runs the crossing through the loop in `S`; returns the rig's output and
 /// the number of garbage bytes inserted.
 fn run_crossing<S: Scalar>() -> (Output, Vec<TickReport>, DecoderStats, usize) {
-    let mut rig: Rig<S, 8, 16> = Rig::new(demo_config::demo_config::<S>().unwrap());
+    let mut rig: Rig<S, 8, 16> = Rig::new(demo_config::crossing_config::<S>().unwrap());
     let mut sensor = Sensor::default();
     let mut rng = Lcg(0x5CA1_AB1E);
     let mut garbage = 0;
@@ -309,7 +309,7 @@ fn queue_overflow_is_counted() {
 
     // The four queued ones reach the scan, in order.
     let mut scan_loop: Box<Loop<f64, 4, 8>> = Box::new(Loop::new());
-    let config = demo_config::demo_config::<f64>().unwrap();
+    let config = demo_config::crossing_config::<f64>().unwrap();
     let mut out = Output::default();
     let tick = scan_loop.on_tick(&config, &mut intake, out.sink()).unwrap();
     assert_eq!(tick.summary.counts.used, 4);
@@ -334,7 +334,7 @@ fn at(t: u32, x: f64) -> MeasurementReport {
 /// ones are counted, every measurement ends in exactly one scan or count.
 #[test]
 fn the_scan_clock_sorts_measurements_by_the_sensor_time() {
-    let config = demo_config::demo_config::<f32>().unwrap();
+    let config = demo_config::crossing_config::<f32>().unwrap();
     let mut scan_loop: Box<Loop<f32, 4, 8>> = Box::new(Loop::new());
     let mut out = Output::default();
     let mut q = direct(&[
@@ -381,7 +381,7 @@ fn the_scan_clock_sorts_measurements_by_the_sensor_time() {
 /// period, on schedule; the tracks coast and are deleted.
 #[test]
 fn a_gap_runs_empty_scans_on_schedule() {
-    let config = demo_config::demo_config::<f64>().unwrap();
+    let config = demo_config::crossing_config::<f64>().unwrap();
     let mut scan_loop: Box<Loop<f64, 4, 8>> = Box::new(Loop::new());
     let mut out = Output::default();
     let mut q = direct(&[
@@ -428,7 +428,7 @@ fn the_scan_clock_relocks_on_a_jump_and_keeps_the_track() {
         ("+31 s", 31_000),
         ("-1 h", (-3_600_000i32) as u32),
     ] {
-        let config = demo_config::demo_config::<Fix>().unwrap();
+        let config = demo_config::crossing_config::<Fix>().unwrap();
         let mut scan_loop: Box<Loop<Fix, 4, 8>> = Box::new(Loop::new());
         let mut out = Output::default();
         let start = 43_200_000u32; // noon
@@ -497,6 +497,8 @@ fn out_of_range_measurements_are_refused_and_counted() {
                 y_cm: 0,
             },
             altitude_ft: None,
+            altitude_25ft: false,
+            address: None,
         },
         MeasurementReport {
             time_ms: 0,
@@ -506,18 +508,24 @@ fn out_of_range_measurements_are_refused_and_counted() {
                 azimuth_bam: 0,
             },
             altitude_ft: None,
+            altitude_25ft: false,
+            address: None,
         },
         MeasurementReport {
             time_ms: 0,
             sensor: 1,
             position: MeasuredPosition::Cartesian { x_cm: 0, y_cm: 0 },
             altitude_ft: Some(200_000),
+            altitude_25ft: false,
+            address: None,
         },
         MeasurementReport {
             time_ms: 0,
             sensor: 1,
             position: MeasuredPosition::Cartesian { x_cm: 100, y_cm: 0 },
             altitude_ft: Some(5_000),
+            altitude_25ft: false,
+            address: None,
         },
     ];
     // Through the wire they are refused by the decoder (outside the
@@ -534,7 +542,7 @@ fn out_of_range_measurements_are_refused_and_counted() {
     // ... and if they reach the loop another way, by the conversion.
     let mut q = direct(&reports);
     let mut scan_loop: Box<Loop<Fix, 4, 8>> = Box::new(Loop::new());
-    let config = demo_config::demo_config::<Fix>().unwrap();
+    let config = demo_config::crossing_config::<Fix>().unwrap();
     let mut out = Output::default();
     let t = scan_loop.on_tick(&config, q.as_mut(), out.sink()).unwrap();
     assert_eq!((t.summary.counts.used, t.summary.counts.invalid), (1, 3));
@@ -546,7 +554,7 @@ fn out_of_range_measurements_are_refused_and_counted() {
 fn scan_overflow_is_counted() {
     let mut q = direct(&(0..7).map(|k| at(0, 100.0 * k as f64)).collect::<Vec<_>>());
     let mut scan_loop: Box<Loop<f64, 4, 5>> = Box::new(Loop::new());
-    let config = demo_config::demo_config::<f64>().unwrap();
+    let config = demo_config::crossing_config::<f64>().unwrap();
     let mut out = Output::default();
     let t = scan_loop.on_tick(&config, q.as_mut(), out.sink()).unwrap();
     assert_eq!(
@@ -580,8 +588,9 @@ fn demo_input_is_tracked<S: Scalar, const N: usize, const M: usize, const Q: usi
     assert!(encoded.corrupted > 0 && encoded.garbage_bytes > 0);
     let run = scenario::generate("two-crossing", SEED).unwrap();
 
-    let config = demo_config::demo_config::<S>().unwrap();
-    let fw = frames::run_like_the_firmware::<S, N, M, Q>(&encoded.bytes, &config);
+    let config = demo_config::crossing_config::<S>().unwrap();
+    let fw =
+        frames::run_like_the_firmware::<S, FixedGainTrack<S>, N, M, Q>(&encoded.bytes, &config);
     let h = fw.health;
     assert_eq!(
         h.decoder.accepted as usize,
@@ -691,6 +700,7 @@ fn run_tcas<S: Scalar>() -> Output {
         tracker,
         own: OwnAircraft::over_sea_level(v(scenario::TCAS_OWN_ALTITUDE_FT), S::ZERO),
         altitude: AltitudeTrackerConfig::default_for(AltitudeQuantum::ModeC).unwrap(),
+        altitude_25ft: AltitudeTrackerConfig::default_for(AltitudeQuantum::ModeS25).unwrap(),
         clock: ClockConfig::new(1000).unwrap(),
     };
     let reports = frames::scenario_reports("tcas-converging", 3, 2).unwrap();
@@ -846,7 +856,7 @@ fn print_memory_sizes() {
 #[test]
 fn confirmed_tracks_are_never_starved() {
     fn run<S: Scalar>() {
-        let config = demo_config::demo_config::<S>().unwrap();
+        let config = demo_config::crossing_config::<S>().unwrap();
         let mut scan_loop: Box<Loop<S, 8, 8>> = Box::new(Loop::new());
         let mut out = Output::default();
         let truth = |k: u32, n: usize| -> [f64; 2] {

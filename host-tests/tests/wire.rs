@@ -2,7 +2,7 @@
 //! conversions, and the streaming decoder (resynchronisation, counters, no
 //! panic on any input).
 
-use abtrack::tcas::{Advisory, SensitivityLevel};
+use abtrack::tcas::{Advisory, RaSense, RaStrength, SensitivityLevel};
 use abtrack::track::{Measurement, TrackStatus};
 use abtrack::wire::*;
 use abtrack::Fix;
@@ -61,6 +61,8 @@ fn cartesian(time_ms: u32, x_cm: i32, y_cm: i32, alt: Option<i32>) -> Measuremen
         sensor: 7,
         position: MeasuredPosition::Cartesian { x_cm, y_cm },
         altitude_ft: alt,
+        altitude_25ft: false,
+        address: None,
     }
 }
 
@@ -108,6 +110,8 @@ fn polar_frame_has_the_documented_layout() {
             azimuth_bam: 0x4000,
         },
         altitude_ft: None,
+        altitude_25ft: false,
+        address: None,
     });
     let bytes = emit_numbered(&m, 0xFFFF);
     let mut expected = vec![
@@ -137,6 +141,8 @@ fn track_report() -> TrackReport {
         vy_cm_per_s: -5_000,
         altitude: Some((7_900, -300)),
         range_tau_ds: Some(173),
+        address: ModeSAddress::new(0x00AB_CDEF),
+        ra: None,
     }
 }
 
@@ -146,6 +152,11 @@ fn scan_summary() -> ScanSummary {
         interval_ms: 2,
         counts: ScanCounts::from_values(std::array::from_fn(|i| 3 + i as u16)),
         highest_advisory: Advisory::Resolution,
+        ra: Some(RaCode {
+            sense: RaSense::Down,
+            strength: RaStrength::Increase,
+        }),
+        clear_of_conflict: false,
     }
 }
 
@@ -168,7 +179,21 @@ fn report_frames_round_trip() {
             sensitivity: None,
             ..track_report()
         }),
+        Message::Track(TrackReport {
+            advisory: Advisory::Resolution,
+            ra: Some(RaCode {
+                sense: RaSense::Up,
+                strength: RaStrength::Preventive,
+            }),
+            address: None,
+            ..track_report()
+        }),
         Message::Scan(scan_summary()),
+        Message::Scan(ScanSummary {
+            ra: None,
+            clear_of_conflict: true,
+            ..scan_summary()
+        }),
         Message::Health(health()),
     ] {
         let bytes = emit(&m);
@@ -305,6 +330,8 @@ fn new_checked_and_parse_name_what_is_wrong() {
             azimuth_bam: 0,
         },
         altitude_ft: None,
+        altitude_25ft: false,
+        address: None,
     };
     assert_eq!(
         Message::parse_bytes(&emit(&Message::Measurement(far_polar))),
@@ -399,6 +426,8 @@ fn polar_conversion_uses_binary_angles() {
             azimuth_bam: bam,
         },
         altitude_ft: None,
+        altitude_25ft: false,
+        address: None,
     };
     // 16384 steps = a quarter turn = π/2.
     match polar(16384, 100).position::<f64>() {
@@ -768,6 +797,8 @@ fn any_message() -> impl Strategy<Value = Message> {
                     MeasuredPosition::Cartesian { x_cm: x, y_cm: y }
                 },
                 altitude_ft: a,
+                altitude_25ft: false,
+                address: None,
             })
         });
     let track = (
@@ -803,6 +834,15 @@ fn any_message() -> impl Strategy<Value = Message> {
                 vy_cm_per_s: v[3],
                 altitude: alt,
                 range_tau_ds: tau,
+                address: ModeSAddress::new(t & 0x00FF_FFFF),
+                ra: (advisory == Advisory::Resolution).then_some(RaCode {
+                    sense: if id % 2 == 0 {
+                        RaSense::Up
+                    } else {
+                        RaSense::Down
+                    },
+                    strength: RaStrength::Positive,
+                }),
             })
         });
     let scan = (
@@ -822,6 +862,8 @@ fn any_message() -> impl Strategy<Value = Message> {
                     Advisory::Traffic,
                     Advisory::Resolution,
                 ][adv as usize],
+                ra: None,
+                clear_of_conflict: t % 2 == 0,
             })
         });
     let health = (

@@ -31,7 +31,9 @@ USAGE:
     frames --help
 
 encode writes one measurement frame per measurement, in time order:
-    --scenario NAME     a simulate scenario (two-crossing, tcas-converging, ...)
+    --scenario NAME     tcas-demo (the demo's default input: the TCAS scenario of
+                        issue 10, Mode S and Mode C replies) or a simulate
+                        scenario (two-crossing, tcas-converging, ...)
     --seed N            its seed (default 0)
     --csv FILE          or measurements from a CSV file: header t,x,y (s, m) or
                         t,range,azimuth[,alt] (s, m, rad clockwise from +y, ft;
@@ -160,7 +162,7 @@ fn parse(args: &[String]) -> Result<Command, String> {
             let source = match (scenario_name, csv, fault) {
                 (None, None, Some(fault)) => Source::Fault(fault, capacity),
                 (Some(name), None, None) => {
-                    if scenario::info(&name).is_none() {
+                    if name != frames::TCAS_DEMO && scenario::info(&name).is_none() {
                         return Err(format!(
                             "unknown scenario '{name}' (known: {})",
                             SCENARIO_NAMES.join(", ")
