@@ -343,66 +343,48 @@ impl Reporter {
 
 fn log_scan(s: &ScanSummary) {
     let (sec, ms) = secs(s.time_ms);
+    let ra = s.ra.map_or("", |ra| ra.name());
+    let coc = if s.clear_of_conflict {
+        ", CLEAR OF CONFLICT"
+    } else {
+        ""
+    };
     defmt::println!(
-        "t={=u32}.{=u32:03} s | {} | {=str}",
+        "t={=u32}.{=u32:03} s | {} | {=str} {=str}{=str}",
         sec,
         ms,
         s.counts,
-        s.highest_advisory.name()
+        s.highest_advisory.name(),
+        ra,
+        coc
     );
 }
 
+/// One track: id, status, Mode S address (or "Mode C"), position and
+/// velocity, altitude, advisory with the RA's sense and strength, tau.
 fn log_track(t: &TrackReport) {
     let (x, y) = (metres(t.x_cm), metres(t.y_cm));
     let (vx, vy) = (metres(t.vx_cm_per_s), metres(t.vy_cm_per_s));
     let (id, status, advisory) = (t.track_id, t.status.as_str(), t.advisory.name());
-    match (t.altitude, t.range_tau_ds) {
-        (None, None) => defmt::println!(
-            "    track {=u32} {=str} ({=f32}, {=f32}) m ({=f32}, {=f32}) m/s {=str}",
-            id,
-            status,
-            x,
-            y,
-            vx,
-            vy,
-            advisory
-        ),
-        (None, Some(tau)) => defmt::println!(
-            "    track {=u32} {=str} ({=f32}, {=f32}) m ({=f32}, {=f32}) m/s {=str}, tau {=f32} s",
-            id,
-            status,
-            x,
-            y,
-            vx,
-            vy,
-            advisory,
-            tau as f32 / 10.0
-        ),
-        (Some((alt, rate)), None) => defmt::println!(
-            "    track {=u32} {=str} ({=f32}, {=f32}) m ({=f32}, {=f32}) m/s {=i32} ft {=i16} ft/min {=str}",
-            id,
-            status,
-            x,
-            y,
-            vx,
-            vy,
-            alt,
-            rate,
-            advisory
-        ),
-        (Some((alt, rate)), Some(tau)) => defmt::println!(
-            "    track {=u32} {=str} ({=f32}, {=f32}) m ({=f32}, {=f32}) m/s {=i32} ft {=i16} ft/min {=str}, tau {=f32} s",
-            id,
-            status,
-            x,
-            y,
-            vx,
-            vy,
-            alt,
-            rate,
-            advisory,
-            tau as f32 / 10.0
-        ),
+    let ra = t.ra.map_or("", |ra| ra.name());
+    // 0 never is a Mode S address the demo uses; "Mode C" says it is absent.
+    let (address, mode) = match t.address {
+        Some(a) => (a.get(), "Mode S"),
+        None => (0, "Mode C"),
+    };
+    // i32::MIN: no altitude; u16::MAX: no tau (diverging).
+    let (alt, rate) = t.altitude.unwrap_or((i32::MIN, 0));
+    let tau = t.range_tau_ds.map_or(-1.0, |d| f32::from(d) / 10.0);
+    if t.altitude.is_some() {
+        defmt::println!(
+            "    track {=u32} {=str} {=str} {=u32:06x} ({=f32}, {=f32}) m ({=f32}, {=f32}) m/s {=i32} ft {=i16} ft/min | {=str} {=str} | tau {=f32} s",
+            id, status, mode, address, x, y, vx, vy, alt, rate, advisory, ra, tau
+        );
+    } else {
+        defmt::println!(
+            "    track {=u32} {=str} {=str} {=u32:06x} ({=f32}, {=f32}) m ({=f32}, {=f32}) m/s no altitude | {=str} {=str} | tau {=f32} s",
+            id, status, mode, address, x, y, vx, vy, advisory, ra, tau
+        );
     }
 }
 
@@ -541,22 +523,27 @@ fn scan(
     }
 }
 
-/// Drives the advisory lines for the scan's most severe advisory; logs a
-/// change.
+/// Drives the advisory lines (the board's TA and RA outputs) for the
+/// scan's most severe advisory; logs a change, with the RA's sense, and the
+/// clear of conflict.
 fn show_advisories(lines: &mut AdvisoryLines<io::AdvisoryPin>, summary: &ScanSummary) {
     let before = (lines.pins().0.is_high(), lines.pins().1.is_high());
+    let (sec, ms) = secs(summary.time_ms);
     if let Ok(true) = lines.show(summary.highest_advisory) {
         let (ta, ra) = (lines.pins().0.is_high(), lines.pins().1.is_high());
         if (ta, ra) != before {
-            let (sec, ms) = secs(summary.time_ms);
             defmt::println!(
-                "advisory lines at t={=u32}.{=u32:03} s: TA {=bool}, RA {=bool}",
+                "advisory lines at t={=u32}.{=u32:03} s: TA {=bool}, RA {=bool} {=str}",
                 sec,
                 ms,
                 ta,
-                ra
+                ra,
+                summary.ra.map_or("", |r| r.name())
             );
         }
+    }
+    if summary.clear_of_conflict {
+        defmt::println!("clear of conflict at t={=u32}.{=u32:03} s", sec, ms);
     }
 }
 
