@@ -68,8 +68,11 @@ use cortex_m::peripheral::syst::SystClkSource;
 use cortex_m::peripheral::NVIC;
 use cortex_m_rt::exception;
 
-/// Capacities. The micro:bit's 16 KiB of RAM set its own: the scenario
-/// has at most 20 measurements per scan (2 targets + Poisson clutter).
+/// Capacities. The micro:bit's 16 KiB of RAM set its own: the TCAS
+/// scenario has at most 6 replies per scan (4 intruders, false replies),
+/// and a track there costs a range–azimuth filter and an intruder's TCAS
+/// state (range and altitude trackers, threat state) in Q32.32: 8 tracks
+/// and 12 replies per scan leave the stack its margin (scripts/stack.sh).
 #[cfg(not(abtrack_board = "microbit"))]
 mod capacity {
     pub const TRACKS: usize = 256;
@@ -79,8 +82,8 @@ mod capacity {
 }
 #[cfg(abtrack_board = "microbit")]
 mod capacity {
-    pub const TRACKS: usize = 16;
-    pub const MEASUREMENTS_PER_SCAN: usize = 24;
+    pub const TRACKS: usize = 8;
+    pub const MEASUREMENTS_PER_SCAN: usize = 12;
     pub const QUEUE_LEN: usize = 32;
 }
 use capacity::{MEASUREMENTS_PER_SCAN, QUEUE_LEN, TRACKS};

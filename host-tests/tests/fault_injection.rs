@@ -136,7 +136,7 @@ fn model(board: &Board, input: &[u8]) -> FirmwareRun {
                 &demo_config::demo_config::<Fix>().unwrap(),
             )
         }
-        _ => frames::run_like_the_firmware::<Fix, RangeAzimuthTrack<Fix>, 16, 24, 32>(
+        _ => frames::run_like_the_firmware::<Fix, RangeAzimuthTrack<Fix>, 8, 12, 32>(
             input,
             &demo_config::demo_config::<Fix>().unwrap(),
         ),

@@ -221,5 +221,5 @@ fn demo_in_q32_32_like_the_cortex_m3() {
 
 #[test]
 fn demo_in_q32_32_like_the_micro_bit() {
-    check::<Fix, 16, 24, 32>();
+    check::<Fix, 8, 12, 32>();
 }
