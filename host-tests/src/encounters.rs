@@ -575,7 +575,8 @@ pub fn demo_scenario(seed: u64, scans: usize) -> Vec<DemoReply> {
                 intruder: Some(i),
             });
         }
-        if uniform(&mut rng, 0.0, 1.0) < 0.7 {
+        // (None after the last cycle: the input ends with its scan.)
+        if uniform(&mut rng, 0.0, 1.0) < 0.7 && k + 1 < scans {
             replies.push(DemoReply {
                 time_s: t + 0.5,
                 range_m: uniform(&mut rng, 1.0, 14.0) * NM,

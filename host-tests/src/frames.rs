@@ -624,7 +624,7 @@ pub fn layout_markdown() -> String {
 // ---------------------------------------------------------------------------
 
 /// A line or sensor fault, injected into the demo's input (the
-/// `two-crossing` scenario, seed 1) by [`fault_stream`]: the
+/// [`TCAS_DEMO`] scenario, seed [`FAULT_INPUT_SEED`]) by [`fault_stream`]: the
 /// fault-injection tests on the three boards, and `frames encode --fault`.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub enum Fault {
@@ -707,6 +707,9 @@ impl Fault {
 /// The scan at which [`Fault::Flood`], [`Fault::Backwards`] and
 /// [`Fault::Jump`] happen, and [`Fault::Gap`] ends.
 pub const FAULT_SCAN: u32 = 30;
+/// The seed of the demo input the faults are injected into (the demo's,
+/// scripts/demo-input.sh).
+pub const FAULT_INPUT_SEED: u64 = 1;
 /// [`Fault::Gap`]: scans missing before [`FAULT_SCAN`].
 pub const GAP_SCANS: u32 = 10;
 /// [`Fault::Backwards`]: the step, ms.
@@ -757,16 +760,16 @@ pub fn fault_stream(fault: Fault, capacity: usize, seed: u64) -> Result<FaultStr
         out.garbage_bytes = out.bytes.len();
         return Ok(out);
     }
-    let run = scenario::generate("two-crossing", 1).map_err(|e| e.to_string())?;
+    // The demo's input: scan k is the false reply before it (at k − 0.5 s)
+    // and the interrogation cycle's replies (at k s).
     let mut scans: Vec<(u32, f64, Vec<MeasurementReport>)> = Vec::new();
-    for scan in &run.scans {
-        let t = time_ms(scan.t)?;
-        let reports = scan
-            .measurements
-            .iter()
-            .map(|m| report(m, 1))
-            .collect::<Result<Vec<_>, _>>()?;
-        scans.push((t, scan.t, reports));
+    for reply in demo_scenario(FAULT_INPUT_SEED, TCAS_DEMO_SCANS) {
+        let k = reply.time_s.ceil();
+        let r = demo_report(&reply, 1)?;
+        match scans.last_mut() {
+            Some(scan) if scan.1 == k => scan.2.push(r),
+            _ => scans.push((time_ms(k)?, k, vec![r])),
+        }
     }
     let clutter = |rng: &mut crate::noise::SimRng, t: u32| {
         let mut u = || (uniform_index(rng, 1_000_001) as f64 / 1e6 - 0.5) * 10_000.0;
