@@ -26,6 +26,8 @@ use abtrack_host_tests::scenario;
 use std::collections::{BTreeMap, BTreeSet};
 
 type Loop<S, const N: usize, const M: usize> = ScanLoop<S, FixedGainTrack<S>, N, M>;
+/// The demo's scan loop on the micro:bit (src/main.rs).
+type MicrobitLoop = ScanLoop<Fix, abtrack::track::RangeAzimuthTrack<Fix>, 8, 12>;
 
 /// Numbers the frames of the test's sensor.
 #[derive(Default)]
@@ -568,10 +570,10 @@ fn scan_overflow_is_counted() {
     assert_eq!(c.used, c.outside_gates);
 }
 
-/// The demo's own input (what scripts/demo.sh feeds the firmware: the
+/// The demo's second input (`scripts/demo-input.sh FILE two-crossing`: the
 /// `two-crossing` scenario, seed 1, a corrupted frame every 97 and garbage
-/// before every 41st) through the demo's configuration and the firmware's
-/// pacing and capacities, in the three number types: the two targets are
+/// before every 41st) through its Cartesian configuration and the
+/// firmware's pacing, in the three number types: the two targets are
 /// tracked under one id each from early on to the end, the clutter confirms
 /// at most short-lived tracks, the faults are counted exactly, and the run
 /// is clean.
@@ -600,7 +602,7 @@ fn demo_input_is_tracked<S: Scalar, const N: usize, const M: usize, const Q: usi
     assert_eq!(h.decoder.frames_lost as usize, encoded.corrupted);
     assert_eq!(
         h.decoder.bytes_skipped as usize,
-        encoded.garbage_bytes + 28 * encoded.corrupted
+        encoded.garbage_bytes + 32 * encoded.corrupted
     );
     assert_eq!(h.intake.queue_full, 0);
     // Every accepted frame but the end of input used.
@@ -832,6 +834,10 @@ fn print_memory_sizes() {
             "ScanLoop<Fix, 8, 24>",
             std::mem::size_of::<Loop<Fix, 8, 24>>(),
         ),
+        (
+            "ScanLoop<Fix, RangeAzimuthTrack, 8, 12> (the micro:bit's)",
+            std::mem::size_of::<MicrobitLoop>(),
+        ),
         ("Intake<128>", std::mem::size_of::<Intake<128>>()),
         ("Intake<32>", std::mem::size_of::<Intake<32>>()),
         (
@@ -842,7 +848,8 @@ fn print_memory_sizes() {
     ] {
         eprintln!("{name}: {size} bytes");
     }
-    assert!(std::mem::size_of::<Loop<Fix, 8, 24>>() < 9 * 1024);
+    // The micro:bit's 16 KiB: the scan loop, the receiver and the stack.
+    assert!(std::mem::size_of::<MicrobitLoop>() < 9 * 1024);
 }
 
 /// Capacity under clutter (abtrack::scan, "Capacity"): three confirmed

@@ -31,9 +31,9 @@ USAGE:
     frames --help
 
 encode writes one measurement frame per measurement, in time order:
-    --scenario NAME     tcas-demo (the demo's default input: the TCAS scenario of
-                        issue 10, Mode S and Mode C replies) or a simulate
-                        scenario (two-crossing, tcas-converging, ...)
+    --scenario NAME     tcas-demo (the demo's default input: four TCAS intruders,
+                        Mode S and Mode C replies, false replies) or a
+                        simulate scenario (two-crossing, tcas-converging, ...)
     --seed N            its seed (default 0)
     --csv FILE          or measurements from a CSV file: header t,x,y (s, m) or
                         t,range,azimuth[,alt] (s, m, rad clockwise from +y, ft;
@@ -47,7 +47,7 @@ encode writes one measurement frame per measurement, in time order:
   largest number of measurements at one time) on stdout.
   Frames are numbered from 0 (the header's sequence number).
 
-encode --fault writes the demo's input (two-crossing, seed 1) with one fault
+encode --fault writes the demo's input (tcas-demo, seed 1) with one fault
 of the fault-injection tests: garbage, sync-garbage, crc-errors, truncated,
 oversize, flood (10 x --capacity extra measurements at t = 30 s; default 64),
 gap, backwards, far-clock, jump, out-of-range, clutter-storm, reversed,
