@@ -223,3 +223,74 @@ fn demo_in_q32_32_like_the_cortex_m3() {
 fn demo_in_q32_32_like_the_micro_bit() {
     check::<Fix, 8, 12, 32>();
 }
+
+/// One intruder tracked for 10 scans (closing at 100 m/s from 10 NM on
+/// bearing 30°, exact replies), then a scan in which it does not reply and
+/// another reply comes 30 m from its prediction (inside its gate), with
+/// `stranger`'s identity (address, altitude ft); through the demo's
+/// configuration in `S`. Returns that scan's counts.
+fn dropout_scan<S: Scalar>(
+    intruder: (Option<u32>, Option<f64>),
+    stranger: (Option<u32>, Option<f64>),
+) -> abtrack::wire::ScanCounts {
+    use abtrack::scan::{MeasurementQueue, ScanLoop};
+    use abtrack::wire::{MeasurementReport, ModeSAddress};
+    let config = demo_config::demo_config::<S>().unwrap();
+    let mut scan_loop: Box<ScanLoop<S, RangeAzimuthTrack<S>, 8, 12>> = Box::new(ScanLoop::new());
+    let mut queue = Box::new(MeasurementQueue::<16>::new());
+    let reply = |k: u32, extra_m: f64, (address, altitude): (Option<u32>, Option<f64>)| {
+        let range = 10.0 * NM - 100.0 * f64::from(k) + extra_m;
+        let r = MeasurementReport::polar_from_metres(k * 1000, 1, range, 0.5236, altitude).unwrap();
+        match address {
+            Some(a) => r.with_mode_s(ModeSAddress::new(a).unwrap(), false),
+            None => r,
+        }
+    };
+    let mut last = None;
+    for k in 0..11u32 {
+        let r = if k < 10 {
+            reply(k, 0.0, intruder)
+        } else {
+            reply(k, 30.0, stranger)
+        };
+        queue.push(r).unwrap();
+        let tick = scan_loop.on_tick(&config, queue.as_mut(), |_| {}).unwrap();
+        last = Some(tick.summary.counts);
+    }
+    let counts = last.unwrap();
+    assert_eq!((counts.used, counts.confirmed_tracks), (1, 1));
+    counts
+}
+
+/// Reply identity: a reply inside a track's gate updates it only if it is
+/// its intruder's: the same Mode S address, or (Mode C) no address and an
+/// altitude that correlates; otherwise the track coasts and the reply is
+/// counted outside the gates (a first point for a track of its own).
+#[test]
+fn replies_go_only_to_their_own_tracks() {
+    fn check<S: Scalar>() {
+        let mode_s = |a: u32| (Some(a), Some(8300.0));
+        let mode_c = |z: f64| (None, Some(z));
+        for (intruder, stranger, updates) in [
+            (mode_s(0xA00001), mode_s(0xA00001), true),
+            (mode_s(0xA00001), mode_s(0xA00002), false),
+            (mode_s(0xA00001), mode_c(8300.0), false),
+            (mode_c(8300.0), mode_s(0xA00002), false),
+            (mode_c(8300.0), mode_c(8300.0), true),
+            (mode_c(8300.0), mode_c(8400.0), true),
+            (mode_c(8300.0), mode_c(10300.0), false),
+            (mode_c(8300.0), (None, None), true),
+        ] {
+            let c = dropout_scan::<S>(intruder, stranger);
+            let case = format!("{}: {intruder:?} then {stranger:?}: {c}", S::NAME);
+            if updates {
+                assert_eq!((c.updated, c.coasted, c.outside_gates), (1, 0, 0), "{case}");
+            } else {
+                assert_eq!((c.updated, c.coasted, c.outside_gates), (0, 1, 1), "{case}");
+            }
+        }
+    }
+    check::<f64>();
+    check::<f32>();
+    check::<Fix>();
+}
