@@ -181,13 +181,8 @@ fn check<S: Scalar, const N: usize, const M: usize, const Q: usize>() {
     let coc = *r.clear_of_conflict_s.first().expect("clear of conflict");
     assert!(coc > ra, "clear of conflict at {coc} s, RA at {ra} s");
     assert_eq!(threat.addresses, vec![Some(0x004C_A123)]);
-    for i in 1..4 {
-        assert!(
-            r.timelines[i].worst < Some(Advisory::Resolution),
-            "{}: {:?}",
-            names[i],
-            r.timelines[i]
-        );
+    for (name, tl) in names.iter().zip(&r.timelines).skip(1) {
+        assert!(tl.worst < Some(Advisory::Resolution), "{name}: {tl:?}");
     }
     assert!(
         r.timelines[2].worst.is_some(),
@@ -206,7 +201,6 @@ fn check<S: Scalar, const N: usize, const M: usize, const Q: usize>() {
         (ta - ta_ref).abs() <= 8.0,
         "TA at {ta} s, reference {ta_ref} s"
     );
-    let _ = NM;
 }
 
 #[test]
@@ -240,7 +234,14 @@ fn dropout_scan<S: Scalar>(
     let mut queue = Box::new(MeasurementQueue::<16>::new());
     let reply = |k: u32, extra_m: f64, (address, altitude): (Option<u32>, Option<f64>)| {
         let range = 10.0 * NM - 100.0 * f64::from(k) + extra_m;
-        let r = MeasurementReport::polar_from_metres(k * 1000, 1, range, 0.5236, altitude).unwrap();
+        let r = MeasurementReport::polar_from_metres(
+            k * 1000,
+            1,
+            range,
+            std::f64::consts::FRAC_PI_6,
+            altitude,
+        )
+        .unwrap();
         match address {
             Some(a) => r.with_mode_s(ModeSAddress::new(a).unwrap(), false),
             None => r,
