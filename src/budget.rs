@@ -225,7 +225,9 @@ impl RunEnvelope {
 #[derive(Debug, Clone, Copy, PartialEq, Default)]
 #[cfg_attr(feature = "defmt", derive(defmt::Format))]
 pub struct GainSpread {
+    /// Largest |α − α_nominal| (dimensionless).
     pub alpha: f64,
+    /// Largest |β − β_nominal| (dimensionless).
     pub beta: f64,
     /// Tenne & Singh's γ (the acceleration correction is γ/(2T²)·e).
     pub gamma: f64,

@@ -41,15 +41,21 @@
 //!
 //! # Designing gains from sensor noise and manoeuvre level
 //!
-//! ```ignore
-//! // (run as `module_doc_example` in host-tests/tests/design.rs)
+//! ```
 //! use abtrack::design::{kalata_gains, tracking_index};
+//! use abtrack::{Fix, Scalar};
 //! // Radar σ = 25 m, targets manoeuvre with σ_a ≈ 3 m/s², one scan per 2 s:
 //! let lambda = tracking_index(3.0, 25.0, 2.0)?; // Λ = 3·2²/25 = 0.48
-//! let gains = kalata_gains(lambda)?;            // Gains<f64>: α ≈ 0.621, β ≈ 0.295
+//! assert!((lambda - 0.48).abs() < 1e-15);
+//! // r = 4/(4 + Λ + √(Λ(Λ + 8))), α = 1 − r², β = 2(1 − r)²:
+//! let gains = kalata_gains(lambda)?;
+//! assert!((gains.alpha() - 0.621013011077497).abs() < 1e-12);
+//! assert!((gains.beta() - 0.29549721191196504).abs() < 1e-12);
+//! // The same gains in the representation the filter runs in on the target:
+//! let fixed = gains.convert::<Fix>()?;
+//! assert!((fixed.alpha().to_f64() - 0.621013011077497).abs() < 1e-9);
+//! # Ok::<(), Box<dyn core::error::Error>>(())
 //! ```
-//!
-//! then `gains.convert::<Fix>()` (or `f32`) for the filter on the target.
 
 use crate::gains::{GainError, Gains};
 
@@ -107,7 +113,9 @@ impl core::error::Error for DesignError {}
 #[derive(Debug, Clone, Copy, PartialEq)]
 #[cfg_attr(feature = "defmt", derive(defmt::Format))]
 pub struct Pole {
+    /// Real part.
     pub re: f64,
+    /// Imaginary part.
     pub im: f64,
 }
 
@@ -138,8 +146,11 @@ pub struct CriticallyDampedBetas {
 #[derive(Debug, Clone, Copy, PartialEq)]
 #[cfg_attr(feature = "defmt", derive(defmt::Format))]
 pub struct AbcParameters {
+    /// a: the quadratic factor z² + (a + b − 2)z + 1 − a (eq. 11); equals α when c = −1.
     pub a: f64,
+    /// b: the quadratic factor's second parameter (eq. 11); equals β when c = −1.
     pub b: f64,
+    /// c: the third pole is z = −c (eq. 11); c = −1 is the αβ filter.
     pub c: f64,
 }
 
@@ -149,8 +160,11 @@ pub struct AbcParameters {
 #[derive(Debug, Clone, Copy, PartialEq)]
 #[cfg_attr(feature = "defmt", derive(defmt::Format))]
 pub struct AlphaBetaGammaParameters {
+    /// Position gain α (dimensionless).
     pub alpha: f64,
+    /// Velocity gain β (the velocity correction is β/T·e).
     pub beta: f64,
+    /// Tenne & Singh's γ (the acceleration correction is γ/(2T²)·e, eq. 5).
     pub gamma: f64,
 }
 
@@ -445,6 +459,14 @@ pub fn critically_damped_betas(alpha: f64) -> Result<CriticallyDampedBetas, Desi
 ///
 /// Errors: [`DesignError::AlphaOutOfRange`] outside 0 < α ≤ 1 (eq. 23a; past
 /// α = 4 − 2√2 ≈ 1.17 the pair would leave the stability triangle).
+///
+/// ```
+/// use abtrack::design::{benedict_bordner_beta, DesignError};
+/// // α = 0.5: β = 0.25/1.5 = 1/6.
+/// assert!((benedict_bordner_beta(0.5)? - 1.0 / 6.0).abs() < 1e-15);
+/// assert_eq!(benedict_bordner_beta(1.5), Err(DesignError::AlphaOutOfRange));
+/// # Ok::<(), DesignError>(())
+/// ```
 pub fn benedict_bordner_beta(alpha: f64) -> Result<f64, DesignError> {
     finite(&[alpha])?;
     if !(alpha > 0.0 && alpha <= 1.0) {

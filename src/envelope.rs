@@ -12,7 +12,9 @@
 #[derive(Debug, Clone, Copy, PartialEq)]
 #[cfg_attr(feature = "defmt", derive(defmt::Format))]
 pub struct Limit {
+    /// Smallest accepted value (the quantity's unit: m, m/s, m/s², s or ft).
     pub min: f64,
+    /// Largest accepted value (same unit as `min`).
     pub max: f64,
 }
 

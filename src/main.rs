@@ -68,24 +68,14 @@ use cortex_m::peripheral::syst::SystClkSource;
 use cortex_m::peripheral::NVIC;
 use cortex_m_rt::exception;
 
-/// Capacities. The micro:bit's 16 KiB of RAM set its own: the TCAS
-/// scenario has at most 6 replies per scan (4 intruders, false replies),
-/// and a track there costs a range–azimuth filter and an intruder's TCAS
-/// state (range and altitude trackers, threat state) in Q32.32: 8 tracks
-/// and 12 replies per scan leave the stack its margin (scripts/stack.sh).
-#[cfg(not(abtrack_board = "microbit"))]
-mod capacity {
-    pub const TRACKS: usize = 256;
-    pub const MEASUREMENTS_PER_SCAN: usize = 256;
-    /// heapless queues hold one item less than their length.
-    pub const QUEUE_LEN: usize = 128;
-}
+// Every board's capacities; this build uses its own board's.
+#[allow(dead_code)]
+#[path = "firmware/capacity.rs"]
+mod capacities;
 #[cfg(abtrack_board = "microbit")]
-mod capacity {
-    pub const TRACKS: usize = 8;
-    pub const MEASUREMENTS_PER_SCAN: usize = 12;
-    pub const QUEUE_LEN: usize = 32;
-}
+use capacities::microbit as capacity;
+#[cfg(not(abtrack_board = "microbit"))]
+use capacities::mps2 as capacity;
 use capacity::{MEASUREMENTS_PER_SCAN, QUEUE_LEN, TRACKS};
 
 type DemoLoop = ScanLoop<Native, RangeAzimuthTrack<Native>, TRACKS, MEASUREMENTS_PER_SCAN>;

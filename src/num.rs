@@ -54,6 +54,7 @@ pub mod cordic;
 pub mod fixed32;
 pub mod numeric;
 pub mod scaled;
+pub mod sine;
 
 pub use fixed32::Fixed32;
 pub use numeric::{AddProduct, Checked, Guard, Numeric, Quantity, Real, SubGuarded};

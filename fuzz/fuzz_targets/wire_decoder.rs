@@ -4,10 +4,11 @@
 //! Properties (beyond "never panics"):
 //! - every byte is accounted for: bytes pushed = bytes of the frames
 //!   returned + bytes skipped + bytes held (none once the line is idle);
-//! - every candidate frame is counted once: frames returned = `frames`, and
+//! - every candidate frame is counted once: frames returned = `accepted`,
 //!   each error returned = its counter (CRC, unknown type, bad length, bad
-//!   field, truncated);
-//! - a frame returned is well formed: emitted again, it is the same message.
+//!   field, out of envelope, truncated), and `frames` = their sum;
+//! - a frame returned is well formed: emitted again (with any sequence
+//!   number), it is the same message.
 #![no_main]
 
 use abtrack::wire::{Decoder, Message, WireError, MAX_FRAME_LEN};
@@ -21,6 +22,7 @@ struct Returned {
     unknown_type: u32,
     bad_length: u32,
     bad_field: u32,
+    out_of_envelope: u32,
     truncated: u32,
 }
 
@@ -32,7 +34,7 @@ impl Returned {
                 self.frame_bytes += message.buffer_len() as u64;
                 let mut buffer = [0u8; MAX_FRAME_LEN];
                 let len = message
-                    .emit(&mut buffer)
+                    .emit(0, &mut buffer)
                     .expect("a decoded message emits into a frame buffer");
                 let again = Message::parse_bytes(&buffer[..len])
                     .expect("a decoded message, emitted, parses");
@@ -42,6 +44,7 @@ impl Returned {
             Err(WireError::UnknownType) => self.unknown_type += 1,
             Err(WireError::BadLength) => self.bad_length += 1,
             Err(WireError::BadField) => self.bad_field += 1,
+            Err(WireError::OutOfEnvelope) => self.out_of_envelope += 1,
             Err(WireError::Truncated) => self.truncated += 1,
             Err(e) => panic!("the decoder returned {e:?}, which it never should"),
         }
@@ -76,10 +79,22 @@ fuzz_target!(|bytes: &[u8]| {
         returned.frame_bytes + u64::from(s.bytes_skipped),
         "bytes pushed = frame bytes + skipped"
     );
-    assert_eq!(s.frames, returned.frames, "frames");
+    assert_eq!(s.accepted, returned.frames, "accepted frames");
+    assert_eq!(
+        s.frames,
+        returned.frames
+            + returned.crc_errors
+            + returned.unknown_type
+            + returned.bad_length
+            + returned.bad_field
+            + returned.out_of_envelope
+            + returned.truncated,
+        "every candidate decided once"
+    );
     assert_eq!(s.crc_errors, returned.crc_errors, "CRC errors");
     assert_eq!(s.unknown_type, returned.unknown_type, "unknown type");
     assert_eq!(s.bad_length, returned.bad_length, "bad length");
     assert_eq!(s.bad_field, returned.bad_field, "bad field");
+    assert_eq!(s.out_of_envelope, returned.out_of_envelope, "out of envelope");
     assert_eq!(s.truncated, returned.truncated, "truncated");
 });

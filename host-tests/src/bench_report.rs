@@ -11,14 +11,18 @@
 //! bench-meta,<core>,<key>,<value>
 //! bench-figure,<core>,<numeric>,<operation>,<n>,<m>,<instructions>
 //! bench-count,<core>,<numeric>,<operation>,<n>,<m>,<counter>,<value>
+//! bench-omitted,<core>,<numeric>,<operation>,<reason>
 //! bench-end,<core>,<figures>,<counts>
 //! ```
 //!
-//! * `core`, `numeric`, `key`, `counter`: lower-case letters, digits and `_`;
+//! * `core`, `numeric`, `key`, `counter`, `reason`: lower-case letters,
+//!   digits and `_`;
 //!   `operation` may also contain `/` (a scan's stage: `scan_crowded/gate`).
 //! * `n`, `m`: tracks and measurements per scan, both positive integers or
 //!   both empty (operations that are not a scan).
 //! * `instructions`: a decimal with exactly one digit after the point.
+//! * `bench-omitted`: an operation this image does not measure in a numeric
+//!   type, and why ([`OMISSIONS`] explains each reason).
 //! * `bench-end` closes a run and says how many figure and count lines came
 //!   before it: a run cut short is refused.
 //!
@@ -80,6 +84,15 @@ pub struct Count {
     pub value: u64,
 }
 
+/// One `bench-omitted` line: a row this image does not measure.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Omitted {
+    pub core: String,
+    pub numeric: String,
+    pub operation: String,
+    pub reason: String,
+}
+
 /// A parsed line.
 #[derive(Debug, Clone, PartialEq)]
 pub enum Line {
@@ -90,6 +103,7 @@ pub enum Line {
     },
     Figure(Figure),
     Count(Count),
+    Omitted(Omitted),
     End {
         core: String,
         figures: usize,
@@ -289,6 +303,15 @@ pub fn parse_line(line: &str) -> Result<Option<Line>, String> {
                 value: unsigned(f(7), "value")?,
             })
         }
+        "bench-omitted" => {
+            expect(5)?;
+            Line::Omitted(Omitted {
+                core: name(f(1), "core")?,
+                numeric: name(f(2), "numeric")?,
+                operation: operation(f(3))?,
+                reason: name(f(4), "reason")?,
+            })
+        }
         "bench-end" => {
             expect(4)?;
             Line::End {
@@ -311,6 +334,8 @@ pub struct CoreRun {
     /// In the order given.
     pub figures: Vec<Figure>,
     pub counts: Vec<Count>,
+    /// The rows not measured, in the order given.
+    pub omitted: Vec<Omitted>,
 }
 
 impl CoreRun {
@@ -357,6 +382,7 @@ pub fn parse_log(text: &str) -> Result<CoreRun, ReportError> {
         meta: Vec::new(),
         figures: Vec::new(),
         counts: Vec::new(),
+        omitted: Vec::new(),
     };
     let mut end: Option<(usize, usize)> = None;
     for (index, raw) in text.lines().enumerate() {
@@ -370,6 +396,7 @@ pub fn parse_log(text: &str) -> Result<CoreRun, ReportError> {
             Line::Meta { core, .. } | Line::End { core, .. } => core,
             Line::Figure(f) => &f.core,
             Line::Count(c) => &c.core,
+            Line::Omitted(o) => &o.core,
         };
         match &core {
             None => core = Some(this_core.clone()),
@@ -393,7 +420,11 @@ pub fn parse_log(text: &str) -> Result<CoreRun, ReportError> {
                 run.meta.push((key, value));
             }
             Line::Figure(fig) => {
-                if run.figure(&fig.numeric, &fig.operation, fig.size).is_some() {
+                let omitted = run
+                    .omitted
+                    .iter()
+                    .any(|o| o.numeric == fig.numeric && o.operation == fig.operation);
+                if omitted || run.figure(&fig.numeric, &fig.operation, fig.size).is_some() {
                     return Err(ReportError::Duplicate {
                         line,
                         what: format!("figure {} {}", fig.numeric, fig.operation),
@@ -412,6 +443,19 @@ pub fn parse_log(text: &str) -> Result<CoreRun, ReportError> {
                     });
                 }
                 run.counts.push(c);
+            }
+            Line::Omitted(o) => {
+                let twice = run
+                    .omitted
+                    .iter()
+                    .any(|p| p.numeric == o.numeric && p.operation == o.operation);
+                if twice || run.figure(&o.numeric, &o.operation, None).is_some() {
+                    return Err(ReportError::Duplicate {
+                        line,
+                        what: format!("omitted or measured row {} {}", o.numeric, o.operation),
+                    });
+                }
+                run.omitted.push(o);
             }
             Line::End {
                 figures, counts, ..
@@ -507,19 +551,19 @@ pub const NUMERICS: &[(&str, &str)] = &[
 pub const OPERATIONS: &[(&str, &str)] = &[
     (
         "ab1d_update",
-        "αβ update, one axis (`KinematicFilter<_, 2>::update`)",
+        "αβ update, one axis (`KinematicFilter<_, 2>::update_step`, step gains formed once per interval)",
     ),
     (
         "abg1d_update",
-        "αβγ update, one axis (`KinematicFilter<_, 3>::update`)",
+        "αβγ update, one axis (`KinematicFilter<_, 3>::update_step`, step gains formed once per interval)",
     ),
     (
         "ab2d_update",
-        "2-D αβ update, fixed gains (`Cartesian<_, 2, 2>::update`)",
+        "2-D αβ update, fixed gains (`Cartesian<_, 2, 2>::update_step`, step gains formed once per interval)",
     ),
     (
         "abg2d_update",
-        "2-D αβγ update, fixed gains (`Cartesian<_, 3, 2>::update`)",
+        "2-D αβγ update, fixed gains (`Cartesian<_, 3, 2>::update_step`, step gains formed once per interval)",
     ),
     (
         "ab2d_least_squares_update",
@@ -568,6 +612,22 @@ pub const OPERATIONS: &[(&str, &str)] = &[
     (
         "scan_crowded",
         "track table, one whole scan: clusters of 4–8 targets 12 m apart, gates overlapping",
+    ),
+];
+
+/// Why a row is not measured (the `reason` of a `bench-omitted` line), with
+/// what it means. An unknown reason is shown as not described.
+pub const OMISSIONS: &[(&str, &str)] = &[
+    (
+        "flash",
+        "the image would not fit the board's flash with this numeric type's code for \
+         these operations as well (the micro:bit has 256 KiB); the firmware's own types \
+         are kept",
+    ),
+    (
+        "not_ported",
+        "the operation is written for `Scalar` (f32, f64, Q32.32) and not yet ported to \
+         `Numeric`, so it does not run in this numeric type",
     ),
 ];
 
@@ -827,7 +887,42 @@ fn per_core(s: &mut String, run: &CoreRun) {
         }
         s.push_str(&row(&cells));
     }
-    s.push_str("\n(— : not measured in this numeric type on this core.)\n\n");
+    s.push_str(
+        "\n(— : not measured in this numeric type on this core; the rows the image \
+         leaves out, and why, are listed below.)\n\n",
+    );
+    omitted(s, run);
+}
+
+/// The rows this core's image does not measure, grouped by numeric type and
+/// reason.
+fn omitted(s: &mut String, run: &CoreRun) {
+    if run.omitted.is_empty() {
+        return;
+    }
+    s.push_str(&format!("Not measured on {}:\n\n", core_title(run)));
+    s.push_str(&header(&["numeric", "operations", "why"]));
+    let mut groups: Vec<(&str, &str, Vec<&str>)> = Vec::new();
+    for o in &run.omitted {
+        match groups
+            .iter_mut()
+            .find(|(n, r, _)| *n == o.numeric && *r == o.reason)
+        {
+            Some((_, _, ops)) => ops.push(&o.operation),
+            None => groups.push((&o.numeric, &o.reason, vec![&o.operation])),
+        }
+    }
+    for (numeric, reason, ops) in groups {
+        let why = OMISSIONS
+            .iter()
+            .find(|(k, _)| *k == reason)
+            .map_or(format!("`{reason}` (not described)"), |(_, v)| {
+                v.to_string()
+            });
+        let ops: Vec<String> = ops.iter().map(|o| format!("`{o}`")).collect();
+        s.push_str(&row(&[format!("`{numeric}`"), ops.join(", "), why]));
+    }
+    s.push('\n');
 }
 
 /// The 2-D updates against the floor and minikalman, per core.

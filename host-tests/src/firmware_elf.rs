@@ -422,3 +422,151 @@ pub fn run_tool(tool: &Path, args: &[&str]) -> Result<String, String> {
     }
     String::from_utf8(output.stdout).map_err(|e| format!("{}: {e}", tool.display()))
 }
+
+/// The crate a demangled function path belongs to: its first path segment,
+/// through an impl's `<`, `&` or `mut ` (`<core::num::X>::f` → `core`).
+pub fn crate_of(function: &str) -> &str {
+    let path = function.trim_start_matches(['<', '&', '*', '[', '(']);
+    let path = path.strip_prefix("mut ").unwrap_or(path);
+    path.split("::").next().unwrap_or(path)
+}
+
+/// Rust's own libraries, by symbol (`core::`, `alloc::`,
+/// `compiler_builtins::` anywhere in it, e.g. in an impl's type).
+pub fn is_rust_library(function: &str) -> bool {
+    ["core::", "alloc::", "compiler_builtins::"]
+        .iter()
+        .any(|p| function.contains(p))
+}
+
+/// Whose code a panic call is in.
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub enum Owner {
+    /// The library's or the firmware's own code: never allowed.
+    Own,
+    /// Code of these third-party crates (a function of Rust's own libraries
+    /// is attributed to the crates of its nearest callers outside them).
+    ThirdParty(BTreeSet<String>),
+}
+
+/// What a source frame's location says about whose code it is.
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub enum FrameKind {
+    /// Our sources (`src/`, as [`parse_symbolizer`] shortens them).
+    Own,
+    /// Rust's own libraries (`core/`, `alloc/`, `std/`,
+    /// `compiler_builtins-…/`), or no location.
+    RustLibrary,
+    /// A registry crate (`minikalman-0.8.1/src/…` → `minikalman`; `-` in
+    /// the name as `_`, the way symbols spell it).
+    Crate(String),
+}
+
+pub fn frame_kind(frame: &SourceFrame) -> FrameKind {
+    let location = frame.location.as_str();
+    if location.starts_with("src/") {
+        return FrameKind::Own;
+    }
+    let first = location.split('/').next().unwrap_or("");
+    let versioned = first
+        .rsplit_once('-')
+        .filter(|(_, version)| version.starts_with(|c: char| c.is_ascii_digit()));
+    match versioned {
+        Some((name, _)) if name != "compiler_builtins" => FrameKind::Crate(name.replace('-', "_")),
+        _ => FrameKind::RustLibrary,
+    }
+}
+
+/// True if no frame of `chain` is outside Rust's own libraries: the call
+/// is in a function of core (or alloc) not inlined into anything else, to
+/// be attributed to that function's callers ([`owner_of`]).
+pub fn only_rust_library(chain: &[SourceFrame]) -> bool {
+    chain
+        .iter()
+        .all(|f| frame_kind(f) == FrameKind::RustLibrary)
+}
+
+/// Whose code the panic call in `function` is: the code that performs the
+/// checked operation. That is the innermost frame of its inlining `chain`
+/// (innermost first) outside Rust's own libraries: ours if in our sources,
+/// else its crate's (a third-party function inlined into ours is still its
+/// crate's code). With no such frame: the crate `function` is in, or for a
+/// function of Rust's own libraries the crates of its nearest `callers`
+/// outside them. `own_crates`: our crate names (`abtrack` and the
+/// binary's). A call that cannot be attributed to a third-party crate is
+/// ours.
+pub fn owner_of(
+    function: &str,
+    chain: &[SourceFrame],
+    callers: &[String],
+    own_crates: &BTreeSet<String>,
+) -> Owner {
+    let third_party = |c: &str| {
+        if own_crates.contains(c) || is_rust_library(&format!("{c}::")) {
+            Owner::Own
+        } else {
+            Owner::ThirdParty(BTreeSet::from([c.to_string()]))
+        }
+    };
+    match chain
+        .iter()
+        .map(frame_kind)
+        .find(|k| *k != FrameKind::RustLibrary)
+    {
+        Some(FrameKind::Own) => return Owner::Own,
+        Some(FrameKind::Crate(c)) => return third_party(&c),
+        Some(FrameKind::RustLibrary) | None => {}
+    }
+    if !is_rust_library(function) {
+        return third_party(crate_of(function));
+    }
+    let candidates: Vec<&str> = callers.iter().map(|c| crate_of(c)).collect();
+    if candidates.is_empty()
+        || candidates
+            .iter()
+            .any(|c| own_crates.contains(*c) || is_rust_library(&format!("{c}::")))
+    {
+        return Owner::Own;
+    }
+    Owner::ThirdParty(candidates.into_iter().map(str::to_string).collect())
+}
+
+/// A third-party crate allowed to keep panic calls, and why
+/// (`--allow-crate <crate>=<reason>`).
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub struct Allowance {
+    pub krate: String,
+    pub reason: String,
+}
+
+impl std::str::FromStr for Allowance {
+    type Err = String;
+
+    fn from_str(s: &str) -> Result<Self, String> {
+        let (krate, reason) = s
+            .split_once('=')
+            .ok_or_else(|| format!("--allow-crate {s}: expected <crate>=<reason>"))?;
+        let (krate, reason) = (krate.trim(), reason.trim());
+        if krate.is_empty()
+            || !krate
+                .bytes()
+                .all(|b| b.is_ascii_alphanumeric() || b == b'_')
+        {
+            return Err(format!(
+                "--allow-crate {s}: the crate name as it appears in symbols (letters, digits, _)"
+            ));
+        }
+        if reason.is_empty() {
+            return Err(format!("--allow-crate {krate}: a reason is required"));
+        }
+        if is_rust_library(&format!("{krate}::")) {
+            return Err(format!(
+                "--allow-crate {krate}: Rust's own libraries are attributed to their callers"
+            ));
+        }
+        Ok(Allowance {
+            krate: krate.to_string(),
+            reason: reason.to_string(),
+        })
+    }
+}

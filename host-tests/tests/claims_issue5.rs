@@ -8,17 +8,16 @@
 //! test; the measured rates are printed (`--nocapture`).
 
 use std::collections::BTreeSet;
-use std::mem::size_of;
 
 use abtrack::filter::range_azimuth::RangeAzimuthNoise;
-use abtrack::gain::{AnySchedule, FirmnessGains, FixedGains, LeastSquaresGains, LiImprovedGains};
+use abtrack::gain::{FirmnessGains, FixedGains, LeastSquaresGains, LiImprovedGains};
 use abtrack::track::defaults::{
     default_cartesian, default_polar, DerivedParameters, TrackerDesign,
 };
 use abtrack::track::{
     Association, DropReason, FixedGainTrack, Gate, GateRegion, Measurement, Observation,
-    PolarWindow, PredictedState, RangeAzimuthTrack, ScanInterval, ScheduledTrack, Track,
-    TrackFilter, TrackTable, TrackerConfig,
+    PolarWindow, PredictedState, RangeAzimuthTrack, ScanInterval, ScheduledTrack, TrackFilter,
+    TrackTable, TrackerConfig,
 };
 use abtrack::{Fix, Gains, Scalar};
 use abtrack_host_tests::experiments::multi_target::{BASE_SEED, PLANS};
@@ -149,70 +148,8 @@ fn design_refuses_bad_figures() {
     assert!(d.derive().is_err());
 }
 
-// ---------------------------------------------------------------------------
-// Bytes per track (the table in abtrack::track::adapters)
-
-#[test]
-fn bytes_per_track() {
-    type Slot<S, F> = Option<Track<S, F>>;
-    let rows = [
-        (
-            "FixedGainTrack",
-            size_of::<Slot<f64, FixedGainTrack<f64>>>(),
-            size_of::<Slot<f32, FixedGainTrack<f32>>>(),
-            size_of::<Slot<Fix, FixedGainTrack<Fix>>>(),
-        ),
-        (
-            "Scheduled<M2>",
-            size_of::<Slot<f64, ScheduledTrack<f64, LeastSquaresGains>>>(),
-            size_of::<Slot<f32, ScheduledTrack<f32, LeastSquaresGains>>>(),
-            size_of::<Slot<Fix, ScheduledTrack<Fix, LeastSquaresGains>>>(),
-        ),
-        (
-            "Scheduled<M1>",
-            size_of::<Slot<f64, ScheduledTrack<f64, FixedGains<f64>>>>(),
-            size_of::<Slot<f32, ScheduledTrack<f32, FixedGains<f32>>>>(),
-            size_of::<Slot<Fix, ScheduledTrack<Fix, FixedGains<Fix>>>>(),
-        ),
-        (
-            "Scheduled<Li>",
-            size_of::<Slot<f64, ScheduledTrack<f64, LiImprovedGains<f64>>>>(),
-            size_of::<Slot<f32, ScheduledTrack<f32, LiImprovedGains<f32>>>>(),
-            size_of::<Slot<Fix, ScheduledTrack<Fix, LiImprovedGains<Fix>>>>(),
-        ),
-        (
-            "Scheduled<TCAS>",
-            size_of::<Slot<f64, ScheduledTrack<f64, FirmnessGains>>>(),
-            size_of::<Slot<f32, ScheduledTrack<f32, FirmnessGains>>>(),
-            size_of::<Slot<Fix, ScheduledTrack<Fix, FirmnessGains>>>(),
-        ),
-        (
-            "Scheduled<Any<2,8>>",
-            size_of::<Slot<f64, ScheduledTrack<f64, AnySchedule<f64, 2, 8>>>>(),
-            size_of::<Slot<f32, ScheduledTrack<f32, AnySchedule<f32, 2, 8>>>>(),
-            size_of::<Slot<Fix, ScheduledTrack<Fix, AnySchedule<Fix, 2, 8>>>>(),
-        ),
-        (
-            "RangeAzimuth",
-            size_of::<Slot<f64, RangeAzimuthTrack<f64>>>(),
-            size_of::<Slot<f32, RangeAzimuthTrack<f32>>>(),
-            size_of::<Slot<Fix, RangeAzimuthTrack<Fix>>>(),
-        ),
-    ];
-    println!("{rows:#?}");
-    assert_eq!(
-        rows,
-        [
-            ("FixedGainTrack", 88, 56, 88),
-            ("Scheduled<M2>", 224, 136, 224),
-            ("Scheduled<M1>", 248, 144, 248),
-            ("Scheduled<Li>", 272, 160, 272),
-            ("Scheduled<TCAS>", 224, 136, 224),
-            ("Scheduled<Any<2,8>>", 864, 472, 864),
-            ("RangeAzimuth", 248, 140, 248),
-        ]
-    );
-}
+// Bytes per track of every filter and number system: host-tests/tests/
+// track_static.rs (bytes_per_track_of_every_filter).
 
 // ---------------------------------------------------------------------------
 // Adapters

@@ -6,7 +6,7 @@
 
 use abtrack::design::*;
 use abtrack::filter::{Cartesian, UpdateOutcome};
-use abtrack::{AlphaBeta, AlphaBetaGamma, GainError, Gains, Scalar};
+use abtrack::{AlphaBeta, AlphaBetaGamma, GainError, Gains};
 
 // ---------------------------------------------------------------------------
 // Helpers
@@ -805,19 +805,6 @@ fn kalata_gains_are_the_steady_state_kalman_gains() {
         assert_close(g.alpha(), k[0], 1e-9);
         assert_close(g.beta(), k[1] * dt, 1e-9);
     }
-}
-
-#[test]
-fn module_doc_example() {
-    let lambda = tracking_index(3.0, 25.0, 2.0).unwrap(); // 3·4/25 = 0.48
-    assert_abs(lambda, 0.48, 1e-16);
-    let gains = kalata_gains(lambda).unwrap();
-    // √(0.48·8.48) = 2.017523234066959, r = 4/6.497523234066959 = 0.6156191914832603,
-    // α = 1 − r² = 0.621013011077497, β = 2(1 − r)² = 0.29549721191196504.
-    assert_abs(gains.alpha(), 0.621013011077497, 1e-15);
-    assert_abs(gains.beta(), 0.29549721191196504, 1e-15);
-    let fixed = gains.convert::<abtrack::Fix>().unwrap();
-    assert_abs(fixed.alpha().to_f64(), 0.621013011077497, 1e-9);
 }
 
 // ---------------------------------------------------------------------------

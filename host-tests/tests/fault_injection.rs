@@ -19,8 +19,11 @@
 //! cd host-tests && cargo test --release --test fault_injection -- --ignored mps2_an386
 //! ```
 
+#[path = "../../src/firmware/capacity.rs"]
+mod capacity;
 #[path = "../../src/firmware/demo_config.rs"]
 mod demo_config;
+use capacity::{microbit, mps2};
 
 use abtrack::scan::RunVerdict;
 use abtrack::track::RangeAzimuthTrack;
@@ -31,7 +34,8 @@ use abtrack_host_tests::frames::{self, Fault, FaultStream, Faults, FirmwareRun};
 use std::path::{Path, PathBuf};
 use std::process::Command;
 
-/// A demo firmware build: its board, and the capacities of src/main.rs.
+/// A demo firmware build: its board, and its capacities
+/// (src/firmware/capacity.rs).
 struct Board {
     target: &'static str,
     machine: &'static str,
@@ -42,20 +46,20 @@ struct Board {
 const MPS2_AN386: Board = Board {
     target: "thumbv7em-none-eabihf",
     machine: "mps2-an386",
-    tracks: 256,
-    per_scan: 256,
+    tracks: mps2::TRACKS,
+    per_scan: mps2::MEASUREMENTS_PER_SCAN,
 };
 const MPS2_AN385: Board = Board {
     target: "thumbv7m-none-eabi",
     machine: "mps2-an385",
-    tracks: 256,
-    per_scan: 256,
+    tracks: mps2::TRACKS,
+    per_scan: mps2::MEASUREMENTS_PER_SCAN,
 };
 const MICROBIT: Board = Board {
     target: "thumbv6m-none-eabi",
     machine: "microbit",
-    tracks: 8,
-    per_scan: 12,
+    tracks: microbit::TRACKS,
+    per_scan: microbit::MEASUREMENTS_PER_SCAN,
 };
 
 /// The accuracy budget of the demo's intruders: a confirmed track within
@@ -129,22 +133,27 @@ fn run_firmware(board: &Board, elf: &Path, input: &[u8], name: &str) -> Run {
 /// The same input through the scan-loop core on the host.
 fn model(board: &Board, input: &[u8]) -> FirmwareRun {
     match board.machine {
-        "mps2-an386" => {
-            frames::run_like_the_firmware::<f32, RangeAzimuthTrack<f32>, 256, 256, 128>(
-                input,
-                &demo_config::demo_config::<f32>().unwrap(),
-            )
-        }
-        "mps2-an385" => {
-            frames::run_like_the_firmware::<Fix, RangeAzimuthTrack<Fix>, 256, 256, 128>(
-                input,
-                &demo_config::demo_config::<Fix>().unwrap(),
-            )
-        }
-        _ => frames::run_like_the_firmware::<Fix, RangeAzimuthTrack<Fix>, 8, 12, 32>(
-            input,
-            &demo_config::demo_config::<Fix>().unwrap(),
-        ),
+        "mps2-an386" => frames::run_like_the_firmware::<
+            f32,
+            RangeAzimuthTrack<f32>,
+            { mps2::TRACKS },
+            { mps2::MEASUREMENTS_PER_SCAN },
+            { mps2::QUEUE_LEN },
+        >(input, &demo_config::demo_config::<f32>().unwrap()),
+        "mps2-an385" => frames::run_like_the_firmware::<
+            Fix,
+            RangeAzimuthTrack<Fix>,
+            { mps2::TRACKS },
+            { mps2::MEASUREMENTS_PER_SCAN },
+            { mps2::QUEUE_LEN },
+        >(input, &demo_config::demo_config::<Fix>().unwrap()),
+        _ => frames::run_like_the_firmware::<
+            Fix,
+            RangeAzimuthTrack<Fix>,
+            { microbit::TRACKS },
+            { microbit::MEASUREMENTS_PER_SCAN },
+            { microbit::QUEUE_LEN },
+        >(input, &demo_config::demo_config::<Fix>().unwrap()),
     }
 }
 
@@ -160,8 +169,9 @@ enum Floor {
     Measured(usize),
 }
 
-/// The expected outcome of a fault: a clean run or not, and the floor.
-fn expected(fault: Fault, board: &Board) -> (bool, Floor) {
+/// The expected outcome of a fault: a clean run or not, and the floor;
+/// `fits`: no scan of the stream has more measurements than the board takes.
+fn expected(fault: Fault, fits: bool) -> (bool, Floor) {
     match fault {
         // Nothing the tracker needs is lost: the input without the fault's
         // figure (the receiver, the clock and the capacity rules keep every
@@ -184,11 +194,11 @@ fn expected(fault: Fault, board: &Board) -> (bool, Floor) {
         // tracker sized for 3 false replies per scan over the 14 NM disc:
         // the intruders inside the square lose scans to clutter tracks
         // (measured, see the results files).
-        // Clean where a scan holds the 210 measurements (the mps2 boards'
-        // 256), not on the micro:bit (12).
+        // Clean where every return fits the scan (the mps2 boards' 256),
+        // not where returns are over capacity (the micro:bit's 12).
         Fault::ClutterStorm => (
-            board.per_scan >= 210,
-            Floor::Measured(if board.per_scan >= 210 {
+            fits,
+            Floor::Measured(if fits {
                 CLUTTER_STORM_FLOOR
             } else {
                 CLUTTER_STORM_FLOOR_MICROBIT
@@ -292,7 +302,12 @@ fn check(board: &Board, elf: &Path, fault: Fault, baseline: usize) -> String {
     let stream = frames::fault_stream(fault, board.per_scan, 0).unwrap();
     let fw = run_firmware(board, elf, &stream.bytes, name);
     let host = model(board, &stream.bytes);
-    let (clean, floor) = expected(fault, board);
+    let over_capacity: usize = stream
+        .scans
+        .iter()
+        .map(|sc| sc.2.saturating_sub(board.per_scan))
+        .sum();
+    let (clean, floor) = expected(fault, over_capacity == 0);
     let floor = match floor {
         Floor::Baseline(less) => baseline.saturating_sub(less),
         Floor::Measured(n) => n,
@@ -396,12 +411,7 @@ fn check(board: &Board, elf: &Path, fault: Fault, baseline: usize) -> String {
         }
         Fault::OutOfRange => assert_eq!((d.out_of_envelope, d.frames_lost), (damaged, damaged)),
         Fault::Flood | Fault::ClutterStorm => {
-            let over: usize = stream
-                .scans
-                .iter()
-                .map(|sc| sc.2.saturating_sub(board.per_scan))
-                .sum();
-            assert_eq!(s.over_capacity as usize, over, "{context}");
+            assert_eq!(s.over_capacity as usize, over_capacity, "{context}");
             assert_eq!(s.late, 0, "{context}");
         }
         Fault::Backwards | Fault::Jump => {

@@ -2,9 +2,12 @@
 //! from LLVM 14's tools run on the release firmware (thumbv7em, the demo as
 //! it was when heapless's `% capacity` still panicked in `scan::Intake`).
 
+use std::collections::BTreeSet;
+
 use abtrack_host_tests::firmware_elf::{
-    branches, callers_of, check_layout, demangle, is_panic_symbol, panic_calls, panic_symbols,
-    parse_sections, parse_symbolizer, LayoutError, PanicCall,
+    branches, callers_of, check_layout, crate_of, demangle, frame_kind, is_panic_symbol, owner_of,
+    panic_calls, panic_symbols, parse_sections, parse_symbolizer, Allowance, FrameKind,
+    LayoutError, Owner, PanicCall, SourceFrame,
 };
 
 const DISASSEMBLY: &str = "
@@ -212,4 +215,155 @@ fn the_default_layout_with_the_stack_above_the_statics_fails() {
         check_layout("", &sections, 0x2000_0000),
         Err(LayoutError::MissingSymbol("_stack_end"))
     );
+}
+
+#[test]
+fn a_function_belongs_to_the_first_segment_of_its_path() {
+    assert_eq!(
+        crate_of("minikalman::matrix::traits::Matrix::mult"),
+        "minikalman"
+    );
+    assert_eq!(
+        crate_of("<core::num::dec2flt::decimal_seq::DecimalSeq>::left_shift"),
+        "core"
+    );
+    assert_eq!(
+        crate_of("<&mut heapless::spsc::Queue<T>>::push"),
+        "heapless"
+    );
+    assert_eq!(crate_of("bench::minikalman::cv2d"), "bench");
+}
+
+fn own_crates() -> BTreeSet<String> {
+    BTreeSet::from(["abtrack".to_string(), "bench".to_string()])
+}
+
+fn third_party(names: &[&str]) -> Owner {
+    Owner::ThirdParty(names.iter().map(|n| n.to_string()).collect())
+}
+
+fn frame(function: &str, location: &str) -> SourceFrame {
+    SourceFrame {
+        function: function.to_string(),
+        location: location.to_string(),
+    }
+}
+
+#[test]
+fn frames_are_ours_rust_s_or_a_registry_crate_s() {
+    let kind = |l: &str| frame_kind(&frame("f", l));
+    assert_eq!(kind("src/bin/bench/scan.rs:176:17"), FrameKind::Own);
+    assert_eq!(kind("core/src/panic.rs:177:9"), FrameKind::RustLibrary);
+    assert_eq!(kind("??:0:0"), FrameKind::RustLibrary);
+    assert_eq!(
+        kind("compiler_builtins-0.1.160/src/mem/mod.rs:1:1"),
+        FrameKind::RustLibrary
+    );
+    assert_eq!(
+        kind("minikalman-0.8.1/src/matrix/traits.rs:328:30"),
+        FrameKind::Crate("minikalman".to_string())
+    );
+    assert_eq!(
+        kind("defmt-semihosting-0.3.0/src/lib.rs:1:1"),
+        FrameKind::Crate("defmt_semihosting".to_string())
+    );
+}
+
+#[test]
+/// The innermost frame outside core decides; with none, the function's
+/// crate or, for core's own functions, their callers'.
+fn calls_in_or_from_our_code_are_ours() {
+    let own = own_crates();
+    // A bounds check of core inlined into our source.
+    let chain = [
+        frame(
+            "core::slice::index::get_unchecked",
+            "core/src/slice/index.rs:1:1",
+        ),
+        frame("bench::scan::Scene::start", "src/bin/bench/scan.rs:176:17"),
+    ];
+    assert_eq!(
+        owner_of("bench::scan::Scene::start", &chain, &[], &own),
+        Owner::Own
+    );
+    // bench's own module named minikalman is not the crate minikalman.
+    assert_eq!(
+        owner_of("bench::minikalman::cv2d", &[], &[], &own),
+        Owner::Own
+    );
+    assert_eq!(
+        owner_of(
+            "<core::num::dec2flt::decimal_seq::DecimalSeq>::left_shift",
+            &[frame(
+                "<core::num::dec2flt::decimal_seq::DecimalSeq>::left_shift",
+                "core/src/num/dec2flt/decimal_seq.rs:136:19"
+            )],
+            &["abtrack::gain::spec::ScheduleSpec::parse".to_string()],
+            &own
+        ),
+        Owner::Own
+    );
+    // A core function nobody outside core calls cannot be attributed.
+    assert_eq!(
+        owner_of("core::slice::index::slice_index_fail", &[], &[], &own),
+        Owner::Own
+    );
+    // Called from ours and from a dependency: ours.
+    assert_eq!(
+        owner_of(
+            "core::slice::index::slice_index_fail",
+            &[],
+            &["minikalman::f".to_string(), "bench::scan::g".to_string()],
+            &own
+        ),
+        Owner::Own
+    );
+}
+
+#[test]
+fn checks_in_a_dependency_s_code_are_its_even_inlined_into_ours() {
+    let own = own_crates();
+    assert_eq!(
+        owner_of("minikalman::matrix::traits::Matrix::mult", &[], &[], &own),
+        third_party(&["minikalman"])
+    );
+    let chain = [
+        frame(
+            "minikalman::matrix::row_major::RowMajorSequentialDataMut::set_at",
+            "minikalman-0.8.1/src/matrix/row_major.rs:71:9",
+        ),
+        frame(
+            "bench::minikalman::cv2d",
+            "src/bin/bench/minikalman.rs:112:39",
+        ),
+    ];
+    assert_eq!(
+        owner_of("bench::minikalman::cv2d", &chain, &[], &own),
+        third_party(&["minikalman"])
+    );
+    assert_eq!(
+        owner_of(
+            "core::slice::index::slice_index_fail",
+            &[],
+            &["minikalman::f".to_string(), "heapless::g".to_string()],
+            &own
+        ),
+        third_party(&["heapless", "minikalman"])
+    );
+}
+
+#[test]
+fn an_allowance_needs_a_crate_name_and_a_reason() {
+    let a: Allowance = "minikalman=the anchor, third-party".parse().unwrap();
+    assert_eq!(a.krate, "minikalman");
+    assert_eq!(a.reason, "the anchor, third-party");
+    for bad in [
+        "minikalman",
+        "minikalman=",
+        "=why",
+        "mini kalman=why",
+        "core=why",
+    ] {
+        assert!(bad.parse::<Allowance>().is_err(), "{bad} accepted");
+    }
 }

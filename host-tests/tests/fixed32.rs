@@ -27,6 +27,18 @@ fn fits(v: i128) -> bool {
     v > i128::from(i32::MIN) && v < i128::from(i32::MAX)
 }
 
+/// A normalised mantissa of either sign, the ends of its range included.
+fn scaled_mantissa() -> impl Strategy<Value = i32> {
+    prop_oneof![
+        (1i32 << 30)..i32::MAX,
+        (i32::MIN + 1)..=-(1i32 << 30),
+        Just(1i32 << 30),
+        Just(i32::MAX),
+        Just(-(1i32 << 30)),
+        Just(i32::MIN + 1),
+    ]
+}
+
 /// A normalised scaled number with the given mantissa and exponent.
 fn ratio_from(mantissa: i32, exponent: i32) -> Ratio {
     Ratio::from_wide(i64::from(mantissa), exponent)
@@ -209,6 +221,62 @@ proptest! {
         prop_assert!((r - xa.abs().sqrt()).abs() <= tol(xa.abs().sqrt()));
         prop_assert_eq!(x < y, xa < yb);
         prop_assert_eq!(x == y, xa == yb);
+    }
+
+    /// The scaled primitives against exact arithmetic on normalised
+    /// operands of any sign and scale: the product within half an ulp
+    /// (exact i128), the quotient and the square root correctly rounded
+    /// (f64's 53 bits leave 2⁻⁵² of slack), hypot within half an ulp plus
+    /// 2⁻⁵⁰ (hypot3 too, and equal to hypot with a zero), the sum within
+    /// half an ulp (plus 2⁻³⁰ of one).
+    #[test]
+    fn scaled_primitives_round_to_nearest(
+        ma in scaled_mantissa(), ea in -50i32..34, mb in scaled_mantissa(), eb in -50i32..34,
+    ) {
+        let (x, y) = (ratio_from(ma, ea), ratio_from(mb, eb));
+        let ulp = |r: Ratio| 2f64.powi(r.exponent());
+        let p = x * y;
+        // m·2^k against ma·mb, k = e_p − ea − eb ∈ {30, 31}.
+        let k = p.exponent() - ea - eb;
+        prop_assert!(k == 30 || k == 31);
+        let error = (i128::from(p.mantissa()) << k) - i128::from(ma) * i128::from(mb);
+        prop_assert!(error.abs() <= 1i128 << (k - 1));
+        let (xf, yf) = (x.to_f64(), y.to_f64());
+        let q = x / y;
+        let exact = xf / yf;
+        prop_assert!((q.to_f64() - exact).abs() <= 0.5 * ulp(q) + exact.abs() * 2f64.powi(-52));
+        let r = x.abs().sqrt();
+        let exact = xf.abs().sqrt();
+        prop_assert!((r.to_f64() - exact).abs() <= 0.5 * ulp(r) + exact * 2f64.powi(-52));
+        let h = x.hypot(y);
+        let exact = xf.hypot(yf);
+        prop_assert!((h.to_f64() - exact).abs() <= 0.5 * ulp(h) + exact * 2f64.powi(-50));
+        // Three lengths: x, y and their product (another scale).
+        let z = x * y;
+        let h3 = x.hypot3(y, z);
+        let exact = xf.hypot(yf).hypot(z.to_f64());
+        prop_assert!((h3.to_f64() - exact).abs() <= 0.5 * ulp(h3) + exact * 2f64.powi(-50));
+        prop_assert_eq!(x.hypot3(y, Ratio::ZERO), h);
+        // Halving is exact.
+        prop_assert_eq!(x.half().to_f64(), xf / 2.0);
+        // The sum against the exact i128 sum, in units of 2^base (exponents
+        // within 60 of each other keep every term below 2¹²²): within half
+        // an ulp plus 2⁻³⁰ of one (the bit beyond the 31 guard bits when the
+        // signs differ and the gap is 32).
+        if (ea - eb).abs() <= 60 {
+            let base = ea.min(eb) - 31;
+            let units = |m: i32, e: i32| i128::from(m) << (e - base);
+            let exact = units(ma, ea) + units(mb, eb);
+            let s = x + y;
+            if s.mantissa() == 0 {
+                prop_assert_eq!(exact, 0);
+            } else {
+                prop_assert!(s.exponent() >= base);
+                let ulp_units = 1i128 << (s.exponent() - base);
+                let error = (units(s.mantissa(), s.exponent()) - exact).abs();
+                prop_assert!(2 * error <= ulp_units + (ulp_units >> 29), "{} {}", error, ulp_units);
+            }
+        }
     }
 
     /// hypot: the integer square root of the exact sum of squares, to the

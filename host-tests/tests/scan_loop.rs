@@ -4,9 +4,12 @@
 
 #![allow(clippy::needless_range_loop)]
 
+#[path = "../../src/firmware/capacity.rs"]
+mod capacity;
 mod common;
 #[path = "../../src/firmware/demo_config.rs"]
 mod demo_config;
+use capacity::{microbit, mps2};
 
 use common::{crossing_truth, Lcg};
 
@@ -673,12 +676,18 @@ fn demo_input_is_tracked<S: Scalar, const N: usize, const M: usize, const Q: usi
 
 #[test]
 fn demo_input_is_tracked_in_every_number_type() {
-    // The mps2 boards' capacities (32 tracks, 64 per scan, a queue of 128)
-    // and the micro:bit's (8, 24, 32).
-    let f64_ids = demo_input_is_tracked::<f64, 32, 64, 128>();
-    assert_eq!(demo_input_is_tracked::<f32, 32, 64, 128>(), f64_ids);
-    assert_eq!(demo_input_is_tracked::<Fix, 32, 64, 128>(), f64_ids);
-    assert_eq!(demo_input_is_tracked::<Fix, 8, 24, 32>(), f64_ids);
+    // The firmware's capacities (src/firmware/capacity.rs).
+    use mps2::{MEASUREMENTS_PER_SCAN as M, QUEUE_LEN as Q, TRACKS as N};
+    let f64_ids = demo_input_is_tracked::<f64, N, M, Q>();
+    assert_eq!(demo_input_is_tracked::<f32, N, M, Q>(), f64_ids);
+    assert_eq!(demo_input_is_tracked::<Fix, N, M, Q>(), f64_ids);
+    // The micro:bit's tracks and queue, with room for the crossing's 20
+    // measurements per scan (its demo takes 12 replies per scan: the TCAS
+    // scenario has at most 6; tests/tcas_demo.rs).
+    assert_eq!(
+        demo_input_is_tracked::<Fix, { microbit::TRACKS }, 24, { microbit::QUEUE_LEN }>(),
+        f64_ids
+    );
 }
 
 /// A TCAS encounter (`tcas-converging`: range/bearing with Mode C altitude,

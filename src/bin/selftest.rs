@@ -47,11 +47,14 @@ mod propagation;
 #[path = "../firmware/synth.rs"]
 mod synth;
 
-use abtrack::bank::{BankOutcome, CartesianBank};
+use abtrack::bank::{BankConfig, BankOutcome, CartesianBank};
 use abtrack::budget::{error_budget_around_reference, BudgetError, ErrorBound, GainSpread};
 use abtrack::filter::{
     Cartesian, FilterError, GainError, Gains, Innovation, KinematicFilter, Phase, UpdateOutcome,
 };
+use abtrack::gain::al_wagih::{LeastSquaresConfig, MovingWindowConfig};
+use abtrack::gain::li::LiImprovedConfig;
+use abtrack::gain::liu::AdaptiveSwitchConfig;
 use abtrack::gain::{AnySchedule, ScheduleSpec, ScheduledFilter};
 use abtrack::num::{Numeric, Quantity};
 use abtrack::Fix;
@@ -1211,6 +1214,30 @@ enum StepKind {
     Coast,
 }
 
+/// What one scan did to one axis in the two runs (coast: no gains, no
+/// residual).
+#[derive(Clone, Copy)]
+struct AxisScan {
+    kind: StepKind,
+    gains_64: [f64; 3],
+    gains_s: [f64; 3],
+    /// The larger |residual| and |prediction| of the two runs.
+    residual: f64,
+    predicted: f64,
+    z_abs: f64,
+}
+
+impl AxisScan {
+    const COAST: Self = AxisScan {
+        kind: StepKind::Coast,
+        gains_64: [0.0; 3],
+        gains_s: [0.0; 3],
+        residual: 0.0,
+        predicted: 0.0,
+        z_abs: 0.0,
+    };
+}
+
 /// One step of a run in both representations, for one axis.
 #[derive(Clone, Copy)]
 struct PairStep {
@@ -1240,18 +1267,14 @@ fn step_kind<S: Numeric>(o: &UpdateOutcome<S>) -> StepKind {
     }
 }
 
-fn schedule_for<S: Numeric>(spec: &str) -> Result<Schedule<S>, Failure> {
-    let parsed = match ScheduleSpec::parse(spec) {
-        Ok(p) => p,
-        Err(e) => {
-            defmt::error!("spec {=str} refused: {}", spec, e);
-            return Err(Failure);
-        }
-    };
-    match Schedule::<S>::from_spec(&parsed) {
+/// The schedule `spec` names, built from the typed configuration: parsing a
+/// spec string on the target would link core's `f64::from_str`, which has
+/// panic paths (docs/safety.md).
+fn schedule_for<S: Numeric>(spec: &ScheduleSpec) -> Result<Schedule<S>, Failure> {
+    match Schedule::<S>::from_spec(spec) {
         Ok(s) => Ok(s),
         Err(e) => {
-            defmt::error!("{=str}: schedule {=str} refused: {}", S::NAME, spec, e);
+            defmt::error!("{=str}: schedule {} refused: {}", S::NAME, spec, e);
             Err(Failure)
         }
     }
@@ -1261,7 +1284,7 @@ fn schedule_for<S: Numeric>(spec: &str) -> Result<Schedule<S>, Failure> {
 /// step, magnitudes)` for every scan and axis; the two runs must accept,
 /// refuse and restart alike.
 fn run_schedule<S: TestNumeric, const ORDER: usize>(
-    spec: &str,
+    spec: &ScheduleSpec,
     scenario: &PlaneScenario,
     mut visit: impl FnMut(u32, usize, &PairStep, &Magnitudes) -> TestResult,
 ) -> TestResult {
@@ -1272,20 +1295,16 @@ fn run_schedule<S: TestNumeric, const ORDER: usize>(
     for (k, z) in (0u32..).zip(scenario.measurements()) {
         let before_s = ts.filter().axes().map(|a| axis_state(&a));
         let before_64 = tf.filter().axes().map(|a| axis_state(&a));
-        let mut kinds = [StepKind::Coast; 2];
-        let mut gains_s = [[0.0; 3]; 2];
-        let mut gains_64 = [[0.0; 3]; 2];
-        let mut residuals = [0.0f64; 2];
-        let mut predicted = [0.0f64; 2];
-        let mut z_abs = [0.0f64; 2];
+        let mut scans = [AxisScan::COAST; 2];
         match z {
             Some(z) => {
-                let zs = [quantity(z[0])?, quantity(z[1])?];
+                let [z_x, z_y] = z;
+                let zs = [quantity(z_x)?, quantity(z_y)?];
                 let (us, uf) = match (ts.update(zs, dt_s), tf.update(z, dt)) {
                     (Ok(us), Ok(uf)) => (us, uf),
                     (a, b) => {
                         defmt::error!(
-                            "{=str} {=str} scan {=u32}: native {}, f64 {}",
+                            "{=str} {} scan {=u32}: native {}, f64 {}",
                             S::NAME,
                             spec,
                             k,
@@ -1297,17 +1316,19 @@ fn run_schedule<S: TestNumeric, const ORDER: usize>(
                 };
                 ensure!(
                     us.restarted == uf.restarted,
-                    "{=str} {=str} scan {=u32}: restart differs",
+                    "{=str} {} scan {=u32}: restart differs",
                     S::NAME,
                     spec,
                     k
                 );
-                for i in 0..2 {
-                    let (os, of) = (us.outcome[i], uf.outcome[i]);
-                    kinds[i] = step_kind(&of);
+                let gains = us.gains.zip(uf.gains);
+                let outcomes = us.outcome.into_iter().zip(uf.outcome);
+                for (i, ((scan, (os, of)), z)) in scans.iter_mut().zip(outcomes).zip(z).enumerate()
+                {
+                    scan.kind = step_kind(&of);
                     ensure!(
-                        step_kind(&os) == kinds[i],
-                        "{=str} {=str} scan {=u32}: native {}, f64 {}",
+                        step_kind(&os) == scan.kind,
+                        "{=str} {} scan {=u32}: native {}, f64 {}",
                         S::NAME,
                         spec,
                         k,
@@ -1315,22 +1336,24 @@ fn run_schedule<S: TestNumeric, const ORDER: usize>(
                         of
                     );
                     if let (UpdateOutcome::Filtered(a), UpdateOutcome::Filtered(b)) = (os, of) {
-                        residuals[i] = libm::fabs(a.residual.to_f64()).max(libm::fabs(b.residual));
-                        predicted[i] =
+                        scan.residual = libm::fabs(a.residual.to_f64()).max(libm::fabs(b.residual));
+                        scan.predicted =
                             libm::fabs(a.predicted.to_f64()).max(libm::fabs(b.predicted));
                     }
-                    if let (Some(gs), Some(gf)) = (us.gains, uf.gains) {
-                        gains_s[i] = gain_values(&gs[i]);
-                        gains_64[i] = gain_values(&gf[i]);
+                    if let Some((Some(gs), Some(gf))) =
+                        gains.as_ref().map(|(gs, gf)| (gs.get(i), gf.get(i)))
+                    {
+                        scan.gains_s = gain_values(gs);
+                        scan.gains_64 = gain_values(gf);
                     }
-                    z_abs[i] = libm::fabs(z[i]);
+                    scan.z_abs = libm::fabs(z);
                 }
             }
             None => {
                 let (a, b) = (ts.coast(dt_s), tf.coast(dt));
                 ensure!(
                     a.is_ok() && b.is_ok(),
-                    "{=str} {=str} scan {=u32}: coast native {}, f64 {}",
+                    "{=str} {} scan {=u32}: coast native {}, f64 {}",
                     S::NAME,
                     spec,
                     k,
@@ -1341,25 +1364,30 @@ fn run_schedule<S: TestNumeric, const ORDER: usize>(
         }
         let after_s = ts.filter().axes().map(|a| axis_state(&a));
         let after_64 = tf.filter().axes().map(|a| axis_state(&a));
-        for i in 0..2 {
+        let states = (before_s.into_iter().zip(after_s)).zip(before_64.into_iter().zip(after_64));
+        for (i, (scan, (native, reference))) in scans.iter().zip(states).enumerate() {
             let mut m = Magnitudes::default();
-            for (before, after) in [(before_s[i], after_s[i]), (before_64[i], after_64[i])] {
-                m.position(before[0]);
-                m.velocity(before[1] + dt * before[2]);
-                m.position(after[0]);
-                m.velocity(after[1]);
-                m.acceleration(after[2]);
+            for ([x0, v0, a0], [x1, v1, a1]) in [native, reference] {
+                m.position(x0);
+                m.velocity(v0 + dt * a0);
+                m.position(x1);
+                m.velocity(v1);
+                m.acceleration(a1);
             }
-            m.position(z_abs[i]);
-            m.position(predicted[i]);
-            m.residual(residuals[i]);
+            m.position(scan.z_abs);
+            m.position(scan.predicted);
+            m.residual(scan.residual);
+            let mut deviation = [0.0; 3];
+            for ((d, s), f) in deviation.iter_mut().zip(native.1).zip(reference.1) {
+                *d = libm::fabs(s - f);
+            }
             let step = PairStep {
-                kind: kinds[i],
+                kind: scan.kind,
                 dt,
-                gains_64: gains_64[i],
-                gains_s: gains_s[i],
-                residual: residuals[i],
-                deviation: [0, 1, 2].map(|j| libm::fabs(after_s[i][j] - after_64[i][j])),
+                gains_64: scan.gains_64,
+                gains_s: scan.gains_s,
+                residual: scan.residual,
+                deviation,
             };
             visit(k, i, &step, &m)?;
         }
@@ -1393,7 +1421,7 @@ fn run_schedule<S: TestNumeric, const ORDER: usize>(
 ///   the difference of the two runs' gains; two-point initialisation and
 ///   restarts inject the budget's initial error, coasts propagate by Φ(T).
 fn compare_schedule<S: TestNumeric, const ORDER: usize>(
-    spec: &str,
+    spec: &ScheduleSpec,
     scenario: &PlaneScenario,
 ) -> TestResult {
     // Pass 1: magnitudes, gain ranges, decisions.
@@ -1406,47 +1434,54 @@ fn compare_schedule<S: TestNumeric, const ORDER: usize>(
     run_schedule::<S, ORDER>(spec, scenario, |_, _, step, m| {
         merge(&mut env, m);
         if step.kind == StepKind::Filtered {
-            filtered += 1;
+            filtered = filtered.saturating_add(1);
             let mut differs = false;
-            for j in 0..3 {
-                let (a, b) = (step.gains_64[j], step.gains_s[j]);
-                g_max[j] = g_max[j].max(a).max(b);
-                g_min[j] = g_min[j].min(a).min(b);
+            let extremes = g_max.iter_mut().zip(g_min.iter_mut());
+            let gains = step.gains_64.into_iter().zip(step.gains_s);
+            for ((max, min), (a, b)) in extremes.zip(gains) {
+                *max = max.max(a).max(b);
+                *min = min.min(a).min(b);
                 let d = libm::fabs(a - b);
                 largest_gain_difference = largest_gain_difference.max(d);
                 differs |= d > 1e-4 * (1.0 + libm::fabs(a));
             }
             if differs {
-                differing += 1;
+                differing = differing.saturating_add(1);
             }
         }
         Ok(())
     })?;
     ensure!(
         differing == 0,
-        "{=str} {=str}: the gains of {=u32} of {=u32} updates differ from f64 by more than rounding (a threshold or argmin decided differently)",
+        "{=str} {}: the gains of {=u32} of {=u32} updates differ from f64 by more than rounding (a threshold or argmin decided differently)",
         S::NAME,
         spec,
         differing,
         filtered
     );
     let envelope = env.envelope(scenario.dt, scenario.dt);
-    let gains_of = |g: [f64; 3]| {
+    let gains_of = |[alpha, beta, gamma]: [f64; 3]| {
         if ORDER == 3 {
-            Gains::<f64>::alpha_beta_gamma(g[0], g[1], g[2])
+            Gains::<f64>::alpha_beta_gamma(alpha, beta, gamma)
         } else {
-            Gains::<f64>::alpha_beta(g[0], g[1])
+            Gains::<f64>::alpha_beta(alpha, beta)
         }
     };
     // What the library's budget says about the whole gain spread.
-    let mid = [0, 1, 2].map(|j| 0.5 * (g_max[j] + g_min[j]));
+    let [max_a, max_b, max_c] = g_max;
+    let [min_a, min_b, min_c] = g_min;
+    let mid = [
+        0.5 * (max_a + min_a),
+        0.5 * (max_b + min_b),
+        0.5 * (max_c + min_c),
+    ];
     let verdict = match gains_of(mid) {
         Ok(nominal) => {
             let spread = GainSpread {
-                alpha: 0.5 * (g_max[0] - g_min[0]),
-                beta: 0.5 * (g_max[1] - g_min[1]),
+                alpha: 0.5 * (max_a - min_a),
+                beta: 0.5 * (max_b - min_b),
                 gamma: if ORDER == 3 {
-                    0.5 * (g_max[2] - g_min[2])
+                    0.5 * (max_c - min_c)
                 } else {
                     0.0
                 },
@@ -1459,12 +1494,12 @@ fn compare_schedule<S: TestNumeric, const ORDER: usize>(
         Ok(g) => fixed_gain_budget::<S, ORDER>(&g, &envelope)?,
         Err(e) => {
             defmt::error!(
-                "{=str} {=str}: largest gains ({=f64}, {=f64}, {=f64}) unstable: {}",
+                "{=str} {}: largest gains ({=f64}, {=f64}, {=f64}) unstable: {}",
                 S::NAME,
                 spec,
-                g_max[0],
-                g_max[1],
-                g_max[2],
+                max_a,
+                max_b,
+                max_c,
                 e
             );
             return Err(Failure);
@@ -1484,14 +1519,20 @@ fn compare_schedule<S: TestNumeric, const ORDER: usize>(
             }
             let dt = step.dt;
             let mut injection = [0.0; ORDER];
-            injection.copy_from_slice(&local_error[..ORDER]);
+            for (w, e) in injection.iter_mut().zip(local_error) {
+                *w = e;
+            }
             let a = match step.kind {
                 StepKind::Initialisation => [[0.0; ORDER]; ORDER],
                 StepKind::Coast => kinematic_prediction::<ORDER>(dt),
                 StepKind::Filtered => {
                     let [a64, b64, c64] = step.gains_64;
-                    let d = [0, 1, 2].map(|j| libm::fabs(step.gains_s[j] - step.gains_64[j]));
-                    let dk = [d[0], d[1] / dt, d[2] / (2.0 * dt * dt)];
+                    let [a_s, b_s, c_s] = step.gains_s;
+                    let dk = [
+                        libm::fabs(a_s - a64),
+                        libm::fabs(b_s - b64) / dt,
+                        libm::fabs(c_s - c64) / (2.0 * dt * dt),
+                    ];
                     let e = step.residual * (1.0 + 1e-6);
                     for (w, dk) in injection.iter_mut().zip(dk) {
                         *w += dk * e;
@@ -1500,22 +1541,22 @@ fn compare_schedule<S: TestNumeric, const ORDER: usize>(
                 }
             };
             let bound = propagation.step(&a, injection);
-            for j in 0..ORDER {
-                let d = step.deviation[j];
-                worst[j] = worst[j].max(d);
-                if bound[j] > 0.0 {
-                    worst_ratio = worst_ratio.max(d / bound[j]);
+            let per_state = step.deviation.into_iter().zip(bound).zip(worst.iter_mut());
+            for (j, ((d, bound), worst)) in per_state.enumerate() {
+                *worst = worst.max(d);
+                if bound > 0.0 {
+                    worst_ratio = worst_ratio.max(d / bound);
                 }
                 ensure!(
-                    d <= bound[j],
-                    "{=str} {=str} scan {=u32} axis {=usize}: |d{=usize}| = {=f64} > bound {=f64}",
+                    d <= bound,
+                    "{=str} {} scan {=u32} axis {=usize}: |d{=usize}| = {=f64} > bound {=f64}",
                     S::NAME,
                     spec,
                     k,
                     axis,
                     j,
                     d,
-                    bound[j]
+                    bound
                 );
             }
             Ok(())
@@ -1523,29 +1564,30 @@ fn compare_schedule<S: TestNumeric, const ORDER: usize>(
     }
     match verdict {
         Ok(b) => defmt::println!(
-            "       {=str} {=str}: library budget for the gain spread: {=f64} m (not used: gains computed in S)",
+            "       {=str} {}: library budget for the gain spread: {=f64} m (not used: gains computed in S)",
             S::NAME,
             spec,
             b.position
         ),
         Err(e) => defmt::println!(
-            "       {=str} {=str}: library budget for the gain spread alpha {=f64}..{=f64}: refused ({}); fallback used",
+            "       {=str} {}: library budget for the gain spread alpha {=f64}..{=f64}: refused ({}); fallback used",
             S::NAME,
             spec,
-            g_min[0],
-            g_max[0],
+            min_a,
+            max_a,
             e
         ),
     }
+    let [worst_x, worst_v, worst_a] = worst;
     defmt::println!(
-        "       {=str} {=str}: {=u32} filtered updates x 2 axes, same decisions, gains within {=f64}; max |dx| {=f64} m, |dv| {=f64} m/s, |da| {=f64} m/s2; worst deviation = {=f32} of the propagated bound",
+        "       {=str} {}: {=u32} filtered updates x 2 axes, same decisions, gains within {=f64}; max |dx| {=f64} m, |dv| {=f64} m/s, |da| {=f64} m/s2; worst deviation = {=f32} of the propagated bound",
         S::NAME,
         spec,
         filtered / 2,
         largest_gain_difference,
-        worst[0],
-        worst[1],
-        worst[2],
+        worst_x,
+        worst_v,
+        worst_a,
         worst_ratio as f32
     );
     Ok(())
@@ -1553,24 +1595,31 @@ fn compare_schedule<S: TestNumeric, const ORDER: usize>(
 
 fn schedule_least_squares_vs_f64() -> TestResult {
     let s = PlaneScenario::liu_turn(2.0, 80, 0x5c4e_0001, never);
-    compare_schedule::<Native, 2>("least-squares", &s)
+    compare_schedule::<Native, 2>(&ScheduleSpec::LeastSquares(LeastSquaresConfig::DEFAULT), &s)
 }
 
 fn schedule_liu_adaptive_vs_f64() -> TestResult {
     let s = PlaneScenario::liu_turn(2.0, 80, 0x5c4e_0002, never);
-    compare_schedule::<Native, 2>("liu-adaptive", &s)
+    compare_schedule::<Native, 2>(
+        &ScheduleSpec::AdaptiveSwitch(AdaptiveSwitchConfig::DEFAULT),
+        &s,
+    )
 }
 
 fn schedule_li_improved_vs_f64() -> TestResult {
     // Δρ = σ = 5 m, the scenario's noise (the paper's simulation has σ = 1 m
     // and Δρ = 1 m).
     let s = PlaneScenario::liu_turn(2.0, 80, 0x5c4e_0003, never);
-    compare_schedule::<Native, 2>("li-improved:range-error=5", &s)
+    let spec = ScheduleSpec::LiImproved(LiImprovedConfig {
+        range_error: 5.0,
+        ..LiImprovedConfig::DEFAULT
+    });
+    compare_schedule::<Native, 2>(&spec, &s)
 }
 
 fn schedule_m4_moving_window_vs_f64() -> TestResult {
     let s = PlaneScenario::liu_turn(2.0, 80, 0x5c4e_0004, never);
-    compare_schedule::<Native, 2>("m4", &s)
+    compare_schedule::<Native, 2>(&ScheduleSpec::MovingWindow(MovingWindowConfig::DEFAULT), &s)
 }
 
 /// Misses: three in a row at scans 20–22 (firmness 8 → 5) and every 11th
@@ -1581,23 +1630,17 @@ fn firmness_misses(k: u32) -> bool {
 
 fn schedule_tcas_firmness_vs_f64() -> TestResult {
     let s = PlaneScenario::liu_turn(1.0, 120, 0x5c4e_0005, firmness_misses);
-    compare_schedule::<Native, 3>("tcas-firmness", &s)
+    compare_schedule::<Native, 3>(&ScheduleSpec::Firmness, &s)
 }
 
 const BANK_MEMBERS: usize = 8;
 
-fn bank_for<S: Numeric>(spec: &str) -> Result<CartesianBank<S, BANK_MEMBERS, 2>, Failure> {
-    let config = match ScheduleSpec::parse(spec) {
-        Ok(ScheduleSpec::Bank(c)) => c,
-        _ => {
-            defmt::error!("{=str} is not a bank spec", spec);
-            return Err(Failure);
-        }
-    };
-    match CartesianBank::from_config(&config) {
+/// The bank `config` describes (typed, like [`schedule_for`]).
+fn bank_for<S: Numeric>(config: &BankConfig) -> Result<CartesianBank<S, BANK_MEMBERS, 2>, Failure> {
+    match CartesianBank::from_config(config) {
         Ok(b) => Ok(b),
         Err(e) => {
-            defmt::error!("{=str}: bank {=str} refused: {}", S::NAME, spec, e);
+            defmt::error!("{=str}: bank {} refused: {}", S::NAME, config, e);
             Err(Failure)
         }
     }
@@ -1608,9 +1651,9 @@ fn bank_for<S: Numeric>(spec: &str) -> Result<CartesianBank<S, BANK_MEMBERS, 2>,
 /// the same member at every update, and every member must stay within the
 /// library's budget for its gains (computed in `S` by the bank's
 /// configuration: [`fixed_gain_budget_computed_gains`]).
-fn compare_bank<S: TestNumeric>(spec: &str, scenario: &PlaneScenario) -> TestResult {
-    let mut bs = bank_for::<S>(spec)?;
-    let mut bf = bank_for::<f64>(spec)?;
+fn compare_bank<S: TestNumeric>(config: &BankConfig, scenario: &PlaneScenario) -> TestResult {
+    let mut bs = bank_for::<S>(config)?;
+    let mut bf = bank_for::<f64>(config)?;
     let dt = scenario.dt;
     let dt_s = quantity(dt)?;
     let mut magnitudes = [[Magnitudes::default(); BANK_MEMBERS]; 2];
@@ -1622,10 +1665,9 @@ fn compare_bank<S: TestNumeric>(spec: &str, scenario: &PlaneScenario) -> TestRes
         let Some(z) = z else {
             continue;
         };
-        let before: [[(f64, f64); BANK_MEMBERS]; 2] = [0, 1].map(|i| {
+        let before: [[(f64, f64); BANK_MEMBERS]; 2] = bf.axes().each_ref().map(|axis| {
             core::array::from_fn(|m| {
-                bf.axes()[i]
-                    .member(m)
+                axis.member(m)
                     .map_or((0.0, 0.0), |f| (f.position(), f.velocity()))
             })
         });
@@ -1744,9 +1786,9 @@ fn compare_bank<S: TestNumeric>(spec: &str, scenario: &PlaneScenario) -> TestRes
         }
     }
     defmt::println!(
-        "       {=str} {=str}: {=u32} selections on 2 axes, all the same as f64 ({=u32} changes of member); members: max |dx| {=f64} m, |dv| {=f64} m/s; worst deviation = {=f32} of the budget",
+        "       {=str} bank k={=u16}: {=u32} selections on 2 axes, all the same as f64 ({=u32} changes of member); members: max |dx| {=f64} m, |dv| {=f64} m/s; worst deviation = {=f32} of the budget",
         S::NAME,
-        spec,
+        config.k,
         selections,
         switches,
         worst[0],
@@ -1758,5 +1800,5 @@ fn compare_bank<S: TestNumeric>(spec: &str, scenario: &PlaneScenario) -> TestRes
 
 fn bank_m5_vs_f64() -> TestResult {
     let s = PlaneScenario::liu_turn(2.0, 80, 0x5c4e_0006, never);
-    compare_bank::<Native>("bank:k=8", &s)
+    compare_bank::<Native>(&BankConfig::DEFAULT, &s)
 }

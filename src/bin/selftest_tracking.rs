@@ -521,8 +521,12 @@ fn compare_range_azimuth<S: TestScalar>(
                         let (p64, v64) = ra_local_error(&r64, &m, dt, azimuth);
                         // The reported β is (β/T)·T rounded in S: undo with
                         // one more rounding's allowance.
-                        let d = [0, 1, 2, 3].map(|j| libm::fabs(gains_s[j] - gains_64[j]));
-                        let dv_gain = d[1] + 2.0 * rs.u * gains_64[1] + rs.eps / dt;
+                        let mut d = [0.0f64; 4];
+                        for ((d, s), f) in d.iter_mut().zip(gains_s).zip(gains_64) {
+                            *d = libm::fabs(s - f);
+                        }
+                        let [_, beta_64, _, _] = gains_64;
+                        let dv_gain = d[1] + 2.0 * rs.u * beta_64 + rs.eps / dt;
                         for g in d {
                             largest_gain_difference = largest_gain_difference.max(g);
                         }
@@ -1588,7 +1592,15 @@ fn cluttered_same_codes<N: TrackNumeric>(
         for _ in 0..5 {
             push((noise(3000.0), noise(3000.0)));
         }
-        let points = &points[..n];
+        let Some(points) = points.get(..n) else {
+            defmt::error!(
+                "scan {=u32}: {=usize} points counted in {=usize} slots",
+                k,
+                n,
+                PER_SCAN
+            );
+            return Err(Failure);
+        };
         let mut codes_n = [Association::OutsideGates; PER_SCAN];
         let mut codes_f = [Association::OutsideGates; PER_SCAN];
         let now = scan_time(k);

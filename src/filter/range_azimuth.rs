@@ -84,9 +84,10 @@
 //! 10⁻¹⁹ to 4·10¹⁸. Nothing of size R² is ever formed (√VAR = R·σ_B is
 //! used, and σ_B = √σ_B² is taken once). The algebra is the same filter:
 //!
-//! * eq. (8) becomes L⁻ = the triangularisation of [Φ·L | Γ·√Q] by two
-//!   Givens rotations (L⁻L⁻ᵀ = ΦPΦᵀ + ΓQΓᵀ exactly), every length taken
-//!   with a hypot that never squares its arguments;
+//! * eq. (8) becomes L⁻ = the Cholesky factor of M·Mᵀ for
+//!   M = [Φ·L | Γ·√Q] (L⁻L⁻ᵀ = ΦPΦᵀ + ΓQΓᵀ exactly), formed from M's rows:
+//!   their lengths, dot product and 2×2 minors (Lagrange's identity),
+//!   every length taken with a hypot that never squares its arguments;
 //! * eqs. (9)–(10) and the update P⁺ = (I − KD)·PCOV become, with
 //!   u = a/σ (a = √PCOV₁₁, σ the direction's measurement standard
 //!   deviation): gains u²/(1 + u²) and (b/σ)·u/(1 + u²); a and b divided
@@ -108,14 +109,15 @@
 //! The velocity is one of them because a two-point velocity from polar
 //! measurements carries the cross-range noise over T (34 km/s for the
 //! paper's 5° at 280 km), beyond a speed format. Positions are
-//! [`Numeric::Length`]; sin and cos come from [`Numeric::sin_cos`] (CORDIC on
-//! a binary angle in the fast fixed point).
+//! [`Numeric::Length`]; sin and cos come from [`Numeric::sin_cos`] (a sine
+//! table with a Taylor correction on a binary angle in the fast fixed
+//! point).
 //!
 //! Accuracy against the independent f64 reference (host-tests
 //! `range_azimuth.rs`, the paper's 280 km scenario over 500 scans and a
-//! TCAS encounter with coasts): f32 within 0.11 m and 0.03 m/s, Q32.32
-//! within 3 mm and 6.3·10⁻⁵ m/s, gains within 5·10⁻⁹; the fast fixed point
-//! within 1.7 mm and 2.6·10⁻⁴ m/s, gains within 1.1·10⁻⁷.
+//! TCAS encounter with coasts): f32 within 0.15 m and 0.03 m/s, Q32.32
+//! within 3.8 mm and 6.6·10⁻⁵ m/s, gains within 5.6·10⁻⁹; the fast fixed
+//! point within 1.8 mm and 2.6·10⁻⁴ m/s, gains within 1.1·10⁻⁷.
 
 use crate::filter::{check_interval, FilterError, Phase};
 use crate::num::{Numeric, Quantity, Real};
@@ -126,6 +128,10 @@ pub const PAPER_BEARING_VARIANCE: f64 = 7.569e-3;
 /// Smallest cross-range standard deviation used, in metres (see the module
 /// docs: keeps the cross-range gains defined as R → 0).
 pub const CROSS_RANGE_SIGMA_FLOOR: f64 = 1.0;
+const _: () = assert!(
+    CROSS_RANGE_SIGMA_FLOOR == 1.0,
+    "cross_range_sigma uses Ratio::ONE"
+);
 
 /// Why a noise configuration was refused.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -239,24 +245,13 @@ impl<N: Numeric> RangeAzimuthNoise<N> {
     /// Cross-range standard deviation √VAR = R·σ_B at range R (m), floored
     /// at [`CROSS_RANGE_SIGMA_FLOOR`].
     pub fn cross_range_sigma(&self, range: N::Length) -> N::Ratio {
-        (N::Ratio::from(range) * self.bearing_sigma)
-            .max_of(N::Ratio::from_f64_lossy(CROSS_RANGE_SIGMA_FLOOR))
+        // The floor is one metre (checked at compile time below): `ONE`,
+        // not a conversion from f64 on every update.
+        (N::Ratio::from(range) * self.bearing_sigma).max_of(N::Ratio::ONE)
     }
 }
 
 pub use crate::num::{azimuth_of, hypot};
-
-/// A Givens rotation of two columns of a two-row array that zeroes the
-/// first row's second entry: returns the first row's new first entry (its
-/// length, ≥ 0) and the second row's two new entries.
-fn givens<R: Real>(r0p: R, r0q: R, r1p: R, r1q: R) -> (R, R, R) {
-    let r = r0p.hypot(r0q);
-    if r == R::ZERO {
-        return (r, r1p, r1q);
-    }
-    let (cos, sin) = (r0p / r, r0q / r);
-    (r, cos * r1p + sin * r1q, cos * r1q - sin * r1p)
-}
 
 /// A position/velocity covariance along one direction, as its lower
 /// Cholesky factor L = [a 0; b c] (P = L·Lᵀ): P₁₁ = a² (m²),
@@ -295,64 +290,78 @@ impl<N: Numeric> CovarianceFactor<N> {
     }
 
     /// He et al. eq. (8), PCOV = Φ P Φᵀ + Γ Q Γᵀ with Φ = [1 T; 0 1],
-    /// Γ = [T²/2; T], in factor form: [Φ·L | Γ·√Q] =
-    /// [a + T b, T c, T² √Q/2; b, c, T √Q] triangularised by two Givens
-    /// rotations (which leave M·Mᵀ = PCOV unchanged).
-    fn predict(&self, dt: N::Ratio, process_sigma: N::Ratio) -> Self {
-        let m00 = self.a + dt * self.b;
-        let m01 = dt * self.c;
-        let m02 = (dt * dt * process_sigma).half();
-        let m12 = dt * process_sigma;
-        let (r0, r10, r11) = givens(m00, m01, self.b, self.c);
-        let (a, b, r12) = givens(r0, m02, r10, m12);
+    /// Γ = [T²/2; T], in factor form: the rows of M = [Φ·L | Γ·√Q] =
+    /// [a + T b, T c, g₀; b, c, g₁] (`noise` = (g₀, g₁), formed once per
+    /// interval) give PCOV = M·Mᵀ, whose factor is a' = |row₀|,
+    /// b' = row₀·row₁/a' and c' = |row₀ × row₁|/a' (Lagrange's identity,
+    /// c'² = |row₀|²|row₁|² − (row₀·row₁)² over a'², without the
+    /// subtraction). The 2×2 minors of M are a·c (det Φ = 1), a g₁ + b g₀
+    /// and c g₀ (T g₁ = 2 g₀): no cancellation. Every product is of a
+    /// quantity and a ratio to a' (a fixed-range format would overflow on
+    /// a·c); lengths by hypots that never square their arguments.
+    fn predict(&self, dt: N::Ratio, noise: &ProcessNoiseColumn<N>) -> Self {
+        let CovarianceFactor { a, b, c } = *self;
+        let (g0, g1) = (noise.position, noise.velocity);
+        let m00 = a + dt * b;
+        let m01 = dt * c;
+        let a_new = m00.hypot3(m01, g0);
+        if a_new == N::Ratio::ZERO {
+            // Row 0 is zero: PCOV = [0 0; 0 |row₁|²].
+            return CovarianceFactor {
+                a: a_new,
+                b: N::Ratio::ZERO,
+                c: b.hypot3(c, g1),
+            };
+        }
+        let (u, v, w, s) = (m00 / a_new, m01 / a_new, g0 / a_new, a / a_new);
         CovarianceFactor {
-            a,
-            b,
-            c: r11.hypot(r12),
+            a: a_new,
+            b: u * b + v * c + w * g1,
+            c: (c * s).hypot3(g1 * s + b * w, c * w),
         }
     }
 
     /// Position and velocity gains K = PCOV·Dᵀ/(PCOV₁₁ + σ²) for a position
     /// measurement of standard deviation `sigma` (eq. 9: α and β/T; eq. 10:
-    /// W1 and W2), and the factor of the updated covariance (I − K D)·PCOV:
-    /// with s = 1 + (a/σ)², a and b shrink by √s and c is unchanged. The
-    /// branch keeps the ratio of a and σ at most 1 so no square exceeds 1.
+    /// W1 and W2), and the factor of the updated covariance (I − K D)·PCOV.
+    /// With h = √(a² + σ²) (a hypot: no square is formed): the gains are
+    /// (a/h)² and (b/h)·(a/h), and a, b shrink by σ/h (P₁₁⁺ = a²σ²/h²), c
+    /// unchanged. Every ratio formed is ≤ 1 or b/h ≤ b/σ.
     fn update(&self, sigma: N::Ratio) -> (N::Ratio, N::Ratio, Self) {
         let CovarianceFactor { a, b, c } = *self;
-        let one = N::Ratio::ONE;
-        if a <= sigma {
-            let u = a / sigma;
-            let s = one + u * u;
-            let root = s.sqrt();
-            let kp = u * u / s;
-            let kv = b * (u / s) / sigma;
-            (
-                kp,
-                kv,
-                CovarianceFactor {
-                    a: a / root,
-                    b: b / root,
-                    c,
-                },
-            )
-        } else {
-            let w = sigma / a;
-            let s = one + w * w;
-            let root = s.sqrt();
-            let b_over_a = b / a;
-            let kp = one / s;
-            let kv = b_over_a / s;
-            let shrunk = CovarianceFactor {
-                a: sigma / root,
-                b: b_over_a * sigma / root,
+        let h = a.hypot(sigma);
+        let a_over_h = a / h;
+        let shrink = sigma / h;
+        (
+            a_over_h * a_over_h,
+            (b / h) * a_over_h,
+            CovarianceFactor {
+                a: a * shrink,
+                b: b * shrink,
                 c,
-            };
-            (kp, kv, shrunk)
-        }
+            },
+        )
     }
 
     fn is_valid(&self) -> bool {
         self.a.is_valid() && self.b.is_valid() && self.c.is_valid()
+    }
+}
+
+/// Γ·√Q of eq. (8) for one interval T: (T²·√Q/2, T·√Q), the same along
+/// and across range.
+struct ProcessNoiseColumn<N: Numeric> {
+    position: N::Ratio,
+    velocity: N::Ratio,
+}
+
+impl<N: Numeric> ProcessNoiseColumn<N> {
+    fn new(dt: N::Ratio, process_sigma: N::Ratio) -> Self {
+        let velocity = dt * process_sigma;
+        ProcessNoiseColumn {
+            position: (dt * velocity).half(),
+            velocity,
+        }
     }
 }
 
@@ -601,12 +610,12 @@ impl<N: Numeric> RangeAzimuthFilter<N> {
         let (xp, yp) = (x + N::Length::from(vx * t), y + N::Length::from(vy * t));
         // Eqs. (7)–(8), then eq. (9) with σ_R (reading 3) and eq. (10) with
         // √VAR, and the covariance update (reading 4).
-        let q = self.noise.process_sigma;
+        let noise = ProcessNoiseColumn::new(t, self.noise.process_sigma);
         let (alpha, range_velocity_gain, range_factor) = self
             .range_factor
-            .predict(t, q)
+            .predict(t, &noise)
             .update(self.noise.range_sigma);
-        let (w1, w2, cross_factor) = self.cross_factor.predict(t, q).update(cross_sigma);
+        let (w1, w2, cross_factor) = self.cross_factor.predict(t, &noise).update(cross_sigma);
         // Eq. (11) with the predicted position (reading 1).
         let range_residual = range - (sin_b * xp + cos_b * yp);
         let cross_residual = cos_b * xp - sin_b * yp;
@@ -670,9 +679,9 @@ impl<N: Numeric> RangeAzimuthFilter<N> {
             }
             Phase::Tracking => {
                 let t = N::Ratio::from(dt);
-                let q = self.noise.process_sigma;
-                let range_factor = self.range_factor.predict(t, q);
-                let cross_factor = self.cross_factor.predict(t, q);
+                let noise = ProcessNoiseColumn::new(t, self.noise.process_sigma);
+                let range_factor = self.range_factor.predict(t, &noise);
+                let cross_factor = self.cross_factor.predict(t, &noise);
                 let position = self.predict(dt).map(|p| p.position);
                 match position {
                     Ok(position) if range_factor.is_valid() && cross_factor.is_valid() => {

@@ -155,18 +155,28 @@ impl<N: Numeric, const D: usize> GainSchedule<N, D> for LiImprovedGains<N> {
             self.count = self.count.saturating_add(1).min(self.k_max);
             return;
         }
-        // Δr = round((r − R)·r) (eq. 14). An overflow means a ratio far
-        // beyond R: the count falls to its floor.
-        let drop = ((ratio - self.max_ratio) * ratio).to_f64();
-        let drop = if drop.is_finite() {
-            libm::round(drop)
-        } else {
-            f64::INFINITY
+        // Δr = round((r − R)·r) (eq. 14), in N: the count only needs Δr up
+        // to count − 3, found by bisection on Δr ≥ k − ½ (round half away
+        // from zero; Δr > 0 here). An invalid product (a ratio far beyond R,
+        // or no ratio) drops the count to its floor.
+        let drop = (ratio - self.max_ratio) * ratio;
+        let reaches = |k: u32| {
+            // k − ½ = (2k − 1)/2, exact in every format for k ≤ k_max.
+            let threshold =
+                N::Ratio::from_ratio(u64::from(k).saturating_mul(2).saturating_sub(1), 2);
+            !drop.is_valid() || drop >= threshold
         };
-        let floor = f64::from(FIRST_COUNT);
-        let next = (f64::from(self.count) - drop).max(floor);
-        // `next` is in [3, count], so the conversion is exact.
-        self.count = next as u32;
+        // The largest k in [0, count − 3] with Δr ≥ k − ½ (k = 0 always).
+        let (mut low, mut high) = (0u32, self.count.saturating_sub(FIRST_COUNT));
+        while low < high {
+            let middle = high.saturating_sub(high.saturating_sub(low) / 2);
+            if reaches(middle) {
+                low = middle;
+            } else {
+                high = middle.saturating_sub(1);
+            }
+        }
+        self.count = self.count.saturating_sub(low).max(FIRST_COUNT);
     }
 
     fn reset(&mut self) {

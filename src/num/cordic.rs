@@ -231,25 +231,3 @@ fn vector(mut x: i64, mut y: i64) -> i64 {
     }
     z
 }
-
-/// One binary-angle unit, 2π/2³² rad, in Q61: 2π·2⁶¹/2³² = π·2³⁰, rounded
-/// to nearest.
-const PI_Q30: i64 = 3_373_259_426;
-
-/// (sin θ, cos θ) in Q61 of the angle θ = `turns`·2π/2³² (a binary angle:
-/// every u32 is one direction, the reduction is exact). Quarter turns are
-/// exact; the rest, within ±π/4, goes through [`rotate`]. The conversion
-/// constant errs by 1.3·10⁻¹⁰ relative, below 1.1·10⁻¹⁰ rad at π/4.
-pub(super) fn sin_cos_turns(turns: u32) -> (i64, i64) {
-    // Nearest quarter turn q and the remainder r ∈ [−2²⁹, 2²⁹).
-    let quadrant = (turns.wrapping_add(1 << 29) >> 30) & 3;
-    let r = turns.wrapping_sub(quadrant << 30) as i32;
-    // r·2π/2³² rad in Q61 is r·π·2³⁰; |r·π·2³⁰| ≤ 2²⁹·3.4·10⁹ < 2⁶¹.
-    let (s, c) = rotate(i64::from(r).wrapping_mul(PI_Q30));
-    match quadrant {
-        0 => (s, c),
-        1 => (c, s.wrapping_neg()),
-        2 => (s.wrapping_neg(), c.wrapping_neg()),
-        _ => (c.wrapping_neg(), s),
-    }
-}

@@ -624,14 +624,17 @@ impl Numeric for Fixed32 {
     type Angle = Angle;
     type Guard = Fixed32Guard;
 
-    /// CORDIC on the binary angle ([`super::cordic`]): within 2⁻³⁰ plus the
-    /// rounding to 31-bit mantissas. An invalid angle gives invalid values.
+    /// Table and Taylor correction on the binary angle ([`super::sine`]):
+    /// within [`super::sine::SIN_COS_MAX_ERROR_Q31`]·2⁻³¹ of the sine and
+    /// cosine of the binary angle, plus the rounding to 31-bit mantissas
+    /// and the angle's conversion to turns (1.8·10⁻¹⁰ relative). An
+    /// invalid angle gives invalid values.
     fn sin_cos(theta: Angle) -> (Ratio, Ratio) {
         if theta.is_invalid() {
             return (Ratio::INVALID, Ratio::INVALID);
         }
-        let (s, c) = super::cordic::sin_cos_turns(turns(theta));
-        (Ratio::from_wide(s, -61), Ratio::from_wide(c, -61))
+        let (s, c) = super::sine::sin_cos_q31(turns(theta));
+        (Ratio::from_wide(s, -31), Ratio::from_wide(c, -31))
     }
 
     /// CORDIC in vectoring mode on the exact words (lengths in Q32.32 are

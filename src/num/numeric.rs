@@ -139,6 +139,12 @@ pub trait Real: Quantity + Mul<Output = Self> + Div<Output = Self> {
         let k = small / large;
         large * (Self::ONE + k * k).sqrt()
     }
+
+    /// √(a² + b² + c²) without forming the squares: two hypots (a format
+    /// may do it with one square root).
+    fn hypot3(self, b: Self, c: Self) -> Self {
+        self.hypot(b).hypot(c)
+    }
 }
 
 /// The hot path's validity check (see the module docs).

@@ -12,14 +12,17 @@
 //! by zero or the square root of a negative number gives. Results below
 //! 2^([`EXPONENT_MIN`] + 30) flush to zero.
 //!
-//! Every operation rounds to nearest (ties away from zero) once, except
-//! division, which truncates a 32-bit quotient before rounding it to 31 bits:
-//! each result is within one unit of the last place (2⁻³⁰ relative) of the
-//! exact result, the [`Quantity::UNIT_ROUNDOFF`] the error budget uses.
+//! Every operation rounds to nearest (ties away from zero) once, on 32-bit
+//! words (no 64-bit division: Knuth's algorithm D with 16-bit digits, and a
+//! table-seeded Newton square root): products, quotients and square roots
+//! within half a unit of the last place, hypot within half a unit plus
+//! 2⁻⁶⁰ relative, sums within one unit (2⁻³⁰ relative), the
+//! [`Quantity::UNIT_ROUNDOFF`] the error budget uses.
 
 use core::cmp::Ordering;
 use core::fmt;
 use core::marker::PhantomData;
+use core::num::NonZeroU32;
 use core::ops::{Add, Div, Mul, Neg, Sub};
 
 use super::numeric::{Quantity, Real};
@@ -80,28 +83,110 @@ impl<U> PartialEq for Scaled<U> {
     }
 }
 
+/// ⌊(u1·2³² + u0)/v⌋ and the remainder, for v ≥ 2³¹ and u1 < v: Knuth's
+/// algorithm D with 16-bit digits (Warren, *Hacker's Delight*, 2nd ed.,
+/// §9-4, `divlu`). Two 32-bit divisions (the Cortex-M3's `udiv`) and at
+/// most four corrections, instead of a 64-bit division routine. Outside
+/// its preconditions the result is meaningless, but nothing panics.
+pub(crate) fn div_wide(u1: u32, u0: u32, v: u32) -> (u32, u32) {
+    const DIGIT: u32 = 1 << 16;
+    // v ≥ 2³¹, so its high digit is at least 2¹⁵.
+    let v_high = NonZeroU32::new(v >> 16).unwrap_or(NonZeroU32::MIN);
+    let v_low = v & 0xFFFF;
+    // One quotient digit of (high·2¹⁶ + low)/v, high < v: estimated from
+    // v's high digit, then corrected (at most twice, Knuth's step D3).
+    let digit = |high: u32, low: u32| {
+        let mut q = high / v_high;
+        let mut rest = high.wrapping_sub(q.wrapping_mul(v_high.get()));
+        for _ in 0..2 {
+            // rest < 2¹⁶ here, so rest·2¹⁶ + low fits a word.
+            if q >= DIGIT || q.wrapping_mul(v_low) > ((rest << 16) | low) {
+                q = q.wrapping_sub(1);
+                rest = rest.wrapping_add(v_high.get());
+                if rest < DIGIT {
+                    continue;
+                }
+            }
+            break;
+        }
+        q
+    };
+    let (u0_high, u0_low) = (u0 >> 16, u0 & 0xFFFF);
+    let q1 = digit(u1, u0_high);
+    // The partial remainder u1·2¹⁶ + u0_high − q1·v < v (modulo 2³²).
+    let partial = ((u1 << 16) | u0_high).wrapping_sub(q1.wrapping_mul(v));
+    let q0 = digit(partial, u0_low);
+    let remainder = ((partial << 16) | u0_low).wrapping_sub(q0.wrapping_mul(v));
+    ((q1 << 16) | q0, remainder)
+}
+
+/// √((i + 64.5)·2²⁴), rounded, for i = 0..192: a first estimate of the
+/// square root of a word in [2³⁰, 2³²) from its top 8 bits (within 0.4 %).
+const SQRT_SEED: [u16; 192] = [
+    32896, 33150, 33402, 33652, 33900, 34147, 34392, 34635, 34876, 35116, 35354, 35590, 35825,
+    36059, 36291, 36521, 36750, 36978, 37204, 37429, 37652, 37874, 38095, 38315, 38533, 38750,
+    38966, 39181, 39394, 39606, 39818, 40028, 40237, 40445, 40652, 40857, 41062, 41266, 41469,
+    41671, 41871, 42071, 42270, 42468, 42665, 42861, 43057, 43251, 43445, 43637, 43829, 44020,
+    44210, 44400, 44588, 44776, 44963, 45149, 45334, 45519, 45703, 45886, 46069, 46250, 46431,
+    46612, 46791, 46970, 47149, 47326, 47503, 47679, 47855, 48030, 48204, 48378, 48551, 48723,
+    48895, 49067, 49237, 49407, 49577, 49746, 49914, 50082, 50249, 50416, 50582, 50747, 50912,
+    51077, 51241, 51404, 51567, 51730, 51892, 52053, 52214, 52374, 52534, 52694, 52853, 53011,
+    53169, 53327, 53484, 53640, 53797, 53952, 54108, 54262, 54417, 54571, 54724, 54877, 55030,
+    55182, 55334, 55485, 55636, 55787, 55937, 56087, 56236, 56385, 56534, 56682, 56830, 56977,
+    57124, 57271, 57417, 57563, 57709, 57854, 57999, 58143, 58287, 58431, 58574, 58717, 58860,
+    59002, 59144, 59286, 59427, 59568, 59709, 59849, 59989, 60129, 60268, 60407, 60546, 60684,
+    60822, 60960, 61098, 61235, 61372, 61508, 61644, 61780, 61916, 62051, 62186, 62321, 62456,
+    62590, 62724, 62857, 62991, 63124, 63256, 63389, 63521, 63653, 63785, 63916, 64047, 64178,
+    64309, 64439, 64569, 64699, 64828, 64957, 65086, 65215, 65344, 65472,
+];
+
+/// ⌊√n⌋ for n in [2⁶², 2⁶⁴): the seed of [`SQRT_SEED`], a Newton step on
+/// the high word (32-bit divisions), a Newton step on n ([`div_wide`]) and
+/// at most two corrections checked with exact products.
+fn isqrt_floor_normalized(n: u64) -> u32 {
+    let (high, low) = ((n >> 32) as u32, n as u32);
+    let index = usize::try_from(high >> 24).unwrap_or(0).wrapping_sub(64);
+    let seed = u32::from(SQRT_SEED.get(index).copied().unwrap_or(u16::MAX));
+    let seed_nz = NonZeroU32::new(seed).unwrap_or(NonZeroU32::MIN);
+    // (seed + high/seed)/2 with 16 fractional bits: √n within 8·10⁻⁶
+    // relative (the seed's 0.4 % squared), at most 3.5 below the exact
+    // Newton value, which is ≥ √n; +4 keeps it an upper bound.
+    let (quotient, rest) = (high / seed_nz, high % seed_nz);
+    let fraction = (rest << 16) / seed_nz;
+    let sum = (u64::from(seed) << 16)
+        .wrapping_add(u64::from(quotient) << 16)
+        .wrapping_add(u64::from(fraction));
+    let first = u32::try_from((sum >> 1).wrapping_add(4))
+        .unwrap_or(u32::MAX)
+        .max(1 << 31);
+    // Newton from above: ⌊(x + ⌊n/x⌋)/2⌋ ≥ ⌊√n⌋ for x ≥ √n, here within 1.
+    // x ≥ √n also makes n/x ≤ √n < 2³², div_wide's precondition, except
+    // where the clamp to u32::MAX left x just below √n (n within 2³³ of
+    // 2⁶⁴): there ⌊√n⌋ = u32::MAX, which a saturated quotient gives.
+    let q = if high >= first {
+        u32::MAX
+    } else {
+        div_wide(high, low, first).0
+    };
+    let mut root = ((u64::from(first).wrapping_add(u64::from(q))) >> 1) as u32;
+    for _ in 0..2 {
+        if u64::from(root).wrapping_mul(u64::from(root)) > n {
+            root = root.wrapping_sub(1);
+        }
+    }
+    root
+}
+
 /// Integer square root, rounded to nearest: r with |r² − n| ≤ r.
 pub(crate) fn isqrt_u64(n: u64) -> u64 {
-    let mut rest = n;
-    let mut root = 0u64;
-    // The largest power of four ≤ n (bit 62 at most).
-    let mut bit = 1u64 << 62;
-    while bit > rest {
-        bit >>= 2;
+    if n == 0 {
+        return 0;
     }
-    while bit != 0 {
-        // root + bit ≤ n here, so neither sum overflows.
-        let trial = root.wrapping_add(bit);
-        if rest >= trial {
-            rest = rest.wrapping_sub(trial);
-            root = (root >> 1).wrapping_add(bit);
-        } else {
-            root >>= 1;
-        }
-        bit >>= 2;
-    }
-    // rest = n − root² < 2·root + 1; round up when n − root² > root.
-    if rest > root {
+    // n·4^k in [2⁶², 2⁶⁴): ⌊√(n·4^k)⌋ / 2^k, truncated, is ⌊√n⌋.
+    let shift = n.leading_zeros() & !1;
+    let root = u64::from(isqrt_floor_normalized(n << shift) >> (shift / 2));
+    // n − root² < 2·root + 1; round up when n − root² > root.
+    if n.wrapping_sub(root.wrapping_mul(root)) > root {
         root.wrapping_add(1)
     } else {
         root
@@ -168,32 +253,18 @@ impl<U> Scaled<U> {
         let top = 63u32.wrapping_sub(magnitude.leading_zeros());
         let (magnitude, exponent) = if top > TOP_BIT {
             let shift = top.wrapping_sub(TOP_BIT); // 1..=33
-                                                   // Round half away from zero: drop all but one extra bit, add it.
+                                                   // Round half away from zero: drop all but one extra bit, add it
+                                                   // (at most 2³¹, which `finish` takes as one bit more).
             let rounded = (magnitude >> shift.wrapping_sub(1)).wrapping_add(1) >> 1;
-            let exponent = exponent.saturating_add(shift as i32);
-            if rounded >> 31 != 0 {
-                // Rounded up to 2³¹: one bit more, exactly.
-                (rounded >> 1, exponent.saturating_add(1))
-            } else {
-                (rounded, exponent)
-            }
+            (rounded as u32, exponent.saturating_add(shift as i32))
         } else {
             let shift = TOP_BIT.wrapping_sub(top); // 0..=30
-            (magnitude << shift, exponent.saturating_sub(shift as i32))
+            (
+                (magnitude << shift) as u32,
+                exponent.saturating_sub(shift as i32),
+            )
         };
-        if exponent > EXPONENT_MAX {
-            return Self::INVALID;
-        }
-        if exponent < EXPONENT_MIN {
-            return Self::ZERO_VALUE;
-        }
-        // magnitude < 2³¹: the cast is exact and the negation cannot wrap.
-        let m = magnitude as i32;
-        Scaled {
-            mantissa: if negative { m.wrapping_neg() } else { m },
-            exponent: exponent as i16,
-            unit: PhantomData,
-        }
+        Self::finish(negative, magnitude, exponent)
     }
 
     /// The integer `v`.
@@ -222,32 +293,80 @@ impl<U> Scaled<U> {
         })
     }
 
+    /// ±`magnitude`·2^`exponent` for a magnitude in [2³⁰, 2³¹] (2³¹ is
+    /// one more bit, exactly): the last step of the operations whose
+    /// result's leading bit is known.
+    #[inline(always)]
+    fn finish(negative: bool, magnitude: u32, exponent: i32) -> Self {
+        let (m, exponent) = if magnitude >> 31 != 0 {
+            (magnitude >> 1, exponent.saturating_add(1))
+        } else {
+            (magnitude, exponent)
+        };
+        if exponent > EXPONENT_MAX {
+            return Self::INVALID;
+        }
+        if exponent < EXPONENT_MIN {
+            return Self::ZERO_VALUE;
+        }
+        // m < 2³¹: the cast is exact and the negation cannot wrap.
+        let m = m as i32;
+        Scaled {
+            mantissa: if negative { m.wrapping_neg() } else { m },
+            exponent: exponent as i16,
+            unit: PhantomData,
+        }
+    }
+
+    /// Rounded to nearest, ties away from zero: the product of two
+    /// normalised mantissas lies in [2⁶⁰, 2⁶²), so its leading bit is one of
+    /// two and the rounding is a constant shift.
     fn multiply(self, other: Self) -> Self {
         if self.is_invalid() || other.is_invalid() {
             return Self::INVALID;
         }
-        // |product| < 2⁶²: exact in i64.
-        let product = i64::from(self.mantissa).wrapping_mul(i64::from(other.mantissa));
-        Self::from_wide(product, self.exponent().wrapping_add(other.exponent()))
+        if self.is_zero() || other.is_zero() {
+            return Self::ZERO_VALUE;
+        }
+        let negative = (self.mantissa ^ other.mantissa) < 0;
+        let product = u64::from(self.mantissa.unsigned_abs())
+            .wrapping_mul(u64::from(other.mantissa.unsigned_abs()));
+        // Exponents lie in [−200, 100]: their sums cannot wrap.
+        let exponent = self.exponent().wrapping_add(other.exponent());
+        if product >> 61 != 0 {
+            let m = ((product >> 30).wrapping_add(1) >> 1) as u32;
+            Self::finish(negative, m, exponent.wrapping_add(31))
+        } else {
+            let m = ((product >> 29).wrapping_add(1) >> 1) as u32;
+            Self::finish(negative, m, exponent.wrapping_add(30))
+        }
     }
 
+    /// Correctly rounded (to nearest, ties away from zero): the 32-bit
+    /// quotient of the mantissas by [`div_wide`], whose last bit is the
+    /// rounding bit.
     fn divide(self, other: Self) -> Self {
         if self.is_invalid() || other.is_invalid() || other.is_zero() {
             return Self::INVALID;
         }
-        // |mantissa| < 2³¹, so the shifted numerator is below 2⁶³; the
-        // divisor is neither 0 nor −1 (normalised), so the division is exact
-        // integer division with a quotient of at least 32 bits.
-        let numerator = i64::from(self.mantissa) << 32;
-        match numerator.checked_div(i64::from(other.mantissa)) {
-            Some(q) => Self::from_wide(
-                q,
-                self.exponent()
-                    .wrapping_sub(other.exponent())
-                    .wrapping_sub(32),
-            ),
-            None => Self::INVALID,
+        if self.is_zero() {
+            return Self::ZERO_VALUE;
         }
+        let negative = (self.mantissa ^ other.mantissa) < 0;
+        let (a, b) = (self.mantissa.unsigned_abs(), other.mantissa.unsigned_abs());
+        // a, b in [2³⁰, 2³¹): with v = 2b ≥ 2³¹ the quotient q of
+        // (2a or a)·2³² by v lies in [2³¹, 2³²): q = ⌊a·2³²/b⌋ when a < b,
+        // ⌊a·2³¹/b⌋ otherwise.
+        let difference = self.exponent().wrapping_sub(other.exponent());
+        let (high, exponent) = if a < b {
+            (a << 1, difference.wrapping_sub(31))
+        } else {
+            (a, difference.wrapping_sub(30))
+        };
+        let (q, _) = div_wide(high, 0, b << 1);
+        // q/2, rounded half up on the exact quotient: its half bit is q's
+        // last bit (the remainder only decides ties, which round up too).
+        Self::finish(negative, (q >> 1).wrapping_add(q & 1), exponent)
     }
 
     fn sum(self, other: Self) -> Self {
@@ -266,18 +385,97 @@ impl<U> Scaled<U> {
             (other, self)
         };
         let gap = high.exponent().wrapping_sub(low.exponent()) as u32; // ≥ 0
-                                                                       // Both mantissas times 2³¹ (below 2⁶²); the smaller one aligned by an
-                                                                       // arithmetic shift (its dropped bits are below 2⁻³¹ of an ulp).
-        let wide_high = i64::from(high.mantissa) << 31;
-        let wide_low = if gap < 63 {
-            (i64::from(low.mantissa) << 31) >> gap
+        if gap > 32 {
+            // The smaller one is below 2⁻² of an ulp of the larger: the
+            // sum rounds to the larger (also when it lowers its leading bit:
+            // 2³⁰·2³¹ − x, x < 2²⁹, rounds back to 2³⁰ at the new scale).
+            return high;
+        }
+        if (high.mantissa ^ low.mantissa) >= 0 {
+            Self::sum_of_magnitudes(high, low, gap)
         } else {
-            0
-        };
-        Self::from_wide(
-            wide_high.wrapping_add(wide_low),
-            high.exponent().wrapping_sub(31),
+            Self::difference_of_magnitudes(high, low, gap)
+        }
+    }
+
+    /// |m_low|·2^(32 − `gap`) split into the word above 2³² and the word
+    /// below (`gap` ≤ 32): the smaller magnitude aligned to the larger's
+    /// exponent, with the 32 bits shifted out kept.
+    #[inline(always)]
+    fn aligned(low: Self, gap: u32) -> (u32, u32) {
+        let magnitude = low.mantissa.unsigned_abs();
+        (
+            magnitude.checked_shr(gap).unwrap_or(0),
+            magnitude.checked_shl(32u32.wrapping_sub(gap)).unwrap_or(0),
         )
+    }
+
+    /// The sum of two nonzero numbers of the same sign, `high`'s exponent
+    /// `gap` ≤ 32 above `low`'s, correctly rounded on 32-bit words: the
+    /// exact sum of the magnitudes is (`word` + `fraction`/2³²)·2^e_high,
+    /// `word` = |m_high| + ⌊|m_low|/2^gap⌋ < 2³² and `fraction` the bits
+    /// shifted out, so its leading bit is bit 30 or 31 of `word`.
+    #[inline(always)]
+    fn sum_of_magnitudes(high: Self, low: Self, gap: u32) -> Self {
+        let (low_word, fraction) = Self::aligned(low, gap);
+        let word = high.mantissa.unsigned_abs().wrapping_add(low_word);
+        let negative = high.mantissa < 0;
+        if word >> 31 != 0 {
+            // word/2 rounded half up: the half bit is word's last bit.
+            Self::finish(
+                negative,
+                (word >> 1).wrapping_add(word & 1),
+                high.exponent().wrapping_add(1),
+            )
+        } else {
+            Self::finish(negative, word.wrapping_add(fraction >> 31), high.exponent())
+        }
+    }
+
+    /// The sum of two nonzero numbers of opposite signs, `high`'s exponent
+    /// `gap` ≤ 32 above `low`'s, correctly rounded: the exact difference of
+    /// the magnitudes (`word` + `fraction`/2³²)·2^e_high. For `gap` ≥ 2 the
+    /// smaller is below 2²⁹ units, so `word`'s leading bit is bit 29 or 30
+    /// and the rounding takes one or two bits of `fraction`; a closer gap
+    /// (cancellation to any depth) is normalised by [`Self::from_wide`] on
+    /// the exact 64-bit difference.
+    #[inline(always)]
+    fn difference_of_magnitudes(high: Self, low: Self, gap: u32) -> Self {
+        let (low_word, low_fraction) = Self::aligned(low, gap);
+        let high_magnitude = high.mantissa.unsigned_abs();
+        let negative = high.mantissa < 0;
+        if gap < 2 {
+            // Both below 2⁶³: exact in i64, of either sign.
+            let wide = (i64::from(high_magnitude) << 32)
+                .wrapping_sub((i64::from(low_word) << 32) | i64::from(low_fraction));
+            let signed = if negative { wide.wrapping_neg() } else { wide };
+            return Self::from_wide(signed, high.exponent().wrapping_sub(32));
+        }
+        // (high − low_word)·2³² − low_fraction, borrowing from the word.
+        let fraction = 0u32.wrapping_sub(low_fraction);
+        let word = high_magnitude
+            .wrapping_sub(low_word)
+            .wrapping_sub(u32::from(low_fraction != 0));
+        if word >> 30 != 0 {
+            Self::finish(negative, word.wrapping_add(fraction >> 31), high.exponent())
+        } else {
+            // One bit up from the fraction, the next one rounds.
+            let m = (word << 1) | (fraction >> 31);
+            Self::finish(
+                negative,
+                m.wrapping_add((fraction >> 30) & 1),
+                high.exponent().wrapping_sub(1),
+            )
+        }
+    }
+
+    /// |self| (the invalid value stays invalid).
+    fn magnitude(self) -> Self {
+        if self.mantissa < 0 && !self.is_invalid() {
+            self.negated()
+        } else {
+            self
+        }
     }
 
     fn negated(self) -> Self {
@@ -290,6 +488,9 @@ impl<U> Scaled<U> {
         }
     }
 
+    /// Correctly rounded: the floor of the root of the mantissa (made
+    /// even-exponent and normalised to [2⁶², 2⁶⁴)) has 32 bits, and its
+    /// last bit is the rounding bit.
     fn root(self) -> Self {
         if self.is_invalid() || self.mantissa < 0 {
             return Self::INVALID;
@@ -297,14 +498,102 @@ impl<U> Scaled<U> {
         if self.is_zero() {
             return self;
         }
-        // Make the exponent even: n·2^e2 with e2 even, n < 2⁶³.
-        let m = self.mantissa as u64;
-        let (n, e2) = if self.exponent & 1 == 0 {
+        let m = u64::from(self.mantissa.unsigned_abs());
+        let (n, exponent) = if self.exponent & 1 == 0 {
             (m << 32, self.exponent().wrapping_sub(32))
         } else {
-            (m << 31, self.exponent().wrapping_sub(31))
+            (m << 33, self.exponent().wrapping_sub(33))
         };
-        Self::from_wide(isqrt_u64(n) as i64, e2 / 2)
+        let r = isqrt_floor_normalized(n);
+        // √(n·2^e) = r·2^(e/2) with e even; r/2 rounded, one bit up.
+        Self::finish(
+            false,
+            (r >> 1).wrapping_add(r & 1),
+            (exponent >> 1).wrapping_add(1),
+        )
+    }
+
+    /// √(a² + b²) from the exact squares of the mantissas (the smaller one
+    /// aligned, truncated below 2⁻⁶¹ of the sum) and one correctly rounded
+    /// square root: within half an ulp plus 2⁻⁶⁰ relative, and never
+    /// overflowing on the way (the exponents are added, not the squares
+    /// formed in the format).
+    fn hypot_of(self, other: Self) -> Self {
+        if self.is_invalid() || other.is_invalid() {
+            return Self::INVALID;
+        }
+        if self.is_zero() {
+            return other.magnitude();
+        }
+        if other.is_zero() {
+            return self.magnitude();
+        }
+        let (high, low) = if self.exponent >= other.exponent {
+            (self, other)
+        } else {
+            (other, self)
+        };
+        let square = |m: i32| u64::from(m.unsigned_abs()).wrapping_mul(u64::from(m.unsigned_abs()));
+        let gap = high.exponent().wrapping_sub(low.exponent()) as u32; // ≥ 0
+        let low_square = if gap < 32 {
+            square(low.mantissa) >> (gap << 1)
+        } else {
+            0
+        };
+        // Below 2⁶² + 2⁶² = 2⁶³, and at least 2⁶⁰.
+        Self::root_of_squares(
+            square(high.mantissa).wrapping_add(low_square),
+            high.exponent(),
+        )
+    }
+
+    /// √(a² + b² + c²) as [`Self::hypot_of`]: the squares of the mantissas
+    /// aligned to the largest exponent (each truncated below 2⁻⁶² of the
+    /// largest square), one correctly rounded square root: within half an
+    /// ulp plus 2⁻⁵⁹ relative.
+    fn hypot3_of(self, b: Self, c: Self) -> Self {
+        if self.is_invalid() || b.is_invalid() || c.is_invalid() {
+            return Self::INVALID;
+        }
+        // Zero carries the smallest exponent: the largest is a nonzero
+        // one's unless all three are zero.
+        let top = self.exponent.max(b.exponent).max(c.exponent);
+        let square_at_top = |v: Self| {
+            let gap = (top as i32).wrapping_sub(v.exponent()) as u32; // ≥ 0
+            let magnitude = u64::from(v.mantissa.unsigned_abs());
+            if gap < 32 {
+                magnitude.wrapping_mul(magnitude) >> (gap << 1)
+            } else {
+                0
+            }
+        };
+        // Each below 2⁶²: the sum is below 3·2⁶² < 2⁶⁴.
+        let sum = square_at_top(self)
+            .wrapping_add(square_at_top(b))
+            .wrapping_add(square_at_top(c));
+        if sum == 0 {
+            return Self::ZERO_VALUE;
+        }
+        Self::root_of_squares(sum, i32::from(top))
+    }
+
+    /// √(`sum`)·2^`exponent` for a sum of squared mantissas in [2⁶⁰, 2⁶⁴)
+    /// (at scale 2^(2·`exponent`)), correctly rounded: normalised to
+    /// [2⁶², 2⁶⁴) by an even shift, its floor root has 32 bits and its last
+    /// bit is the rounding bit.
+    fn root_of_squares(sum: u64, exponent: i32) -> Self {
+        let (n, exponent) = if sum >> 62 == 0 {
+            (sum << 2, exponent.wrapping_sub(1))
+        } else {
+            (sum, exponent)
+        };
+        let r = isqrt_floor_normalized(n);
+        // √n·2^exponent with √n = r + f, f < 1: r/2 rounded, one bit up.
+        Self::finish(
+            false,
+            (r >> 1).wrapping_add(r & 1),
+            exponent.wrapping_add(1),
+        )
     }
 }
 
@@ -460,7 +749,17 @@ where
         if self.is_invalid() || self.is_zero() {
             return self;
         }
-        Self::from_wide(i64::from(self.mantissa), self.exponent().wrapping_sub(1))
+        // Exact: the same mantissa one exponent down (flushed to zero
+        // below the range, as every result).
+        let exponent = self.exponent().wrapping_sub(1);
+        if exponent < EXPONENT_MIN {
+            return Self::ZERO_VALUE;
+        }
+        Scaled {
+            mantissa: self.mantissa,
+            exponent: exponent as i16,
+            unit: PhantomData,
+        }
     }
 }
 
@@ -484,5 +783,16 @@ impl Real for Scaled<One> {
 
     fn sqrt(self) -> Self {
         self.root()
+    }
+
+    /// From the squares of the mantissas ([`Scaled`]'s own exponent range
+    /// holds them): within half an ulp, one square root.
+    fn hypot(self, other: Self) -> Self {
+        self.hypot_of(other)
+    }
+
+    /// The same with three squares: within half an ulp plus 2⁻⁵⁹ relative.
+    fn hypot3(self, b: Self, c: Self) -> Self {
+        self.hypot3_of(b, c)
     }
 }

@@ -416,6 +416,7 @@ pub struct RangeAzimuthTrack<S: Scalar> {
 }
 
 impl<S: Scalar> RangeAzimuthTrack<S> {
+    /// The range–azimuth filter this track runs (He, Peng, Ling & Quan, eqs. 7–13).
     pub fn filter(&self) -> &RangeAzimuthFilter<S> {
         &self.filter
     }

@@ -169,6 +169,8 @@ impl<const R: usize, const C: usize> AssignmentSolver<R, C> {
         "assignment capacities must be below 65535 together"
     );
 
+    /// An empty solver for up to `R` rows (tracks) and `C` columns
+    /// (measurements); the capacities are checked at compile time.
     pub const fn new() -> Self {
         #[allow(clippy::let_unit_value)]
         let () = Self::CAPACITY_OK;

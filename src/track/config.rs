@@ -28,9 +28,11 @@ impl<S: TrackNumeric> Volume<S> {
         Ok(Volume { min, max })
     }
 
+    /// Lower corner (m).
     pub fn min(&self) -> [S::Length; 2] {
         self.min
     }
+    /// Upper corner (m).
     pub fn max(&self) -> [S::Length; 2] {
         self.max
     }
@@ -132,15 +134,19 @@ impl<S: TrackNumeric, P: Copy> TrackerConfig<S, P> {
         self
     }
 
+    /// The filters' parameters (for [`FixedGainTrack`](super::FixedGainTrack): the gains).
     pub fn params(&self) -> &P {
         &self.params
     }
+    /// The gate rule.
     pub fn gate(&self) -> &Gate<S> {
         &self.gate
     }
+    /// Largest target speed for two-point initiation (m/s).
     pub fn max_speed(&self) -> S::Speed {
         self.max_speed
     }
+    /// Margin added to the initiation radius `max_speed·T` (m).
     pub fn initiation_margin(&self) -> S::Length {
         self.initiation_margin
     }
@@ -152,6 +158,7 @@ impl<S: TrackNumeric, P: Copy> TrackerConfig<S, P> {
     pub fn deletion(&self) -> (u8, u8) {
         (self.delete_confirmed_misses, self.delete_tentative_misses)
     }
+    /// The surveillance volume, if any.
     pub fn volume(&self) -> Option<&Volume<S>> {
         self.volume.as_ref()
     }

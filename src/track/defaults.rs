@@ -134,11 +134,16 @@ pub const BANK_30_ACCELERATION: f64 = 9.80665 * 0.577_350_269_189_625_8;
 #[cfg_attr(feature = "defmt", derive(defmt::Format))]
 pub enum SensorAccuracy {
     /// Independent noise of standard deviation `sigma` (m) on x and y.
-    Cartesian { sigma: f64 },
+    Cartesian {
+        /// σ per axis (m).
+        sigma: f64,
+    },
     /// Range noise `range_sigma` (m) and azimuth noise `bearing_sigma` (rad)
     /// from a sensor at the origin.
     Polar {
+        /// σ_R, range noise (m).
         range_sigma: f64,
+        /// σ_B, azimuth noise (rad).
         bearing_sigma: f64,
     },
 }
@@ -151,9 +156,15 @@ pub enum Coverage {
     #[default]
     None,
     /// The square `-half_width ..= half_width` on x and y (m).
-    Square { half_width: f64 },
+    Square {
+        /// Half the side (m).
+        half_width: f64,
+    },
     /// The disc of radius `radius` (m).
-    Disc { radius: f64 },
+    Disc {
+        /// Radius (m).
+        radius: f64,
+    },
 }
 
 impl Coverage {
@@ -190,6 +201,7 @@ impl Coverage {
 #[derive(Debug, Clone, Copy, PartialEq)]
 #[cfg_attr(feature = "defmt", derive(defmt::Format))]
 pub struct TrackerDesign {
+    /// The sensor's measurement noise.
     pub accuracy: SensorAccuracy,
     /// P_D, in (0, 1].
     pub detection_probability: f64,

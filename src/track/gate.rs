@@ -42,8 +42,11 @@ pub enum Gate<S: TrackNumeric> {
     ///   noise, so an accelerating target drifts from the prediction by up to
     ///   ½·a·T² over the interval T; the gate is widened by that much.
     Uncertainty {
+        /// σ, the measurement noise standard deviation per axis (m).
         measurement_sigma: S::Length,
+        /// G, the threshold on the squared normalised distance (χ², 2 degrees of freedom).
         threshold: S::Ratio,
+        /// a_max, the manoeuvre allowance (m/s²).
         max_acceleration: S::Acceleration,
     },
     /// The wave gate of Li, Zhao, Liang & Zhang: a circle around the
@@ -64,8 +67,11 @@ pub enum Gate<S: TrackNumeric> {
     /// consistent reading: a circular gate d ≤ κ·Δd, with κ playing the role
     /// of R. The paper gives no value for R; κ is the caller's choice.
     Wave {
+        /// Δρ, the radar's range error (m).
         range_sigma: S::Length,
+        /// Δθ, the radar's bearing error (rad).
         bearing_sigma: S::Ratio,
+        /// κ, the multiple of the distance error Δd (eq. 11) accepted.
         multiple: S::Ratio,
     },
 }
@@ -175,7 +181,9 @@ pub use crate::num::hypot;
 #[derive(Debug, Clone, Copy, PartialEq)]
 #[cfg_attr(feature = "defmt", derive(defmt::Format))]
 pub struct BoundingBox<S: TrackNumeric> {
+    /// Lower corner (x, y) (m).
     pub min: [S::Length; 2],
+    /// Upper corner (x, y) (m).
     pub max: [S::Length; 2],
 }
 
@@ -191,7 +199,9 @@ impl<S: TrackNumeric> BoundingBox<S> {
 pub enum GateRegion<S: TrackNumeric> {
     /// Points within `radius` of `center` (Cartesian, metres).
     Circle {
+        /// The predicted position (m).
         center: [S::Length; 2],
+        /// The gate radius (m).
         radius: S::Length,
         /// What the number system keeps to test a point without a division
         /// (the reciprocal of the radius for floats and Q32.32).
@@ -209,9 +219,13 @@ pub enum GateRegion<S: TrackNumeric> {
 #[derive(Debug, Clone, Copy, PartialEq)]
 #[cfg_attr(feature = "defmt", derive(defmt::Format))]
 pub struct PolarWindow<P> {
+    /// R_p, the predicted position's distance from the sensor (m).
     pub range: P,
+    /// The unit vector from the sensor towards the predicted position.
     pub unit: [P; 2],
+    /// Half-width of the window in range (m).
     pub half_range: P,
+    /// 1 / `half_range` (m⁻¹).
     pub inverse_half_range: P,
     /// R_p / half_cross: 1 over the azimuth half-width (rad⁻¹).
     pub inverse_half_azimuth: P,

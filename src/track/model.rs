@@ -14,11 +14,21 @@ use crate::num::{Numeric, Quantity, Real, Scalar};
 #[cfg_attr(feature = "defmt", derive(defmt::Format))]
 pub enum Measurement<S: TrackNumeric> {
     /// Position in the tracking plane (m).
-    Cartesian { x: S::Length, y: S::Length },
+    Cartesian {
+        /// x (m).
+        x: S::Length,
+        /// y (m).
+        y: S::Length,
+    },
     /// Range (m, ≥ 0) and azimuth (rad, clockwise from the +y axis) from a
     /// sensor at the origin; projected as x = R·sin B, y = R·cos B
     /// (He, Peng, Ling & Quan, §2).
-    Polar { range: S::Length, azimuth: S::Ratio },
+    Polar {
+        /// R, the slant range (m, ≥ 0).
+        range: S::Length,
+        /// B, the azimuth (rad, clockwise from the +y axis).
+        azimuth: S::Ratio,
+    },
 }
 
 /// Why a measurement was rejected (it touched no track).
@@ -70,6 +80,7 @@ impl<S: TrackNumeric> Observation<S> {
         Ok(Observation { measurement, xy })
     }
 
+    /// The measurement as the sensor reported it.
     pub fn measurement(&self) -> Measurement<S> {
         self.measurement
     }
@@ -84,7 +95,9 @@ impl<S: TrackNumeric> Observation<S> {
 #[derive(Debug, Clone, Copy, PartialEq)]
 #[cfg_attr(feature = "defmt", derive(defmt::Format))]
 pub struct PredictedState<S: Numeric> {
+    /// Predicted position (x, y) (m).
     pub position: [S::Length; 2],
+    /// Predicted velocity (x, y) (m/s).
     pub velocity: [S::Speed; 2],
 }
 
@@ -273,8 +286,11 @@ pub(super) fn wave_radius<S: TrackNumeric>(
 #[derive(Debug, Clone, Copy, PartialEq)]
 #[cfg_attr(feature = "defmt", derive(defmt::Format))]
 pub struct ErrorVariance<R> {
+    /// Position error variance (dimensionless, in units of σ²).
     pub p11: R,
+    /// Position–velocity error covariance (1/s, in units of σ²).
     pub p12: R,
+    /// Velocity error variance (1/s², in units of σ²).
     pub p22: R,
 }
 
@@ -290,7 +306,9 @@ pub trait VarianceNumber:
     + core::ops::Mul<Output = Self>
     + core::ops::Div<Output = Self>
 {
+    /// 0.
     const ZERO: Self;
+    /// 1.
     const ONE: Self;
     /// False for NaN, ±∞ and saturated values.
     fn is_valid(self) -> bool;
@@ -349,6 +367,7 @@ impl<R: VarianceNumber> ErrorVariance<R> {
         }
     }
 
+    /// False if any entry is NaN, ±∞ or saturated.
     pub fn is_valid(&self) -> bool {
         self.p11.is_valid() && self.p12.is_valid() && self.p22.is_valid()
     }
@@ -359,8 +378,14 @@ impl<R: VarianceNumber> ErrorVariance<R> {
 #[derive(Debug, Clone, Copy, PartialEq)]
 #[cfg_attr(feature = "defmt", derive(defmt::Format))]
 pub enum Uncertainty<R> {
+    /// No measurement yet.
     Empty,
-    OnePoint { elapsed: R },
+    /// One measurement so far.
+    OnePoint {
+        /// Seconds since that measurement.
+        elapsed: R,
+    },
+    /// Two or more measurements: the error covariance.
     Tracking(ErrorVariance<R>),
 }
 

@@ -24,6 +24,7 @@ impl TrackId {
     pub const fn new(id: u32) -> Self {
         TrackId(id)
     }
+    /// The id's number.
     pub const fn get(self) -> u32 {
         self.0
     }
@@ -93,6 +94,7 @@ pub struct Track<S: TrackNumeric, F> {
 }
 
 impl<S: TrackNumeric, F: TrackFilter<S>> Track<S, F> {
+    /// The track's id, unique among live tracks.
     pub fn id(&self) -> TrackId {
         self.id
     }
@@ -109,12 +111,15 @@ impl<S: TrackNumeric, F: TrackFilter<S>> Track<S, F> {
     pub fn is_confirmed(&self) -> bool {
         self.lifecycle == Lifecycle::Confirmed
     }
+    /// The track's filter.
     pub fn filter(&self) -> &F {
         &self.filter
     }
+    /// Estimated position (x, y) at the last scan (m).
     pub fn position(&self) -> [S::Length; 2] {
         self.filter.position()
     }
+    /// Estimated velocity (x, y) at the last scan (m/s).
     pub fn velocity(&self) -> [S::Speed; 2] {
         self.filter.velocity()
     }
@@ -223,7 +228,12 @@ pub enum Association {
 pub enum ScanError {
     /// `now_ms` is not after the previous scan's time (in wrapping u32
     /// arithmetic: 1 ..= 2³¹ − 1 ms later).
-    TimeNotIncreasing { previous_ms: u32, now_ms: u32 },
+    TimeNotIncreasing {
+        /// The previous scan's time (ms).
+        previous_ms: u32,
+        /// The refused scan's time (ms).
+        now_ms: u32,
+    },
     /// The interval does not fit the number type.
     IntervalNotRepresentable,
     /// The assignment solver failed (unreachable; kept instead of a panic).
@@ -254,6 +264,7 @@ impl core::error::Error for ScanError {}
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
 #[cfg_attr(feature = "defmt", derive(defmt::Format))]
 pub struct ScanReport {
+    /// The scan's time (ms, wrapping u32).
     pub time_ms: u32,
     /// Time since the previous scan (0 for the first).
     pub interval_ms: u32,
@@ -324,9 +335,13 @@ pub struct ScanReport {
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
 #[cfg_attr(feature = "defmt", derive(defmt::Format))]
 pub struct TableStats {
+    /// Scans accepted.
     pub scans: u32,
+    /// Tentative tracks started.
     pub tracks_started: u32,
+    /// Tentative tracks confirmed.
     pub tracks_confirmed: u32,
+    /// Tracks deleted, tentative or confirmed.
     pub tracks_deleted: u32,
     /// Candidate tracks refused because the table was full.
     pub refused_table_full: u32,
@@ -379,6 +394,37 @@ enum Outcome {
 ///
 /// See the [module docs](super) for the scan's stages, the time base and the
 /// memory figures.
+///
+/// Two targets, one scan a second: the first scan's measurements are first
+/// points, the second starts two tentative tracks (two-point initiation,
+/// Al-Wagih eq. 9), the third confirms them (2 of 3).
+///
+/// ```
+/// use abtrack::track::{
+///     Association, FixedGainTrack, Gate, Measurement, TrackStatus, TrackTable, TrackerConfig,
+/// };
+/// use abtrack::Gains;
+/// // α = 0.5, β = 0.2; σ = 5 m, G = 13.8 (99.9 %), a_max = 5 m/s²; v_max = 300 m/s.
+/// let gate = Gate::uncertainty(5.0, 13.8, 5.0)?;
+/// let config = TrackerConfig::new(Gains::alpha_beta(0.5, 0.2)?, gate, 300.0)?;
+/// let mut table: TrackTable<f64, FixedGainTrack<f64>, 4, 8> = TrackTable::new();
+/// let mut codes = [Association::NotAssigned; 8];
+/// for k in 0..3u32 {
+///     let t = f64::from(k);
+///     let targets = [
+///         Measurement::Cartesian { x: 100.0 * t, y: 1000.0 },  // east at 100 m/s
+///         Measurement::Cartesian { x: 5000.0, y: -50.0 * t }, // south at 50 m/s
+///     ];
+///     table.scan(&config, 1000 * k, &targets, &mut codes)?;
+/// }
+/// assert_eq!(table.len(), 2);
+/// assert!(table.tracks().all(|t| t.status() == TrackStatus::Confirmed));
+/// let east = table.tracks().find(|t| t.position()[1] > 500.0).ok_or("no track")?;
+/// assert!((east.position()[0] - 200.0).abs() < 1e-9);
+/// assert!((east.velocity()[0] - 100.0).abs() < 1e-9);
+/// assert_eq!(table.stats().tracks_confirmed, 2);
+/// # Ok::<(), Box<dyn core::error::Error>>(())
+/// ```
 #[derive(Debug)]
 pub struct TrackTable<S: TrackNumeric, F, const N: usize, const M: usize> {
     slots: [Option<Track<S, F>>; N],
@@ -461,9 +507,11 @@ impl<S: TrackNumeric, F: TrackFilter<S>, const N: usize, const M: usize> TrackTa
     pub fn len(&self) -> usize {
         self.slots.iter().filter(|s| s.is_some()).count()
     }
+    /// No live track.
     pub fn is_empty(&self) -> bool {
         self.slots.iter().all(|s| s.is_none())
     }
+    /// Every slot holds a live track (new candidates are refused).
     pub fn is_full(&self) -> bool {
         self.slots.iter().all(|s| s.is_some())
     }
@@ -471,9 +519,11 @@ impl<S: TrackNumeric, F: TrackFilter<S>, const N: usize, const M: usize> TrackTa
     pub fn tracks(&self) -> impl Iterator<Item = &Track<S, F>> {
         self.slots.iter().flatten()
     }
+    /// The live track with this id, if any.
     pub fn track(&self, id: TrackId) -> Option<&Track<S, F>> {
         self.tracks().find(|t| t.id == id)
     }
+    /// Counters over the table's lifetime.
     pub fn stats(&self) -> &TableStats {
         &self.stats
     }

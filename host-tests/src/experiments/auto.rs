@@ -45,7 +45,7 @@ use crate::scenario::{self, monte_carlo_seed, MeasurementFrame, ScenarioInfo, Se
 
 pub const NAME: &str = "auto";
 pub const ABOUT: &str =
-    "auto (issue 13) against every method and a tuned CV Kalman filter on every scenario";
+    "the self-tuning auto filter against every method and a tuned CV Kalman filter on every scenario";
 
 /// RMSE(auto) ≤ `TARGET_RATIO` × the best method's and the tuned Kalman
 /// filter's (issue 13).

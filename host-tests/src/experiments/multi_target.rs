@@ -16,11 +16,10 @@
 //! range and azimuth) with `TrackerDesign::polar_config`; the design is
 //! [`design_for`] the scenario's sensor (see `abtrack::track::defaults`).
 
+use rayon::prelude::*;
 use std::collections::BTreeMap;
 use std::fmt::Write as _;
 use std::mem::size_of;
-use std::sync::atomic::{AtomicUsize, Ordering};
-use std::sync::Mutex;
 use std::time::Instant;
 
 use abtrack::gain::{AnySchedule, FirmnessGains, FixedGains, LeastSquaresGains, LiImprovedGains};
@@ -282,42 +281,28 @@ pub fn one_run(
     Ok((result, r64))
 }
 
-/// Runs `runs` seeds on two threads (the machine has two cores); returns the
-/// results in run order and the f64 output of run 0.
+/// Runs `runs` seeds, spread over the cores by rayon; returns the results
+/// in run order and the f64 output of run 0.
 pub fn monte_carlo(
     plan: &Plan,
     info: &ScenarioInfo,
     runs: usize,
 ) -> Result<(Vec<RunResult>, TrackerRun), String> {
-    let next = AtomicUsize::new(0);
-    let results: Mutex<Vec<Option<Result<RunResult, String>>>> = Mutex::new(vec![None; runs]);
-    let first: Mutex<Option<TrackerRun>> = Mutex::new(None);
-    std::thread::scope(|s| {
-        for _ in 0..2 {
-            s.spawn(|| loop {
-                let r = next.fetch_add(1, Ordering::Relaxed);
-                if r >= runs {
-                    break;
-                }
-                let seed = scenario::monte_carlo_seed(BASE_SEED, r as u64);
-                let outcome = one_run(plan, info, seed).map(|(res, out)| {
-                    if r == 0 {
-                        *first.lock().unwrap() = Some(out);
-                    }
-                    res
-                });
-                results.lock().unwrap()[r] = Some(outcome);
-            });
-        }
-    });
-    let results = results
-        .into_inner()
-        .map_err(|_| "worker panicked".to_string())?
-        .into_iter()
-        .map(|r| r.unwrap_or_else(|| Err("run not executed".into())))
+    // Only run 0's full output is kept (the others' would fill memory).
+    let outcomes = (0..runs)
+        .into_par_iter()
+        .map(|r| {
+            one_run(plan, info, scenario::monte_carlo_seed(BASE_SEED, r as u64))
+                .map(|(res, out)| (res, (r == 0).then_some(out)))
+        })
         .collect::<Result<Vec<_>, _>>()?;
-    let first = first.into_inner().ok().flatten().ok_or("run 0 missing")?;
-    Ok((results, first))
+    let mut first = None;
+    let mut results = Vec::with_capacity(runs);
+    for (res, out) in outcomes {
+        first = first.or(out);
+        results.push(res);
+    }
+    Ok((results, first.ok_or("run 0 missing")?))
 }
 
 const TYPES: [&str; 3] = ["f64", "f32", "fixed"];

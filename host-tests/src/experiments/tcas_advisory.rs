@@ -39,6 +39,7 @@
 //! * Agreement: the fraction of scans whose estimated advisory level equals
 //!   the truth's.
 
+use rayon::prelude::*;
 use std::f64::consts::{PI, TAU};
 use std::fmt::Write as _;
 use std::path::Path;
@@ -455,30 +456,13 @@ pub fn bearing_sensitivity(
     })
 }
 
-/// Runs `runs` Monte Carlo runs (two threads; results in run order).
+/// Runs `runs` Monte Carlo runs, spread over the cores by rayon (results in
+/// run order: each run depends only on its seed).
 pub fn simulate(base_seed: u64, runs: usize) -> Result<Vec<RunTimelines>, String> {
-    const THREADS: usize = 2;
-    let mut all: Vec<(usize, Result<RunTimelines, String>)> = std::thread::scope(|scope| {
-        let workers: Vec<_> = (0..THREADS)
-            .map(|w| {
-                scope.spawn(move || {
-                    (w..runs)
-                        .step_by(THREADS)
-                        .map(|r| (r, simulate_run(base_seed, r)))
-                        .collect::<Vec<_>>()
-                })
-            })
-            .collect();
-        workers
-            .into_iter()
-            .flat_map(|h| {
-                h.join()
-                    .unwrap_or_else(|_| vec![(usize::MAX, Err("worker panicked".to_string()))])
-            })
-            .collect()
-    });
-    all.sort_by_key(|(r, _)| *r);
-    all.into_iter().map(|(_, r)| r).collect()
+    (0..runs)
+        .into_par_iter()
+        .map(|r| simulate_run(base_seed, r))
+        .collect()
 }
 
 /// The continuous-time onset of a range test (r − DMOD²/r ≤ TAU·closure,

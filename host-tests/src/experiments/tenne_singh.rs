@@ -18,6 +18,7 @@
 //!   is therefore κ = 2; κ = 0.1 (s² = 10 m²) is simulated too, because
 //!   there the αβγ optimum has γ > 0 (at κ = 2 it is the αβ filter).
 
+use rayon::prelude::*;
 use std::fmt::Write as _;
 
 use abtrack::design::optimal::{
@@ -420,29 +421,8 @@ pub fn simulate(
             .map(|s| s / (SCANS - SETTLE) as f64)
             .collect())
     };
-    let results: Vec<Result<Vec<f64>, String>> = std::thread::scope(|scope| {
-        let workers = 2;
-        let handles: Vec<_> = (0..workers)
-            .map(|w| {
-                let per_run = &per_run;
-                scope.spawn(move || {
-                    (w..runs)
-                        .step_by(workers)
-                        .map(|r| (r, per_run(r)))
-                        .collect::<Vec<_>>()
-                })
-            })
-            .collect();
-        let mut all: Vec<(usize, Result<Vec<f64>, String>)> = handles
-            .into_iter()
-            .flat_map(|h| {
-                h.join()
-                    .unwrap_or_else(|_| vec![(0, Err("worker panicked".to_string()))])
-            })
-            .collect();
-        all.sort_by_key(|(r, _)| *r);
-        all.into_iter().map(|(_, x)| x).collect()
-    });
+    // Spread over the cores by rayon (indexed collect: run order kept).
+    let results: Vec<Result<Vec<f64>, String>> = (0..runs).into_par_iter().map(&per_run).collect();
     let runs: Vec<Vec<f64>> = results.into_iter().collect::<Result<_, _>>()?;
     // Transpose to per candidate.
     Ok((0..candidates.len())

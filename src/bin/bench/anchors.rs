@@ -1,10 +1,12 @@
 //! Anchors measured beside abtrack: the floor (the least a 2-D αβ update
-//! can cost), in every numeric type, and a hand-written per-axis
+//! can cost), in every number system, and a hand-written per-axis
 //! constant-velocity Kalman filter in f32 (in Q32.32 it alone took 18 KiB of
 //! the micro:bit's flash). `minikalman` is in [`crate::minikalman`].
 
 use core::hint::black_box;
 
+use abtrack::filter::StepGains;
+use abtrack::num::{AddProduct, Quantity, SubGuarded};
 use abtrack::Scalar;
 
 use crate::counter::Bench;
@@ -17,20 +19,20 @@ use crate::numeric::Numeric;
 const DIVERGED_M: f64 = 150.0;
 
 /// The 2-D anchors' target: the `ab2d_update` row's (σ = 25 m).
-fn target<S: Scalar>() -> PlaneRing<S> {
+fn target<N: abtrack::Numeric>() -> PlaneRing<N> {
     PlaneRing::new(25.0)
 }
 
 /// Times `update` of `filter` on `target`, then checks that the anchor
 /// followed it: its `position` must end within [`DIVERGED_M`] of the last
 /// measurement it was given (call `CALLS − 1`).
-fn per_anchor_call<S: Scalar, F>(
+fn per_anchor_call<N: abtrack::Numeric, F>(
     bench: &mut Bench,
     (numeric, operation): (&'static str, &'static str),
-    target: &PlaneRing<S>,
+    target: &PlaneRing<N>,
     filter: &mut F,
-    update: impl Fn(&mut F, [S; 2]),
-    position: impl Fn(&F) -> [S; 2],
+    update: impl Fn(&mut F, [N::Length; 2]),
+    position: impl Fn(&F) -> [N::Length; 2],
 ) {
     bench.per_call(
         numeric,
@@ -39,7 +41,7 @@ fn per_anchor_call<S: Scalar, F>(
         |k| target.fetch(k),
     );
     let last = at(crate::CALLS - 1);
-    let near = |e: S, z: S| libm::fabs(e.to_f64() - z.to_f64()) < DIVERGED_M;
+    let near = |e: N::Length, z: N::Length| libm::fabs(e.to_f64() - z.to_f64()) < DIVERGED_M;
     let [x, y] = position(filter);
     bench.check(
         near(x, target.xs[last]) && near(y, target.ys[last]),
@@ -53,64 +55,81 @@ fn per_anchor_call<S: Scalar, F>(
 // The floor
 // ---------------------------------------------------------------------------
 
-/// The floor's constants, formed once: α, β/T and T.
+/// The floor's constants, formed once: α, β/T and T, in the number
+/// system's formats (the step gains' own: [`StepGains`]).
 #[derive(Clone, Copy)]
-struct FloorGains<S> {
-    alpha: S,
-    beta_over_interval: S,
-    interval: S,
+struct FloorGains<N: abtrack::Numeric> {
+    alpha: N::Gain,
+    beta_over_interval: N::Rate,
+    interval: N::Interval,
 }
 
 /// The floor: a 2-D αβ filter with nothing but its arithmetic (Al-Wagih &
 /// Abdulla eqs. 4–8 with β/T precomputed): no input checks, no saturation
 /// checks, no phases, nothing kept but position and velocity.
 #[derive(Clone, Copy)]
-struct FloorAlphaBeta<S> {
-    x: S,
-    y: S,
-    vx: S,
-    vy: S,
+struct FloorAlphaBeta<N: abtrack::Numeric> {
+    x: N::Length,
+    y: N::Length,
+    vx: N::Speed,
+    vy: N::Speed,
 }
 
-/// One axis: predict, residual, correct.
+/// One axis: predict, residual, correct. The number system's fused
+/// products (`q + a·b`, rounded once) are its cheapest arithmetic; the
+/// guard they report to is never read, so its checks are compiled out.
 #[inline(always)]
-fn floor_axis<S: Scalar>(position: &mut S, velocity: &mut S, z: S, g: &FloorGains<S>) {
-    let predicted = *position + g.interval * *velocity;
-    let residual = z - predicted;
-    *position = predicted + g.alpha * residual;
-    *velocity = *velocity + g.beta_over_interval * residual;
+fn floor_axis<N: abtrack::Numeric>(
+    position: &mut N::Length,
+    velocity: &mut N::Speed,
+    z: N::Length,
+    g: &FloorGains<N>,
+) {
+    let mut unchecked = N::Guard::default();
+    let guard = &mut unchecked;
+    let predicted = position.add_product(*velocity, g.interval, guard);
+    let residual = z.sub_guarded(predicted, guard);
+    *position = predicted.add_product(g.alpha, residual, guard);
+    *velocity = velocity.add_product(g.beta_over_interval, residual, guard);
 }
 
-/// The two axes written out and the measurement passed as two scalars (in
+/// The two axes written out and the measurement passed as two values (in
 /// registers), so that nothing but the arithmetic and the state's loads and
 /// stores is left.
 #[inline(never)]
-fn floor_update<S: Scalar>(f: &mut FloorAlphaBeta<S>, zx: S, zy: S, g: &FloorGains<S>) {
+fn floor_update<N: abtrack::Numeric>(
+    f: &mut FloorAlphaBeta<N>,
+    zx: N::Length,
+    zy: N::Length,
+    g: &FloorGains<N>,
+) {
     floor_axis(&mut f.x, &mut f.vx, zx, g);
     floor_axis(&mut f.y, &mut f.vy, zy, g);
 }
 
 /// `floor_ab2d_update`: the floor on the `ab2d_update` row's data and gains.
 #[inline(never)]
-pub fn floor<S: Numeric>(bench: &mut Bench) {
+pub fn floor<N: Numeric>(bench: &mut Bench) {
     const OPERATION: &str = "floor_ab2d_update";
-    let numeric = S::LABEL;
-    let Some(gains) = crate::filters::ab_gains::<S>() else {
+    let numeric = N::LABEL;
+    let interval = N::Interval::from_f64_lossy(1.0);
+    let Some(step) =
+        crate::filters::ab_gains::<N>().and_then(|g| StepGains::new(&g, interval).ok())
+    else {
         bench.fail(numeric, OPERATION, "gains refused");
         return;
     };
-    let interval = S::from_f64_lossy(1.0);
-    let constants = FloorGains {
-        alpha: gains.alpha(),
-        beta_over_interval: gains.beta() / interval,
+    let constants = FloorGains::<N> {
+        alpha: step.alpha(),
+        beta_over_interval: step.velocity_gain(),
         interval,
     };
-    let target = target::<S>();
-    let mut filter = FloorAlphaBeta {
+    let target = target::<N>();
+    let mut filter = FloorAlphaBeta::<N> {
         x: target.xs[0],
         y: target.ys[0],
-        vx: S::ZERO,
-        vy: S::ZERO,
+        vx: N::Speed::ZERO,
+        vy: N::Speed::ZERO,
     };
     let constants = black_box(constants);
     per_anchor_call(
@@ -188,12 +207,14 @@ fn axis_kalman_update<S: Scalar>(
 }
 
 /// `axis_kalman_cv2d_update`: two independent per-axis CV Kalman filters
-/// (x and y), q = 1 m²/s³, σ = 25 m, on the `ab2d_update` row's data.
+/// (x and y), q = 1 m²/s³, σ = 25 m, on the `ab2d_update` row's data; in
+/// f32 only (in Q32.32 it alone took 18 KiB of the micro:bit's flash).
 #[inline(never)]
-pub fn axis_kalman<S: Numeric>(bench: &mut Bench) {
+pub fn axis_kalman(bench: &mut Bench) {
+    type S = f32;
     const OPERATION: &str = "axis_kalman_cv2d_update";
     let numeric = S::LABEL;
-    let c = |v: f64| S::from_f64_lossy(v);
+    let c = |v: f64| <S as Scalar>::from_f64_lossy(v);
     let (t, q) = (1.0, 1.0);
     let model = black_box(AxisKalmanModel {
         interval: c(t),
@@ -206,9 +227,9 @@ pub fn axis_kalman<S: Numeric>(bench: &mut Bench) {
     let target = target::<S>();
     let start = |z: S| AxisKalman {
         position: z,
-        velocity: S::ZERO,
+        velocity: <S as Scalar>::ZERO,
         p_xx: c(625.0),
-        p_xv: S::ZERO,
+        p_xv: <S as Scalar>::ZERO,
         p_vv: c(10_000.0),
     };
     let mut filter = [start(target.xs[0]), start(target.ys[0])];

@@ -9,6 +9,7 @@
 //! bench-meta,<core>,<key>,<value>
 //! bench-figure,<core>,<numeric>,<operation>,<n>,<m>,<instructions>
 //! bench-count,<core>,<numeric>,<operation>,<n>,<m>,<counter>,<value>
+//! bench-omitted,<core>,<numeric>,<operation>,<reason>
 //! bench-end,<core>,<figures>,<counts>
 //! ```
 //!
@@ -26,6 +27,25 @@ use crate::CALLS;
 
 /// SysTick's counter is 24 bits wide.
 const SYSTICK_MAX: u32 = 0x00ff_ffff;
+
+/// Why a row is not measured in a number system on this core (the
+/// `reason` of a `bench-omitted` line; bench_report explains each).
+#[derive(Clone, Copy, PartialEq, Eq)]
+pub enum Omission {
+    /// The image would not fit the board's flash with this row's code.
+    Flash,
+    /// The operation is not written for this number system yet.
+    NotPorted,
+}
+
+impl Omission {
+    fn reason(self) -> &'static str {
+        match self {
+            Omission::Flash => "flash",
+            Omission::NotPorted => "not_ported",
+        }
+    }
+}
 
 /// Tracks and measurements per scan, for the scan rows.
 #[derive(Clone, Copy)]
@@ -262,6 +282,19 @@ impl Bench {
             value
         );
         self.counts += 1;
+    }
+
+    /// Reports that `operations` are not measured in `numeric` here, and why.
+    pub fn omitted_group(&mut self, numeric: &str, operations: &[&str], why: Omission) {
+        for operation in operations {
+            defmt::println!(
+                "bench-omitted,{=str},{=str},{=str},{=str}",
+                self.core,
+                numeric,
+                operation,
+                why.reason()
+            );
+        }
     }
 
     /// Reports a failed measurement or check; the run then fails.

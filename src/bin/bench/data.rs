@@ -1,9 +1,9 @@
 //! The benchmark's inputs: deterministic noisy trajectories (src/firmware/synth.rs),
-//! computed in f64 and converted to the type under test.
+//! computed in f64 and converted to the number system under test.
 
 use core::hint::black_box;
 
-use abtrack::Scalar;
+use abtrack::num::{Numeric, Quantity};
 
 use crate::synth::Lcg;
 
@@ -18,22 +18,22 @@ pub fn at(k: u32) -> usize {
 /// A target going out and back at `speed` (m/s, one sample per second) from
 /// 5 km, with noise of standard deviation `sigma` (m): the ring closes on
 /// itself without a jump.
-pub fn ring<S: Scalar>(seed: u64, speed: f64, sigma: f64) -> [S; RING] {
+pub fn ring<L: Quantity>(seed: u64, speed: f64, sigma: f64) -> [L; RING] {
     let mut rng = Lcg::new(seed);
     core::array::from_fn(|k| {
         let leg = if k < RING / 2 { k } else { RING - k };
-        S::from_f64_lossy(5_000.0 + speed * leg as f64 + rng.noise(sigma))
+        L::from_f64_lossy(5_000.0 + speed * leg as f64 + rng.noise(sigma))
     })
 }
 
 /// The target of every 2-D row: x out and back at 180 m/s, y at −120 m/s,
 /// from the same seeds whatever the row.
-pub struct PlaneRing<S> {
-    pub xs: [S; RING],
-    pub ys: [S; RING],
+pub struct PlaneRing<N: Numeric> {
+    pub xs: [N::Length; RING],
+    pub ys: [N::Length; RING],
 }
 
-impl<S: Scalar> PlaneRing<S> {
+impl<N: Numeric> PlaneRing<N> {
     /// With noise of standard deviation `sigma` (m) on each axis.
     pub fn new(sigma: f64) -> Self {
         PlaneRing {
@@ -43,7 +43,7 @@ impl<S: Scalar> PlaneRing<S> {
     }
 
     /// The measurement of call `k`, opaque to the optimiser.
-    pub fn get(&self, k: u32) -> [S; 2] {
+    pub fn get(&self, k: u32) -> [N::Length; 2] {
         [black_box(self.xs[at(k)]), black_box(self.ys[at(k)])]
     }
 

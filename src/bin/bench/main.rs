@@ -43,8 +43,9 @@ mod minikalman;
 mod numeric;
 mod scan;
 
-use abtrack::num::fixed32::Fixed32;
-use abtrack::Fix;
+use core::any::TypeId;
+
+use abtrack::{Fix, Fixed32, Scalar};
 use counter::Bench;
 use numeric::Numeric;
 
@@ -71,36 +72,104 @@ fn main() -> ! {
 }
 
 fn run(bench: &mut Bench) {
-    // One line per numeric type. A new one: implement `Numeric` for it
+    // One line per number system. A new one: implement `Numeric` for it
     // (src/bin/bench/numeric.rs) and add its line here.
     bench_numeric::<f32>(bench);
+    bench_numeric::<Fixed32>(bench);
     bench_numeric::<Fix>(bench);
     bench_numeric::<f64>(bench);
-    // The track table in the fast fixed point (its other operations are
-    // measured by the numerics' own rows).
-    scan::sizes::<Fixed32>(bench);
+    // The operations still written for `Scalar` (not in the fast fixed
+    // point until their ports land).
+    bench_scalar::<f32>(bench);
+    bench_scalar::<Fix>(bench);
+    bench_scalar::<f64>(bench);
+    bench.omitted_group(
+        Fixed32::LABEL,
+        Group::Tcas.operations(),
+        Omission::NotPorted,
+    );
     // Anchors in f32 only: the hand-written Kalman filter, and minikalman
     // (with its I16F16 build).
-    anchors::axis_kalman::<f32>(bench);
+    anchors::axis_kalman(bench);
     minikalman::run(bench);
     // Integer-only code, the same in every numeric.
     decoder::parse_byte(bench);
 }
 
-/// Every operation that runs in `S`.
-#[inline(never)]
-fn bench_numeric<S: Numeric>(bench: &mut Bench) {
-    filters::run::<S>(bench);
-    anchors::floor::<S>(bench);
-    if scans_fit::<S>() {
-        scan::sizes::<S>(bench);
+/// The rows of one kind, left out of an image together.
+#[derive(Clone, Copy, PartialEq, Eq)]
+enum Group {
+    /// The filters, the schedules, range–azimuth and the floor
+    /// ([`filters::run`], [`anchors::floor`]).
+    Filters,
+    /// The altitude tracker and the TCAS assessment.
+    Tcas,
+    /// The track table's scans.
+    Scans,
+}
+
+impl Group {
+    /// The operations of the group (the rows an omission leaves empty).
+    fn operations(self) -> &'static [&'static str] {
+        match self {
+            Group::Filters => &[
+                "ab1d_update",
+                "abg1d_update",
+                "ab2d_update",
+                "abg2d_update",
+                "ab2d_least_squares_update",
+                "ab2d_liu_adaptive_update",
+                "range_azimuth_update",
+                "floor_ab2d_update",
+            ],
+            Group::Tcas => &["altitude_update", "tcas_assess"],
+            Group::Scans => &["scan_separated", "scan_crowded"],
+        }
     }
 }
 
-/// Whether this image holds the scan rows in `S`: the mps2 boards hold
-/// them in every numeric type; the micro:bit's 256 KiB of flash hold them in
-/// the fast fixed point only (its table format, run by `run`). Decided at
-/// compile time, so the code left out is not linked.
-fn scans_fit<S: Numeric>() -> bool {
-    !cfg!(abtrack_board = "microbit")
+use counter::Omission;
+
+/// Every operation that runs in any number system, in `N`.
+#[inline(never)]
+fn bench_numeric<N: Numeric + abtrack::track::TrackNumeric>(bench: &mut Bench) {
+    if let Some(why) = omitted::<N>(Group::Filters) {
+        bench.omitted_group(N::LABEL, Group::Filters.operations(), why);
+        return;
+    }
+    filters::run::<N>(bench);
+    anchors::floor::<N>(bench);
+    match omitted::<N>(Group::Scans) {
+        Some(why) => bench.omitted_group(N::LABEL, Group::Scans.operations(), why),
+        None => scan::sizes::<N>(bench),
+    }
+}
+
+/// The operations written for [`Scalar`] only, in `S`.
+#[inline(never)]
+fn bench_scalar<S: Numeric + Scalar>(bench: &mut Bench) {
+    match omitted::<S>(Group::Tcas) {
+        Some(why) => bench.omitted_group(S::LABEL, Group::Tcas.operations(), why),
+        None => filters::run_scalar::<S>(bench),
+    }
+}
+
+/// Why this image leaves out `group` in `N`, if it does. The mps2 boards
+/// hold every row. The micro:bit's 256 KiB of flash do not: it keeps the
+/// filter rows in soft f32, the fast fixed point (its firmware's type) and
+/// f64, but not in Q32.32 (whose inlined 64-bit products alone would take
+/// the image past 256 KiB), the TCAS rows in the type its firmware runs
+/// them in ([`board::TableScalar`]), and the scans in the fast fixed point
+/// only. Decided at compile time, so the code left out is not linked.
+fn omitted<N: Numeric>(group: Group) -> Option<Omission> {
+    if !cfg!(abtrack_board = "microbit") {
+        return None;
+    }
+    let is = |t: TypeId| TypeId::of::<N>() == t;
+    let kept = match group {
+        Group::Filters => !is(TypeId::of::<Fix>()),
+        Group::Tcas => is(TypeId::of::<board::TableScalar>()),
+        Group::Scans => is(TypeId::of::<Fixed32>()),
+    };
+    (!kept).then_some(Omission::Flash)
 }

@@ -1,10 +1,12 @@
-//! The numeric labels of the output: which type a figure was measured in.
+//! The numeric labels of the output: which number system a figure was
+//! measured in.
 
-use abtrack::{Fix, Scalar};
+use abtrack::{Fix, Fixed32};
 
-/// A numeric type the abtrack operations run in, with its label in the
-/// benchmark's output (the `numeric` column of bench/results.csv).
-pub trait Numeric: Scalar {
+/// A number system the abtrack operations run in ([`abtrack::Numeric`]),
+/// with its label in the benchmark's output (the `numeric` column of
+/// bench/results.csv).
+pub trait Numeric: abtrack::Numeric {
     const LABEL: &'static str;
 }
 
@@ -15,6 +17,12 @@ impl Numeric for f32 {
     const LABEL: &'static str = "f32";
     #[cfg(not(target_abi = "eabihf"))]
     const LABEL: &'static str = "f32soft";
+}
+
+/// The fast fixed point ([`Fixed32`]): 32-bit words with a format per
+/// quantity.
+impl Numeric for Fixed32 {
+    const LABEL: &'static str = "fixed";
 }
 
 /// Q32.32 ([`Fix`]).

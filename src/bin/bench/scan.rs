@@ -7,7 +7,6 @@
 use core::hint::black_box;
 
 use abtrack::filter::Gains;
-use abtrack::num::fixed32::Fixed32;
 use abtrack::num::Quantity;
 use abtrack::track::{
     Association, FixedGainTrack, Gate, Measurement, Observation, ScanReport, ScanStage,
@@ -19,26 +18,12 @@ use cortex_m::peripheral::SYST;
 use crate::counter::{Bench, Size};
 use crate::numeric::Numeric;
 
-/// A number system of the scan rows, with its label in the output: every
-/// numeric type of the other rows, and the fast fixed point (`fixed`).
-pub trait ScanNumber: TrackNumeric {
-    const LABEL: &'static str;
-}
-
-impl<S: Numeric> ScanNumber for S {
-    const LABEL: &'static str = <S as Numeric>::LABEL;
-}
-
-impl ScanNumber for Fixed32 {
-    const LABEL: &'static str = "fixed";
-}
-
 /// The scan rows in `S`, one line per size (each a table type of its own,
 /// with its own code). The micro:bit's 16 KiB of RAM hold the table (on
 /// the stack) up to 32 × 32 in the fast fixed point (`docs/track-table.md`
 /// gives its bytes).
 #[inline(never)]
-pub fn sizes<S: ScanNumber>(bench: &mut Bench) {
+pub fn sizes<S: Numeric + TrackNumeric>(bench: &mut Bench) {
     run::<S, 8, 8>(bench);
     run::<S, 16, 16>(bench);
     run::<S, 32, 32>(bench);
@@ -171,7 +156,9 @@ impl Scene {
     /// Where target `i` of `targets` starts (it then flies along +x), m.
     fn start(self, i: usize, targets: usize) -> (f64, f64) {
         let grid = |cell: usize, cells: usize| {
-            let side = 1 + libm::sqrt(cells as f64) as usize;
+            // Never 0: no division by zero.
+            let side =
+                core::num::NonZeroUsize::MIN.saturating_add(libm::sqrt(cells as f64) as usize);
             (
                 (cell % side) as f64 * APART_M,
                 (cell / side) as f64 * APART_M,
@@ -262,7 +249,7 @@ fn run_scan<S: TrackNumeric, const N: usize, const M: usize>(
 
 /// Both scenes at N tracks, M measurements per scan.
 #[inline(never)]
-fn run<S: ScanNumber, const N: usize, const M: usize>(bench: &mut Bench) {
+fn run<S: Numeric + TrackNumeric, const N: usize, const M: usize>(bench: &mut Bench) {
     scene::<S, N, M>(bench, Scene::Separated);
     scene::<S, N, M>(bench, Scene::Crowded);
 }
@@ -272,7 +259,10 @@ fn run<S: ScanNumber, const N: usize, const M: usize>(bench: &mut Bench) {
 /// SysTick read where the scan reports the stage's end); the counts of the
 /// last scan; the sizes of the clusters of the gated pairs.
 #[inline(never)]
-fn scene<S: ScanNumber, const N: usize, const M: usize>(bench: &mut Bench, scene: Scene) {
+fn scene<S: Numeric + TrackNumeric, const N: usize, const M: usize>(
+    bench: &mut Bench,
+    scene: Scene,
+) {
     let numeric = S::LABEL;
     let operation = scene.operation();
     let size = Size { n: N, m: M };

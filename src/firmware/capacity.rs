@@ -1,0 +1,24 @@
+//! The demo's capacities per board, declared once: the firmware (src/main.rs)
+//! takes its board's, and the host model of the fault-injection tests
+//! (host-tests/tests/fault_injection.rs) the same. RAM per table:
+//! docs/track-table.md.
+
+/// The mps2 boards (4 MiB of RAM): issue 9's 256 tracks and 256
+/// measurements per scan.
+pub mod mps2 {
+    pub const TRACKS: usize = 256;
+    pub const MEASUREMENTS_PER_SCAN: usize = 256;
+    /// heapless queues hold one item less than their length.
+    pub const QUEUE_LEN: usize = 128;
+}
+
+/// The micro:bit (16 KiB of RAM): the TCAS scenario has at most 6 replies
+/// per scan (4 intruders, false replies), and a track there costs a
+/// range–azimuth filter and an intruder's TCAS state (range and altitude
+/// trackers, threat state) in Q32.32: 8 tracks and 12 replies per scan
+/// leave the stack its 25 % margin (scripts/stack.sh m0; docs/tcas.md).
+pub mod microbit {
+    pub const TRACKS: usize = 8;
+    pub const MEASUREMENTS_PER_SCAN: usize = 12;
+    pub const QUEUE_LEN: usize = 32;
+}
