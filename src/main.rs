@@ -365,19 +365,25 @@ fn log_track(t: &TrackReport) {
         Some(a) => (a.get(), "Mode S"),
         None => (0, "Mode C"),
     };
-    // i32::MIN: no altitude; u16::MAX: no tau (diverging).
-    let (alt, rate) = t.altitude.unwrap_or((i32::MIN, 0));
-    let tau = t.range_tau_ds.map_or(-1.0, |d| f32::from(d) / 10.0);
-    if t.altitude.is_some() {
-        defmt::println!(
+    let alt = t.altitude;
+    let tau = t.range_tau_ds.map(|d| f32::from(d) / 10.0);
+    match (alt, tau) {
+        (Some((alt, rate)), Some(tau)) => defmt::println!(
             "    track {=u32} {=str} {=str} {=u32:06x} ({=f32}, {=f32}) m ({=f32}, {=f32}) m/s {=i32} ft {=i16} ft/min | {=str} {=str} | tau {=f32} s",
             id, status, mode, address, x, y, vx, vy, alt, rate, advisory, ra, tau
-        );
-    } else {
-        defmt::println!(
+        ),
+        (Some((alt, rate)), None) => defmt::println!(
+            "    track {=u32} {=str} {=str} {=u32:06x} ({=f32}, {=f32}) m ({=f32}, {=f32}) m/s {=i32} ft {=i16} ft/min | {=str} {=str} | diverging",
+            id, status, mode, address, x, y, vx, vy, alt, rate, advisory, ra
+        ),
+        (None, Some(tau)) => defmt::println!(
             "    track {=u32} {=str} {=str} {=u32:06x} ({=f32}, {=f32}) m ({=f32}, {=f32}) m/s no altitude | {=str} {=str} | tau {=f32} s",
             id, status, mode, address, x, y, vx, vy, advisory, ra, tau
-        );
+        ),
+        (None, None) => defmt::println!(
+            "    track {=u32} {=str} {=str} {=u32:06x} ({=f32}, {=f32}) m ({=f32}, {=f32}) m/s no altitude | {=str} {=str} | diverging",
+            id, status, mode, address, x, y, vx, vy, advisory, ra
+        ),
     }
 }
 
