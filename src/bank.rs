@@ -49,16 +49,19 @@ pub struct BankConfig {
     /// The members' α, evenly spaced from `alpha_min` to `alpha_max`,
     /// 0 < min ≤ max ≤ 1 (eq. 23a); β from eq. (23b). Default 0.05 to 1.
     pub alpha_min: f64,
+    /// The largest member α (see `alpha_min`).
     pub alpha_max: f64,
 }
 
 impl BankConfig {
+    /// K = 8 members, α from 0.05 to 1.
     pub const DEFAULT: Self = BankConfig {
         k: 8,
         alpha_min: 0.05,
         alpha_max: 1.0,
     };
 
+    /// Checks k ≥ 1 and 0 < `alpha_min` ≤ `alpha_max` ≤ 1 (distinct when k > 1).
     pub fn validate(&self) -> Result<(), ConfigError> {
         if self.k == 0 {
             return Err(ConfigError::OutOfRange { parameter: "k" });
@@ -104,8 +107,11 @@ pub struct BankSelection<N: Numeric> {
 #[derive(Debug, Clone, Copy, PartialEq)]
 #[cfg_attr(feature = "defmt", derive(defmt::Format))]
 pub enum BankOutcome<N: Numeric> {
+    /// First measurement: every member took it as its position.
     FirstPoint,
+    /// Second measurement: every member took its velocity from the difference.
     SecondPoint,
+    /// A filtered update and the member selected for it (Algorithm 3, step 3).
     Filtered(BankSelection<N>),
 }
 
@@ -172,14 +178,17 @@ impl<N: Numeric, const K: usize> ParallelBank<N, K> {
         self.len
     }
 
+    /// Whether no member is in use (never, for a bank built by [`Self::new`]).
     pub fn is_empty(&self) -> bool {
         self.len == 0
     }
 
+    /// Member `i`'s filter state, `None` past [`Self::len`].
     pub fn member(&self, i: usize) -> Option<&AlphaBeta<N>> {
         self.members.get(..self.len)?.get(i)
     }
 
+    /// Member `i`'s fixed gains, `None` past [`Self::len`].
     pub fn member_gains(&self, i: usize) -> Option<&Gains<N>> {
         self.gains.get(..self.len)?.get(i)
     }
@@ -189,10 +198,12 @@ impl<N: Numeric, const K: usize> ParallelBank<N, K> {
         self.selected
     }
 
+    /// The selection of the last filtered update, `None` before one.
     pub fn last_selection(&self) -> Option<BankSelection<N>> {
         self.last
     }
 
+    /// How many measurements the members have seen (they all see the same).
     pub fn phase(&self) -> Phase {
         self.members.first().map_or(Phase::Empty, |m| m.phase())
     }
@@ -295,26 +306,32 @@ impl<N: Numeric, const K: usize, const D: usize> CartesianBank<N, K, D> {
         CartesianBank { axes: [bank; D] }
     }
 
+    /// The bank a [`BankConfig`] describes, on every axis.
     pub fn from_config(c: &BankConfig) -> Result<Self, ConfigError> {
         Ok(Self::new(ParallelBank::from_config(c)?))
     }
 
+    /// The per-axis banks.
     pub fn axes(&self) -> &[ParallelBank<N, K>; D] {
         &self.axes
     }
 
+    /// The phase of the axes (all updated together, so all the same).
     pub fn phase(&self) -> Phase {
         self.axes.first().map_or(Phase::Empty, |a| a.phase())
     }
 
+    /// Each axis's selected member's smoothed position.
     pub fn position(&self) -> [N::Length; D] {
         self.axes.map(|a| a.position())
     }
 
+    /// Each axis's selected member's smoothed velocity.
     pub fn velocity(&self) -> [N::Speed; D] {
         self.axes.map(|a| a.velocity())
     }
 
+    /// [`ParallelBank::update`] on every axis, all or none.
     pub fn update(
         &mut self,
         z: [N::Length; D],
@@ -338,6 +355,7 @@ impl<N: Numeric, const K: usize, const D: usize> CartesianBank<N, K, D> {
         Ok(out)
     }
 
+    /// [`ParallelBank::coast`] on every axis, all or none.
     pub fn coast(&mut self, dt: N::Interval) -> Result<(), FilterError> {
         let mut next = self.axes;
         for axis in next.iter_mut() {

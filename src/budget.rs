@@ -740,7 +740,8 @@ fn gain_part(i: usize, j: usize, g: &[f64; 3]) -> f64 {
 
 /// `r^(j − i)`.
 fn power_of(r: f64, i: usize, j: usize) -> f64 {
-    power(r, j as i32 - i as i32)
+    // Indices of a 3×3 matrix: the difference cannot wrap.
+    power(r, (j as i32).wrapping_sub(i as i32))
 }
 
 /// The closed-loop error matrix Ā(r, g) in scaled coordinates.

@@ -97,9 +97,11 @@ impl<N: Numeric> Gains<N> {
         Self::alpha_beta_gamma(ratio::<N>(alpha)?, ratio::<N>(beta)?, ratio::<N>(gamma)?)
     }
 
+    /// α, the position gain.
     pub fn alpha(&self) -> N::Ratio {
         self.alpha
     }
+    /// β, the velocity gain (the filters divide it by the interval).
     pub fn beta(&self) -> N::Ratio {
         self.beta
     }
@@ -180,12 +182,20 @@ pub fn li_beta<R: Real>(alpha: R) -> R {
 #[cfg_attr(feature = "defmt", derive(defmt::Format))]
 pub enum ConfigError {
     /// The parameter is outside its documented range (or not a number).
-    OutOfRange { parameter: &'static str },
+    OutOfRange {
+        /// The parameter's name in the spec (`alpha`, `k`, ...).
+        parameter: &'static str,
+    },
     /// The parameter cannot be represented in the chosen number type.
-    NotRepresentable { parameter: &'static str },
+    NotRepresentable {
+        /// The parameter's name in the spec.
+        parameter: &'static str,
+    },
     /// The parameter asks for more storage than the type's const capacity.
     ExceedsCapacity {
+        /// The parameter's name in the spec.
         parameter: &'static str,
+        /// The type's capacity (its const generic).
         capacity: usize,
     },
     /// The spec names a bank of filters, not a schedule

@@ -103,7 +103,9 @@ pub trait Scalar:
 {
     /// Short name for reports: "f64", "f32", "q32".
     const NAME: &'static str;
+    /// Zero.
     const ZERO: Self;
+    /// One.
     const ONE: Self;
 
     /// Rounding model, used by the error budget ([`crate::budget`]): a rounded
@@ -124,11 +126,13 @@ pub trait Scalar:
     /// invalid values. Meant for literals such as 0.5 in generic code.
     fn from_f64_lossy(v: f64) -> Self;
 
+    /// The value as `f64` (exact for every format; a sentinel gives ±∞).
     fn to_f64(self) -> f64;
 
     /// False for NaN, ±∞ and the fixed-point saturation sentinels.
     fn is_valid(self) -> bool;
 
+    /// Absolute value (sticky for invalid values).
     fn abs(self) -> Self;
 
     /// Square root; invalid for a negative argument.
@@ -316,6 +320,7 @@ impl Fix {
         Fix(v)
     }
 
+    /// The value as the `fixed` crate's `I32F32`.
     pub const fn to_fixed(self) -> I32F32 {
         self.0
     }
@@ -325,6 +330,7 @@ impl Fix {
         self.0.to_bits()
     }
 
+    /// From a raw word (value × 2³²); `i64::MIN`/`MAX` are the sentinels.
     pub const fn from_bits(bits: i64) -> Self {
         Fix(I32F32::from_bits(bits))
     }
@@ -441,7 +447,8 @@ impl Neg for Fix {
         if self.is_sentinel() {
             Fix::saturated(!self.0.is_negative())
         } else {
-            Fix(-self.0)
+            // Not a sentinel, so not i64::MIN: the negation cannot wrap.
+            Fix(self.0.wrapping_neg())
         }
     }
 }

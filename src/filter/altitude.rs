@@ -219,6 +219,7 @@ impl<S: Scalar> AltitudeTrackerConfig<S> {
         Self::new(quantum, DEFAULT_INTERVAL_S, DEFAULT_MAX_COAST_S)
     }
 
+    /// The altitude reports' quantum (Mode C 100 ft or Mode S 25 ft).
     pub fn quantum(&self) -> AltitudeQuantum {
         self.quantum
     }
@@ -247,7 +248,9 @@ pub struct AltitudeEstimate<S> {
 #[derive(Debug, Clone, Copy, PartialEq)]
 #[cfg_attr(feature = "defmt", derive(defmt::Format))]
 pub struct RateBounds<S> {
+    /// The lower bound, ft/s.
     pub lowest_ft_per_s: S,
+    /// The upper bound, ft/s.
     pub highest_ft_per_s: S,
 }
 
@@ -346,10 +349,12 @@ impl<S: Scalar> AltitudeTracker<S> {
         }
     }
 
+    /// The configuration the tracker was built with.
     pub fn config(&self) -> &AltitudeTrackerConfig<S> {
         &self.config
     }
 
+    /// Whether and how well the altitude is known (from the report count).
     pub fn status(&self) -> AltitudeStatus {
         match self.reports {
             0 => AltitudeStatus::NotReporting,

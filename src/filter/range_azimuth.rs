@@ -260,8 +260,11 @@ pub use crate::num::{azimuth_of, hypot};
 #[derive(Debug, Clone, Copy, PartialEq)]
 #[cfg_attr(feature = "defmt", derive(defmt::Format))]
 pub struct CovarianceFactor<N: Numeric> {
+    /// L₁₁ = √P₁₁, m (≥ 0).
     pub a: N::Ratio,
+    /// L₂₁ = P₁₂/a, m/s.
     pub b: N::Ratio,
+    /// L₂₂ = √(P₂₂ − b²), m/s (≥ 0).
     pub c: N::Ratio,
 }
 
@@ -390,6 +393,7 @@ pub struct RangeAzimuthInnovation<N: Numeric> {
     /// RESID_CR = x_p cos B − y_p sin B, m (eq. 11, reading 1): prediction
     /// minus measurement across the line of sight.
     pub cross_range_residual: N::Length,
+    /// The gains the update used (eqs. 9–10).
     pub gains: RangeAzimuthGains<N>,
 }
 
@@ -455,9 +459,11 @@ impl<N: Numeric> RangeAzimuthFilter<N> {
         }
     }
 
+    /// The measurement and process noise the gains are computed from.
     pub fn noise(&self) -> &RangeAzimuthNoise<N> {
         &self.noise
     }
+    /// Which stage of two-point initialisation the filter is in.
     pub fn phase(&self) -> Phase {
         self.phase
     }

@@ -31,7 +31,9 @@ pub struct FixedGains<N: Numeric> {
 #[derive(Debug, Clone, Copy, PartialEq)]
 #[cfg_attr(feature = "defmt", derive(defmt::Format))]
 pub struct FixedConfig {
+    /// α, inside the stability region with β (and γ).
     pub alpha: f64,
+    /// β.
     pub beta: f64,
     /// `None` for αβ gains.
     pub gamma: Option<f64>,
@@ -41,6 +43,7 @@ pub struct FixedConfig {
 #[derive(Debug, Clone, Copy, PartialEq)]
 #[cfg_attr(feature = "defmt", derive(defmt::Format))]
 pub struct FixedAlphaConfig {
+    /// α̃ ∈ (0, 1]; β̃ = α̃²/(2 − α̃) (eq. 23b).
     pub alpha: f64,
 }
 
@@ -48,6 +51,7 @@ impl FixedAlphaConfig {
     /// α̃ = 0.05, the first value §5.2 suggests ("say α = 0.05 or α = 0.01").
     pub const DEFAULT: Self = FixedAlphaConfig { alpha: 0.05 };
 
+    /// Checks α̃ ∈ (0, 1].
     pub fn validate(&self) -> Result<(), ConfigError> {
         check_range(self.alpha, 0.0, 1.0, false, "alpha")
     }
@@ -61,6 +65,7 @@ impl FixedConfig {
         gamma: None,
     };
 
+    /// Checks the gains against the αβ triangle or the αβγ volume.
     pub fn validate(&self) -> Result<(), ConfigError> {
         let g = match self.gamma {
             None => Gains::<f64>::alpha_beta(self.alpha, self.beta),
@@ -72,6 +77,7 @@ impl FixedConfig {
 }
 
 impl<N: Numeric> FixedGains<N> {
+    /// A schedule that always gives `gains`.
     pub const fn new(gains: Gains<N>) -> Self {
         FixedGains { gains }
     }
@@ -91,6 +97,7 @@ impl<N: Numeric> FixedGains<N> {
         Self::from_config(&FixedConfig::LIU)
     }
 
+    /// The gains a [`FixedConfig`] gives (`fixed:alpha=A,beta=B[,gamma=G]`).
     pub fn from_config(c: &FixedConfig) -> Result<Self, ConfigError> {
         c.validate()?;
         let g = match c.gamma {
@@ -101,11 +108,13 @@ impl<N: Numeric> FixedGains<N> {
             .map_err(|_| ConfigError::NotRepresentable { parameter: "gains" })
     }
 
+    /// M1 from its configuration (`m1:alpha=A`).
     pub fn from_m1_config(c: &FixedAlphaConfig) -> Result<Self, ConfigError> {
         c.validate()?;
         Self::m1(config_quantity(c.alpha, "alpha")?)
     }
 
+    /// The gains this schedule gives.
     pub fn fixed(&self) -> Gains<N> {
         self.gains
     }
@@ -132,9 +141,12 @@ pub struct LeastSquaresConfig {
 }
 
 impl LeastSquaresConfig {
+    /// n_max = 1000.
     pub const DEFAULT: Self = LeastSquaresConfig { n_max: 1000 };
+    /// The largest `n_max` accepted (β̂ = 6·10⁻⁸ there).
     pub const N_MAX_LIMIT: u32 = 10_000;
 
+    /// Checks 3 ≤ `n_max` ≤ [`Self::N_MAX_LIMIT`].
     pub fn validate(&self) -> Result<(), ConfigError> {
         if (3..=Self::N_MAX_LIMIT).contains(&self.n_max) {
             Ok(())
@@ -167,6 +179,7 @@ pub struct LeastSquaresGains {
 }
 
 impl LeastSquaresGains {
+    /// M2 bounded at `config.n_max`.
     pub fn new(config: &LeastSquaresConfig) -> Result<Self, ConfigError> {
         config.validate()?;
         Ok(LeastSquaresGains { config: *config })
@@ -218,6 +231,7 @@ pub struct LinearCombinationConfig {
 }
 
 impl LinearCombinationConfig {
+    /// α₀ = 0.05, w = 0.5, 11 steps, window 8, n_max 1000.
     pub const DEFAULT: Self = LinearCombinationConfig {
         alpha0: 0.05,
         w: 0.5,
@@ -226,6 +240,7 @@ impl LinearCombinationConfig {
         n_max: LeastSquaresConfig::DEFAULT.n_max,
     };
 
+    /// Checks every field's documented range.
     pub fn validate(&self) -> Result<(), ConfigError> {
         check_range(self.alpha0, 0.0, 1.0, false, "alpha0")?;
         check_range(self.w, 0.0, 1.0, true, "w")?;
@@ -278,6 +293,7 @@ pub struct LinearCombinationGains<N: Numeric, const D: usize, const W: usize> {
 }
 
 impl<N: Numeric, const D: usize, const W: usize> LinearCombinationGains<N, D, W> {
+    /// M3 as `c` configures it; the window must fit the capacity `W`.
     pub fn new(c: &LinearCombinationConfig) -> Result<Self, ConfigError> {
         c.validate()?;
         if usize::from(c.window) > W {
@@ -371,13 +387,16 @@ pub struct MovingWindowConfig {
     /// The α grid: `steps` points evenly from `alpha_min` to `alpha_max`,
     /// 0 < min < max ≤ 1 (eq. 23a). Default 0.05 to 1 in 20 steps of 0.05.
     pub alpha_min: f64,
+    /// The largest α of the grid (see `alpha_min`).
     pub alpha_max: f64,
+    /// The number of α values in the grid, 2 to 1000.
     pub steps: u16,
     /// Window length L (2 ≤ L ≤ the type's capacity W). Default 8.
     pub window: u16,
 }
 
 impl MovingWindowConfig {
+    /// α₀ = 0.5, α from 0.05 to 1 in 20 steps, window 8.
     pub const DEFAULT: Self = MovingWindowConfig {
         alpha0: 0.5,
         alpha_min: 0.05,
@@ -386,6 +405,7 @@ impl MovingWindowConfig {
         window: 8,
     };
 
+    /// Checks every field's documented range.
     pub fn validate(&self) -> Result<(), ConfigError> {
         check_range(self.alpha0, 0.0, 1.0, false, "alpha0")?;
         check_range(self.alpha_min, 0.0, 1.0, false, "min")?;
@@ -437,6 +457,7 @@ pub struct MovingWindowGains<N: Numeric, const D: usize, const W: usize> {
 }
 
 impl<N: Numeric, const D: usize, const W: usize> MovingWindowGains<N, D, W> {
+    /// M4 as `c` configures it; the window must fit the capacity `W`.
     pub fn new(c: &MovingWindowConfig) -> Result<Self, ConfigError> {
         c.validate()?;
         if usize::from(c.window) > W {

@@ -65,10 +65,15 @@ pub struct AutoConfig {
 #[cfg_attr(feature = "defmt", derive(defmt::Format))]
 pub enum AutoSensor {
     /// σ per axis, m.
-    Cartesian { sigma: f64 },
+    Cartesian {
+        /// σ, m.
+        sigma: f64,
+    },
     /// σ_R (m) and σ_B (rad) of a sensor at the origin.
     Polar {
+        /// σ_R, m.
         range_sigma: f64,
+        /// σ_B, rad.
         bearing_sigma: f64,
     },
 }
@@ -125,6 +130,7 @@ impl AutoConfig {
         })
     }
 
+    /// Checks the sensor figures and `n_max`.
     pub fn validate(&self) -> Result<(), ConfigError> {
         self.sensor()?;
         LeastSquaresConfig { n_max: self.n_max }.validate()
@@ -235,6 +241,7 @@ impl<R: Real> Constants<R> {
 }
 
 impl<N: Numeric, const D: usize> AutoGains<N, D> {
+    /// The schedule for the sensor `c` describes (`docs/auto.md`).
     pub fn new(c: &AutoConfig) -> Result<Self, ConfigError> {
         c.validate()?;
         let noise = match c.sensor()? {
@@ -318,10 +325,7 @@ impl<N: Numeric, const D: usize> AutoGains<N, D> {
     }
 
     /// The gains of the update `ctx` and the state after it.
-    fn plan(
-        &self,
-        ctx: &GainContext<N, D>,
-    ) -> Result<([Gains<N>; D], [AutoAxis<N>; D]), ScheduleError> {
+    fn plan(&self, ctx: &GainContext<N, D>) -> Result<Plan<N, D>, ScheduleError> {
         let constants = Constants::new();
         let span = self.span_squared(ctx.dt);
         let nu = self.normalised_innovations(ctx);
@@ -427,3 +431,6 @@ impl<N: Numeric, const D: usize> GainSchedule<N, D> for AutoGains<N, D> {
         self.per_last_interval = N::Speed::ZERO;
     }
 }
+
+// The gains of an update and the axes' state after it (`AutoGains::plan`).
+type Plan<N, const D: usize> = ([Gains<N>; D], [AutoAxis<N>; D]);

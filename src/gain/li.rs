@@ -31,6 +31,7 @@ pub struct LiImprovedConfig {
 }
 
 impl LiImprovedConfig {
+    /// R = 3, Δρ = 1 m, Δθ = 0, k_max = 1000.
     pub const DEFAULT: Self = LiImprovedConfig {
         max_ratio: 3.0,
         range_error: 1.0,
@@ -38,6 +39,7 @@ impl LiImprovedConfig {
         k_max: 1000,
     };
 
+    /// Checks every field's documented range.
     pub fn validate(&self) -> Result<(), ConfigError> {
         check_range(self.max_ratio, 0.0, 1.0e6, false, "r")?;
         check_range(self.range_error, 0.0, 1.0e6, false, "range-error")?;
@@ -100,6 +102,7 @@ pub struct LiImprovedGains<N: Numeric> {
 const FIRST_COUNT: u32 = 3;
 
 impl<N: Numeric> LiImprovedGains<N> {
+    /// Li et al.'s improved schedule as `c` configures it, at scan count 3.
     pub fn new(c: &LiImprovedConfig) -> Result<Self, ConfigError> {
         c.validate()?;
         Ok(LiImprovedGains {

@@ -36,11 +36,13 @@ pub struct ScanCountAdjustedConfig {
 }
 
 impl ScanCountAdjustedConfig {
+    /// Threshold 70 m (§3.2.2), k_max = 1000.
     pub const DEFAULT: Self = ScanCountAdjustedConfig {
         threshold: 70.0,
         k_max: 1000,
     };
 
+    /// Checks every field's documented range.
     pub fn validate(&self) -> Result<(), ConfigError> {
         check_range(self.threshold, 0.0, 1.0e9, false, "threshold")?;
         if !(3..=LeastSquaresConfig::N_MAX_LIMIT).contains(&self.k_max) {
@@ -73,6 +75,7 @@ pub struct ScanCountAdjustedGains<N: Numeric> {
 }
 
 impl<N: Numeric> ScanCountAdjustedGains<N> {
+    /// §2.1.2's schedule as `c` configures it.
     pub fn new(c: &ScanCountAdjustedConfig) -> Result<Self, ConfigError> {
         c.validate()?;
         Ok(ScanCountAdjustedGains {
@@ -136,12 +139,14 @@ pub struct ResidualAccumulationConfig {
 }
 
 impl ResidualAccumulationConfig {
+    /// n = 3, σ_m² = 25 m² (§2.1.4), α_min = 0.01.
     pub const DEFAULT: Self = ResidualAccumulationConfig {
         n: 3,
         sigma_m2: 25.0,
         alpha_min: 0.01,
     };
 
+    /// Checks every field's documented range.
     pub fn validate(&self) -> Result<(), ConfigError> {
         if self.n == 0 {
             return Err(ConfigError::OutOfRange { parameter: "n" });
@@ -185,6 +190,7 @@ pub struct ResidualAccumulationGains<N: Numeric, const D: usize, const H: usize>
 }
 
 impl<N: Numeric, const D: usize, const H: usize> ResidualAccumulationGains<N, D, H> {
+    /// §2.1.4's schedule as `c` configures it; n must fit the capacity `H`.
     pub fn new(c: &ResidualAccumulationConfig) -> Result<Self, ConfigError> {
         c.validate()?;
         if usize::from(c.n) > H {
@@ -313,12 +319,14 @@ pub struct AdaptiveSwitchConfig {
     pub limit: f64,
     /// The fixed gains of the steady branch (§2.1.3: 0.5, 0.3).
     pub alpha: f64,
+    /// β of the steady branch (see `alpha`).
     pub beta: f64,
     /// The residual-accumulation branch (§2.1.4).
     pub residual: ResidualAccumulationConfig,
 }
 
 impl AdaptiveSwitchConfig {
+    /// limit 19 m, α = 0.5, β = 0.3 (§2.1.3, §2.1.5), the residual branch's defaults.
     pub const DEFAULT: Self = AdaptiveSwitchConfig {
         limit: 19.0,
         alpha: 0.5,
@@ -326,6 +334,7 @@ impl AdaptiveSwitchConfig {
         residual: ResidualAccumulationConfig::DEFAULT,
     };
 
+    /// Checks every field's documented range.
     pub fn validate(&self) -> Result<(), ConfigError> {
         check_range(self.limit, 0.0, 1.0e9, false, "limit")?;
         super::al_wagih::FixedConfig {
@@ -367,6 +376,7 @@ pub struct AdaptiveSwitchGains<N: Numeric, const D: usize, const H: usize> {
 }
 
 impl<N: Numeric, const D: usize, const H: usize> AdaptiveSwitchGains<N, D, H> {
+    /// §2.1.5's switch as `c` configures it; n must fit the capacity `H`.
     pub fn new(c: &AdaptiveSwitchConfig) -> Result<Self, ConfigError> {
         c.validate()?;
         Ok(AdaptiveSwitchGains {

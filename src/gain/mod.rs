@@ -59,13 +59,21 @@
 //! allocation by [`spec::ScheduleSpec`]; [`AnySchedule`] holds any schedule a
 //! spec names, so a replay tool or firmware can pick one at run time:
 //!
-//! ```rust,ignore
-//! // (Not compiled as a doctest: the crate's default target is a thumb
-//! // target; host-tests/tests/gain_*.rs run the same calls.)
+//! ```
+//! use abtrack::gain::{AnySchedule, ScheduleSpec, ScheduledFilter};
+//!
 //! let spec = ScheduleSpec::parse("liu-adaptive:limit=19")?;
 //! let schedule = AnySchedule::<f32, 2, 8>::from_spec(&spec)?;
 //! let mut track: ScheduledFilter<f32, _, 2, 2> = ScheduledFilter::new(schedule);
-//! let update = track.update([x, y], dt)?; // update.gains: Some([gx, gy]) once filtering
+//! for k in 0..10u8 {
+//!     let update = track.update([100.0 + 20.0 * f32::from(k), 50.0], 1.0)?;
+//!     // Two-point initialisation first: gains once filtering.
+//!     assert_eq!(update.gains.is_some(), k >= 2);
+//! }
+//! let [x, y] = track.filter().position();
+//! assert!((x - 280.0).abs() < 1e-3 && (y - 50.0).abs() < 1e-3);
+//! assert!(ScheduleSpec::parse("liu-adaptive:limit=x").is_err());
+//! # Ok::<(), Box<dyn std::error::Error>>(())
 //! ```
 
 use core::fmt;
@@ -114,6 +122,7 @@ pub struct GainContext<N: Numeric, const D: usize> {
     pub n: u32,
     /// T, the interval since the previous update or coast.
     pub dt: N::Interval,
+    /// What each axis knows about the measurement.
     pub axes: [AxisObservation<N>; D],
 }
 
@@ -250,7 +259,9 @@ pub trait GainSchedule<N: Numeric, const D: usize>: Copy {
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 #[cfg_attr(feature = "defmt", derive(defmt::Format))]
 pub enum ScheduledError {
+    /// The filter refused the measurement or interval, or saturated.
     Filter(FilterError),
+    /// The schedule gave no gains.
     Schedule(ScheduleError),
     /// The measurement came less than [`MIN_INTERVAL_S`] after the previous
     /// one: two reports that close carry no velocity information, and the
@@ -307,6 +318,26 @@ pub struct ScheduledUpdate<N: Numeric, const D: usize> {
 /// With an αβγ filter (`ORDER = 3`), schedules that give αβ gains (γ = 0)
 /// leave the acceleration at its initial zero, i.e. the filter behaves as
 /// αβ; with an αβ filter the γ of αβγ gains (TCAS) is ignored.
+///
+/// One axis under M2, the least-squares gains (Al-Wagih & Abdulla eq. 24):
+///
+/// ```
+/// use abtrack::gain::{LeastSquaresGains, ScheduledError, ScheduledFilter};
+///
+/// let mut track = ScheduledFilter::<f64, _, 2, 1>::new(LeastSquaresGains::default());
+/// track.update([0.0], 1.0)?;
+/// track.update([10.0], 1.0)?; // two-point initialisation: v = 10 m/s
+/// // n = 3: α̂ = 2(2n − 1)/(n(n + 1)) = 5/6, β̂ = 6/(n(n + 1)) = 1/2.
+/// let g = track.update([21.0], 1.0)?.gains.ok_or("no gains")?[0];
+/// assert!((g.alpha() - 5.0 / 6.0).abs() < 1e-12 && (g.beta() - 0.5).abs() < 1e-12);
+/// // Prediction 20 m, innovation 1 m: x = 20 + α·1, v = 10 + β·1/T.
+/// assert!((track.filter().position()[0] - (20.0 + 5.0 / 6.0)).abs() < 1e-9);
+/// assert!((track.filter().velocity()[0] - 10.5).abs() < 1e-9);
+/// // A report 1 ms after the previous one is refused; nothing changes.
+/// assert_eq!(track.update([21.0], 0.001), Err(ScheduledError::IntervalTooShort));
+/// assert_eq!(track.measurements(), 3);
+/// # Ok::<(), Box<dyn std::error::Error>>(())
+/// ```
 #[derive(Debug, Clone, Copy, PartialEq)]
 #[cfg_attr(feature = "defmt", derive(defmt::Format))]
 pub struct ScheduledFilter<N: Numeric, G, const ORDER: usize, const D: usize> {
@@ -354,10 +385,12 @@ where
         }
     }
 
+    /// The track's filter.
     pub fn filter(&self) -> &Cartesian<N, ORDER, D> {
         &self.filter
     }
 
+    /// The track's schedule and its state.
     pub fn schedule(&self) -> &G {
         &self.schedule
     }
@@ -619,15 +652,25 @@ pub(crate) fn norm<N: Numeric>(v: &[N::Length]) -> N::Length {
 #[derive(Debug, Clone, Copy, PartialEq)]
 #[cfg_attr(feature = "defmt", derive(defmt::Format))]
 pub enum AnySchedule<N: Numeric, const D: usize, const W: usize> {
+    /// `fixed`, `m1`, `liu-fixed`: constant gains.
     Fixed(FixedGains<N>),
+    /// `least-squares`, `m2`, `liu-count`: Al-Wagih eq. 24.
     LeastSquares(LeastSquaresGains),
+    /// `m3`: Al-Wagih eq. 25, Algorithm 1.
     LinearCombination(LinearCombinationGains<N, D, W>),
+    /// `m4`: Al-Wagih Algorithm 2.
     MovingWindow(MovingWindowGains<N, D, W>),
+    /// `li-improved`: Li et al. eqs. 4, 7–15.
     LiImproved(LiImprovedGains<N>),
+    /// `liu-count-adjusted`: Liu, Wang & Yang §2.1.2.
     ScanCountAdjusted(ScanCountAdjustedGains<N>),
+    /// `liu-residual`: Liu, Wang & Yang eqs. 6–11.
     ResidualAccumulation(ResidualAccumulationGains<N, D, W>),
+    /// `liu-adaptive`: Liu, Wang & Yang eqs. 12–15.
     AdaptiveSwitch(AdaptiveSwitchGains<N, D, W>),
+    /// `tcas-firmness`: the DO-185B firmness table.
     Firmness(FirmnessGains),
+    /// `auto`: least-squares gains cut by NIS tests (`docs/auto.md`).
     Auto(AutoGains<N, D>),
 }
 

@@ -38,6 +38,7 @@ pub struct ScheduleInfo {
     pub names: &'static [&'static str],
     /// The keys and their defaults.
     pub parameters: &'static str,
+    /// One line: what the schedule is and where it comes from.
     pub summary: &'static str,
 }
 
@@ -217,7 +218,10 @@ pub enum SpecErrorKind {
     /// The value does not parse as the key's kind of number.
     InvalidNumber,
     /// A parameter without a default was not given.
-    MissingParameter { parameter: &'static str },
+    MissingParameter {
+        /// The parameter's key.
+        parameter: &'static str,
+    },
     /// The values parse but the configuration is refused.
     Config(ConfigError),
 }
@@ -226,7 +230,9 @@ pub enum SpecErrorKind {
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 #[cfg_attr(feature = "defmt", derive(defmt::Format))]
 pub struct SpecError {
+    /// What is wrong.
     pub kind: SpecErrorKind,
+    /// Byte offset in the spec string of the part at fault.
     pub offset: usize,
 }
 
@@ -459,7 +465,8 @@ impl ScheduleSpec {
         // Byte offset of each key given, to point config errors at it.
         let mut given: [Option<usize>; MAX_KEYS] = [None; MAX_KEYS];
         if let Some(params) = params {
-            let mut offset = name.len() + 1;
+            // Offsets within a string's length: saturation never happens.
+            let mut offset = name.len().saturating_add(1);
             for part in params.split(',') {
                 if part.is_empty() {
                     return Err(err(SpecErrorKind::EmptyParameter, offset));
@@ -478,10 +485,10 @@ impl ScheduleSpec {
                     return Err(err(SpecErrorKind::DuplicateParameter, offset));
                 }
                 *slot = Some(offset);
-                parsed
-                    .set(index, value)
-                    .map_err(|kind| err(kind, offset + key.len() + 1))?;
-                offset += part.len() + 1;
+                parsed.set(index, value).map_err(|kind| {
+                    err(kind, offset.saturating_add(key.len()).saturating_add(1))
+                })?;
+                offset = offset.saturating_add(part.len()).saturating_add(1);
             }
         }
         if name == "fixed" {

@@ -69,6 +69,7 @@ impl FirmnessGains {
         FirmnessGains { firmness: 0 }
     }
 
+    /// The current firmness, 0 to [`MAX_FIRMNESS`] (DO-185B `CASFIRM`).
     pub fn firmness(&self) -> u8 {
         self.firmness
     }

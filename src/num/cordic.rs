@@ -108,7 +108,8 @@ const ONE_Q32: i64 = 1 << 32;
 /// ≤ 2⁶³ − 2²⁸ so the addition cannot overflow).
 #[inline]
 fn round_q61_to_q32(v: i64) -> i64 {
-    (v + (1 << (Q61_TO_Q32 - 1))) >> Q61_TO_Q32
+    // Cannot wrap (bound above); wrapping_add keeps the step panic-free.
+    v.wrapping_add(1 << (Q61_TO_Q32 - 1)) >> Q61_TO_Q32
 }
 
 /// (sin θ, cos θ) of a Q32.32 angle given as its raw word, results as raw
@@ -121,7 +122,8 @@ pub(super) fn sin_cos_bits(theta: i64) -> (i64, i64) {
     let r = if (0..TWO_PI_Q94).contains(&t) {
         t
     } else if (-TWO_PI_Q94..0).contains(&t) {
-        t + TWO_PI_Q94
+        // t ∈ [−2π, 0): the sum is in [0, 2π), no wrap.
+        t.wrapping_add(TWO_PI_Q94)
     } else {
         // Larger angles (rare: azimuths stay within a turn or two) take the
         // slower 128-bit remainder; the divisor is a positive constant.
@@ -130,19 +132,21 @@ pub(super) fn sin_cos_bits(theta: i64) -> (i64, i64) {
     // Quadrant q: r − q·π/2 ∈ [−π/4, π/4]. q = 4 is the same as q = 0.
     let mut quadrant = 0u8;
     let mut bound = QUARTER_PI_Q94;
+    // quadrant ≤ 4 and bound ≤ 9π/4·2⁹⁴ < 2⁹⁷: these steps cannot wrap.
     while quadrant < 4 && r >= bound {
-        quadrant += 1;
-        bound += HALF_PI_Q94;
+        quadrant = quadrant.wrapping_add(1);
+        bound = bound.wrapping_add(HALF_PI_Q94);
     }
-    let reduced = r - (quadrant as i128) * HALF_PI_Q94;
+    let reduced = r.wrapping_sub(i128::from(quadrant).wrapping_mul(HALF_PI_Q94));
     // |reduced| ≤ π/4·2⁹⁴ < 2⁹⁴, so after the shift it is < 2⁶¹: fits an i64.
-    let z = ((reduced + (1i128 << (Q94_TO_Q61 - 1))) >> Q94_TO_Q61) as i64;
+    let z = (reduced.wrapping_add(1i128 << (Q94_TO_Q61 - 1)) >> Q94_TO_Q61) as i64;
     let (s, c) = rotate(z);
+    // |s|, |c| ≤ 2⁶¹: negation cannot wrap.
     let (s, c) = match quadrant & 3 {
         0 => (s, c),
-        1 => (c, -s),
-        2 => (-s, -c),
-        _ => (-c, s),
+        1 => (c, s.wrapping_neg()),
+        2 => (s.wrapping_neg(), c.wrapping_neg()),
+        _ => (c.wrapping_neg(), s),
     };
     let clamp = |v: i64| round_q61_to_q32(v).clamp(-ONE_Q32, ONE_Q32);
     (clamp(s), clamp(c))
@@ -158,14 +162,15 @@ fn rotate(mut z: i64) -> (i64, i64) {
     let mut y = 0i64;
     for (i, &step) in ATAN_TABLE.iter().enumerate() {
         let (dx, dy) = (y >> i, x >> i);
+        // Fixed-width CORDIC steps; the bounds above keep them from wrapping.
         if z >= 0 {
-            x -= dx;
-            y += dy;
-            z -= step;
+            x = x.wrapping_sub(dx);
+            y = y.wrapping_add(dy);
+            z = z.wrapping_sub(step);
         } else {
-            x += dx;
-            y -= dy;
-            z += step;
+            x = x.wrapping_add(dx);
+            y = y.wrapping_sub(dy);
+            z = z.wrapping_add(step);
         }
     }
     (y, x)
@@ -182,23 +187,30 @@ pub(super) fn atan2_bits(y: i64, x: i64) -> i64 {
     }
     if x == 0 {
         let half_pi = round_q61_to_q32(PI_Q61 >> 1);
-        return if y < 0 { -half_pi } else { half_pi };
+        return if y < 0 {
+            half_pi.wrapping_neg()
+        } else {
+            half_pi
+        };
     }
     let (ay, ax) = (y.unsigned_abs(), x.unsigned_abs());
     let largest = ay.max(ax); // > 0: neither is zero here
                               // Scale both magnitudes by the same power of two so the larger lies in
                               // [2⁵⁹, 2⁶⁰): the ratio, hence the angle, is unchanged, and the vectoring
                               // growth (≤ 1.65·√2) keeps every intermediate below 2⁶².
-    let top = 63 - largest.leading_zeros(); // bit index of the leading one
+    let top = largest.checked_ilog2().unwrap_or(0); // bit index of the leading one
     let (ax, ay) = if top > 59 {
-        (ax >> (top - 59), ay >> (top - 59))
+        let down = top.saturating_sub(59); // > 0 here
+        (ax >> down, ay >> down)
     } else {
-        (ax << (59 - top), ay << (59 - top))
+        let up = 59u32.saturating_sub(top); // ≤ 59 here
+        (ax << up, ay << up)
     };
     // Both are now < 2⁶⁰, so the casts are exact.
     let first_quadrant = vector(ax as i64, ay as i64); // ∈ [0, π/2]
     let unsigned = if x < 0 {
-        PI_Q61 - first_quadrant
+        // first_quadrant ∈ [0, π/2]: no wrap.
+        PI_Q61.wrapping_sub(first_quadrant)
     } else {
         first_quadrant
     };
@@ -207,7 +219,8 @@ pub(super) fn atan2_bits(y: i64, x: i64) -> i64 {
         // of it the nearest Q32.32 value is −π itself (the representation of
         // the excluded end of (−π, π]); the next one up is still within
         // 0.53 steps of the true value.
-        round_q61_to_q32(-unsigned).max(1 - round_q61_to_q32(PI_Q61))
+        // unsigned ∈ [0, π] in Q61 and π in Q32.32 < 2³⁴: no wrap.
+        round_q61_to_q32(unsigned.wrapping_neg()).max(1i64.wrapping_sub(round_q61_to_q32(PI_Q61)))
     } else {
         round_q61_to_q32(unsigned)
     }
@@ -219,14 +232,16 @@ fn vector(mut x: i64, mut y: i64) -> i64 {
     let mut z = 0i64;
     for (i, &step) in ATAN_TABLE.iter().enumerate() {
         let (dx, dy) = (y >> i, x >> i);
+        // Fixed-width CORDIC steps; inputs < 2⁶⁰ and the growth ≤ 1.65·√2
+        // keep them below 2⁶²: no wrap.
         if y > 0 {
-            x += dx;
-            y -= dy;
-            z += step;
+            x = x.wrapping_add(dx);
+            y = y.wrapping_sub(dy);
+            z = z.wrapping_add(step);
         } else {
-            x -= dx;
-            y += dy;
-            z -= step;
+            x = x.wrapping_sub(dx);
+            y = y.wrapping_add(dy);
+            z = z.wrapping_sub(step);
         }
     }
     z

@@ -44,6 +44,27 @@ pub type IntervalSquared = Scaled<unit::SecondSquared>;
 pub type Angle = Scaled<unit::Radian>;
 
 /// The fast fixed-point number system (module docs).
+///
+/// Values enter and leave through [`Quantity`]'s conversions, in SI units,
+/// rounded to the quantity's format:
+///
+/// ```
+/// use abtrack::num::fixed32::{Fixed32, Length, Speed};
+/// use abtrack::{NumError, Numeric, Quantity};
+///
+/// let x: <Fixed32 as Numeric>::Length = Length::try_from_f64(1234.5678)?;
+/// assert_eq!(Length::FRAC_BITS, 12); // I20F12: steps of 2⁻¹² m
+/// assert!((x.to_f64() - 1234.5678).abs() <= 0.5 / 4096.0);
+/// assert_eq!(x.to_bits(), (1234.5678f64 * 4096.0).round() as i32);
+/// // Beyond ±524 288 m, or not a number: refused, never wrapped.
+/// assert_eq!(Length::try_from_f64(6.0e5), Err(NumError::OutOfRange));
+/// assert_eq!(Speed::try_from_f64(f64::NAN), Err(NumError::NotFinite));
+/// // A result out of range is a sticky sentinel, caught by `is_valid`.
+/// let far = Length::try_from_f64(500_000.0)?;
+/// assert!(!(far + far).is_valid());
+/// assert!(!(far + far - far).is_valid());
+/// # Ok::<(), NumError>(())
+/// ```
 #[derive(Debug, Clone, Copy, Default, PartialEq, Eq)]
 #[cfg_attr(feature = "defmt", derive(defmt::Format))]
 pub struct Fixed32;
@@ -155,7 +176,8 @@ const fn sentinel(negative: bool) -> i32 {
 /// shift (for a shift of 32 the result is the high word).
 #[inline(always)]
 const fn shift_round_const(wide: i64, shift: u32) -> i64 {
-    wide.wrapping_add(1 << (shift - 1)) >> shift
+    // shift ∈ 1..=62: the subtraction cannot wrap.
+    wide.wrapping_add(1 << shift.wrapping_sub(1)) >> shift
 }
 
 /// `wide / 2^shift` rounded to nearest (ties toward +∞), for |wide| < 2⁶²
@@ -169,7 +191,7 @@ fn shift_round(wide: i64, shift: i32) -> i64 {
             0
         } else {
             // |wide >> (shift − 1)| < 2⁶²: adding one cannot overflow.
-            (wide >> (shift - 1)).wrapping_add(1) >> 1
+            (wide >> shift.wrapping_sub(1)).wrapping_add(1) >> 1
         }
     } else if shift == 0 {
         wide
@@ -417,7 +439,7 @@ macro_rules! fixed_times_scaled {
                     return $out(sentinel(negative));
                 }
                 let product = wide_mul(self.mantissa(), rhs.0);
-                let shift = ($b::FRAC_BITS as i32 - $out::FRAC_BITS as i32).wrapping_sub(self.exponent());
+                let shift = ($b::FRAC_BITS as i32).wrapping_sub($out::FRAC_BITS as i32).wrapping_sub(self.exponent());
                 $out(saturate(shift_round(product, shift)))
             }
         }
@@ -426,7 +448,7 @@ macro_rules! fixed_times_scaled {
             #[inline(always)]
             fn add_product(self, a: $a, b: $b, guard: &mut Fixed32Guard) -> $out {
                 let product = wide_mul(a.mantissa(), b.0);
-                let shift = ($b::FRAC_BITS as i32 - $out::FRAC_BITS as i32).wrapping_sub(a.exponent());
+                let shift = ($b::FRAC_BITS as i32).wrapping_sub($out::FRAC_BITS as i32).wrapping_sub(a.exponent());
                 // |shifted product| < 2⁶²: the sum fits an i64.
                 let term = guard.shift_round(product, shift);
                 $out(guard.narrow(i64::from(self.0).wrapping_add(term)))
@@ -453,7 +475,8 @@ impl Mul<IntervalSquared> for Acceleration {
             return Length(sentinel(negative));
         }
         let product = wide_mul(rhs.mantissa(), self.0);
-        let shift = (Acceleration::FRAC_BITS as i32 - Length::FRAC_BITS as i32)
+        let shift = (Acceleration::FRAC_BITS as i32)
+            .wrapping_sub(Length::FRAC_BITS as i32)
             .wrapping_sub(rhs.exponent());
         Length(saturate(shift_round(product, shift)))
     }
@@ -463,8 +486,9 @@ impl AddProduct<Acceleration, IntervalSquared, Fixed32Guard> for Length {
     #[inline(always)]
     fn add_product(self, a: Acceleration, b: IntervalSquared, guard: &mut Fixed32Guard) -> Length {
         let product = wide_mul(b.mantissa(), a.0);
-        let shift =
-            (Acceleration::FRAC_BITS as i32 - Length::FRAC_BITS as i32).wrapping_sub(b.exponent());
+        let shift = (Acceleration::FRAC_BITS as i32)
+            .wrapping_sub(Length::FRAC_BITS as i32)
+            .wrapping_sub(b.exponent());
         let term = guard.shift_round(product, shift);
         Length(guard.narrow(i64::from(self.0).wrapping_add(term)))
     }
@@ -478,7 +502,7 @@ impl Mul for Interval {
             return IntervalSquared::INVALID;
         }
         let product = wide_mul(self.0, rhs.0);
-        IntervalSquared::from_wide(product, -2 * Interval::FRAC_BITS as i32)
+        IntervalSquared::from_wide(product, (Interval::FRAC_BITS as i32).wrapping_mul(-2))
     }
 }
 
@@ -488,7 +512,10 @@ impl Interval {
         if is_sentinel(self.0) {
             Scaled::INVALID
         } else {
-            Scaled::from_wide(i64::from(self.0), -(Interval::FRAC_BITS as i32))
+            Scaled::from_wide(
+                i64::from(self.0),
+                (Interval::FRAC_BITS as i32).wrapping_neg(),
+            )
         }
     }
 }
@@ -544,7 +571,7 @@ impl From<Length> for Ratio {
         if is_sentinel(l.0) {
             Ratio::INVALID
         } else {
-            Ratio::from_wide(i64::from(l.0), -(Length::FRAC_BITS as i32))
+            Ratio::from_wide(i64::from(l.0), (Length::FRAC_BITS as i32).wrapping_neg())
         }
     }
 }
@@ -555,7 +582,8 @@ fn scaled_to_word<U>(v: Scaled<U>, frac: u32) -> i32 {
     if v.is_invalid() {
         return i32::MAX;
     }
-    let shift = -(frac as i32) - v.exponent();
+    // frac ≤ 32 and the exponent is an i16: no wrap.
+    let shift = (frac as i32).wrapping_neg().wrapping_sub(v.exponent());
     saturate(shift_round(i64::from(v.mantissa()), shift))
 }
 

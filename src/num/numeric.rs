@@ -62,6 +62,7 @@ pub trait Quantity:
     + Sub<Output = Self>
     + Neg<Output = Self>
 {
+    /// Zero of this quantity.
     const ZERO: Self;
 
     /// Rounding model of this quantity, used by the error budget
@@ -87,6 +88,7 @@ pub trait Quantity:
     /// False for NaN, ±∞ and the fixed-point saturation sentinels.
     fn is_valid(self) -> bool;
 
+    /// Absolute value (invalid stays invalid).
     fn abs(self) -> Self;
 
     /// Half the value (exact in floating formats, rounded to nearest in
@@ -116,6 +118,7 @@ pub trait Quantity:
 
 /// A dimensionless real number with a wide range: gains, ratios, sines.
 pub trait Real: Quantity + Mul<Output = Self> + Div<Output = Self> {
+    /// One.
     const ONE: Self;
 
     /// `numerator / denominator`, rounded once (invalid for a zero
@@ -166,11 +169,13 @@ pub trait Checked<G> {
 
 /// `self + a·b`, rounded once, with overflow reported to the guard `G`.
 pub trait AddProduct<A, B, G>: Sized {
+    /// `self + a·b`; marks `guard` if the result does not fit.
     fn add_product(self, a: A, b: B, guard: &mut G) -> Self;
 }
 
 /// `self − b`, with overflow reported to the guard `G`.
 pub trait SubGuarded<G>: Sized {
+    /// `self − b`; marks `guard` if the result does not fit.
     fn sub_guarded(self, b: Self, guard: &mut G) -> Self;
 }
 

@@ -221,11 +221,13 @@ impl<U> Scaled<U> {
         self.exponent as i32
     }
 
+    /// Whether this is the invalid value (the sticky result of an overflow).
     #[inline]
     pub const fn is_invalid(self) -> bool {
         self.mantissa == INVALID_MANTISSA
     }
 
+    /// Whether the value is zero.
     #[inline]
     pub const fn is_zero(self) -> bool {
         self.mantissa == 0

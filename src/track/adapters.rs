@@ -144,12 +144,14 @@ impl<S: TrackNumeric, G: GainSchedule<S, 2>> ScheduledTrack<S, G> {
         if self.filter.filter().phase() != Phase::Tracking || self.restart_pending() {
             return None;
         }
-        let prediction = |i: usize| Prediction {
-            position: predicted.position[i],
-            velocity: predicted.velocity[i],
+        let [x, y] = predicted.position;
+        let [vx, vy] = predicted.velocity;
+        let prediction = |position, velocity| Prediction {
+            position,
+            velocity,
             acceleration: S::Acceleration::ZERO,
         };
-        let predictions = [prediction(0), prediction(1)];
+        let predictions = [prediction(x, vx), prediction(y, vy)];
         let n = self.filter.measurements().saturating_add(1);
         let ctx = GainContext::new(n, dt, predicted.position, &predictions).ok()?;
         self.filter.schedule().gains(&ctx).ok()

@@ -218,17 +218,17 @@ pub enum GateRegion<S: TrackNumeric> {
 /// (ΔR/half_range)² + (ΔB·inverse_half_azimuth)², as for the circle.
 #[derive(Debug, Clone, Copy, PartialEq)]
 #[cfg_attr(feature = "defmt", derive(defmt::Format))]
-pub struct PolarWindow<P> {
+pub struct PolarWindow<S> {
     /// R_p, the predicted position's distance from the sensor (m).
-    pub range: P,
+    pub range: S,
     /// The unit vector from the sensor towards the predicted position.
-    pub unit: [P; 2],
+    pub unit: [S; 2],
     /// Half-width of the window in range (m).
-    pub half_range: P,
+    pub half_range: S,
     /// 1 / `half_range` (m⁻¹).
-    pub inverse_half_range: P,
+    pub inverse_half_range: S,
     /// R_p / half_cross: 1 over the azimuth half-width (rad⁻¹).
-    pub inverse_half_azimuth: P,
+    pub inverse_half_azimuth: S,
 }
 
 impl<S: TrackNumeric> GateRegion<S> {
@@ -352,23 +352,23 @@ impl<S: TrackNumeric> GateRegion<S> {
     }
 }
 
-impl<P: Scalar> PolarWindow<P> {
+impl<S: Scalar> PolarWindow<S> {
     /// The window, or `Err(radius)` for a circle of that radius when the
     /// centre is at the sensor (no direction); `None` if not representable.
     #[inline(never)]
-    fn new(center: [P; 2], half_range: P, half_cross: P) -> Option<Result<Self, P>> {
+    fn new(center: [S; 2], half_range: S, half_cross: S) -> Option<Result<Self, S>> {
         let range = hypot(center[0], center[1]);
         if !range.is_valid() {
             return None;
         }
-        if range == P::ZERO {
+        if range == S::ZERO {
             return Some(Err(half_range.max_of(half_cross)));
         }
-        let valid = |v: P| v.is_valid() && v > P::ZERO;
+        let valid = |v: S| v.is_valid() && v > S::ZERO;
         if !(valid(half_range) && valid(half_cross)) {
             return None;
         }
-        let inverse_half_range = P::ONE / half_range;
+        let inverse_half_range = S::ONE / half_range;
         // 1/ΔB_max = R_p / half_cross (rad⁻¹).
         let inverse_half_azimuth = range / half_cross;
         if !(valid(inverse_half_range) && valid(inverse_half_azimuth)) {
@@ -387,10 +387,10 @@ impl<P: Scalar> PolarWindow<P> {
     // Not inlined: the circle is the hot path, and a copy of the window's
     // arithmetic at each call site costs flash for nothing.
     #[inline(never)]
-    fn bounds(&self) -> ([P; 2], [P; 2]) {
+    fn bounds(&self) -> ([S; 2], [S; 2]) {
         let half_cross = self.range / self.inverse_half_azimuth;
-        let spread = self.half_range + half_cross * (P::ONE + self.half_range / self.range);
-        let rounding = (self.range + self.half_range) * P::from_f64_lossy(1.0 / 256.0);
+        let spread = self.half_range + half_cross * (S::ONE + self.half_range / self.range);
+        let rounding = (self.range + self.half_range) * S::from_f64_lossy(1.0 / 256.0);
         let half = spread + spread + rounding;
         let center = [self.unit[0] * self.range, self.unit[1] * self.range];
         (
@@ -405,11 +405,11 @@ impl<P: Scalar> PolarWindow<P> {
     /// Each offset is first compared with its half-width, so the squares are
     /// of numbers ≤ 1 and cannot saturate in fixed point.
     #[inline(never)]
-    fn cost(&self, z: [P; 2], measured_range: P) -> Option<u16> {
+    fn cost(&self, z: [S; 2], measured_range: S) -> Option<u16> {
         // The range test first: it is cheap and rejects most pairs.
         let dr = measured_range - self.range;
         // `!(a <= b)` is also true for NaN.
-        if !(dr.abs() <= self.half_range && measured_range != P::ZERO) {
+        if !(dr.abs() <= self.half_range && measured_range != S::ZERO) {
             return None;
         }
         // Angle between the directions, from unit vectors (no product of
@@ -422,11 +422,11 @@ impl<P: Scalar> PolarWindow<P> {
         let db = cross.atan2(dot);
         let nr = dr * self.inverse_half_range;
         let nb = db * self.inverse_half_azimuth;
-        if !(nb.abs() <= P::ONE && nr.abs() <= P::ONE) {
+        if !(nb.abs() <= S::ONE && nr.abs() <= S::ONE) {
             return None;
         }
         let d2 = nr * nr + nb * nb;
-        if !(d2.is_valid() && d2 <= P::ONE) {
+        if !(d2.is_valid() && d2 <= S::ONE) {
             return None;
         }
         Some(quantise_unit(d2))
