@@ -9,9 +9,10 @@
 # Default: thumbv7em-none-eabihf on mps2-an386 (Cortex-M4F, f32). Also:
 # thumbv7m-none-eabi / mps2-an385 / m3 (Cortex-M3, fixed point) and
 # thumbv6m-none-eabi / microbit / m0 (Cortex-M0, fixed point).
-# Input: the given frames file, or by default the two-crossing scenario
-# written by scripts/demo-input.sh (make your own with the `frames` tool:
-# see README.md and docs/firmware-runtime.md). Installs what is missing (the
+# Input: the given frames file, or by default the TCAS scenario written by
+# scripts/demo-input.sh (the second input, the two crossing targets:
+# `scripts/demo-input.sh FILE two-crossing`, then `scripts/demo.sh T FILE`;
+# make your own with the `frames` tool: docs/firmware-runtime.md). Installs what is missing (the
 # Rust target, qemu-system-arm when root, defmt-print). The exit status is
 # the firmware's: 0 for a clean run (docs/firmware-runtime.md, "Exit status
 # and health"), or 1 if the report frames on the UART are not clean frames.

@@ -23,8 +23,8 @@
 #   ABTRACK_QEMU_TIMEOUT  seconds before QEMU is killed (default 600; status 124)
 #   ABTRACK_QEMU_ARGS     extra QEMU arguments (word-split)
 #   ABTRACK_UART_INPUT    the demo's UART input (wire frames); default: the
-#                         two-crossing scenario, written by scripts/demo-input.sh
-#                         to target/demo/two-crossing-seed1.bin
+#                         TCAS scenario, written by scripts/demo-input.sh
+#                         to target/demo/tcas-demo-seed1.bin
 #   ABTRACK_UART_OUTPUT   where the demo's UART output goes (default
 #                         target/demo/uart-<board>.out)
 set -euo pipefail
@@ -64,7 +64,7 @@ if [ "$(basename "$elf")" = abtrack-firmware ]; then
             exit 2
         }
     else
-        uart_input="$root/target/demo/two-crossing-seed1.bin"
+        uart_input="$root/target/demo/tcas-demo-seed1.bin"
         mkdir -p "$(dirname "$uart_input")"
         "$root/scripts/demo-input.sh" "$uart_input"
     fi

@@ -12,7 +12,8 @@
 # (flip-link) to the bottom of RAM. The fault inputs are written to
 # target/stack-inputs/ with the frames tool:
 #
-#   two-crossing   the demo's default input (scripts/demo-input.sh)
+#   tcas-demo      the demo's default input (scripts/demo-input.sh)
+#   two-crossing   its second input (scripts/demo-input.sh FILE two-crossing)
 #   empty          no input at all
 #   corrupt        every frame with a CRC error, 1-16 garbage bytes before each
 #   flood          2,000 measurements in one scan (capacity: 64, 24 on the micro:bit)
@@ -49,7 +50,8 @@ mkdir -p "$inputs_dir"
 frames() { (cd host-tests && cargo run --release --quiet --bin frames -- "$@"); }
 
 # The fault inputs (rewritten each run: they are cheap).
-scripts/demo-input.sh "$inputs_dir/two-crossing.bin" >/dev/null 2>&1
+scripts/demo-input.sh "$inputs_dir/tcas-demo.bin" >/dev/null 2>&1
+scripts/demo-input.sh "$inputs_dir/two-crossing.bin" two-crossing >/dev/null 2>&1
 : >"$inputs_dir/empty.bin"
 frames encode --scenario two-crossing --seed 1 --corrupt-every 1 --garbage-every 1 \
     --out "$inputs_dir/corrupt.bin" >/dev/null
@@ -64,7 +66,7 @@ cat "$inputs_dir/two-crossing.bin" "$inputs_dir/two-crossing.bin" >"$inputs_dir/
 size=$(wc -c <"$inputs_dir/two-crossing.bin")
 head -c $((size / 2 + 3)) "$inputs_dir/two-crossing.bin" >"$inputs_dir/truncated.bin"
 
-inputs=(two-crossing empty corrupt flood replayed truncated)
+inputs=(tcas-demo two-crossing empty corrupt flood replayed truncated)
 input_files=()
 for name in "${inputs[@]}"; do
     input_files+=("$inputs_dir/$name.bin")

@@ -56,7 +56,7 @@ use abtrack::scan::{
     AdvisoryLines, Collected, Intake, MeasurementSource, RunVerdict, ScanConfig, ScanLoop,
 };
 use abtrack::tcas::Advisory;
-use abtrack::track::FixedGainTrack;
+use abtrack::track::RangeAzimuthTrack;
 use abtrack::wire::{
     DecoderStats, Encoder, EndOfInput, Health, IntakeCounters, MeasurementReport, Message,
     ScanSummary, TrackReport, MAX_FRAMES_PER_BYTE, MAX_FRAME_LEN,
@@ -78,8 +78,8 @@ use capacities::microbit as capacity;
 use capacities::mps2 as capacity;
 use capacity::{MEASUREMENTS_PER_SCAN, QUEUE_LEN, TRACKS};
 
-type DemoLoop = ScanLoop<Native, FixedGainTrack<Native>, TRACKS, MEASUREMENTS_PER_SCAN>;
-type DemoConfig = ScanConfig<Native, abtrack::Gains<Native>>;
+type DemoLoop = ScanLoop<Native, RangeAzimuthTrack<Native>, TRACKS, MEASUREMENTS_PER_SCAN>;
+type DemoConfig = ScanConfig<Native, abtrack::filter::range_azimuth::RangeAzimuthNoise<Native>>;
 type DemoIntake = Intake<QUEUE_LEN>;
 
 /// SysTick period (QEMU's virtual clock, real time without `-icount`).
@@ -336,65 +336,53 @@ impl Reporter {
 
 fn log_scan(s: &ScanSummary) {
     let (sec, ms) = secs(s.time_ms);
+    let ra = s.ra.map_or("", |ra| ra.name());
+    let coc = if s.clear_of_conflict {
+        ", CLEAR OF CONFLICT"
+    } else {
+        ""
+    };
     defmt::println!(
-        "t={=u32}.{=u32:03} s | {} | {=str}",
+        "t={=u32}.{=u32:03} s | {} | {=str} {=str}{=str}",
         sec,
         ms,
         s.counts,
-        s.highest_advisory.name()
+        s.highest_advisory.name(),
+        ra,
+        coc
     );
 }
 
+/// One track: id, status, Mode S address (or "Mode C"), position and
+/// velocity, altitude, advisory with the RA's sense and strength, tau.
 fn log_track(t: &TrackReport) {
     let (x, y) = (metres(t.x_cm), metres(t.y_cm));
     let (vx, vy) = (metres(t.vx_cm_per_s), metres(t.vy_cm_per_s));
     let (id, status, advisory) = (t.track_id, t.status.as_str(), t.advisory.name());
-    match (t.altitude, t.range_tau_ds) {
-        (None, None) => defmt::println!(
-            "    track {=u32} {=str} ({=f32}, {=f32}) m ({=f32}, {=f32}) m/s {=str}",
-            id,
-            status,
-            x,
-            y,
-            vx,
-            vy,
-            advisory
-        ),
-        (None, Some(tau)) => defmt::println!(
-            "    track {=u32} {=str} ({=f32}, {=f32}) m ({=f32}, {=f32}) m/s {=str}, tau {=f32} s",
-            id,
-            status,
-            x,
-            y,
-            vx,
-            vy,
-            advisory,
-            tau as f32 / 10.0
+    let ra = t.ra.map_or("", |ra| ra.name());
+    // 0 never is a Mode S address the demo uses; "Mode C" says it is absent.
+    let (address, mode) = match t.address {
+        Some(a) => (a.get(), "Mode S"),
+        None => (0, "Mode C"),
+    };
+    let alt = t.altitude;
+    let tau = t.range_tau_ds.map(|d| f32::from(d) / 10.0);
+    match (alt, tau) {
+        (Some((alt, rate)), Some(tau)) => defmt::println!(
+            "    track {=u32} {=str} {=str} {=u32:06x} ({=f32}, {=f32}) m ({=f32}, {=f32}) m/s {=i32} ft {=i16} ft/min | {=str} {=str} | tau {=f32} s",
+            id, status, mode, address, x, y, vx, vy, alt, rate, advisory, ra, tau
         ),
         (Some((alt, rate)), None) => defmt::println!(
-            "    track {=u32} {=str} ({=f32}, {=f32}) m ({=f32}, {=f32}) m/s {=i32} ft {=i16} ft/min {=str}",
-            id,
-            status,
-            x,
-            y,
-            vx,
-            vy,
-            alt,
-            rate,
-            advisory
+            "    track {=u32} {=str} {=str} {=u32:06x} ({=f32}, {=f32}) m ({=f32}, {=f32}) m/s {=i32} ft {=i16} ft/min | {=str} {=str} | diverging",
+            id, status, mode, address, x, y, vx, vy, alt, rate, advisory, ra
         ),
-        (Some((alt, rate)), Some(tau)) => defmt::println!(
-            "    track {=u32} {=str} ({=f32}, {=f32}) m ({=f32}, {=f32}) m/s {=i32} ft {=i16} ft/min {=str}, tau {=f32} s",
-            id,
-            status,
-            x,
-            y,
-            vx,
-            vy,
-            alt,
-            rate,
-            advisory,
-            tau as f32 / 10.0
+        (None, Some(tau)) => defmt::println!(
+            "    track {=u32} {=str} {=str} {=u32:06x} ({=f32}, {=f32}) m ({=f32}, {=f32}) m/s no altitude | {=str} {=str} | tau {=f32} s",
+            id, status, mode, address, x, y, vx, vy, advisory, ra, tau
+        ),
+        (None, None) => defmt::println!(
+            "    track {=u32} {=str} {=str} {=u32:06x} ({=f32}, {=f32}) m ({=f32}, {=f32}) m/s no altitude | {=str} {=str} | diverging",
+            id, status, mode, address, x, y, vx, vy, advisory, ra
         ),
     }
 }
@@ -534,22 +522,27 @@ fn scan(
     }
 }
 
-/// Drives the advisory lines for the scan's most severe advisory; logs a
-/// change.
+/// Drives the advisory lines (the board's TA and RA outputs) for the
+/// scan's most severe advisory; logs a change, with the RA's sense, and the
+/// clear of conflict.
 fn show_advisories(lines: &mut AdvisoryLines<io::AdvisoryPin>, summary: &ScanSummary) {
     let before = (lines.pins().0.is_high(), lines.pins().1.is_high());
+    let (sec, ms) = secs(summary.time_ms);
     if let Ok(true) = lines.show(summary.highest_advisory) {
         let (ta, ra) = (lines.pins().0.is_high(), lines.pins().1.is_high());
         if (ta, ra) != before {
-            let (sec, ms) = secs(summary.time_ms);
             defmt::println!(
-                "advisory lines at t={=u32}.{=u32:03} s: TA {=bool}, RA {=bool}",
+                "advisory lines at t={=u32}.{=u32:03} s: TA {=bool}, RA {=bool} {=str}",
                 sec,
                 ms,
                 ta,
-                ra
+                ra,
+                summary.ra.map_or("", |r| r.name())
             );
         }
+    }
+    if summary.clear_of_conflict {
+        defmt::println!("clear of conflict at t={=u32}.{=u32:03} s", sec, ms);
     }
 }
 

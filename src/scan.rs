@@ -95,16 +95,23 @@
 
 use embedded_hal::digital::OutputPin;
 
-use crate::filter::altitude::{AltitudeEstimate, AltitudeTracker, AltitudeTrackerConfig};
+use crate::filter::altitude::{AltitudeEstimate, AltitudeQuantum, AltitudeTrackerConfig};
+use crate::filter::range_azimuth::RangeAzimuthFilter;
 use crate::num::{hypot, Scalar};
-use crate::tcas::{self, Advisory, Intruder, OwnAircraft};
+use crate::tcas::detection::MAX_INTRUDER_RATE_FT_PER_S;
+use crate::tcas::{
+    range_tau, Advisory, CollisionAvoidance, IntruderTrack, OwnAircraft, Reply, SensitivityLevel,
+    ThreatGeometry,
+};
 use crate::track::{
-    Association, ConfigError, DropReason, GateRegion, Measurement, Observation, ScanError,
-    ScanInterval, ScanReport, TrackFilter, TrackId, TrackNumeric, TrackTable, TrackerConfig,
+    Association, ConfigError, DropReason, FixedGainTrack, GateRegion, Measurement, Observation,
+    PairRule, RangeAzimuthTrack, ScanError, ScanInterval, ScanReport, TrackFilter, TrackId,
+    TrackNumeric, TrackTable, TrackerConfig,
 };
 use crate::wire::{
     Decoder, DecoderStats, EndOfInput, Health, IntakeCounters, LoopCounters, MeasurementReport,
-    Message, ScanCounts, ScanSummary, TrackReport, WireError, MAX_FRAMES_PER_BYTE,
+    Message, ModeSAddress, RaCode, ScanCounts, ScanSummary, TrackReport, WireError,
+    MAX_FRAMES_PER_BYTE,
 };
 
 fn bump(counter: &mut u32) {
@@ -429,8 +436,11 @@ pub struct ScanConfig<S: Scalar, P> {
     pub tracker: TrackerConfig<S, P>,
     /// The own aircraft, for the threat assessment.
     pub own: OwnAircraft<S>,
-    /// The altitude trackers of altitude-reporting tracks.
+    /// The altitude tracker of an intruder reporting in 100 ft steps
+    /// (Mode C) …
     pub altitude: AltitudeTrackerConfig<S>,
+    /// … and of one reporting in 25 ft steps (Mode S with the Q bit).
+    pub altitude_25ft: AltitudeTrackerConfig<S>,
     /// The scan period and the clock's windows.
     pub clock: ClockConfig,
 }
@@ -460,11 +470,135 @@ pub struct TickReport {
     pub summary: ScanSummary,
 }
 
+/// The position track's bearing tracker, for the threat logic's
+/// miss-distance cross-check (He et al.'s range–azimuth filter; none for a
+/// Cartesian track).
+pub trait BearingTrack<S: Scalar> {
+    fn bearing_track(&self) -> Option<&RangeAzimuthFilter<S>>;
+}
+
+impl<S: Scalar> BearingTrack<S> for RangeAzimuthTrack<S> {
+    fn bearing_track(&self) -> Option<&RangeAzimuthFilter<S>> {
+        Some(self.filter())
+    }
+}
+
+impl<S: Scalar> BearingTrack<S> for FixedGainTrack<S> {
+    fn bearing_track(&self) -> Option<&RangeAzimuthFilter<S>> {
+        None
+    }
+}
+
+/// What a scan's reply carries besides its position.
+#[derive(Debug, Clone, Copy, PartialEq)]
+struct ReplyData<S> {
+    altitude_ft: Option<S>,
+    altitude_25ft: bool,
+    address: Option<ModeSAddress>,
+}
+
+/// This scan's assessment of one confirmed track.
+#[derive(Debug, Clone, Copy, PartialEq)]
+struct Assessed<S> {
+    advisory: Advisory,
+    sensitivity: SensitivityLevel,
+    range_tau_s: Option<S>,
+}
+
+/// One track's TCAS surveillance: its intruder's Mode S address (kept for
+/// the track's life), range and altitude trackers and threat state.
 #[derive(Debug, Clone, Copy)]
-struct AltitudeSlot<S: Scalar> {
+struct IntruderSlot<S: Scalar> {
     track: TrackId,
-    tracker: AltitudeTracker<S>,
+    address: Option<ModeSAddress>,
+    quantum: AltitudeQuantum,
+    tcas: IntruderTrack<S>,
     updated: bool,
+    assessed: Option<Assessed<S>>,
+}
+
+/// RA threats resolved together at most (the ones with the smallest
+/// modified tau; more are counted, `ra_threats_over_capacity`).
+pub const MAX_RA_THREATS: usize = 8;
+
+/// Reply identity (issue 10 item 3): a reply with a Mode S address
+/// updates only the track of that address, and starts a track only if no
+/// track has it; a reply without one (Mode C) updates only a track without
+/// an address whose altitude it correlates with, and starts one only with a
+/// first point without an address whose altitude correlates.
+struct IdentityRule<'a, S: Scalar> {
+    intruders: &'a [Option<IntruderSlot<S>>],
+    replies: &'a [ReplyData<S>],
+    previous: &'a [ReplyData<S>],
+    dt: S,
+}
+
+impl<S: Scalar> IdentityRule<'_, S> {
+    fn slot(&self, track: TrackId) -> Option<&IntruderSlot<S>> {
+        self.intruders.iter().flatten().find(|s| s.track == track)
+    }
+
+    /// |a − b| within the altitude correlation window for `dt`: two
+    /// quanta plus the detection logic's 10 000 ft/min intruder-rate limit
+    /// (our choice: the public sources do not give DO-185B's window).
+    fn altitudes_correlate(&self, a: S, b: S, quantum: AltitudeQuantum) -> bool {
+        let window = S::from_f64_lossy(2.0 * quantum.feet())
+            + S::from_f64_lossy(MAX_INTRUDER_RATE_FT_PER_S) * self.dt;
+        (a - b).abs() <= window
+    }
+}
+
+impl<S: Scalar> PairRule for IdentityRule<'_, S> {
+    fn may_update(&self, track: TrackId, k: usize) -> bool {
+        let Some(reply) = self.replies.get(k) else {
+            return false;
+        };
+        let slot = self.slot(track);
+        match (reply.address, slot.and_then(|s| s.address)) {
+            (Some(a), Some(b)) => a == b,
+            (None, None) => {
+                let predicted = slot
+                    .and_then(|s| s.tcas.altitude_tracker().estimate())
+                    .map(|e| e.altitude_ft + e.vertical_rate_ft_per_s * self.dt);
+                match (reply.altitude_ft, predicted, slot) {
+                    (Some(z), Some(p), Some(s)) => self.altitudes_correlate(z, p, s.quantum),
+                    _ => true,
+                }
+            }
+            _ => false,
+        }
+    }
+
+    fn may_start(&self, p: usize, k: usize) -> bool {
+        let (Some(first), Some(second)) = (self.previous.get(p), self.replies.get(k)) else {
+            return false;
+        };
+        if first.address != second.address {
+            return false;
+        }
+        if let Some(a) = second.address {
+            if self
+                .intruders
+                .iter()
+                .flatten()
+                .any(|s| s.address == Some(a))
+            {
+                return false;
+            }
+        }
+        match (first.altitude_ft, second.altitude_ft) {
+            (Some(a), Some(b)) => self.altitudes_correlate(a, b, quantum_of(second)),
+            _ => true,
+        }
+    }
+}
+
+fn quantum_of<S>(reply: &ReplyData<S>) -> AltitudeQuantum {
+    if reply.altitude_25ft {
+        AltitudeQuantum::ModeS25
+    } else {
+        AltitudeQuantum::ModeC
+    }
 }
 
 /// Where a measurement's time puts it (module docs, "Time").
@@ -557,7 +691,10 @@ pub struct ScanLoop<S: Scalar, F, const N: usize, const M: usize> {
     /// The next measurement confirmed the candidate: re-lock after this scan.
     relock: bool,
     batch: heapless::Vec<Measurement<S>, M>,
-    batch_altitudes: heapless::Vec<Option<S>, M>,
+    /// Per batch entry: altitude and Mode S address.
+    batch_replies: heapless::Vec<ReplyData<S>, M>,
+    /// The previous scan's (the first points of new tracks).
+    previous_replies: heapless::Vec<ReplyData<S>, M>,
     batch_priorities: heapless::Vec<Priority<S>, M>,
     /// Per batch entry: of how many confirmed tracks it is the champion.
     batch_champions: heapless::Vec<u8, M>,
@@ -567,11 +704,13 @@ pub struct ScanLoop<S: Scalar, F, const N: usize, const M: usize> {
     /// Counts of the scan being assembled (the intake part).
     pending_counts: ScanCounts,
     codes: [Association; M],
-    altitudes: [Option<AltitudeSlot<S>>; N],
+    intruders: [Option<IntruderSlot<S>>; N],
+    /// The system's TCAS state: sensitivity level, inhibits, the RA.
+    cas: CollisionAvoidance<S>,
     counters: LoopCounters,
 }
 
-impl<S: Scalar, F: TrackFilter<S>, const N: usize, const M: usize> Default
+impl<S: Scalar, F: TrackFilter<S> + BearingTrack<S>, const N: usize, const M: usize> Default
     for ScanLoop<S, F, N, M>
 {
     fn default() -> Self {
@@ -579,7 +718,9 @@ impl<S: Scalar, F: TrackFilter<S>, const N: usize, const M: usize> Default
     }
 }
 
-impl<S: Scalar, F: TrackFilter<S>, const N: usize, const M: usize> ScanLoop<S, F, N, M> {
+impl<S: Scalar, F: TrackFilter<S> + BearingTrack<S>, const N: usize, const M: usize>
+    ScanLoop<S, F, N, M>
+{
     pub const fn new() -> Self {
         ScanLoop {
             table: TrackTable::new(),
@@ -589,14 +730,16 @@ impl<S: Scalar, F: TrackFilter<S>, const N: usize, const M: usize> ScanLoop<S, F
             candidate: None,
             relock: false,
             batch: heapless::Vec::new(),
-            batch_altitudes: heapless::Vec::new(),
+            batch_replies: heapless::Vec::new(),
+            previous_replies: heapless::Vec::new(),
             batch_priorities: heapless::Vec::new(),
             batch_champions: heapless::Vec::new(),
             gates: [const { None }; N],
             ranked: false,
             pending_counts: ScanCounts::new(),
             codes: [Association::OutsideGates; M],
-            altitudes: [const { None }; N],
+            intruders: [const { None }; N],
+            cas: CollisionAvoidance::new(),
             counters: LoopCounters::new(),
         }
     }
@@ -635,11 +778,23 @@ impl<S: Scalar, F: TrackFilter<S>, const N: usize, const M: usize> ScanLoop<S, F
 
     /// The altitude estimate of a track, if it reported altitude.
     pub fn altitude(&self, track: TrackId) -> Option<AltitudeEstimate<S>> {
-        self.altitudes
-            .iter()
-            .flatten()
-            .find(|s| s.track == track)
-            .and_then(|s| s.tracker.estimate())
+        self.intruder(track)
+            .and_then(|t| t.altitude_tracker().estimate())
+    }
+
+    /// The TCAS surveillance of a track: range and altitude trackers,
+    /// threat state.
+    pub fn intruder(&self, track: TrackId) -> Option<&IntruderTrack<S>> {
+        self.slot(track).map(|s| &s.tcas)
+    }
+
+    /// The Mode S address a track keeps.
+    pub fn address(&self, track: TrackId) -> Option<ModeSAddress> {
+        self.slot(track).and_then(|s| s.address)
+    }
+
+    fn slot(&self, track: TrackId) -> Option<&IntruderSlot<S>> {
+        self.intruders.iter().flatten().find(|s| s.track == track)
     }
 
     fn timing(&self, clock: &ClockConfig, t: u32) -> Timing {
@@ -741,7 +896,7 @@ impl<S: Scalar, F: TrackFilter<S>, const N: usize, const M: usize> ScanLoop<S, F
         let converted = report
             .position::<S>()
             .and_then(|m| report.altitude::<S>().map(|a| (m, a)));
-        let Ok((measurement, altitude)) = converted else {
+        let Ok((measurement, altitude_ft)) = converted else {
             bump16(&mut self.pending_counts.invalid);
             bump(&mut self.counters.invalid);
             return;
@@ -749,8 +904,13 @@ impl<S: Scalar, F: TrackFilter<S>, const N: usize, const M: usize> ScanLoop<S, F
         if self.batch.len() < M {
             // Room: no priority needed (yet). Four pushes on vectors of the
             // same length below M.
+            let reply = ReplyData {
+                altitude_ft,
+                altitude_25ft: report.altitude_25ft,
+                address: report.address,
+            };
             let _ = self.batch.push(measurement);
-            let _ = self.batch_altitudes.push(altitude);
+            let _ = self.batch_replies.push(reply);
             let _ = self.batch_priorities.push(Priority {
                 class: CLASS_OTHER,
                 gate_cost: 0,
@@ -775,8 +935,12 @@ impl<S: Scalar, F: TrackFilter<S>, const N: usize, const M: usize> ScanLoop<S, F
         if let Some(slot) = self.batch.get_mut(index) {
             *slot = measurement;
         }
-        if let Some(slot) = self.batch_altitudes.get_mut(index) {
-            *slot = altitude;
+        if let Some(slot) = self.batch_replies.get_mut(index) {
+            *slot = ReplyData {
+                altitude_ft,
+                altitude_25ft: report.altitude_25ft,
+                address: report.address,
+            };
         }
         if let Some(slot) = self.batch_priorities.get_mut(index) {
             *slot = priority;
@@ -971,14 +1135,24 @@ impl<S: Scalar, F: TrackFilter<S>, const N: usize, const M: usize> ScanLoop<S, F
         }
         self.collect(config, source);
         let used = self.batch.len();
-        let report = self.table.scan(
+        let dt = S::from_f64_lossy(f64::from(config.clock.period_ms) / 1000.0);
+        let rule = IdentityRule {
+            intruders: &self.intruders,
+            replies: &self.batch_replies,
+            previous: &self.previous_replies,
+            dt,
+        };
+        let report = self.table.scan_with_rule(
             &config.tracker,
             self.tracker_ms,
             &self.batch,
             &mut self.codes,
+            &rule,
+            |_| {},
         )?;
-        self.update_altitudes(config, &report);
-        let (highest, confirmed_tracks) = self.report_tracks(config, &mut emit);
+        self.update_intruders(config, &report);
+        let ra = self.assess_tracks(config, &report);
+        let (highest, confirmed_tracks) = self.report_tracks(ra.advisory, &mut emit);
 
         let mut counts = self.pending_counts;
         counts.used = sat_u16(sat_u32(used));
@@ -1016,12 +1190,15 @@ impl<S: Scalar, F: TrackFilter<S>, const N: usize, const M: usize> ScanLoop<S, F
             interval_ms: report.interval_ms,
             counts,
             highest_advisory: highest,
+            ra: ra.advisory,
+            clear_of_conflict: ra.clear_of_conflict,
         };
         emit(&Message::Scan(summary));
 
         // The next scan.
         self.batch.clear();
-        self.batch_altitudes.clear();
+        core::mem::swap(&mut self.previous_replies, &mut self.batch_replies);
+        self.batch_replies.clear();
         self.batch_priorities.clear();
         self.batch_champions.clear();
         self.pending_counts = ScanCounts::new();
@@ -1052,37 +1229,30 @@ impl<S: Scalar, F: TrackFilter<S>, const N: usize, const M: usize> ScanLoop<S, F
         self.drop_candidate();
     }
 
-    /// Emits a track report per confirmed track; returns the highest
+    /// Emits a track report per confirmed track, with this scan's
+    /// assessment and, on an RA threat, the RA in force; returns the highest
     /// advisory and the number of confirmed tracks.
     fn report_tracks(
         &mut self,
-        config: &ScanConfig<S, F::Params>,
+        ra: Option<RaCode>,
         emit: &mut impl FnMut(&Message),
     ) -> (Advisory, u32) {
         let mut highest = Advisory::None;
         let mut confirmed = 0u32;
         for track in self.table.tracks().filter(|t| t.is_confirmed()) {
             confirmed = confirmed.saturating_add(1);
-            let altitude = self
-                .altitudes
+            let slot = self
+                .intruders
                 .iter()
                 .flatten()
-                .find(|s| s.track == track.id())
-                .and_then(|s| s.tracker.estimate());
-            let intruder = Intruder {
-                relative_position_m: track.position(),
-                relative_velocity_m_per_s: track.velocity(),
-                altitude,
-            };
-            let assessment = tcas::assess(&config.own, &intruder).ok();
-            if assessment.is_none() {
-                bump(&mut self.counters.assessment_errors);
-            }
-            let advisory = assessment.map_or(Advisory::None, |a| a.advisory);
+                .find(|s| s.track == track.id());
+            let assessed = slot.and_then(|s| s.assessed);
+            let advisory = assessed.map_or(Advisory::None, |a| a.advisory);
             highest = highest.max(advisory);
+            let altitude = slot.and_then(|s| s.tcas.altitude_tracker().estimate());
             let [x, y] = track.position();
             let [vx, vy] = track.velocity();
-            let tau_ds = assessment.and_then(|a| a.range_tau_s).map(|tau| {
+            let tau_ds = assessed.and_then(|a| a.range_tau_s).map(|tau| {
                 let ds = scaled_i32(tau, 10.0);
                 u16::try_from(ds.max(0)).unwrap_or(u16::MAX)
             });
@@ -1091,7 +1261,7 @@ impl<S: Scalar, F: TrackFilter<S>, const N: usize, const M: usize> ScanLoop<S, F
                 track_id: track.id().get(),
                 status: track.status(),
                 advisory,
-                sensitivity: assessment.map(|a| a.sensitivity),
+                sensitivity: assessed.map(|a| a.sensitivity),
                 x_cm: scaled_i32(x, 100.0),
                 y_cm: scaled_i32(y, 100.0),
                 vx_cm_per_s: scaled_i32(vx, 100.0),
@@ -1104,6 +1274,12 @@ impl<S: Scalar, F: TrackFilter<S>, const N: usize, const M: usize> ScanLoop<S, F
                     )
                 }),
                 range_tau_ds: tau_ds,
+                address: slot.and_then(|s| s.address),
+                ra: if advisory == Advisory::Resolution {
+                    ra
+                } else {
+                    None
+                },
             };
             emit(&Message::Track(report));
             bump(&mut self.counters.track_reports);
@@ -1111,13 +1287,17 @@ impl<S: Scalar, F: TrackFilter<S>, const N: usize, const M: usize> ScanLoop<S, F
         (highest, confirmed)
     }
 
-    /// Feeds the scan's altitude reports to the trackers of the tracks they
-    /// updated or started; coasts the others; frees the trackers of deleted
-    /// tracks.
-    fn update_altitudes(&mut self, config: &ScanConfig<S, F::Params>, report: &ScanReport) {
-        for slot in self.altitudes.iter_mut() {
+    /// Feeds each reply the tracker used to its track's range and altitude
+    /// trackers (a started track gets its slot, its address and the
+    /// altitude tracker of its reply's quantum); coasts the others; frees
+    /// the slots of deleted tracks.
+    fn update_intruders(&mut self, config: &ScanConfig<S, F::Params>, report: &ScanReport) {
+        for slot in self.intruders.iter_mut() {
             match slot {
-                Some(s) if self.table.track(s.track).is_some() => s.updated = false,
+                Some(s) if self.table.track(s.track).is_some() => {
+                    s.updated = false;
+                    s.assessed = None;
+                }
                 _ => *slot = None,
             }
         }
@@ -1129,13 +1309,13 @@ impl<S: Scalar, F: TrackFilter<S>, const N: usize, const M: usize> ScanLoop<S, F
             return;
         };
         let n = self.batch.len().min(M);
-        for (code, altitude) in self.codes.iter().take(n).zip(self.batch_altitudes.iter()) {
+        let replies = self.batch.iter().zip(self.batch_replies.iter());
+        for (code, (measurement, reply)) in self.codes.iter().take(n).zip(replies) {
             let (Association::Updated(id) | Association::Started(id)) = *code else {
                 continue;
             };
-            let Some(altitude) = *altitude else { continue };
             let index = match self
-                .altitudes
+                .intruders
                 .iter()
                 .position(|s| matches!(s, Some(s) if s.track == id))
             {
@@ -1143,28 +1323,143 @@ impl<S: Scalar, F: TrackFilter<S>, const N: usize, const M: usize> ScanLoop<S, F
                 None => {
                     // A track per slot at most, and a slot per track: a free
                     // slot exists for every live track.
-                    let free = self.altitudes.iter().position(|s| s.is_none());
-                    if let Some(Some(slot)) = free.map(|i| self.altitudes.get_mut(i)) {
-                        *slot = Some(AltitudeSlot {
+                    let free = self.intruders.iter().position(|s| s.is_none());
+                    let quantum = quantum_of(reply);
+                    let altitude = match quantum {
+                        AltitudeQuantum::ModeC => config.altitude,
+                        AltitudeQuantum::ModeS25 => config.altitude_25ft,
+                    };
+                    if let Some(Some(slot)) = free.map(|i| self.intruders.get_mut(i)) {
+                        *slot = Some(IntruderSlot {
                             track: id,
-                            tracker: AltitudeTracker::new(config.altitude),
+                            address: reply.address,
+                            quantum,
+                            tcas: IntruderTrack::new(altitude),
                             updated: false,
+                            assessed: None,
                         });
                     }
                     free
                 }
             };
-            if let Some(Some(s)) = index.and_then(|i| self.altitudes.get_mut(i)) {
-                if s.tracker.scan(Some(altitude), dt).is_err() {
-                    bump(&mut self.counters.altitude_errors);
+            let range_m = match *measurement {
+                Measurement::Polar { range, .. } => range,
+                Measurement::Cartesian { x, y } => hypot(x, y),
+            };
+            if let Some(Some(s)) = index.and_then(|i| self.intruders.get_mut(i)) {
+                let reply = Reply {
+                    range_m,
+                    altitude_ft: reply.altitude_ft,
+                };
+                if s.tcas.scan(Some(reply), dt).is_err() {
+                    bump(&mut self.counters.intruder_tracker_errors);
                 }
                 s.updated = true;
             }
         }
-        for s in self.altitudes.iter_mut().flatten() {
-            if !s.updated && s.tracker.scan(None, dt).is_err() {
-                bump(&mut self.counters.altitude_errors);
+        for s in self.intruders.iter_mut().flatten() {
+            if !s.updated && s.tcas.scan(None, dt).is_err() {
+                bump(&mut self.counters.intruder_tracker_errors);
             }
+        }
+    }
+
+    /// The TCAS cycle (issue 10): the sensitivity level for the own
+    /// aircraft, the threat logic of every confirmed track (advisories only
+    /// from firm tracks: [`crate::tcas::ThreatState::assess`]), then the RA
+    /// against the RA threats ([`CollisionAvoidance::resolve`]). Failures
+    /// are counted (`assessment_errors`) and give no advisory.
+    fn assess_tracks(
+        &mut self,
+        config: &ScanConfig<S, F::Params>,
+        report: &ScanReport,
+    ) -> RaOutput {
+        let none = RaOutput {
+            advisory: None,
+            clear_of_conflict: false,
+        };
+        if report.interval_ms == 0 {
+            return none;
+        }
+        let Ok(dt) = S::try_from_f64(f64::from(report.interval_ms) / 1000.0) else {
+            return none;
+        };
+        let Ok(cycle) = self.cas.begin_cycle(&config.own, false) else {
+            bump(&mut self.counters.assessment_errors);
+            return none;
+        };
+        let mut threats: heapless::Vec<ThreatGeometry<S>, MAX_RA_THREATS> = heapless::Vec::new();
+        for track in self.table.tracks().filter(|t| t.is_confirmed()) {
+            let Some(slot) = self
+                .intruders
+                .iter_mut()
+                .flatten()
+                .find(|s| s.track == track.id())
+            else {
+                continue;
+            };
+            let status = match slot.tcas.assess(&cycle, track.filter().bearing_track(), dt) {
+                Ok(status) => status,
+                Err(_) => {
+                    bump(&mut self.counters.assessment_errors);
+                    continue;
+                }
+            };
+            let range = slot.tcas.range_tracker().estimate();
+            slot.assessed = Some(Assessed {
+                advisory: status.map_or(Advisory::None, |s| s.advisory),
+                sensitivity: cycle.params.level,
+                range_tau_s: range
+                    .and_then(|r| range_tau(r.range_m, r.range_rate_m_per_s).ok().flatten()),
+            });
+            if let Some(g) = status.and_then(|s| s.geometry) {
+                add_threat(&mut threats, g, &mut self.counters);
+            }
+        }
+        match self.cas.resolve(&cycle, &threats, dt) {
+            Ok(out) => RaOutput {
+                advisory: out.advisory.map(|a| RaCode {
+                    sense: a.sense,
+                    strength: a.strength,
+                }),
+                clear_of_conflict: out.clear_of_conflict,
+            },
+            Err(_) => {
+                bump(&mut self.counters.assessment_errors);
+                none
+            }
+        }
+    }
+}
+
+/// This scan's RA, as reported.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+struct RaOutput {
+    advisory: Option<RaCode>,
+    clear_of_conflict: bool,
+}
+
+/// Adds an RA threat; beyond [`MAX_RA_THREATS`] the one with the largest
+/// modified tau is left out (counted).
+fn add_threat<S: Scalar>(
+    threats: &mut heapless::Vec<ThreatGeometry<S>, MAX_RA_THREATS>,
+    threat: ThreatGeometry<S>,
+    counters: &mut LoopCounters,
+) {
+    let Err(threat) = threats.push(threat) else {
+        return;
+    };
+    bump(&mut counters.ra_threats_over_capacity);
+    let latest = threats.iter_mut().reduce(|a, b| {
+        if b.modified_tau_s > a.modified_tau_s {
+            b
+        } else {
+            a
+        }
+    });
+    if let Some(latest) = latest {
+        if threat.modified_tau_s < latest.modified_tau_s {
+            *latest = threat;
         }
     }
 }

@@ -66,7 +66,7 @@
 use core::marker::PhantomData;
 
 use crate::num::Scalar;
-use crate::tcas::{Advisory, SensitivityLevel};
+use crate::tcas::{Advisory, RaSense, RaStrength, SensitivityLevel};
 use crate::track::{Measurement, TrackStatus};
 
 /// The two bytes that start every frame.
@@ -360,7 +360,9 @@ pub mod field {
             TIME: u32,
             /// Sensor id.
             SENSOR: u8,
-            /// Bit 0: altitude present; bits 1–7 must be 0.
+            /// Bit 0 altitude present, bit 1 Mode S address present, bit 2
+            /// altitude in 25 ft steps (Mode S Q bit; only with bit 0); bits
+            /// 3–7 must be 0.
             FLAGS: u8,
             /// cm.
             X: i32,
@@ -368,6 +370,9 @@ pub mod field {
             Y: i32,
             /// Pressure altitude, ft (0 when absent).
             ALTITUDE: i32,
+            /// 24-bit Mode S address in the low bits (0 when absent; the
+            /// high byte must be 0).
+            ADDRESS: u32,
         }
     }
     layout! {
@@ -377,7 +382,7 @@ pub mod field {
             TIME: u32,
             /// Sensor id.
             SENSOR: u8,
-            /// Bit 0: altitude present; bits 1–7 must be 0.
+            /// As in the Cartesian measurement.
             FLAGS: u8,
             /// cm.
             RANGE: u32,
@@ -385,6 +390,8 @@ pub mod field {
             AZIMUTH: u16,
             /// Pressure altitude, ft (0 when absent).
             ALTITUDE: i32,
+            /// 24-bit Mode S address (as in the Cartesian measurement).
+            ADDRESS: u32,
         }
     }
     layout! {
@@ -407,7 +414,8 @@ pub mod field {
             STATUS: u8,
             /// 0 none, 1 proximate traffic, 2 traffic (TA), 3 resolution (RA).
             ADVISORY: u8,
-            /// Bit 0 altitude valid, bit 1 range tau valid; bits 2–7 must be 0.
+            /// Bit 0 altitude valid, bit 1 range tau valid, bit 2 Mode S
+            /// address valid; bits 3–7 must be 0.
             FLAGS: u8,
             /// TCAS sensitivity level 2–7, 0 = not assessed.
             SENSITIVITY: u8,
@@ -425,6 +433,10 @@ pub mod field {
             VERTICAL_RATE: i16,
             /// 0.1 s (0 when not valid).
             RANGE_TAU: u16,
+            /// The intruder's 24-bit Mode S address (0 when not valid).
+            ADDRESS: u32,
+            /// The RA in force when ADVISORY is 3 ([`RaCode`]), else 0.
+            RA: u8,
         }
     }
     layout! {
@@ -436,8 +448,8 @@ pub mod field {
             INTERVAL: u32,
             /// The most severe advisory over all tracks (as in the track report).
             HIGHEST_ADVISORY: u8,
-            /// Must be 0.
-            RESERVED: u8,
+            /// The RA in force ([`RaCode`]); 0 without one.
+            RA: u8,
             /// This scan's counts, u16 each, saturating.
             COUNTS: ScanCounts,
         }
@@ -678,10 +690,14 @@ counter_list! {
         /// Candidate tracks refused because the table was full.
         refused_table_full => "refused, table full",
         track_reports => "track reports",
-        /// Confirmed tracks whose threat assessment failed.
+        /// Confirmed tracks whose threat assessment failed (or the
+        /// cycle's sensitivity selection or resolution).
         assessment_errors => "assessment errors",
-        /// Altitude updates the altitude tracker refused.
-        altitude_errors => "altitude errors",
+        /// RA threats beyond the [`crate::scan::MAX_RA_THREATS`] resolved
+        /// together (the latest by modified tau are left out).
+        ra_threats_over_capacity => "RA threats over capacity",
+        /// Replies the intruder's range or altitude tracker refused.
+        intruder_tracker_errors => "intruder tracker errors",
     }
 }
 
@@ -979,6 +995,101 @@ pub struct MeasurementReport {
     pub position: MeasuredPosition,
     /// Reported pressure altitude, ft; `None` for a non-reporting target.
     pub altitude_ft: Option<i32>,
+    /// The altitude came in 25 ft steps (a Mode S reply with the Q bit);
+    /// false for 100 ft (Gillham, Mode C) steps and without altitude.
+    pub altitude_25ft: bool,
+    /// The replying transponder's Mode S address; `None` for a Mode C (or
+    /// Mode A) reply, which carries none.
+    pub address: Option<ModeSAddress>,
+}
+
+/// A 24-bit Mode S (ICAO) aircraft address (ICAO Annex 10 Vol. III; DO-185B
+/// associates Mode S replies by it).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, PartialOrd, Ord, Hash)]
+#[cfg_attr(feature = "defmt", derive(defmt::Format))]
+pub struct ModeSAddress(u32);
+
+impl ModeSAddress {
+    /// The address, if it fits 24 bits.
+    pub const fn new(address: u32) -> Option<Self> {
+        if address <= 0x00FF_FFFF {
+            Some(ModeSAddress(address))
+        } else {
+            None
+        }
+    }
+
+    pub const fn get(self) -> u32 {
+        self.0
+    }
+}
+
+/// A resolution advisory as reported: sense and strength (the RA byte of
+/// the track report and scan summary: bits 0–1 sense, 1 up, 2 down; bits
+/// 2–3 strength, 0 preventive, 1 level-off, 2 positive, 3 increase; 0 for
+/// none; in the scan summary bit 7 is clear of conflict).
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+#[cfg_attr(feature = "defmt", derive(defmt::Format))]
+pub struct RaCode {
+    pub sense: RaSense,
+    pub strength: RaStrength,
+}
+
+const RA_CLEAR_OF_CONFLICT: u8 = 0x80;
+
+impl RaCode {
+    /// The byte (never 0).
+    pub const fn byte(self) -> u8 {
+        let sense = match self.sense {
+            RaSense::Up => 1,
+            RaSense::Down => 2,
+        };
+        let strength = match self.strength {
+            RaStrength::Preventive => 0,
+            RaStrength::LevelOff => 1,
+            RaStrength::Positive => 2,
+            RaStrength::Increase => 3,
+        };
+        sense | (strength << 2)
+    }
+
+    /// From the byte's low bits: `Ok(None)` for 0; other bits refused.
+    fn from_byte(b: u8) -> Result<Option<Self>, WireError> {
+        let sense = match b & 0x03 {
+            0 if b == 0 => return Ok(None),
+            1 => RaSense::Up,
+            2 => RaSense::Down,
+            _ => return Err(WireError::BadField),
+        };
+        let strength = match (b >> 2) & 0x03 {
+            0 => RaStrength::Preventive,
+            1 => RaStrength::LevelOff,
+            2 => RaStrength::Positive,
+            _ => RaStrength::Increase,
+        };
+        if b & 0xF0 != 0 {
+            return Err(WireError::BadField);
+        }
+        Ok(Some(RaCode { sense, strength }))
+    }
+
+    /// A name for logs: e.g. "climb", "don't descend", "level-off (up)".
+    pub const fn name(self) -> &'static str {
+        match (self.sense, self.strength) {
+            (RaSense::Up, RaStrength::Preventive) => "don't descend",
+            (RaSense::Down, RaStrength::Preventive) => "don't climb",
+            (RaSense::Up, RaStrength::LevelOff) => "level off (up)",
+            (RaSense::Down, RaStrength::LevelOff) => "level off (down)",
+            (RaSense::Up, RaStrength::Positive) => "climb",
+            (RaSense::Down, RaStrength::Positive) => "descend",
+            (RaSense::Up, RaStrength::Increase) => "increase climb",
+            (RaSense::Down, RaStrength::Increase) => "increase descent",
+        }
+    }
+}
+
+fn ra_byte(ra: Option<RaCode>) -> u8 {
+    ra.map_or(0, RaCode::byte)
 }
 
 /// Radians per binary-angle step: 2π / 65536.
@@ -1039,6 +1150,8 @@ impl MeasurementReport {
                 y_cm: y as i32,
             },
             altitude_ft: checked_altitude(altitude_ft)?,
+            altitude_25ft: false,
+            address: None,
         })
     }
 
@@ -1073,7 +1186,19 @@ impl MeasurementReport {
                 azimuth_bam: bam,
             },
             altitude_ft: checked_altitude(altitude_ft)?,
+            altitude_25ft: false,
+            address: None,
         })
+    }
+
+    /// The same report as a Mode S reply from `address`, its altitude (if
+    /// any) in 25 ft steps when `altitude_25ft`.
+    pub fn with_mode_s(self, address: ModeSAddress, altitude_25ft: bool) -> Self {
+        MeasurementReport {
+            address: Some(address),
+            altitude_25ft: altitude_25ft && self.altitude_ft.is_some(),
+            ..self
+        }
     }
 
     /// The envelope check of a received measurement: position or range
@@ -1164,6 +1289,10 @@ pub struct TrackReport {
     pub altitude: Option<(i32, i16)>,
     /// Range tau, 0.1 s; `None` when diverging or not assessed.
     pub range_tau_ds: Option<u16>,
+    /// The intruder's Mode S address; `None` for a Mode C intruder.
+    pub address: Option<ModeSAddress>,
+    /// The RA in force, when `advisory` is an RA against this intruder.
+    pub ra: Option<RaCode>,
 }
 
 /// One scan (frame type 0x82): its time, interval, counts and the most
@@ -1178,6 +1307,10 @@ pub struct ScanSummary {
     pub counts: ScanCounts,
     /// The most severe advisory over all tracks.
     pub highest_advisory: Advisory,
+    /// The RA in force.
+    pub ra: Option<RaCode>,
+    /// The last RA ended in this scan.
+    pub clear_of_conflict: bool,
 }
 
 /// Every lifetime counter of the receiving and scanning side (frame type
@@ -1263,23 +1396,53 @@ fn level_from_code(c: u8) -> Result<Option<SensitivityLevel>, WireError> {
 
 const FLAG_ALTITUDE: u8 = 0x01;
 const FLAG_TAU: u8 = 0x02;
+/// Measurement: Mode S address present.
+const FLAG_ADDRESS: u8 = 0x02;
+/// Measurement: altitude in 25 ft steps.
+const FLAG_25FT: u8 = 0x04;
+/// Track report: Mode S address valid.
+const FLAG_TRACK_ADDRESS: u8 = 0x04;
 
 /// The altitude of a measurement payload: flag bit 0 and the field; a value
 /// with the flag clear, or other flag bits, are refused.
 fn parse_altitude(flags: u8, field: i32) -> Result<Option<i32>, WireError> {
-    match flags {
+    if flags & !(FLAG_ALTITUDE | FLAG_ADDRESS | FLAG_25FT) != 0 {
+        return Err(WireError::BadField);
+    }
+    match flags & (FLAG_ALTITUDE | FLAG_25FT) {
         0 if field == 0 => Ok(None),
         FLAG_ALTITUDE => Ok(Some(field)),
+        x if x == FLAG_ALTITUDE | FLAG_25FT => Ok(Some(field)),
         _ => Err(WireError::BadField),
     }
 }
 
-fn altitude_flag(altitude: Option<i32>) -> u8 {
-    if altitude.is_some() {
-        FLAG_ALTITUDE
-    } else {
-        0
+/// The address of a measurement payload (flag bit 1); an address with the
+/// flag clear, or beyond 24 bits, is refused.
+fn parse_address(flags: u8, field: u32) -> Result<Option<ModeSAddress>, WireError> {
+    parse_flagged_address(flags & FLAG_ADDRESS != 0, field)
+}
+
+fn parse_flagged_address(present: bool, field: u32) -> Result<Option<ModeSAddress>, WireError> {
+    match (present, ModeSAddress::new(field)) {
+        (false, _) if field == 0 => Ok(None),
+        (true, Some(a)) => Ok(Some(a)),
+        _ => Err(WireError::BadField),
     }
+}
+
+fn measurement_flags(m: &MeasurementReport) -> u8 {
+    let mut flags = 0;
+    if m.altitude_ft.is_some() {
+        flags |= FLAG_ALTITUDE;
+        if m.altitude_25ft {
+            flags |= FLAG_25FT;
+        }
+    }
+    if m.address.is_some() {
+        flags |= FLAG_ADDRESS;
+    }
+    flags
 }
 
 impl Message {
@@ -1301,6 +1464,8 @@ impl Message {
                     y_cm: cartesian::Y.get(p),
                 },
                 altitude_ft: parse_altitude(cartesian::FLAGS.get(p), cartesian::ALTITUDE.get(p))?,
+                altitude_25ft: cartesian::FLAGS.get(p) & FLAG_25FT != 0,
+                address: parse_address(cartesian::FLAGS.get(p), cartesian::ADDRESS.get(p))?,
             }),
             FrameKind::MeasurementPolar => Message::Measurement(MeasurementReport {
                 time_ms: polar::TIME.get(p),
@@ -1310,20 +1475,22 @@ impl Message {
                     azimuth_bam: polar::AZIMUTH.get(p),
                 },
                 altitude_ft: parse_altitude(polar::FLAGS.get(p), polar::ALTITUDE.get(p))?,
+                altitude_25ft: polar::FLAGS.get(p) & FLAG_25FT != 0,
+                address: parse_address(polar::FLAGS.get(p), polar::ADDRESS.get(p))?,
             }),
             FrameKind::EndOfInput => Message::End(EndOfInput {
                 time_ms: end::TIME.get(p),
             }),
             FrameKind::TrackReport => Message::Track(parse_track(p)?),
             FrameKind::ScanSummary => {
-                if scan::RESERVED.get(p) != 0 {
-                    return Err(WireError::BadField);
-                }
+                let ra = scan::RA.get(p);
                 Message::Scan(ScanSummary {
                     time_ms: scan::TIME.get(p),
                     interval_ms: scan::INTERVAL.get(p),
                     counts: scan::COUNTS.get(p),
                     highest_advisory: advisory_from_code(scan::HIGHEST_ADVISORY.get(p))?,
+                    ra: RaCode::from_byte(ra & !RA_CLEAR_OF_CONFLICT)?,
+                    clear_of_conflict: ra & RA_CLEAR_OF_CONFLICT != 0,
                 })
             }
             FrameKind::Health => Message::Health(Health {
@@ -1377,7 +1544,8 @@ impl Message {
                 MeasuredPosition::Cartesian { x_cm, y_cm } => {
                     cartesian::TIME.set(p, m.time_ms);
                     cartesian::SENSOR.set(p, m.sensor);
-                    cartesian::FLAGS.set(p, altitude_flag(m.altitude_ft));
+                    cartesian::FLAGS.set(p, measurement_flags(m));
+                    cartesian::ADDRESS.set(p, m.address.map_or(0, ModeSAddress::get));
                     cartesian::X.set(p, x_cm);
                     cartesian::Y.set(p, y_cm);
                     cartesian::ALTITUDE.set(p, m.altitude_ft.unwrap_or(0));
@@ -1388,7 +1556,8 @@ impl Message {
                 } => {
                     polar::TIME.set(p, m.time_ms);
                     polar::SENSOR.set(p, m.sensor);
-                    polar::FLAGS.set(p, altitude_flag(m.altitude_ft));
+                    polar::FLAGS.set(p, measurement_flags(m));
+                    polar::ADDRESS.set(p, m.address.map_or(0, ModeSAddress::get));
                     polar::RANGE.set(p, range_cm);
                     polar::AZIMUTH.set(p, azimuth_bam);
                     polar::ALTITUDE.set(p, m.altitude_ft.unwrap_or(0));
@@ -1400,7 +1569,12 @@ impl Message {
                 scan::TIME.set(p, s.time_ms);
                 scan::INTERVAL.set(p, s.interval_ms);
                 scan::HIGHEST_ADVISORY.set(p, advisory_code(s.highest_advisory));
-                scan::RESERVED.set(p, 0);
+                let coc = if s.clear_of_conflict {
+                    RA_CLEAR_OF_CONFLICT
+                } else {
+                    0
+                };
+                scan::RA.set(p, ra_byte(s.ra) | coc);
                 scan::COUNTS.set(p, s.counts);
             }
             Message::Health(h) => {
@@ -1417,7 +1591,12 @@ impl Message {
 
 fn parse_track(p: &[u8]) -> Result<TrackReport, WireError> {
     let flags = track::FLAGS.get(p);
-    if flags & !(FLAG_ALTITUDE | FLAG_TAU) != 0 {
+    if flags & !(FLAG_ALTITUDE | FLAG_TAU | FLAG_TRACK_ADDRESS) != 0 {
+        return Err(WireError::BadField);
+    }
+    let advisory = advisory_from_code(track::ADVISORY.get(p))?;
+    let ra = RaCode::from_byte(track::RA.get(p))?;
+    if ra.is_some() && advisory != Advisory::Resolution {
         return Err(WireError::BadField);
     }
     let (alt, rate, tau) = (
@@ -1443,7 +1622,7 @@ fn parse_track(p: &[u8]) -> Result<TrackReport, WireError> {
         time_ms: track::TIME.get(p),
         track_id: track::TRACK_ID.get(p),
         status: status_from_code(track::STATUS.get(p))?,
-        advisory: advisory_from_code(track::ADVISORY.get(p))?,
+        advisory,
         sensitivity: level_from_code(track::SENSITIVITY.get(p))?,
         x_cm: track::X.get(p),
         y_cm: track::Y.get(p),
@@ -1451,6 +1630,8 @@ fn parse_track(p: &[u8]) -> Result<TrackReport, WireError> {
         vy_cm_per_s: track::VY.get(p),
         altitude,
         range_tau_ds,
+        address: parse_flagged_address(flags & FLAG_TRACK_ADDRESS != 0, track::ADDRESS.get(p))?,
+        ra,
     })
 }
 
@@ -1461,6 +1642,9 @@ fn emit_track(t: &TrackReport, p: &mut [u8]) {
     }
     if t.range_tau_ds.is_some() {
         flags |= FLAG_TAU;
+    }
+    if t.address.is_some() {
+        flags |= FLAG_TRACK_ADDRESS;
     }
     let (alt, rate) = t.altitude.unwrap_or((0, 0));
     track::TIME.set(p, t.time_ms);
@@ -1476,6 +1660,14 @@ fn emit_track(t: &TrackReport, p: &mut [u8]) {
     track::ALTITUDE.set(p, alt);
     track::VERTICAL_RATE.set(p, rate);
     track::RANGE_TAU.set(p, t.range_tau_ds.unwrap_or(0));
+    track::ADDRESS.set(p, t.address.map_or(0, ModeSAddress::get));
+    // Only an RA carries its sense (parse refuses it otherwise).
+    let ra = if t.advisory == Advisory::Resolution {
+        t.ra
+    } else {
+        None
+    };
+    track::RA.set(p, ra_byte(ra));
 }
 
 /// Numbers the frames of one sender's stream (the header's sequence

@@ -1,8 +1,9 @@
 //! A whole tracker scan (`abtrack::track::TrackTable::scan`) with arbitrary
 //! measurements and times, in `f32` (the Cortex-M4F's type) and Q32.32
-//! fixed point (the M3's and M0's), with the demo firmware's configuration
-//! and a small table (8 tracks, 16 measurements per scan) so that the table
-//! fills and scans overflow.
+//! fixed point (the M3's and M0's), with the Cartesian configuration of the
+//! demo's second input (`demo_config::crossing_config`) and a small table
+//! (8 tracks, 16 measurements per scan) so that the table fills and scans
+//! overflow.
 //!
 //! The input is a sequence of scans: each a time step (forward, zero,
 //! backwards, beyond 2³¹ ms) and up to 40 measurements, each either from
@@ -117,7 +118,7 @@ fn scans(u: &mut Unstructured) -> Result<Vec<Scan>> {
 }
 
 fn run<S: Scalar + core::fmt::Debug>(scans: &[Scan]) {
-    let config = demo_config::demo_config::<S>()
+    let config = demo_config::crossing_config::<S>()
         .expect("the demo configuration is valid")
         .tracker;
     let mut table: Box<TrackTable<S, FixedGainTrack<S>, TRACKS, PER_SCAN>> =

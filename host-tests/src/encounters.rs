@@ -7,8 +7,9 @@
 //! independent reference ([`crate::reference_tcas`]) on the true states,
 //! which gives the expected timeline.
 //!
-//! Also the demo scenario of issue 10 item 7 ([`demo_scenario`]), for the
-//! firmware's default input (wired in by the firmware's second round).
+//! Also the demo scenario of issue 10 item 7 ([`demo_scenario`]), the
+//! firmware's default input (`frames encode --scenario tcas-demo`,
+//! scripts/demo-input.sh).
 
 use std::f64::consts::PI;
 
@@ -508,7 +509,8 @@ pub struct DemoReply {
 /// 3. passing 1 NM abeam co-altitude (beyond the HMD threshold): no RA;
 ///
 /// Plus false replies (uniform in range 1–14 NM and bearing, 0.7 a second,
-/// without altitude).
+/// without altitude or address, half a second after the intruders' replies:
+/// the next scan's).
 pub fn demo_intruders() -> Vec<Encounter> {
     vec![
         Encounter {
@@ -563,7 +565,8 @@ pub fn demo_scenario(seed: u64, scans: usize) -> Vec<DemoReply> {
             let x = e.relative(t);
             let r = x.s[0].hypot(x.s[1]);
             replies.push(DemoReply {
-                time_s: t + 0.01 * i as f64,
+                // One interrogation cycle: every reply at the scan's time.
+                time_s: t,
                 range_m: (r + RANGE_SIGMA_M * standard_normal(&mut rng)).max(1.0),
                 bearing_rad: x.s[0].atan2(x.s[1]) + BEARING_SIGMA_RAD * standard_normal(&mut rng),
                 altitude_ft: x.altitude.map(|(z, _)| report(z, e.quantum)),
@@ -572,7 +575,8 @@ pub fn demo_scenario(seed: u64, scans: usize) -> Vec<DemoReply> {
                 intruder: Some(i),
             });
         }
-        if uniform(&mut rng, 0.0, 1.0) < 0.7 {
+        // (None after the last cycle: the input ends with its scan.)
+        if uniform(&mut rng, 0.0, 1.0) < 0.7 && k + 1 < scans {
             replies.push(DemoReply {
                 time_s: t + 0.5,
                 range_m: uniform(&mut rng, 1.0, 14.0) * NM,

@@ -6,18 +6,21 @@
 //! ([`run_like_the_firmware`]). Used by the `frames` binary and the
 //! scan-loop, fault-injection and determinism tests.
 
+use crate::encounters::{demo_scenario, DemoReply};
 use crate::noise::{derive_seed, rng_from_seed, uniform_index};
 use crate::scenario::{self, Measurement};
+use abtrack::filter::altitude::AltitudeQuantum;
 use abtrack::scan::{
-    Collected, Intake, MeasurementSource, RunVerdict, ScanConfig, ScanLoop, TickReport,
+    BearingTrack, Collected, Intake, MeasurementSource, RunVerdict, ScanConfig, ScanLoop,
+    TickReport,
 };
 use abtrack::tcas::Advisory;
-use abtrack::track::FixedGainTrack;
+use abtrack::track::TrackFilter;
 use abtrack::wire::{
-    Decoder, DecoderStats, Encoder, EndOfInput, Health, MeasurementReport, Message, ScanSummary,
-    TrackReport, CRC_LEN, HEADER_LEN, MAX_FRAME_LEN,
+    Decoder, DecoderStats, Encoder, EndOfInput, Health, MeasurementReport, Message, ModeSAddress,
+    ScanSummary, TrackReport, CRC_LEN, HEADER_LEN, MAX_FRAME_LEN,
 };
-use abtrack::{Gains, Scalar};
+use abtrack::Scalar;
 use std::collections::BTreeMap;
 use std::fmt::Write as _;
 
@@ -48,13 +51,47 @@ pub fn report(m: &Measurement, sensor: u8) -> Result<MeasurementReport, String> 
     converted.map_err(|e| format!("measurement at t = {} s: {e}", m.t()))
 }
 
+/// The TCAS demo scenario (issue 10 item 7, [`demo_scenario`]): the
+/// firmware's default input.
+pub const TCAS_DEMO: &str = "tcas-demo";
+/// Its length, scans (1 s each): the threat's RA and clear of conflict, the
+/// other intruders' closest approaches.
+pub const TCAS_DEMO_SCANS: usize = 110;
+
+/// One reply of the demo scenario as a polar wire report, with its Mode S
+/// address and altitude quantum.
+pub fn demo_report(r: &DemoReply, sensor: u8) -> Result<MeasurementReport, String> {
+    let m = MeasurementReport::polar_from_metres(
+        time_ms(r.time_s)?,
+        sensor,
+        r.range_m,
+        r.bearing_rad,
+        r.altitude_ft,
+    )
+    .map_err(|e| format!("reply at t = {} s: {e}", r.time_s))?;
+    Ok(match r.mode_s_address {
+        None => m,
+        Some(a) => m.with_mode_s(
+            ModeSAddress::new(a).ok_or_else(|| format!("address {a:#x} beyond 24 bits"))?,
+            r.quantum == AltitudeQuantum::ModeS25,
+        ),
+    })
+}
+
 /// Every measurement of a seeded scenario run, in time order (the scenario's
-/// row order within a scan is kept: shuffled, unlabelled).
+/// row order within a scan is kept: shuffled, unlabelled); [`TCAS_DEMO`]
+/// is the TCAS demo scenario.
 pub fn scenario_reports(
     name: &str,
     seed: u64,
     sensor: u8,
 ) -> Result<Vec<MeasurementReport>, String> {
+    if name == TCAS_DEMO {
+        return demo_scenario(seed, TCAS_DEMO_SCANS)
+            .iter()
+            .map(|r| demo_report(r, sensor))
+            .collect();
+    }
     let run = scenario::generate(name, seed).map_err(|e| e.to_string())?;
     run.measurements().map(|m| report(m, sensor)).collect()
 }
@@ -354,9 +391,14 @@ impl ReportSummary {
 pub fn message_line(m: &Message) -> String {
     match m {
         Message::Measurement(r) => {
+            let step = if r.altitude_25ft { " (25 ft steps)" } else { "" };
             let alt = r
                 .altitude_ft
-                .map_or(String::new(), |a| format!(" alt {a} ft"));
+                .map_or(String::new(), |a| format!(" alt {a} ft{step}"));
+            let alt = match r.address {
+                Some(a) => format!("{alt} Mode S {:06X}", a.get()),
+                None => alt,
+            };
             match r.position {
                 abtrack::wire::MeasuredPosition::Cartesian { x_cm, y_cm } => format!(
                     "measurement t={} s sensor {} x={} m y={} m{alt}",
@@ -378,7 +420,7 @@ pub fn message_line(m: &Message) -> String {
             }
         }
         Message::Track(t) => format!(
-            "track t={} s id {} {} x={} m y={} m vx={} m/s vy={} m/s alt={} advisory {} tau={}",
+            "track t={} s id {} {} x={} m y={} m vx={} m/s vy={} m/s alt={} advisory {}{} tau={} address {}",
             seconds(t.time_ms),
             t.track_id,
             t.status.as_str(),
@@ -389,14 +431,23 @@ pub fn message_line(m: &Message) -> String {
             t.altitude
                 .map_or("-".to_string(), |(a, r)| format!("{a} ft {r} ft/min")),
             t.advisory.name(),
+            t.ra.map_or(String::new(), |ra| format!(" ({})", ra.name())),
             t.range_tau_ds
                 .map_or("-".to_string(), |d| format!("{} s", d as f64 / 10.0)),
+            t.address
+                .map_or("-".to_string(), |a| format!("{:06X}", a.get())),
         ),
         Message::Scan(s) => format!(
-            "scan t={} s (interval {} ms), advisory {}: {}",
+            "scan t={} s (interval {} ms), advisory {}{}{}: {}",
             seconds(s.time_ms),
             s.interval_ms,
             s.highest_advisory.name(),
+            s.ra.map_or(String::new(), |ra| format!(" ({})", ra.name())),
+            if s.clear_of_conflict {
+                ", clear of conflict"
+            } else {
+                ""
+            },
             s.counts
         ),
         Message::End(e) => format!("end of input t={} s", seconds(e.time_ms)),
@@ -419,41 +470,45 @@ pub fn message_line(m: &Message) -> String {
 /// only once every queued measurement was taken) and stops at the
 /// end-of-input frame, so nothing depends on timing: the report frames are
 /// the firmware's, byte for byte.
-pub fn run_like_the_firmware<S: Scalar, const N: usize, const M: usize, const Q: usize>(
+pub fn run_like_the_firmware<
+    S: Scalar,
+    F: TrackFilter<S> + BearingTrack<S>,
+    const N: usize,
+    const M: usize,
+    const Q: usize,
+>(
     input: &[u8],
-    config: &ScanConfig<S, Gains<S>>,
+    config: &ScanConfig<S, F::Params>,
 ) -> FirmwareRun {
     /// `IDLE_SCANS` of src/main.rs.
     const IDLE_SCANS: u32 = 3;
     let mut intake: Box<Intake<Q>> = Box::new(Intake::new());
-    let mut scan_loop: Box<ScanLoop<S, FixedGainTrack<S>, N, M>> = Box::new(ScanLoop::new());
+    let mut scan_loop: Box<ScanLoop<S, F, N, M>> = Box::new(ScanLoop::new());
     let mut run = FirmwareRun::default();
     let mut encoder = Encoder::new();
-    let mut tick = |scan_loop: &mut ScanLoop<S, FixedGainTrack<S>, N, M>,
-                    intake: &mut Intake<Q>,
-                    run: &mut FirmwareRun| {
-        let mut frame = [0u8; MAX_FRAME_LEN];
-        let report = scan_loop
-            .on_tick(config, intake, |m| {
-                let n = encoder.encode(m, &mut frame).expect("a frame fits");
-                run.output.extend_from_slice(&frame[..n]);
-            })
-            .expect("the loop's tracker clock always advances");
-        run.ticks.push(report);
-        report
-    };
+    let mut tick =
+        |scan_loop: &mut ScanLoop<S, F, N, M>, intake: &mut Intake<Q>, run: &mut FirmwareRun| {
+            let mut frame = [0u8; MAX_FRAME_LEN];
+            let report = scan_loop
+                .on_tick(config, intake, |m| {
+                    let n = encoder.encode(m, &mut frame).expect("a frame fits");
+                    run.output.extend_from_slice(&frame[..n]);
+                })
+                .expect("the loop's tracker clock always advances");
+            run.ticks.push(report);
+            report
+        };
     // Flow control in lock-step: the receiver reads the next byte only once
     // the main loop has taken every queued measurement (running a scan when
     // one is due).
-    let mut drain = |scan_loop: &mut ScanLoop<S, FixedGainTrack<S>, N, M>,
-                     intake: &mut Intake<Q>,
-                     run: &mut FirmwareRun| {
-        while intake.queued() > 0 {
-            if scan_loop.collect(config, intake) == Collected::ScanDue {
-                tick(scan_loop, intake, run);
+    let mut drain =
+        |scan_loop: &mut ScanLoop<S, F, N, M>, intake: &mut Intake<Q>, run: &mut FirmwareRun| {
+            while intake.queued() > 0 {
+                if scan_loop.collect(config, intake) == Collected::ScanDue {
+                    tick(scan_loop, intake, run);
+                }
             }
-        }
-    };
+        };
     for &b in input {
         intake.push(b);
         drain(&mut scan_loop, &mut intake, &mut run);
@@ -569,7 +624,7 @@ pub fn layout_markdown() -> String {
 // ---------------------------------------------------------------------------
 
 /// A line or sensor fault, injected into the demo's input (the
-/// `two-crossing` scenario, seed 1) by [`fault_stream`]: the
+/// [`TCAS_DEMO`] scenario, seed [`FAULT_INPUT_SEED`]) by [`fault_stream`]: the
 /// fault-injection tests on the three boards, and `frames encode --fault`.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub enum Fault {
@@ -652,6 +707,9 @@ impl Fault {
 /// The scan at which [`Fault::Flood`], [`Fault::Backwards`] and
 /// [`Fault::Jump`] happen, and [`Fault::Gap`] ends.
 pub const FAULT_SCAN: u32 = 30;
+/// The seed of the demo input the faults are injected into (the demo's,
+/// scripts/demo-input.sh).
+pub const FAULT_INPUT_SEED: u64 = 1;
 /// [`Fault::Gap`]: scans missing before [`FAULT_SCAN`].
 pub const GAP_SCANS: u32 = 10;
 /// [`Fault::Backwards`]: the step, ms.
@@ -702,16 +760,16 @@ pub fn fault_stream(fault: Fault, capacity: usize, seed: u64) -> Result<FaultStr
         out.garbage_bytes = out.bytes.len();
         return Ok(out);
     }
-    let run = scenario::generate("two-crossing", 1).map_err(|e| e.to_string())?;
+    // The demo's input: scan k is the false reply before it (at k − 0.5 s)
+    // and the interrogation cycle's replies (at k s).
     let mut scans: Vec<(u32, f64, Vec<MeasurementReport>)> = Vec::new();
-    for scan in &run.scans {
-        let t = time_ms(scan.t)?;
-        let reports = scan
-            .measurements
-            .iter()
-            .map(|m| report(m, 1))
-            .collect::<Result<Vec<_>, _>>()?;
-        scans.push((t, scan.t, reports));
+    for reply in demo_scenario(FAULT_INPUT_SEED, TCAS_DEMO_SCANS) {
+        let k = reply.time_s.ceil();
+        let r = demo_report(&reply, 1)?;
+        match scans.last_mut() {
+            Some(scan) if scan.1 == k => scan.2.push(r),
+            _ => scans.push((time_ms(k)?, k, vec![r])),
+        }
     }
     let clutter = |rng: &mut crate::noise::SimRng, t: u32| {
         let mut u = || (uniform_index(rng, 1_000_001) as f64 / 1e6 - 0.5) * 10_000.0;
@@ -817,6 +875,8 @@ pub fn fault_stream(fault: Fault, capacity: usize, seed: u64) -> Result<FaultStr
                     sensor: r.sensor,
                     position,
                     altitude_ft: ((n / 20) % 3 == 2).then_some(200_000),
+                    altitude_25ft: false,
+                    address: None,
                 };
                 let len = encoder
                     .encode(&Message::Measurement(bad), &mut frame)

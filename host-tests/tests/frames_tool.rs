@@ -1,7 +1,7 @@
 //! The `frames` tool's library side: CSV and scenario input to frames, and
 //! the summary of a report stream.
 
-use abtrack::wire::{EndOfInput, MeasuredPosition, MeasurementReport, Message};
+use abtrack::wire::{EndOfInput, FrameKind, MeasuredPosition, MeasurementReport, Message};
 use abtrack_host_tests::frames::{self, Fault, Faults};
 
 #[test]
@@ -19,6 +19,8 @@ fn cartesian_csv_becomes_reports() {
                 y_cm: 300
             },
             altitude_ft: None,
+            altitude_25ft: false,
+            address: None,
         }
     );
     assert_eq!(r[2].time_ms, 1250);
@@ -83,10 +85,11 @@ fn encoded_faults_are_what_the_decoder_counts() {
     assert_eq!(messages.len(), dirty.frames - dirty.corrupted);
     assert_eq!(stats.crc_errors as usize, dirty.corrupted);
     assert_eq!(stats.frames_lost as usize, dirty.corrupted);
-    // Measurement frames of the Cartesian scenario are 28 bytes.
+    // Measurement frames of the Cartesian scenario are 32 bytes.
+    assert_eq!(FrameKind::MeasurementCartesian.frame_len(), 32);
     assert_eq!(
         stats.bytes_skipped as usize,
-        dirty.garbage_bytes + 28 * dirty.corrupted
+        dirty.garbage_bytes + 32 * dirty.corrupted
     );
     // The summary of a measurement stream counts them.
     let s = frames::summarise(&dirty.bytes);
@@ -122,8 +125,11 @@ fn fault_streams_hold_what_they_say() {
                 assert_eq!(stats.bytes_skipped as usize, s.garbage_bytes, "{name}")
             }
             Fault::Flood => assert_eq!(s.added, 240),
-            Fault::ClutterStorm => assert_eq!(s.added, 200 * 60),
-            Fault::Gap => assert_eq!(s.scans.len(), 50),
+            Fault::ClutterStorm => assert_eq!(s.added, 200 * frames::TCAS_DEMO_SCANS),
+            Fault::Gap => assert_eq!(
+                s.scans.len(),
+                frames::TCAS_DEMO_SCANS - frames::GAP_SCANS as usize
+            ),
             _ => {}
         }
         assert!(

@@ -21,7 +21,7 @@ fn scan(
     now_ms: u32,
     measurements: &[Measurement<f32>],
 ) -> (u32, Vec<Association>) {
-    let config = demo_config::demo_config::<f32>()
+    let config = demo_config::crossing_config::<f32>()
         .expect("the demo configuration is valid")
         .tracker;
     let mut codes = vec![Association::NotAssigned; measurements.len()];

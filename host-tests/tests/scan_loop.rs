@@ -29,6 +29,8 @@ use abtrack_host_tests::scenario;
 use std::collections::{BTreeMap, BTreeSet};
 
 type Loop<S, const N: usize, const M: usize> = ScanLoop<S, FixedGainTrack<S>, N, M>;
+/// The demo's scan loop on the micro:bit (src/main.rs).
+type MicrobitLoop = ScanLoop<Fix, abtrack::track::RangeAzimuthTrack<Fix>, 8, 12>;
 
 /// Numbers the frames of the test's sensor.
 #[derive(Default)]
@@ -121,7 +123,7 @@ impl<S: Scalar, const N: usize, const M: usize> Rig<S, N, M> {
 /// Runs the crossing through the loop in `S`; returns the rig's output and
 /// the number of garbage bytes inserted.
 fn run_crossing<S: Scalar>() -> (Output, Vec<TickReport>, DecoderStats, usize) {
-    let mut rig: Rig<S, 8, 16> = Rig::new(demo_config::demo_config::<S>().unwrap());
+    let mut rig: Rig<S, 8, 16> = Rig::new(demo_config::crossing_config::<S>().unwrap());
     let mut sensor = Sensor::default();
     let mut rng = Lcg(0x5CA1_AB1E);
     let mut garbage = 0;
@@ -312,7 +314,7 @@ fn queue_overflow_is_counted() {
 
     // The four queued ones reach the scan, in order.
     let mut scan_loop: Box<Loop<f64, 4, 8>> = Box::new(Loop::new());
-    let config = demo_config::demo_config::<f64>().unwrap();
+    let config = demo_config::crossing_config::<f64>().unwrap();
     let mut out = Output::default();
     let tick = scan_loop.on_tick(&config, &mut intake, out.sink()).unwrap();
     assert_eq!(tick.summary.counts.used, 4);
@@ -337,7 +339,7 @@ fn at(t: u32, x: f64) -> MeasurementReport {
 /// ones are counted, every measurement ends in exactly one scan or count.
 #[test]
 fn the_scan_clock_sorts_measurements_by_the_sensor_time() {
-    let config = demo_config::demo_config::<f32>().unwrap();
+    let config = demo_config::crossing_config::<f32>().unwrap();
     let mut scan_loop: Box<Loop<f32, 4, 8>> = Box::new(Loop::new());
     let mut out = Output::default();
     let mut q = direct(&[
@@ -384,7 +386,7 @@ fn the_scan_clock_sorts_measurements_by_the_sensor_time() {
 /// period, on schedule; the tracks coast and are deleted.
 #[test]
 fn a_gap_runs_empty_scans_on_schedule() {
-    let config = demo_config::demo_config::<f64>().unwrap();
+    let config = demo_config::crossing_config::<f64>().unwrap();
     let mut scan_loop: Box<Loop<f64, 4, 8>> = Box::new(Loop::new());
     let mut out = Output::default();
     let mut q = direct(&[
@@ -431,7 +433,7 @@ fn the_scan_clock_relocks_on_a_jump_and_keeps_the_track() {
         ("+31 s", 31_000),
         ("-1 h", (-3_600_000i32) as u32),
     ] {
-        let config = demo_config::demo_config::<Fix>().unwrap();
+        let config = demo_config::crossing_config::<Fix>().unwrap();
         let mut scan_loop: Box<Loop<Fix, 4, 8>> = Box::new(Loop::new());
         let mut out = Output::default();
         let start = 43_200_000u32; // noon
@@ -500,6 +502,8 @@ fn out_of_range_measurements_are_refused_and_counted() {
                 y_cm: 0,
             },
             altitude_ft: None,
+            altitude_25ft: false,
+            address: None,
         },
         MeasurementReport {
             time_ms: 0,
@@ -509,18 +513,24 @@ fn out_of_range_measurements_are_refused_and_counted() {
                 azimuth_bam: 0,
             },
             altitude_ft: None,
+            altitude_25ft: false,
+            address: None,
         },
         MeasurementReport {
             time_ms: 0,
             sensor: 1,
             position: MeasuredPosition::Cartesian { x_cm: 0, y_cm: 0 },
             altitude_ft: Some(200_000),
+            altitude_25ft: false,
+            address: None,
         },
         MeasurementReport {
             time_ms: 0,
             sensor: 1,
             position: MeasuredPosition::Cartesian { x_cm: 100, y_cm: 0 },
             altitude_ft: Some(5_000),
+            altitude_25ft: false,
+            address: None,
         },
     ];
     // Through the wire they are refused by the decoder (outside the
@@ -537,7 +547,7 @@ fn out_of_range_measurements_are_refused_and_counted() {
     // ... and if they reach the loop another way, by the conversion.
     let mut q = direct(&reports);
     let mut scan_loop: Box<Loop<Fix, 4, 8>> = Box::new(Loop::new());
-    let config = demo_config::demo_config::<Fix>().unwrap();
+    let config = demo_config::crossing_config::<Fix>().unwrap();
     let mut out = Output::default();
     let t = scan_loop.on_tick(&config, q.as_mut(), out.sink()).unwrap();
     assert_eq!((t.summary.counts.used, t.summary.counts.invalid), (1, 3));
@@ -549,7 +559,7 @@ fn out_of_range_measurements_are_refused_and_counted() {
 fn scan_overflow_is_counted() {
     let mut q = direct(&(0..7).map(|k| at(0, 100.0 * k as f64)).collect::<Vec<_>>());
     let mut scan_loop: Box<Loop<f64, 4, 5>> = Box::new(Loop::new());
-    let config = demo_config::demo_config::<f64>().unwrap();
+    let config = demo_config::crossing_config::<f64>().unwrap();
     let mut out = Output::default();
     let t = scan_loop.on_tick(&config, q.as_mut(), out.sink()).unwrap();
     assert_eq!(
@@ -563,10 +573,10 @@ fn scan_overflow_is_counted() {
     assert_eq!(c.used, c.outside_gates);
 }
 
-/// The demo's own input (what scripts/demo.sh feeds the firmware: the
+/// The demo's second input (`scripts/demo-input.sh FILE two-crossing`: the
 /// `two-crossing` scenario, seed 1, a corrupted frame every 97 and garbage
-/// before every 41st) through the demo's configuration and the firmware's
-/// pacing and capacities, in the three number types: the two targets are
+/// before every 41st) through its Cartesian configuration and the
+/// firmware's pacing, in the three number types: the two targets are
 /// tracked under one id each from early on to the end, the clutter confirms
 /// at most short-lived tracks, the faults are counted exactly, and the run
 /// is clean.
@@ -583,8 +593,9 @@ fn demo_input_is_tracked<S: Scalar, const N: usize, const M: usize, const Q: usi
     assert!(encoded.corrupted > 0 && encoded.garbage_bytes > 0);
     let run = scenario::generate("two-crossing", SEED).unwrap();
 
-    let config = demo_config::demo_config::<S>().unwrap();
-    let fw = frames::run_like_the_firmware::<S, N, M, Q>(&encoded.bytes, &config);
+    let config = demo_config::crossing_config::<S>().unwrap();
+    let fw =
+        frames::run_like_the_firmware::<S, FixedGainTrack<S>, N, M, Q>(&encoded.bytes, &config);
     let h = fw.health;
     assert_eq!(
         h.decoder.accepted as usize,
@@ -594,7 +605,7 @@ fn demo_input_is_tracked<S: Scalar, const N: usize, const M: usize, const Q: usi
     assert_eq!(h.decoder.frames_lost as usize, encoded.corrupted);
     assert_eq!(
         h.decoder.bytes_skipped as usize,
-        encoded.garbage_bytes + 28 * encoded.corrupted
+        encoded.garbage_bytes + 32 * encoded.corrupted
     );
     assert_eq!(h.intake.queue_full, 0);
     // Every accepted frame but the end of input used.
@@ -670,13 +681,11 @@ fn demo_input_is_tracked_in_every_number_type() {
     let f64_ids = demo_input_is_tracked::<f64, N, M, Q>();
     assert_eq!(demo_input_is_tracked::<f32, N, M, Q>(), f64_ids);
     assert_eq!(demo_input_is_tracked::<Fix, N, M, Q>(), f64_ids);
+    // The micro:bit's tracks and queue, with room for the crossing's 20
+    // measurements per scan (its demo takes 12 replies per scan: the TCAS
+    // scenario has at most 6; tests/tcas_demo.rs).
     assert_eq!(
-        demo_input_is_tracked::<
-            Fix,
-            { microbit::TRACKS },
-            { microbit::MEASUREMENTS_PER_SCAN },
-            { microbit::QUEUE_LEN },
-        >(),
+        demo_input_is_tracked::<Fix, { microbit::TRACKS }, 24, { microbit::QUEUE_LEN }>(),
         f64_ids
     );
 }
@@ -702,6 +711,7 @@ fn run_tcas<S: Scalar>() -> Output {
         tracker,
         own: OwnAircraft::over_sea_level(v(scenario::TCAS_OWN_ALTITUDE_FT), S::ZERO),
         altitude: AltitudeTrackerConfig::default_for(AltitudeQuantum::ModeC).unwrap(),
+        altitude_25ft: AltitudeTrackerConfig::default_for(AltitudeQuantum::ModeS25).unwrap(),
         clock: ClockConfig::new(1000).unwrap(),
     };
     let reports = frames::scenario_reports("tcas-converging", 3, 2).unwrap();
@@ -833,6 +843,10 @@ fn print_memory_sizes() {
             "ScanLoop<Fix, 8, 24>",
             std::mem::size_of::<Loop<Fix, 8, 24>>(),
         ),
+        (
+            "ScanLoop<Fix, RangeAzimuthTrack, 8, 12> (the micro:bit's)",
+            std::mem::size_of::<MicrobitLoop>(),
+        ),
         ("Intake<128>", std::mem::size_of::<Intake<128>>()),
         ("Intake<32>", std::mem::size_of::<Intake<32>>()),
         (
@@ -843,7 +857,8 @@ fn print_memory_sizes() {
     ] {
         eprintln!("{name}: {size} bytes");
     }
-    assert!(std::mem::size_of::<Loop<Fix, 8, 24>>() < 9 * 1024);
+    // The micro:bit's 16 KiB: the scan loop, the receiver and the stack.
+    assert!(std::mem::size_of::<MicrobitLoop>() < 9 * 1024);
 }
 
 /// Capacity under clutter (abtrack::scan, "Capacity"): three confirmed
@@ -857,7 +872,7 @@ fn print_memory_sizes() {
 #[test]
 fn confirmed_tracks_are_never_starved() {
     fn run<S: Scalar>() {
-        let config = demo_config::demo_config::<S>().unwrap();
+        let config = demo_config::crossing_config::<S>().unwrap();
         let mut scan_loop: Box<Loop<S, 8, 8>> = Box::new(Loop::new());
         let mut out = Output::default();
         let truth = |k: u32, n: usize| -> [f64; 2] {

@@ -58,6 +58,8 @@ fn f64_day(scans: u32) -> EndState {
         sensor: 0,
         position: MeasuredPosition::Cartesian { x_cm: 0, y_cm: 0 },
         altitude_ft: None,
+        altitude_25ft: false,
+        address: None,
     }; synth::SOAK_MAX_PER_SCAN];
     let mut last: Vec<TrackReport> = Vec::new();
     for k in 0..scans {

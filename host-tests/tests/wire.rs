@@ -2,7 +2,7 @@
 //! conversions, and the streaming decoder (resynchronisation, counters, no
 //! panic on any input).
 
-use abtrack::tcas::{Advisory, SensitivityLevel};
+use abtrack::tcas::{Advisory, RaSense, RaStrength, SensitivityLevel};
 use abtrack::track::{Measurement, TrackStatus};
 use abtrack::wire::*;
 use abtrack::Fix;
@@ -61,6 +61,8 @@ fn cartesian(time_ms: u32, x_cm: i32, y_cm: i32, alt: Option<i32>) -> Measuremen
         sensor: 7,
         position: MeasuredPosition::Cartesian { x_cm, y_cm },
         altitude_ft: alt,
+        altitude_25ft: false,
+        address: None,
     }
 }
 
@@ -76,19 +78,23 @@ fn emit_numbered(m: &Message, sequence: u16) -> Vec<u8> {
 
 #[test]
 fn cartesian_frame_has_the_documented_layout() {
-    let m = Message::Measurement(cartesian(0x0102_0304, -2, 300, Some(8000)));
+    let m = Message::Measurement(
+        cartesian(0x0102_0304, -2, 300, Some(8000))
+            .with_mode_s(ModeSAddress::new(0x00AB_CDEF).unwrap(), true),
+    );
     let bytes = emit_numbered(&m, 0x1234);
     // Written by hand from the table in the module docs.
     let mut expected = vec![
         0xAB, 0xCD, // sync
-        0x01, 18, // type, payload length
+        0x01, 22, // type, payload length
         0x12, 0x34, // sequence number
         0x01, 0x02, 0x03, 0x04, // time 0x01020304 ms
         7,    // sensor
-        0x01, // flags: altitude present
+        0x07, // flags: altitude present, Mode S address, 25 ft steps
         0xFF, 0xFF, 0xFF, 0xFE, // x = -2 cm
         0x00, 0x00, 0x01, 0x2C, // y = 300 cm
         0x00, 0x00, 0x1F, 0x40, // altitude 8000 ft
+        0x00, 0xAB, 0xCD, 0xEF, // Mode S address ABCDEF
     ];
     let crc = crc_bitwise(&expected[2..]);
     expected.extend_from_slice(&crc.to_be_bytes());
@@ -108,15 +114,18 @@ fn polar_frame_has_the_documented_layout() {
             azimuth_bam: 0x4000,
         },
         altitude_ft: None,
+        altitude_25ft: false,
+        address: None,
     });
     let bytes = emit_numbered(&m, 0xFFFF);
     let mut expected = vec![
-        0xAB, 0xCD, 0x02, 16, 0xFF, 0xFF, // header
+        0xAB, 0xCD, 0x02, 20, 0xFF, 0xFF, // header
         0x00, 0x00, 0x13, 0x88, // 5000 ms
-        2, 0x00, // sensor, no altitude
+        2, 0x00, // sensor, no altitude, no address
         0x00, 0x27, 0x90, 0xE8, // 2 593 000 cm = 0x2790E8
         0x40, 0x00, // azimuth 90°
         0x00, 0x00, 0x00, 0x00, // altitude absent
+        0x00, 0x00, 0x00, 0x00, // address absent (Mode C)
     ];
     let crc = crc_bitwise(&expected[2..]);
     expected.extend_from_slice(&crc.to_be_bytes());
@@ -137,6 +146,8 @@ fn track_report() -> TrackReport {
         vy_cm_per_s: -5_000,
         altitude: Some((7_900, -300)),
         range_tau_ds: Some(173),
+        address: ModeSAddress::new(0x00AB_CDEF),
+        ra: None,
     }
 }
 
@@ -146,6 +157,11 @@ fn scan_summary() -> ScanSummary {
         interval_ms: 2,
         counts: ScanCounts::from_values(std::array::from_fn(|i| 3 + i as u16)),
         highest_advisory: Advisory::Resolution,
+        ra: Some(RaCode {
+            sense: RaSense::Down,
+            strength: RaStrength::Increase,
+        }),
+        clear_of_conflict: false,
     }
 }
 
@@ -168,7 +184,21 @@ fn report_frames_round_trip() {
             sensitivity: None,
             ..track_report()
         }),
+        Message::Track(TrackReport {
+            advisory: Advisory::Resolution,
+            ra: Some(RaCode {
+                sense: RaSense::Up,
+                strength: RaStrength::Preventive,
+            }),
+            address: None,
+            ..track_report()
+        }),
         Message::Scan(scan_summary()),
+        Message::Scan(ScanSummary {
+            ra: None,
+            clear_of_conflict: true,
+            ..scan_summary()
+        }),
         Message::Health(health()),
     ] {
         let bytes = emit(&m);
@@ -183,15 +213,18 @@ fn report_frames_round_trip() {
     assert_eq!(&p[4..8], &[0, 0, 0, 42]);
     assert_eq!(p[8], 2); // coasting
     assert_eq!(p[9], 2); // TA
-    assert_eq!(p[10], 0b11); // altitude and tau valid
+    assert_eq!(p[10], 0b111); // altitude, tau and address valid
     assert_eq!(p[11], 5);
     assert_eq!(&p[34..36], &[0, 173]);
-    assert_eq!(FrameKind::TrackReport.payload_len(), 36);
-    // The scan summary: time, interval, advisory, a zero byte, then the
-    // counts in the order of ScanCounts::NAMES, u16 each.
+    assert_eq!(&p[36..40], &[0, 0xAB, 0xCD, 0xEF]); // address
+    assert_eq!(p[40], 0); // no RA
+    assert_eq!(FrameKind::TrackReport.payload_len(), 41);
+    // The scan summary: time, interval, advisory, the RA (increase
+    // descent: sense 2, strength 3), then the counts in the order of
+    // ScanCounts::NAMES, u16 each.
     let b = emit(&Message::Scan(scan_summary()));
     let p = &b[HEADER_LEN..];
-    assert_eq!(&p[..10], &[0, 0, 0, 1, 0, 0, 0, 2, 3, 0]);
+    assert_eq!(&p[..10], &[0, 0, 0, 1, 0, 0, 0, 2, 3, 0b1110]);
     for i in 0..ScanCounts::LEN {
         assert_eq!(&p[10 + 2 * i..12 + 2 * i], &(3 + i as u16).to_be_bytes());
     }
@@ -277,7 +310,22 @@ fn new_checked_and_parse_name_what_is_wrong() {
     assert_eq!(Message::parse_bytes(&bad), Err(WireError::Checksum));
     // A reserved flag bit, with a valid CRC: refused as a bad field.
     let mut bad = good.clone();
+    bad[HEADER_LEN + 5] = 0x08;
+    refresh_crc(&mut bad);
+    assert_eq!(Message::parse_bytes(&bad), Err(WireError::BadField));
+    // The 25 ft flag without altitude, and an address beyond 24 bits (or
+    // without its flag): refused too.
+    let mut bad = good.clone();
+    bad[HEADER_LEN + 5] = 0x04;
+    refresh_crc(&mut bad);
+    assert_eq!(Message::parse_bytes(&bad), Err(WireError::BadField));
+    let mut bad = good.clone();
     bad[HEADER_LEN + 5] = 0x02;
+    bad[HEADER_LEN + 18] = 0x01;
+    refresh_crc(&mut bad);
+    assert_eq!(Message::parse_bytes(&bad), Err(WireError::BadField));
+    let mut bad = good.clone();
+    bad[HEADER_LEN + 21] = 0x01;
     refresh_crc(&mut bad);
     assert_eq!(Message::parse_bytes(&bad), Err(WireError::BadField));
     // An altitude value without the altitude flag: refused too.
@@ -305,6 +353,8 @@ fn new_checked_and_parse_name_what_is_wrong() {
             azimuth_bam: 0,
         },
         altitude_ft: None,
+        altitude_25ft: false,
+        address: None,
     };
     assert_eq!(
         Message::parse_bytes(&emit(&Message::Measurement(far_polar))),
@@ -399,6 +449,8 @@ fn polar_conversion_uses_binary_angles() {
             azimuth_bam: bam,
         },
         altitude_ft: None,
+        altitude_25ft: false,
+        address: None,
     };
     // 16384 steps = a quarter turn = π/2.
     match polar(16384, 100).position::<f64>() {
@@ -667,10 +719,10 @@ fn decoder_counts_lost_frames_from_the_sequence_numbers() {
 fn a_made_up_frame_does_not_swallow_the_real_one() {
     let real = Message::Measurement(cartesian(2000, 150_000, -70_000, None));
     let real_bytes = emit_numbered(&real, 7);
-    // Header (6 bytes) and 16 payload bytes of a polar frame; its 4 CRC
+    // Header (6 bytes) and 20 payload bytes of a polar frame; its 4 CRC
     // bytes are the real frame's sync, type and length.
-    let mut fake = vec![0xAB, 0xCD, 0x02, 16, 0x00, 0x06];
-    let mut payload = [0u8; 16];
+    let mut fake = vec![0xAB, 0xCD, 0x02, 20, 0x00, 0x06];
+    let mut payload = [0u8; 20];
     payload[6..10].copy_from_slice(&2_882_300_000u32.to_be_bytes());
     fake.extend_from_slice(&payload);
     let target = u32::from_be_bytes(real_bytes[0..4].try_into().unwrap());
@@ -768,6 +820,8 @@ fn any_message() -> impl Strategy<Value = Message> {
                     MeasuredPosition::Cartesian { x_cm: x, y_cm: y }
                 },
                 altitude_ft: a,
+                altitude_25ft: false,
+                address: None,
             })
         });
     let track = (
@@ -803,6 +857,15 @@ fn any_message() -> impl Strategy<Value = Message> {
                 vy_cm_per_s: v[3],
                 altitude: alt,
                 range_tau_ds: tau,
+                address: ModeSAddress::new(t & 0x00FF_FFFF),
+                ra: (advisory == Advisory::Resolution).then_some(RaCode {
+                    sense: if id % 2 == 0 {
+                        RaSense::Up
+                    } else {
+                        RaSense::Down
+                    },
+                    strength: RaStrength::Positive,
+                }),
             })
         });
     let scan = (
@@ -822,6 +885,8 @@ fn any_message() -> impl Strategy<Value = Message> {
                     Advisory::Traffic,
                     Advisory::Resolution,
                 ][adv as usize],
+                ra: None,
+                clear_of_conflict: t % 2 == 0,
             })
         });
     let health = (

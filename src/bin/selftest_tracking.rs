@@ -20,6 +20,10 @@
 //!   closure, 8000 ft, SL 5: TA from 6.75 NM, RA from 4.238 NM, range tau,
 //!   CPA), through the filters, on a diverging intruder and on a
 //!   non-altitude-reporting one;
+//! * the TCAS cycle of the firmware (range tracker, altitude tracker,
+//!   threat state, resolution) on the demo's threat against f64: the same
+//!   advisory, RA sense and strength and clear of conflict every scan, and
+//!   the range track within a provisional tolerance;
 //! * the track table: two crossing targets keep their ids, a cluttered
 //!   scenario gets the same association codes and per-stage counts as in
 //!   f64, a full table refuses and counts, bad measurements are rejected,
@@ -49,7 +53,8 @@ use abtrack::filter::{FilterError, Gains, Phase};
 #[cfg(not(abtrack_board = "microbit"))]
 use abtrack::num::fixed32::Fixed32;
 use abtrack::tcas::{
-    assess, Advisory, Intruder, OwnAircraft, SensitivityLevel, ThreatAssessment,
+    assess, Advisory, CollisionAvoidance, Intruder, IntruderTrack, OwnAircraft, RaSense,
+    RaStrength, Reply, SensitivityLevel, ThreatAssessment, ThreatGeometry,
     METRES_PER_NAUTICAL_MILE, METRES_PER_SECOND_PER_KNOT,
 };
 use abtrack::track::TrackNumeric;
@@ -96,6 +101,10 @@ const TESTS: &[Test] = &[
     (
         "tcas_non_reporting_intruder_at_most_ta",
         tcas_non_reporting_intruder_at_most_ta,
+    ),
+    (
+        "tcas_cycle_demo_threat_vs_f64",
+        tcas_cycle_demo_threat_vs_f64,
     ),
     (
         "track_table_sizes_match_documentation",
@@ -756,6 +765,140 @@ fn altitude_climb<S: TestScalar>() -> TestResult {
 
 /// Altitude (ft) and rate (ft/s) tolerance of [`altitude_climb`].
 const ALTITUDE_TOLERANCE: f64 = 0.05;
+
+// ---------------------------------------------------------------------------
+// The TCAS cycle
+// ---------------------------------------------------------------------------
+
+fn tcas_cycle_demo_threat_vs_f64() -> TestResult {
+    tcas_cycle::<Native>()
+}
+
+/// What one scan of [`tcas_cycle`] decided.
+type CycleOutcome = (Option<Advisory>, Option<(RaSense, RaStrength)>, bool);
+
+/// One intruder through the firmware's TCAS cycle in `S`, one scan a second
+/// (`IntruderTrack::scan`/`assess`, `CollisionAvoidance::resolve`): the
+/// demo's threat (issue 10 item 7), head-on 0.2 NM abeam from 14 NM at 500
+/// kt closure, level 300 ft above an own aircraft level at 8000 ft, exact
+/// ranges, altitude in 25 ft steps. Calls `each` with the scan's outcome
+/// and range estimate (range m, range rate m/s).
+fn tcas_cycle_run<S: TestScalar>(
+    mut each: impl FnMut(u32, CycleOutcome, Option<(f64, f64)>) -> TestResult,
+) -> TestResult {
+    let one = value::<S>(1.0)?;
+    let own = OwnAircraft::over_sea_level(value::<S>(8000.0)?, S::ZERO);
+    let mut cas = CollisionAvoidance::<S>::new();
+    let mut track = IntruderTrack::<S>::new(altitude_config::<S>(AltitudeQuantum::ModeS25)?);
+    let closure = 500.0 * KT;
+    for k in 0..110u32 {
+        let along = 14.0 * NM - closure * k as f64;
+        let range = libm::hypot(0.2 * NM, along);
+        let reply = Reply {
+            range_m: value::<S>(range)?,
+            altitude_ft: Some(value::<S>(8300.0)?),
+        };
+        let (Ok(cycle), Ok(())) = (cas.begin_cycle(&own, false), track.scan(Some(reply), one))
+        else {
+            defmt::error!("{=str}: scan {=u32} refused", S::NAME, k);
+            return Err(Failure);
+        };
+        let Ok(status) = track.assess(&cycle, None, one) else {
+            defmt::error!("{=str}: assessment {=u32} refused", S::NAME, k);
+            return Err(Failure);
+        };
+        let threats: heapless::Vec<ThreatGeometry<S>, 1> =
+            status.and_then(|s| s.geometry).into_iter().collect();
+        let Ok(ra) = cas.resolve(&cycle, &threats, one) else {
+            defmt::error!("{=str}: resolution {=u32} refused", S::NAME, k);
+            return Err(Failure);
+        };
+        let range = track
+            .range_tracker()
+            .estimate()
+            .map(|e| (e.range_m.to_f64(), e.range_rate_m_per_s.to_f64()));
+        let outcome = (
+            status.map(|s| s.advisory),
+            ra.advisory.map(|a| (a.sense, a.strength)),
+            ra.clear_of_conflict,
+        );
+        each(k, outcome, range)?;
+    }
+    Ok(())
+}
+
+/// [`tcas_cycle_run`] in `S` against f64: the same outcome every scan (the
+/// advisory, the RA's sense and strength, the clear of conflict), an RA
+/// down and a clear of conflict at all, and the range track within
+/// [`RANGE_TRACK_TOLERANCE`] (provisional, like the altitude tracker's: the
+/// range tracker's firmness branches compare residuals, so a derived bound
+/// needs their decision margins).
+fn tcas_cycle<S: TestScalar>() -> TestResult {
+    let mut reference: heapless::Vec<(CycleOutcome, Option<(f64, f64)>), 110> =
+        heapless::Vec::new();
+    tcas_cycle_run::<f64>(|_, outcome, range| {
+        reference.push((outcome, range)).map_err(|_| Failure)
+    })?;
+    let mut worst = [0.0f64; 2];
+    let (mut ra_down, mut coc) = (None, None);
+    tcas_cycle_run::<S>(|k, outcome, range| {
+        let Some((want, want_range)) = reference.get(k as usize) else {
+            return Err(Failure);
+        };
+        ensure!(
+            outcome == *want,
+            "{=str} TCAS cycle scan {=u32}: native {}, f64 {}",
+            S::NAME,
+            k,
+            outcome,
+            want
+        );
+        if let (Some(a), Some(b)) = (range, want_range) {
+            worst[0] = worst[0].max(libm::fabs(a.0 - b.0));
+            worst[1] = worst[1].max(libm::fabs(a.1 - b.1));
+        } else {
+            ensure!(
+                range.is_none() && want_range.is_none(),
+                "{=str} TCAS cycle scan {=u32}: range track in one type only",
+                S::NAME,
+                k
+            );
+        }
+        if ra_down.is_none() && matches!(outcome.1, Some((RaSense::Down, _))) {
+            ra_down = Some(k);
+        }
+        if coc.is_none() && outcome.2 {
+            coc = Some(k);
+        }
+        Ok(())
+    })?;
+    let (Some(ra), Some(coc)) = (ra_down, coc) else {
+        defmt::error!(
+            "{=str} TCAS cycle: no RA down or no clear of conflict",
+            S::NAME
+        );
+        return Err(Failure);
+    };
+    ensure!(
+        worst[0] <= RANGE_TRACK_TOLERANCE[0] && worst[1] <= RANGE_TRACK_TOLERANCE[1],
+        "{=str} TCAS cycle: |dr| {=f64} m, |dr/dt| {=f64} m/s beyond the tolerance",
+        S::NAME,
+        worst[0],
+        worst[1]
+    );
+    defmt::println!(
+        "       {=str} TCAS cycle: RA down at {=u32} s, clear of conflict at {=u32} s, as f64; max |dr| {=f64} m, |dr/dt| {=f64} m/s",
+        S::NAME,
+        ra,
+        coc,
+        worst[0],
+        worst[1]
+    );
+    Ok(())
+}
+
+/// Range (m) and range-rate (m/s) tolerance of [`tcas_cycle`].
+const RANGE_TRACK_TOLERANCE: [f64; 2] = [0.5, 0.05];
 
 fn altitude_missing_reports_and_bad_input() -> TestResult {
     altitude_gaps::<Native>()?;

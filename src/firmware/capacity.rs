@@ -12,10 +12,13 @@ pub mod mps2 {
     pub const QUEUE_LEN: usize = 128;
 }
 
-/// The micro:bit (16 KiB of RAM): the scenario has at most 20 measurements
-/// per scan (2 targets + Poisson clutter).
+/// The micro:bit (16 KiB of RAM): the TCAS scenario has at most 6 replies
+/// per scan (4 intruders, false replies), and a track there costs a
+/// range–azimuth filter and an intruder's TCAS state (range and altitude
+/// trackers, threat state) in Q32.32: 8 tracks and 12 replies per scan
+/// leave the stack its 25 % margin (scripts/stack.sh m0; docs/tcas.md).
 pub mod microbit {
     pub const TRACKS: usize = 8;
-    pub const MEASUREMENTS_PER_SCAN: usize = 24;
+    pub const MEASUREMENTS_PER_SCAN: usize = 12;
     pub const QUEUE_LEN: usize = 32;
 }

@@ -1,7 +1,14 @@
-//! The demo's scan-loop configuration: the tracker tuned for the 20 m-class
-//! Cartesian radar of the multi-target scenarios (`two-crossing`,
-//! `parallel-200m`: σ = 20 m per axis, T = 1 s, targets up to ~150 m/s,
-//! clutter over a 10 km × 10 km square), and the own aircraft at the origin.
+//! The demo's scan-loop configurations, the own aircraft at the origin:
+//!
+//! * [`demo_config`], the firmware's: TCAS surveillance (issue 10), the
+//!   range–azimuth tracker of [`default_polar`] (σ_R = 15.24 m, σ_B = 5°,
+//!   the 14 NM disc), altitude trackers for 100 ft and 25 ft reports, own
+//!   aircraft level at 8000 ft;
+//! * [`crossing_config`]: the αβ tracker tuned for the 20 m-class
+//!   Cartesian radar of the multi-target scenarios (`two-crossing`,
+//!   `parallel-200m`: σ = 20 m per axis, T = 1 s, targets up to ~150 m/s,
+//!   clutter over a 10 km × 10 km square), for the host tests of the scan
+//!   loop and (with a larger square) the soak.
 //!
 //! Depends on the library only: the firmware (demo and soak) includes it
 //! (`#[path]`), and so do the host tests, which run this exact
@@ -10,8 +17,10 @@
 #![allow(dead_code)]
 
 use abtrack::filter::altitude::{AltitudeQuantum, AltitudeTrackerConfig};
+use abtrack::filter::range_azimuth::RangeAzimuthNoise;
 use abtrack::scan::{ClockConfig, ScanConfig};
 use abtrack::tcas::OwnAircraft;
+use abtrack::track::defaults::default_polar;
 use abtrack::track::{Gate, TrackerConfig, Volume};
 use abtrack::{Gains, Scalar};
 
@@ -43,12 +52,31 @@ pub const INITIATION_MARGIN_M: f64 = 100.0;
 /// The surveillance square, ±5 km around the own aircraft.
 pub const SURVEILLANCE_HALF_WIDTH_M: f64 = 5000.0;
 
-/// The configuration in the number type `S`; `Err` names what was refused.
-pub fn demo_config<S: Scalar>() -> Result<ScanConfig<S, Gains<S>>, &'static str> {
+/// The firmware's configuration in the number type `S` (TCAS
+/// surveillance); `Err` names what was refused.
+pub fn demo_config<S: Scalar>() -> Result<ScanConfig<S, RangeAzimuthNoise<S>>, &'static str> {
+    let s = |v: f64| S::try_from_f64(v).map_err(|_| "a constant is not representable");
+    Ok(ScanConfig {
+        tracker: default_polar().map_err(|_| "tracker configuration refused")?,
+        own: OwnAircraft::over_sea_level(s(OWN_ALTITUDE_FT)?, S::ZERO),
+        altitude: altitude_config(AltitudeQuantum::ModeC)?,
+        altitude_25ft: altitude_config(AltitudeQuantum::ModeS25)?,
+        clock: ClockConfig::new(SCAN_PERIOD_MS).map_err(|_| "scan period refused")?,
+    })
+}
+
+fn altitude_config<S: Scalar>(
+    quantum: AltitudeQuantum,
+) -> Result<AltitudeTrackerConfig<S>, &'static str> {
+    AltitudeTrackerConfig::default_for(quantum).map_err(|_| "altitude tracker refused")
+}
+
+/// The Cartesian configuration of the `two-crossing` scenario (±5 km).
+pub fn crossing_config<S: Scalar>() -> Result<ScanConfig<S, Gains<S>>, &'static str> {
     config_for_square(SURVEILLANCE_HALF_WIDTH_M)
 }
 
-/// The demo's configuration with a surveillance square of ±`half_width_m`
+/// [`crossing_config`] with a surveillance square of ±`half_width_m`
 /// (the soak's sky is ±16 km).
 pub fn config_for_square<S: Scalar>(
     half_width_m: f64,
@@ -68,13 +96,12 @@ pub fn config_for_square<S: Scalar>(
         .and_then(|c| c.with_initiation_margin(margin))
         .map_err(|_| "tracker configuration refused")?
         .with_volume(volume);
-    let altitude = AltitudeTrackerConfig::default_for(AltitudeQuantum::ModeC)
-        .map_err(|_| "altitude tracker refused")?;
     let clock = ClockConfig::new(SCAN_PERIOD_MS).map_err(|_| "scan period refused")?;
     Ok(ScanConfig {
         tracker,
         own: OwnAircraft::over_sea_level(s(OWN_ALTITUDE_FT)?, S::ZERO),
-        altitude,
+        altitude: altitude_config(AltitudeQuantum::ModeC)?,
+        altitude_25ft: altitude_config(AltitudeQuantum::ModeS25)?,
         clock,
     })
 }

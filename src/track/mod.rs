@@ -110,6 +110,6 @@ pub use model::{
 };
 pub use numeric::{FixedVariance, TrackNumeric};
 pub use table::{
-    Association, DropReason, ScanError, ScanReport, ScanStage, TableStats, Track, TrackId,
-    TrackStatus, TrackTable,
+    AnyPair, Association, DropReason, PairRule, ScanError, ScanReport, ScanStage, TableStats,
+    Track, TrackId, TrackStatus, TrackTable,
 };

@@ -166,6 +166,29 @@ impl<S: TrackNumeric, F: TrackFilter<S>> Track<S, F> {
     }
 }
 
+/// Which pairs may associate in a scan ([`TrackTable::scan_with_rule`]),
+/// besides the gates: e.g. only replies with a track's Mode S address.
+pub trait PairRule {
+    /// Measurement `k` of this scan may update track `track`.
+    fn may_update(&self, track: TrackId, k: usize) -> bool;
+    /// The first point `p` (measurement `p` of the previous scan) and
+    /// measurement `k` of this scan may start a track together.
+    fn may_start(&self, p: usize, k: usize) -> bool;
+}
+
+/// Every pair allowed ([`TrackTable::scan`]).
+#[derive(Debug, Clone, Copy, Default)]
+pub struct AnyPair;
+
+impl PairRule for AnyPair {
+    fn may_update(&self, _: TrackId, _: usize) -> bool {
+        true
+    }
+    fn may_start(&self, _: usize, _: usize) -> bool {
+        true
+    }
+}
+
 /// Why a measurement was dropped unused.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 #[cfg_attr(feature = "defmt", derive(defmt::Format))]
@@ -576,6 +599,21 @@ impl<S: TrackNumeric, F: TrackFilter<S>, const N: usize, const M: usize> TrackTa
         now_ms: u32,
         measurements: &[Measurement<S>],
         codes: &mut [Association],
+        probe: impl FnMut(ScanStage),
+    ) -> Result<ScanReport, ScanError> {
+        self.scan_with_rule(config, now_ms, measurements, codes, &AnyPair, probe)
+    }
+
+    /// [`Self::scan_with_probe`] where only the pairs `rule` allows may
+    /// gate (a track and a measurement) or start a track (a first point of
+    /// the previous scan and a measurement): reply identity, issue 10.
+    pub fn scan_with_rule(
+        &mut self,
+        config: &TrackerConfig<S, F::Params>,
+        now_ms: u32,
+        measurements: &[Measurement<S>],
+        codes: &mut [Association],
+        rule: &impl PairRule,
         mut probe: impl FnMut(ScanStage),
     ) -> Result<ScanReport, ScanError> {
         let (interval_ms, dt) = self.interval_to(now_ms, config)?;
@@ -592,7 +630,7 @@ impl<S: TrackNumeric, F: TrackFilter<S>, const N: usize, const M: usize> TrackTa
         if let Some(dt) = &dt {
             self.index.build(&self.observations);
             probe(ScanStage::Index);
-            self.gate(config, dt, &mut report);
+            self.gate(config, dt, rule, &mut report);
             probe(ScanStage::Gate);
             self.clusters.link();
             probe(ScanStage::Cluster);
@@ -607,7 +645,7 @@ impl<S: TrackNumeric, F: TrackFilter<S>, const N: usize, const M: usize> TrackTa
             probe(ScanStage::Update);
             self.manage(config, now_ms, &mut report);
             probe(ScanStage::Manage);
-            self.initiate(config, dt, now_ms, &mut report);
+            self.initiate(config, dt, now_ms, rule, &mut report);
         }
         self.keep_pending(config, used, &mut report);
         self.write_codes(codes, measurements.len());
@@ -669,6 +707,7 @@ impl<S: TrackNumeric, F: TrackFilter<S>, const N: usize, const M: usize> TrackTa
         &mut self,
         config: &TrackerConfig<S, F::Params>,
         dt: &F::Step,
+        rule: &impl PairRule,
         report: &mut ScanReport,
     ) {
         let params = config.params();
@@ -691,6 +730,9 @@ impl<S: TrackNumeric, F: TrackFilter<S>, const N: usize, const M: usize> TrackTa
                 let Some(Some(o)) = observations.get(k) else {
                     return;
                 };
+                if !rule.may_update(track.id, k) {
+                    return;
+                }
                 let Some(cost) = region.cost(o) else { return };
                 increment(&mut report.gated_pairs);
                 clusters.add_pair(t, k, cost);
@@ -886,6 +928,7 @@ impl<S: TrackNumeric, F: TrackFilter<S>, const N: usize, const M: usize> TrackTa
         config: &TrackerConfig<S, F::Params>,
         dt: &F::Step,
         now_ms: u32,
+        rule: &impl PairRule,
         report: &mut ScanReport,
     ) {
         let interval = F::interval_of(dt).interval();
@@ -897,7 +940,7 @@ impl<S: TrackNumeric, F: TrackFilter<S>, const N: usize, const M: usize> TrackTa
             let Some(region) = GateRegion::circle(first.xy(), radius) else {
                 continue;
             };
-            let Some(k) = self.nearest_unused(config, &region) else {
+            let Some(k) = self.nearest_unused(config, &region, |k| rule.may_start(p, k)) else {
                 continue;
             };
             let Some(Some(second)) = self.observations.get(k).copied() else {
@@ -919,11 +962,12 @@ impl<S: TrackNumeric, F: TrackFilter<S>, const N: usize, const M: usize> TrackTa
         &self,
         config: &TrackerConfig<S, F::Params>,
         region: &GateRegion<S>,
+        allowed: impl Fn(usize) -> bool,
     ) -> Option<usize> {
         let mut best: Option<(u16, usize)> = None;
         let (observations, codes) = (&self.observations, &self.codes);
         self.index.for_each_in(observations, &region.bounds(), |k| {
-            if codes.get(k) != Some(&Association::OutsideGates) {
+            if codes.get(k) != Some(&Association::OutsideGates) || !allowed(k) {
                 return;
             }
             let Some(Some(o)) = observations.get(k) else {

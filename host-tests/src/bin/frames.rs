@@ -31,7 +31,9 @@ USAGE:
     frames --help
 
 encode writes one measurement frame per measurement, in time order:
-    --scenario NAME     a simulate scenario (two-crossing, tcas-converging, ...)
+    --scenario NAME     tcas-demo (the demo's default input: four TCAS intruders,
+                        Mode S and Mode C replies, false replies) or a
+                        simulate scenario (two-crossing, tcas-converging, ...)
     --seed N            its seed (default 0)
     --csv FILE          or measurements from a CSV file: header t,x,y (s, m) or
                         t,range,azimuth[,alt] (s, m, rad clockwise from +y, ft;
@@ -45,7 +47,7 @@ encode writes one measurement frame per measurement, in time order:
   largest number of measurements at one time) on stdout.
   Frames are numbered from 0 (the header's sequence number).
 
-encode --fault writes the demo's input (two-crossing, seed 1) with one fault
+encode --fault writes the demo's input (tcas-demo, seed 1) with one fault
 of the fault-injection tests: garbage, sync-garbage, crc-errors, truncated,
 oversize, flood (10 x --capacity extra measurements at t = 30 s; default 64),
 gap, backwards, far-clock, jump, out-of-range, clutter-storm, reversed,
@@ -160,7 +162,7 @@ fn parse(args: &[String]) -> Result<Command, String> {
             let source = match (scenario_name, csv, fault) {
                 (None, None, Some(fault)) => Source::Fault(fault, capacity),
                 (Some(name), None, None) => {
-                    if scenario::info(&name).is_none() {
+                    if name != frames::TCAS_DEMO && scenario::info(&name).is_none() {
                         return Err(format!(
                             "unknown scenario '{name}' (known: {})",
                             SCENARIO_NAMES.join(", ")

@@ -170,6 +170,8 @@ fn main() -> ! {
         sensor: 0,
         position: abtrack::wire::MeasuredPosition::Cartesian { x_cm: 0, y_cm: 0 },
         altitude_ft: None,
+        altitude_25ft: false,
+        address: None,
     }; SOAK_MAX_PER_SCAN];
     let mut hour = Figures::default();
     let mut day = Figures::default();
