@@ -6,6 +6,7 @@
 //! ([`run_like_the_firmware`]). Used by the `frames` binary and the
 //! scan-loop, fault-injection and determinism tests.
 
+use crate::csv_input::{self, AngleUnit, ReadOptions, Recording, TimeOrder};
 use crate::encounters::{demo_scenario, DemoReply};
 use crate::noise::{derive_seed, rng_from_seed, uniform_index};
 use crate::scenario::{self, Measurement};
@@ -23,6 +24,7 @@ use abtrack::wire::{
 use abtrack::Scalar;
 use std::collections::BTreeMap;
 use std::fmt::Write as _;
+use std::io::Read;
 
 /// Seconds to the millisecond clock of the frames (rounded; t ≥ 0).
 pub fn time_ms(t_s: f64) -> Result<u32, String> {
@@ -96,71 +98,52 @@ pub fn scenario_reports(
     run.measurements().map(|m| report(m, sensor)).collect()
 }
 
-/// Reads measurements from CSV text: header `t,x,y` (Cartesian, metres) or
-/// `t,range,azimuth` / `t,range,azimuth,alt` (metres, radians clockwise from
-/// +y, feet; an empty `alt` is a non-reporting target), the formats the
-/// `simulate` tool writes. Rows with the same `t` form one scan; `t` (s) must
-/// not decrease.
-pub fn reports_from_csv(text: &str, sensor: u8) -> Result<Vec<MeasurementReport>, String> {
-    let mut lines = text
-        .lines()
-        .enumerate()
-        .map(|(i, l)| (i + 1, l.trim_start_matches('\u{feff}').trim()))
-        .filter(|(_, l)| !l.is_empty());
-    let Some((_, header)) = lines.next() else {
-        return Err("empty file: expected a header t,x,y or t,range,azimuth[,alt]".into());
+/// Reads measurements from a CSV recording with [`csv_input::read_recording`]
+/// (header matched by name, extra columns ignored, errors naming the line and
+/// column): `t,x,y` (metres) or `t,range,azimuth` (metres; azimuth clockwise
+/// from +y in `azimuth_unit`), either with an optional `alt` (feet; empty =
+/// not reported), the formats the `simulate` tool writes. Rows sharing `t`
+/// form one scan ([`TimeOrder::Scans`]). The wire's Cartesian measurement is
+/// two-dimensional, so a `z` column is refused rather than dropped.
+pub fn reports_from_csv<R: Read>(
+    input: R,
+    sensor: u8,
+    azimuth_unit: AngleUnit,
+) -> Result<Vec<MeasurementReport>, String> {
+    let options = ReadOptions {
+        times: TimeOrder::Scans,
+        azimuth_unit,
     };
-    let columns: Vec<&str> = header.split(',').map(str::trim).collect();
-    let polar = match columns.as_slice() {
-        ["t", "x", "y"] => false,
-        ["t", "range", "azimuth"] | ["t", "range", "azimuth", "alt"] => true,
-        _ => {
-            return Err(format!(
-                "line 1: header '{header}': expected t,x,y or t,range,azimuth[,alt]"
-            ))
-        }
-    };
-    let mut out = Vec::new();
-    let mut last_t = f64::NEG_INFINITY;
-    for (line, row) in lines {
-        let fields: Vec<&str> = row.split(',').map(str::trim).collect();
-        if fields.len() != columns.len() {
-            return Err(format!(
-                "line {line}: {} fields, the header has {}",
-                fields.len(),
-                columns.len()
-            ));
-        }
-        let number = |i: usize| -> Result<f64, String> {
-            let f = fields.get(i).copied().unwrap_or("");
-            match f.parse::<f64>() {
-                Ok(v) if v.is_finite() => Ok(v),
-                _ => Err(format!(
-                    "line {line}, column {}: '{f}' is not a finite number",
-                    i + 1
-                )),
+    let at_line = |line: usize| move |e: String| format!("line {line}: {e}");
+    match csv_input::read_recording(input, options).map_err(|e| e.to_string())? {
+        Recording::Cartesian(m) => {
+            if m.dims > 2 {
+                return Err(
+                    "line 1: the header has a z column, but the wire's Cartesian \
+                            measurement is x, y only (remove the column)"
+                        .into(),
+                );
             }
-        };
-        let t = number(0)?;
-        if t < last_t {
-            return Err(format!(
-                "line {line}: t = {t} is before the previous row's {last_t}"
-            ));
+            m.rows
+                .iter()
+                .map(|r| {
+                    let [x, y, _] = r.z;
+                    let ms = time_ms(r.t).map_err(at_line(r.line))?;
+                    MeasurementReport::cartesian_from_metres(ms, sensor, x, y, r.alt)
+                        .map_err(|e| at_line(r.line)(e.to_string()))
+                })
+                .collect()
         }
-        last_t = t;
-        let ms = time_ms(t).map_err(|e| format!("line {line}: {e}"))?;
-        let converted = if polar {
-            let alt = match fields.get(3) {
-                Some(f) if !f.is_empty() => Some(number(3)?),
-                _ => None,
-            };
-            MeasurementReport::polar_from_metres(ms, sensor, number(1)?, number(2)?, alt)
-        } else {
-            MeasurementReport::cartesian_from_metres(ms, sensor, number(1)?, number(2)?, None)
-        };
-        out.push(converted.map_err(|e| format!("line {line}: {e}"))?);
+        Recording::RangeAzimuth(m) => m
+            .rows
+            .iter()
+            .map(|r| {
+                let ms = time_ms(r.t).map_err(at_line(r.line))?;
+                MeasurementReport::polar_from_metres(ms, sensor, r.range, r.azimuth, r.alt)
+                    .map_err(|e| at_line(r.line)(e.to_string()))
+            })
+            .collect(),
     }
-    Ok(out)
 }
 
 /// Line faults to inject while encoding.

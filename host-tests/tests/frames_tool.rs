@@ -2,12 +2,13 @@
 //! the summary of a report stream.
 
 use abtrack::wire::{EndOfInput, FrameKind, MeasuredPosition, MeasurementReport, Message};
+use abtrack_host_tests::csv_input::AngleUnit;
 use abtrack_host_tests::frames::{self, Fault, Faults};
 
 #[test]
 fn cartesian_csv_becomes_reports() {
     let csv = "t,x,y\n0,1.5,-2\n0, 100.004 ,3\n\n1.25,-4,5\n";
-    let r = frames::reports_from_csv(csv, 9).unwrap();
+    let r = frames::reports_from_csv(csv.as_bytes(), 9, AngleUnit::Radians).unwrap();
     assert_eq!(r.len(), 3);
     assert_eq!(
         r[1],
@@ -29,7 +30,7 @@ fn cartesian_csv_becomes_reports() {
 #[test]
 fn polar_csv_with_and_without_altitude() {
     let csv = "t,range,azimuth,alt\n2,1000,3.141592653589793,7500\n2,2000,0,\n";
-    let r = frames::reports_from_csv(csv, 1).unwrap();
+    let r = frames::reports_from_csv(csv.as_bytes(), 1, AngleUnit::Radians).unwrap();
     assert_eq!(
         r[0].position,
         MeasuredPosition::Polar {
@@ -43,13 +44,75 @@ fn polar_csv_with_and_without_altitude() {
 
 #[test]
 fn bad_csv_names_the_line() {
-    let err = |csv: &str| frames::reports_from_csv(csv, 1).unwrap_err();
+    let err =
+        |csv: &str| frames::reports_from_csv(csv.as_bytes(), 1, AngleUnit::Radians).unwrap_err();
     assert!(err("").contains("empty"));
     assert!(err("t,a,b\n").contains("line 1"));
     assert!(err("t,x,y\n0,1,2\n0,1\n").contains("line 3"));
     assert!(err("t,x,y\n0,1,nan\n").contains("line 2, column 3"));
     assert!(err("t,x,y\n2,1,1\n1,1,1\n").contains("line 3"));
-    assert!(err("t,x,y\n0,500000,0\n").contains("400 km"));
+    let far = err("t,x,y\n0,500000,0\n");
+    assert!(
+        far.contains("line 2, column 2")
+            && far.contains("outside the envelope -400000 ..= 400000 m"),
+        "{far}"
+    );
+}
+
+/// The shared CSV reader's conventions: columns matched by name in any
+/// order, extra columns ignored, an azimuth in degrees only when asked for,
+/// an altitude on Cartesian rows too; a z column (not on the wire) refused.
+#[test]
+fn csv_header_by_name_and_explicit_units() {
+    let read = |csv: &str, unit| frames::reports_from_csv(csv.as_bytes(), 1, unit);
+    let reordered = read(
+        "callsign,alt,y,t,x
+ABC,7500,3,0,100
+",
+        AngleUnit::Radians,
+    )
+    .unwrap();
+    assert_eq!(
+        reordered[0].position,
+        MeasuredPosition::Cartesian {
+            x_cm: 10_000,
+            y_cm: 300
+        }
+    );
+    assert_eq!(reordered[0].altitude_ft, Some(7500));
+    let degrees = read(
+        "t,range,azimuth
+0,1000,180
+",
+        AngleUnit::Degrees,
+    )
+    .unwrap();
+    assert_eq!(
+        degrees[0].position,
+        MeasuredPosition::Polar {
+            range_cm: 100_000,
+            azimuth_bam: 32768
+        }
+    );
+    let unasked = read(
+        "t,range,azimuth
+0,1000,180
+",
+        AngleUnit::Radians,
+    )
+    .unwrap_err();
+    assert!(
+        unasked.contains("line 2, column 3") && unasked.contains("--azimuth-unit deg"),
+        "{unasked}"
+    );
+    let z = read(
+        "t,x,y,z
+0,1,2,3
+",
+        AngleUnit::Radians,
+    )
+    .unwrap_err();
+    assert!(z.contains("z column"), "{z}");
 }
 
 #[test]

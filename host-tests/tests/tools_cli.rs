@@ -89,6 +89,9 @@ fn every_tool_has_help_without_issue_numbers() {
         env!("CARGO_BIN_EXE_simulate"),
         env!("CARGO_BIN_EXE_experiments"),
         env!("CARGO_BIN_EXE_precision"),
+        env!("CARGO_BIN_EXE_frames"),
+        env!("CARGO_BIN_EXE_bench_report"),
+        env!("CARGO_BIN_EXE_firmware-check"),
     ] {
         let out = Command::new(program).arg("--help").output().unwrap();
         assert!(out.status.success(), "{program}");
@@ -104,6 +107,9 @@ fn every_tool_has_help_without_issue_numbers() {
         (env!("CARGO_BIN_EXE_experiments"), "--only=nope"),
         (env!("CARGO_BIN_EXE_experiments"), "--runs=1"),
         (env!("CARGO_BIN_EXE_precision"), "--frobnicate"),
+        (env!("CARGO_BIN_EXE_frames"), "--frobnicate"),
+        (env!("CARGO_BIN_EXE_bench_report"), "--frobnicate"),
+        (env!("CARGO_BIN_EXE_firmware-check"), "--frobnicate"),
     ] {
         let out = Command::new(program).arg(arg).output().unwrap();
         assert_eq!(out.status.code(), Some(2), "{program} {arg}");

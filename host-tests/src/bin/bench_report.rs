@@ -3,18 +3,37 @@
 //! is a complete, well-formed run (`--check`, the test command's smoke run).
 //! `scripts/bench.sh` runs it; the format is in `abtrack_host_tests::bench_report`.
 
+use clap::Parser;
 use std::path::PathBuf;
 use std::process::ExitCode;
 
 use abtrack_host_tests::bench_report::{benchmarks_md, parse_log, results_csv, CoreRun, Report};
 
-const USAGE: &str = "\
-usage: bench_report --check LOG...
-       bench_report --qemu-version TEXT --rustc-version TEXT --csv FILE --markdown FILE LOG...
-
-Reads the benchmark firmware's output (one log per core, in the order the
-tables should show them). --check verifies each is a complete, well-formed
-run and prints what it holds; otherwise writes results.csv and BENCHMARKS.md.";
+/// The benchmark firmware's logs (one per core, in the order the tables
+/// should show them) to results.csv and BENCHMARKS.md, or with --check a
+/// check that each is a complete, well-formed run (printing what it holds).
+#[derive(Debug, Parser)]
+#[command(name = "bench_report")]
+struct Cli {
+    /// Only check the logs and print what each holds.
+    #[arg(long, conflicts_with_all = ["qemu_version", "rustc_version", "csv", "markdown"])]
+    check: bool,
+    /// The QEMU version the logs were measured with (for BENCHMARKS.md).
+    #[arg(long, value_name = "TEXT", required_unless_present = "check")]
+    qemu_version: Option<String>,
+    /// The rustc version the firmware was built with (for BENCHMARKS.md).
+    #[arg(long, value_name = "TEXT", required_unless_present = "check")]
+    rustc_version: Option<String>,
+    /// Where to write results.csv.
+    #[arg(long, value_name = "FILE", required_unless_present = "check")]
+    csv: Option<PathBuf>,
+    /// Where to write BENCHMARKS.md.
+    #[arg(long, value_name = "FILE", required_unless_present = "check")]
+    markdown: Option<PathBuf>,
+    /// The benchmark firmware's output, one log per core.
+    #[arg(value_name = "LOG", required = true)]
+    logs: Vec<PathBuf>,
+}
 
 enum Command {
     Check(Vec<PathBuf>),
@@ -27,48 +46,26 @@ enum Command {
     },
 }
 
-fn parse(args: &[String]) -> Result<Command, String> {
-    let mut check = false;
-    let (mut qemu, mut rustc, mut csv, mut markdown) = (None, None, None, None);
-    let mut logs = Vec::new();
-    let mut it = args.iter();
-    while let Some(a) = it.next() {
-        let mut value = |name: &str| {
-            it.next()
-                .cloned()
-                .ok_or_else(|| format!("{name} needs a value"))
-        };
-        match a.as_str() {
-            "--check" => check = true,
-            "--qemu-version" => qemu = Some(value(a)?),
-            "--rustc-version" => rustc = Some(value(a)?),
-            "--csv" => csv = Some(PathBuf::from(value(a)?)),
-            "--markdown" => markdown = Some(PathBuf::from(value(a)?)),
-            "-h" | "--help" => return Err(String::new()),
-            other if other.starts_with("--") => return Err(format!("unknown option {other}")),
-            log => logs.push(PathBuf::from(log)),
-        }
-    }
-    if logs.is_empty() {
-        return Err("no log given".into());
-    }
-    if check {
-        if qemu.is_some() || rustc.is_some() || csv.is_some() || markdown.is_some() {
-            return Err("--check takes logs only".into());
-        }
-        return Ok(Command::Check(logs));
-    }
-    match (qemu, rustc, csv, markdown) {
-        (Some(qemu_version), Some(rustc_version), Some(csv), Some(markdown)) => {
-            Ok(Command::Write {
+impl Cli {
+    fn into_command(self) -> Command {
+        match self {
+            Cli {
+                qemu_version: Some(qemu_version),
+                rustc_version: Some(rustc_version),
+                csv: Some(csv),
+                markdown: Some(markdown),
+                logs,
+                check: false,
+            } => Command::Write {
                 qemu_version,
                 rustc_version,
                 csv,
                 markdown,
                 logs,
-            })
+            },
+            // clap requires the four without --check and refuses them with it.
+            Cli { logs, .. } => Command::Check(logs),
         }
-        _ => Err("--qemu-version, --rustc-version, --csv and --markdown are all needed".into()),
     }
 }
 
@@ -121,22 +118,71 @@ fn run(command: Command) -> Result<(), String> {
 }
 
 fn main() -> ExitCode {
-    let args: Vec<String> = std::env::args().skip(1).collect();
-    match parse(&args) {
-        Ok(command) => match run(command) {
-            Ok(()) => ExitCode::SUCCESS,
-            Err(e) => {
-                eprintln!("bench_report: error: {e}");
-                ExitCode::from(1)
-            }
-        },
-        Err(e) if e.is_empty() => {
-            println!("{USAGE}");
-            ExitCode::SUCCESS
-        }
+    // Usage errors exit with status 2 (clap), failures with 1.
+    match run(Cli::parse().into_command()) {
+        Ok(()) => ExitCode::SUCCESS,
         Err(e) => {
-            eprintln!("bench_report: error: {e}\n{USAGE}");
-            ExitCode::from(2)
+            eprintln!("bench_report: error: {e}");
+            ExitCode::from(1)
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use clap::CommandFactory;
+
+    fn parse(args: &[&str]) -> Result<Command, clap::Error> {
+        Cli::try_parse_from(std::iter::once("bench_report").chain(args.iter().copied()))
+            .map(Cli::into_command)
+    }
+
+    #[test]
+    fn command_lines_of_scripts_parse() {
+        Cli::command().debug_assert();
+        assert!(matches!(
+            parse(&["--check", "a.log", "b.log"]),
+            Ok(Command::Check(logs)) if logs.len() == 2
+        ));
+        // scripts/bench.sh
+        let Ok(Command::Write {
+            qemu_version,
+            csv,
+            logs,
+            ..
+        }) = parse(&[
+            "--qemu-version",
+            "QEMU emulator version 8.2.2",
+            "--rustc-version",
+            "rustc 1.95.0",
+            "--csv",
+            "bench/results.csv",
+            "--markdown",
+            "bench/BENCHMARKS.md",
+            "m4f.log",
+            "m3.log",
+            "m0.log",
+        ])
+        else {
+            panic!("the write command line not parsed")
+        };
+        assert_eq!(qemu_version, "QEMU emulator version 8.2.2");
+        assert_eq!(csv, PathBuf::from("bench/results.csv"));
+        assert_eq!(logs.len(), 3);
+    }
+
+    #[test]
+    fn refuses_bad_command_lines() {
+        for args in [
+            &[][..],
+            &["--check"],
+            &["--check", "--csv", "x.csv", "a.log"],
+            &["--csv", "x.csv", "a.log"],
+            &["--frobnicate", "a.log"],
+        ] {
+            let e = parse(args).map(|_| ()).unwrap_err();
+            assert_eq!(e.exit_code(), 2, "{args:?}: {e}");
         }
     }
 }

@@ -1,28 +1,13 @@
-//! Checks on release firmware ELFs (scripts/test.sh, docs/safety.md).
-//!
-//! ```text
-//! firmware-check panics [--allow-crate <crate>=<reason>]... <elf>...
-//!     Every branch into the panic machinery (core::panicking::*, panic_fmt,
-//!     rust_begin_unwind) from any other function, with the source functions
-//!     the call was inlined from, each marked as ours (abtrack's library or
-//!     firmware) or a third-party crate's. Exit status 1 if any ELF has one
-//!     of ours, one of a third-party crate not allowed, or defines a panic
-//!     symbol with no call found, or if an allowed crate has no call in any
-//!     ELF given (a stale allowance). --allow-crate names a third-party
-//!     crate whose calls are reported but allowed, with the reason (printed
-//!     with them); our own code cannot be allowed.
-//! firmware-check layout --ram-origin <hex> <elf>...
-//!     The flip-link layout: the stack runs from below the static data down
-//!     to the bottom of RAM, nothing static below its top. Exit status 1 if
-//!     not.
-//! ```
-//!
-//! Uses llvm-objdump, llvm-symbolizer and llvm-nm (Debian's `llvm` package,
-//! installed by scripts/setup.sh, or rustup's `llvm-tools`).
+//! Checks on release firmware ELFs (scripts/test.sh, docs/safety.md;
+//! `firmware-check --help`). Uses llvm-objdump, llvm-symbolizer and llvm-nm
+//! (Debian's `llvm` package, installed by scripts/setup.sh, or rustup's
+//! `llvm-tools`).
 
 use std::collections::{BTreeMap, BTreeSet};
 use std::path::{Path, PathBuf};
 use std::process::ExitCode;
+
+use clap::{Parser, Subcommand};
 
 use abtrack_host_tests::firmware_elf::{
     branches, callers_of, check_layout, crate_of, find_llvm_tool, frame_kind, is_rust_library,
@@ -30,18 +15,56 @@ use abtrack_host_tests::firmware_elf::{
     run_tool, Allowance, Branch, FrameKind, Owner, SourceFrame,
 };
 
-const USAGE: &str = "usage: firmware-check panics [--allow-crate <crate>=<reason>]... <elf>...\n       firmware-check layout --ram-origin <hex address> <elf>...";
+/// Checks on release firmware ELFs. Uses llvm-objdump, llvm-symbolizer and
+/// llvm-nm (Debian's llvm package or rustup's llvm-tools).
+#[derive(Debug, Parser)]
+#[command(name = "firmware-check")]
+struct Cli {
+    #[command(subcommand)]
+    check: Check,
+}
+
+#[derive(Debug, Subcommand)]
+enum Check {
+    /// Every branch into the panic machinery from any other function.
+    #[command(
+        long_about = "Every branch into the panic machinery (core::panicking::*, \
+        panic_fmt, rust_begin_unwind) from any other function, with the source functions the \
+        call was inlined from, each marked as ours (abtrack's library or firmware) or a \
+        third-party crate's. Exit status 1 if any ELF has one of ours, one of a third-party \
+        crate not allowed, or defines a panic symbol with no call found, or if an allowed crate \
+        has no call in any ELF given (a stale allowance)."
+    )]
+    Panics {
+        /// A third-party crate whose calls are reported but allowed, with the
+        /// reason (printed with them); our own code cannot be allowed.
+        #[arg(long = "allow-crate", value_name = "CRATE=REASON")]
+        allowances: Vec<Allowance>,
+        #[arg(value_name = "ELF", required = true)]
+        elves: Vec<PathBuf>,
+    },
+    /// The flip-link layout: the stack runs from below the static data down
+    /// to the bottom of RAM, nothing static below its top. Exit status 1 if
+    /// not.
+    Layout {
+        /// The start of RAM, hexadecimal (0x optional).
+        #[arg(long, value_name = "HEX", value_parser = hex_address)]
+        ram_origin: u64,
+        #[arg(value_name = "ELF", required = true)]
+        elves: Vec<PathBuf>,
+    },
+}
+
+fn hex_address(text: &str) -> Result<u64, String> {
+    u64::from_str_radix(text.trim_start_matches("0x"), 16).map_err(|e| e.to_string())
+}
 
 fn main() -> ExitCode {
-    let args: Vec<String> = std::env::args().skip(1).collect();
-    let result = match args.first().map(String::as_str) {
-        Some("panics") => panics(&args[1..]),
-        Some("layout") => layout(&args[1..]),
-        Some("-h" | "--help") => {
-            println!("{USAGE}");
-            return ExitCode::SUCCESS;
-        }
-        _ => Err(USAGE.to_string()),
+    // Usage errors (clap) and failures to run the LLVM tools exit with
+    // status 2, a failed check with 1.
+    let result = match Cli::parse().check {
+        Check::Panics { allowances, elves } => panics(&allowances, &elves),
+        Check::Layout { ram_origin, elves } => layout(ram_origin, &elves),
     };
     match result {
         Ok(true) => ExitCode::SUCCESS,
@@ -61,23 +84,7 @@ fn tool(name: &str) -> Result<PathBuf, String> {
 
 /// True if no ELF has a panic path of ours or of a third-party crate not
 /// allowed, and every allowance was used.
-fn panics(args: &[String]) -> Result<bool, String> {
-    let mut allowances: Vec<Allowance> = Vec::new();
-    let mut elves: Vec<&String> = Vec::new();
-    let mut rest = args.iter();
-    while let Some(arg) = rest.next() {
-        if arg == "--allow-crate" {
-            let value = rest.next().ok_or_else(|| USAGE.to_string())?;
-            allowances.push(value.parse()?);
-        } else if let Some(value) = arg.strip_prefix("--allow-crate=") {
-            allowances.push(value.parse()?);
-        } else {
-            elves.push(arg);
-        }
-    }
-    if elves.is_empty() {
-        return Err(USAGE.to_string());
-    }
+fn panics(allowances: &[Allowance], elves: &[PathBuf]) -> Result<bool, String> {
     let objdump = tool("llvm-objdump")?;
     let symbolizer = tool("llvm-symbolizer")?;
     let nm = tool("llvm-nm")?;
@@ -283,15 +290,7 @@ fn outside_callers(branches: &[Branch], function: &str) -> Vec<String> {
 }
 
 /// True if every ELF has the protected layout.
-fn layout(args: &[String]) -> Result<bool, String> {
-    let [flag, origin, elves @ ..] = args else {
-        return Err(USAGE.to_string());
-    };
-    if flag != "--ram-origin" || elves.is_empty() {
-        return Err(USAGE.to_string());
-    }
-    let ram_origin = u64::from_str_radix(origin.trim_start_matches("0x"), 16)
-        .map_err(|e| format!("--ram-origin {origin}: {e}"))?;
+fn layout(ram_origin: u64, elves: &[PathBuf]) -> Result<bool, String> {
     let objdump = tool("llvm-objdump")?;
     let nm = tool("llvm-nm")?;
     let mut ok = true;
@@ -321,4 +320,65 @@ fn layout(args: &[String]) -> Result<bool, String> {
         }
     }
     Ok(ok)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use clap::CommandFactory;
+
+    fn parse(args: &[&str]) -> Result<Check, clap::Error> {
+        Cli::try_parse_from(std::iter::once("firmware-check").chain(args.iter().copied()))
+            .map(|c| c.check)
+    }
+
+    #[test]
+    fn command_lines_of_scripts_parse() {
+        Cli::command().debug_assert();
+        // scripts/test.sh: the allowance as one `--allow-crate=...` word.
+        let Ok(Check::Panics { allowances, elves }) = parse(&[
+            "panics",
+            "--allow-crate=minikalman=the benchmark's Kalman anchor",
+            "a.elf",
+            "b.elf",
+        ]) else {
+            panic!("panics not parsed")
+        };
+        assert_eq!(allowances.len(), 1);
+        assert_eq!(allowances[0].krate, "minikalman");
+        assert_eq!(elves.len(), 2);
+        let Ok(Check::Panics { allowances, .. }) = parse(&[
+            "panics",
+            "--allow-crate",
+            "x=why",
+            "--allow-crate",
+            "y=why",
+            "a.elf",
+        ]) else {
+            panic!("two allowances not parsed")
+        };
+        assert_eq!(allowances.len(), 2);
+        let Ok(Check::Layout { ram_origin, elves }) =
+            parse(&["layout", "--ram-origin", "0x20000000", "a.elf"])
+        else {
+            panic!("layout not parsed")
+        };
+        assert_eq!((ram_origin, elves.len()), (0x2000_0000, 1));
+    }
+
+    #[test]
+    fn refuses_bad_command_lines() {
+        for args in [
+            &[][..],
+            &["panics"],
+            &["panics", "--allow-crate", "no-reason", "a.elf"],
+            &["layout", "a.elf"],
+            &["layout", "--ram-origin", "0xzz", "a.elf"],
+            &["layout", "--ram-origin", "0x20000000"],
+            &["frobnicate"],
+        ] {
+            let e = parse(args).map(|_| ()).unwrap_err();
+            assert_eq!(e.exit_code(), 2, "{args:?}: {e}");
+        }
+    }
 }

@@ -1,214 +1,151 @@
 //! `frames`: writes measurement wire frames for the demo firmware's UART, and
-//! decodes the report frames it sends back.
-//!
-//! ```text
-//! frames encode (--scenario NAME [--seed N] | --csv FILE) [--sensor ID]
-//!               [--corrupt-every K] [--garbage-every K] --out FILE
-//! frames encode --fault KIND [--capacity M] [--fault-seed N] --out FILE
-//! frames decode FILE [--messages | --scans-csv] [--check]
-//! frames layout
-//! frames --help
-//! ```
-//!
-//! The frame format is documented in `abtrack::wire`.
+//! decodes the report frames it sends back (`frames --help`). The frame
+//! format is documented in `abtrack::wire`.
 
 use abtrack::wire::ScanCounts;
+use abtrack_host_tests::csv_input::AngleUnit;
 use abtrack_host_tests::frames::{self, Fault, Faults};
-use abtrack_host_tests::scenario::{self, SCENARIO_NAMES};
+use abtrack_host_tests::scenario::SCENARIO_NAMES;
+use clap::builder::{PossibleValuesParser, TypedValueParser};
+use clap::{Args, Parser, Subcommand};
 use std::io::Write;
 use std::path::PathBuf;
 use std::process::ExitCode;
 
-const USAGE: &str = "\
-frames: abtrack wire frames for the demo firmware's UART (format: abtrack::wire)
-
-USAGE:
-    frames encode (--scenario NAME [--seed N] | --csv FILE) [--sensor ID]
-                  [--corrupt-every K] [--garbage-every K] --out FILE
-    frames encode --fault KIND [--capacity M] [--fault-seed N] --out FILE
-    frames decode FILE [--messages | --scans-csv] [--check]
-    frames layout
-    frames --help
-
-encode writes one measurement frame per measurement, in time order:
-    --scenario NAME     tcas-demo (the demo's default input: four TCAS intruders,
-                        Mode S and Mode C replies, false replies) or a
-                        simulate scenario (two-crossing, tcas-converging, ...)
-    --seed N            its seed (default 0)
-    --csv FILE          or measurements from a CSV file: header t,x,y (s, m) or
-                        t,range,azimuth[,alt] (s, m, rad clockwise from +y, ft;
-                        empty alt = not reported); rows sharing t are one scan
-    --sensor ID         sensor id in the frames, 0-255 (default 1)
-    --corrupt-every K   flip one payload bit of every K-th frame (a CRC error)
-    --garbage-every K   put 1-16 random bytes before every K-th frame
-    --fault-seed N      seed of the injected faults (default 0)
-    --out FILE          output file
-  and prints what it wrote (frames, corrupted frames, garbage bytes, the
-  largest number of measurements at one time) on stdout.
-  Frames are numbered from 0 (the header's sequence number).
-
-encode --fault writes the demo's input (tcas-demo, seed 1) with one fault
-of the fault-injection tests: garbage, sync-garbage, crc-errors, truncated,
-oversize, flood (10 x --capacity extra measurements at t = 30 s; default 64),
-gap, backwards, far-clock, jump, out-of-range, clutter-storm, reversed,
-garbage-only (see docs/firmware-runtime.md).
-
-layout prints the frame format (every layout and counter list, from the
-code's own tables) as Markdown: docs/firmware-runtime.md includes it.
-
-decode reads a byte stream (e.g. the demo's UART output) and prints a
-summary of the frames in it: scans, tracks, advisories, health counters;
---messages prints every message, one per line, instead; --scans-csv prints the
-scan summaries as CSV (time_s, interval_ms, advisory, then every count). With --check the exit
-status is 1 if the stream is not clean frames only (a CRC error, a skipped
-or left-over byte, a gap in the sequence numbers): a firmware's report
-output must be.
-";
-
-#[derive(Debug, PartialEq)]
-enum Source {
-    Scenario(String, u64),
-    Csv(PathBuf),
-    Fault(Fault, usize),
+/// abtrack wire frames for the demo firmware's UART (format: abtrack::wire).
+#[derive(Debug, Parser)]
+#[command(name = "frames", arg_required_else_help = true)]
+struct Cli {
+    #[command(subcommand)]
+    command: Command,
 }
 
-#[derive(Debug, PartialEq, Clone, Copy)]
-enum Output {
-    Summary,
-    Messages,
-    Csv,
-}
-
-#[derive(Debug, PartialEq)]
+#[derive(Debug, Subcommand)]
 enum Command {
-    Help,
+    /// Write one measurement frame per measurement, in time order, and print
+    /// what was written.
+    #[command(
+        long_about = "Write one measurement frame per measurement, in time order \
+        (frames numbered from 0 in the header's sequence number, then an end-of-input \
+        frame), and print what was written on stdout: frames, corrupted frames, garbage \
+        bytes, the largest number of measurements at one time."
+    )]
+    Encode(EncodeArgs),
+    /// Read a byte stream (e.g. the demo's UART output) and print a summary
+    /// of the frames in it: scans, tracks, advisories, health counters.
+    Decode(DecodeArgs),
+    /// Print the frame format (every layout and counter list, from the code's
+    /// own tables) as Markdown; docs/firmware-runtime.md includes it.
     Layout,
-    Encode {
-        source: Source,
-        sensor: u8,
-        faults: Faults,
-        out: PathBuf,
-    },
-    Decode {
-        file: PathBuf,
-        output: Output,
-        check: bool,
-    },
 }
 
-fn parse_number<T: std::str::FromStr>(name: &str, v: &str) -> Result<T, String> {
-    v.parse::<T>()
-        .map_err(|_| format!("{name}: '{v}' is not a valid number"))
+/// One source of measurements: `--scenario`, `--csv` or `--fault`.
+#[derive(Debug, Args)]
+#[group(required = true, multiple = false)]
+struct Source {
+    /// tcas-demo (the demo's default input: four TCAS intruders, Mode S and
+    /// Mode C replies, false replies) or a simulate scenario.
+    #[arg(long, value_name = "NAME", value_parser = scenario_name())]
+    scenario: Option<String>,
+    /// Measurements from a CSV file, columns matched by name (others
+    /// ignored): t,x,y (s, m) or t,range,azimuth (s, m, clockwise from +y),
+    /// either with an optional alt (ft; empty = not reported); rows sharing
+    /// t are one scan.
+    #[arg(long, value_name = "FILE")]
+    csv: Option<PathBuf>,
+    /// The demo's input (tcas-demo, seed 1) with one fault of the
+    /// fault-injection tests (docs/firmware-runtime.md); flood adds 10 x
+    /// --capacity extra measurements at t = 30 s.
+    #[arg(long, value_name = "KIND", value_parser = fault_kind())]
+    fault: Option<Fault>,
 }
 
-fn parse(args: &[String]) -> Result<Command, String> {
-    let Some(sub) = args.first() else {
-        return Err("missing command: encode or decode (try --help)".into());
-    };
-    if sub == "-h" || sub == "--help" {
-        return Ok(Command::Help);
-    }
-    if sub == "layout" {
-        return match args.get(1) {
-            None => Ok(Command::Layout),
-            Some(a) => Err(format!("layout takes no argument ('{a}')")),
-        };
-    }
-    let mut scenario_name = None;
-    let mut seed = 0u64;
-    let mut csv = None;
-    let mut sensor = 1u8;
-    let mut faults = Faults::default();
-    let mut out = None;
-    let mut file = None;
-    let mut output = Output::Summary;
-    let mut check = false;
-    let mut fault = None;
-    let mut capacity = 64usize;
-    let mut it = args.iter().skip(1);
-    while let Some(arg) = it.next() {
-        let mut value = |name: &str| -> Result<String, String> {
-            it.next()
-                .cloned()
-                .ok_or_else(|| format!("{name} needs a value"))
-        };
-        match arg.as_str() {
-            "-h" | "--help" => return Ok(Command::Help),
-            "--scenario" => scenario_name = Some(value(arg)?),
-            "--seed" => seed = parse_number(arg, &value(arg)?)?,
-            "--csv" => csv = Some(PathBuf::from(value(arg)?)),
-            "--sensor" => sensor = parse_number(arg, &value(arg)?)?,
-            "--corrupt-every" => faults.corrupt_every = Some(parse_number(arg, &value(arg)?)?),
-            "--garbage-every" => faults.garbage_every = Some(parse_number(arg, &value(arg)?)?),
-            "--fault-seed" => faults.seed = parse_number(arg, &value(arg)?)?,
-            "--out" => out = Some(PathBuf::from(value(arg)?)),
-            "--messages" => output = Output::Messages,
-            "--scans-csv" => output = Output::Csv,
-            "--fault" => {
-                let name = value(arg)?;
-                fault = Some(Fault::from_name(&name).ok_or_else(|| {
-                    let known: Vec<&str> = Fault::ALL.iter().map(|f| f.name()).collect();
-                    format!("unknown fault '{name}' (known: {})", known.join(", "))
-                })?);
-            }
-            "--capacity" => capacity = parse_number(arg, &value(arg)?)?,
-            "--check" => check = true,
-            other if !other.starts_with('-') && file.is_none() => file = Some(PathBuf::from(other)),
-            other => return Err(format!("unknown argument '{other}' (try --help)")),
-        }
-    }
-    match sub.as_str() {
-        "encode" => {
-            let source = match (scenario_name, csv, fault) {
-                (None, None, Some(fault)) => Source::Fault(fault, capacity),
-                (Some(name), None, None) => {
-                    if name != frames::TCAS_DEMO && scenario::info(&name).is_none() {
-                        return Err(format!(
-                            "unknown scenario '{name}' (known: {})",
-                            SCENARIO_NAMES.join(", ")
-                        ));
-                    }
-                    Source::Scenario(name, seed)
-                }
-                (None, Some(path), None) => Source::Csv(path),
-                _ => {
-                    return Err(
-                        "encode needs one of --scenario NAME, --csv FILE or --fault KIND".into(),
-                    )
-                }
-            };
-            let out = out.ok_or("encode needs --out FILE")?;
-            Ok(Command::Encode {
-                source,
-                sensor,
-                faults,
-                out,
-            })
-        }
-        "decode" => Ok(Command::Decode {
-            file: file.ok_or("decode needs a FILE")?,
-            output,
-            check,
-        }),
-        other => Err(format!(
-            "unknown command '{other}': encode or decode (try --help)"
-        )),
-    }
+#[derive(Debug, Args)]
+struct EncodeArgs {
+    #[command(flatten)]
+    source: Source,
+    /// The scenario's seed.
+    #[arg(long, value_name = "N", default_value_t = 0)]
+    seed: u64,
+    /// The unit of the CSV file's azimuth column (default: rad); never
+    /// guessed.
+    #[arg(long, value_enum, value_name = "UNIT", conflicts_with_all = ["scenario", "fault"])]
+    azimuth_unit: Option<AngleUnit>,
+    /// Sensor id in the frames.
+    #[arg(long, value_name = "ID", default_value_t = 1)]
+    sensor: u8,
+    /// Flip one payload bit of every K-th frame (a CRC error).
+    #[arg(long, value_name = "K")]
+    corrupt_every: Option<usize>,
+    /// Put 1-16 random bytes before every K-th frame.
+    #[arg(long, value_name = "K")]
+    garbage_every: Option<usize>,
+    /// Seed of the injected faults.
+    #[arg(long, value_name = "N", default_value_t = 0)]
+    fault_seed: u64,
+    /// The track capacity a --fault flood overwhelms.
+    #[arg(long, value_name = "M", default_value_t = 64)]
+    capacity: usize,
+    /// Output file.
+    #[arg(long, value_name = "FILE")]
+    out: PathBuf,
+}
+
+#[derive(Debug, Args)]
+struct DecodeArgs {
+    /// The byte stream.
+    file: PathBuf,
+    /// Print every message, one per line, instead of the summary.
+    #[arg(long, conflicts_with = "scans_csv")]
+    messages: bool,
+    /// Print the scan summaries as CSV (time_s, interval_ms, advisory, then
+    /// every count) instead of the summary.
+    #[arg(long)]
+    scans_csv: bool,
+    /// Exit status 1 if the stream is not clean frames only (a CRC error, a
+    /// skipped or left-over byte, a gap in the sequence numbers): a
+    /// firmware's report output must be.
+    #[arg(long)]
+    check: bool,
+}
+
+/// The scenario names: the demo's and the simulate tool's.
+fn scenario_name() -> PossibleValuesParser {
+    PossibleValuesParser::new(
+        std::iter::once(frames::TCAS_DEMO).chain(SCENARIO_NAMES.iter().copied()),
+    )
+}
+
+/// The fault names, parsed into a [`Fault`].
+fn fault_kind() -> impl TypedValueParser<Value = Fault> {
+    PossibleValuesParser::new(Fault::ALL.map(Fault::name))
+        .map(|name| Fault::from_name(&name).expect("a possible value is a fault name"))
 }
 
 fn run(command: Command) -> Result<(), String> {
     match command {
-        Command::Help => print!("{USAGE}"),
         Command::Layout => print!("{}", frames::layout_markdown()),
-        Command::Encode {
+        Command::Encode(EncodeArgs {
             source,
+            seed,
+            azimuth_unit,
             sensor,
-            faults,
+            corrupt_every,
+            garbage_every,
+            fault_seed,
+            capacity,
             out,
-        } => {
-            let (encoded, what) = match &source {
-                Source::Fault(fault, capacity) => {
-                    let stream = frames::fault_stream(*fault, *capacity, faults.seed)?;
+        }) => {
+            let faults = Faults {
+                corrupt_every,
+                garbage_every,
+                seed: fault_seed,
+            };
+            let (encoded, what) = match source {
+                Source {
+                    fault: Some(fault), ..
+                } => {
+                    let stream = frames::fault_stream(fault, capacity, faults.seed)?;
                     let encoded = frames::Encoded {
                         frames: stream.frames,
                         corrupted: stream.damaged,
@@ -218,20 +155,32 @@ fn run(command: Command) -> Result<(), String> {
                     };
                     (
                         encoded,
-                        format!("two-crossing seed 1 with fault {}", fault.name()),
+                        format!(
+                            "{} seed {} with fault {}",
+                            frames::TCAS_DEMO,
+                            frames::FAULT_INPUT_SEED,
+                            fault.name()
+                        ),
                     )
                 }
-                Source::Scenario(name, seed) => (
-                    frames::encode(&frames::scenario_reports(name, *seed, sensor)?, faults),
+                Source {
+                    scenario: Some(name),
+                    ..
+                } => (
+                    frames::encode(&frames::scenario_reports(&name, seed, sensor)?, faults),
                     format!("{name} seed {seed}"),
                 ),
-                Source::Csv(path) => {
-                    let text = std::fs::read_to_string(path)
+                Source {
+                    csv: Some(path), ..
+                } => {
+                    let file = std::fs::File::open(&path)
                         .map_err(|e| format!("cannot read {}: {e}", path.display()))?;
-                    let reports = frames::reports_from_csv(&text, sensor)
-                        .map_err(|e| format!("{}: {e}", path.display()))?;
+                    let reports =
+                        frames::reports_from_csv(file, sensor, azimuth_unit.unwrap_or_default())
+                            .map_err(|e| format!("{}: {e}", path.display()))?;
                     (frames::encode(&reports, faults), path.display().to_string())
                 }
+                Source { .. } => unreachable!("clap requires one source"),
             };
             if let Some(dir) = out.parent().filter(|d| !d.as_os_str().is_empty()) {
                 std::fs::create_dir_all(dir)
@@ -249,21 +198,24 @@ fn run(command: Command) -> Result<(), String> {
                 out.display()
             );
         }
-        Command::Decode {
+        Command::Decode(DecodeArgs {
             file,
-            output,
+            messages,
+            scans_csv,
             check,
-        } => {
+        }) => {
             let bytes =
                 std::fs::read(&file).map_err(|e| format!("cannot read {}: {e}", file.display()))?;
-            let text = match output {
-                Output::Messages => frames::decode_all(&bytes)
+            let text = if messages {
+                frames::decode_all(&bytes)
                     .0
                     .iter()
                     .map(|m| frames::message_line(m) + "\n")
-                    .collect(),
-                Output::Csv => scans_csv(&frames::summarise(&bytes).scans),
-                Output::Summary => frames::summarise(&bytes).to_text(),
+                    .collect()
+            } else if scans_csv {
+                scans_table(&frames::summarise(&bytes).scans)
+            } else {
+                frames::summarise(&bytes).to_text()
             };
             // A closed pipe (`| head`) ends the output quietly.
             let mut out = std::io::stdout().lock();
@@ -296,7 +248,7 @@ fn run(command: Command) -> Result<(), String> {
 
 /// The scan summaries as CSV: one column per count, named as in
 /// [`ScanCounts::NAMES`].
-fn scans_csv(scans: &[abtrack::wire::ScanSummary]) -> String {
+fn scans_table(scans: &[abtrack::wire::ScanSummary]) -> String {
     let mut out = format!(
         "time_s,interval_ms,advisory,{}\n",
         ScanCounts::NAMES.join(",")
@@ -315,18 +267,12 @@ fn scans_csv(scans: &[abtrack::wire::ScanSummary]) -> String {
 }
 
 fn main() -> ExitCode {
-    let args: Vec<String> = std::env::args().skip(1).collect();
-    match parse(&args) {
-        Ok(command) => match run(command) {
-            Ok(()) => ExitCode::SUCCESS,
-            Err(e) => {
-                eprintln!("frames: error: {e}");
-                ExitCode::from(1)
-            }
-        },
+    // Usage errors exit with status 2 (clap), failures with 1.
+    match run(Cli::parse().command) {
+        Ok(()) => ExitCode::SUCCESS,
         Err(e) => {
             eprintln!("frames: error: {e}");
-            ExitCode::from(2)
+            ExitCode::from(1)
         }
     }
 }
@@ -334,67 +280,115 @@ fn main() -> ExitCode {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use clap::CommandFactory;
 
-    fn args(s: &[&str]) -> Vec<String> {
-        s.iter().map(|a| a.to_string()).collect()
+    fn parse(args: &[&str]) -> Result<Command, clap::Error> {
+        Cli::try_parse_from(std::iter::once("frames").chain(args.iter().copied()))
+            .map(|c| c.command)
+    }
+
+    #[test]
+    fn command_line_is_consistent() {
+        Cli::command().debug_assert();
     }
 
     #[test]
     fn parses_encode_and_decode() {
-        assert_eq!(
-            parse(&args(&[
-                "encode",
-                "--scenario",
-                "two-crossing",
-                "--seed",
-                "3",
-                "--corrupt-every",
-                "40",
-                "--out",
-                "x.bin"
-            ])),
-            Ok(Command::Encode {
-                source: Source::Scenario("two-crossing".into(), 3),
-                sensor: 1,
-                faults: Faults {
-                    corrupt_every: Some(40),
-                    garbage_every: None,
-                    seed: 0
-                },
-                out: PathBuf::from("x.bin"),
-            })
-        );
-        assert_eq!(
-            parse(&args(&["decode", "r.bin", "--messages"])),
-            Ok(Command::Decode {
-                file: PathBuf::from("r.bin"),
-                output: Output::Messages,
-                check: false
-            })
-        );
+        let Ok(Command::Encode(e)) = parse(&[
+            "encode",
+            "--scenario",
+            "two-crossing",
+            "--seed",
+            "3",
+            "--corrupt-every",
+            "40",
+            "--out",
+            "x.bin",
+        ]) else {
+            panic!("encode not parsed")
+        };
+        assert_eq!(e.source.scenario.as_deref(), Some("two-crossing"));
+        assert_eq!((e.seed, e.sensor, e.capacity, e.fault_seed), (3, 1, 64, 0));
+        assert_eq!((e.corrupt_every, e.garbage_every), (Some(40), None));
+        assert_eq!(e.out, PathBuf::from("x.bin"));
+        let Ok(Command::Encode(e)) = parse(&[
+            "encode",
+            "--csv",
+            "m.csv",
+            "--azimuth-unit",
+            "deg",
+            "--out",
+            "x.bin",
+        ]) else {
+            panic!("encode --csv not parsed")
+        };
+        assert_eq!(e.source.csv, Some(PathBuf::from("m.csv")));
+        assert_eq!(e.azimuth_unit, Some(AngleUnit::Degrees));
+        let Ok(Command::Encode(e)) = parse(&[
+            "encode",
+            "--fault",
+            "flood",
+            "--capacity",
+            "24",
+            "--fault-seed",
+            "5",
+            "--out",
+            "x.bin",
+        ]) else {
+            panic!("encode --fault not parsed")
+        };
+        assert_eq!(e.source.fault, Some(Fault::Flood));
+        assert_eq!((e.capacity, e.fault_seed), (24, 5));
+        let Ok(Command::Decode(d)) = parse(&["decode", "--check", "r.bin", "--messages"]) else {
+            panic!("decode not parsed")
+        };
+        assert_eq!(d.file, PathBuf::from("r.bin"));
+        assert!(d.messages && d.check && !d.scans_csv);
+        assert!(matches!(parse(&["layout"]), Ok(Command::Layout)));
     }
 
     #[test]
     fn refuses_bad_command_lines() {
-        assert!(parse(&args(&[])).is_err());
-        assert!(parse(&args(&["encode", "--out", "x"])).is_err());
-        assert!(parse(&args(&["encode", "--scenario", "nope", "--out", "x"])).is_err());
-        assert!(parse(&args(&["encode", "--scenario", "two-crossing"])).is_err());
-        assert!(parse(&args(&["encode", "--sensor", "300"])).is_err());
-        assert!(parse(&args(&["decode"])).is_err());
-        assert!(parse(&args(&["frobnicate"])).is_err());
-        assert_eq!(parse(&args(&["layout"])), Ok(Command::Layout));
-        assert!(parse(&args(&["layout", "x"])).is_err());
-        assert!(parse(&args(&["encode", "--fault", "nope", "--out", "x"])).is_err());
-        assert!(parse(&args(&[
-            "encode",
-            "--fault",
-            "gap",
-            "--scenario",
-            "two-crossing",
-            "--out",
-            "x"
-        ]))
-        .is_err());
+        for args in [
+            &[][..],
+            &["encode", "--out", "x"],
+            &["encode", "--scenario", "nope", "--out", "x"],
+            &["encode", "--scenario", "two-crossing"],
+            &[
+                "encode",
+                "--scenario",
+                "two-crossing",
+                "--sensor",
+                "300",
+                "--out",
+                "x",
+            ],
+            &[
+                "encode",
+                "--scenario",
+                "two-crossing",
+                "--azimuth-unit",
+                "deg",
+                "--out",
+                "x",
+            ],
+            &["decode"],
+            &["decode", "r.bin", "--messages", "--scans-csv"],
+            &["frobnicate"],
+            &["layout", "x"],
+            &["encode", "--fault", "nope", "--out", "x"],
+            &[
+                "encode",
+                "--fault",
+                "gap",
+                "--scenario",
+                "two-crossing",
+                "--out",
+                "x",
+            ],
+        ] {
+            let e = parse(args).map(|_| ()).unwrap_err();
+            assert_eq!(e.exit_code(), 2, "{args:?}: {e}");
+        }
     }
 }
