@@ -87,9 +87,10 @@
 //!
 //! Positions are relative to the own aircraft (the origin), as a TCAS
 //! receiver measures them; so are the tracked velocities. Each confirmed
-//! track is assessed against [`ScanConfig::own`] as an [`Intruder`] with its
-//! tracked position and velocity and, if it reported altitude, the estimate
-//! of its altitude tracker ([`crate::filter::altitude`]); a track that never
+//! track is assessed against [`ScanConfig::own`] as an
+//! [`Intruder`](crate::tcas::Intruder) with its tracked position and
+//! velocity and, if it reported altitude, the estimate of its altitude
+//! tracker ([`crate::filter::altitude`]); a track that never
 //! reported altitude is a non-altitude-reporting intruder (traffic
 //! advisories at most).
 
@@ -142,6 +143,7 @@ impl<const Q: usize> Default for MeasurementQueue<Q> {
 }
 
 impl<const Q: usize> MeasurementQueue<Q> {
+    /// An empty queue (a `const fn`, for a `static`).
     pub const fn new() -> Self {
         MeasurementQueue {
             slots: [None; Q],
@@ -160,14 +162,17 @@ impl<const Q: usize> MeasurementQueue<Q> {
         }
     }
 
+    /// Measurements queued.
     pub fn len(&self) -> usize {
         self.len
     }
 
+    /// No measurement queued.
     pub fn is_empty(&self) -> bool {
         self.len == 0
     }
 
+    /// The slot count `Q`.
     pub const fn capacity(&self) -> usize {
         Q
     }
@@ -254,6 +259,8 @@ impl<const Q: usize> Default for Intake<Q> {
 }
 
 impl<const Q: usize> Intake<Q> {
+    /// An empty intake: a fresh decoder, an empty queue, zero counters (a
+    /// `const fn`, for a `static`).
     pub const fn new() -> Self {
         Intake {
             decoder: Decoder::new(),
@@ -337,10 +344,12 @@ impl<const Q: usize> Intake<Q> {
         bump(&mut self.counters.rx_overruns);
     }
 
+    /// The frame decoder, for its statistics ([`Decoder`]).
     pub fn decoder(&self) -> &Decoder {
         &self.decoder
     }
 
+    /// The intake's own counts (queue full, UART overruns).
     pub fn counters(&self) -> &IntakeCounters {
         &self.counters
     }
@@ -417,12 +426,17 @@ impl ClockConfig {
         })
     }
 
+    /// The scan period, in ms.
     pub const fn period_ms(&self) -> u32 {
         self.period_ms
     }
+    /// The late window, in ms: a measurement from a past scan up to this far
+    /// back is counted late; older, out of the window.
     pub const fn late_window_ms(&self) -> u32 {
         self.late_window_ms
     }
+    /// The jump bound, in ms: a measurement up to this far ahead starts a later
+    /// scan; further ahead, it is out of the window (a clock jump candidate).
     pub const fn jump_ms(&self) -> u32 {
         self.jump_ms
     }
@@ -433,6 +447,7 @@ impl ClockConfig {
 /// built by a `const fn` in a `static`.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct ScanConfig<S: Scalar, P> {
+    /// The track table's configuration (gates, lifecycle, region).
     pub tracker: TrackerConfig<S, P>,
     /// The own aircraft, for the threat assessment.
     pub own: OwnAircraft<S>,
@@ -474,6 +489,7 @@ pub struct TickReport {
 /// miss-distance cross-check (He et al.'s range–azimuth filter; none for a
 /// Cartesian track).
 pub trait BearingTrack<S: Scalar> {
+    /// The range–azimuth filter of this track, if it has one.
     fn bearing_track(&self) -> Option<&RangeAzimuthFilter<S>>;
 }
 
@@ -676,8 +692,9 @@ fn scaled_i32<S: Scalar>(v: S, scale: f64) -> i32 {
 /// Memory: the [`TrackTable`] (see [`crate::track`] for its size), plus per
 /// measurement slot one `Measurement<S>`, one `Option<S>`, a priority and an
 /// [`Association`], plus per track slot a gate region and an `Option` of an
-/// [`AltitudeTracker<S>`]. `host-tests/tests/scan_loop.rs` prints the sizes;
-/// the firmware prints its own at start-up.
+/// [`AltitudeTracker<S>`](crate::filter::altitude::AltitudeTracker).
+/// `host-tests/tests/scan_loop.rs` prints the sizes; the firmware prints
+/// its own at start-up.
 #[derive(Debug)]
 pub struct ScanLoop<S: Scalar, F, const N: usize, const M: usize> {
     table: TrackTable<S, F, N, M>,
@@ -721,6 +738,8 @@ impl<S: Scalar, F: TrackFilter<S> + BearingTrack<S>, const N: usize, const M: us
 impl<S: Scalar, F: TrackFilter<S> + BearingTrack<S>, const N: usize, const M: usize>
     ScanLoop<S, F, N, M>
 {
+    /// An empty loop: no tracks, no queued batch, zero counters (a `const fn`,
+    /// for a `static`).
     pub const fn new() -> Self {
         ScanLoop {
             table: TrackTable::new(),
@@ -744,10 +763,12 @@ impl<S: Scalar, F: TrackFilter<S> + BearingTrack<S>, const N: usize, const M: us
         }
     }
 
+    /// The track table.
     pub fn table(&self) -> &TrackTable<S, F, N, M> {
         &self.table
     }
 
+    /// The loop's counters (scans, measurements used and not used by reason).
     pub fn counters(&self) -> &LoopCounters {
         &self.counters
     }
@@ -1480,9 +1501,14 @@ fn add_threat<S: Scalar>(
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 #[cfg_attr(feature = "defmt", derive(defmt::Format))]
 pub struct RunVerdict {
+    /// Frames the sensor sent: accepted plus lost (from the sequence numbers).
     pub sent: u32,
+    /// Frames lost plus measurements not used (queue full, late, out of the
+    /// window, over capacity, not representable).
     pub lost: u32,
+    /// Measurements used by the track table.
     pub used: u32,
+    /// Threat assessments that failed.
     pub assessment_errors: u32,
 }
 
@@ -1490,6 +1516,7 @@ pub struct RunVerdict {
 pub const MAX_LOST_FRACTION_INVERSE: u32 = 10;
 
 impl RunVerdict {
+    /// The verdict from a run's last health counters.
     pub fn from_health(h: &Health) -> Self {
         let s = &h.scan;
         let lost = [
@@ -1517,6 +1544,8 @@ impl RunVerdict {
             > u64::from(self.sent)
     }
 
+    /// Used at least one measurement, lost at most one in
+    /// [`MAX_LOST_FRACTION_INVERSE`] and no assessment failed.
     pub fn is_clean(&self) -> bool {
         self.used > 0 && !self.lost_too_much() && self.assessment_errors == 0
     }
@@ -1581,6 +1610,7 @@ impl<P: OutputPin> AdvisoryLines<P> {
         (&self.traffic, &self.resolution)
     }
 
+    /// Gives the (traffic, resolution) pins back.
     pub fn release(self) -> (P, P) {
         (self.traffic, self.resolution)
     }

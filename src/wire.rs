@@ -623,8 +623,11 @@ counter_list! {
         frames => "frames",
         /// Valid frames returned.
         accepted => "accepted",
+        /// Refused: the CRC did not match.
         crc_errors => "CRC errors",
+        /// Refused: a message type the format does not define.
         unknown_type => "unknown type",
+        /// Refused: a length byte other than the type's fixed payload length.
         bad_length => "bad length",
         /// Valid CRC, a value the format does not allow.
         bad_field => "bad field",
@@ -667,6 +670,7 @@ counter_list! {
     /// held for the next scan): `intake.measurements = intake.queue_full +
     /// those + held` ([`crate::scan::ScanLoop::held`]).
     pub struct LoopCounters: u32 {
+        /// Scans run.
         scans => "scans",
         /// The scan clock locked onto the sensor's clock (the first
         /// measurement).
@@ -684,11 +688,15 @@ counter_list! {
         over_capacity => "over capacity",
         /// Not representable in the tracker's number type.
         invalid => "not representable",
+        /// Tentative tracks started.
         tracks_started => "tracks started",
+        /// Tracks confirmed.
         tracks_confirmed => "tracks confirmed",
+        /// Tracks deleted.
         tracks_deleted => "tracks deleted",
         /// Candidate tracks refused because the table was full.
         refused_table_full => "refused, table full",
+        /// Track report frames emitted.
         track_reports => "track reports",
         /// Confirmed tracks whose threat assessment failed (or the
         /// cycle's sensitivity selection or resolution).
@@ -756,11 +764,17 @@ counter_list! {
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 #[cfg_attr(feature = "defmt", derive(defmt::Format))]
 pub enum FrameKind {
+    /// A measurement in Cartesian coordinates (sensor to tracker).
     MeasurementCartesian = 0x01,
+    /// A measurement in range and azimuth (sensor to tracker).
     MeasurementPolar = 0x02,
+    /// The end of a recording (sensor to tracker).
     EndOfInput = 0x03,
+    /// One track's report (tracker out).
     TrackReport = 0x81,
+    /// One scan's summary and counts (tracker out).
     ScanSummary = 0x82,
+    /// The lifetime counters (tracker out).
     Health = 0x84,
 }
 
@@ -936,6 +950,7 @@ impl<T: AsRef<[u8]>> Frame<T> {
         self.buffer.as_ref().len() >= self.frame_len() && self.crc() == self.compute_crc()
     }
 
+    /// Gives the buffer back.
     pub fn into_inner(self) -> T {
         self.buffer
     }
@@ -979,10 +994,20 @@ impl<T: AsRef<[u8]> + AsMut<[u8]>> Frame<T> {
 #[cfg_attr(feature = "defmt", derive(defmt::Format))]
 pub enum MeasuredPosition {
     /// Position in the tracking plane, cm.
-    Cartesian { x_cm: i32, y_cm: i32 },
+    Cartesian {
+        /// x, cm.
+        x_cm: i32,
+        /// y, cm.
+        y_cm: i32,
+    },
     /// Range (cm) and azimuth (binary angle, 65536 per turn, clockwise from
     /// +y) from the own aircraft.
-    Polar { range_cm: u32, azimuth_bam: u16 },
+    Polar {
+        /// Slant range, cm.
+        range_cm: u32,
+        /// Azimuth, binary angle (65536 per turn, clockwise from +y).
+        azimuth_bam: u16,
+    },
 }
 
 /// One measurement as a sensor reports it (frame types 0x01 and 0x02).
@@ -991,7 +1016,9 @@ pub enum MeasuredPosition {
 pub struct MeasurementReport {
     /// Sensor clock, ms.
     pub time_ms: u32,
+    /// The sender's sensor number, carried through unchanged.
     pub sensor: u8,
+    /// Where the sensor saw the target.
     pub position: MeasuredPosition,
     /// Reported pressure altitude, ft; `None` for a non-reporting target.
     pub altitude_ft: Option<i32>,
@@ -1019,6 +1046,7 @@ impl ModeSAddress {
         }
     }
 
+    /// The 24-bit address.
     pub const fn get(self) -> u32 {
         self.0
     }
@@ -1031,7 +1059,9 @@ impl ModeSAddress {
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 #[cfg_attr(feature = "defmt", derive(defmt::Format))]
 pub struct RaCode {
+    /// Up or down (bits 0–1).
     pub sense: RaSense,
+    /// Preventive, level-off, positive or increase (bits 2–3).
     pub strength: RaStrength,
 }
 
@@ -1273,16 +1303,21 @@ impl MeasurementReport {
 pub struct TrackReport {
     /// Scan time, ms (the sensor's clock).
     pub time_ms: u32,
+    /// The track table's identifier of the track.
     pub track_id: u32,
+    /// Tentative, confirmed or coasting.
     pub status: TrackStatus,
+    /// The advisory level issued against this intruder.
     pub advisory: Advisory,
     /// `None` when the track was not assessed (the assessment failed).
     pub sensitivity: Option<SensitivityLevel>,
-    /// Position relative to the own aircraft, cm.
+    /// Position relative to the own aircraft, x, cm.
     pub x_cm: i32,
+    /// Position relative to the own aircraft, y, cm.
     pub y_cm: i32,
-    /// Velocity relative to the own aircraft, cm/s.
+    /// Velocity relative to the own aircraft, x, cm/s.
     pub vx_cm_per_s: i32,
+    /// Velocity relative to the own aircraft, y, cm/s.
     pub vy_cm_per_s: i32,
     /// Tracked pressure altitude (ft) and vertical rate (ft/min); `None` for
     /// a target without altitude.
@@ -1304,6 +1339,7 @@ pub struct ScanSummary {
     pub time_ms: u32,
     /// Since the previous scan, ms (0 for the first).
     pub interval_ms: u32,
+    /// The scan's measurement and track counts.
     pub counts: ScanCounts,
     /// The most severe advisory over all tracks.
     pub highest_advisory: Advisory,
@@ -1320,8 +1356,11 @@ pub struct ScanSummary {
 pub struct Health {
     /// Scan time, ms (the sensor's clock).
     pub time_ms: u32,
+    /// The frame decoder's counters.
     pub decoder: DecoderStats,
+    /// The receive side's counters.
     pub intake: IntakeCounters,
+    /// The scan loop's counters.
     pub scan: LoopCounters,
 }
 
@@ -1337,10 +1376,15 @@ pub struct EndOfInput {
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 #[cfg_attr(feature = "defmt", derive(defmt::Format))]
 pub enum Message {
+    /// A measurement, Cartesian or polar (types 0x01, 0x02).
     Measurement(MeasurementReport),
+    /// The end of a recording (type 0x03).
     End(EndOfInput),
+    /// One track's report (type 0x81).
     Track(TrackReport),
+    /// One scan's summary (type 0x82).
     Scan(ScanSummary),
+    /// The lifetime counters (type 0x84).
     Health(Health),
 }
 
@@ -1771,6 +1815,8 @@ fn saturating_u32(n: usize) -> u32 {
 }
 
 impl Decoder {
+    /// An empty decoder: nothing held, zero counters, no sequence expected
+    /// yet (a `const fn`, for a `static`).
     pub const fn new() -> Self {
         Decoder {
             buffer: [0; MAX_FRAME_LEN],
@@ -1781,6 +1827,7 @@ impl Decoder {
         }
     }
 
+    /// What the decoder has seen over its lifetime.
     pub fn stats(&self) -> &DecoderStats {
         &self.stats
     }

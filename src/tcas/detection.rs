@@ -348,6 +348,7 @@ pub struct ThreatGeometry<S> {
 #[derive(Debug, Clone, Copy, PartialEq)]
 #[cfg_attr(feature = "defmt", derive(defmt::Format))]
 pub struct ThreatStatus<S> {
+    /// The advisory level issued this cycle (booklet, "CAS Logic Functions").
     pub advisory: Advisory,
     /// The TA started this cycle.
     pub new_traffic: bool,
@@ -369,8 +370,12 @@ pub struct ThreatStatus<S> {
 #[derive(Debug, Clone, Copy, PartialEq)]
 #[cfg_attr(feature = "defmt", derive(defmt::Format))]
 pub struct Cycle<S> {
+    /// The own aircraft's state this cycle.
     pub own: OwnAircraft<S>,
+    /// The sensitivity parameters selected with hysteresis (booklet Table 3;
+    /// DO-185B `ZSL*`).
     pub params: SensitivityParameters,
+    /// The low-altitude RA inhibits in force (booklet; DO-185B hysteresis).
     pub inhibits: super::resolution::Inhibits,
 }
 
@@ -410,6 +415,7 @@ struct Inputs<S> {
 }
 
 impl<S: Scalar> ThreatState<S> {
+    /// No TA, not an RA threat, no tau cap yet (a `const fn`, for a `static`).
     pub const fn new() -> Self {
         ThreatState {
             ta_age_s: None,

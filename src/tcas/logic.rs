@@ -34,6 +34,8 @@ impl<S: Scalar> Default for CollisionAvoidance<S> {
 }
 
 impl<S: Scalar> CollisionAvoidance<S> {
+    /// No level selected, no inhibit, no active RA (a `const fn`, for a
+    /// `static`).
     pub const fn new() -> Self {
         CollisionAvoidance {
             selector: SensitivitySelector::new(),
@@ -97,6 +99,8 @@ pub struct IntruderTrack<S> {
 }
 
 impl<S: Scalar> IntruderTrack<S> {
+    /// A new intruder: empty range tracker, the altitude tracker with this
+    /// configuration (100 ft or 25 ft steps), no advisory.
     pub fn new(altitude: AltitudeTrackerConfig<S>) -> Self {
         IntruderTrack {
             range: RangeTracker::new(),
@@ -105,12 +109,15 @@ impl<S: Scalar> IntruderTrack<S> {
         }
     }
 
+    /// The intruder's range tracker (DO-185B, [`RangeTracker`]).
     pub fn range_tracker(&self) -> &RangeTracker<S> {
         &self.range
     }
+    /// The intruder's altitude tracker ([`AltitudeTracker`]).
     pub fn altitude_tracker(&self) -> &AltitudeTracker<S> {
         &self.altitude
     }
+    /// The intruder's threat-logic state (advisory ages and hysteresis).
     pub fn threat_state(&self) -> &ThreatState<S> {
         &self.threat
     }

@@ -135,6 +135,8 @@ impl<S: Scalar> Intruder<S> {
 #[derive(Debug, Clone, Copy, PartialEq, Eq, PartialOrd, Ord, Hash)]
 #[cfg_attr(feature = "defmt", derive(defmt::Format))]
 pub enum Advisory {
+    /// Other traffic: outside the proximate volume and no advisory (booklet,
+    /// "Traffic Display").
     None,
     /// Within 6 NM and ±1200 ft.
     ProximateTraffic,
@@ -161,6 +163,7 @@ impl Advisory {
 #[derive(Debug, Clone, Copy, PartialEq)]
 #[cfg_attr(feature = "defmt", derive(defmt::Format))]
 pub struct ThreatAssessment<S> {
+    /// The sensitivity level the thresholds were taken at (booklet Table 3).
     pub sensitivity: SensitivityLevel,
     /// Horizontal range, m.
     pub range_m: S,
@@ -178,6 +181,8 @@ pub struct ThreatAssessment<S> {
     pub vertical: Option<VerticalMeasures<S>>,
     /// The RA range test passed and the HMD filter removed it.
     pub miss_distance_filtered: bool,
+    /// The advisory level issued for this intruder (booklet, "CAS Logic
+    /// Functions").
     pub advisory: Advisory,
 }
 

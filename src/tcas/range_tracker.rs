@@ -146,10 +146,13 @@ impl<S: Scalar> RangeTracker<S> {
         }
     }
 
+    /// The track's phase: empty, one reply, or tracking.
     pub fn phase(&self) -> Phase {
         self.phase
     }
 
+    /// Track firmness, 0..=8: +1 per reply, −1 per scan without one (DO-185B
+    /// `update_firmness`).
     pub fn firmness(&self) -> u8 {
         self.firmness
     }

@@ -61,11 +61,14 @@ fn c<S: Scalar>(v: f64) -> S {
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
 #[cfg_attr(feature = "defmt", derive(defmt::Format))]
 pub enum RaSense {
+    /// Upward sense: climb, or don't descend (booklet, "RA Sense Selection").
     Up,
+    /// Downward sense: descend, or don't climb (booklet, "RA Sense Selection").
     Down,
 }
 
 impl RaSense {
+    /// The lower-case name (`"up"`, `"down"`).
     pub const fn name(self) -> &'static str {
         match self {
             RaSense::Up => "up",
@@ -98,6 +101,7 @@ pub enum RaStrength {
 }
 
 impl RaStrength {
+    /// The lower-case name (`"preventive"`, `"level-off"`, …).
     pub const fn name(self) -> &'static str {
         match self {
             RaStrength::Preventive => "preventive",
@@ -112,7 +116,10 @@ impl RaStrength {
 #[derive(Debug, Clone, Copy, PartialEq)]
 #[cfg_attr(feature = "defmt", derive(defmt::Format))]
 pub struct ResolutionAdvisory<S> {
+    /// The sense selected: the one with the larger modelled separation
+    /// (booklet; FlightGear `determineRAsense`).
     pub sense: RaSense,
+    /// The strength: the weakest that models ALIM (booklet, v7.1).
     pub strength: RaStrength,
     /// The RA took the own aircraft through a threat's altitude.
     pub crossing: bool,
@@ -130,6 +137,7 @@ pub struct ResolutionAdvisory<S> {
 #[derive(Debug, Clone, Copy, PartialEq)]
 #[cfg_attr(feature = "defmt", derive(defmt::Format))]
 pub struct ResolutionOutput<S> {
+    /// The active RA, if any.
     pub advisory: Option<ResolutionAdvisory<S>>,
     /// The last RA ended this cycle ("clear of conflict").
     pub clear_of_conflict: bool,
@@ -168,6 +176,7 @@ fn hysteresis<S: Scalar>(was: Option<bool>, radio_ft: Option<S>, (low, high): (f
 }
 
 impl LowAltitudeInhibits {
+    /// No inhibit set yet: the first radio altitude decides each one.
     pub const fn new() -> Self {
         LowAltitudeInhibits { current: None }
     }
@@ -334,6 +343,7 @@ fn crosses<S: Scalar>(cycle: &Cycle<S>, threats: &[ThreatGeometry<S>], sense: Ra
 }
 
 impl<S: Scalar> ResolutionState<S> {
+    /// No active RA.
     pub const fn new() -> Self {
         ResolutionState { active: None }
     }

@@ -11,11 +11,17 @@ use crate::num::Scalar;
 #[derive(Debug, Clone, Copy, PartialEq, Eq, PartialOrd, Ord, Hash)]
 #[cfg_attr(feature = "defmt", derive(defmt::Format))]
 pub enum SensitivityLevel {
+    /// SL 2: TA only, below 1000 ft AGL (booklet Table 3).
     Sl2 = 2,
+    /// SL 3: 1000–2350 ft AGL (booklet Table 3).
     Sl3 = 3,
+    /// SL 4: 2350–5000 ft (booklet Table 3).
     Sl4 = 4,
+    /// SL 5: 5000–10 000 ft (booklet Table 3).
     Sl5 = 5,
+    /// SL 6: 10 000–20 000 ft (booklet Table 3).
     Sl6 = 6,
+    /// SL 7: above 20 000 ft (booklet Table 3).
     Sl7 = 7,
 }
 
@@ -131,7 +137,10 @@ impl ResolutionLimits {
 #[derive(Debug, Clone, Copy, PartialEq)]
 #[cfg_attr(feature = "defmt", derive(defmt::Format))]
 pub struct SensitivityParameters {
+    /// The sensitivity level (booklet Table 3).
     pub level: SensitivityLevel,
+    /// The altitude layer that carries ALIM and ZTHR (booklet Table 3; DO-185B
+    /// `BOT`/`TOP`).
     pub layer: AltitudeLayer,
     /// Traffic advisory thresholds.
     pub ta: AlertThresholds,
@@ -250,10 +259,16 @@ pub const SENSITIVITY_TABLE: [SensitivityParameters; 7] = [
 /// Lower bounds of the table's bands, ft: radio altitude for the first two
 /// (AGL), pressure altitude for the rest.
 pub const SL3_RADIO_ALTITUDE_FT: f64 = 1000.0;
+/// SL 4 from 2350 ft radio altitude (booklet Table 3).
 pub const SL4_RADIO_ALTITUDE_FT: f64 = 2350.0;
+/// SL 5 from 5000 ft pressure altitude (booklet Table 3).
 pub const SL5_PRESSURE_ALTITUDE_FT: f64 = 5000.0;
+/// SL 6 from 10 000 ft pressure altitude (booklet Table 3).
 pub const SL6_PRESSURE_ALTITUDE_FT: f64 = 10000.0;
+/// SL 7 from 20 000 ft pressure altitude (booklet Table 3).
 pub const SL7_PRESSURE_ALTITUDE_FT: f64 = 20000.0;
+/// The SL 7 layer above 42 000 ft pressure altitude, with its larger ZTHR
+/// and ALIM (booklet Table 3).
 pub const SL7_HIGH_PRESSURE_ALTITUDE_FT: f64 = 42000.0;
 
 /// Level hysteresis (DO-185B `ZSL2TO3` … `ZSL7TO6`), ft: a level changes
@@ -375,6 +390,7 @@ pub struct SensitivitySelector {
 }
 
 impl SensitivitySelector {
+    /// A selector with no level yet: the first call takes the booklet band.
     pub const fn new() -> Self {
         SensitivitySelector { current: None }
     }
