@@ -131,41 +131,41 @@ mod board_io {
 // micro:bit (nRF51822): UART0, GPIO
 // ---------------------------------------------------------------------------
 
-#[cfg(abtrack_board = "microbit")]
-mod board_io {
+/// The Nordic UART (nRF51 UART0 and nRF52840 UART0, the same legacy UART
+/// at the same address and offsets: nRF51 Series Reference Manual v3.0
+/// §29, nRF52840 Product Specification v1.7 §6.33) and the GPIO port 0
+/// output registers, shared by the micro:bit and the nRF52840-DK.
+#[cfg(any(abtrack_board = "microbit", abtrack_board = "nrf52840-dk"))]
+mod nordic {
     use super::{Reg, TX_SPIN_LIMIT};
 
-    pub const CORE_CLOCK_HZ: u32 = 16_000_000;
-    /// UART0 is peripheral id 2.
-    pub const UART_RX_IRQ: u16 = 2;
-    pub const UART_NAME: &str = "nRF51 UART0 at 0x40002000";
-    pub const PINS_NAME: &str = "GPIO P0.13 (TA) and P0.14 (RA)";
-
     const UART0: usize = 0x4000_2000;
-    const STARTRX: Reg = Reg(UART0);
-    const STARTTX: Reg = Reg(UART0 + 0x008);
+    const TASKS_STARTRX: Reg = Reg(UART0);
+    const TASKS_STARTTX: Reg = Reg(UART0 + 0x008);
     const EVENTS_RXDRDY: Reg = Reg(UART0 + 0x108);
     const EVENTS_TXDRDY: Reg = Reg(UART0 + 0x11C);
     const INTENSET: Reg = Reg(UART0 + 0x304);
     const ERRORSRC: Reg = Reg(UART0 + 0x480);
     const ENABLE: Reg = Reg(UART0 + 0x500);
-    const PSELTXD: Reg = Reg(UART0 + 0x50C);
-    const PSELRXD: Reg = Reg(UART0 + 0x514);
+    const PSEL_TXD: Reg = Reg(UART0 + 0x50C);
+    const PSEL_RXD: Reg = Reg(UART0 + 0x514);
     const RXD: Reg = Reg(UART0 + 0x518);
     const TXD: Reg = Reg(UART0 + 0x51C);
     const BAUDRATE: Reg = Reg(UART0 + 0x524);
+    const ENABLE_UART: u32 = 4;
+    const BAUD_115200: u32 = 0x01D7_E000;
     const INT_RXDRDY: u32 = 1 << 2;
     const ERROR_OVERRUN: u32 = 1 << 0;
 
-    /// 115 200 baud on the micro:bit's USB-serial pins (TX P0.24, RX
-    /// P0.25); receive interrupt on.
-    pub fn uart_init() {
-        PSELTXD.write(24);
-        PSELRXD.write(25);
-        BAUDRATE.write(0x01D7_E000);
-        ENABLE.write(4);
-        STARTRX.write(1);
-        STARTTX.write(1);
+    /// 115 200 baud 8N1 on pins `tx` and `rx` of port 0; receive
+    /// interrupt on.
+    pub fn uart_start(tx: u32, rx: u32) {
+        PSEL_TXD.write(tx);
+        PSEL_RXD.write(rx);
+        BAUDRATE.write(BAUD_115200);
+        ENABLE.write(ENABLE_UART);
+        TASKS_STARTRX.write(1);
+        TASKS_STARTTX.write(1);
         INTENSET.write(INT_RXDRDY);
     }
 
@@ -180,8 +180,10 @@ mod board_io {
         }
     }
 
+    /// True (once) if the receiver overran since the last call.
     pub fn uart_overrun() -> bool {
         if ERRORSRC.read() & ERROR_OVERRUN != 0 {
+            // ERRORSRC is write-one-to-clear.
             ERRORSRC.write(ERROR_OVERRUN);
             true
         } else {
@@ -189,6 +191,7 @@ mod board_io {
         }
     }
 
+    /// Sends a byte; false if the transmitter stayed busy.
     pub fn uart_write(byte: u8) -> bool {
         TXD.write(byte as u32);
         for _ in 0..TX_SPIN_LIMIT {
@@ -200,11 +203,29 @@ mod board_io {
         false
     }
 
-    const GPIO: usize = 0x5000_0000;
-    const OUT: Reg = Reg(GPIO + 0x504);
-    const OUTSET: Reg = Reg(GPIO + 0x508);
-    const OUTCLR: Reg = Reg(GPIO + 0x50C);
-    const DIRSET: Reg = Reg(GPIO + 0x518);
+    const GPIO_P0: usize = 0x5000_0000;
+    pub const OUT: Reg = Reg(GPIO_P0 + 0x504);
+    pub const OUTSET: Reg = Reg(GPIO_P0 + 0x508);
+    pub const OUTCLR: Reg = Reg(GPIO_P0 + 0x50C);
+    pub const DIRSET: Reg = Reg(GPIO_P0 + 0x518);
+}
+
+#[cfg(abtrack_board = "microbit")]
+mod board_io {
+    pub use super::nordic::{uart_overrun, uart_read, uart_write};
+    use super::nordic::{DIRSET, OUT, OUTCLR, OUTSET};
+
+    pub const CORE_CLOCK_HZ: u32 = 16_000_000;
+    /// UART0 is peripheral id 2.
+    pub const UART_RX_IRQ: u16 = 2;
+    pub const UART_NAME: &str = "nRF51 UART0 at 0x40002000";
+    pub const PINS_NAME: &str = "GPIO P0.13 (TA) and P0.14 (RA)";
+
+    /// 115 200 baud on the micro:bit's USB-serial pins (TX P0.24, RX
+    /// P0.25); receive interrupt on.
+    pub fn uart_init() {
+        super::nordic::uart_start(24, 25);
+    }
 
     pub fn pin_set(index: u8, high: bool) {
         let bit = 1u32 << index;

@@ -16,7 +16,9 @@
 //! for the emulated boards: four registers of three peripherals do not
 //! justify a HAL.
 
-use super::{Reg, TX_SPIN_LIMIT};
+pub use super::nordic::{uart_overrun, uart_read, uart_write};
+use super::nordic::{DIRSET, OUT, OUTCLR, OUTSET};
+use super::Reg;
 
 pub const CORE_CLOCK_HZ: u32 = 64_000_000;
 /// UARTE0_UART0 is peripheral id 2.
@@ -28,26 +30,6 @@ const CLOCK: usize = 0x4000_0000;
 const TASKS_HFCLKSTART: Reg = Reg(CLOCK);
 const EVENTS_HFCLKSTARTED: Reg = Reg(CLOCK + 0x100);
 
-const UART0: usize = 0x4000_2000;
-const TASKS_STARTRX: Reg = Reg(UART0);
-const TASKS_STARTTX: Reg = Reg(UART0 + 0x008);
-const EVENTS_RXDRDY: Reg = Reg(UART0 + 0x108);
-const EVENTS_TXDRDY: Reg = Reg(UART0 + 0x11C);
-const INTENSET: Reg = Reg(UART0 + 0x304);
-const ERRORSRC: Reg = Reg(UART0 + 0x480);
-const ENABLE: Reg = Reg(UART0 + 0x500);
-const PSEL_TXD: Reg = Reg(UART0 + 0x50C);
-const PSEL_RXD: Reg = Reg(UART0 + 0x514);
-const RXD: Reg = Reg(UART0 + 0x518);
-const TXD: Reg = Reg(UART0 + 0x51C);
-const BAUDRATE: Reg = Reg(UART0 + 0x524);
-/// ENABLE value that selects the (non-EasyDMA) UART.
-const ENABLE_UART: u32 = 4;
-/// BAUDRATE value for 115 200 baud.
-const BAUD_115200: u32 = 0x01D7_E000;
-const INT_RXDRDY: u32 = 1 << 2;
-const ERROR_OVERRUN: u32 = 1 << 0;
-/// PSEL: port 0, pin n, CONNECT bit (31) clear = connected.
 const TXD_PIN: u32 = 6;
 const RXD_PIN: u32 = 8;
 
@@ -63,54 +45,8 @@ pub fn uart_init() {
             break;
         }
     }
-    PSEL_TXD.write(TXD_PIN);
-    PSEL_RXD.write(RXD_PIN);
-    BAUDRATE.write(BAUD_115200);
-    ENABLE.write(ENABLE_UART);
-    TASKS_STARTRX.write(1);
-    TASKS_STARTTX.write(1);
-    INTENSET.write(INT_RXDRDY);
+    super::nordic::uart_start(TXD_PIN, RXD_PIN);
 }
-
-/// The received byte, if there is one: clear RXDRDY, then read RXD (which
-/// raises RXDRDY again if more bytes wait in the receive FIFO).
-pub fn uart_read() -> Option<u8> {
-    if EVENTS_RXDRDY.read() != 0 {
-        EVENTS_RXDRDY.write(0);
-        Some(RXD.read() as u8)
-    } else {
-        None
-    }
-}
-
-/// True (once) if the receiver overran since the last call.
-pub fn uart_overrun() -> bool {
-    if ERRORSRC.read() & ERROR_OVERRUN != 0 {
-        // ERRORSRC is write-one-to-clear.
-        ERRORSRC.write(ERROR_OVERRUN);
-        true
-    } else {
-        false
-    }
-}
-
-/// Sends a byte; false if the transmitter stayed busy.
-pub fn uart_write(byte: u8) -> bool {
-    TXD.write(byte as u32);
-    for _ in 0..TX_SPIN_LIMIT {
-        if EVENTS_TXDRDY.read() != 0 {
-            EVENTS_TXDRDY.write(0);
-            return true;
-        }
-    }
-    false
-}
-
-const GPIO_P0: usize = 0x5000_0000;
-const OUT: Reg = Reg(GPIO_P0 + 0x504);
-const OUTSET: Reg = Reg(GPIO_P0 + 0x508);
-const OUTCLR: Reg = Reg(GPIO_P0 + 0x50C);
-const DIRSET: Reg = Reg(GPIO_P0 + 0x518);
 
 /// Sets advisory line `index` on (`high`) or off. The DK's LEDs light when
 /// their pin is low, so "on" drives the pin low.
