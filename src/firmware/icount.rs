@@ -22,7 +22,7 @@ pub struct InstructionCounter {
 }
 
 /// Executes exactly 2·n instructions (n ≥ 1): `subs` and `bne`, n times.
-fn known_instructions(n: u32) {
+pub fn known_instructions(n: u32) {
     // SAFETY: register-only arithmetic on r0, declared clobbered; no memory
     // access, no stack use.
     unsafe {

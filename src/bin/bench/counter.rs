@@ -93,21 +93,6 @@ impl Ticks {
     }
 }
 
-/// Executes exactly 2·n instructions (n ≥ 1): `subs` and `bne`, n times.
-fn known_instructions(n: u32) {
-    // SAFETY: register-only arithmetic on r0, declared clobbered; no memory
-    // access, no stack use.
-    unsafe {
-        core::arch::asm!(
-            "2:",
-            "subs r0, #1",
-            "bne 2b",
-            inout("r0") n => _,
-            options(nomem, nostack),
-        );
-    }
-}
-
 /// The core's label in the output: `m4f`, `m3`, `m0`.
 fn core_label() -> &'static str {
     match board::BOARD {
@@ -135,13 +120,14 @@ impl Bench {
         let mut ticks = Ticks::new(syst);
         const LOOPS: u32 = 1_000_000;
         let core = core_label();
-        let instructions_per_tick = match ticks.time(|| known_instructions(black_box(LOOPS))) {
-            Some(t) if t > 0 => (2 * LOOPS) as f64 / t as f64,
-            _ => {
-                defmt::error!("SysTick does not count on this board; no figures");
-                return None;
-            }
-        };
+        let instructions_per_tick =
+            match ticks.time(|| crate::icount::known_instructions(black_box(LOOPS))) {
+                Some(t) if t > 0 => (2 * LOOPS) as f64 / t as f64,
+                _ => {
+                    defmt::error!("SysTick does not count on this board; no figures");
+                    return None;
+                }
+            };
         defmt::println!(
             "abtrack bench on {=str} ({=str}): instructions per call under QEMU -icount shift=0 (instructions, not cycles)",
             board::BOARD,

@@ -33,6 +33,11 @@
 mod board;
 #[path = "../../firmware/synth.rs"]
 mod synth;
+// The calibration loop (`known_instructions`); the bench times with its own
+// `counter::Ticks`, not `InstructionCounter`.
+#[allow(dead_code)]
+#[path = "../../firmware/icount.rs"]
+mod icount;
 
 mod anchors;
 mod counter;
