@@ -146,7 +146,7 @@ fn he_eq_9_as_printed_collapses_to_per_axis_gains() {
 
 use abtrack_host_tests::experiments::liu::{self, LiuResidualReference};
 use abtrack_host_tests::experiments::monte_carlo::Scheduled;
-use abtrack_host_tests::experiments::monte_carlo::{compare, Estimator, Metric, Segment};
+use abtrack_host_tests::experiments::monte_carlo::{compare, Estimator, Metric};
 use abtrack_host_tests::reference::LiuWindow;
 use abtrack_host_tests::scenario;
 
@@ -189,16 +189,7 @@ fn liu_reference_reproduces_the_library_reading_exactly() {
 fn liu_before_now_window_is_better_straight_and_worse_in_the_turn() {
     let exp = liu::evaluate(Some(100)).unwrap();
     let seg = liu::Segments::new(&exp);
-    let straight_fn = |k: usize| seg.straight(k);
-    let turn_fn = |k: usize| seg.turning(k);
-    let straight = Segment {
-        name: "straight",
-        contains: &straight_fn,
-    };
-    let turn = Segment {
-        name: "turn",
-        contains: &turn_fn,
-    };
+    let (straight, turn) = (seg.straight_segment(), seg.turn_segment());
     let d = Metric::PositionDistance;
     // Straight: the before-now window (current innovation left out) has the
     // lower error; in the turn the current-included one does.

@@ -150,16 +150,7 @@ fn li_claims() {
 fn liu_claims() {
     let exp = liu::evaluate(Some(RUNS)).unwrap();
     let seg = liu::Segments::new(&exp);
-    let straight_fn = |k: usize| seg.straight(k);
-    let turn_fn = |k: usize| seg.turning(k);
-    let straight = Segment {
-        name: "straight",
-        contains: &straight_fn,
-    };
-    let turn = Segment {
-        name: "turn",
-        contains: &turn_fn,
-    };
+    let (straight, turn) = (seg.straight_segment(), seg.turn_segment());
     let d = Metric::PositionDistance;
     // U1: 2.1.1 diverges; every other method beats it.
     for m in [

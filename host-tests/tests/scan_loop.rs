@@ -4,6 +4,8 @@
 
 #![allow(clippy::needless_range_loop)]
 
+// Every board's capacities; these tests use some of them.
+#[allow(dead_code)]
 #[path = "../../src/firmware/capacity.rs"]
 mod capacity;
 mod common;

@@ -105,17 +105,40 @@ pub fn evaluate(runs: Option<usize>) -> Result<Experiment, String> {
 /// (samples 31–45, t = 62–90 s); the rest is straight ("uniform") flight,
 /// before (≤ 30) and after (≥ 46) the turn.
 pub struct Segments {
-    turning: Vec<bool>,
+    turning: std::rc::Rc<Vec<bool>>,
     first_turn: usize,
+    /// The straight and turning scans as the comparisons' filters (built
+    /// once here, not at every claim).
+    straight_filter: Box<dyn Fn(usize) -> bool>,
+    turn_filter: Box<dyn Fn(usize) -> bool>,
 }
 
 impl Segments {
     pub fn new(exp: &Experiment) -> Self {
-        let turning = manoeuvring_scans(&exp.truth);
+        let turning = std::rc::Rc::new(manoeuvring_scans(&exp.truth));
         let first_turn = turning.iter().position(|&t| t).unwrap_or(turning.len());
+        let in_turn = |turning: std::rc::Rc<Vec<bool>>, want: bool| {
+            move |k: usize| turning.get(k).copied().unwrap_or(false) == want
+        };
         Segments {
+            straight_filter: Box::new(in_turn(turning.clone(), false)),
+            turn_filter: Box::new(in_turn(turning.clone(), true)),
             turning,
             first_turn,
+        }
+    }
+    /// The straight-flight scans as a [`Segment`] named "straight".
+    pub fn straight_segment(&self) -> Segment<'_> {
+        Segment {
+            name: "straight",
+            contains: &*self.straight_filter,
+        }
+    }
+    /// The turning scans as a [`Segment`] named "turn".
+    pub fn turn_segment(&self) -> Segment<'_> {
+        Segment {
+            name: "turn",
+            contains: &*self.turn_filter,
         }
     }
     pub fn turning(&self, k: usize) -> bool {
@@ -217,16 +240,7 @@ fn line(c: &[Comparison]) -> String {
 
 pub fn claims(exp: &Experiment) -> Result<Vec<Claim>, String> {
     let seg = Segments::new(exp);
-    let straight_fn = |k: usize| seg.straight(k);
-    let turn_fn = |k: usize| seg.turning(k);
-    let straight = Segment {
-        name: "straight",
-        contains: &straight_fn,
-    };
-    let turn = Segment {
-        name: "turn",
-        contains: &turn_fn,
-    };
+    let (straight, turn) = (seg.straight_segment(), seg.turn_segment());
     let d = Metric::PositionDistance;
     let cmp = |better: &str, worse: &str, segment: Segment<'_>| {
         compare(exp, "", better, worse, d, segment)
@@ -444,12 +458,12 @@ pub fn claims(exp: &Experiment) -> Result<Vec<Claim>, String> {
             tally(&u5b)
         ),
     ));
-    let straight_fn2 = |k: usize| seg.straight(k);
+    let straight_scans = seg.straight_segment().contains;
     let before = exp.method(RESIDUAL_BEFORE)?;
     let share_b = 0.5
-        * (fraction(before, &straight_fn2, &|s| {
+        * (fraction(before, straight_scans, &|s| {
             s.output.gains.map(|g| g[0].0 > 0.5)
-        }) + fraction(before, &straight_fn2, &|s| {
+        }) + fraction(before, straight_scans, &|s| {
             s.output.gains.map(|g| g[1].0 > 0.5)
         }));
     claims.push(descriptive(
