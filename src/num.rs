@@ -54,10 +54,12 @@ pub mod cordic;
 pub mod fixed32;
 pub mod numeric;
 pub mod scaled;
+pub mod scaled_scalar;
 pub mod sine;
 
 pub use fixed32::Fixed32;
 pub use numeric::{AddProduct, Checked, Guard, Numeric, Quantity, Real, SubGuarded};
+pub use scaled_scalar::ScaledScalar;
 
 /// Why a value from outside could not be converted into a [`Scalar`].
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -164,6 +166,22 @@ pub trait Scalar:
         }
     }
 
+    /// √(a² + b²) without forming a² (positions up to 4·10⁵ m would
+    /// overflow Q32.32 when squared): the larger magnitude times
+    /// √(1 + k²), k ≤ 1. An invalid argument gives an invalid result (the
+    /// comparisons are arranged so NaN and the saturation sentinels
+    /// propagate). [`ScaledScalar`] overrides it with one root of the
+    /// squared mantissas. Called through [`hypot`].
+    fn hypot_pair(self, other: Self) -> Self {
+        let (a, b) = (self.abs(), other.abs());
+        let (large, small) = if a >= b { (a, b) } else { (b, a) };
+        if large == Self::ZERO {
+            return small; // zero, or an invalid value that propagates
+        }
+        let k = small / large;
+        large * (Self::ONE + k * k).sqrt()
+    }
+
     /// Folds `value` into the running check of the hot path's guard
     /// ([`numeric::ScalarGuard`]), which passes when `check − check == 0`.
     /// Floats add (NaN and ±∞ are sticky, and a finite sum of a few outputs
@@ -268,18 +286,10 @@ impl Scalar for f32 {
     }
 }
 
-/// √(a² + b²) without forming a² (positions up to 4·10⁵ m would overflow
-/// Q32.32 when squared): the larger magnitude times √(1 + k²), k ≤ 1. An
-/// invalid argument gives an invalid result (the comparisons below are
-/// arranged so NaN and the saturation sentinels propagate).
+/// √(a² + b²) without overflow on the way ([`Scalar::hypot_pair`]).
+#[inline]
 pub fn hypot<S: Scalar>(a: S, b: S) -> S {
-    let (a, b) = (a.abs(), b.abs());
-    let (large, small) = if a >= b { (a, b) } else { (b, a) };
-    if large == S::ZERO {
-        return small; // zero, or an invalid value that propagates
-    }
-    let k = small / large;
-    large * (S::ONE + k * k).sqrt()
+    a.hypot_pair(b)
 }
 
 /// Azimuth of (x, y), clockwise from the y axis, in [0, 2π).

@@ -535,7 +535,12 @@ pub const NUMERICS: &[(&str, &str)] = &[
         "f32soft",
         "single precision in software (cores without an FPU)",
     ),
-    ("fixed", "abtrack's fast fixed-point format"),
+    (
+        "fixed",
+        "abtrack's fast fixed point: `Fixed32` (a 32-bit format per quantity) for the \
+         filters, the bank and the scans; its wide format `ScaledScalar` (31-bit mantissa \
+         and exponent, every quantity) for the altitude tracker and TCAS",
+    ),
     ("q32", "abtrack's Q32.32 fixed point (`Fix`)"),
     ("f64", "double precision, in software on every core here"),
     (
@@ -617,19 +622,12 @@ pub const OPERATIONS: &[(&str, &str)] = &[
 
 /// Why a row is not measured (the `reason` of a `bench-omitted` line), with
 /// what it means. An unknown reason is shown as not described.
-pub const OMISSIONS: &[(&str, &str)] = &[
-    (
-        "flash",
-        "the image would not fit the board's flash with this numeric type's code for \
+pub const OMISSIONS: &[(&str, &str)] = &[(
+    "flash",
+    "the image would not fit the board's flash with this numeric type's code for \
          these operations as well (the micro:bit has 256 KiB); the firmware's own types \
          are kept",
-    ),
-    (
-        "not_ported",
-        "the operation is written for `Scalar` (f32, f64, Q32.32) and not yet ported to \
-         `Numeric`, so it does not run in this numeric type",
-    ),
-];
+)];
 
 /// The 2-D updates compared with the anchors.
 const COMPARED: &[&str] = &[

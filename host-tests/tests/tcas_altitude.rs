@@ -12,7 +12,7 @@ use abtrack::filter::altitude::{
     AltitudeConfigError, AltitudeQuantum, AltitudeStatus, AltitudeTracker, AltitudeTrackerConfig,
     VerticalClass,
 };
-use abtrack::{FilterError, Fix, Scalar};
+use abtrack::{FilterError, Fix, Scalar, ScaledScalar};
 use abtrack_host_tests::altitude_figures::{
     level_off, ra_response, rate_change, report, steady_climb_rate_range, trace, Profile,
     RateChange, SteadyClimb, PHASES,
@@ -29,6 +29,9 @@ fn in_each_type(f: impl Fn(&str, &dyn Fn(AltitudeQuantum) -> (f64, f64))) {
     });
     f("Q32.32", &|q| {
         steady_climb_rate_range::<Fix>(q, 300.0, 60, 240)
+    });
+    f("scaled", &|q| {
+        steady_climb_rate_range::<ScaledScalar>(q, 300.0, 60, 240)
     });
 }
 
@@ -69,6 +72,10 @@ fn level_off_from_2000_ft_per_min_is_followed() {
             ("f64", rate_change::<f64>(q, level_off(), 2, 300.0, 120)),
             ("f32", rate_change::<f32>(q, level_off(), 2, 300.0, 120)),
             ("Q32.32", rate_change::<Fix>(q, level_off(), 2, 300.0, 120)),
+            (
+                "scaled",
+                rate_change::<ScaledScalar>(q, level_off(), 2, 300.0, 120),
+            ),
         ];
         for (name, f) in &figures {
             let settle = f
@@ -107,6 +114,10 @@ fn ra_response_is_followed_within_seconds() {
             (
                 "Q32.32",
                 rate_change::<Fix>(q, ra_response(), 5, 300.0, 120),
+            ),
+            (
+                "scaled",
+                rate_change::<ScaledScalar>(q, ra_response(), 5, 300.0, 120),
             ),
         ] {
             let settle = f
@@ -172,6 +183,7 @@ fn estimate_stays_in_the_reported_bin() {
     stays_in_the_bin::<f64>();
     stays_in_the_bin::<f32>();
     stays_in_the_bin::<Fix>();
+    stays_in_the_bin::<ScaledScalar>();
 }
 
 /// f32 and Q32.32 take the same decisions as f64 (class and firmness every
@@ -192,6 +204,7 @@ fn narrow_types_follow_f64() {
             for (name, b) in [
                 ("f32", trace::<f32>(p, q, 120).estimated),
                 ("Q32.32", trace::<Fix>(p, q, 120).estimated),
+                ("scaled", trace::<ScaledScalar>(p, q, 120).estimated),
             ] {
                 let worst = a
                     .iter()
@@ -318,8 +331,13 @@ fn missing_altitude<S: Scalar>() {
     }
     let coasted = t.estimate().unwrap();
     let expected = before.altitude_ft.to_f64() + 6.0 * before.vertical_rate_ft_per_s.to_f64();
-    // f32 holds 5.5e3 ft to 4.9e-4 ft; six coasts round six times.
-    let tolerance = if S::NAME == "f32" { 5e-3 } else { 1e-6 };
+    // f32 holds 5.5e3 ft to 4.9e-4 ft, the scaled format (31-bit
+    // mantissa) to 3.8e-6 ft; six coasts round six times: ten steps.
+    let tolerance = match S::NAME {
+        "f32" => 5e-3,
+        "scaled" => 4e-5,
+        _ => 1e-6,
+    };
     assert!(
         (coasted.altitude_ft.to_f64() - expected).abs() < tolerance,
         "{}: {coasted:?} vs {expected}",
@@ -345,6 +363,7 @@ fn missing_altitude_is_a_valid_state() {
     missing_altitude::<f64>();
     missing_altitude::<f32>();
     missing_altitude::<Fix>();
+    missing_altitude::<ScaledScalar>();
 }
 
 #[test]

@@ -15,7 +15,7 @@ mod demo_config;
 use abtrack::tcas::{Advisory, RaSense};
 use abtrack::track::RangeAzimuthTrack;
 use abtrack::wire::{Message, RaCode, ScanSummary, TrackReport};
-use abtrack::{Fix, Scalar};
+use abtrack::{Fix, Scalar, ScaledScalar};
 use abtrack_host_tests::encounters::{demo_intruders, demo_reference, NM};
 use abtrack_host_tests::frames::{self, Faults, TCAS_DEMO, TCAS_DEMO_SCANS};
 use abtrack_host_tests::reference_tcas::Alert;
@@ -218,6 +218,16 @@ fn demo_in_q32_32_like_the_micro_bit() {
     check::<Fix, 8, 12, 32>();
 }
 
+#[test]
+fn demo_in_the_scaled_format_like_the_cortex_m3() {
+    check::<ScaledScalar, 256, 256, 128>();
+}
+
+#[test]
+fn demo_in_the_scaled_format_like_the_micro_bit() {
+    check::<ScaledScalar, 8, 12, 32>();
+}
+
 /// One intruder tracked for 10 scans (closing at 100 m/s from 10 NM on
 /// bearing 30°, exact replies), then a scan in which it does not reply and
 /// another reply comes 30 m from its prediction (inside its gate), with
@@ -294,4 +304,5 @@ fn replies_go_only_to_their_own_tracks() {
     check::<f64>();
     check::<f32>();
     check::<Fix>();
+    check::<ScaledScalar>();
 }

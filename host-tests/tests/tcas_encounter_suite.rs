@@ -9,7 +9,7 @@
 //! with noise (range σ 15 m, bearing σ 5°, altitude quantised) over seeds,
 //! in f64, f32 and Q32.32. Figures: `experiments -- --only tcas-advisory`.
 
-use abtrack::{Fix, Scalar};
+use abtrack::{Fix, Scalar, ScaledScalar};
 use abtrack_host_tests::encounters::{
     measurements, noisy_runs, run_library, run_reference, suite, timeline, Encounter, Noise,
     NoiseCounts, Timeline,
@@ -134,6 +134,7 @@ fn exact_inputs_follow_the_reference() {
     exact::<f64>();
     exact::<f32>();
     exact::<Fix>();
+    exact::<ScaledScalar>();
 }
 
 /// Noisy runs per encounter and type.
@@ -211,6 +212,11 @@ fn noisy_runs_miss_nothing_and_false_alerts_are_bounded_f32() {
 #[test]
 fn noisy_runs_miss_nothing_and_false_alerts_are_bounded_q32_32() {
     noise_counts::<Fix>();
+}
+
+#[test]
+fn noisy_runs_miss_nothing_and_false_alerts_are_bounded_scaled() {
+    noise_counts::<ScaledScalar>();
 }
 
 /// The false RAs of the passes beyond the HMD threshold are short: each

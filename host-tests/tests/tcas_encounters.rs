@@ -10,7 +10,7 @@ use abtrack::tcas::{
     assess, Advisory, Intruder, OwnAircraft, SensitivityLevel, ThreatAssessment,
     METRES_PER_NAUTICAL_MILE, METRES_PER_SECOND_PER_KNOT,
 };
-use abtrack::{Fix, Scalar};
+use abtrack::{Fix, Scalar, ScaledScalar};
 
 const NM: f64 = METRES_PER_NAUTICAL_MILE;
 const KT: f64 = METRES_PER_SECOND_PER_KNOT;
@@ -121,6 +121,7 @@ fn head_on_600_kt_at_8000_ft_alerts_at_6_75_and_4_238_nm() {
     head_on_boundaries::<f64>();
     head_on_boundaries::<f32>();
     head_on_boundaries::<Fix>();
+    head_on_boundaries::<ScaledScalar>();
 }
 
 fn non_reporting<S: Scalar>() {
@@ -149,6 +150,7 @@ fn non_reporting_intruder_raises_at_most_a_traffic_advisory() {
     non_reporting::<f64>();
     non_reporting::<f32>();
     non_reporting::<Fix>();
+    non_reporting::<ScaledScalar>();
 }
 
 // Crossing 1 NM abeam: from (−6 NM, 1 NM) at 360 kt = 0.1 NM/s east, same
@@ -229,6 +231,7 @@ fn crossing_with_one_nm_miss_has_the_analytic_timeline() {
     crossing::<f64>();
     crossing::<f32>();
     crossing::<Fix>();
+    crossing::<ScaledScalar>();
 }
 
 fn diverging<S: Scalar>() {
@@ -283,6 +286,7 @@ fn diverging_intruder_never_alerts() {
     diverging::<f64>();
     diverging::<f32>();
     diverging::<Fix>();
+    diverging::<ScaledScalar>();
 }
 
 fn vertical<S: Scalar>() {
@@ -324,6 +328,7 @@ fn vertical_test_against_zthr_and_vertical_tau() {
     vertical::<f64>();
     vertical::<f32>();
     vertical::<Fix>();
+    vertical::<ScaledScalar>();
 }
 
 fn through_the_filters<S: Scalar>() -> f64 {
@@ -359,6 +364,7 @@ fn tracks_from_the_filters_alert_on_the_first_scan_inside_the_boundary() {
         through_the_filters::<f64>(),
         through_the_filters::<f32>(),
         through_the_filters::<Fix>(),
+        through_the_filters::<ScaledScalar>(),
     ] {
         assert!(
             r <= TA_START_NM * NM && r > TA_START_NM * NM - 600.0 * KT,

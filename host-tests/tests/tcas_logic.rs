@@ -14,7 +14,7 @@ use abtrack::tcas::{
     RaSense, RaStrength, RangeEstimate, RangeTracker, ResolutionState, SensitivityLevel,
     SensitivitySelector, ThreatGeometry, ThreatState, METRES_PER_NAUTICAL_MILE,
 };
-use abtrack::{FilterError, Fix, Scalar};
+use abtrack::{FilterError, Fix, Scalar, ScaledScalar};
 
 const NM: f64 = METRES_PER_NAUTICAL_MILE;
 
@@ -62,6 +62,7 @@ fn range_tracker_gamma_is_over_t_squared() {
     gamma_convention::<f64>();
     gamma_convention::<f32>();
     gamma_convention::<Fix>();
+    gamma_convention::<ScaledScalar>();
 }
 
 /// Firmness +1 per reply (from 0 at the first), −1 per missed scan;
@@ -139,6 +140,7 @@ fn range_tracker_follows_a_straight_pass() {
     straight_pass::<f64>();
     straight_pass::<f32>();
     straight_pass::<Fix>();
+    straight_pass::<ScaledScalar>();
 }
 
 // ---------------------------------------------------------------------------
@@ -215,6 +217,7 @@ fn traffic_advisory_range_hysteresis() {
     ta_hysteresis::<f64>();
     ta_hysteresis::<f32>();
     ta_hysteresis::<Fix>();
+    ta_hysteresis::<ScaledScalar>();
 }
 
 /// Minimum TA time (DO-185B `MINTATIME` 8 s): a TA whose tests fail the
@@ -411,6 +414,7 @@ fn sense_and_strength_of_the_head_on() {
     head_on_sense::<f64>();
     head_on_sense::<f32>();
     head_on_sense::<Fix>();
+    head_on_sense::<ScaledScalar>();
 }
 
 /// A crossing RA: intruder 150 ft above, level; own climbing 3000 ft/min

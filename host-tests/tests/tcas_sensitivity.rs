@@ -1,7 +1,7 @@
 //! Sensitivity level selection and the TCAS II v7.1 table of issue 4.
 
 use abtrack::tcas::{sensitivity, OwnAircraft, SensitivityLevel, TcasError, SENSITIVITY_TABLE};
-use abtrack::{Fix, Scalar};
+use abtrack::{Fix, Scalar, ScaledScalar};
 
 /// SL, TA tau, RA tau, TA DMOD, RA DMOD, TA ZTHR, RA ZTHR, ALIM.
 type IssueRow = (
@@ -87,6 +87,7 @@ fn level_boundaries_in_all_types() {
     boundaries::<f64>();
     boundaries::<f32>();
     boundaries::<Fix>();
+    boundaries::<ScaledScalar>();
 }
 
 #[test]

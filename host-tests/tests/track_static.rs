@@ -10,6 +10,7 @@ use abtrack::track::{
     Association, FixedGainTrack, Observation, PredictedState, ScanInterval, Track, TrackFilter,
     TrackStatus,
 };
+use abtrack::ScaledScalar;
 use abtrack::{FilterError, Fix};
 use track_support::{cart, default_config, Table};
 
@@ -60,12 +61,17 @@ fn bytes_per_track() {
             "fixed",
             size_of::<Option<Track<Fixed32, FixedGainTrack<Fixed32>>>>(),
         ),
+        (
+            "scaled",
+            size_of::<Option<Track<ScaledScalar, FixedGainTrack<ScaledScalar>>>>(),
+        ),
     ];
     let filters = [
         ("f64", size_of::<FixedGainTrack<f64>>()),
         ("f32", size_of::<FixedGainTrack<f32>>()),
         ("q32", size_of::<FixedGainTrack<Fix>>()),
         ("fixed", size_of::<FixedGainTrack<Fixed32>>()),
+        ("scaled", size_of::<FixedGainTrack<ScaledScalar>>()),
     ];
     println!("bytes per track slot, Option<Track<_, FixedGainTrack<_>>>: {per_track:?}");
     println!("of which FixedGainTrack<_>: {filters:?}");
@@ -73,11 +79,23 @@ fn bytes_per_track() {
     // bytes in f32 and in the fast fixed point.
     assert_eq!(
         per_track,
-        [("f64", 88), ("f32", 56), ("q32", 88), ("fixed", 56)]
+        [
+            ("f64", 88),
+            ("f32", 56),
+            ("q32", 88),
+            ("fixed", 56),
+            ("scaled", 84)
+        ]
     );
     assert_eq!(
         filters,
-        [("f64", 64), ("f32", 32), ("q32", 64), ("fixed", 32)]
+        [
+            ("f64", 64),
+            ("f32", 32),
+            ("q32", 64),
+            ("fixed", 32),
+            ("scaled", 60)
+        ]
     );
     // The record header (id, two times, history, hits, scans, lifecycle,
     // misses, refusals): 23 bytes, padded with the filter.
@@ -88,11 +106,13 @@ fn bytes_per_track() {
     let f64_bytes = |n: usize, m: usize| round(60 + 143 * n + 182 * m);
     let f32_bytes = |n: usize, m: usize| round(56 + 111 * n + 126 * m);
     let fixed_bytes = |n: usize, m: usize| round(56 + 111 * n + 134 * m);
+    let scaled_bytes = |n: usize, m: usize| round(56 + 139 * n + 166 * m);
     let tables = [
         ("f64", size_of::<Table<f64, 32, 32>>()),
         ("f32", size_of::<Table<f32, 32, 32>>()),
         ("q32", size_of::<Table<Fix, 32, 32>>()),
         ("fixed", size_of::<Table<Fixed32, 32, 32>>()),
+        ("scaled", size_of::<Table<ScaledScalar, 32, 32>>()),
     ];
     println!("TrackTable<_, FixedGainTrack<_>, 32, 32>: {tables:?}");
     assert_eq!(
@@ -102,6 +122,7 @@ fn bytes_per_track() {
             ("f32", f32_bytes(32, 32)),
             ("q32", f64_bytes(32, 32)),
             ("fixed", fixed_bytes(32, 32)),
+            ("scaled", scaled_bytes(32, 32)),
         ]
     );
     assert_eq!(size_of::<Table<f64, 8, 16>>(), f64_bytes(8, 16));
@@ -113,6 +134,13 @@ fn bytes_per_track() {
     assert_eq!(size_of::<Table<Fixed32, 64, 24>>(), fixed_bytes(64, 24));
     assert_eq!(size_of::<Table<Fixed32, 3, 5>>(), fixed_bytes(3, 5));
     assert_eq!(size_of::<Table<Fixed32, 256, 256>>(), fixed_bytes(256, 256));
+    assert_eq!(size_of::<Table<ScaledScalar, 8, 12>>(), scaled_bytes(8, 12));
+    assert_eq!(size_of::<Table<ScaledScalar, 3, 5>>(), scaled_bytes(3, 5));
+    assert_eq!(size_of::<Table<ScaledScalar, 1, 2>>(), scaled_bytes(1, 2));
+    assert_eq!(
+        size_of::<Table<ScaledScalar, 256, 256>>(),
+        scaled_bytes(256, 256)
+    );
 }
 
 /// A filter of one byte, to weigh the record header alone.

@@ -59,16 +59,18 @@ pub type Native = f32;
 #[allow(dead_code)] // the demo uses `TableScalar` until src/track is ported
 pub type Native = abtrack::Fixed32;
 
-/// The type of the code still written for `Scalar` (the track table, TCAS,
-/// the altitude tracker, the demo) until it is ported to
-/// [`abtrack::Numeric`]: `f32` with an FPU, Q32.32 without.
+/// The type of the code written for `Scalar` (the scan loop and its track
+/// table, TCAS, the altitude tracker, the demo): `f32` with an FPU; without
+/// one the fast fixed point's wide format ([`abtrack::ScaledScalar`], 31-bit
+/// mantissa and exponent, 32-bit integer code), whose range holds the TCAS
+/// logic's taus and products in one type.
 #[cfg(target_abi = "eabihf")]
 #[allow(dead_code)] // the filter self-test uses `Native` only
 pub type TableScalar = f32;
 /// See the hard-float definition.
 #[cfg(not(target_abi = "eabihf"))]
 #[allow(dead_code)] // the filter self-test uses `Native` only
-pub type TableScalar = abtrack::Fix;
+pub type TableScalar = abtrack::ScaledScalar;
 
 // ---------------------------------------------------------------------------
 // Semihosting: the log on the emulated boards, and the exit status

@@ -15,8 +15,9 @@ pub mod mps2 {
 /// The micro:bit (16 KiB of RAM): the TCAS scenario has at most 6 replies
 /// per scan (4 intruders, false replies), and a track there costs a
 /// range–azimuth filter and an intruder's TCAS state (range and altitude
-/// trackers, threat state) in Q32.32: 8 tracks and 12 replies per scan
-/// leave the stack its 25 % margin (scripts/stack.sh m0; docs/tcas.md).
+/// trackers, threat state) in the scaled format (`board::TableScalar`):
+/// 8 tracks and 12 replies per scan leave the stack its 25 % margin
+/// (scripts/stack.sh m0; docs/tcas.md).
 pub mod microbit {
     pub const TRACKS: usize = 8;
     pub const MEASUREMENTS_PER_SCAN: usize = 12;

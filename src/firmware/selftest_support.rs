@@ -120,6 +120,16 @@ impl TestScalar for Fix {
     }
 }
 
+impl TestScalar for abtrack::ScaledScalar {
+    // Representable (< 2¹³¹ ≈ 2.7·10³⁹), but 0.25·1e39/0.05 = 5·10³⁹ is not.
+    const HUGE: f64 = 1.0e39;
+    const SIN_COS_ERROR: f64 = abtrack::num::scaled_scalar::SIN_COS_MAX_ERROR;
+    fn bits(self) -> u64 {
+        let r = self.to_ratio();
+        (u64::from(r.mantissa() as u32) << 16) | u64::from(r.exponent() as u16)
+    }
+}
+
 /// A quantity's stored bit pattern, for "bit-identical" checks.
 pub trait Bits: Copy {
     fn bits(self) -> u64;

@@ -352,6 +352,11 @@ impl<S: Scalar> Real for S {
     fn sqrt(self) -> Self {
         <S as Scalar>::sqrt(self)
     }
+
+    #[inline]
+    fn hypot(self, other: Self) -> Self {
+        <S as Scalar>::hypot_pair(self, other)
+    }
 }
 
 impl<S: Scalar> Numeric for S {

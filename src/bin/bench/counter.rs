@@ -34,15 +34,12 @@ const SYSTICK_MAX: u32 = 0x00ff_ffff;
 pub enum Omission {
     /// The image would not fit the board's flash with this row's code.
     Flash,
-    /// The operation is not written for this number system yet.
-    NotPorted,
 }
 
 impl Omission {
     fn reason(self) -> &'static str {
         match self {
             Omission::Flash => "flash",
-            Omission::NotPorted => "not_ported",
         }
     }
 }

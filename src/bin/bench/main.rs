@@ -50,7 +50,7 @@ mod scan;
 
 use core::any::TypeId;
 
-use abtrack::{Fix, Fixed32, Scalar};
+use abtrack::{Fix, Fixed32, Scalar, ScaledScalar};
 use counter::Bench;
 use numeric::Numeric;
 
@@ -83,16 +83,12 @@ fn run(bench: &mut Bench) {
     bench_numeric::<Fixed32>(bench);
     bench_numeric::<Fix>(bench);
     bench_numeric::<f64>(bench);
-    // The operations still written for `Scalar` (not in the fast fixed
-    // point until their ports land).
+    // The operations written for `Scalar`; in the fast fixed point they
+    // run in its wide format, `ScaledScalar`.
     bench_scalar::<f32>(bench);
+    bench_scalar::<ScaledScalar>(bench);
     bench_scalar::<Fix>(bench);
     bench_scalar::<f64>(bench);
-    bench.omitted_group(
-        Fixed32::LABEL,
-        Group::Tcas.operations(),
-        Omission::NotPorted,
-    );
     // Anchors in f32 only: the hand-written Kalman filter, and minikalman
     // (with its I16F16 build).
     anchors::axis_kalman(bench);

@@ -1,7 +1,7 @@
 //! The numeric labels of the output: which number system a figure was
 //! measured in.
 
-use abtrack::{Fix, Fixed32};
+use abtrack::{Fix, Fixed32, ScaledScalar};
 
 /// A number system the abtrack operations run in ([`abtrack::Numeric`]),
 /// with its label in the benchmark's output (the `numeric` column of
@@ -22,6 +22,14 @@ impl Numeric for f32 {
 /// The fast fixed point ([`Fixed32`]): 32-bit words with a format per
 /// quantity.
 impl Numeric for Fixed32 {
+    const LABEL: &'static str = "fixed";
+}
+
+/// The fast fixed point's wide format as one type for every quantity
+/// ([`ScaledScalar`]): the type the code written for `Scalar` (the altitude
+/// tracker, TCAS) runs in on cores without an FPU, so its rows are the fast
+/// fixed point's (`fixed`); Fixed32 itself has no implementation of them.
+impl Numeric for ScaledScalar {
     const LABEL: &'static str = "fixed";
 }
 
