@@ -42,6 +42,15 @@ proptest! {
         prop_assert!((a - exact).abs() <= ATAN2_MAX_ERROR, "{y:?} {x:?}: {a} vs {exact}");
     }
 
+    /// Conversion from f64 (integer code on the IEEE fields): rounded to
+    /// nearest, within half a unit of the 31-bit mantissa.
+    #[test]
+    fn conversion_rounds_to_nearest(v in 0.5f64..1.0, negative: bool, e in -150i32..125) {
+        let v = if negative { -v } else { v } * 2f64.powi(e);
+        let got = s(v).to_f64();
+        prop_assert!((got - v).abs() <= ULP / 2.0 * v.abs(), "{v}: {got}");
+    }
+
     /// One root of the squared mantissas: within half an ulp plus the
     /// rounding of the squares (`Scaled`'s docs), so within one ulp.
     #[test]

@@ -718,13 +718,23 @@ where
         if !v.is_finite() {
             return Self::INVALID;
         }
-        if v == 0.0 {
+        // From the IEEE 754 fields, in integer code (soft-float calls on
+        // the M0/M3 would cost hundreds of instructions): a normal v is
+        // ±(2⁵² + fraction)·2^(biased exponent − 1075), exact in an i64,
+        // rounded once by `from_wide`. Zero and subnormals (below 2⁻¹⁰²²,
+        // far below the flush to zero) give zero.
+        let bits = v.to_bits();
+        let biased = ((bits >> 52) & 0x7FF) as i32;
+        if biased == 0 {
             return Self::ZERO_VALUE;
         }
-        // v = f·2^e with 0.5 ≤ |f| < 1; f·2⁶² is exact and below 2⁶².
-        let (f, e) = libm::frexp(v);
-        let wide = libm::round(f * 4_611_686_018_427_387_904.0) as i64; // 2⁶²
-        Self::from_wide(wide, e.saturating_sub(62))
+        let significand = ((bits & ((1u64 << 52) - 1)) | (1u64 << 52)) as i64;
+        let wide = if bits >> 63 != 0 {
+            significand.wrapping_neg()
+        } else {
+            significand
+        };
+        Self::from_wide(wide, biased.wrapping_sub(1075))
     }
 
     #[inline]
