@@ -36,7 +36,10 @@
 
 use core::fmt;
 
-use crate::filter::{AlphaBeta, FilterError, Gains, Phase, Prediction, UpdateOutcome};
+use crate::filter::{
+    outcome as outcome_of, AlphaBeta, FilterError, Gains, Phase, Prediction, StepGains,
+    UpdateOutcome,
+};
 use crate::gains::{beta_from_alpha, check_range, config_quantity, grid_point, ConfigError};
 use crate::num::{Numeric, Quantity, Real};
 
@@ -236,14 +239,53 @@ impl<N: Numeric, const K: usize> ParallelBank<N, K> {
     }
 
     /// Runs every member on `z` (all or none) and selects the member with the
-    /// least |innovation| (Algorithm 3, steps 2–3).
+    /// least |innovation| (Algorithm 3, steps 2–3). A measurement that is
+    /// not a valid number is refused before the interval is looked at, as
+    /// by [`AlphaBeta::update`].
     pub fn update(&mut self, z: N::Length, dt: N::Interval) -> Result<BankOutcome<N>, FilterError> {
+        if !z.is_valid() {
+            return Err(FilterError::InvalidMeasurement);
+        }
+        let steps = self.step_gains(dt)?;
+        self.update_step(z, &steps)
+    }
+
+    /// Every member's [`StepGains`] at `dt`, formed once per interval (a
+    /// [`CartesianBank`] shares them between its axes); a saturated gain is
+    /// counted and refuses the update.
+    fn step_gains(&mut self, dt: N::Interval) -> Result<[StepGains<N>; K], FilterError> {
+        let formed = self
+            .gains
+            .first()
+            .map_or(Err(FilterError::InvalidInterval), |g| {
+                let first = StepGains::new(g, dt)?;
+                let mut steps = [first; K];
+                for (step, gains) in steps.iter_mut().zip(&self.gains).take(self.len).skip(1) {
+                    *step = StepGains::new(gains, dt)?;
+                }
+                Ok(steps)
+            });
+        if formed == Err(FilterError::Saturated) {
+            self.saturations = self.saturations.saturating_add(1);
+        }
+        formed
+    }
+
+    /// [`Self::update`] with the members' step gains formed already.
+    fn update_step(
+        &mut self,
+        z: N::Length,
+        steps: &[StepGains<N>; K],
+    ) -> Result<BankOutcome<N>, FilterError> {
         let mut next = self.members;
         let mut best: Option<(BankSelection<N>, N::Length)> = None;
         let mut outcome = BankOutcome::FirstPoint;
-        let active = next.iter_mut().zip(&self.gains).take(self.len);
-        for (i, (member, gains)) in active.enumerate() {
-            match member.update(z, dt, gains) {
+        let active = next.iter_mut().zip(steps).take(self.len);
+        for (i, (member, step)) in active.enumerate() {
+            let result = member
+                .update_step(z, step)
+                .map(|kind| outcome_of(kind, member.last_innovation()));
+            match result {
                 Ok(UpdateOutcome::FirstPoint) => outcome = BankOutcome::FirstPoint,
                 Ok(UpdateOutcome::SecondPoint) => outcome = BankOutcome::SecondPoint,
                 Ok(UpdateOutcome::Filtered(inn)) => {
@@ -339,8 +381,22 @@ impl<N: Numeric, const K: usize, const D: usize> CartesianBank<N, K, D> {
     ) -> Result<[BankOutcome<N>; D], FilterError> {
         let mut next = self.axes;
         let mut out = [BankOutcome::FirstPoint; D];
+        // The first axis's measurement is checked before the interval, as
+        // an axis's own update does; the members' step gains are formed
+        // once for every axis (the axes share the members' gains).
+        let first_invalid = z.first().is_some_and(|v| !v.is_valid());
+        let steps = match next.first_mut() {
+            Some(_) if first_invalid => Err(FilterError::InvalidMeasurement),
+            Some(first) => first.step_gains(dt),
+            None => return Ok(out),
+        };
         for ((axis, o), z) in next.iter_mut().zip(out.iter_mut()).zip(z) {
-            match axis.update(z, dt) {
+            let result = match &steps {
+                Ok(steps) if z.is_valid() => axis.update_step(z, steps),
+                Ok(_) => Err(FilterError::InvalidMeasurement),
+                Err(e) => Err(*e),
+            };
+            match result {
                 Ok(r) => *o = r,
                 Err(e) => {
                     // Keep the saturation counts of the refused update.

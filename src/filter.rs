@@ -499,7 +499,12 @@ fn step_gains<N: Numeric, const ORDER: usize, const D: usize>(
     })
 }
 
-fn outcome<N: Numeric>(kind: UpdateKind, last: Option<Innovation<N>>) -> UpdateOutcome<N> {
+/// The [`UpdateOutcome`] of an update of `kind` that left the innovation
+/// `last`.
+pub(crate) fn outcome<N: Numeric>(
+    kind: UpdateKind,
+    last: Option<Innovation<N>>,
+) -> UpdateOutcome<N> {
     match (kind, last) {
         (UpdateKind::FirstPoint, _) => UpdateOutcome::FirstPoint,
         (UpdateKind::SecondPoint, _) => UpdateOutcome::SecondPoint,

@@ -206,3 +206,66 @@ proptest! {
         prop_assert_eq!(bank.position()[0], x.position());
     }
 }
+
+/// The Cartesian bank forms its members' step gains once per update for
+/// every axis: each axis ends exactly as a `ParallelBank` updated alone,
+/// refusals included (a bad measurement on either axis, a bad interval,
+/// β/T saturating in fixed point); a refused update leaves every member as
+/// it was and keeps the saturation counts the axes reached.
+#[test]
+fn cartesian_bank_equals_its_axes_updated_alone() {
+    fn run<S: Scalar>(steps: &[([f64; 2], f64)]) -> u32 {
+        let mut both = CartesianBank::<S, 4, 2>::new(two_member_bank::<S>());
+        let mut alone = [two_member_bank::<S>(), two_member_bank::<S>()];
+        for &(z, dt) in steps {
+            let zs = z.map(S::from_f64_lossy);
+            let dt = S::from_f64_lossy(dt);
+            let got = both.update(zs, dt);
+            // Alone, axis after axis: the first refusal is the Cartesian
+            // one, and it undoes the axes updated before it.
+            let mut tried = alone;
+            let mut want = Ok([BankOutcome::FirstPoint; 2]);
+            for (i, (axis, z)) in tried.iter_mut().zip(zs).enumerate() {
+                match (axis.update(z, dt), want.as_mut()) {
+                    (Ok(o), Ok(w)) => w[i] = o,
+                    (Err(e), _) => {
+                        want = Err(e);
+                        break;
+                    }
+                    (Ok(_), Err(_)) => unreachable!(),
+                }
+            }
+            assert_eq!(got, want, "{} {z:?}", S::NAME);
+            for (i, (a, t)) in both.axes().iter().zip(&tried).enumerate() {
+                let reference = if got.is_ok() { t } else { &alone[i] };
+                assert_eq!(a.member(0), reference.member(0), "{} {z:?}", S::NAME);
+                assert_eq!(a.member(1), reference.member(1), "{} {z:?}", S::NAME);
+                assert_eq!(a.saturations(), t.saturations(), "{} {z:?}", S::NAME);
+            }
+            // Both now hold what the reference says (asserted above).
+            alone = *both.axes();
+        }
+        both.axes().iter().map(|a| a.saturations()).sum()
+    }
+    let steps = [
+        ([0.0, 5.0], 1.0),
+        ([10.0, 3.0], 1.0),
+        ([21.0, f64::NAN], 1.0),
+        ([f64::NAN, 2.0], 1.0),
+        ([19.0, 2.0], 0.0),
+        ([30.0, -1.0], 1.5),
+        ([41.0, -4.0], 0.5),
+    ];
+    assert_eq!(run::<f64>(&steps), 0);
+    assert_eq!(run::<f32>(&steps), 0);
+    assert_eq!(run::<Fix>(&steps), 0);
+    // Fixed point: β/T saturates at a tiny interval (0.5333 / 2⁻³² > 2³¹),
+    // counted once, on the first axis.
+    let saturations = run::<Fix>(&[
+        ([0.0, 5.0], 1.0),
+        ([10.0, 3.0], 1.0),
+        ([11.0, 4.0], 2.4e-10),
+        ([20.0, 1.0], 1.0),
+    ]);
+    assert_eq!(saturations, 1);
+}
