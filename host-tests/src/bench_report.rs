@@ -592,7 +592,15 @@ pub const OPERATIONS: &[(&str, &str)] = &[
     ),
     (
         "tcas_assess",
-        "TCAS threat assessment of one intruder (`tcas::assess`)",
+        "TCAS threat assessment of one intruder, forming its cycle too (`tcas::assess`)",
+    ),
+    (
+        "tcas_cycle",
+        "TCAS cycle, once per scan: sensitivity level and every threshold in the number type (`tcas::stateless_cycle`)",
+    ),
+    (
+        "tcas_assess_in_cycle",
+        "TCAS threat assessment of one intruder in a cycle formed once per scan (`tcas::assess_in`)",
     ),
     (
         "parse_byte",

@@ -328,7 +328,7 @@ fn miss_distance_filter_new_and_continuing_threats() {
 #[test]
 fn intruder_on_the_ground_gets_no_advisory() {
     let cycle = cycle_at::<f64>(1100.0);
-    assert_eq!(cycle.params.level, SensitivityLevel::Sl3);
+    assert_eq!(cycle.params().level, SensitivityLevel::Sl3);
     let mut s = ThreatState::new();
     let a = s
         .assess(
@@ -568,8 +568,8 @@ fn descend_inhibit_removes_descend_ras() {
         ..own
     };
     let cycle = cas.begin_cycle(&own, false).unwrap();
-    assert!(cycle.inhibits.descend);
-    assert_eq!(cycle.params.level, SensitivityLevel::Sl3);
+    assert!(cycle.inhibits().descend);
+    assert_eq!(cycle.params().level, SensitivityLevel::Sl3);
     let out = cas
         .resolve(&cycle, &[threat(1150.0, 0.0, 12.0, 12.0)], 1.0)
         .unwrap();

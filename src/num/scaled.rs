@@ -715,16 +715,17 @@ where
     }
 
     fn from_f64_lossy(v: f64) -> Self {
-        if !v.is_finite() {
-            return Self::INVALID;
-        }
         // From the IEEE 754 fields, in integer code (soft-float calls on
-        // the M0/M3 would cost hundreds of instructions): a normal v is
-        // ±(2⁵² + fraction)·2^(biased exponent − 1075), exact in an i64,
-        // rounded once by `from_wide`. Zero and subnormals (below 2⁻¹⁰²²,
+        // the M0/M3 would cost hundreds of instructions, `is_finite` among
+        // them): a normal v is ±(2⁵² + fraction)·2^(biased exponent −
+        // 1075), exact in an i64, rounded once by `from_wide`. The largest
+        // biased exponent is NaN or ±∞. Zero and subnormals (below 2⁻¹⁰²²,
         // far below the flush to zero) give zero.
         let bits = v.to_bits();
         let biased = ((bits >> 52) & 0x7FF) as i32;
+        if biased == 0x7FF {
+            return Self::INVALID;
+        }
         if biased == 0 {
             return Self::ZERO_VALUE;
         }

@@ -64,7 +64,9 @@ pub const TAU_CAP_LIMIT_S: f64 = 60.0;
 pub const MIN_RA_VERTICAL_FIRMNESS: u8 = 2;
 
 // Not inlined: each call site would otherwise carry the f64-to-S
-// conversion (soft-float on the M0), which costs flash.
+// conversion (soft-float on the M0), which costs flash. Called only when a
+// cycle's thresholds are formed ([`CycleThresholds::new`]), never per
+// intruder.
 #[inline(never)]
 fn c<S: Scalar>(v: f64) -> S {
     S::from_f64_lossy(v)
@@ -84,6 +86,7 @@ pub struct VerticalMeasures<S> {
 
 /// One alert type's thresholds in the tracker's type.
 #[derive(Debug, Clone, Copy, PartialEq)]
+#[cfg_attr(feature = "defmt", derive(defmt::Format))]
 struct Thresholds<S> {
     dmod_m: S,
     tau_s: S,
@@ -92,9 +95,9 @@ struct Thresholds<S> {
 }
 
 impl<S: Scalar> Thresholds<S> {
-    fn new(t: &AlertThresholds, extra_dmod_nm: f64) -> Self {
+    fn new(t: &AlertThresholds) -> Self {
         Thresholds {
-            dmod_m: c((t.dmod_nm + extra_dmod_nm) * METRES_PER_NAUTICAL_MILE),
+            dmod_m: c(t.dmod_m()),
             tau_s: c(t.tau_s),
             zthr_ft: c(t.zthr_ft),
             h1_m2_per_s: c(t.h1_m2_per_s()),
@@ -102,53 +105,191 @@ impl<S: Scalar> Thresholds<S> {
     }
 }
 
-/// The closure speed of the taus: max(−ṙ, 10 ft/s).
-fn closure<S: Scalar>(range_rate_m_per_s: S) -> S {
-    (-range_rate_m_per_s).max_of(c(DIVERGING_RATE_FT_PER_S * METRES_PER_FOOT))
+/// The RA thresholds and limits of a level in the tracker's type.
+#[derive(Debug, Clone, Copy, PartialEq)]
+#[cfg_attr(feature = "defmt", derive(defmt::Format))]
+struct ResolutionThresholds<S> {
+    alert: Thresholds<S>,
+    hmd_m: S,
+    level_own_vertical_tau_s: S,
+    vmd_tau_limit_s: S,
+    model_tau_limit_s: S,
 }
 
-fn diverging<S: Scalar>(range_rate_m_per_s: S) -> bool {
-    range_rate_m_per_s > c(DIVERGING_RATE_FT_PER_S * METRES_PER_FOOT)
+/// The logic's constants that do not depend on the level (this module's
+/// `const`s) in the tracker's type.
+#[derive(Debug, Clone, Copy, PartialEq)]
+#[cfg_attr(feature = "defmt", derive(defmt::Format))]
+struct Constants<S> {
+    diverging_rate_m_per_s: S,
+    max_ra_range_m: S,
+    vertical_convergence_ft_per_s: S,
+    max_intruder_rate_ft_per_s: S,
+    level_own_rate_ft_per_s: S,
+    non_reporting_ta_ceiling_ft: S,
+    min_ta_time_s: S,
+    on_ground_height_ft: S,
+    miss_distance_tau_limit_s: S,
+    continuing_hmd_dmod_factor: S,
+    bearing_cross_check_ratio: S,
+    tau_cap_limit_s: S,
+    proximate_range_m: S,
+    proximate_altitude_ft: S,
+}
+
+/// A cycle's thresholds (the level's and the logic's constants) in the
+/// tracker's type, converted once per cycle so that no intruder's
+/// assessment converts a number (as a filter's step gains are formed once
+/// per interval).
+#[derive(Debug, Clone, Copy, PartialEq)]
+#[cfg_attr(feature = "defmt", derive(defmt::Format))]
+pub struct CycleThresholds<S> {
+    ta: Thresholds<S>,
+    /// TA DMOD widened by [`TA_RANGE_HYSTERESIS_NM`], for an intruder that
+    /// already has a TA.
+    ta_held_dmod_m: S,
+    ra: Option<ResolutionThresholds<S>>,
+    constants: Constants<S>,
+}
+
+impl<S: Scalar> CycleThresholds<S> {
+    /// The thresholds of `params` and the module's constants in `S`.
+    pub fn new(params: &SensitivityParameters) -> Self {
+        let ra = match (params.ra, params.resolution) {
+            (Some(ra), Some(limits)) => Some(ResolutionThresholds {
+                alert: Thresholds::new(&ra),
+                hmd_m: c(limits.hmd_m()),
+                level_own_vertical_tau_s: c(limits.level_own_vertical_tau_s),
+                vmd_tau_limit_s: c(limits.vmd_tau_limit_s),
+                model_tau_limit_s: c(limits.model_tau_limit_s),
+            }),
+            _ => None,
+        };
+        CycleThresholds {
+            ta: Thresholds::new(&params.ta),
+            ta_held_dmod_m: c(
+                (params.ta.dmod_nm + TA_RANGE_HYSTERESIS_NM) * METRES_PER_NAUTICAL_MILE
+            ),
+            ra,
+            constants: Constants {
+                diverging_rate_m_per_s: c(DIVERGING_RATE_FT_PER_S * METRES_PER_FOOT),
+                max_ra_range_m: c(MAX_RA_RANGE_NM * METRES_PER_NAUTICAL_MILE),
+                vertical_convergence_ft_per_s: c(VERTICAL_CONVERGENCE_FT_PER_S),
+                max_intruder_rate_ft_per_s: c(MAX_INTRUDER_RATE_FT_PER_S),
+                level_own_rate_ft_per_s: c(LEVEL_OWN_RATE_FT_PER_S),
+                non_reporting_ta_ceiling_ft: c(NON_REPORTING_TA_CEILING_FT),
+                min_ta_time_s: c(MIN_TA_TIME_S),
+                on_ground_height_ft: c(ON_GROUND_HEIGHT_FT),
+                miss_distance_tau_limit_s: c(MISS_DISTANCE_TAU_LIMIT_S),
+                continuing_hmd_dmod_factor: c(CONTINUING_HMD_DMOD_FACTOR),
+                bearing_cross_check_ratio: c(BEARING_CROSS_CHECK_RATIO),
+                tau_cap_limit_s: c(TAU_CAP_LIMIT_S),
+                proximate_range_m: c(PROXIMATE_RANGE_NM * METRES_PER_NAUTICAL_MILE),
+                proximate_altitude_ft: c(PROXIMATE_ALTITUDE_FT),
+            },
+        }
+    }
+
+    /// The TA DMOD, m, and the RA DMOD (`None` at SL 2).
+    pub fn dmod_m(&self) -> (S, Option<S>) {
+        (self.ta.dmod_m, self.ra.map(|ra| ra.alert.dmod_m))
+    }
+}
+
+/// One intruder's horizontal quantities in a cycle, each quotient formed
+/// at most once: the range tests, the taus and the vertical miss distance
+/// share them.
+#[derive(Debug, Clone, Copy)]
+pub(crate) struct RangeGeometry<S> {
+    r: S,
+    rdot: S,
+    /// ṙ > 10 ft/s (DO-185B `RDTHR`).
+    diverging: bool,
+    /// The closure speed of the taus: max(−ṙ, 10 ft/s).
+    closure: S,
+    /// r/closure, once formed.
+    range_tau: Option<S>,
+    /// The RA τ_mod (uncapped), once formed.
+    ra_modified_tau: Option<S>,
+    /// The last DMOD given to [`RangeGeometry::excess`] and its result.
+    last_excess: Option<(S, Option<S>)>,
+}
+
+impl<S: Scalar> RangeGeometry<S> {
+    /// Range `r` (m, ≥ 0) and range rate `rdot` (m/s) in a cycle.
+    pub(crate) fn new(r: S, rdot: S, thresholds: &CycleThresholds<S>) -> Self {
+        let floor = thresholds.constants.diverging_rate_m_per_s;
+        RangeGeometry {
+            r,
+            rdot,
+            diverging: rdot > floor,
+            closure: (-rdot).max_of(floor),
+            range_tau: None,
+            ra_modified_tau: None,
+            last_excess: None,
+        }
+    }
+
+    /// [`excess_over_dmod`], kept for the last `dmod_m`: the TA range test
+    /// and the TA τ_mod of [`super::assess`] share it.
+    fn excess(&mut self, dmod_m: S) -> Option<S> {
+        match self.last_excess {
+            Some((dmod, excess)) if dmod == dmod_m => excess,
+            _ => {
+                let excess = excess_over_dmod(self.r, dmod_m);
+                self.last_excess = Some((dmod_m, excess));
+                excess
+            }
+        }
+    }
+
+    /// The true range tau r/max(−ṙ, 10 ft/s), s.
+    pub(crate) fn range_tau(&mut self) -> S {
+        *self
+            .range_tau
+            .get_or_insert_with(|| self.r.over(self.closure))
+    }
+
+    /// τ_mod = (r − DMOD²/r)/max(−ṙ, 10 ft/s) with DMOD `dmod_m`, 0 inside
+    /// DMOD.
+    pub(crate) fn modified_tau(&mut self, dmod_m: S) -> S {
+        match self.excess(dmod_m) {
+            Some(excess) => excess.over(self.closure),
+            None => S::ZERO,
+        }
+    }
+
+    /// [`RangeGeometry::modified_tau`] with the RA DMOD (the same `dmod_m`
+    /// on every call), formed once.
+    pub(crate) fn ra_modified_tau(&mut self, dmod_m: S) -> S {
+        let (r, closure) = (self.r, self.closure);
+        *self
+            .ra_modified_tau
+            .get_or_insert_with(|| match excess_over_dmod(r, dmod_m) {
+                Some(excess) => excess.over(closure),
+                None => S::ZERO,
+            })
+    }
+}
+
+/// r − DMOD²/r as r − DMOD·(DMOD/r) (no square of a range); `None` for
+/// r ≤ DMOD.
+fn excess_over_dmod<S: Scalar>(r: S, dmod_m: S) -> Option<S> {
+    (r > dmod_m).then(|| r - dmod_m.times(dmod_m.over(r)))
 }
 
 /// The range test (DO-185B `range_test`; DAIDALUS `TCAS2D::horizontal_RA`):
 ///
 /// * diverging (ṙ > 10 ft/s): a hit only inside DMOD with r·ṙ ≤ H1;
 /// * otherwise a hit when τ_mod = (r − DMOD²/r)/max(−ṙ, 10 ft/s) < TAU
-///   (τ_mod = 0 inside DMOD), decided as r − DMOD·(DMOD/r) < TAU·closure;
-///   RAs also need r ≤ 12 NM (`max_range_m`).
-fn range_hit<S: Scalar>(r: S, rdot: S, t: &Thresholds<S>, max_range_m: Option<S>) -> bool {
-    if diverging(rdot) {
-        return r <= t.dmod_m && r.times(rdot) <= t.h1_m2_per_s;
+///   (τ_mod = 0 inside DMOD), decided as r − DMOD·(DMOD/r) < TAU·closure.
+fn range_hit<S: Scalar>(g: &mut RangeGeometry<S>, dmod_m: S, t: &Thresholds<S>) -> bool {
+    if g.diverging {
+        return g.r <= dmod_m && g.r.times(g.rdot) <= t.h1_m2_per_s;
     }
-    if max_range_m.is_some_and(|max| r > max) {
-        return false;
-    }
-    r <= t.dmod_m || r - t.dmod_m.times(t.dmod_m.over(r)) < t.tau_s.times(closure(rdot))
-}
-
-/// min(r/closure, cap): the true range tau, capped so the quotient stays
-/// bounded.
-fn capped_range_tau<S: Scalar>(r: S, rdot: S, cap_s: S) -> S {
-    let closure = closure(rdot);
-    if r >= cap_s.times(closure) {
-        cap_s
-    } else {
-        r.over(closure)
-    }
-}
-
-/// min(τ_mod, cap), 0 inside DMOD.
-fn capped_modified_tau<S: Scalar>(r: S, rdot: S, dmod_m: S, cap_s: S) -> S {
-    if r <= dmod_m {
-        return S::ZERO;
-    }
-    let excess = r - dmod_m.times(dmod_m.over(r));
-    let closure = closure(rdot);
-    if excess >= cap_s.times(closure) {
-        cap_s
-    } else {
-        excess.over(closure)
+    match g.excess(dmod_m) {
+        None => true,
+        Some(excess) => excess < t.tau_s.times(g.closure),
     }
 }
 
@@ -156,12 +297,9 @@ fn capped_modified_tau<S: Scalar>(r: S, rdot: S, dmod_m: S, cap_s: S) -> S {
 /// `vertical_miss_distance_calculation`): h + ḣ·τ at the true range tau
 /// and at the modified tau (both capped at TVPCMD); zero if the two
 /// straddle co-altitude, else the smaller; h itself when diverging.
-fn vertical_miss_distance<S: Scalar>(h: S, hdot: S, r: S, rdot: S, dmod_m: S, cap_s: S) -> S {
-    if rdot > S::ZERO {
-        return h;
-    }
-    let at_true = h + hdot.times(capped_range_tau(r, rdot, cap_s));
-    let at_modified = h + hdot.times(capped_modified_tau(r, rdot, dmod_m, cap_s));
+fn vertical_miss_distance<S: Scalar>(h: S, hdot: S, range_tau: S, modified_tau: S, cap_s: S) -> S {
+    let at_true = h + hdot.times(cap_s.min_of(range_tau));
+    let at_modified = h + hdot.times(cap_s.min_of(modified_tau));
     let straddle = (at_true <= S::ZERO && at_modified >= S::ZERO)
         || (at_true >= S::ZERO && at_modified <= S::ZERO);
     if straddle {
@@ -185,8 +323,14 @@ fn separation_rate<S: Scalar>(h: S, hdot: S) -> S {
 /// The RA vertical-tau threshold (DO-185B `set_detection_parameters`): the
 /// level-own-aircraft value `TVVTT` when own is level (|ż| ≤ 600 ft/min) or
 /// moving the same way as the intruder but slower; RA TAU otherwise.
-fn ra_vertical_tau<S: Scalar>(own_rate: S, intruder_rate: S, level_tau: S, tau: S) -> S {
-    let level = c::<S>(LEVEL_OWN_RATE_FT_PER_S);
+fn ra_vertical_tau<S: Scalar>(
+    own_rate: S,
+    intruder_rate: S,
+    level_tau: S,
+    tau: S,
+    k: &Constants<S>,
+) -> S {
+    let level = k.level_own_rate_ft_per_s;
     let same_way_slower =
         own_rate.times(intruder_rate) >= S::ZERO && own_rate.abs() < intruder_rate.abs();
     if own_rate.abs() <= level || same_way_slower {
@@ -212,10 +356,10 @@ fn ra_vertical_hit<S: Scalar>(
     vmd: S,
     vertical_tau_threshold: S,
     zthr: S,
-    r: S,
-    rdot: S,
+    g: &RangeGeometry<S>,
+    k: &Constants<S>,
 ) -> bool {
-    if intruder_rate.abs() > c(MAX_INTRUDER_RATE_FT_PER_S) {
+    if intruder_rate.abs() > k.max_intruder_rate_ft_per_s {
         return false;
     }
     let a = h.abs();
@@ -223,23 +367,23 @@ fn ra_vertical_hit<S: Scalar>(
         return vmd.abs() < zthr;
     }
     let adot = separation_rate(h, hdot);
-    if adot >= c(VERTICAL_CONVERGENCE_FT_PER_S) {
+    if adot >= k.vertical_convergence_ft_per_s {
         return false;
     }
     let closing = -adot;
     a < vertical_tau_threshold.times(closing)
-        && (vmd.abs() < zthr || a.times(closure(rdot)) < r.times(closing))
+        && (vmd.abs() < zthr || a.times(g.closure) < g.r.times(closing))
 }
 
 /// The TA vertical test (DAIDALUS `TCAS3D::vertical_RA` with the TA table;
 /// DO-185B `ZDTHRTA`): a < ZTHR, or converging with τ_v below TA TAU.
-fn ta_vertical_hit<S: Scalar>(h: S, hdot: S, zthr: S, tau: S) -> bool {
+fn ta_vertical_hit<S: Scalar>(h: S, hdot: S, zthr: S, tau: S, k: &Constants<S>) -> bool {
     let a = h.abs();
     if a < zthr {
         return true;
     }
     let adot = separation_rate(h, hdot);
-    adot < c(VERTICAL_CONVERGENCE_FT_PER_S) && a < tau.times(-adot)
+    adot < k.vertical_convergence_ft_per_s && a < tau.times(-adot)
 }
 
 /// The horizontal miss-distance filter's state for one intruder (DO-185B
@@ -264,10 +408,11 @@ impl MissDistanceFilter {
         &mut self,
         range: &RangeEstimate<S>,
         bearing_miss_distance_m: Option<S>,
+        k: &Constants<S>,
     ) -> Option<S> {
         let from_range = range.miss_distance_m();
         let bearing_disagrees = match (from_range, bearing_miss_distance_m) {
-            (Some(r), Some(b)) => c::<S>(BEARING_CROSS_CHECK_RATIO).times(b) < r,
+            (Some(r), Some(b)) => k.bearing_cross_check_ratio.times(b) < r,
             _ => false,
         };
         let manoeuvre = range.initialised
@@ -295,12 +440,13 @@ impl MissDistanceFilter {
         continuing: bool,
         new_threshold_m: S,
         dmod_m: S,
+        k: &Constants<S>,
     ) -> bool {
-        if modified_tau_s >= c(MISS_DISTANCE_TAU_LIMIT_S) {
+        if modified_tau_s >= k.miss_distance_tau_limit_s {
             return false;
         }
         let threshold = if continuing {
-            c::<S>(CONTINUING_HMD_DMOD_FACTOR).times(dmod_m)
+            k.continuing_hmd_dmod_factor.times(dmod_m)
         } else {
             new_threshold_m
         };
@@ -365,18 +511,53 @@ pub struct ThreatStatus<S> {
 }
 
 /// What the whole system decided for this cycle, shared by every intruder:
-/// the own aircraft, the sensitivity parameters (with hysteresis) and the
-/// low-altitude inhibits.
+/// the own aircraft, the sensitivity parameters (with hysteresis), the
+/// low-altitude inhibits, and the thresholds in the tracker's type.
 #[derive(Debug, Clone, Copy, PartialEq)]
 #[cfg_attr(feature = "defmt", derive(defmt::Format))]
 pub struct Cycle<S> {
+    pub(crate) own: OwnAircraft<S>,
+    pub(crate) params: SensitivityParameters,
+    pub(crate) inhibits: super::resolution::Inhibits,
+    thresholds: CycleThresholds<S>,
+}
+
+impl<S: Scalar> Cycle<S> {
+    /// A cycle of the own aircraft `own` at the sensitivity parameters
+    /// `params` with the inhibits `inhibits`; converts the thresholds to
+    /// `S` once for every intruder of the cycle.
+    pub fn new(
+        own: OwnAircraft<S>,
+        params: SensitivityParameters,
+        inhibits: super::resolution::Inhibits,
+    ) -> Self {
+        Cycle {
+            own,
+            params,
+            inhibits,
+            thresholds: CycleThresholds::new(&params),
+        }
+    }
+
     /// The own aircraft's state this cycle.
-    pub own: OwnAircraft<S>,
+    pub fn own(&self) -> &OwnAircraft<S> {
+        &self.own
+    }
+
     /// The sensitivity parameters selected with hysteresis (booklet Table 3;
     /// DO-185B `ZSL*`).
-    pub params: SensitivityParameters,
+    pub fn params(&self) -> &SensitivityParameters {
+        &self.params
+    }
+
     /// The low-altitude RA inhibits in force (booklet; DO-185B hysteresis).
-    pub inhibits: super::resolution::Inhibits,
+    pub fn inhibits(&self) -> &super::resolution::Inhibits {
+        &self.inhibits
+    }
+
+    pub(crate) fn thresholds(&self) -> &CycleThresholds<S> {
+        &self.thresholds
+    }
 }
 
 /// The threat logic's memory of one intruder: TA hysteresis and minimum
@@ -401,12 +582,10 @@ impl<S: Scalar> Default for ThreatState<S> {
     }
 }
 
-/// The geometry of one cycle's tests, from either the trackers or a
-/// relative state vector.
+/// What one cycle's tests take besides the range geometry, from either the
+/// trackers or a relative state vector.
 #[derive(Debug, Clone, Copy)]
 struct Inputs<S> {
-    range_m: S,
-    range_rate_m_per_s: S,
     miss_distance_m: Option<S>,
     altitude: Option<AltitudeEstimate<S>>,
     /// Track firmness allows a new TA / a new RA.
@@ -450,58 +629,57 @@ impl<S: Scalar> ThreatState<S> {
     ) -> Result<ThreatStatus<S>, TcasError> {
         let range = &observation.range;
         all_valid(&[range.range_m, range.range_rate_m_per_s, dt])?;
-        if dt <= S::ZERO {
+        if dt <= S::ZERO || range.range_m < S::ZERO {
             return Err(TcasError::InvalidInput);
         }
-        let miss_distance = self
-            .miss_distance
-            .miss_distance(range, observation.bearing_miss_distance_m);
+        let miss_distance = self.miss_distance.miss_distance(
+            range,
+            observation.bearing_miss_distance_m,
+            &cycle.thresholds.constants,
+        );
         let firm = range.firmness >= MIN_ALERT_FIRMNESS;
         let inputs = Inputs {
-            range_m: range.range_m,
-            range_rate_m_per_s: range.range_rate_m_per_s,
             miss_distance_m: miss_distance,
             altitude: observation.altitude,
             firm_for_ta: firm,
             firm_for_ra: firm && observation.altitude_firmness >= MIN_RA_VERTICAL_FIRMNESS,
         };
-        self.evaluate(cycle, &inputs, Some(dt))
+        let mut geometry =
+            RangeGeometry::new(range.range_m, range.range_rate_m_per_s, &cycle.thresholds);
+        self.evaluate(cycle, &mut geometry, &inputs, Some(dt))
     }
 
-    /// One cycle from a relative state vector (position m, velocity m/s,
-    /// intruder minus own): HMD is the straight-line miss distance, and the
-    /// firmness gates are open. Used by [`super::assess`].
+    /// One cycle from a relative state vector (range `geometry`, the
+    /// straight-line miss distance): the firmness gates are open. Used by
+    /// [`super::assess`], which reads the taus from `geometry` afterwards.
     pub(crate) fn assess_state(
         &mut self,
         cycle: &Cycle<S>,
-        range_m: S,
-        range_rate_m_per_s: S,
+        geometry: &mut RangeGeometry<S>,
         miss_distance_m: Option<S>,
         altitude: Option<AltitudeEstimate<S>>,
     ) -> Result<ThreatStatus<S>, TcasError> {
         let inputs = Inputs {
-            range_m,
-            range_rate_m_per_s,
             miss_distance_m,
             altitude,
             firm_for_ta: true,
             firm_for_ra: true,
         };
-        self.evaluate(cycle, &inputs, None)
+        self.evaluate(cycle, geometry, &inputs, None)
     }
 
+    /// The tests of one cycle; `geometry.r` ≥ 0 and valid, as both callers
+    /// check.
     fn evaluate(
         &mut self,
         cycle: &Cycle<S>,
+        g: &mut RangeGeometry<S>,
         inputs: &Inputs<S>,
         dt: Option<S>,
     ) -> Result<ThreatStatus<S>, TcasError> {
         let own = &cycle.own;
-        let params = &cycle.params;
-        let (r, rdot) = (inputs.range_m, inputs.range_rate_m_per_s);
-        if r < S::ZERO {
-            return Err(TcasError::InvalidInput);
-        }
+        let thresholds = &cycle.thresholds;
+        let k = &thresholds.constants;
         let vertical = match inputs.altitude {
             None => None,
             Some(a) => {
@@ -518,61 +696,67 @@ impl<S: Scalar> ThreatState<S> {
         let on_ground = match (inputs.altitude, own.radio_altitude_ft) {
             (Some(a), Some(radio)) => {
                 let ground = own.pressure_altitude_ft - radio;
-                a.altitude_ft - ground < c(ON_GROUND_HEIGHT_FT)
+                a.altitude_ft - ground < k.on_ground_height_ft
             }
             _ => false,
         };
 
         // Traffic advisory.
         let had_ta = self.ta_age_s.is_some();
-        let hysteresis = if had_ta { TA_RANGE_HYSTERESIS_NM } else { 0.0 };
-        let ta = Thresholds::<S>::new(&params.ta, hysteresis);
-        let ta_range = range_hit(r, rdot, &ta, None);
-        let ta_tests = match (&vertical, inputs.altitude) {
-            (Some(v), _) => {
+        let ta = &thresholds.ta;
+        let ta_dmod_m = if had_ta {
+            thresholds.ta_held_dmod_m
+        } else {
+            ta.dmod_m
+        };
+        let ta_range = range_hit(g, ta_dmod_m, ta);
+        let ta_tests = match &vertical {
+            Some(v) => {
                 ta_range
                     && ta_vertical_hit(
                         v.relative_altitude_ft,
                         v.relative_rate_ft_per_s,
                         ta.zthr_ft,
                         ta.tau_s,
+                        k,
                     )
             }
-            (None, _) => ta_range && own.pressure_altitude_ft < c(NON_REPORTING_TA_CEILING_FT),
+            None => ta_range && own.pressure_altitude_ft < k.non_reporting_ta_ceiling_ft,
         };
 
         // Resolution advisory (never against a non-reporting intruder).
         let mut status_filtered = false;
         let mut geometry = None;
-        let ra_tests = match (params.ra, params.resolution, &vertical, inputs.altitude) {
-            (Some(ra_t), Some(limits), Some(v), Some(a)) => {
-                let ra = Thresholds::<S>::new(&ra_t, 0.0);
+        let ra_tests = match (&thresholds.ra, &vertical, inputs.altitude) {
+            (Some(limits), Some(v), Some(a)) => {
+                let ra = &limits.alert;
                 // τ_mod, never rising once the track is firm (DO-185B
-                // `tau_calculation` with `TAUCAP`), capped at 60 s so the
-                // quotient stays bounded (TAU ≤ 35 s); both the range test
-                // and the miss-distance filter's 35 s limit use it.
-                let modified_tau = if diverging(rdot) {
+                // `tau_calculation` with `TAUCAP`), capped at 60 s (TAU ≤
+                // 35 s); both the range test and the miss-distance filter's
+                // 35 s limit use it.
+                let modified_tau = if g.diverging {
                     self.ra_tau_cap_s = None;
                     S::ZERO
                 } else {
-                    let now = capped_modified_tau(r, rdot, ra.dmod_m, c(TAU_CAP_LIMIT_S));
+                    let now = k.tau_cap_limit_s.min_of(g.ra_modified_tau(ra.dmod_m));
                     let tau = self.ra_tau_cap_s.map_or(now, |cap| cap.min_of(now));
                     if inputs.firm_for_ta {
                         self.ra_tau_cap_s = Some(tau);
                     }
                     tau
                 };
-                let range_ok = if diverging(rdot) {
-                    range_hit(r, rdot, &ra, None)
+                let range_ok = if g.diverging {
+                    range_hit(g, ra.dmod_m, ra)
                 } else {
-                    r <= c(MAX_RA_RANGE_NM * METRES_PER_NAUTICAL_MILE) && modified_tau < ra.tau_s
+                    g.r <= k.max_ra_range_m && modified_tau < ra.tau_s
                 };
                 let filtered = self.miss_distance.filters(
                     inputs.miss_distance_m,
                     modified_tau,
                     self.ra_threat,
-                    c(limits.hmd_m()),
+                    limits.hmd_m,
                     ra.dmod_m,
+                    k,
                 ) && range_ok;
                 status_filtered = filtered;
                 let range_hit = range_ok && !filtered;
@@ -581,19 +765,24 @@ impl<S: Scalar> ThreatState<S> {
                 // KHIT > 0).
                 let vertical_hit = self.ra_threat || {
                     let (h, hdot) = (v.relative_altitude_ft, v.relative_rate_ft_per_s);
-                    let vmd = vertical_miss_distance(
-                        h,
-                        hdot,
-                        r,
-                        rdot,
-                        ra.dmod_m,
-                        c(limits.vmd_tau_limit_s),
-                    );
+                    // h itself when the range opens.
+                    let vmd = if g.rdot > S::ZERO {
+                        h
+                    } else {
+                        vertical_miss_distance(
+                            h,
+                            hdot,
+                            g.range_tau(),
+                            g.ra_modified_tau(ra.dmod_m),
+                            limits.vmd_tau_limit_s,
+                        )
+                    };
                     let threshold = ra_vertical_tau(
                         own.vertical_rate_ft_per_s,
                         a.vertical_rate_ft_per_s,
-                        c(limits.level_own_vertical_tau_s),
+                        limits.level_own_vertical_tau_s,
                         ra.tau_s,
+                        k,
                     );
                     ra_vertical_hit(
                         h,
@@ -602,17 +791,17 @@ impl<S: Scalar> ThreatState<S> {
                         vmd,
                         threshold,
                         ra.zthr_ft,
-                        r,
-                        rdot,
+                        g,
+                        k,
                     )
                 };
                 let hit = range_hit && vertical_hit;
                 if hit {
-                    let cap = c(limits.model_tau_limit_s);
+                    let cap = limits.model_tau_limit_s;
                     geometry = Some(ThreatGeometry {
                         intruder: a,
-                        range_tau_s: capped_range_tau(r, rdot, cap),
-                        modified_tau_s: capped_modified_tau(r, rdot, ra.dmod_m, cap),
+                        range_tau_s: cap.min_of(g.range_tau()),
+                        modified_tau_s: cap.min_of(g.ra_modified_tau(ra.dmod_m)),
                     });
                 }
                 hit
@@ -639,7 +828,7 @@ impl<S: Scalar> ThreatState<S> {
         let ta_start = ta_tests && (had_ta || inputs.firm_for_ta);
         held_by_firmness |= ta_tests && !had_ta && !inputs.firm_for_ta;
         let held_by_min_time = match (self.ta_age_s, dt) {
-            (Some(age), Some(dt)) => age + dt < c(MIN_TA_TIME_S),
+            (Some(age), Some(dt)) => age + dt < k.min_ta_time_s,
             _ => false,
         };
         let ta_now = !on_ground && (ta_start || ra_now || (had_ta && held_by_min_time));
@@ -650,8 +839,8 @@ impl<S: Scalar> ThreatState<S> {
             (true, Some(age), None) => Some(age),
         };
 
-        let proximate = r <= c(PROXIMATE_RANGE_NM * METRES_PER_NAUTICAL_MILE)
-            && vertical.is_none_or(|v| v.relative_altitude_ft.abs() <= c(PROXIMATE_ALTITUDE_FT));
+        let proximate = g.r <= k.proximate_range_m
+            && vertical.is_none_or(|v| v.relative_altitude_ft.abs() <= k.proximate_altitude_ft);
         let advisory = if ra_now {
             Advisory::Resolution
         } else if ta_now {

@@ -54,11 +54,7 @@ impl<S: Scalar> CollisionAvoidance<S> {
     ) -> Result<Cycle<S>, TcasError> {
         let params = self.selector.select(own)?;
         let inhibits = self.inhibits.update(own.radio_altitude_ft, climb_inhibited);
-        Ok(Cycle {
-            own: *own,
-            params,
-            inhibits,
-        })
+        Ok(Cycle::new(*own, params, inhibits))
     }
 
     /// Ends a cycle: the RA against this cycle's RA threats

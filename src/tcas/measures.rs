@@ -89,39 +89,79 @@ pub fn closest_approach<S: Scalar>(
     position_m: [S; 2],
     velocity_m_per_s: [S; 2],
 ) -> Result<Option<ClosestApproach<S>>, TcasError> {
-    let [px, py] = position_m;
-    let [vx, vy] = velocity_m_per_s;
-    all_valid(&[px, py, vx, vy])?;
-    let range = valid_result(hypot(px, py))?;
-    let speed = valid_result(hypot(vx, vy))?;
-    if speed == S::ZERO || range == S::ZERO {
-        return Ok(Some(ClosestApproach {
-            time_s: S::ZERO,
-            distance_m: range,
-        }));
+    let polar = RelativeRange::new(position_m, velocity_m_per_s)?;
+    polar.closest_approach(velocity_m_per_s)
+}
+
+/// Range, the unit vector towards the intruder and range rate of a relative
+/// state vector, formed once for [`super::assess`]'s range rate and
+/// closest approach.
+#[derive(Debug, Clone, Copy)]
+pub(crate) struct RelativeRange<S> {
+    /// r = |p|, m.
+    pub(crate) range_m: S,
+    /// p/r (zero at r = 0).
+    unit: [S; 2],
+    /// ṙ = p̂·v, m/s (zero at r = 0).
+    pub(crate) range_rate_m_per_s: S,
+}
+
+impl<S: Scalar> RelativeRange<S> {
+    /// From position `position_m` (m) and velocity `velocity_m_per_s`
+    /// (m/s), both checked.
+    pub(crate) fn new(position_m: [S; 2], velocity_m_per_s: [S; 2]) -> Result<Self, TcasError> {
+        let [px, py] = position_m;
+        let [vx, vy] = velocity_m_per_s;
+        all_valid(&[px, py, vx, vy])?;
+        let range = valid_result(hypot(px, py))?;
+        if range == S::ZERO {
+            return Ok(RelativeRange {
+                range_m: range,
+                unit: [S::ZERO; 2],
+                range_rate_m_per_s: S::ZERO,
+            });
+        }
+        let unit = [px.over(range), py.over(range)];
+        let range_rate = valid_result(unit[0].times(vx) + unit[1].times(vy))?;
+        Ok(RelativeRange {
+            range_m: range,
+            unit,
+            range_rate_m_per_s: range_rate,
+        })
     }
-    // Unit vectors: every product below is bounded by 1.
-    let (ux, uy) = (px.over(range), py.over(range));
-    let (wx, wy) = (vx.over(speed), vy.over(speed));
-    let cos = ux.times(wx) + uy.times(wy);
-    if cos >= S::ZERO {
-        // Opening (or tangential): the closest approach is now.
-        return Ok(Some(ClosestApproach {
-            time_s: S::ZERO,
-            distance_m: range,
-        }));
+
+    /// The closest point of approach with velocity `velocity_m_per_s` (the
+    /// one given to [`RelativeRange::new`]): with cos θ = ṙ/|v| and
+    /// |sin θ| = |p̂ × v|/|v|, t = −cos θ·r/|v| and d = r·|sin θ|.
+    pub(crate) fn closest_approach(
+        &self,
+        velocity_m_per_s: [S; 2],
+    ) -> Result<Option<ClosestApproach<S>>, TcasError> {
+        let [vx, vy] = velocity_m_per_s;
+        let range = self.range_m;
+        let speed = valid_result(hypot(vx, vy))?;
+        // Opening or tangential (ṙ ≥ 0), no relative motion, or no range:
+        // the closest approach is now.
+        if speed == S::ZERO || range == S::ZERO || self.range_rate_m_per_s >= S::ZERO {
+            return Ok(Some(ClosestApproach {
+                time_s: S::ZERO,
+                distance_m: range,
+            }));
+        }
+        let time = (-self.range_rate_m_per_s)
+            .over(speed)
+            .times(range.over(speed));
+        if !time.is_valid() {
+            return Ok(None);
+        }
+        let [ux, uy] = self.unit;
+        let sin = (ux.times(vy) - uy.times(vx)).over(speed);
+        let distance = valid_result(range.times(sin.abs()))?;
+        Ok(Some(ClosestApproach {
+            time_s: time,
+            distance_m: distance,
+        }))
     }
-    // t = −(p·v)/|v|² = −cos θ · r/|v|; d = r·|sin θ|.
-    let time = (-cos).times(range.over(speed));
-    if !time.is_valid() {
-        return Ok(None);
-    }
-    let sin = ux.times(wy) - uy.times(wx);
-    let distance = valid_result(range.times(sin.abs()))?;
-    Ok(Some(ClosestApproach {
-        time_s: time,
-        distance_m: distance,
-    }))
 }
 
 /// Vertical tau τ_v = −h/ḣ, s, for relative altitude `relative_altitude_ft`

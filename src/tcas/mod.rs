@@ -34,9 +34,11 @@
 //! [`assess`] is the stateless assessment of a relative state vector (no
 //! firmness, no hysteresis), for tools and the scan loop of issue 4.
 
-use crate::filter::altitude::{AltitudeEstimate, OutOfLine};
-use crate::filter::range_azimuth::{hypot, RangeAzimuthFilter};
+use crate::filter::altitude::AltitudeEstimate;
+use crate::filter::range_azimuth::RangeAzimuthFilter;
 use crate::num::Scalar;
+use detection::RangeGeometry;
+use measures::RelativeRange;
 
 pub mod detection;
 pub mod logic;
@@ -191,47 +193,73 @@ pub struct ThreatAssessment<S> {
 /// [`ThreatState`] for a new intruder (no TA hysteresis, no minimum TA
 /// time, no firmness gate), and the HMD filter on the straight-line miss
 /// distance d_cpa of [`closest_approach`] (DAIDALUS `TCAS3D::TCASII_RA`
-/// uses the same state-vector form).
+/// uses the same state-vector form). The cycle is [`stateless_cycle`];
+/// with many intruders, form it once and call [`assess_in`].
 pub fn assess<S: Scalar>(
     own: &OwnAircraft<S>,
     intruder: &Intruder<S>,
 ) -> Result<ThreatAssessment<S>, TcasError> {
-    let params = sensitivity(own)?;
-    let [px, py] = intruder.relative_position_m;
-    let [vx, vy] = intruder.relative_velocity_m_per_s;
-    measures::all_valid(&[px, py, vx, vy])?;
-    let range = measures::valid_result(hypot(px, py))?;
-    // ṙ = p̂·v, with ṙ = 0 at r = 0.
-    let range_rate = if range == S::ZERO {
-        S::ZERO
-    } else {
-        measures::valid_result(px.over(range).times(vx) + py.over(range).times(vy))?
-    };
-    let closest = closest_approach(
+    assess_in(&stateless_cycle(own)?, intruder)
+}
+
+/// The cycle of [`assess`] for the own aircraft `own`: the band's
+/// sensitivity level ([`sensitivity`], no hysteresis) and no low-altitude
+/// inhibit history.
+pub fn stateless_cycle<S: Scalar>(own: &OwnAircraft<S>) -> Result<Cycle<S>, TcasError> {
+    Ok(Cycle::new(
+        *own,
+        sensitivity(own)?,
+        LowAltitudeInhibits::new().update(own.radio_altitude_ft, false),
+    ))
+}
+
+/// [`assess`] of one intruder in a cycle formed once for all of them
+/// ([`stateless_cycle`], or [`CollisionAvoidance::begin_cycle`]'s, whose
+/// hysteresis then applies to the level).
+pub fn assess_in<S: Scalar>(
+    cycle: &Cycle<S>,
+    intruder: &Intruder<S>,
+) -> Result<ThreatAssessment<S>, TcasError> {
+    let relative = RelativeRange::new(
         intruder.relative_position_m,
         intruder.relative_velocity_m_per_s,
     )?;
-    let cycle = Cycle {
-        own: *own,
-        params,
-        inhibits: LowAltitudeInhibits::new().update(own.radio_altitude_ft, false),
-    };
+    let closest = relative.closest_approach(intruder.relative_velocity_m_per_s)?;
+    let (range, range_rate) = (relative.range_m, relative.range_rate_m_per_s);
+    let mut geometry = RangeGeometry::new(range, range_rate, cycle.thresholds());
     let status = ThreatState::new().assess_state(
-        &cycle,
-        range,
-        range_rate,
+        cycle,
+        &mut geometry,
         closest.map(|c| c.distance_m),
         intruder.altitude,
     )?;
-    let c = |v: f64| S::from_f64_lossy(v);
+    // The taus of the report from the quotients the tests formed: none
+    // while the range opens, except τ_mod = 0 inside DMOD.
+    let opening = range_rate > S::ZERO;
+    let (ta_dmod_m, ra_dmod_m) = cycle.thresholds().dmod_m();
+    let modified_tau = |g: &mut RangeGeometry<S>, dmod_m: S, ra: bool| {
+        if range <= dmod_m {
+            Ok(Some(S::ZERO))
+        } else if opening {
+            Ok(None)
+        } else if ra {
+            measures::valid_result(g.ra_modified_tau(dmod_m)).map(Some)
+        } else {
+            measures::valid_result(g.modified_tau(dmod_m)).map(Some)
+        }
+    };
     Ok(ThreatAssessment {
-        sensitivity: params.level,
+        sensitivity: cycle.params().level,
         range_m: range,
         range_rate_m_per_s: range_rate,
-        range_tau_s: range_tau(range, range_rate)?,
-        ta_modified_tau_s: modified_tau(range, range_rate, c(params.ta.dmod_m()))?,
-        ra_modified_tau_s: match params.ra {
-            Some(ra) => modified_tau(range, range_rate, c(ra.dmod_m()))?,
+        range_tau_s: if opening {
+            None
+        } else {
+            Some(measures::valid_result(geometry.range_tau())?)
+        },
+        ta_modified_tau_s: modified_tau(&mut geometry, ta_dmod_m, false)?,
+        ra_modified_tau_s: match ra_dmod_m {
+            Some(dmod_m) => modified_tau(&mut geometry, dmod_m, true)?,
             None => None,
         },
         closest_approach: closest,

@@ -19,7 +19,7 @@ use abtrack::gain::{
     AdaptiveSwitchGains, AutoConfig, AutoGains, GainSchedule, LeastSquaresGains, ScheduledFilter,
 };
 use abtrack::num::Quantity;
-use abtrack::tcas::{assess, Advisory, Intruder, OwnAircraft};
+use abtrack::tcas::{assess, assess_in, stateless_cycle, Advisory, Cycle, Intruder, OwnAircraft};
 use abtrack::Scalar;
 
 use crate::counter::Bench;
@@ -104,6 +104,16 @@ fn update_altitude<S: Scalar>(tracker: &mut AltitudeTracker<S>, altitude_ft: S, 
 #[inline(never)]
 fn assess_one<S: Scalar>(own: &OwnAircraft<S>, intruder: &Intruder<S>) -> Option<Advisory> {
     assess(own, intruder).ok().map(|a| a.advisory)
+}
+
+#[inline(never)]
+fn assess_one_in<S: Scalar>(cycle: &Cycle<S>, intruder: &Intruder<S>) -> Option<Advisory> {
+    assess_in(cycle, intruder).ok().map(|a| a.advisory)
+}
+
+#[inline(never)]
+fn form_cycle<S: Scalar>(own: &OwnAircraft<S>) -> Option<Cycle<S>> {
+    stateless_cycle(own).ok()
 }
 
 /// αβ and αβγ, one axis and two, fixed gains, on a noisy out-and-back
@@ -322,5 +332,45 @@ fn tcas<S: Numeric + Scalar>(bench: &mut Bench) {
         numeric,
         "tcas_assess",
         "no mix of alerting and quiet intruders",
+    );
+    // The same assessment split as a scan runs it: the cycle (level and
+    // thresholds) once per scan, then each intruder in it.
+    let mut formed = 0u32;
+    bench.per_call(
+        numeric,
+        "tcas_cycle",
+        |_| formed += u32::from(form_cycle(black_box(&own)).is_some()),
+        |_| {
+            black_box(black_box(&own));
+        },
+    );
+    bench.check(
+        formed == crate::CALLS,
+        numeric,
+        "tcas_cycle",
+        "cycles refused",
+    );
+    let Some(cycle) = form_cycle(&own) else {
+        return;
+    };
+    let cycle = black_box(cycle);
+    let mut alerts_in_cycle = 0u32;
+    bench.per_call(
+        numeric,
+        "tcas_assess_in_cycle",
+        |k| match assess_one_in(&cycle, black_box(&intruders[at(k)])) {
+            Some(a) if a >= Advisory::Traffic => alerts_in_cycle += 1,
+            Some(_) => {}
+            None => refused += 1,
+        },
+        |k| {
+            black_box(black_box(&intruders[at(k)]));
+        },
+    );
+    bench.check(
+        refused == 0 && alerts_in_cycle == alerts,
+        numeric,
+        "tcas_assess_in_cycle",
+        "assessments refused or different from tcas_assess",
     );
 }

@@ -123,7 +123,12 @@ impl Group {
                 "range_azimuth_update",
                 "floor_ab2d_update",
             ],
-            Group::Tcas => &["altitude_update", "tcas_assess"],
+            Group::Tcas => &[
+                "altitude_update",
+                "tcas_assess",
+                "tcas_cycle",
+                "tcas_assess_in_cycle",
+            ],
             Group::Scans => &["scan_separated", "scan_crowded"],
         }
     }
