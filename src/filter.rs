@@ -250,7 +250,7 @@ impl<N: Numeric, const ORDER: usize> Default for KinematicFilter<N, ORDER> {
 /// filter's contract).
 #[inline]
 pub(crate) fn check_interval<Q: Quantity>(dt: Q) -> Result<(), FilterError> {
-    if dt.is_valid() && dt > Q::ZERO {
+    if dt.is_valid_and_positive() {
         Ok(())
     } else {
         Err(FilterError::InvalidInterval)

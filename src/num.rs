@@ -183,14 +183,33 @@ pub trait Scalar:
     }
 
     /// Folds `value` into the running check of the hot path's guard
-    /// ([`numeric::ScalarGuard`]), which passes when `check − check == 0`.
-    /// Floats add (NaN and ±∞ are sticky, and a finite sum of a few outputs
-    /// below `MAX/8` cannot overflow). Q32.32 overrides it: a sum of valid
-    /// values near 2³¹ could saturate, so it keeps zero while every value
-    /// is valid.
+    /// ([`numeric::ScalarGuard`]), which starts at zero and passes when
+    /// [`Scalar::check_passed`]. By default it adds and passes when
+    /// `check − check == 0` (NaN and ±∞ are sticky, and a finite sum of a
+    /// few outputs below `MAX/8` cannot overflow): `f64` and
+    /// [`ScaledScalar`]. Q32.32 overrides it: a sum of valid values near
+    /// 2³¹ could saturate, so it keeps zero while every value is valid.
+    /// `f32` overrides it ([`f32_check`]): an exact test for NaN and ±∞,
+    /// in integer instructions on a core without an FPU (a library add per
+    /// output there), in one multiply–accumulate per output on the M4F.
     #[inline]
     fn accumulate_check(check: Self, value: Self) -> Self {
         check + value
+    }
+
+    /// Whether the guard's running check (folded by
+    /// [`Scalar::accumulate_check`]) says that every output was valid.
+    #[inline]
+    #[allow(clippy::eq_op)] // the subtraction of equal operands is the test
+    fn check_passed(check: Self) -> bool {
+        check - check == Self::ZERO
+    }
+
+    /// [`Scalar::is_valid`] and > 0: the filters' test of an interval
+    /// (`f32` overrides it with one integer compare).
+    #[inline]
+    fn is_valid_and_positive(self) -> bool {
+        self.is_valid() && self > Self::ZERO
     }
 }
 
@@ -283,6 +302,83 @@ impl Scalar for f32 {
     #[inline]
     fn atan2(self, x: Self) -> Self {
         libm::atan2f(self, x)
+    }
+
+    /// [`f32_check`]: refuses exactly the updates with a NaN or infinite
+    /// output, in the cheapest form for the core ([`f32_check::FPU`]).
+    #[inline]
+    fn accumulate_check(check: Self, value: Self) -> Self {
+        if f32_check::FPU {
+            f32_check::fold_fpu(check, value)
+        } else {
+            f32_check::fold_bits(check, value)
+        }
+    }
+
+    /// See [`Scalar::accumulate_check`].
+    #[inline]
+    fn check_passed(check: Self) -> bool {
+        if f32_check::FPU {
+            f32_check::passed_fpu(check)
+        } else {
+            f32_check::passed_bits(check)
+        }
+    }
+
+    /// Finite and > 0 exactly when the IEEE 754 word is in
+    /// `1..=0x7F7F_FFFF` (sign clear, not zero, exponent field not all
+    /// ones): one integer compare instead of a soft-float comparison.
+    #[inline]
+    fn is_valid_and_positive(self) -> bool {
+        self.to_bits().wrapping_sub(1) < 0x7F7F_FFFF
+    }
+}
+
+/// The `f32` hot-path guard ([`numeric::ScalarGuard`]): its check word
+/// starts at zero, [`Scalar::accumulate_check`] folds every output into it,
+/// and the guard passes exactly when no output was NaN or ±∞ (the `f32`
+/// operators are sticky, so the outputs' validity is every intermediate's).
+/// Two forms with that same meaning; [`FPU`] picks one at compile time, and
+/// the host tests check both against every class of IEEE 754 value.
+pub mod f32_check {
+    /// Whether `f32` arithmetic runs on an FPU here (the Cortex-M4F's hard
+    /// float ABI): then [`fold_fpu`]/[`passed_fpu`], else
+    /// [`fold_bits`]/[`passed_bits`] (the M0 and M3, and the host tests).
+    pub const FPU: bool = cfg!(target_abi = "eabihf");
+
+    /// The FPU form: `check + 0·value`. `0·v` is ±0 for a finite `v` and NaN
+    /// for NaN or ±∞ (IEEE 754-2008 §7.2: 0·∞ is invalid), and a sum of
+    /// zeros is a zero, so the check stays ±0 until an invalid output makes
+    /// it NaN, for good. One multiply–accumulate (`vmla`) per output.
+    #[inline]
+    pub fn fold_fpu(check: f32, value: f32) -> f32 {
+        check + 0.0 * value
+    }
+
+    /// The FPU form's test: the check is still a zero.
+    #[inline]
+    pub fn passed_fpu(check: f32) -> bool {
+        check == 0.0
+    }
+
+    /// The integer form: the check word is a bit pattern, not a number. The
+    /// biased exponent field (bits 23–30) is all ones exactly for ±∞ and NaN
+    /// (IEEE 754-2008 §3.4), so with the sign cleared a finite value's word
+    /// is at most `0x7F7F_FFFF` and a non-finite one's at least
+    /// `0x7F80_0000`: adding `0x0080_0000` carries into bit 31 exactly for
+    /// the non-finite ones (and never past it: at most `0x807F_FFFF`). The
+    /// check ORs those sums: three integer instructions per output, where
+    /// a sum of the outputs would cost a library call each on the M0/M3.
+    #[inline]
+    pub fn fold_bits(check: f32, value: f32) -> f32 {
+        let term = (value.to_bits() & 0x7FFF_FFFF).wrapping_add(0x0080_0000);
+        f32::from_bits(check.to_bits() | term)
+    }
+
+    /// The integer form's test: bit 31 of the check word still clear.
+    #[inline]
+    pub fn passed_bits(check: f32) -> bool {
+        check.to_bits() & 0x8000_0000 == 0
     }
 }
 

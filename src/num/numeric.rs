@@ -11,13 +11,15 @@
 //! `a − b`, each rounded once. The guard records what the results need to be
 //! trusted, so the filter checks validity once, after computing everything:
 //!
-//! * floats: NaN and ±∞ are sticky, so the guard sums the outputs
-//!   ([`Checked::check_output`]) and [`Guard::passed`] tests `s − s == 0`,
-//!   true exactly when the sum is finite. A finite sum of at most eight
-//!   outputs, each of magnitude below `MAX/8`, cannot overflow, so the test
-//!   refuses exactly the updates with a non-finite output, and those with an
-//!   output beyond `MAX/8` (3.7·10³⁷ for `f32`, far outside any envelope),
-//!   which are refused as saturated;
+//! * floats: NaN and ±∞ are sticky, so checking the outputs checks every
+//!   intermediate. `f64` sums the outputs ([`Checked::check_output`]) and
+//!   [`Guard::passed`] tests `s − s == 0`, true exactly when the sum is
+//!   finite: it refuses every update with a non-finite output, and accepts
+//!   every update whose outputs are all below `MAX/8` (a finite sum of at
+//!   most eight of them cannot overflow). `f32` refuses exactly the updates
+//!   with a NaN or infinite output, with an integer test of each output's
+//!   exponent field on the M0/M3 (where a sum would cost a library call per
+//!   output) and `check + 0·output` on the M4F's FPU ([`super::f32_check`]);
 //! * Q32.32 ([`crate::Fix`]): a sum of valid values near 2³¹ could
 //!   saturate, so its guard keeps zero while every output is valid and a
 //!   sentinel otherwise ([`Scalar::accumulate_check`]);
@@ -87,6 +89,12 @@ pub trait Quantity:
 
     /// False for NaN, ±∞ and the fixed-point saturation sentinels.
     fn is_valid(self) -> bool;
+
+    /// [`Self::is_valid`] and > 0 (the filters' test of an interval).
+    #[inline]
+    fn is_valid_and_positive(self) -> bool {
+        self.is_valid() && self > Self::ZERO
+    }
 
     /// Absolute value (invalid stays invalid).
     fn abs(self) -> Self;
@@ -162,8 +170,9 @@ pub trait Checked<G> {
     /// saturation sentinel; floats need nothing (every input reaches an
     /// output, and NaN/∞ are sticky).
     fn check_input(self, guard: &mut G);
-    /// A result that will be stored or returned: floats add it to the
-    /// guard's sum; fixed point needs nothing (its operations report).
+    /// A result that will be stored or returned: floats fold it into the
+    /// guard's check ([`Scalar::accumulate_check`]); fixed point needs
+    /// nothing (its operations report).
     fn check_output(self, guard: &mut G);
 }
 
@@ -268,18 +277,20 @@ pub trait Numeric:
 // ---------------------------------------------------------------------------
 // f64, f32 and Q32.32: every quantity is the scalar type itself.
 
-/// The [`Guard`] of a [`Scalar`]: the sum of the outputs (module docs).
+/// The [`Guard`] of a [`Scalar`]: a running check of the outputs, folded
+/// by [`Scalar::accumulate_check`] (their sum, or for `f32` the check word
+/// of [`super::f32_check`]; module docs).
 #[derive(Debug, Clone, Copy, Default)]
 pub struct ScalarGuard<S> {
     sum: S,
 }
 
 impl<S: Scalar> Guard for ScalarGuard<S> {
-    /// `s − s == 0` exactly when `s` is finite (module docs).
+    /// [`Scalar::check_passed`]: for the sum, `s − s == 0` exactly when `s`
+    /// is finite (module docs).
     #[inline]
-    #[allow(clippy::eq_op)] // the subtraction of equal operands is the test
     fn passed(&self) -> bool {
-        self.sum - self.sum == S::ZERO
+        S::check_passed(self.sum)
     }
 }
 
@@ -326,6 +337,10 @@ impl<S: Scalar> Quantity for S {
     #[inline]
     fn is_valid(self) -> bool {
         <S as Scalar>::is_valid(self)
+    }
+    #[inline]
+    fn is_valid_and_positive(self) -> bool {
+        <S as Scalar>::is_valid_and_positive(self)
     }
     #[inline]
     fn abs(self) -> Self {
