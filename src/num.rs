@@ -182,6 +182,30 @@ pub trait Scalar:
         large * (Self::ONE + k * k).sqrt()
     }
 
+    /// √(a² + b² + c²) with one square root (two hypots would take two):
+    /// the largest magnitude times √(1 + k₁² + k₂²), k₁, k₂ ≤ 1, so nothing
+    /// is squared beyond 3. Invalid arguments give an invalid result, as in
+    /// [`Scalar::hypot_pair`]; [`ScaledScalar`] overrides it with one root
+    /// of the squared mantissas. Called through [`Real::hypot3`].
+    fn hypot_triple(self, b: Self, c: Self) -> Self {
+        let (a, b, c) = (self.abs(), b.abs(), c.abs());
+        if !(a.is_valid() && b.is_valid() && c.is_valid()) {
+            return a + b + c;
+        }
+        let (large, m1, m2) = if a >= b && a >= c {
+            (a, b, c)
+        } else if b >= c {
+            (b, a, c)
+        } else {
+            (c, a, b)
+        };
+        if large == Self::ZERO {
+            return large;
+        }
+        let (k1, k2) = (m1 / large, m2 / large);
+        large * (Self::ONE + k1 * k1 + k2 * k2).sqrt()
+    }
+
     /// Folds `value` into the running check of the hot path's guard
     /// ([`numeric::ScalarGuard`]), which starts at zero and passes when
     /// [`Scalar::check_passed`]. By default it adds and passes when

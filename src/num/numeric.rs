@@ -282,7 +282,7 @@ pub trait Numeric:
 /// of [`super::f32_check`]; module docs).
 #[derive(Debug, Clone, Copy, Default)]
 pub struct ScalarGuard<S> {
-    sum: S,
+    check: S,
 }
 
 impl<S: Scalar> Guard for ScalarGuard<S> {
@@ -290,7 +290,7 @@ impl<S: Scalar> Guard for ScalarGuard<S> {
     /// is finite (module docs).
     #[inline]
     fn passed(&self) -> bool {
-        S::check_passed(self.sum)
+        S::check_passed(self.check)
     }
 }
 
@@ -299,7 +299,7 @@ impl<S: Scalar> Checked<ScalarGuard<S>> for S {
     fn check_input(self, _guard: &mut ScalarGuard<S>) {}
     #[inline]
     fn check_output(self, guard: &mut ScalarGuard<S>) {
-        guard.sum = S::accumulate_check(guard.sum, self);
+        guard.check = S::accumulate_check(guard.check, self);
     }
 }
 
@@ -371,6 +371,11 @@ impl<S: Scalar> Real for S {
     #[inline]
     fn hypot(self, other: Self) -> Self {
         <S as Scalar>::hypot_pair(self, other)
+    }
+
+    #[inline]
+    fn hypot3(self, b: Self, c: Self) -> Self {
+        <S as Scalar>::hypot_triple(self, b, c)
     }
 }
 

@@ -176,4 +176,11 @@ impl Scalar for ScaledScalar {
     fn hypot_pair(self, other: Self) -> Self {
         ScaledScalar(Real::hypot(self.0, other.0))
     }
+
+    /// One square root of the three squared mantissas ([`Real::hypot3`] of
+    /// [`Scaled`](super::scaled::Scaled)).
+    #[inline]
+    fn hypot_triple(self, b: Self, c: Self) -> Self {
+        ScaledScalar(Real::hypot3(self.0, b.0, c.0))
+    }
 }
