@@ -143,7 +143,7 @@ struct Constants<S> {
 /// per interval).
 #[derive(Debug, Clone, Copy, PartialEq)]
 #[cfg_attr(feature = "defmt", derive(defmt::Format))]
-pub struct CycleThresholds<S> {
+pub(crate) struct CycleThresholds<S> {
     ta: Thresholds<S>,
     /// TA DMOD widened by [`TA_RANGE_HYSTERESIS_NM`], for an intruder that
     /// already has a TA.
@@ -154,7 +154,7 @@ pub struct CycleThresholds<S> {
 
 impl<S: Scalar> CycleThresholds<S> {
     /// The thresholds of `params` and the module's constants in `S`.
-    pub fn new(params: &SensitivityParameters) -> Self {
+    pub(crate) fn new(params: &SensitivityParameters) -> Self {
         let ra = match (params.ra, params.resolution) {
             (Some(ra), Some(limits)) => Some(ResolutionThresholds {
                 alert: Thresholds::new(&ra),
@@ -191,7 +191,7 @@ impl<S: Scalar> CycleThresholds<S> {
     }
 
     /// The TA DMOD, m, and the RA DMOD (`None` at SL 2).
-    pub fn dmod_m(&self) -> (S, Option<S>) {
+    pub(crate) fn dmod_m(&self) -> (S, Option<S>) {
         (self.ta.dmod_m, self.ra.map(|ra| ra.alert.dmod_m))
     }
 }
