@@ -28,7 +28,7 @@ use capacity::{microbit, mps2};
 use abtrack::scan::RunVerdict;
 use abtrack::track::RangeAzimuthTrack;
 use abtrack::wire::{Health, Message, ScanSummary, TrackReport};
-use abtrack::Fix;
+use abtrack::ScaledScalar;
 use abtrack_host_tests::encounters::demo_intruders;
 use abtrack_host_tests::frames::{self, Fault, FaultStream, Faults, FirmwareRun};
 use std::path::{Path, PathBuf};
@@ -130,7 +130,9 @@ fn run_firmware(board: &Board, elf: &Path, input: &[u8], name: &str) -> Run {
     }
 }
 
-/// The same input through the scan-loop core on the host.
+/// The same input through the scan-loop core on the host, in the
+/// firmware's `board::TableScalar` (src/firmware/board.rs): f32 on the
+/// M4F, the fast fixed point's wide format on the M3 and the micro:bit.
 fn model(board: &Board, input: &[u8]) -> FirmwareRun {
     match board.machine {
         "mps2-an386" => frames::run_like_the_firmware::<
@@ -141,19 +143,19 @@ fn model(board: &Board, input: &[u8]) -> FirmwareRun {
             { mps2::QUEUE_LEN },
         >(input, &demo_config::demo_config::<f32>().unwrap()),
         "mps2-an385" => frames::run_like_the_firmware::<
-            Fix,
-            RangeAzimuthTrack<Fix>,
+            ScaledScalar,
+            RangeAzimuthTrack<ScaledScalar>,
             { mps2::TRACKS },
             { mps2::MEASUREMENTS_PER_SCAN },
             { mps2::QUEUE_LEN },
-        >(input, &demo_config::demo_config::<Fix>().unwrap()),
+        >(input, &demo_config::demo_config::<ScaledScalar>().unwrap()),
         _ => frames::run_like_the_firmware::<
-            Fix,
-            RangeAzimuthTrack<Fix>,
+            ScaledScalar,
+            RangeAzimuthTrack<ScaledScalar>,
             { microbit::TRACKS },
             { microbit::MEASUREMENTS_PER_SCAN },
             { microbit::QUEUE_LEN },
-        >(input, &demo_config::demo_config::<Fix>().unwrap()),
+        >(input, &demo_config::demo_config::<ScaledScalar>().unwrap()),
     }
 }
 
