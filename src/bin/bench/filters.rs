@@ -106,6 +106,23 @@ fn assess_one<S: Scalar>(own: &OwnAircraft<S>, intruder: &Intruder<S>) -> Option
     assess(own, intruder).ok().map(|a| a.advisory)
 }
 
+/// How many assessments alerted (TA or RA) and how many were refused.
+#[derive(Default, PartialEq)]
+struct AdvisoryTally {
+    alerts: u32,
+    refused: u32,
+}
+
+impl AdvisoryTally {
+    fn count(&mut self, advisory: Option<Advisory>) {
+        match advisory {
+            Some(a) if a >= Advisory::Traffic => self.alerts += 1,
+            Some(_) => {}
+            None => self.refused += 1,
+        }
+    }
+}
+
 #[inline(never)]
 fn assess_one_in<S: Scalar>(cycle: &Cycle<S>, intruder: &Intruder<S>) -> Option<Advisory> {
     assess_in(cycle, intruder).ok().map(|a| a.advisory)
@@ -312,23 +329,25 @@ fn tcas<S: Numeric + Scalar>(bench: &mut Bench) {
             vertical_rate_ft_per_s: c(rng.uniform(-30.0, 30.0)),
         }),
     });
-    let (mut alerts, mut refused) = (0u32, 0u32);
+    let baseline = |k: u32| {
+        black_box(black_box(&intruders[at(k)]));
+    };
+    let mut one_shot = AdvisoryTally::default();
     bench.per_call(
         numeric,
         "tcas_assess",
-        |k| match assess_one(&own, black_box(&intruders[at(k)])) {
-            Some(a) if a >= Advisory::Traffic => alerts += 1,
-            Some(_) => {}
-            None => refused += 1,
-        },
-        |k| {
-            black_box(black_box(&intruders[at(k)]));
-        },
+        |k| one_shot.count(assess_one(&own, black_box(&intruders[at(k)]))),
+        baseline,
     );
-    bench.check(refused == 0, numeric, "tcas_assess", "assessments refused");
+    bench.check(
+        one_shot.refused == 0,
+        numeric,
+        "tcas_assess",
+        "assessments refused",
+    );
     // The data must exercise both branches (some TA/RA, not all).
     bench.check(
-        alerts > 0 && alerts < crate::CALLS,
+        one_shot.alerts > 0 && one_shot.alerts < crate::CALLS,
         numeric,
         "tcas_assess",
         "no mix of alerting and quiet intruders",
@@ -351,24 +370,19 @@ fn tcas<S: Numeric + Scalar>(bench: &mut Bench) {
         "cycles refused",
     );
     let Some(cycle) = form_cycle(&own) else {
+        bench.fail(numeric, "tcas_assess_in_cycle", "cycle refused");
         return;
     };
     let cycle = black_box(cycle);
-    let mut alerts_in_cycle = 0u32;
+    let mut in_cycle = AdvisoryTally::default();
     bench.per_call(
         numeric,
         "tcas_assess_in_cycle",
-        |k| match assess_one_in(&cycle, black_box(&intruders[at(k)])) {
-            Some(a) if a >= Advisory::Traffic => alerts_in_cycle += 1,
-            Some(_) => {}
-            None => refused += 1,
-        },
-        |k| {
-            black_box(black_box(&intruders[at(k)]));
-        },
+        |k| in_cycle.count(assess_one_in(&cycle, black_box(&intruders[at(k)]))),
+        baseline,
     );
     bench.check(
-        refused == 0 && alerts_in_cycle == alerts,
+        in_cycle == one_shot,
         numeric,
         "tcas_assess_in_cycle",
         "assessments refused or different from tcas_assess",
