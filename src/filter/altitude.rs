@@ -448,10 +448,15 @@ impl<S: Scalar> AltitudeTracker<S> {
         let mut next = *self;
         match altitude_ft {
             Some(z) if self.reports == 0 => next.start(z),
-            Some(z) if self.credible(z, dt) => next.take(z, dt),
-            Some(_) => {
-                next.incredible_reports = next.incredible_reports.saturating_add(1);
-                next.coast(dt);
+            Some(z) => {
+                // The change of report, once for the test and the update.
+                let change = z - self.report_ft;
+                if self.credible(change, dt) {
+                    next.take(z, change, dt);
+                } else {
+                    next.incredible_reports = next.incredible_reports.saturating_add(1);
+                    next.coast(dt);
+                }
             }
             None => next.coast(dt),
         }
@@ -540,9 +545,8 @@ impl<S: Scalar> AltitudeTracker<S> {
     }
 
     /// DO-185B `credible`: the report is within what the track could have
-    /// done since the last report.
-    fn credible(&self, z: S, dt: S) -> bool {
-        let change = z - self.report_ft;
+    /// done since the last report (`change`: the report minus the last).
+    fn credible(&self, change: S, dt: S) -> bool {
         if change == S::ZERO {
             return true;
         }
@@ -577,30 +581,34 @@ impl<S: Scalar> AltitudeTracker<S> {
         self.firmness = self.firmness.saturating_sub(1);
     }
 
-    /// A credible report `z`, `dt` after the previous scan.
-    fn take(&mut self, z: S, dt: S) {
+    /// A credible report `z`, `change` from the last, `dt` after the
+    /// previous scan.
+    fn take(&mut self, z: S, change: S, dt: S) {
         self.reports = 2;
         self.since_start_s = self.since_start_s + dt;
         self.since_transition_s = self.since_transition_s + dt;
-        let since_report = self.coasted_s + dt;
+        let coasted = self.coasted_s;
         self.coasted_s = S::ZERO;
-        let change = z - self.report_ft;
+        // The reported bin, z ± q/2, once for the no-transition test and
+        // the clamp.
+        let half = self.half_q();
+        let bin = (z - half, z + half);
         let keep_report = if change == S::ZERO {
-            self.no_transition(z, dt);
+            self.no_transition(z, dt, bin);
             true
         } else {
-            self.transition(z, change, dt, since_report)
+            self.transition(z, change, dt, coasted + dt)
         };
         if keep_report {
             self.report_ft = z;
         }
-        self.clamp_to_bin(z);
+        self.clamp_to_bin(bin);
     }
 
-    /// The estimate stays inside the reported bin.
-    fn clamp_to_bin(&mut self, z: S) {
-        let half = self.half_q();
-        self.altitude_ft = self.altitude_ft.max_of(z - half).min_of(z + half);
+    /// The estimate stays inside the reported bin (its lower and upper
+    /// edges).
+    fn clamp_to_bin(&mut self, (low, high): (S, S)) {
+        self.altitude_ft = self.altitude_ft.max_of(low).min_of(high);
     }
 
     fn signed(&self, v: S) -> S {
@@ -640,7 +648,8 @@ impl<S: Scalar> AltitudeTracker<S> {
     }
 
     /// DO-185B `no_transition_update` and `no_transition_firmness`.
-    fn no_transition(&mut self, z: S, dt: S) {
+    /// `bin`: the reported bin's lower and upper edges, z ∓ q/2.
+    fn no_transition(&mut self, z: S, dt: S, bin: (S, S)) {
         let q = self.q();
         let t = self.config.interval;
         let since = self.since_transition_s;
@@ -698,11 +707,11 @@ impl<S: Scalar> AltitudeTracker<S> {
                     };
                 } else {
                     let predicted = self.altitude_ft + self.rate_ft_per_s.times(dt);
-                    let half = self.half_q();
-                    if predicted > z + half || predicted < z - half {
+                    let (low, high) = bin;
+                    if predicted > high || predicted < low {
                         // Ahead of the reports: hold the estimate at the bin
                         // edge and take the difference out of the rate.
-                        self.altitude_ft = z + self.signed(half);
+                        self.altitude_ft = z + self.signed(self.half_q());
                         let error = self.altitude_ft - predicted;
                         self.rate_ft_per_s =
                             self.rate_ft_per_s + error.over(since.max_of(c(MIN_CORRECTION_TIME_S)));
