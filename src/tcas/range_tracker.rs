@@ -337,13 +337,6 @@ fn table_gains<S: Scalar>(firmness: u8) -> Result<(S, S, S), FilterError> {
     let [a0, a1, a2, a3, a4, a5, a6, a7, a8] = FIRMNESS_ALPHA;
     let [b0, b1, b2, b3, b4, b5, b6, b7, b8] = FIRMNESS_BETA;
     let [g0, g1, g2, g3, g4, g5, g6, g7, g8] = FIRMNESS_GAMMA;
-    let gains = |a: f64, b: f64, g: f64| {
-        (
-            S::from_f64_lossy(a),
-            S::from_f64_lossy(b),
-            S::from_f64_lossy(g),
-        )
-    };
     Ok(match firmness {
         0 => gains(a0, b0, g0),
         1 => gains(a1, b1, g1),
@@ -356,4 +349,15 @@ fn table_gains<S: Scalar>(firmness: u8) -> Result<(S, S, S), FilterError> {
         8 => gains(a8, b8, g8),
         _ => return Err(FilterError::Saturated),
     })
+}
+
+/// One table entry's gains as S; inlined into each arm of [`table_gains`]
+/// so that the conversions of its constants fold.
+#[inline(always)]
+fn gains<S: Scalar>(alpha: f64, beta: f64, gamma: f64) -> (S, S, S) {
+    (
+        S::from_f64_lossy(alpha),
+        S::from_f64_lossy(beta),
+        S::from_f64_lossy(gamma),
+    )
 }
