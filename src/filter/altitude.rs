@@ -16,6 +16,8 @@
 //! Units are feet and seconds: the reports and every vertical threshold
 //! they feed are in feet.
 
+use core::cmp::Ordering;
+
 use crate::filter::{check_interval, FilterError};
 use crate::num::Scalar;
 
@@ -314,11 +316,39 @@ pub struct AltitudeTracker<S> {
     saturations: u32,
 }
 
-// Not inlined: each call site would otherwise carry the f64-to-S
-// conversion (soft-float on the M0), which costs flash.
-#[inline(never)]
+// Always inlined: every argument is a constant, so the conversion folds at
+// compile time into a literal of S where it inlines, as in the fast fixed
+// point and f32 (a call per constant per scan otherwise: ~50 integer
+// instructions, or a soft-float call). Q32.32's conversion is out of line
+// in the library and stays a call.
+#[inline(always)]
 fn c<S: Scalar>(v: f64) -> S {
     S::from_f64_lossy(v)
+}
+
+/// A value known only at run time as S, out of line (the conversion is
+/// soft-float or ~50 integer instructions: one copy, for flash).
+#[inline(never)]
+fn convert<S: Scalar>(v: f64) -> S {
+    S::from_f64_lossy(v)
+}
+
+/// A count (bins) as S: 1..=[`MAX_BINS`], the counts averaged into the rate
+/// (`BINSTHISZD`), from constants (the same values: small integers are
+/// exact in every format), others converted.
+#[inline(always)]
+fn count<S: Scalar>(n: u8) -> S {
+    match n {
+        1 => S::ONE,
+        2 => c(2.0),
+        3 => c(3.0),
+        4 => c(4.0),
+        5 => c(5.0),
+        6 => c(6.0),
+        7 => c(7.0),
+        8 => c(8.0),
+        _ => convert(f64::from(n)),
+    }
 }
 
 impl<S: Scalar> AltitudeTracker<S> {
@@ -418,10 +448,15 @@ impl<S: Scalar> AltitudeTracker<S> {
         let mut next = *self;
         match altitude_ft {
             Some(z) if self.reports == 0 => next.start(z),
-            Some(z) if self.credible(z, dt) => next.take(z, dt),
-            Some(_) => {
-                next.incredible_reports = next.incredible_reports.saturating_add(1);
-                next.coast(dt);
+            Some(z) => {
+                // The change of report, once for the test and the update.
+                let change = z - self.report_ft;
+                if self.credible(change, dt) {
+                    next.take(z, change, dt);
+                } else {
+                    next.incredible_reports = next.incredible_reports.saturating_add(1);
+                    next.coast(dt);
+                }
             }
             None => next.coast(dt),
         }
@@ -449,8 +484,51 @@ impl<S: Scalar> AltitudeTracker<S> {
         .all(|v| v.is_valid())
     }
 
+    /// The quantum q, ft.
+    #[inline(always)]
     fn q(&self) -> S {
-        c(self.config.quantum.feet())
+        self.of_quantum(|q| q)
+    }
+
+    /// q/2, ft: half a bin (a report stands for report ± q/2, DO-185B);
+    /// exact in every format, so the same as `q·0.5`.
+    #[inline(always)]
+    fn half_q(&self) -> S {
+        self.of_quantum(|q| q / 2.0)
+    }
+
+    /// q/3, ft (the estimate after an oscillation: `oscil_track_init`),
+    /// rounded once in f64 and once to S: for q = 100 and 25 ft the same
+    /// value as `q ÷ 3` in S in every format (no tie near either rounding).
+    #[inline(always)]
+    fn third_q(&self) -> S {
+        self.of_quantum(|q| q / 3.0)
+    }
+
+    /// `f(q)` as S: both quanta's constants, folded at compile time, then
+    /// the tracker's (a match over the two conversions is merged by LLVM
+    /// into one conversion at run time of the chosen f64; in Q32.32, whose
+    /// conversion does not fold, this converts both).
+    #[inline(always)]
+    fn of_quantum(&self, f: impl Fn(f64) -> f64) -> S {
+        self.per_quantum(|quantum| f(quantum.feet()))
+    }
+
+    /// Residual of the αβ smoothing that costs firmness, ft, as S.
+    #[inline(always)]
+    fn residual_threshold(&self) -> S {
+        self.per_quantum(AltitudeQuantum::residual_threshold_ft)
+    }
+
+    /// `f(quantum)` as S for the tracker's quantum (see `of_quantum`).
+    #[inline(always)]
+    fn per_quantum(&self, f: impl Fn(AltitudeQuantum) -> f64) -> S {
+        let mode_c = c::<S>(f(AltitudeQuantum::ModeC));
+        let mode_s25 = c::<S>(f(AltitudeQuantum::ModeS25));
+        match self.config.quantum {
+            AltitudeQuantum::ModeC => mode_c,
+            AltitudeQuantum::ModeS25 => mode_s25,
+        }
     }
 
     fn start(&mut self, z: S) {
@@ -467,9 +545,8 @@ impl<S: Scalar> AltitudeTracker<S> {
     }
 
     /// DO-185B `credible`: the report is within what the track could have
-    /// done since the last report.
-    fn credible(&self, z: S, dt: S) -> bool {
-        let change = z - self.report_ft;
+    /// done since the last report (`change`: the report minus the last).
+    fn credible(&self, change: S, dt: S) -> bool {
         if change == S::ZERO {
             return true;
         }
@@ -504,30 +581,34 @@ impl<S: Scalar> AltitudeTracker<S> {
         self.firmness = self.firmness.saturating_sub(1);
     }
 
-    /// A credible report `z`, `dt` after the previous scan.
-    fn take(&mut self, z: S, dt: S) {
+    /// A credible report `z`, `change` from the last, `dt` after the
+    /// previous scan.
+    fn take(&mut self, z: S, change: S, dt: S) {
         self.reports = 2;
         self.since_start_s = self.since_start_s + dt;
         self.since_transition_s = self.since_transition_s + dt;
-        let since_report = self.coasted_s + dt;
+        let coasted = self.coasted_s;
         self.coasted_s = S::ZERO;
-        let change = z - self.report_ft;
+        // The reported bin, z ± q/2, once for the no-transition test and
+        // the clamp.
+        let half = self.half_q();
+        let bin = (z - half, z + half);
         let keep_report = if change == S::ZERO {
-            self.no_transition(z, dt);
+            self.no_transition(z, dt, bin);
             true
         } else {
-            self.transition(z, change, dt, since_report)
+            self.transition(z, change, dt, coasted + dt)
         };
         if keep_report {
             self.report_ft = z;
         }
-        self.clamp_to_bin(z);
+        self.clamp_to_bin(bin);
     }
 
-    /// The estimate stays inside the reported bin.
-    fn clamp_to_bin(&mut self, z: S) {
-        let half = self.q().times(c(0.5));
-        self.altitude_ft = self.altitude_ft.max_of(z - half).min_of(z + half);
+    /// The estimate stays inside the reported bin (its lower and upper
+    /// edges).
+    fn clamp_to_bin(&mut self, (low, high): (S, S)) {
+        self.altitude_ft = self.altitude_ft.max_of(low).min_of(high);
     }
 
     fn signed(&self, v: S) -> S {
@@ -546,8 +627,9 @@ impl<S: Scalar> AltitudeTracker<S> {
     }
 
     fn occupancy_firmness(&mut self) {
-        for (firmness, &t) in (1u8..).zip(OCCUPANCY_FIRMNESS_S.iter()) {
-            if self.since_transition_s > c(t) {
+        let [t1, t2, t3] = OCCUPANCY_FIRMNESS_S;
+        for (firmness, t) in [(1u8, c::<S>(t1)), (2, c(t2)), (3, c(t3))] {
+            if self.since_transition_s > t {
                 self.firmness = self.firmness.max(firmness);
             }
         }
@@ -566,7 +648,8 @@ impl<S: Scalar> AltitudeTracker<S> {
     }
 
     /// DO-185B `no_transition_update` and `no_transition_firmness`.
-    fn no_transition(&mut self, z: S, dt: S) {
+    /// `bin`: the reported bin's lower and upper edges, z ∓ q/2.
+    fn no_transition(&mut self, z: S, dt: S, bin: (S, S)) {
         let q = self.q();
         let t = self.config.interval;
         let since = self.since_transition_s;
@@ -615,7 +698,7 @@ impl<S: Scalar> AltitudeTracker<S> {
                     let taper = (late_level + half_t - overdue).over(late_level + half_t);
                     self.rate_ft_per_s = self.signed(q.over(since + t).times(taper));
                     self.bins_in_rate = self.bins_in_rate.saturating_sub(1).max(1);
-                    self.altitude_ft = z + self.signed(q.times(c(0.5)));
+                    self.altitude_ft = z + self.signed(self.half_q());
                     self.set_bounds(S::ZERO, self.signed(q.over(since)));
                     self.firmness = if overdue > c(OVERDUE_S) {
                         self.firmness.saturating_add(1).min(2)
@@ -624,11 +707,11 @@ impl<S: Scalar> AltitudeTracker<S> {
                     };
                 } else {
                     let predicted = self.altitude_ft + self.rate_ft_per_s.times(dt);
-                    let half = q.times(c(0.5));
-                    if predicted > z + half || predicted < z - half {
+                    let (low, high) = bin;
+                    if predicted > high || predicted < low {
                         // Ahead of the reports: hold the estimate at the bin
                         // edge and take the difference out of the rate.
-                        self.altitude_ft = z + self.signed(half);
+                        self.altitude_ft = z + self.signed(self.half_q());
                         let error = self.altitude_ft - predicted;
                         self.rate_ft_per_s =
                             self.rate_ft_per_s + error.over(since.max_of(c(MIN_CORRECTION_TIME_S)));
@@ -650,7 +733,7 @@ impl<S: Scalar> AltitudeTracker<S> {
         let q = self.q();
         let sign: i8 = if change > S::ZERO { 1 } else { -1 };
         let bins = bins_of(change.abs().over(q));
-        let bins_s = c::<S>(f64::from(bins));
+        let bins_s = count::<S>(bins);
         let time_per_bin = self.since_transition_s.over(bins_s);
         let same_direction = self.direction == sign;
         let mut keep = true;
@@ -666,8 +749,12 @@ impl<S: Scalar> AltitudeTracker<S> {
                 self.start_trend(z, change, sign, time_per_bin)
             }
             VerticalClass::Oscillating => {
-                let qs = if sign > 0 { q } else { -q };
-                self.altitude_ft = z - qs.over(c(3.0));
+                let third = if sign > 0 {
+                    self.third_q()
+                } else {
+                    -self.third_q()
+                };
+                self.altitude_ft = z - third;
                 self.firmness = MAX_VERTICAL_FIRMNESS;
             }
             VerticalClass::Trend if same_direction => {
@@ -698,6 +785,11 @@ impl<S: Scalar> AltitudeTracker<S> {
     fn start_guess(&mut self, z: S, change: S, sign: i8, since_report: S) {
         let q = self.q();
         let qs = if sign > 0 { q } else { -q };
+        let half_qs = if sign > 0 {
+            self.half_q()
+        } else {
+            -self.half_q()
+        };
         let t = self.config.interval;
         // After a long gap over several bins the change itself is a rate.
         self.rate_ft_per_s = if since_report > c(LONG_COAST_S) && change.abs() > q {
@@ -715,15 +807,19 @@ impl<S: Scalar> AltitudeTracker<S> {
             -c::<S>(LIKELY_RATE_FT_PER_S)
         };
         self.set_bounds(S::ZERO, outer);
-        self.altitude_ft = z - qs.times(c(0.5)) + self.rate_ft_per_s.times(t).times(c(0.5));
+        self.altitude_ft = z - half_qs + self.rate_ft_per_s.times(t).times(c(0.5));
         self.firmness = 0;
         self.class = VerticalClass::Guess;
     }
 
     /// DO-185B `oscil_track_init`.
     fn start_oscillation(&mut self, z: S, sign: i8) {
-        let qs = if sign > 0 { self.q() } else { -self.q() };
-        self.altitude_ft = z - qs.over(c(3.0));
+        let third = if sign > 0 {
+            self.third_q()
+        } else {
+            -self.third_q()
+        };
+        self.altitude_ft = z - third;
         self.rate_ft_per_s = S::ZERO;
         self.firmness = 2;
         self.set_bounds(S::ZERO, S::ZERO);
@@ -734,6 +830,11 @@ impl<S: Scalar> AltitudeTracker<S> {
     fn start_trend(&mut self, z: S, change: S, sign: i8, time_per_bin: S) {
         let q = self.q();
         let qs = if sign > 0 { q } else { -q };
+        let half_qs = if sign > 0 {
+            self.half_q()
+        } else {
+            -self.half_q()
+        };
         let t = self.config.interval;
         let since = self.since_transition_s;
         self.alpha_beta = false;
@@ -744,7 +845,7 @@ impl<S: Scalar> AltitudeTracker<S> {
         };
         self.rate_ft_per_s = qs.over(self.bin_time_s);
         self.altitude_ft = if self.bin_time_s > S::ONE {
-            z - qs.times(c(0.5)) + self.rate_ft_per_s.times(t).times(c(0.5))
+            z - half_qs + self.rate_ft_per_s.times(t).times(c(0.5))
         } else {
             z
         };
@@ -775,7 +876,7 @@ impl<S: Scalar> AltitudeTracker<S> {
         let t = self.config.interval;
         let sign_q = self.signed(q);
         let since = self.since_transition_s;
-        let bins_s = c::<S>(f64::from(bins));
+        let bins_s = count::<S>(bins);
         let previous_bin_time = self.bin_time_s;
         if self.alpha_beta {
             if self.bin_time_s > c(ALPHA_BETA_BELOW_S) && time_per_bin > c(BIN_OCCUPANCY_ABOVE_S) {
@@ -796,7 +897,7 @@ impl<S: Scalar> AltitudeTracker<S> {
             self.altitude_ft = predicted + c::<S>(alpha).times(residual);
             self.rate_ft_per_s = self.rate_ft_per_s + c::<S>(beta).times(residual).over(dt);
             let after = z - (previous + self.rate_ft_per_s.times(dt));
-            if after.abs() >= c(self.config.quantum.residual_threshold_ft()) {
+            if after.abs() >= self.residual_threshold() {
                 self.firmness = self.firmness.saturating_sub(2);
                 self.bins_in_rate = self.bins_in_rate.saturating_sub(1).max(3);
             } else {
@@ -807,7 +908,7 @@ impl<S: Scalar> AltitudeTracker<S> {
                 self.bin_time_s = q.over(self.rate_ft_per_s).abs();
             }
             // Bounds: the measured rate ± half a bin per averaged bin.
-            let n = c::<S>(f64::from(self.bins_in_rate.max(1)));
+            let n = count::<S>(self.bins_in_rate.max(1));
             let half = c::<S>(0.5);
             self.set_bounds(
                 self.rate_ft_per_s.times(n - half).over(n),
@@ -829,13 +930,23 @@ impl<S: Scalar> AltitudeTracker<S> {
             self.lateness_s = c::<S>(LATENESS_MEMORY).times(self.lateness_s) + late;
             if self.lateness_s.abs() <= c(SLIGHTLY_OFF_S) {
                 let max_time = c::<S>(MAX_RATE_TIME_S);
-                if time_per_bin.times(c(2.0)) >= max_time {
+                // 2·t ≥ MAXZDTIME, as t ≥ MAXZDTIME/2: doubling is exact.
+                if time_per_bin >= c(MAX_RATE_TIME_S / 2.0) {
                     self.bins_in_rate = 1;
                 } else {
                     // The most bins whose time fits in MAXZDTIME.
                     let mut most = 1u8;
-                    for n in 2..=MAX_BINS {
-                        if c::<S>(f64::from(n)).times(time_per_bin) <= max_time {
+                    let counts: [(u8, S); MAX_BINS as usize - 1] = [
+                        (2, c(2.0)),
+                        (3, c(3.0)),
+                        (4, c(4.0)),
+                        (5, c(5.0)),
+                        (6, c(6.0)),
+                        (7, c(7.0)),
+                        (8, c(8.0)),
+                    ];
+                    for (n, n_s) in counts {
+                        if n_s.times(time_per_bin) <= max_time {
                             most = n;
                         }
                     }
@@ -846,7 +957,7 @@ impl<S: Scalar> AltitudeTracker<S> {
                 self.lateness_s = self.lateness_s.times(c(LATENESS_DECAY));
             }
         }
-        let weight = bins_s.over(c::<S>(f64::from(self.bins_in_rate.max(1))));
+        let weight = bins_s.over(count::<S>(self.bins_in_rate.max(1)));
         self.bin_time_s = previous_bin_time
             + weight
                 .min_of(S::ONE)
@@ -855,11 +966,16 @@ impl<S: Scalar> AltitudeTracker<S> {
         self.altitude_ft = self.altitude_ft + self.rate_ft_per_s.times(dt);
         // Firmness from how regular the bin crossings are.
         let ratio = time_per_bin.over(previous_bin_time);
-        self.firmness = [3u8, 2, 1]
+        let [(lo3, hi3), (lo2, hi2), (lo1, hi1)] = BIN_RATIO_FIRMNESS;
+        let ranges: [(u8, S, S); 3] = [
+            (3, c(lo3), c(hi3)),
+            (2, c(lo2), c(hi2)),
+            (1, c(lo1), c(hi1)),
+        ];
+        self.firmness = ranges
             .iter()
-            .zip(BIN_RATIO_FIRMNESS.iter())
-            .find(|(_, &(lo, hi))| ratio >= c(lo) && ratio <= c(hi))
-            .map_or(0, |(&firmness, _)| firmness);
+            .find(|&&(_, lo, hi)| ratio >= lo && ratio <= hi)
+            .map_or(0, |&(firmness, _, _)| firmness);
         let (out3, out2) = LATENESS_FIRMNESS_S;
         if late.abs() < c(out3) {
             self.firmness = MAX_VERTICAL_FIRMNESS;
@@ -878,7 +994,7 @@ impl<S: Scalar> AltitudeTracker<S> {
         // Rate bounds: ± one scan of timing over the averaged bins when the
         // crossings are regular; wider otherwise.
         if self.firmness == MAX_VERTICAL_FIRMNESS || late.abs() < c(out2) {
-            let span = c::<S>(f64::from(self.bins_in_rate)).times(since);
+            let span = count::<S>(self.bins_in_rate).times(since);
             self.set_bounds(
                 self.rate_ft_per_s.times(span - t).over(span),
                 self.rate_ft_per_s.times(span + t).over(span),
@@ -902,6 +1018,15 @@ impl<S: Scalar> AltitudeTracker<S> {
 /// Whole bins in a change of `ratio` quanta (reports are whole quanta, so
 /// the ratio is an integer up to rounding), at least 1, saturating.
 fn bins_of<S: Scalar>(ratio: S) -> u8 {
+    // The usual one-bin change (and NaN) without the f64 rounding: below
+    // 1.5, or not comparable, rounds to at most 1 (1.5 is exact in every
+    // format, and `to_f64` is exact).
+    if !matches!(
+        ratio.partial_cmp(&c(1.5)),
+        Some(Ordering::Greater | Ordering::Equal)
+    ) {
+        return 1;
+    }
     let r = libm::round(ratio.to_f64());
     if r >= 255.0 {
         u8::MAX

@@ -328,19 +328,36 @@ impl<S: Scalar> RangeTracker<S> {
 }
 
 /// The table entry of the reply that raises the firmness to `firmness`
-/// (DO-185B applies the entry after counting the reply), in `S`.
+/// (DO-185B applies the entry after counting the reply), in `S`. One arm per
+/// entry, so each entry's conversions fold at compile time into constants
+/// of S where the conversion inlines (a conversion at run time per gain and
+/// update otherwise).
+#[inline(always)]
 fn table_gains<S: Scalar>(firmness: u8) -> Result<(S, S, S), FilterError> {
-    let i = usize::from(firmness);
-    match (
-        FIRMNESS_ALPHA.get(i),
-        FIRMNESS_BETA.get(i),
-        FIRMNESS_GAMMA.get(i),
-    ) {
-        (Some(&a), Some(&b), Some(&g)) => Ok((
-            S::from_f64_lossy(a),
-            S::from_f64_lossy(b),
-            S::from_f64_lossy(g),
-        )),
-        _ => Err(FilterError::Saturated),
-    }
+    let [a0, a1, a2, a3, a4, a5, a6, a7, a8] = FIRMNESS_ALPHA;
+    let [b0, b1, b2, b3, b4, b5, b6, b7, b8] = FIRMNESS_BETA;
+    let [g0, g1, g2, g3, g4, g5, g6, g7, g8] = FIRMNESS_GAMMA;
+    Ok(match firmness {
+        0 => gains(a0, b0, g0),
+        1 => gains(a1, b1, g1),
+        2 => gains(a2, b2, g2),
+        3 => gains(a3, b3, g3),
+        4 => gains(a4, b4, g4),
+        5 => gains(a5, b5, g5),
+        6 => gains(a6, b6, g6),
+        7 => gains(a7, b7, g7),
+        8 => gains(a8, b8, g8),
+        _ => return Err(FilterError::Saturated),
+    })
+}
+
+/// One table entry's gains as S; inlined into each arm of [`table_gains`]
+/// so that the conversions of its constants fold.
+#[inline(always)]
+fn gains<S: Scalar>(alpha: f64, beta: f64, gamma: f64) -> (S, S, S) {
+    (
+        S::from_f64_lossy(alpha),
+        S::from_f64_lossy(beta),
+        S::from_f64_lossy(gamma),
+    )
 }
