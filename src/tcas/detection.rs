@@ -207,6 +207,10 @@ pub(crate) struct RangeGeometry<S> {
     diverging: bool,
     /// The closure speed of the taus: max(−ṙ, 10 ft/s).
     closure: S,
+    /// 1/closure and 1/r, once formed, in a format with relative precision
+    /// ([`Scalar::RELATIVE_PRECISION`]); the quotients divide otherwise.
+    per_closure: Option<S>,
+    per_range: Option<S>,
     /// r/closure, once formed.
     range_tau: Option<S>,
     /// The RA τ_mod (uncapped), once formed.
@@ -224,37 +228,70 @@ impl<S: Scalar> RangeGeometry<S> {
             rdot,
             diverging: rdot > floor,
             closure: (-rdot).max_of(floor),
+            per_closure: None,
+            per_range: None,
             range_tau: None,
             ra_modified_tau: None,
             last_excess: None,
         }
     }
 
-    /// [`excess_over_dmod`], kept for the last `dmod_m`: the TA range test
+    /// [`RangeGeometry::excess_over_dmod`], kept for the last `dmod_m`: the TA range test
     /// and the TA τ_mod of [`super::assess`] share it.
     fn excess(&mut self, dmod_m: S) -> Option<S> {
         match self.last_excess {
             Some((dmod, excess)) if dmod == dmod_m => excess,
             _ => {
-                let excess = excess_over_dmod(self.r, dmod_m);
+                let excess = self.excess_over_dmod(dmod_m);
                 self.last_excess = Some((dmod_m, excess));
                 excess
             }
         }
     }
 
+    /// r − DMOD²/r as r − DMOD·(DMOD/r) (no square of a range); `None` for
+    /// r ≤ DMOD.
+    fn excess_over_dmod(&mut self, dmod_m: S) -> Option<S> {
+        let r = self.r;
+        if r <= dmod_m {
+            return None;
+        }
+        let dmod_over_r = if S::RELATIVE_PRECISION {
+            dmod_m.times(*self.per_range.get_or_insert_with(|| S::ONE.over(r)))
+        } else {
+            dmod_m.over(r)
+        };
+        Some(r - dmod_m.times(dmod_over_r))
+    }
+
+    /// `distance`/max(−ṙ, 10 ft/s), s: a tau. One reciprocal shared
+    /// by every tau of the intruder where it keeps its digits
+    /// ([`Scalar::over_each`]).
+    fn over_closure(&mut self, distance: S) -> S {
+        if S::RELATIVE_PRECISION {
+            let closure = self.closure;
+            distance.times(*self.per_closure.get_or_insert_with(|| S::ONE.over(closure)))
+        } else {
+            distance.over(self.closure)
+        }
+    }
+
     /// The true range tau r/max(−ṙ, 10 ft/s), s.
     pub(crate) fn range_tau(&mut self) -> S {
-        *self
-            .range_tau
-            .get_or_insert_with(|| self.r.over(self.closure))
+        match self.range_tau {
+            Some(tau) => tau,
+            None => {
+                let tau = self.over_closure(self.r);
+                *self.range_tau.insert(tau)
+            }
+        }
     }
 
     /// τ_mod = (r − DMOD²/r)/max(−ṙ, 10 ft/s) with DMOD `dmod_m`, 0 inside
     /// DMOD.
     pub(crate) fn modified_tau(&mut self, dmod_m: S) -> S {
         match self.excess(dmod_m) {
-            Some(excess) => excess.over(self.closure),
+            Some(excess) => self.over_closure(excess),
             None => S::ZERO,
         }
     }
@@ -262,20 +299,17 @@ impl<S: Scalar> RangeGeometry<S> {
     /// [`RangeGeometry::modified_tau`] with the RA DMOD (the same `dmod_m`
     /// on every call), formed once.
     pub(crate) fn ra_modified_tau(&mut self, dmod_m: S) -> S {
-        let (r, closure) = (self.r, self.closure);
-        *self
-            .ra_modified_tau
-            .get_or_insert_with(|| match excess_over_dmod(r, dmod_m) {
-                Some(excess) => excess.over(closure),
-                None => S::ZERO,
-            })
+        match self.ra_modified_tau {
+            Some(tau) => tau,
+            None => {
+                let tau = match self.excess_over_dmod(dmod_m) {
+                    Some(excess) => self.over_closure(excess),
+                    None => S::ZERO,
+                };
+                *self.ra_modified_tau.insert(tau)
+            }
+        }
     }
-}
-
-/// r − DMOD²/r as r − DMOD·(DMOD/r) (no square of a range); `None` for
-/// r ≤ DMOD.
-fn excess_over_dmod<S: Scalar>(r: S, dmod_m: S) -> Option<S> {
-    (r > dmod_m).then(|| r - dmod_m.times(dmod_m.over(r)))
 }
 
 /// The range test (DO-185B `range_test`; DAIDALUS `TCAS2D::horizontal_RA`):

@@ -121,7 +121,7 @@ impl<S: Scalar> RelativeRange<S> {
                 range_rate_m_per_s: S::ZERO,
             });
         }
-        let unit = [px.over(range), py.over(range)];
+        let unit = S::over_each([px, py], range);
         let range_rate = valid_result(unit[0].times(vx) + unit[1].times(vy))?;
         Ok(RelativeRange {
             range_m: range,
@@ -148,14 +148,15 @@ impl<S: Scalar> RelativeRange<S> {
                 distance_m: range,
             }));
         }
-        let time = (-self.range_rate_m_per_s)
-            .over(speed)
-            .times(range.over(speed));
+        let [ux, uy] = self.unit;
+        let [minus_cos, range_per_speed, sin] = S::over_each(
+            [-self.range_rate_m_per_s, range, ux.times(vy) - uy.times(vx)],
+            speed,
+        );
+        let time = minus_cos.times(range_per_speed);
         if !time.is_valid() {
             return Ok(None);
         }
-        let [ux, uy] = self.unit;
-        let sin = (ux.times(vy) - uy.times(vx)).over(speed);
         let distance = valid_result(range.times(sin.abs()))?;
         Ok(Some(ClosestApproach {
             time_s: time,
