@@ -23,12 +23,15 @@
 mod capacity;
 #[path = "../../src/firmware/demo_config.rs"]
 mod demo_config;
+#[allow(dead_code)] // the host model uses the table types only
+#[path = "../../src/firmware/number_types.rs"]
+mod number_types;
 use capacity::{microbit, mps2};
+use number_types::{with_fpu, without_fpu};
 
 use abtrack::scan::RunVerdict;
 use abtrack::track::RangeAzimuthTrack;
 use abtrack::wire::{Health, Message, ScanSummary, TrackReport};
-use abtrack::ScaledScalar;
 use abtrack_host_tests::encounters::demo_intruders;
 use abtrack_host_tests::frames::{self, Fault, FaultStream, Faults, FirmwareRun};
 use std::path::{Path, PathBuf};
@@ -131,31 +134,40 @@ fn run_firmware(board: &Board, elf: &Path, input: &[u8], name: &str) -> Run {
 }
 
 /// The same input through the scan-loop core on the host, in the
-/// firmware's `board::TableScalar` (src/firmware/board.rs): f32 on the
-/// M4F, the fast fixed point's wide format on the M3 and the micro:bit.
+/// firmware's table type for the board's core
+/// (src/firmware/number_types.rs).
 fn model(board: &Board, input: &[u8]) -> FirmwareRun {
     match board.machine {
         "mps2-an386" => frames::run_like_the_firmware::<
-            f32,
-            RangeAzimuthTrack<f32>,
+            with_fpu::TableScalar,
+            RangeAzimuthTrack<with_fpu::TableScalar>,
             { mps2::TRACKS },
             { mps2::MEASUREMENTS_PER_SCAN },
             { mps2::QUEUE_LEN },
-        >(input, &demo_config::demo_config::<f32>().unwrap()),
+        >(
+            input,
+            &demo_config::demo_config::<with_fpu::TableScalar>().unwrap(),
+        ),
         "mps2-an385" => frames::run_like_the_firmware::<
-            ScaledScalar,
-            RangeAzimuthTrack<ScaledScalar>,
+            without_fpu::TableScalar,
+            RangeAzimuthTrack<without_fpu::TableScalar>,
             { mps2::TRACKS },
             { mps2::MEASUREMENTS_PER_SCAN },
             { mps2::QUEUE_LEN },
-        >(input, &demo_config::demo_config::<ScaledScalar>().unwrap()),
+        >(
+            input,
+            &demo_config::demo_config::<without_fpu::TableScalar>().unwrap(),
+        ),
         _ => frames::run_like_the_firmware::<
-            ScaledScalar,
-            RangeAzimuthTrack<ScaledScalar>,
+            without_fpu::TableScalar,
+            RangeAzimuthTrack<without_fpu::TableScalar>,
             { microbit::TRACKS },
             { microbit::MEASUREMENTS_PER_SCAN },
             { microbit::QUEUE_LEN },
-        >(input, &demo_config::demo_config::<ScaledScalar>().unwrap()),
+        >(
+            input,
+            &demo_config::demo_config::<without_fpu::TableScalar>().unwrap(),
+        ),
     }
 }
 

@@ -46,31 +46,29 @@ pub const BOARD: &str = env!("ABTRACK_BOARD");
 /// The core of [`BOARD`].
 pub const CORE: &str = env!("ABTRACK_CORE");
 
+#[allow(dead_code)] // each build uses one core's types
+#[path = "number_types.rs"]
+mod number_types;
+#[cfg(target_abi = "eabihf")]
+use number_types::with_fpu as core_types;
+#[cfg(not(target_abi = "eabihf"))]
+use number_types::without_fpu as core_types;
+
 /// The core's natural number system for the filters, the gain schedules
 /// and the bank: `f32` where the core has a hardware FPU (the hard-float
 /// ABI, thumbv7em-none-eabihf: Cortex-M4F), the fast fixed point
 /// ([`abtrack::Fixed32`]) on cores without one (Cortex-M3, Cortex-M0),
-/// where every float operation would be a software library call.
-#[cfg(target_abi = "eabihf")]
+/// where every float operation would be a software library call
+/// (src/firmware/number_types.rs).
 #[allow(dead_code)] // the demo uses `TableScalar` until src/track is ported; the stack-overflow image neither
-pub type Native = f32;
-/// See the hard-float definition.
-#[cfg(not(target_abi = "eabihf"))]
-#[allow(dead_code)] // the demo uses `TableScalar` until src/track is ported
-pub type Native = abtrack::Fixed32;
+pub type Native = core_types::Native;
 
 /// The type of the code written for `Scalar` (the scan loop and its track
 /// table, TCAS, the altitude tracker, the demo): `f32` with an FPU; without
-/// one the fast fixed point's wide format ([`abtrack::ScaledScalar`], 31-bit
-/// mantissa and exponent, 32-bit integer code), whose range holds the TCAS
-/// logic's taus and products in one type.
-#[cfg(target_abi = "eabihf")]
+/// one the fast fixed point's wide format ([`abtrack::ScaledScalar`])
+/// (src/firmware/number_types.rs).
 #[allow(dead_code)] // the filter self-test uses `Native` only
-pub type TableScalar = f32;
-/// See the hard-float definition.
-#[cfg(not(target_abi = "eabihf"))]
-#[allow(dead_code)] // the filter self-test uses `Native` only
-pub type TableScalar = abtrack::ScaledScalar;
+pub type TableScalar = core_types::TableScalar;
 
 // ---------------------------------------------------------------------------
 // Semihosting: the log on the emulated boards, and the exit status
