@@ -119,10 +119,6 @@ pub trait Scalar:
     const UNIT_ROUNDOFF: f64;
     /// See [`Scalar::UNIT_ROUNDOFF`].
     const ABS_RESOLUTION: f64;
-    /// Whether every result is within `UNIT_ROUNDOFF` relative, whatever
-    /// its magnitude (floats, [`ScaledScalar`]: `ABS_RESOLUTION` far below
-    /// any quantity), so a reciprocal keeps its digits; not fixed point.
-    const RELATIVE_PRECISION: bool = Self::ABS_RESOLUTION < 1.0e-30;
 
     /// Converts an outside value, refusing NaN, infinities and values beyond
     /// the representable range. Use this at the edges (wire, CSV, constructors).
@@ -187,14 +183,14 @@ pub trait Scalar:
     }
 
     /// Each of `values` divided by `divisor`. A format with
-    /// [`Scalar::RELATIVE_PRECISION`] forms one reciprocal and a product
+    /// [`Quantity::RELATIVE_PRECISION`] forms one reciprocal and a product
     /// each, within two roundings (`2·UNIT_ROUNDOFF` relative) where a
     /// division has one; fixed point (Q32.32, whose 1/r would keep a few
     /// digits) divides each. A zero or invalid divisor gives invalid
     /// results either way.
     #[inline]
     fn over_each<const N: usize>(values: [Self; N], divisor: Self) -> [Self; N] {
-        if Self::RELATIVE_PRECISION {
+        if <Self as Quantity>::RELATIVE_PRECISION {
             let reciprocal = Self::ONE / divisor;
             values.map(|v| v * reciprocal)
         } else {

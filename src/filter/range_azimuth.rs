@@ -304,7 +304,7 @@ impl<N: Numeric> CovarianceFactor<N> {
     /// overflow on a·c); a format with relative precision (floats,
     /// [`crate::num::scaled::Scaled`]) forms the dot product and the minors
     /// themselves and divides each by a' once: two quotients instead of four
-    /// ([`relative_precision`]). Lengths by hypots that never square their
+    /// ([`Quantity::RELATIVE_PRECISION`]). Lengths by hypots that never square their
     /// arguments.
     fn predict(&self, dt: N::Ratio, noise: &ProcessNoiseColumn<N>) -> Self {
         let CovarianceFactor { a, b, c } = *self;
@@ -318,7 +318,7 @@ impl<N: Numeric> CovarianceFactor<N> {
                 c: b.hypot3(c, g1),
             };
         }
-        if relative_precision::<N>() {
+        if <N::Ratio as Quantity>::RELATIVE_PRECISION {
             let (dot, cross) = self.row_products(m00, m01, noise);
             return CovarianceFactor {
                 a: a_new,
@@ -376,7 +376,7 @@ impl<N: Numeric> CovarianceFactor<N> {
         noise: &ProcessNoiseColumn<N>,
         sigma: N::Ratio,
     ) -> (N::Ratio, N::Ratio, Self) {
-        if !(relative_precision::<N>() && N::FUSED_PRODUCTS) {
+        if !(<N::Ratio as Quantity>::RELATIVE_PRECISION && N::FUSED_PRODUCTS) {
             return self.predict(dt, noise).update(sigma);
         }
         let (m00, m01, a_new) = self.first_row(dt, noise);
@@ -431,15 +431,6 @@ impl<N: Numeric> CovarianceFactor<N> {
     fn is_valid(&self) -> bool {
         self.a.is_valid() && self.b.is_valid() && self.c.is_valid()
     }
-}
-
-/// Whether `N`'s ratios carry relative precision over a wide range (floats,
-/// the fast fixed point's [`crate::num::scaled::Scaled`]), so that products
-/// of covariance factors (a·c, up to 10¹⁵ m²/s) neither overflow nor lose
-/// resolution; false for Q32.32, whose rounding is absolute (2⁻³²) and
-/// range ±2³¹. A constant: the test is compiled out.
-const fn relative_precision<N: Numeric>() -> bool {
-    <N::Ratio as Quantity>::UNIT_ROUNDOFF > 0.0
 }
 
 /// Γ·√Q of eq. (8) for one interval T: (T²·√Q/2, T·√Q), the same along

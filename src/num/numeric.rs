@@ -75,6 +75,13 @@ pub trait Quantity:
     const UNIT_ROUNDOFF: f64;
     /// See [`Self::UNIT_ROUNDOFF`].
     const ABS_RESOLUTION: f64;
+    /// Whether the rounding is relative over a wide range (floats, the
+    /// [`super::scaled::Scaled`] formats: `UNIT_ROUNDOFF` > 0), so products
+    /// of large quantities neither overflow nor lose resolution and a
+    /// reciprocal keeps its digits; false for the fixed formats (Q32.32,
+    /// `Fixed32`'s words), whose rounding is absolute. A constant: tests
+    /// on it are compiled out.
+    const RELATIVE_PRECISION: bool = Self::UNIT_ROUNDOFF > 0.0;
 
     /// Converts an outside value (SI units), refusing NaN, infinities and
     /// values beyond the representable range.

@@ -14,7 +14,7 @@ use super::{
     PROXIMATE_RANGE_NM,
 };
 use crate::filter::altitude::{AltitudeEstimate, OutOfLine};
-use crate::num::Scalar;
+use crate::num::{Quantity, Scalar};
 
 /// Range rate above which an intruder counts as diverging, and the floor
 /// on the closure speed in the taus, ft/s (DO-185B `RDTHR`, `RDTHRTA`).
@@ -208,7 +208,7 @@ pub(crate) struct RangeGeometry<S> {
     /// The closure speed of the taus: max(−ṙ, 10 ft/s).
     closure: S,
     /// 1/closure and 1/r, once formed, in a format with relative precision
-    /// ([`Scalar::RELATIVE_PRECISION`]); the quotients divide otherwise.
+    /// ([`Quantity::RELATIVE_PRECISION`]); the quotients divide otherwise.
     per_closure: Option<S>,
     per_range: Option<S>,
     /// r/closure, once formed.
@@ -256,7 +256,7 @@ impl<S: Scalar> RangeGeometry<S> {
         if r <= dmod_m {
             return None;
         }
-        let dmod_over_r = if S::RELATIVE_PRECISION {
+        let dmod_over_r = if <S as Quantity>::RELATIVE_PRECISION {
             dmod_m.times(*self.per_range.get_or_insert_with(|| S::ONE.over(r)))
         } else {
             dmod_m.over(r)
@@ -268,7 +268,7 @@ impl<S: Scalar> RangeGeometry<S> {
     /// by every tau of the intruder where it keeps its digits
     /// ([`Scalar::over_each`]).
     fn over_closure(&mut self, distance: S) -> S {
-        if S::RELATIVE_PRECISION {
+        if <S as Quantity>::RELATIVE_PRECISION {
             let closure = self.closure;
             distance.times(*self.per_closure.get_or_insert_with(|| S::ONE.over(closure)))
         } else {
