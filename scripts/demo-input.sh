@@ -7,7 +7,7 @@
 # scenarios), as numbered abtrack wire frames ending with an end-of-input
 # frame, with a corrupted frame every 97 and 1-16 garbage bytes before every
 # 41st, so the receiver's resynchronisation and counters have something to
-# do. host-tests/tests/tcas_demo.rs runs the same input through the same
+# do. host-tests/tests/it/firmware/tcas_demo.rs runs the same input through the same
 # configuration on the host; `frames encode --fault KIND` writes the
 # fault-injection inputs instead (docs/firmware-runtime.md).
 #

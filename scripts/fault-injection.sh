@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # Fault injection on the three boards through the real UART path, and
 # repeated runs of the demo compared byte for byte
-# (host-tests/tests/fault_injection.rs); writes the outcome tables to
+# (host-tests/tests/it/firmware/fault_injection.rs); writes the outcome tables to
 # results/fault-injection-<board>.md. scripts/test.sh runs the same tests
 # without writing the tables.
 #
@@ -28,7 +28,9 @@ for t in "${targets[@]}"; do
     (
         cd host-tests
         ABTRACK_FAULT_RESULTS="$PWD/../results" \
-            cargo test --release --test fault_injection -- --ignored --test-threads=1 "${b//-/_}"
+            cargo test --release --test it -- --ignored --test-threads=1 \
+                "firmware::fault_injection::fault_injection_${b//-/_}" \
+                "firmware::fault_injection::demo_runs_are_identical_${b//-/_}"
     )
     say "results/fault-injection-$b.md"
 done

@@ -3,7 +3,7 @@
 # detection probability 0.9, 20 clutter returns per scan) through the demo's
 # scan loop on an emulated board under -icount shift=0 (src/bin/soak.rs),
 # checked hour by hour and against the same day run in f64 on the host
-# (host-tests/tests/soak.rs). Writes the figures to results/soak-<board>.md.
+# (host-tests/tests/it/firmware/soak.rs). Writes the figures to results/soak-<board>.md.
 #
 #   scripts/soak.sh [m3 | m4f] [scans]     (default: m3, 86400)
 #
@@ -36,5 +36,5 @@ say "soak on $board ($target): $scans scans -> $results"
 (
     cd host-tests
     ABTRACK_SOAK_SCANS=$scans ABTRACK_SOAK_RESULTS="$results" \
-        cargo test --release --test soak -- --ignored --nocapture "soak_${board//-/_}"
+        cargo test --release --test it -- --ignored --nocapture "firmware::soak::soak_${board//-/_}"
 )

@@ -202,15 +202,17 @@ done
 # Fault injection through each board's UART (every fault of
 # host-tests/src/frames.rs `Fault`), and three runs of the demo compared byte
 # for byte, with each other and with the same core run on the host
-# (host-tests/tests/fault_injection.rs; about 30 s per board).
+# (host-tests/tests/it/firmware/fault_injection.rs; about 30 s per board).
 for t in "${ABTRACK_TARGETS[@]}"; do
     b=$(board_for_target "$t")
     step "fault injection and repeated runs on $b" in_host_tests \
-        cargo test --release --test fault_injection -- --ignored --test-threads=1 "${b//-/_}"
+        cargo test --release --test it -- --ignored --test-threads=1 \
+                "firmware::fault_injection::fault_injection_${b//-/_}" \
+                "firmware::fault_injection::demo_runs_are_identical_${b//-/_}"
 done
 # The soak, shortened to one hour of scans (scripts/soak.sh runs the day).
 step "soak, one hour, on mps2-an385" in_host_tests env ABTRACK_SOAK_SCANS=3600 \
-    cargo test --release --test soak -- --ignored soak_mps2_an385
+    cargo test --release --test it -- --ignored firmware::soak::soak_mps2_an385
 # Two self-test images (together they do not fit the micro:bit's flash).
 for t in "${ABTRACK_TARGETS[@]}"; do
     for bin in selftest selftest-tracking; do

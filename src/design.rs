@@ -25,7 +25,7 @@
 //! # Where the papers' printed formulas are wrong
 //!
 //! Every formula here was checked symbolically against the filter equations
-//! and numerically against the implemented filter (host-tests/tests/design.rs).
+//! and numerically against the implemented filter (host-tests/tests/it/gain/design.rs).
 //! Four printed formulas of Tenne & Singh do not reproduce; the functions
 //! implement the corrected forms, documented on each:
 //!

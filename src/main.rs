@@ -29,7 +29,7 @@
 //! does, the receiver's counters included, depends only on the bytes and
 //! never on how fast the host runs QEMU: every run sends the same report
 //! frames and logs the same lines but the stack high-water mark
-//! (`demo_runs_are_identical_*` in host-tests/tests/fault_injection.rs
+//! (`demo_runs_are_identical_*` in host-tests/tests/it/firmware/fault_injection.rs
 //! compares runs byte for byte, and with the same core run on the host).
 //!
 //! After the input ends it scans what is left, runs three idle scans,

@@ -693,7 +693,7 @@ fn scaled_i32<S: Scalar>(v: S, scale: f64) -> i32 {
 /// measurement slot one `Measurement<S>`, one `Option<S>`, a priority and an
 /// [`Association`], plus per track slot a gate region and an `Option` of an
 /// [`AltitudeTracker<S>`](crate::filter::altitude::AltitudeTracker).
-/// `host-tests/tests/scan_loop.rs` prints the sizes; the firmware prints
+/// `host-tests/tests/it/scan/loop_on_host.rs` prints the sizes; the firmware prints
 /// its own at start-up.
 #[derive(Debug)]
 pub struct ScanLoop<S: Scalar, F, const N: usize, const M: usize> {

@@ -608,7 +608,7 @@ macro_rules! counter_list {
 counter_list! {
     /// What the [`Decoder`] has seen over its lifetime (saturating).
     ///
-    /// Invariants (`host-tests/tests/wire.rs`): `bytes = frame_bytes +
+    /// Invariants (`host-tests/tests/it/wire/codec.rs`): `bytes = frame_bytes +
     /// bytes_skipped + held`, and `frames = accepted + crc_errors +
     /// unknown_type + bad_length + bad_field + out_of_envelope + truncated`.
     pub struct DecoderStats: u32 {

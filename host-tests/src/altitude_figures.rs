@@ -5,7 +5,7 @@
 //! (25 ft) steps once a second, over the phase of the profile against the
 //! report grid (the same profile started at 20 offsets within one bin).
 //! Used by the `tcas-advisory` experiment (its `altitude_tracker` table) and
-//! by `tests/tcas_altitude.rs`.
+//! by `tests/it/tcas/altitude.rs`.
 
 use abtrack::filter::altitude::{AltitudeQuantum, AltitudeTracker, AltitudeTrackerConfig};
 use abtrack::Scalar;

@@ -7,7 +7,7 @@
 //! `llvm-symbolizer --inlining` for the source functions a call was inlined
 //! from (the release profile keeps full debug information), `llvm-nm` for
 //! the symbols. The parsers take the tools' text, so they are tested on
-//! their own (tests/firmware_elf.rs).
+//! their own (tests/it/tools/firmware_check.rs).
 
 use std::collections::BTreeSet;
 use std::fmt;

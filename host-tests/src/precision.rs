@@ -206,7 +206,7 @@ pub fn compare_axis<N: Numeric, const ORDER: usize, const D: usize>(
 
 /// A run whose deviations the README and the closing note quote, produced by
 /// `cargo run --release --bin precision` and checked against the budget by
-/// `tests/budget.rs`.
+/// `tests/it/num/error_budget.rs`.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct DocumentedRun {
     pub name: &'static str,

@@ -203,7 +203,7 @@ impl RaScenario {
         }
     }
 
-    /// A TCAS-like encounter (as host-tests `range_azimuth.rs`): intruder
+    /// A TCAS-like encounter (as host-tests `tests/it/filter/range_azimuth.rs`): intruder
     /// converging from 14 NM at 250 m/s, passing 600 m abeam (the azimuth
     /// sweeps from 1° through 90° to 170°), range noise 15 m, bearing noise
     /// 5° RMS, intervals 1, 0.5, 1.5, 1 s, every 17th scan missed.
@@ -1309,7 +1309,7 @@ const PER_SCAN: usize = 8;
 type Table<S> = TrackTable<S, FixedGainTrack<S>, TRACKS, PER_SCAN>;
 type Config<S> = TrackerConfig<S, Gains<S>>;
 
-/// The host tests' default configuration (host-tests/tests/track_support):
+/// The host tests' default configuration (host-tests/tests/it/track/support.rs):
 /// α = 0.5, β = 0.2; uncertainty gate σ = 5 m, G = 13.8 (99.9 %),
 /// a_max = 5 m/s²; v_max = 300 m/s; confirmation 2 of 3, deletion after
 /// 3 / 2 misses.
@@ -1410,7 +1410,7 @@ fn scan_time(k: u32) -> u32 {
     (0..k).map(|i| steps[(i % 4) as usize]).sum()
 }
 
-/// Two targets on an X (host-tests `track_crossing.rs`): both move +100 m/s
+/// Two targets on an X (host-tests `tests/it/track/crossing.rs`): both move +100 m/s
 /// in x, one +10 m/s and the other −10 m/s in y; they meet at (0, 0) at
 /// t = 10.5 s. Noise uniform ±2 m per axis.
 fn crossing_scan(k: u32, rng: &mut Lcg) -> [(f64, f64); 2] {
@@ -1561,7 +1561,7 @@ fn track_cluttered_scans_same_codes_as_f64() -> TestResult {
 
 /// Three targets (one missed every 7th scan, one turning) and 5 clutter
 /// points per scan over a 6 km square, 40 scans (host-tests
-/// `track_crossing.rs`, on an 8-track table): clutter starts tentative
+/// `tests/it/track/crossing.rs`, on an 8-track table): clutter starts tentative
 /// tracks, most are deleted, the table fills at times. The association code
 /// of every measurement and the per-stage counts (solver steps included)
 /// must equal f64's at every scan.

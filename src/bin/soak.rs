@@ -12,7 +12,7 @@
 //! intruders tracked within the accuracy budget (100 m), the ghosts
 //! (confirmed tracks more than 200 m from every intruder), the track breaks
 //! and the RMS error; at the end, every confirmed track, which
-//! host-tests/tests/soak.rs compares with the same day run in f64 on the
+//! host-tests/tests/it/firmware/soak.rs compares with the same day run in f64 on the
 //! host. `ABTRACK_SOAK_SCANS` (at build time) shortens the day.
 //!
 //! ```text

@@ -114,7 +114,7 @@
 //! point).
 //!
 //! Accuracy against the independent f64 reference (host-tests
-//! `range_azimuth.rs`, the paper's 280 km scenario over 500 scans and a
+//! `tests/it/filter/range_azimuth.rs`, the paper's 280 km scenario over 500 scans and a
 //! TCAS encounter with coasts): f32 within 0.15 m and 0.03 m/s, Q32.32
 //! within 3.8 mm and 6.6·10⁻⁵ m/s, gains within 5.6·10⁻⁹; the fast fixed
 //! point within 1.9 mm and 2.6·10⁻⁴ m/s, gains within 1.1·10⁻⁷.

@@ -1,6 +1,6 @@
 //! The demo's capacities per board, declared once: the firmware (src/main.rs)
 //! takes its board's, and the host model of the fault-injection tests
-//! (host-tests/tests/fault_injection.rs) the same. RAM per table:
+//! (host-tests/tests/it/firmware/fault_injection.rs) the same. RAM per table:
 //! docs/track-table.md.
 
 /// The mps2 boards (4 MiB of RAM): issue 9's 256 tracks and 256

@@ -29,7 +29,7 @@ use crate::num::{Numeric, Quantity, Real};
 
 /// The fast test's threshold on the fading-average NIS: under white noise
 /// matching σ it is exceeded about 4·10⁻⁴ of the time per axis and update
-/// (host-tests `gain_auto.rs` measures it).
+/// (host-tests `tests/it/gain/auto.rs` measures it).
 pub const DETECTION_LEVEL: u64 = 7;
 /// The slow average's threshold: twice the expected NIS.
 pub const SUSTAINED_LEVEL: u64 = 2;

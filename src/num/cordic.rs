@@ -11,7 +11,7 @@
 //! # Error bounds
 //!
 //! Against the exact value of the function at the exact Q32.32 input (f64 libm
-//! as the reference, measured by the sweeps in `host-tests/tests/cordic.rs`):
+//! as the reference, measured by the sweeps in `host-tests/tests/it/num/cordic.rs`):
 //!
 //! * `sin`, `cos`: at most [`SIN_COS_MAX_ERROR`] = 2⁻³² ≈ 2.33·10⁻¹⁰ (one
 //!   Q32.32 step), for *any* representable angle, ±2³¹ rad included. The

@@ -18,14 +18,14 @@ use super::{NumError, Scalar};
 /// [`super::sine::SIN_COS_MAX_ERROR_Q31`] units of 2⁻³¹, one more for the
 /// rounding to a 31-bit mantissa, and the conversion to a binary angle
 /// (1.1·10⁻¹⁰ relative, 7·10⁻¹⁰ at 2π). Checked by
-/// `host-tests/tests/scaled_scalar.rs`.
+/// `host-tests/tests/it/num/scaled_scalar.rs`.
 pub const SIN_COS_MAX_ERROR: f64 =
     (super::sine::SIN_COS_MAX_ERROR_Q31 + 1.0) / 2_147_483_648.0 + 7.0e-10;
 
 /// Largest error of [`Scalar::atan2`] of [`ScaledScalar`] values, rad:
 /// CORDIC's 2⁻³² ([`super::cordic::ATAN2_MAX_ERROR`]) and the rounding of
 /// a result below π to a 31-bit mantissa (2⁻³⁰). Checked by
-/// `host-tests/tests/scaled_scalar.rs`.
+/// `host-tests/tests/it/num/scaled_scalar.rs`.
 pub const ATAN2_MAX_ERROR: f64 = super::cordic::ATAN2_MAX_ERROR + 1.0 / 1_073_741_824.0;
 
 /// A [`Scaled`](super::scaled::Scaled) dimensionless number used as a

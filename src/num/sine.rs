@@ -17,7 +17,7 @@
 //! exact value at the exact binary angle: the table's rounding (½), the
 //! two products' rounding (½ each), d²/2 and d − d³/6 in Q32 (their
 //! rounding and the omitted d⁴/24, d⁵/120: below one Q32 unit each, times
-//! sin a or cos a ≤ 1, half a Q31 unit each). `host-tests/tests/sine.rs`
+//! sin a or cos a ≤ 1, half a Q31 unit each). `host-tests/tests/it/num/sine.rs`
 //! checks the table against f64 and the bound over every table interval's
 //! ends and random angles.
 

@@ -26,7 +26,7 @@
 //! # Bytes per track
 //!
 //! In `docs/track-table.md` (asserted by
-//! `host-tests/tests/track_static.rs`). A schedule's constants sit in every
+//! `host-tests/tests/it/track/static_construction.rs`). A schedule's constants sit in every
 //! track's copy of it (a [`ScheduledFilter`] owns its schedule by value), and
 //! `AnySchedule` is as large as its largest variant, so a table that only
 //! ever runs one schedule should name that schedule's type. A

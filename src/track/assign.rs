@@ -50,7 +50,7 @@
 //! solution of that component solved alone with its rows and columns in the
 //! same relative order. The track table relies on this to solve each
 //! cluster of overlapping gates apart (`TrackTable` in `super`);
-//! `host-tests/tests/track_clusters.rs` checks it, ties included, against
+//! `host-tests/tests/it/track/clusters.rs` checks it, ties included, against
 //! this solver on the whole table and against a brute force.
 //!
 //! # Cost

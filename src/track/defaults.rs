@@ -79,7 +79,7 @@
 //! sensors the issue-5 scenarios simulate, stated as sensor specifications.
 //! Both use a_max = g·tan 30° = 5.66 m/s², a coordinated turn at the 30°
 //! bank limit of transport-aircraft autopilots. What the rules give for
-//! them (checked by host-tests `claims_issue5.rs`):
+//! them (checked by host-tests `tests/it/claims/multi_target.rs`):
 //!
 //! | | nominal radar | nominal TCAS |
 //! |---|---|---|

@@ -77,7 +77,7 @@
 //! table, so the stack use of [`TrackTable::scan`] does not grow with N or
 //! M. Bytes per track slot of every filter in every number system, the
 //! formula for the table's size and the firmware's capacities are in
-//! `docs/track-table.md` (`host-tests/tests/track_static.rs` asserts them).
+//! `docs/track-table.md` (`host-tests/tests/it/track/static_construction.rs` asserts them).
 //!
 //! # Extending
 //!

@@ -619,7 +619,7 @@ pub fn run(
     let sample = generate(0)?;
     // Each run depends only on its own seed, and rayon's indexed collect
     // keeps run order: the results are the same, bit for bit, on any number
-    // of threads (`tests/monte_carlo.rs`).
+    // of threads (`tests/it/tools/monte_carlo.rs`).
     let per_run: Vec<Result<Vec<Vec<StepRecord>>, String>> = (0..runs)
         .into_par_iter()
         .map(|r| generate(r).and_then(|run| run_one(methods, &run, &truth)))

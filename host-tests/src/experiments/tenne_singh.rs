@@ -646,7 +646,7 @@ pub fn claims(o: &Outcome) -> Vec<Claim> {
             "over κ = 10⁻³…10³ the optimiser's optimum is within {bb_dev:.1e} of eq. 28 and the closed form (eqs. 28 + 29) within {cv_dev:.1e} of the optimiser ({cv_n} of {cv_all} κ)."
         ),
         &[bb_dev < 1e-5, cv_dev < 1e-5, cv_n == cv_all],
-        "Eq. 29 is exactly the ∂f/∂α condition of eq. 26 (with κ standing for κx̄o²); symbolic check and host-tests/tests/design.rs.",
+        "Eq. 29 is exactly the ∂f/∂α condition of eq. 26 (with κ standing for κx̄o²); symbolic check and host-tests/tests/it/gain/design.rs.",
     ));
     let first = o
         .figure2

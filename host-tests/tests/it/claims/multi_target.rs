@@ -149,7 +149,7 @@ fn design_refuses_bad_figures() {
 }
 
 // Bytes per track of every filter and number system: host-tests/tests/
-// track_static.rs (bytes_per_track_of_every_filter).
+// tests/it/track/static_construction.rs (bytes_per_track_of_every_filter).
 
 // ---------------------------------------------------------------------------
 // Adapters

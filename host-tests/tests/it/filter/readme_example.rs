@@ -68,7 +68,7 @@ fn readme_example() -> Result<(), Box<dyn std::error::Error>> {
 /// too fails the test command.
 #[test]
 fn readme_shows_this_example() {
-    let readme = include_str!("../../README.md");
+    let readme = include_str!("../../../../README.md");
     let this = include_str!("readme_example.rs");
     let shown = readme
         .split_once("```rust\n")

@@ -8,7 +8,7 @@
 //! Fixed in track/table.rs (#11, "Counters that lie": only this scan's
 //! codes are counted).
 
-#[path = "../../src/firmware/demo_config.rs"]
+#[path = "../../../../src/firmware/demo_config.rs"]
 #[allow(dead_code)]
 mod demo_config;
 

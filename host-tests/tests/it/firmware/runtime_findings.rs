@@ -2,16 +2,16 @@
 //! (the code the firmware runs) and paced as the firmware paces it
 //! (`frames::run_like_the_firmware`). Each failed before the fix (commit
 //! "Issue 11 runtime findings reproduced ..."); the CRC collision finding
-//! is `a_made_up_frame_does_not_swallow_the_real_one` in wire.rs.
+//! is `a_made_up_frame_does_not_swallow_the_real_one` in tests/it/wire/codec.rs.
 
-#[path = "../../src/firmware/capacity.rs"]
+#[path = "../../../../src/firmware/capacity.rs"]
 mod capacity;
-mod common;
-#[path = "../../src/firmware/demo_config.rs"]
+use crate::scan::support;
+#[path = "../../../../src/firmware/demo_config.rs"]
 mod demo_config;
 use capacity::{microbit, mps2};
 
-use common::{crossing_truth, Lcg};
+use support::{crossing_truth, Lcg};
 
 use abtrack::scan::{Collected, MeasurementQueue, ScanLoop};
 use abtrack::track::{Association, FixedGainTrack, TrackTable};
@@ -226,7 +226,7 @@ pub fn clutter_storm<S: Scalar, const N: usize, const M: usize, const Q: usize>(
 ///   that loses the target again (its velocity is wrong), so fewer.
 ///
 /// (That a confirmed track always keeps its measurement is
-/// `scan_loop.rs`, `confirmed_tracks_are_never_starved`.)
+/// `tests/it/scan/loop_on_host.rs`, `confirmed_tracks_are_never_starved`.)
 #[test]
 fn targets_stay_tracked_in_a_clutter_storm() {
     let mps2_f32 = clutter_storm::<f32, 32, 64, 128>();

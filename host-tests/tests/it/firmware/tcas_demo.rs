@@ -7,9 +7,9 @@
 //! the run is clean. Prints the timeline of each intruder (the figures of
 //! docs/tcas.md, "The demo"):
 //!
-//! cargo test --release --test tcas_demo -- --nocapture
+//! cargo test --release --test it firmware::tcas_demo -- --nocapture
 
-#[path = "../../src/firmware/demo_config.rs"]
+#[path = "../../../../src/firmware/demo_config.rs"]
 mod demo_config;
 
 use abtrack::tcas::{Advisory, RaSense};

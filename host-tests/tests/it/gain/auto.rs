@@ -3,7 +3,7 @@
 //! its response to a manoeuvre, its gains' region, and its runs in the
 //! firmware's number types.
 
-mod gain_common;
+use super::support;
 
 use abtrack::gain::auto::{AutoAxis, AutoConfig, AutoGains, DETECTION_LEVEL};
 use abtrack::gain::spec::{ScheduleSpec, SpecErrorKind};
@@ -11,8 +11,8 @@ use abtrack::gain::{AnySchedule, ConfigError, GainSchedule, LeastSquaresGains, S
 use abtrack::gains::li_beta;
 use abtrack::num::{Numeric, Quantity};
 use abtrack::{Fix, Fixed32};
-use gain_common::Noise;
 use proptest::prelude::*;
+use support::Noise;
 
 type AutoTrack<N> = ScheduledFilter<N, AutoGains<N, 2>, 2, 2>;
 
@@ -484,7 +484,7 @@ fn a_polar_sensor_calibrates_at_every_range() {
 /// (h = 2), so the same innovation gives a smaller NIS.
 #[test]
 fn a_miss_widens_the_expected_innovation() {
-    use gain_common::context;
+    use support::context;
     let mut plain = AutoGains::<f64, 1>::new(&AutoConfig::cartesian(1.0)).unwrap();
     let mut missed = plain;
     GainSchedule::<f64, 1>::missed(&mut missed);
@@ -506,7 +506,7 @@ mod replay_cli {
     use abtrack_host_tests::replay::{replay_reader, FilterKind, Order};
     use clap::Parser;
 
-    use super::gain_common::Noise;
+    use super::support::Noise;
 
     fn command(line: &str) -> Result<Command, clap::Error> {
         ReplayArgs::try_parse_from(std::iter::once("replay").chain(line.split_whitespace()))?

@@ -1,14 +1,14 @@
 //! Al-Wagih & Abdulla's M5 (Algorithm 3): the bank runs every member on
 //! every measurement and takes the prediction with the lowest |innovation|.
 
-mod gain_common;
+use super::support;
 
 use abtrack::bank::{BankConfig, BankOutcome, CartesianBank, ParallelBank};
 use abtrack::filter::{AlphaBeta, FilterError, Phase, UpdateOutcome};
 use abtrack::gain::ConfigError;
 use abtrack::{Fix, Gains, Scalar};
-use gain_common::assert_close;
 use proptest::prelude::*;
+use support::assert_close;
 
 fn two_member_bank<S: Scalar>() -> ParallelBank<S, 4> {
     // α = 0.2 (β = 0.04/1.8 = 0.0222) and α = 0.8 (β = 0.64/1.2 = 0.5333).

@@ -2,7 +2,7 @@
 //! to the implemented filter (`AlphaBeta<f64>`, `AlphaBetaGamma<f64>`,
 //! `Cartesian`) by simulation.
 //!
-//! Run from inside host-tests: `cargo test --test design`.
+//! Run from inside host-tests: `cargo test --test it gain::design`.
 
 use abtrack::design::*;
 use abtrack::filter::{Cartesian, UpdateOutcome};

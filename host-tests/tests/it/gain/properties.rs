@@ -2,7 +2,7 @@
 //! region, or fails to produce gains, whatever the innovations; and
 //! scheduled filters never panic on any measurement sequence.
 
-mod gain_common;
+use super::support;
 
 use abtrack::filter::{FilterError, Phase};
 use abtrack::gain::spec::ScheduleSpec;
@@ -10,8 +10,8 @@ use abtrack::gain::{
     AnySchedule, AxisObservation, GainContext, GainSchedule, ScheduledError, ScheduledFilter,
 };
 use abtrack::{Fix, Gains, Scalar};
-use gain_common::ALL_SCHEDULES;
 use proptest::prelude::*;
+use support::ALL_SCHEDULES;
 
 /// The stability region re-checked in f64 from the gains' values:
 /// 0 < α < 2, β > 0, 2α + β < 4 (Al-Wagih eqs. 12–14), and for αβγ gains
@@ -97,7 +97,7 @@ fn context<S: Scalar>(n: u32, e: &Event) -> Option<GainContext<S, 2>> {
 /// with arbitrary innovations: it must give stable gains every time.
 fn drive<S: Scalar>(spec: &str, events: &[Event]) {
     let spec = ScheduleSpec::parse(spec).unwrap();
-    let mut s = AnySchedule::<S, 2, { gain_common::W }>::from_spec(&spec).unwrap();
+    let mut s = AnySchedule::<S, 2, { support::W }>::from_spec(&spec).unwrap();
     let mut n = 0u32;
     let mut phase = Phase::Empty;
     for e in events {
@@ -143,7 +143,7 @@ fn drive_all<S: Scalar>(events: &[Event]) {
 /// used are stable; a refused update leaves the track unchanged.
 fn run_filter<S: Scalar>(spec: &str, zs: &[([f64; 2], f64, bool)]) {
     let spec = ScheduleSpec::parse(spec).unwrap();
-    let s = AnySchedule::<S, 2, { gain_common::W }>::from_spec(&spec).unwrap();
+    let s = AnySchedule::<S, 2, { support::W }>::from_spec(&spec).unwrap();
     let mut track: ScheduledFilter<S, _, 2, 2> = ScheduledFilter::new(s);
     let c = |v: f64| S::try_from_f64(v).unwrap();
     for (z, dt, miss) in zs {
@@ -226,7 +226,7 @@ fn huge_innovations_in_fixed_point() {
 /// Invalid numbers in a context are refused, not learnt from.
 #[test]
 fn invalid_context_is_refused() {
-    let mut ctx = gain_common::context::<f64, 2>(3, 1.0, [0.0; 2], [1.0; 2]);
+    let mut ctx = support::context::<f64, 2>(3, 1.0, [0.0; 2], [1.0; 2]);
     ctx.axes[1].innovation = f64::NAN;
     assert!(ctx.check().is_err());
     ctx.axes[1].innovation = 1.0;

@@ -1,15 +1,15 @@
 //! Every schedule driving the αβ filter in f32, Q32.32 and the fast fixed
 //! point (`Fixed32`) stays within the
 //! representation bound of the same schedule in f64
-//! ([`gain_common::representation_bound`]), on the papers' scenarios, and
+//! ([`support::representation_bound`]), on the papers' scenarios, and
 //! takes the same discrete decisions (the gains agree to rounding).
 
-mod gain_common;
+use super::support;
 
 use abtrack::bank::BankOutcome;
 use abtrack::bank::{BankConfig, CartesianBank};
 use abtrack::{Fix, Fixed32, Numeric};
-use gain_common::{li_maneuver, liu_turn, representation_bound, run_scheduled, ALL_SCHEDULES};
+use support::{li_maneuver, liu_turn, representation_bound, run_scheduled, ALL_SCHEDULES};
 
 /// Largest |coordinate| of the run: the scale of the rounding budget.
 fn scale(meas: &[[f64; 2]]) -> f64 {

@@ -3,7 +3,7 @@
 //! fails on the code before the fix, and the bounds of
 //! `abtrack::gain::robust_gains` on any accepted input.
 
-mod gain_common;
+use super::support;
 
 use abtrack::filter::{Cartesian, Gains};
 use abtrack::gain::spec::{ScheduleSpec, SensorScale};
@@ -13,8 +13,8 @@ use abtrack::gain::{
 };
 use abtrack::gains::li_beta;
 use abtrack::track::defaults::BANK_30_ACCELERATION;
-use gain_common::{Noise, ALL_SCHEDULES, W};
 use proptest::prelude::*;
+use support::{Noise, ALL_SCHEDULES, W};
 
 type Track<G> = ScheduledFilter<f64, G, 2, 2>;
 

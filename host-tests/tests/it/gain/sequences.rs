@@ -4,7 +4,7 @@
 //! 1e-12 for f64, 1e-6 for f32 (≈ 16 ulp at 1), 1e-8 for fixed (≈ 40 steps
 //! of 2⁻³²).
 
-mod gain_common;
+use super::support;
 
 use abtrack::filter::Phase;
 use abtrack::gain::al_wagih::{
@@ -20,7 +20,7 @@ use abtrack::gain::{
     ScanCountAdjustedGains, ScheduleError, ScheduledFilter, SwitchMode,
 };
 use abtrack::{Fix, Gains, Scalar};
-use gain_common::{abg, assert_close, context};
+use support::{abg, assert_close, context};
 
 fn tol<S: Scalar>() -> f64 {
     match S::NAME {

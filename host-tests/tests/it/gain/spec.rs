@@ -1,6 +1,6 @@
 //! The `--schedule NAME[:key=value,...]` spec strings.
 
-mod gain_common;
+use super::support;
 
 use abtrack::bank::{BankConfig, CartesianBank};
 use abtrack::gain::al_wagih::{
@@ -254,7 +254,7 @@ fn every_listed_name_parses_and_builds() {
             }
         }
     }
-    for spec in gain_common::ALL_SCHEDULES {
+    for spec in support::ALL_SCHEDULES {
         parse(spec).unwrap();
     }
 }

@@ -1,6 +1,5 @@
-//! Shared by the `gain_*` tests: a seeded noise source, test scenarios, and
+//! Shared by the gain tests: a seeded noise source, test scenarios, and
 //! the error bound allowed between representations.
-#![allow(dead_code)]
 
 use abtrack::gain::spec::ScheduleSpec;
 use abtrack::gain::{AnySchedule, GainContext, ScheduledFilter};

@@ -6,14 +6,14 @@
 
 // Every board's capacities; these tests use some of them.
 #[allow(dead_code)]
-#[path = "../../src/firmware/capacity.rs"]
+#[path = "../../../../src/firmware/capacity.rs"]
 mod capacity;
-mod common;
-#[path = "../../src/firmware/demo_config.rs"]
+use crate::scan::support;
+#[path = "../../../../src/firmware/demo_config.rs"]
 mod demo_config;
 use capacity::{microbit, mps2};
 
-use common::{crossing_truth, Lcg};
+use support::{crossing_truth, Lcg};
 
 use abtrack::filter::altitude::{AltitudeQuantum, AltitudeTrackerConfig};
 use abtrack::scan::{
@@ -685,7 +685,7 @@ fn demo_input_is_tracked_in_every_number_type() {
     assert_eq!(demo_input_is_tracked::<Fix, N, M, Q>(), f64_ids);
     // The micro:bit's tracks and queue, with room for the crossing's 20
     // measurements per scan (its demo takes 12 replies per scan: the TCAS
-    // scenario has at most 6; tests/tcas_demo.rs).
+    // scenario has at most 6; tests/it/firmware/tcas_demo.rs).
     assert_eq!(
         demo_input_is_tracked::<Fix, { microbit::TRACKS }, 24, { microbit::QUEUE_LEN }>(),
         f64_ids

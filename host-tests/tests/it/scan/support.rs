@@ -1,4 +1,4 @@
-//! Helpers shared by the scan-loop tests (`mod common;`).
+//! Helpers shared by the scan-loop tests (here and `firmware::runtime_findings`).
 
 /// Deterministic pseudo-random numbers (64-bit LCG, Knuth's MMIX constants).
 pub struct Lcg(pub u64);

@@ -28,7 +28,7 @@ fn encounter(name: &str) -> Encounter {
 /// * RA when τ_mod < 25 s with DMOD 0.55 NM: r < (3.4722 + √(12.056 +
 ///   1.21))/2 = 3.5572 NM, t > 75.19 s: scan 76 (h = 200 < 600 ft, the
 ///   vertical miss stays 200 ft, HMD 0);
-/// * sense: down (tcas_logic.rs `sense_and_strength_of_the_head_on`);
+/// * sense: down (tests/it/tcas/logic.rs `sense_and_strength_of_the_head_on`);
 /// * clear of conflict: at t = 101 s the range is |14 − 101c| = 0.0278 NM
 ///   = 51 m, opening at 257 m/s: r·ṙ = 13 100 m²/s > H1 = 0.00278 NM²/s =
 ///   9535 m²/s, so the range test fails (at t = 100 s, 206 m closing, it

@@ -54,7 +54,7 @@ fn range_taus<S: Scalar>() {
 
     // Modified tau, head-on at 600 kt with the SL 5 TA DMOD of 0.75 NM, at
     // r = 6.75 NM: (6.75² − 0.75²)/(6.75·(1/6)) = (45.5625 − 0.5625)/1.125
-    // = 40 s (the TA threshold: see tcas_encounters.rs).
+    // = 40 s (the TA threshold: see tests/it/tcas/analytic_encounters.rs).
     let dmod = s::<S>(0.75 * NM);
     let t = modified_tau(s::<S>(6.75 * NM), s(-600.0 * KT), dmod)
         .unwrap()

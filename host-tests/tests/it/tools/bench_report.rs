@@ -1,5 +1,5 @@
 //! The benchmark report tool on a recorded sample: the benchmark firmware's
-//! output on the three boards (tests/bench_sample/, recorded with
+//! output on the three boards (tests/it/tools/bench_sample/, recorded with
 //! `scripts/bench.sh`), parsed, turned into results.csv and BENCHMARKS.md;
 //! and malformed or incomplete logs refused.
 

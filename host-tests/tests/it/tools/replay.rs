@@ -604,7 +604,7 @@ fn estimates_outside_the_envelope_stop_the_run_at_their_row() {
     // The divergence: gains inside the stability triangle for one
     // interval, on irregular report times, grew without bound (834 km,
     // status 0). Replay runs fixed gains through ScheduledFilter, whose
-    // robust_gains bound them per update (tests/gain_robustness.rs): the
+    // robust_gains bound them per update (tests/it/gain/robustness.rs): the
     // run ends with every estimate inside the envelope.
     let diverging = FilterKind::AlphaBeta {
         alpha: 0.002,

@@ -781,7 +781,7 @@ fn range_azimuth_tracks_through_the_azimuth_wrap() {
 // Head-on at 600 kt closure, same altitude, own altitude 8000 ft (SL 5:
 // TA tau 40 s, DMOD 0.75 NM; RA tau 25 s, DMOD 0.55 NM); the intruder
 // starts at 10 NM on azimuth 1 rad, one noiseless report a second. With the
-// closure c = 600 kt = 1/6 NM/s, tcas_encounters.rs solves τ_mod = TAU:
+// closure c = 600 kt = 1/6 NM/s, tests/it/tcas/analytic_encounters.rs solves τ_mod = TAU:
 // the TA starts at r = 6.75 NM, the RA at r = 4.238044 NM. In time:
 //   TA: (10 − 6.75)·6 = 19.5 s, so the first TA row is t = 20;
 //   RA: (10 − 4.238044)·6 = 34.572 s, so the first RA row is t = 35.

@@ -1,13 +1,13 @@
 //! The assignment solver against brute force, plus hand-checked cases
-//! (the equivalence of per-cluster and whole solves: track_clusters.rs).
+//! (the equivalence of per-cluster and whole solves: tests/it/track/clusters.rs).
 
 #![allow(clippy::needless_range_loop)]
 
-mod track_support;
+use super::support;
 
 use abtrack::track::assign::{AssignmentSolver, FORBIDDEN, MAX_COST};
 use proptest::prelude::*;
-use track_support::Lcg;
+use support::Lcg;
 
 /// Every optimal matching (most pairs, then least cost) as a row → column
 /// map, by enumerating every partial matching; returns (pairs, cost, the

@@ -1,12 +1,12 @@
 //! Capacity is a hard fact; ids are unique; bad input touches nothing.
 
-mod track_support;
+use super::support;
 
 use std::collections::HashSet;
 
 use abtrack::track::{Association, DropReason, Measurement, RejectReason, TrackStatus};
 use abtrack::{Fix, Scalar};
-use track_support::{cart, default_config, s, Table};
+use support::{cart, default_config, s, Table};
 
 /// Target k at (10 000·k, 0) + t·(0, 100) m: far apart, never in each
 /// other's gates.
@@ -302,11 +302,11 @@ fn fixed_gain_track_refuses_a_saturating_update_unchanged() {
 /// `FilterRefused`, the track coasts, and the refusal is counted on it.
 #[test]
 fn refused_updates_are_counted_on_the_track() {
-    let config = track_support::parked_config(track_support::ParkedParams {
+    let config = support::parked_config(support::ParkedParams {
         gate_radius: Some(20.0),
         refuse: true,
     });
-    let mut table: abtrack::track::TrackTable<f64, track_support::Parked, 2, 2> =
+    let mut table: abtrack::track::TrackTable<f64, support::Parked, 2, 2> =
         abtrack::track::TrackTable::new();
     let mut codes = [Association::OutsideGates; 1];
     for t in [0, 1000] {

@@ -14,7 +14,7 @@
 
 #![allow(clippy::needless_range_loop)]
 
-mod track_support;
+use super::support;
 
 use abtrack::num::fixed32::Fixed32;
 use abtrack::track::assign::{AssignmentSolver, FORBIDDEN, MAX_COST};
@@ -25,7 +25,7 @@ use abtrack::track::{
 use abtrack::track::{ScanInterval, TrackNumeric};
 use abtrack::Fix;
 use proptest::prelude::*;
-use track_support::{cart, default_config, parked_config, q, Lcg, Parked, ParkedParams};
+use support::{cart, default_config, parked_config, q, Lcg, Parked, ParkedParams};
 
 // ---------------------------------------------------------------------------
 // 1. The solver: components solved apart = the whole solved at once.

@@ -4,7 +4,7 @@
 
 #![allow(clippy::needless_range_loop)]
 
-mod track_support;
+use super::support;
 
 use abtrack::num::fixed32::Fixed32;
 use abtrack::track::TrackNumeric;
@@ -12,7 +12,7 @@ use abtrack::track::{Association, Measurement, ScanReport, TrackId, TrackStatus}
 use abtrack::track::{Gate, TrackerConfig};
 use abtrack::Gains;
 use abtrack::{Fix, Scalar};
-use track_support::{cart, default_config, s, Config, Lcg, Table};
+use support::{cart, default_config, s, Config, Lcg, Table};
 
 /// Scan times (ms) with a varying interval: 1000, 700, 1300, 1000, ...
 fn scan_times(n: usize) -> Vec<u32> {

@@ -1,7 +1,7 @@
 //! Gate sizes and the error covariance behind them: hand-computed values and
 //! Tenne & Singh's noise ratio.
 
-mod track_support;
+use super::support;
 
 use abtrack::num::fixed32::Fixed32;
 use abtrack::track::assign::MAX_COST;
@@ -10,7 +10,7 @@ use abtrack::track::{
     Observation, ScanInterval, TrackFilter, TrackNumeric,
 };
 use abtrack::{Fix, Gains, Scalar};
-use track_support::{cart, q, s};
+use support::{cart, q, s};
 
 fn close(a: f64, b: f64, tol: f64) -> bool {
     (a - b).abs() <= tol

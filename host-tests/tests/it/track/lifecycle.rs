@@ -1,12 +1,12 @@
 //! Initiation, M-of-N confirmation, coasting and K-miss deletion, the
 //! surveillance volume, and time handling.
 
-mod track_support;
+use super::support;
 
 use abtrack::track::{
     Association, Measurement, ScanError, ScanReport, TrackId, TrackStatus, Volume,
 };
-use track_support::{cart, default_config, Config, Table};
+use support::{cart, default_config, Config, Table};
 
 type T = Table<f64, 8, 8>;
 

@@ -1,6 +1,6 @@
 //! Static construction and memory figures.
 
-mod track_support;
+use super::support;
 
 use std::mem::size_of;
 use std::sync::Mutex;
@@ -12,7 +12,7 @@ use abtrack::track::{
 };
 use abtrack::ScaledScalar;
 use abtrack::{FilterError, Fix};
-use track_support::{cart, default_config, Table};
+use support::{cart, default_config, Table};
 
 /// The firmware's shape: a table in a `static`, behind a lock.
 static TABLE: Mutex<Table<Fix, 32, 32>> = Mutex::new(Table::new());

@@ -1,5 +1,4 @@
-//! Shared helpers for the track_* tests.
-#![allow(dead_code)]
+//! Shared helpers of the track tests.
 
 use abtrack::num::Quantity;
 use abtrack::track::{

@@ -1,0 +1,12 @@
+//! Gain design and the gain schedules: formulas, hand-computed sequences,
+//! properties, representations, robustness, the bank and `auto`.
+
+mod auto;
+mod bank;
+mod design;
+mod properties;
+mod representations;
+mod robustness;
+mod sequences;
+mod spec;
+mod support;

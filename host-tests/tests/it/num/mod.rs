@@ -1,0 +1,10 @@
+//! The number types and their functions: `Fix` (Q32.32), the fast fixed point,
+//! `ScaledScalar`, CORDIC, sine, hypot and the error budget.
+
+mod cordic;
+mod error_budget;
+mod fix;
+mod fixed32;
+mod hypot3;
+mod scaled_scalar;
+mod sine;

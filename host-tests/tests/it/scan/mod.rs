@@ -1,0 +1,5 @@
+//! The scan loop's core on the host, fed with encoded frames as the
+//! firmware is.
+
+mod loop_on_host;
+pub(crate) mod support;

@@ -1,0 +1,3 @@
+//! The wire codec: frames, CRC, round trips and the streaming decoder.
+
+mod codec;
