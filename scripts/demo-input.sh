@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# Writes the demo's UART input: by default the TCAS scenario of issue 10
+# Writes the demo's UART input: by default the TCAS demo scenario
 # (`tcas-demo`, seed 1: four intruders from 14 NM at 1 Hz, Mode S and Mode C
 # replies with range, bearing and 100/25 ft altitude, false replies; see
 # docs/tcas.md, "The demo"), or the scenario named as the second argument

@@ -3,7 +3,7 @@
 //! values a sensor may report. One set of limits for the wire edge, the
 //! firmware and the host tools; a value outside is refused where it enters.
 //!
-//! The figures are those of the issue-2 specification (see
+//! The figures are those of the numeric specification (see
 //! `docs/numerics.md`): positions ±400 km, velocities ±1500 m/s,
 //! accelerations ±200 m/s², intervals 0.05–20 s; altitudes are Mode C's
 //! −1000 … 126 700 ft (ICAO Annex 10 Vol. IV).

@@ -20,7 +20,7 @@
 #![no_std]
 #![forbid(unsafe_code)]
 #![warn(missing_debug_implementations)]
-// Every public item is documented (issue 12, item 5); keep it so.
+// Every public item is documented; keep it so.
 #![deny(missing_docs)]
 
 pub mod bank;

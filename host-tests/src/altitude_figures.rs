@@ -1,5 +1,5 @@
 //! Figures of the quantisation-aware altitude tracker
-//! (`abtrack::filter::altitude`) on the profiles of issue 10: a steady
+//! (`abtrack::filter::altitude`) on the TCAS altitude profiles: a steady
 //! 300 ft/min climb, a level-off from 2000 ft/min, and a 0.25 g RA response
 //! from level to 1500 ft/min, each reported in Mode C (100 ft) and Mode S
 //! (25 ft) steps once a second, over the phase of the profile against the
@@ -189,7 +189,7 @@ pub fn rate_change<S: Scalar>(
     }
 }
 
-/// The level-off of issue 10: climbing 2000 ft/min, level at t = 60 s.
+/// The level-off: climbing 2000 ft/min, level at t = 60 s.
 pub fn level_off() -> RateChange {
     RateChange {
         start_ft: 8000.0,

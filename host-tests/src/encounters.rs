@@ -1,4 +1,4 @@
-//! The TCAS encounter suite of issue 10: straight-line encounters (the
+//! The TCAS encounter suite: straight-line encounters (the
 //! intruder may change its vertical rate), flown open loop (the own
 //! aircraft does not follow the RA), scanned once a second. Each is run
 //! through the library — range tracker, altitude tracker, the He et al.
@@ -7,7 +7,7 @@
 //! independent reference ([`crate::reference_tcas`]) on the true states,
 //! which gives the expected timeline.
 //!
-//! Also the demo scenario of issue 10 item 7 ([`demo_scenario`]), the
+//! Also the demo scenario ([`demo_scenario`]), the
 //! firmware's default input (`frames encode --scenario tcas-demo`,
 //! scripts/demo-input.sh).
 
@@ -28,7 +28,7 @@ use crate::reference_tcas::{self, Alert, Own, Reference, Relative, Sense};
 pub const NM: f64 = 1852.0;
 pub const KT: f64 = 1852.0 / 3600.0;
 
-/// Range noise σ of the noisy runs, m (issue 10: ≈ 15 m).
+/// Range noise σ of the noisy runs, m (TCAS surveillance: ≈ 15 m).
 pub const RANGE_SIGMA_M: f64 = 15.0;
 /// Bearing noise σ of the noisy runs, rad (5°: "several degrees").
 pub const BEARING_SIGMA_RAD: f64 = 5.0 * PI / 180.0;
@@ -141,7 +141,7 @@ pub fn suite() -> Vec<Encounter> {
             own_altitude_ft: 8000.0,
             ..head_on(
                 "abeam-1.2nm",
-                "issue 10's case: passing 1.2 NM abeam at 480 kt closure, co-altitude",
+                "beyond the HMD threshold: passing 1.2 NM abeam at 480 kt closure, co-altitude",
                 1.2,
                 level(8000.0),
             )
@@ -500,7 +500,7 @@ pub struct DemoReply {
     pub intruder: Option<usize>,
 }
 
-/// The demo's intruders (issue 10 item 7), own level at 8000 ft flying
+/// The demo's intruders, own level at 8000 ft flying
 /// north at 250 kt, 1 Hz, from 14 NM:
 /// 0. head-on 0.2 NM abeam, 300 ft above, Mode S 25 ft: proximate → TA →
 ///    RA (down) → clear of conflict;

@@ -53,7 +53,7 @@ pub fn report(m: &Measurement, sensor: u8) -> Result<MeasurementReport, String> 
     converted.map_err(|e| format!("measurement at t = {} s: {e}", m.t()))
 }
 
-/// The TCAS demo scenario (issue 10 item 7, [`demo_scenario`]): the
+/// The TCAS demo scenario ([`demo_scenario`]): the
 /// firmware's default input.
 pub const TCAS_DEMO: &str = "tcas-demo";
 /// Its length, scans (1 s each): the threat's RA and clear of conflict, the

@@ -1,6 +1,5 @@
 //! Truth generators and seeded measurement generation: one scenario per
-//! seed paper, a TCAS-realistic encounter, and the multi-target scenarios of
-//! issue 5.
+//! seed paper, a TCAS-realistic encounter, and the multi-target scenarios.
 //!
 //! A scenario is a fixed truth (the same for every seed) plus random
 //! measurements (noise, detections, clutter, row order) drawn from a
@@ -779,7 +778,7 @@ pub fn info(name: &str) -> Option<ScenarioInfo> {
             name: "two-crossing",
             description: "two targets crossing at 53 deg at t=30 s, Pd 0.9, 10 clutter/scan \
                           over 10x10 km, noise 20 m/axis, 60 scans",
-            source: "issue 5 (beyond the papers)",
+            source: "beyond the papers (the multi-target scenarios)",
             scans: 60,
             targets: 2,
             multi_target: true,
@@ -797,7 +796,7 @@ pub fn info(name: &str) -> Option<ScenarioInfo> {
             name: "parallel-200m",
             description: "two targets flying in parallel 200 m apart at 120 m/s, Pd 0.9, \
                           10 clutter/scan over 10x10 km, noise 20 m/axis, 60 scans",
-            source: "issue 5 (beyond the papers)",
+            source: "beyond the papers (the multi-target scenarios)",
             scans: 60,
             targets: 2,
             multi_target: true,
@@ -815,7 +814,7 @@ pub fn info(name: &str) -> Option<ScenarioInfo> {
             name: "tcas-30",
             description: "TCAS picture: 30 intruders within 14 NM (range/azimuth/Mode C, 2 \
                           non-reporting), Pd 0.9, 3 false replies/scan, 60 scans",
-            source: "issue 5 (beyond the papers)",
+            source: "beyond the papers (the multi-target scenarios)",
             scans: 60,
             targets: TCAS30_INTRUDERS,
             multi_target: true,
@@ -843,7 +842,7 @@ pub fn info(name: &str) -> Option<ScenarioInfo> {
             name: "dense",
             description: "64 targets (a 64-track table's capacity) on a 1.5 km grid, random \
                           headings, Pd 0.9, 8 clutter/scan over 16x16 km, 30 scans",
-            source: "issue 5 (beyond the papers)",
+            source: "beyond the papers (the multi-target scenarios)",
             scans: 30,
             targets: DENSE_TABLE_CAPACITY,
             multi_target: true,

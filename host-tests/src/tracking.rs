@@ -1,8 +1,8 @@
-//! Running abtrack's track table over a simulated multi-target scenario
-//! (issue 5): the default tracker design for a scenario's sensor, one run in
+//! Running abtrack's track table over a simulated multi-target scenario:
+//! the default tracker design for a scenario's sensor, one run in
 //! any number type, and the association-decision comparison between number
 //! types. Used by the `multi-target` experiment group and the
-//! `claims_issue5` tests.
+//! `claims::multi_target` tests.
 
 use std::time::{Duration, Instant};
 

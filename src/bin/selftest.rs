@@ -1,5 +1,5 @@
-//! On-target self-test, first image: the filters (issue 2), the gain
-//! schedules and the M5 bank (issue 3) run on the emulated core itself, in
+//! On-target self-test, first image: the filters, the gain
+//! schedules and the M5 bank run on the emulated core itself, in
 //! the core's natural numeric type (`f32` on the Cortex-M4F, Q32.32 fixed
 //! point on the Cortex-M3 and M0) against the same generic code in `f64`
 //! (software floating point on all three cores). The TCAS inputs and the

@@ -14,7 +14,7 @@
 //! * the altitude tracker: a quantised climb against f64 (the same
 //!   classification every scan, altitude and rate within 0.05 ft and
 //!   0.05 ft/s: a provisional tolerance until the quantisation-aware
-//!   tracker of issue 10 gets a derived bound), coasting through missing
+//!   tracker gets a derived bound), coasting through missing
 //!   reports and reverting to non-reporting, bad inputs refused;
 //! * TCAS threat assessment on the analytic head-on encounter (600 kt
 //!   closure, 8000 ft, SL 5: TA from 6.75 NM, RA from 4.238 NM, range tau,
@@ -713,8 +713,8 @@ fn altitude_quantised_climb_vs_f64() -> TestResult {
 /// The tracker in `S` against f64 on the quantised climb, 80 reports: the
 /// same status, class and firmness every scan, and altitude and rate within
 /// [`ALTITUDE_TOLERANCE`] (provisional: the tracker's branches compare
-/// times, so a derived bound needs the decision margins, which issue 10's
-/// second round adds).
+/// times, so a derived bound needs the decision margins, not derived
+/// yet).
 fn altitude_climb<S: TestScalar>() -> TestResult {
     let cs = altitude_config::<S>(AltitudeQuantum::ModeC)?;
     let cf = altitude_config::<f64>(AltitudeQuantum::ModeC)?;
@@ -779,7 +779,7 @@ type CycleOutcome = (Option<Advisory>, Option<(RaSense, RaStrength)>, bool);
 
 /// One intruder through the firmware's TCAS cycle in `S`, one scan a second
 /// (`IntruderTrack::scan`/`assess`, `CollisionAvoidance::resolve`): the
-/// demo's threat (issue 10 item 7), head-on 0.2 NM abeam from 14 NM at 500
+/// demo's threat, head-on 0.2 NM abeam from 14 NM at 500
 /// kt closure, level 300 ft above an own aircraft level at 8000 ft, exact
 /// ranges, altitude in 25 ft steps. Calls `each` with the scan's outcome
 /// and range estimate (range m, range rate m/s).

@@ -3,7 +3,7 @@
 //! (host-tests/tests/it/firmware/fault_injection.rs) the same. RAM per table:
 //! docs/track-table.md.
 
-/// The mps2 boards (4 MiB of RAM): issue 9's 256 tracks and 256
+/// The mps2 boards (4 MiB of RAM): 256 tracks and 256
 /// measurements per scan.
 pub mod mps2 {
     pub const TRACKS: usize = 256;

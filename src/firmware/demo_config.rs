@@ -1,6 +1,6 @@
 //! The demo's scan-loop configurations, the own aircraft at the origin:
 //!
-//! * [`demo_config`], the firmware's: TCAS surveillance (issue 10), the
+//! * [`demo_config`], the firmware's: TCAS surveillance, the
 //!   range–azimuth tracker of [`default_polar`] (σ_R = 15.24 m, σ_B = 5°,
 //!   the 14 NM disc), altitude trackers for 100 ft and 25 ft reports, own
 //!   aircraft level at 8000 ft;

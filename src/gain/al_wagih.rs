@@ -320,7 +320,7 @@ impl<N: Numeric, const D: usize, const W: usize> LinearCombinationGains<N, D, W>
     }
 
     /// α̂(n) and β_LC(w, n), the latter at most Kalata's β for α̂(n)
-    /// ([`crate::gains::li_beta`]; issue 12): β̃ is fixed while α̂(n) falls
+    /// ([`crate::gains::li_beta`]): β̃ is fixed while α̂(n) falls
     /// as 4/n, so without the bound the pair drifts to poles within 10⁻³
     /// of the unit circle (α₀ = 0.2: α = 0.004, β = 0.011 at n = 1000) and
     /// the weight search, switching β every update, pumps them to

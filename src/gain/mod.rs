@@ -559,7 +559,7 @@ where
 /// The gains of an update at interval `dt`, after one at `previous` (zero:
 /// none) with reference interval `reference` (the longest recent interval,
 /// [`next_reference`]), bounded so that irregular intervals do not make the
-/// filter diverge (issue 12; the reasoning and the tests are in
+/// filter diverge (the reasoning and the tests are in
 /// `docs/auto.md`). When `dt` equals both (every experiment of the papers)
 /// the gains are returned unchanged. Otherwise:
 ///

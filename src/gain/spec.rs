@@ -114,7 +114,7 @@ pub const SCHEDULES: &[ScheduleInfo] = &[
 ];
 
 /// The sensor and target figures that set the defaults the papers tied to
-/// their own noise levels ([`ScheduleSpec::parse_scaled`]; issue 12: `m2`
+/// their own noise levels ([`ScheduleSpec::parse_scaled`]; unscaled, `m2`
 /// with n-max 1000 or `m1` with α = 0.05 lag by kilometres in a turn, Li's
 /// Δρ = 1 m and Liu's σ_m² = 25 m² misjudge every innovation of another
 /// sensor).

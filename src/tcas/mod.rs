@@ -32,7 +32,7 @@
 //! [`ResolutionState::resolve`] turns the RA threats into one RA;
 //! [`CollisionAvoidance`] and [`IntruderTrack`] put a cycle together.
 //! [`assess`] is the stateless assessment of a relative state vector (no
-//! firmness, no hysteresis), for tools and the scan loop of issue 4.
+//! firmness, no hysteresis), for tools and the scan loop.
 
 use crate::filter::altitude::AltitudeEstimate;
 use crate::filter::range_azimuth::RangeAzimuthFilter;

@@ -76,7 +76,7 @@
 //! λ = 10⁻⁷ m⁻², 10 km square, v_max = 300 m/s, 1 s) and
 //! [`TrackerDesign::NOMINAL_TCAS`] (σ_R = 50 ft, σ_B = 5°, P_D = 0.9,
 //! λ = 3 per scan over a 14 NM disc, v_max = 1200 kt closure, 1 s) are the
-//! sensors the issue-5 scenarios simulate, stated as sensor specifications.
+//! sensors the multi-target scenarios simulate, stated as sensor specifications.
 //! Both use a_max = g·tan 30° = 5.66 m/s², a coordinated turn at the 30°
 //! bank limit of transport-aircraft autopilots. What the rules give for
 //! them (checked by host-tests `tests/it/claims/multi_target.rs`):
@@ -303,7 +303,7 @@ fn scalar<Q: Quantity>(v: f64) -> Result<Q, ConfigError> {
 }
 
 impl TrackerDesign {
-    /// The simulated radar of the issue-5 Cartesian scenarios as a sensor
+    /// The simulated radar of the multi-target Cartesian scenarios as a sensor
     /// specification: σ = 20 m per axis, P_D = 0.9, λ = 10⁻⁷ m⁻² per scan
     /// (10 false measurements per scan over the 10 km × 10 km square
     /// centred on the origin), targets up to 300 m/s and
@@ -320,7 +320,7 @@ impl TrackerDesign {
         scan_period: 1.0,
     };
 
-    /// A TCAS II surveillance sensor as specified for the issue-5 `tcas-30`
+    /// A TCAS II surveillance sensor as specified for the multi-target `tcas-30`
     /// scenario: σ_R = 50 ft (15.24 m), σ_B = 5° (0.0873 rad), P_D = 0.9,
     /// 3 false replies per scan over a 14 NM disc (λ = 1.42·10⁻⁹ m⁻²),
     /// closure up to 1200 kt (617.3 m/s, the TCAS II design envelope),

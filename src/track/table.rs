@@ -606,7 +606,7 @@ impl<S: TrackNumeric, F: TrackFilter<S>, const N: usize, const M: usize> TrackTa
 
     /// [`Self::scan_with_probe`] where only the pairs `rule` allows may
     /// gate (a track and a measurement) or start a track (a first point of
-    /// the previous scan and a measurement): reply identity, issue 10.
+    /// the previous scan and a measurement): reply identity.
     pub fn scan_with_rule(
         &mut self,
         config: &TrackerConfig<S, F::Params>,
@@ -1043,7 +1043,7 @@ impl<S: TrackNumeric, F: TrackFilter<S>, const N: usize, const M: usize> TrackTa
     ) {
         self.pending.fill(None);
         // Only the codes of this scan's measurements: the slots beyond them
-        // hold no measurement (issue 11: they were counted outside gates).
+        // hold no measurement (counting them put them outside gates).
         for ((pending, obs), code) in self
             .pending
             .iter_mut()

@@ -4,7 +4,7 @@
 //! (`abtrack_host_tests::precision::documented_runs`), next to the error
 //! budget for each run and the ratio budget / measured maximum; then, per
 //! run, how many times closer to f64 than f32 the fast fixed point is
-//! (issue 8 asks for at least 10 in position, velocity and acceleration).
+//! (the target is at least 10 in position, velocity and acceleration).
 //!
 //! `cd host-tests && cargo run --release --bin precision > ../results/precision.md`
 //! (from the repository root: `cargo run --release --manifest-path
@@ -29,7 +29,7 @@ use std::process::ExitCode;
 #[command(name = "precision")]
 struct PrecisionArgs {}
 
-/// The closeness issue 8 asks of the fast fixed point: f32's deviation over
+/// The closeness asked of the fast fixed point: f32's deviation over
 /// the fixed point's, at least this on every run and quantity.
 const CLOSER_THAN_F32: f64 = 10.0;
 

@@ -568,7 +568,7 @@ pub fn run(ctx: &Context) -> Result<(), String> {
     Ok(())
 }
 
-/// The trajectory fits of issue 13: on all ten cells, and on M2–M3 only.
+/// The trajectory fits: on all ten cells, and on M2–M3 only.
 pub struct TrajectoryFits {
     pub all: Vec<trajectories::Fit>,
     pub line_fit: Vec<trajectories::Fit>,

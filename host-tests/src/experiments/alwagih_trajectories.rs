@@ -1,4 +1,4 @@
-//! Part of the `alwagih` group (issue 13): which target trajectory could
+//! Part of the `alwagih` group: which target trajectory could
 //! Al-Wagih & Abdulla's Tables 1–2 come from?
 //!
 //! Their tables (M2 ≈ 55–75 m and M5 ≈ 17–19 m in Y, M1 ≈ 300 m in Y) cannot

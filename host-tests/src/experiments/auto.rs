@@ -1,4 +1,4 @@
-//! Group `auto` (issue 13 part 3): the self-tuning schedule
+//! Group `auto`: the self-tuning schedule
 //! (`abtrack::gain::auto`) against every method of the experiment groups and
 //! a constant-velocity Kalman filter tuned for each scenario.
 //!
@@ -11,7 +11,7 @@
 //! He et al.'s batch maximum-likelihood line), and the Kalman filter tuned
 //! for the scenario: the best σ_a of [`KALMAN_GRID`] and the scenario's
 //! documented one, chosen on the same runs (an oracle tuning). The target
-//! (issue 13) is RMSE(auto) ≤ 1.1 × each; it is judged on the paired
+//! is RMSE(auto) ≤ 1.1 × each; it is judged on the paired
 //! per-run differences RMSE(auto) − 1.1·RMSE(other) ([`Within`]).
 //!
 //! Scenarios and metrics: Al-Wagih & Abdulla's white and coloured sets
@@ -48,7 +48,7 @@ pub const ABOUT: &str =
     "the self-tuning auto filter against every method and a tuned CV Kalman filter on every scenario";
 
 /// RMSE(auto) ≤ `TARGET_RATIO` × the best method's and the tuned Kalman
-/// filter's (issue 13).
+/// filter's.
 pub const TARGET_RATIO: f64 = 1.1;
 
 /// The σ_a (m/s²) tried for the tuned constant-velocity Kalman filter.

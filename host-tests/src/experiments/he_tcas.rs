@@ -47,7 +47,7 @@
 //!   [`crate::reference_ra::Eq9Reading::AsPrinted`]): α, β divided by PCOV₁₁ + VAR as printed,
 //!   instead of σ_R². The range direction then carries the cross-range
 //!   variance and the filter reduces to per-axis gains α = W1 on the
-//!   converted measurements (issue 13's reading).
+//!   converted measurements (this reading).
 //! * **Diagnostic variants** (host f64): αβ M2 on the debiased conversion
 //!   e^{σ_B²/2}·R·(sin B, cos B), and the range–azimuth filter with the range
 //!   residual R − |p̂| ([`RangeResidualVariant`]). They isolate the two

@@ -29,7 +29,7 @@ pub const COUNT_ADJUSTED: &str = "2.1.2 count ±1 (70 m)";
 pub const FIXED: &str = "2.1.3 fixed 0.5/0.3";
 pub const RESIDUAL: &str = "2.1.4 residual (n=3)";
 /// 2.1.4 with the window of the n innovations before the current one
-/// (issue 13), from the f64 reference.
+/// (a second reading), from the f64 reference.
 pub const RESIDUAL_BEFORE: &str = "2.1.4 residual, n scans before now";
 pub const ADAPTIVE: &str = "2.1.5 adaptive (19 m)";
 pub const ADAPTIVE_F32: &str = "2.1.5 adaptive, f32";
@@ -414,7 +414,7 @@ pub fn claims(exp: &Experiment) -> Result<Vec<Claim>, String> {
         ],
         "Two parts: under one half straight, and more often turning than straight.",
     ));
-    // Issue 13: 2.1.4 with "the n scans before now" (the current innovation
+    // A second reading: 2.1.4 with "the n scans before now" (the current innovation
     // left out of σ_p²).
     let u3b = vec![
         cmp(FIXED, RESIDUAL_BEFORE, straight)?,

@@ -1,4 +1,4 @@
-//! Single-target Monte Carlo machinery shared by the paper groups of issue 3
+//! Single-target Monte Carlo machinery shared by the gain-schedule paper groups
 //! (`alwagih`, `li`, `liu`): every method behind one [`Estimator`] interface,
 //! the run loop, per-run RMSE over any subset of scans, paired comparisons
 //! and claim verdicts, and the tables and plots the groups write.

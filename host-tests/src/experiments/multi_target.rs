@@ -1,4 +1,4 @@
-//! Group `multi-target` (issue 5): the default tracker of
+//! Group `multi-target`: the default tracker of
 //! `abtrack::track::defaults` on the four multi-target scenarios, over Monte
 //! Carlo runs, in f64, f32 and Q32.32.
 //!

@@ -1,6 +1,6 @@
-//! Group `tcas-advisory`. Issue 10's part ([`encounter_suite`]): the
+//! Group `tcas-advisory`. The encounter suite ([`encounter_suite`]): the
 //! encounter suite against the independent reference and the altitude
-//! tracker's figures. Issue 4's part, below: the TCAS-realistic encounter
+//! tracker's figures. Below: the TCAS-realistic encounter
 //! `tcas-converging`
 //! (see [`crate::scenario`]: own aircraft level at 8000 ft, SL 5; intruder
 //! head-on from 14 NM with a 0.2 NM offset, 500 kt closure, climbing from
@@ -655,8 +655,14 @@ pub fn run(ctx: &Context) -> Result<(), String> {
         .collect::<Result<Vec<_>, _>>()?;
     let elapsed = started.elapsed().as_secs_f64();
     let dir = ctx.group_dir(NAME)?;
-    let issue10 = encounter_suite::write(&dir, ctx.runs(encounter_suite::RUNS))?;
-    write_outputs(&dir, &timelines, &sensitivity, elapsed, &issue10)
+    let encounter_suite_section = encounter_suite::write(&dir, ctx.runs(encounter_suite::RUNS))?;
+    write_outputs(
+        &dir,
+        &timelines,
+        &sensitivity,
+        elapsed,
+        &encounter_suite_section,
+    )
 }
 
 fn write_outputs(
@@ -664,7 +670,7 @@ fn write_outputs(
     runs: &[RunTimelines],
     sensitivity: &[BearingSensitivity],
     elapsed_s: f64,
-    issue10: &str,
+    encounter_suite_section: &str,
 ) -> Result<(), String> {
     let run0 = runs.first().ok_or("no runs")?;
     let n = runs.len();
@@ -1063,10 +1069,10 @@ fn write_outputs(
         ],
     )?;
 
-    // Issue 10's section goes before the closing "Regenerate" line.
+    // The encounter suite's section goes before the closing "Regenerate" line.
     let regenerate = "Regenerate: `cd host-tests && cargo run --release --bin experiments -- --only tcas-advisory`.";
     let mut text = summary(runs, sensitivity, elapsed_s)?.replace(regenerate, "");
-    text.push_str(issue10);
+    text.push_str(encounter_suite_section);
     text.push_str(regenerate);
     text.push('\n');
     write_file(&dir.join("summary.md"), &text)

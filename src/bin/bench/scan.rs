@@ -1,4 +1,4 @@
-//! The track table's scan (issue 9's rows): `scan_separated` and
+//! The track table's scan (the benchmark's scan rows): `scan_separated` and
 //! `scan_crowded`, N confirmed tracks in steady state and M = N
 //! measurements per scan, with the scan's stages timed inside the scan
 //! (`TrackTable::scan_with_probe`), the counts the table reports and the

@@ -1,4 +1,4 @@
-//! The `tcas-advisory` group's issue 10 part: the encounter suite
+//! The `tcas-advisory` group's first part: the encounter suite
 //! ([`crate::encounters`]) on exact inputs and over seeds, in f64, f32 and
 //! Q32.32 against the independent reference, and the altitude tracker's
 //! figures ([`crate::altitude_figures`]).

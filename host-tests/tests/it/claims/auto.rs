@@ -1,4 +1,4 @@
-//! Issue 13 part 3: what holds of `auto`'s target (RMSE within 10 % of the
+//! What holds of `auto`'s target (RMSE within 10 % of the
 //! best method and of a tuned constant-velocity Kalman filter on every
 //! scenario of the groups), asserted on reduced Monte Carlo runs of the
 //! `auto` group's seeds (`results/auto/` holds the full runs). A case is

@@ -1,4 +1,4 @@
-//! The papers' claims that reproduce (issue 3, `results/{alwagih,li,liu}`),
+//! The gain-schedule papers' claims that reproduce (`results/{alwagih,li,liu}`),
 //! asserted on reduced Monte Carlo runs with paired 95 % confidence
 //! intervals, so that a regression in a schedule, the bank or the filters
 //! fails a test. The full runs are `experiments --only alwagih,li,liu`.
@@ -222,7 +222,10 @@ fn liu_adaptive_agrees_across_representations() {
 
 #[test]
 fn groups_write_the_documented_files() {
-    let dir = std::env::temp_dir().join(format!("abtrack-claims-issue3-{}", std::process::id()));
+    let dir = std::env::temp_dir().join(format!(
+        "abtrack-claims-gain-schedules-{}",
+        std::process::id()
+    ));
     let ctx = Context {
         out_dir: dir.clone(),
         runs_override: Some(3),

@@ -1,4 +1,4 @@
-//! Issue 5 claims: the default tracker on the simulated multi-target
+//! The multi-target claims: the default tracker on the simulated multi-target
 //! scenarios, in f64, f32 and Q32.32; the adapters' gates; bytes per track.
 //!
 //! Monte Carlo tests use the first `RUNS` runs of the `multi-target`

@@ -1,7 +1,8 @@
-//! The claims of issue 13's experiments, checked on reduced runs (the full
-//! runs: `cd host-tests && cargo run --release --bin experiments -- --only
-//! tenne-singh,he-tcas,liu,alwagih`; their numbers are in the groups'
-//! `summary.md`).
+//! The readings of the papers' formulas and tables (Tenne & Singh's
+//! closed forms, He et al.'s eq. 9, Liu's window, Al-Wagih's tables),
+//! checked on reduced runs (the full runs: `cd host-tests && cargo run
+//! --release --bin experiments -- --only tenne-singh,he-tcas,liu,alwagih`;
+//! their numbers are in the groups' `summary.md`).
 //!
 //! Seeded, so deterministic; the asserted differences are many half-widths
 //! of their 95 % intervals from zero at these run counts.

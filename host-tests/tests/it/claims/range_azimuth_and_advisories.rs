@@ -1,4 +1,4 @@
-//! The claims of issue 4's experiments, checked statistically on reduced
+//! The claims of the range–azimuth and TCAS advisory experiments, checked statistically on reduced
 //! Monte Carlo runs (the full runs are `cargo run --release --bin
 //! experiments -- --only he-tcas,tcas-advisory`; their numbers are in
 //! `results/he-tcas/summary.md` and `results/tcas-advisory/summary.md`).
@@ -220,7 +220,10 @@ fn tcas_range_rate_bias_scales_with_bearing_variance() {
 fn groups_write_their_documented_files() {
     let names: Vec<&str> = GROUPS.iter().map(|g| g.name).collect();
     assert!(names.contains(&"he-tcas") && names.contains(&"tcas-advisory"));
-    let dir = std::env::temp_dir().join(format!("abtrack-claims-issue4-{}", std::process::id()));
+    let dir = std::env::temp_dir().join(format!(
+        "abtrack-claims-range-azimuth-{}",
+        std::process::id()
+    ));
     let ctx = Context {
         out_dir: dir.clone(),
         runs_override: Some(3),

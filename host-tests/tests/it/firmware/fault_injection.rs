@@ -574,7 +574,7 @@ fn without_stack_line(log: &str) -> String {
 /// corrupted frame every 97, garbage before every 41st), run [`RUNS`]
 /// times: the report frames are identical to each other and to the host's
 /// run of the same core, and so is the log, line for line (but the stack
-/// line). (The issue 11
+/// line). (The runtime
 /// finding: one run in about 90 ran the first scan with 3 of its 9
 /// measurements.)
 fn demo_runs_are_identical(board: &Board) {

@@ -5,7 +5,7 @@
 //! F1 (tracker_scan, `fuzz/corpus/tracker_scan/finding-outside-gates-empty-scan`):
 //! `ScanReport::outside_gates` counts the table's unused measurement slots,
 //! not measurements: a scan with no measurement reported `M` of them.
-//! Fixed in track/table.rs (#11, "Counters that lie": only this scan's
+//! Fixed in track/table.rs ("Counters that lie": only this scan's
 //! codes are counted).
 
 #[path = "../../../../src/firmware/demo_config.rs"]

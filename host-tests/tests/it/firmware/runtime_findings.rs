@@ -1,7 +1,7 @@
-//! Issue 11's firmware-runtime findings, each reproduced on the scan core
+//! The firmware-runtime findings, each reproduced on the scan core
 //! (the code the firmware runs) and paced as the firmware paces it
-//! (`frames::run_like_the_firmware`). Each failed before the fix (commit
-//! "Issue 11 runtime findings reproduced ..."); the CRC collision finding
+//! (`frames::run_like_the_firmware`). Each failed before the fix (the commit
+//! that reproduced them); the CRC collision finding
 //! is `a_made_up_frame_does_not_swallow_the_real_one` in tests/it/wire/codec.rs.
 
 #[path = "../../../../src/firmware/capacity.rs"]

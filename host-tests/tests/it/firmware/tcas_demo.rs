@@ -1,4 +1,4 @@
-//! The firmware's default input, the TCAS demo scenario (issue 10 item 7),
+//! The firmware's default input, the TCAS demo scenario,
 //! through the firmware's scan-loop core on the host in the boards' number
 //! types and capacities (`frames::run_like_the_firmware`): the threat goes
 //! proximate → TA → RA with a sense → clear of conflict; the intruder level

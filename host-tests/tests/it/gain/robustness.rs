@@ -1,4 +1,4 @@
-//! Issue 12 item 2, "robust gains on real timing": each finding of "Defaults
+//! Robust gains on real timing: each finding of "Defaults
 //! tuned to the papers' noise levels misbehave on real data" as a test that
 //! fails on the code before the fix, and the bounds of
 //! `abtrack::gain::robust_gains` on any accepted input.

@@ -41,7 +41,7 @@ fn ref_gains(alpha: f64, beta: f64, gamma: f64) -> RefGains {
 
 // ------------------------------------------------------------ documented runs
 
-/// Issue 8: on every documented run the fast fixed point is at least ten
+/// The target: on every documented run the fast fixed point is at least ten
 /// times closer to f64 than f32 is, in position, velocity and (αβγ)
 /// acceleration.
 #[test]

@@ -422,7 +422,7 @@ fn a_gap_runs_empty_scans_on_schedule() {
     assert_eq!(scan_loop.counters().tracks_deleted, 1);
 }
 
-/// Issue 11's clock findings on the scan core: a clock far from zero, a
+/// The clock findings on the scan core: a clock far from zero, a
 /// jump past 2³¹ ms, a step back; each re-lock is counted, no measurement
 /// is lost or used twice, and a target keeps its track across a step of
 /// the sensor's clock.

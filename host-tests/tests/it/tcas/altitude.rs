@@ -1,6 +1,6 @@
 //! The quantisation-aware altitude tracker (`abtrack::filter::altitude`)
 //! on Mode C (100 ft) and Mode S (25 ft) reports, in f64, f32 and Q32.32:
-//! the faults issue 10 measured on the fixed-gain αβ tracker (a 300 ft/min
+//! the faults measured on the fixed-gain αβ tracker (a 300 ft/min
 //! climb read as −40 to +908 ft/min; 1562 ft/min 2 s after a level-off from
 //! 2000 ft/min), the 0.25 g RA response, the estimate kept inside the
 //! reported bin, missing reports, bad input. Figures:
@@ -35,7 +35,7 @@ fn in_each_type(f: impl Fn(&str, &dyn Fn(AltitudeQuantum) -> (f64, f64))) {
     });
 }
 
-/// Issue 10: "on 100 ft Mode C reports of a 300 ft/min climb its rate swings
+/// The fault: "on 100 ft Mode C reports of a 300 ft/min climb its rate swings
 /// −40 to +908 ft/min". A bin of 100 ft takes 20 s at 300 ft/min; the
 /// transitions are seen at whole seconds, so one bin time is measured to
 /// ±1 s (±5 %) and the average over the bins narrows it. After the first
@@ -52,7 +52,7 @@ fn steady_300_ft_per_min_climb_reads_300() {
     });
 }
 
-/// Issue 10: "2 s after a level-off from 2000 ft/min it still reads
+/// The fault: "2 s after a level-off from 2000 ft/min it still reads
 /// 1562 ft/min". At 2000 ft/min a Mode C bin takes 3 s, so 2 s after the
 /// level-off no transition can be overdue yet and no tracker can know; the
 /// next one is overdue by LATESLACK (0.5 s) at most 3.5 s after the

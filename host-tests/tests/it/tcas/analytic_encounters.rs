@@ -161,7 +161,7 @@ fn non_reporting_intruder_raises_at_most_a_traffic_advisory() {
 //   RA (0.55 NM): the range test passes from s = 2.180 054 (t = 38.1995 s)
 //       to s = 0.319 946 (t = 56.8005 s), but the miss distance, 1 NM =
 //       6076 ft, exceeds SL 5's HMD threshold of 3342 ft (DAIDALUS
-//       `RA_HMD`): the HMD filter removes it, so no RA (issue 10; before,
+//       `RA_HMD`): the HMD filter removes it, so no RA (before,
 //       this pass raised an RA).
 // Near CPA the closure falls under 10 ft/s only for s < 0.0165 NM, where the
 // floored τ_mod ≈ 0.56/0.001 646 = 340 s: no alert. After CPA the range
@@ -269,7 +269,7 @@ fn diverging<S: Scalar>() {
     );
     assert_eq!(slow(0.5).advisory, Advisory::Traffic);
     assert_eq!(slow(5.0).advisory, Advisory::ProximateTraffic);
-    // Issue 10: "an RA at 0.5 NM while diverging at 250 m/s". Inside the RA
+    // The fault: "an RA at 0.5 NM while diverging at 250 m/s". Inside the RA
     // DMOD (0.55 NM) a diverging intruder stays a range hit only while
     // r·ṙ ≤ H1 = 0.00278 NM²/s = 9535 m²/s (DO-185B `H1TBL`, SL 5):
     // 926 m · 250 m/s = 231 500 m²/s is far beyond, so no RA; at 926 m

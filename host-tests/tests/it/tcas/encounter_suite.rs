@@ -1,6 +1,6 @@
-//! The encounter suite of issue 10 (`abtrack_host_tests::encounters`):
+//! The TCAS encounter suite (`abtrack_host_tests::encounters`):
 //! head-on, crossing, overtaking, offset passes either side of the HMD
-//! threshold (and issue 10's 1.2 NM pass at 480 kt), a level intruder
+//! threshold (and the 1.2 NM pass at 480 kt), a level intruder
 //! 1000 ft away, a descending intruder, a diverging one, a level-off, and
 //! non-altitude-reporting intruders below and above 15 500 ft. The
 //! expected TA and RA onsets, RA sense and clear of conflict come from the
@@ -252,7 +252,7 @@ fn closest_approach_s(e: &Encounter) -> f64 {
     -(x.s[0] * x.v[0] + x.s[1] * x.v[1]) / vv
 }
 
-/// The demo scenario (issue 10 item 7): the reference gives intruder 0 a
+/// The demo scenario: the reference gives intruder 0 a
 /// TA, then an RA, then clear of conflict; intruder 1 (level 1000 ft
 /// above) and intruder 3 (1 NM abeam, beyond the HMD) no RA; intruder 2
 /// (no altitude) a TA at most. The library, per intruder on the demo's

@@ -247,7 +247,7 @@ fn traffic_advisory_lasts_at_least_8_s() {
     assert_eq!(held, 8);
 }
 
-/// Advisories start only from firm tracks (issue 10: a three-scan clutter
+/// Advisories start only from firm tracks (before, a three-scan clutter
 /// track raised a TA): range firmness 2 holds back a TA the tests give, 3
 /// lets it through; vertical firmness 1 holds back an RA (a TA is shown), 2
 /// lets it through; a continuing RA is not dropped when firmness falls.

@@ -1,4 +1,4 @@
-//! Sensitivity level selection and the TCAS II v7.1 table of issue 4.
+//! Sensitivity level selection and the TCAS II v7.1 table.
 
 use abtrack::tcas::{sensitivity, OwnAircraft, SensitivityLevel, TcasError, SENSITIVITY_TABLE};
 use abtrack::{Fix, Scalar, ScaledScalar};

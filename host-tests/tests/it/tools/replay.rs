@@ -45,7 +45,7 @@ fn accepts_the_three_layouts_and_tolerant_spacing() {
     );
 }
 
-/// Issue 12: a header `t,x,y,alt`, extra columns and another column order
+/// Before: a header `t,x,y,alt`, extra columns and another column order
 /// were refused; the header is now matched by name.
 #[test]
 fn header_is_matched_by_name_in_any_order_with_extra_columns() {
@@ -200,7 +200,7 @@ fn errors_name_the_line_and_column() {
     ));
 }
 
-/// Issue 11: absurd values in f64 ran with exit status 0, and x = 1e308 was
+/// Before: absurd values in f64 ran with exit status 0, and x = 1e308 was
 /// reported one line late. Every value is now checked against the
 /// library's envelope where it is, naming its line and column.
 #[test]
@@ -295,7 +295,7 @@ fn values_outside_the_envelope_are_refused_at_their_line() {
     );
 }
 
-/// Issue 12: an azimuth in degrees ran without a warning. The unit is
+/// Before: an azimuth in degrees ran without a warning. The unit is
 /// explicit: a radian column beyond 2π is refused naming the option, and
 /// `--azimuth-unit deg` reads degrees.
 #[test]
@@ -577,7 +577,7 @@ fn refused_rows_and_values_name_the_line() {
     );
 }
 
-/// Issue 12 / 11: no run ends with status 0 after an absurd estimate. In f64
+/// No run ends with status 0 after an absurd estimate. In f64
 /// (where nothing saturates) an estimate outside the envelope stops the run
 /// at the row that produced it.
 #[test]
@@ -730,7 +730,7 @@ fn command_line() {
     }
 }
 
-/// `--help` names no internal issue number (issue 12).
+/// `--help` names no internal issue number.
 #[test]
 fn help_names_no_issue_number() {
     for long in [false, true] {

@@ -1,5 +1,5 @@
-//! `replay` phase 2: every `--schedule` (issue 3) and `--filter
-//! range-azimuth` with `--own-alt` (issue 4), against the library driven
+//! `replay` with every `--schedule` and with `--filter range-azimuth`
+//! and `--own-alt`, against the library driven
 //! directly; the advisory timeline of analytic encounters; errors.
 //!
 //! The expected outputs are built by calling the library (schedules, bank,

@@ -699,7 +699,7 @@ fn hundred_km_scene() -> (String, Vec<[f64; 2]>) {
     (csv, truth)
 }
 
-/// Issue 12: on a 100 km scene the fixed 10 km square dropped 10,430 of
+/// The finding: on a 100 km scene the fixed 10 km square dropped 10,430 of
 /// 10,455 measurements, counted only under --verbose. The default region is
 /// now none, the sensor's σ is an option, every aircraft is tracked, and
 /// the account of unused measurements is printed on every run.

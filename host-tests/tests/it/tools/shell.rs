@@ -1,5 +1,5 @@
 //! The host tools as a user runs them in a shell: a closed pipe
-//! (`replay … | head`) ends a tool quietly with status 0 (issue 12: replay
+//! (`replay … | head`) ends a tool quietly with status 0 (before, replay
 //! printed "cannot write the output: Broken pipe" and exited 1), and every
 //! tool answers --help with status 0 and no internal issue number.
 

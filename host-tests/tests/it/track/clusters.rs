@@ -1,4 +1,4 @@
-//! Issue 9's equivalence: the scan's pre-gate and per-cluster assignment
+//! The scan's equivalence: its pre-gate and per-cluster assignment
 //! give, pair for pair (ties included), what the assignment solver gives on
 //! the whole table's gated pairs, and that is optimal (a brute force).
 //!

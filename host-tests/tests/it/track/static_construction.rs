@@ -75,7 +75,7 @@ fn bytes_per_track() {
     ];
     println!("bytes per track slot, Option<Track<_, FixedGainTrack<_>>>: {per_track:?}");
     println!("of which FixedGainTrack<_>: {filters:?}");
-    // Issue 9's target: a 2-D αβ track with its lifecycle in at most 64
+    // The target: a 2-D αβ track with its lifecycle in at most 64
     // bytes in f32 and in the fast fixed point.
     assert_eq!(
         per_track,

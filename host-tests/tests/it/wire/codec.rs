@@ -609,7 +609,7 @@ fn decoder_recovers_a_frame_that_started_inside_a_truncated_one() {
     // the start of the second as the rest of the first, fails its CRC, and
     // must still find the second frame among the bytes it had taken. The
     // failed candidate holds the second frame's header: counted as a
-    // truncation, not a CRC error (issue 11), and the sequence numbers show
+    // truncation, not a CRC error, and the sequence numbers show
     // one frame lost.
     // (With only the last byte lost, the candidate holds one byte of the
     // next frame, too little to recognise: a CRC error.)
@@ -709,7 +709,7 @@ fn decoder_counts_lost_frames_from_the_sequence_numbers() {
     assert_eq!((d.stats().frames_lost, d.stats().out_of_sequence), (1, 0));
 }
 
-/// Issue 11: "A fuzzer built a CRC-16 collision that made up a polar
+/// The finding: "A fuzzer built a CRC-16 collision that made up a polar
 /// measurement at 28,823 km and swallowed the real frame behind it,
 /// counting nothing." Rebuilt with CRC-32C: a polar frame at 28,823 km whose
 /// CRC (forged by solving for four payload bytes) is the next real frame's
