@@ -378,7 +378,7 @@ impl Scalar for f32 {
 /// starts at zero, [`Scalar::accumulate_check`] folds every output into it,
 /// and the guard passes exactly when no output was NaN or ±∞ (the `f32`
 /// operators are sticky, so the outputs' validity is every intermediate's).
-/// Two forms with that same meaning; [`FPU`] picks one at compile time, and
+/// Two forms with that same meaning; [`FPU`](f32_check::FPU) picks one at compile time, and
 /// the host tests check both against every class of IEEE 754 value.
 pub mod f32_check {
     /// Whether `f32` arithmetic runs on an FPU here (the Cortex-M4F's hard

@@ -1,4 +1,4 @@
-//! [`ScaledScalar`]: the fast fixed point's wide format ([`Scaled`], a
+//! [`ScaledScalar`]: the fast fixed point's wide format ([`Scaled`](crate::num::scaled::Scaled), a
 //! 31-bit mantissa with a binary exponent, rounded to nearest once per
 //! operation) as one [`Scalar`] type for every quantity, for the code whose
 //! quantities span decades in one variable (the TCAS logic's taus, ratios

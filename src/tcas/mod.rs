@@ -203,7 +203,7 @@ pub fn assess<S: Scalar>(
 }
 
 /// The cycle of [`assess`] for the own aircraft `own`: the band's
-/// sensitivity level ([`sensitivity`], no hysteresis) and no low-altitude
+/// sensitivity level ([`sensitivity()`], no hysteresis) and no low-altitude
 /// inhibit history.
 pub fn stateless_cycle<S: Scalar>(own: &OwnAircraft<S>) -> Result<Cycle<S>, TcasError> {
     Ok(Cycle::new(
