@@ -4,7 +4,7 @@ use abtrack::tcas::{sensitivity, OwnAircraft, SensitivityLevel, TcasError, SENSI
 use abtrack::{Fix, Scalar, ScaledScalar};
 
 /// SL, TA tau, RA tau, TA DMOD, RA DMOD, TA ZTHR, RA ZTHR, ALIM.
-type IssueRow = (
+type PublishedRow = (
     u8,
     f64,
     Option<f64>,
@@ -16,11 +16,11 @@ type IssueRow = (
 );
 
 #[test]
-fn table_is_the_one_in_issue_4() {
+fn table_is_the_published_tcas_ii_v7_1_table() {
     // own altitude → SL, TA tau, RA tau, TA DMOD, RA DMOD, TA ZTHR, RA ZTHR,
-    // ALIM, copied from the issue (– as None).
+    // ALIM, copied from the TCAS II v7.1 table (– as None).
     #[rustfmt::skip]
-    let issue: [IssueRow; 7] = [
+    let published: [PublishedRow; 7] = [
         (2, 20.0, None, 0.30, None, 850.0, None, None),
         (3, 25.0, Some(15.0), 0.33, Some(0.20), 850.0, Some(600.0), Some(300.0)),
         (4, 30.0, Some(20.0), 0.48, Some(0.35), 850.0, Some(600.0), Some(300.0)),
@@ -29,7 +29,7 @@ fn table_is_the_one_in_issue_4() {
         (7, 48.0, Some(35.0), 1.30, Some(1.10), 850.0, Some(700.0), Some(600.0)),
         (7, 48.0, Some(35.0), 1.30, Some(1.10), 1200.0, Some(800.0), Some(700.0)),
     ];
-    for (row, want) in SENSITIVITY_TABLE.iter().zip(issue) {
+    for (row, want) in SENSITIVITY_TABLE.iter().zip(published) {
         assert_eq!(row.level.number(), want.0);
         assert_eq!(row.ta.tau_s, want.1);
         assert_eq!(row.ra.map(|r| r.tau_s), want.2);
