@@ -124,7 +124,7 @@ fn main() -> ExitCode {
     }
     let _ = writeln!(
         out,
-        "\nHow many times closer to f64 the fast fixed point is than f32 (f32 max / fixed max; issue 8 asks ≥ {CLOSER_THAN_F32:.0}):\n"
+        "\nHow many times closer to f64 the fast fixed point is than f32 (f32 max / fixed max; the target is ≥ {CLOSER_THAN_F32:.0}):\n"
     );
     let _ = writeln!(out, "| run | x | v | a | ≥ {CLOSER_THAN_F32:.0} |");
     out.push_str("|---|---|---|---|---|\n");

@@ -694,7 +694,7 @@ fn trajectory_claim(f: &TrajectoryFits) -> Claim {
         .unwrap_or_default();
     Claim {
         id: "A5".into(),
-        source: "§6, Tables 1–2 (issue 13)".into(),
+        source: "§6, Tables 1–2".into(),
         claim: "the tables come from some target trajectory (the paper gives none): which of the \
                 plausible ones do they fit?"
             .into(),

@@ -769,10 +769,7 @@ pub fn run(ctx: &Context) -> Result<(), String> {
 
 fn summary(cases: &[Case], files: &str) -> Result<String, String> {
     let mut s = String::new();
-    let _ = writeln!(
-        s,
-        "# auto: one design on every scenario (issue 13 part 3)\n"
-    );
+    let _ = writeln!(s, "# auto: one design on every scenario\n");
     let _ = writeln!(
         s,
         "`auto` (`abtrack::gain::auto`, design in `docs/auto.md`) is given only each scenario's \

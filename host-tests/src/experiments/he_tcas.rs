@@ -15,7 +15,7 @@
 //!   scenario's recommended CV tuning: the truth is a straight line, so the
 //!   matched Q is 0 and a small σ_a keeps the filter from locking onto a
 //!   wrong velocity).
-//! * **αβ M2** — the baseline of the issue: plain per-axis αβ
+//! * **αβ M2** — the baseline: plain per-axis αβ
 //!   (`abtrack::gain::ScheduledFilter` with `LeastSquaresGains`) on
 //!   x = R sin B, y = R cos B, with the least-squares gains
 //!   α(k) = 2(2k−1)/(k(k+1)), β(k) = 6/(k(k+1)). These are the gains He et al.
@@ -1624,7 +1624,7 @@ fn summary(out: &HeTcasOutcome, elapsed_s: f64) -> Result<String, String> {
         };
         let _ = writeln!(
             s,
-            "- **Eq. (9) exactly as printed** (VAR = R²·7.569e-3 in place of σ_R², the reading issue 13 asks for; the \
+            "- **Eq. (9) exactly as printed** (VAR = R²·7.569e-3 in place of σ_R², the literal reading; the \
              f64 reference `reference_ra` with `Eq9Reading::AsPrinted`): the range direction then has the cross-range \
              variance, α = W1 and β/T = W2 at every scan, and eqs. (12)–(13) reduce to a per-axis filter on x = R sin B, \
              y = R cos B. Position RMSE {} m overall, {} m late; minus αβ M2, paired: {} m ({po_rel:+.1} %) overall, {} m \

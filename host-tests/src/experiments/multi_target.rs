@@ -601,7 +601,7 @@ pub fn run(ctx: &Context) -> Result<(), String> {
     bytes.write(&dir, "bytes_per_track")?;
 
     let mut s = String::new();
-    let _ = writeln!(s, "# multi-target (issue 5)\n");
+    let _ = writeln!(s, "# multi-target\n");
     let _ = writeln!(
         s,
         "Regenerate: `cd host-tests && cargo run --release --bin experiments -- --only {NAME}`.\n"

@@ -1108,7 +1108,7 @@ fn summary(
     let mut s = String::new();
     let _ = writeln!(
         s,
-        "# tcas-advisory: estimated vs true tau and advisory timeline (issue 4)\n"
+        "# tcas-advisory: estimated vs true tau and advisory timeline\n"
     );
     let _ = writeln!(
         s,

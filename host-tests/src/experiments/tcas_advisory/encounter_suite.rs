@@ -266,7 +266,7 @@ pub fn write(dir: &Path, runs: usize) -> Result<String, String> {
     let mut s = String::new();
     let _ = writeln!(
         s,
-        "# Issue 10: the TCAS II v7.1 logic on the encounter suite\n\n\
+        "# The TCAS II v7.1 logic on the encounter suite\n\n\
          {encounters} encounters (`host-tests/src/encounters.rs`; own level at 8000 ft, SL 5, unless stated; 1 s \
          scans; open loop — the own aircraft does not follow the RA): each through the library (range tracker, \
          altitude tracker, the range–azimuth filter as bearing tracker, threat detection, resolution) and through \
@@ -307,7 +307,7 @@ pub fn write(dir: &Path, runs: usize) -> Result<String, String> {
          acceleration above DO-185B's noise-scaled threshold (≈ 0.7 m/s² with 15 m range noise); at 500 kt \
          with 0.8 NM offset the RA range test passes at r ≈ 6.3 km where r̈ ≈ 0.58 m/s², so many runs get an \
          RA that the continuing-threat filter drops within seconds (`tests/it/tcas/encounter_suite.rs` checks each ends \
-         within 15 s and before the closest approach). The 1.2 NM pass of issue 10 has r̈ ≈ 1.5 m/s² there and \
+         within 15 s and before the closest approach). The 1.2 NM pass at 480 kt has r̈ ≈ 1.5 m/s² there and \
          few. The false TAs of `overtaking` are early onsets at 100 kt closure, where τ_mod is DMOD-dominated \
          and range noise moves it by seconds.\n"
     );
@@ -322,7 +322,7 @@ pub fn write(dir: &Path, runs: usize) -> Result<String, String> {
     s.push_str(&acceleration.to_markdown());
     let _ = writeln!(
         s,
-        "\n## Altitude tracker\n\nMode C (100 ft) and Mode S (25 ft) reports of the issue's profiles, over 20 \
+        "\n## Altitude tracker\n\nMode C (100 ft) and Mode S (25 ft) reports of the TCAS altitude profiles, over 20 \
          phases of the profile against the report grid (`host-tests/src/altitude_figures.rs`). Before (the \
          fixed-gain αβ tracker): a 300 ft/min climb read −40 to +908 ft/min, and 1562 ft/min 2 s after a \
          level-off from 2000 ft/min.\n"
@@ -336,7 +336,7 @@ pub fn write(dir: &Path, runs: usize) -> Result<String, String> {
     );
     let _ = writeln!(
         s,
-        "## Verdict (issue 10)\n\nOn exact inputs the trackers and logic give the published logic's timeline \
+        "## Verdict\n\nOn exact inputs the trackers and logic give the published logic's timeline \
          within a scan in every type; with noise nothing is missed and no sense is wrong; false alerts are \
          limited to the two cases above, whose cause is measured, not tuned away.\n"
     );

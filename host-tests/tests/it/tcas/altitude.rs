@@ -187,7 +187,7 @@ fn estimate_stays_in_the_reported_bin() {
 }
 
 /// f32 and Q32.32 take the same decisions as f64 (class and firmness every
-/// scan) and stay within 0.05 ft and 0.05 ft/s on the profiles.
+/// scan) and stay within 0.05 ft and 0.05 ft/s on the TCAS altitude profiles.
 #[test]
 fn narrow_types_follow_f64() {
     let profiles: [&dyn Profile; 3] = [

@@ -651,7 +651,7 @@ fn binary_runs_the_tracker_and_names_the_bad_line() {
 
 // ------------------------------------------------- configured from the sensor
 
-/// A 100 km scene like the issue's: six aircraft crossing ±50 km at
+/// A 100 km scene like the reported one: six aircraft crossing ±50 km at
 /// 150–250 m/s, σ = 20 m per axis, one scan per second, every aircraft
 /// detected. Returns the CSV and the truth (id → final position).
 fn hundred_km_scene() -> (String, Vec<[f64; 2]>) {
