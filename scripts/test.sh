@@ -1,26 +1,30 @@
 #!/usr/bin/env bash
 # Runs every test of the project:
 #   1. formatting (cargo fmt --check, root crate and host-tests),
-#   2. host tests (cd host-tests && cargo test --release) and the library's
-#      doc examples (cargo test --doc, run from host-tests for the host target),
+#   2. host tests (cd host-tests && cargo test --release; the integration
+#      tests are one binary, host-tests/tests/it/), the library's doc
+#      examples (cargo test --doc, run from host-tests for the host target)
+#      and its documentation with no rustdoc warning (cargo doc, as docs.rs
+#      builds it),
 #   3. the library alone for the three thumb targets (no default features),
-#      its dependency tree (no firmware crates) and `cargo publish --dry-run`,
+#      clippy's no-panic lints, its dependency tree (no firmware crates) and
+#      `cargo publish --dry-run`,
 #   4. the firmware (every binary of boards/qemu, the benchmark with its
 #      feature bench-anchors) for the three targets; no call into
 #      core::panicking in any release ELF; the stack below the static data
-#      (flip-link); a deliberate stack overflow ends in a clean HardFault
-#      report on each board; stack high-water marks with 25 % margin
-#      (scripts/stack.sh),
-#   5. the nRF52840-DK build of the demo, and a short run of each fuzz
-#      target (scripts/fuzz.sh 20; installs nightly and cargo-fuzz),
-#   6. the demo and the on-target self-tests (selftest, selftest-tracking)
-#      under QEMU on the three boards
-#      (mps2-an386 / Cortex-M4F, mps2-an385 / Cortex-M3, microbit / Cortex-M0);
-#      fault injection and repeated demo runs on the three boards, and a
-#      one-hour soak on the Cortex-M3 (docs/firmware-runtime.md),
-#   7. a smoke run of the benchmark image on each board: it must run to its
-#      end and print a well-formed report (nothing about speed is checked;
-#      scripts/bench.sh measures).
+#      (flip-link);
+#   then two lanes side by side (QEMU runs on one core):
+#   5. the firmware images under QEMU on the three boards
+#      (mps2-an386 / Cortex-M4F, mps2-an385 / Cortex-M3, microbit / Cortex-M0):
+#      a deliberate stack overflow ends in a clean HardFault report; stack
+#      high-water marks with 25 % margin (scripts/stack.sh); the demo; the
+#      on-target self-tests (selftest, selftest-tracking); a smoke run of the
+#      benchmark image, which must run to its end and print a well-formed
+#      report (nothing about speed is checked; scripts/bench.sh measures),
+#   6. fault injection and repeated demo runs on the three boards, a
+#      one-hour soak on the Cortex-M3 (docs/firmware-runtime.md), a short
+#      run of each fuzz target (scripts/fuzz.sh 20; installs nightly and
+#      cargo-fuzz) and the nRF52840-DK build of the demo.
 #
 #   scripts/test.sh
 #
@@ -41,13 +45,13 @@ ensure_qemu
 ensure_defmt_print
 ensure_llvm_tools
 
-results=()
-failures=0
 log_dir=$(mktemp -d "${TMPDIR:-/tmp}/abtrack-test.XXXXXX")
 trap 'rm -rf "$log_dir"' EXIT
+results_file=$log_dir/results
+: >"$results_file"
 
 # step <name> <command...>: runs one step, records PASS/FAIL and its wall
-# time.
+# time (in $step_results inside a parallel lane, else in the summary).
 step() {
     local name=$1
     shift
@@ -56,11 +60,38 @@ step() {
     "$@" || status=$?
     local took=$((SECONDS - start))
     if [ "$status" -eq 0 ]; then
-        results+=("PASS  $name (${took} s)")
+        echo "PASS  $name (${took} s)" >>"${step_results:-$results_file}"
     else
-        results+=("FAIL  $name (exit status $status, ${took} s)")
-        failures=$((failures + 1))
+        echo "FAIL  $name (exit status $status, ${took} s)" >>"${step_results:-$results_file}"
     fi
+}
+
+# in_parallel <lane>...: runs each lane (a function that runs steps one
+# after another) in the background, its output in a log; when all have
+# ended, prints each lane's output and adds its steps to the summary, in
+# lane order. The lanes share no build directory lock while they run: the
+# builds they need are made before.
+in_parallel() {
+    local lane i=0 pids=()
+    for lane in "$@"; do
+        say "== running in parallel: $lane (its output follows when the lanes end)"
+        (
+            step_results="$log_dir/lane-$i.results"
+            : >"$step_results"
+            "$lane"
+        ) >"$log_dir/lane-$i.log" 2>&1 &
+        pids+=("$!")
+        i=$((i + 1))
+    done
+    local pid
+    for pid in "${pids[@]}"; do
+        wait "$pid" || true
+    done
+    local j
+    for ((j = 0; j < i; j++)); do
+        cat "$log_dir/lane-$j.log"
+        cat "$log_dir/lane-$j.results" >>"$results_file"
+    done
 }
 
 in_host_tests() { (cd host-tests && "$@"); }
@@ -171,10 +202,15 @@ build_nrf52840_dk() {
     bash scripts/sizes.sh --nrf52840-dk
 }
 
+# Builds and host checks, one after another (each uses both cores).
 step "cargo fmt --check" cargo fmt --check
 step "cargo fmt --check (host-tests)" in_host_tests cargo fmt --check
 step "host tests (cargo test --release)" in_host_tests cargo test --release
 step "library doc examples (cargo test --doc)" in_host_tests cargo test --release --doc --manifest-path ../Cargo.toml -p abtrack
+# The documentation docs.rs builds (all features, the host target), with no
+# rustdoc warning (broken intra-doc links among them).
+step "library: cargo doc, no warnings" in_host_tests env RUSTDOCFLAGS="-D warnings" \
+    cargo doc --manifest-path ../Cargo.toml -p abtrack --lib --no-deps --all-features
 for t in "${ABTRACK_TARGETS[@]}"; do
     step "library alone for $t" cargo build --release --lib --no-default-features --target "$t"
 done
@@ -185,40 +221,17 @@ step "library: clippy, no panic paths (indexing, unwrap, arithmetic)" \
     cargo clippy -p abtrack --lib --no-default-features --target thumbv7em-none-eabihf -- -D warnings
 step "library: no firmware crates among its dependencies" library_has_no_firmware_dependencies
 step "library: cargo publish --dry-run" cargo publish --quiet --dry-run -p abtrack --allow-dirty
+# Every image as the runs below use it: the binaries without features, the
+# benchmark with its own (bench-anchors), so each is built once.
+build_firmware() {
+    cargo build --release --target "$1" &&
+        cargo build --release --target "$1" --features bench-anchors --bin bench
+}
 for t in "${ABTRACK_TARGETS[@]}"; do
-    step "firmware build for $t" cargo build --release --target "$t" --features bench-anchors
+    step "firmware build for $t" build_firmware "$t"
 done
 step "firmware: no call into core::panicking in any release ELF" check_no_panic_calls
 step "firmware: stack below the static data in every release ELF (flip-link)" check_stack_layout
-for t in "${ABTRACK_TARGETS[@]}"; do
-    step "stack overflow faults cleanly on $(board_for_target "$t")" run_stack_overflow "$t"
-done
-step "stack high-water marks, demo and fault inputs (>= 25 % margin)" bash scripts/stack.sh
-step "nRF52840-DK demo build (boards/nrf52840-dk: defmt-rtt, probe-rs runner, flip-link)" build_nrf52840_dk
-step "fuzz: each target 20 s from the committed corpus (scripts/fuzz.sh)" bash scripts/fuzz.sh 20
-for t in "${ABTRACK_TARGETS[@]}"; do
-    step "demo on $(board_for_target "$t")" cargo run --release --target "$t" --bin abtrack-firmware
-done
-# Fault injection through each board's UART (every fault of
-# host-tests/src/frames.rs `Fault`), and three runs of the demo compared byte
-# for byte, with each other and with the same core run on the host
-# (host-tests/tests/it/firmware/fault_injection.rs; about 30 s per board).
-for t in "${ABTRACK_TARGETS[@]}"; do
-    b=$(board_for_target "$t")
-    step "fault injection and repeated runs on $b" in_host_tests \
-        cargo test --release --test it -- --ignored --test-threads=1 \
-                "firmware::fault_injection::fault_injection_${b//-/_}" \
-                "firmware::fault_injection::demo_runs_are_identical_${b//-/_}"
-done
-# The soak, shortened to one hour of scans (scripts/soak.sh runs the day).
-step "soak, one hour, on mps2-an385" in_host_tests env ABTRACK_SOAK_SCANS=3600 \
-    cargo test --release --test it -- --ignored firmware::soak::soak_mps2_an385
-# Two self-test images (together they do not fit the micro:bit's flash).
-for t in "${ABTRACK_TARGETS[@]}"; do
-    for bin in selftest selftest-tracking; do
-        step "$bin on $(board_for_target "$t")" run_selftest "$t" "$bin"
-    done
-done
 
 # The benchmark image (its own feature: the minikalman anchor) must run to
 # its end and print a complete, well-formed report: bench_report --check
@@ -232,15 +245,61 @@ run_bench_smoke() {
     }
     in_host_tests cargo run --quiet --release --bin bench_report -- --check "$log"
 }
-for t in "${ABTRACK_TARGETS[@]}"; do
-    step "benchmark smoke run on $(board_for_target "$t")" run_bench_smoke "$t"
-done
+
+# The runs under QEMU (one core each) in two lanes, beside the builds that
+# remain. Lane 1: the firmware images of the root workspace on the three
+# boards.
+emulated_images() {
+    local t bin
+    for t in "${ABTRACK_TARGETS[@]}"; do
+        step "stack overflow faults cleanly on $(board_for_target "$t")" run_stack_overflow "$t"
+    done
+    step "stack high-water marks, demo and fault inputs (>= 25 % margin)" bash scripts/stack.sh
+    for t in "${ABTRACK_TARGETS[@]}"; do
+        step "demo on $(board_for_target "$t")" cargo run --release --target "$t" --bin abtrack-firmware
+    done
+    # Two self-test images (together they do not fit the micro:bit's flash).
+    for t in "${ABTRACK_TARGETS[@]}"; do
+        for bin in selftest selftest-tracking; do
+            step "$bin on $(board_for_target "$t")" run_selftest "$t" "$bin"
+        done
+    done
+    for t in "${ABTRACK_TARGETS[@]}"; do
+        step "benchmark smoke run on $(board_for_target "$t")" run_bench_smoke "$t"
+    done
+}
+
+# Lane 2: the host-tests runs of the firmware (fault injection through each
+# board's UART, every fault of host-tests/src/frames.rs `Fault`, and three
+# runs of the demo compared byte for byte, with each other and with the same
+# core run on the host: host-tests/tests/it/firmware/fault_injection.rs,
+# about 30 s per board; the soak shortened to one hour of scans,
+# scripts/soak.sh runs the day), then the fuzzers and the nRF52840-DK build
+# (their own workspaces and target directories).
+host_driven_runs() {
+    local t b
+    for t in "${ABTRACK_TARGETS[@]}"; do
+        b=$(board_for_target "$t")
+        step "fault injection and repeated runs on $b" in_host_tests \
+            cargo test --release --test it -- --ignored --test-threads=1 \
+            "firmware::fault_injection::fault_injection_${b//-/_}" \
+            "firmware::fault_injection::demo_runs_are_identical_${b//-/_}"
+    done
+    step "soak, one hour, on mps2-an385" in_host_tests env ABTRACK_SOAK_SCANS=3600 \
+        cargo test --release --test it -- --ignored firmware::soak::soak_mps2_an385
+    step "fuzz: each target 20 s from the committed corpus (scripts/fuzz.sh)" bash scripts/fuzz.sh 20
+    step "nRF52840-DK demo build (boards/nrf52840-dk: defmt-rtt, probe-rs runner, flip-link)" build_nrf52840_dk
+}
+
+in_parallel emulated_images host_driven_runs
 
 echo
 echo "abtrack test summary:"
-printf '  %s\n' "${results[@]}"
+sed 's/^/  /' "$results_file"
+failures=$(grep -c '^FAIL' "$results_file" || true)
+steps=$(wc -l <"$results_file")
 if [ "$failures" -ne 0 ]; then
     echo "$failures step(s) failed"
     exit 1
 fi
-echo "all ${#results[@]} steps passed"
+echo "all $steps steps passed"
