@@ -5,6 +5,10 @@
 //! cd host-tests && cargo test --release --test it tcas::
 //! cd host-tests && cargo test --release --test it firmware::soak -- --ignored
 //! ```
+//!
+//! proptest keeps the seeds of past failures where its default persistence
+//! puts them for a test crate rooted at this main.rs:
+//! `tests/proptest-regressions/<group>/<file>.txt`.
 
 mod claims;
 mod filter;
