@@ -577,8 +577,26 @@ impl TrackMetrics {
 ///   under half of their established scans: see [`TrackMetrics`].
 ///
 /// The minimised cost is clipped at the gate, so a pair beyond it costs the
-/// same whichever it is and never displaces a pair inside it.
+/// same whichever it is and never displaces a pair inside it
+/// ([`PairingCost::ClippedAtGate`]; [`track_metrics_with`] takes the other).
 pub fn track_metrics(scans: &[ScanReport], gate: f64) -> TrackMetrics {
+    track_metrics_with(scans, gate, PairingCost::ClippedAtGate)
+}
+
+/// What the per-scan assignment of [`track_metrics_with`] minimises.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum PairingCost {
+    /// Σ min(‖track − truth‖, gate).
+    ClippedAtGate,
+    /// Σ ‖track − truth‖ (pairs at or beyond the gate dropped afterwards):
+    /// the real-data evaluation's definition, under which a far pair can
+    /// displace a near one.
+    Distance,
+}
+
+/// [`track_metrics`] with the assignment minimising `cost`.
+pub fn track_metrics_with(scans: &[ScanReport], gate: f64, cost: PairingCost) -> TrackMetrics {
+    let pairing_cost = cost;
     #[derive(Default)]
     struct TargetAcc {
         first_t: Option<f64>,
@@ -607,22 +625,26 @@ pub fn track_metrics(scans: &[ScanReport], gate: f64) -> TrackMetrics {
             .iter()
             .filter(|t| t.status.is_established())
             .collect();
-        let cost: Vec<Vec<f64>> = scan
+        let distance: Vec<Vec<f64>> = scan
             .truth
             .iter()
-            .map(|p| {
-                est.iter()
-                    .map(|t| (t.x - p.x).hypot(t.y - p.y).min(gate))
-                    .collect()
-            })
+            .map(|p| est.iter().map(|t| (t.x - p.x).hypot(t.y - p.y)).collect())
             .collect();
-        let assigned = assignment(&cost);
+        let assigned = match pairing_cost {
+            PairingCost::Distance => assignment(&distance),
+            PairingCost::ClippedAtGate => assignment(
+                &distance
+                    .iter()
+                    .map(|row| row.iter().map(|d| d.min(gate)).collect())
+                    .collect::<Vec<Vec<f64>>>(),
+            ),
+        };
         let mut track_used = vec![false; est.len()];
         for (i, p) in scan.truth.iter().enumerate() {
             let acc = targets.entry(p.id).or_default();
             acc.first_t.get_or_insert(scan.t);
             acc.present += 1;
-            let Some(j) = assigned[i].filter(|&j| cost[i][j] < gate) else {
+            let Some(j) = assigned[i].filter(|&j| distance[i][j] < gate) else {
                 if acc.first_tracked_t.is_some() {
                     acc.present_since_first_tracked += 1;
                 }
@@ -632,7 +654,7 @@ pub fn track_metrics(scans: &[ScanReport], gate: f64) -> TrackMetrics {
             let id = est[j].id;
             acc.tracked += 1;
             acc.present_since_first_tracked += 1;
-            squared_distances += cost[i][j] * cost[i][j];
+            squared_distances += distance[i][j] * distance[i][j];
             pairs += 1;
             acc.first_tracked_t.get_or_insert(scan.t);
             if acc.last_id.is_some_and(|last| last != id) {
@@ -1073,6 +1095,43 @@ mod tests {
         // No pair at all: NaN, as the continuity.
         let none = track_metrics(&scans[..1], 1.0);
         assert!(none.assigned_rmse.is_nan() && none.continuity.is_nan());
+    }
+
+    #[test]
+    fn the_unclipped_pairing_lets_a_far_pair_displace_a_near_one() {
+        use TrackStatus::*;
+        // Targets A (0, 0) and B (300, 0); tracks 1 at (200, 0) and 2 at
+        // (10 km, 0); gate 500 m. Σ d: A–1 + B–2 = 200 + 9700 < A–2 + B–1 =
+        // 10000 + 100, so A gets track 1 (B–2 is dropped). Clipped:
+        // A–1 + B–2 = 200 + 500 > A–2 + B–1 = 500 + 100, so B gets it.
+        let scans = vec![ScanReport {
+            t: 0.0,
+            truth: vec![
+                TruthPoint {
+                    id: 1,
+                    x: 0.0,
+                    y: 0.0,
+                },
+                TruthPoint {
+                    id: 2,
+                    x: 300.0,
+                    y: 0.0,
+                },
+            ],
+            tracks: vec![
+                tp(1, Confirmed, 200.0, 0.0),
+                tp(2, Confirmed, 10_000.0, 0.0),
+            ],
+        }];
+        let tracked = |m: &TrackMetrics| -> Vec<usize> {
+            m.targets.iter().map(|t| t.scans_tracked).collect()
+        };
+        let distance = track_metrics_with(&scans, 500.0, PairingCost::Distance);
+        assert_eq!(tracked(&distance), vec![1, 0]);
+        assert!(close(distance.assigned_rmse, 200.0, 1e-12));
+        let clipped = track_metrics(&scans, 500.0);
+        assert_eq!(tracked(&clipped), vec![0, 1]);
+        assert!(close(clipped.assigned_rmse, 100.0, 1e-12));
     }
 
     #[test]

@@ -1,5 +1,6 @@
 //! `replay --tracker`: the library's multi-target [`TrackTable`] over a
-//! recording of scans, in f64, f32 or Q32.32, configured from the sensor's
+//! recording of scans, in f64, f32, Q32.32 or (x/y input, no threat
+//! columns) the fast fixed point [`Fixed32`], configured from the sensor's
 //! figures by [`TrackerDesign`].
 //!
 //! # Input

@@ -8,7 +8,7 @@ use abtrack_host_tests::experiments::real_adsb::{
     truth_for, Figure, Segment, Timing, GRID_MAX_GAP_S, KALMAN_Q_GRID, SCENES,
 };
 use abtrack_host_tests::metrics::{
-    mean_ospa, track_metrics, ScanReport, TrackPoint, TrackStatus, TruthPoint,
+    mean_ospa, track_metrics_with, PairingCost, ScanReport, TrackPoint, TrackStatus, TruthPoint,
 };
 use abtrack_host_tests::replay::Numeric;
 
@@ -149,19 +149,19 @@ fn scene_metrics_of_known_configurations() {
             .collect()
     };
     let on = scans(0.0, None);
-    let m = track_metrics(&on, 500.0);
+    let m = track_metrics_with(&on, 500.0, PairingCost::Distance);
     assert_eq!((m.completeness, m.continuity, m.id_changes), (1.0, 1.0, 0));
     assert_eq!(m.assigned_rmse, 0.0);
     assert_eq!(mean_ospa(&on, 1000.0, 2.0), 0.0);
     let off = scans(30.0, Some(4));
-    let m = track_metrics(&off, 500.0);
+    let m = track_metrics_with(&off, 500.0, PairingCost::Distance);
     assert!((m.assigned_rmse - 30.0).abs() < 1e-9);
     assert!((mean_ospa(&off, 1000.0, 2.0) - 30.0).abs() < 1e-9);
     // New ids from scan 4 on: one change per flight.
     assert_eq!(m.id_changes, 2);
     assert!(m.mostly_unassigned_tracks.is_empty());
     let far = scans(600.0, None);
-    let m = track_metrics(&far, 500.0);
+    let m = track_metrics_with(&far, 500.0, PairingCost::Distance);
     assert_eq!(m.completeness, 0.0);
     assert_eq!(m.mostly_unassigned_tracks, vec![1, 2]);
     assert!((mean_ospa(&far, 1000.0, 2.0) - 600.0).abs() < 1e-9);

@@ -18,8 +18,8 @@
 //!   is counted as refused with the reason, not dropped.
 //! * Scene: `replay --tracker` ([`crate::replay_tracker`]) with the sensor's
 //!   figures, in f64, f32 and the fast fixed point, scored by
-//!   [`crate::metrics::track_metrics`] with pairs beyond [`PAIR_LIMIT_M`]
-//!   dropped and OSPA ([`OSPA_CUTOFF_M`], order 2) averaged over the scans;
+//!   [`crate::metrics::track_metrics_with`] (assignment on the distance,
+//!   pairs beyond [`PAIR_LIMIT_M`] dropped) and OSPA ([`OSPA_CUTOFF_M`], order 2) averaged over the scans;
 //!   the whole replay (read, track, write the CSV) is timed in-process.
 //!
 //! Regenerate with `cd host-tests && cargo run --release --bin experiments
@@ -37,7 +37,9 @@ use serde::Deserialize;
 
 use super::common::{plot, write_file, Context, PlotSpec, Series, Table};
 use crate::kalman::{isotropic, ConstantVelocityKf, ProcessNoise};
-use crate::metrics::{mean_ospa, track_metrics, ScanReport, TrackPoint, TrackStatus, TruthPoint};
+use crate::metrics::{
+    mean_ospa, track_metrics_with, PairingCost, ScanReport, TrackPoint, TrackStatus, TruthPoint,
+};
 use crate::noise::{derive_seed, rng_from_seed, standard_normal};
 use crate::replay::{self, FilterKind, Numeric, Order, ReplayConfig};
 use crate::replay_tracker::{replay_tracker_reader, SensorOptions, TrackerOptions};
@@ -636,10 +638,24 @@ pub fn run_scene(
     let Some(run) = output else {
         return Err("no run".into());
     };
+    score_tracks(label, &run.csv, truth, best, run.design.to_string())
+        .map_err(|e| format!("{}: {e}", scene.name))
+}
+
+/// Scores a tracker's output in `replay --tracker`'s layout (`t,track_id,
+/// status,x,y`, other columns ignored) against `truth`; `label`, `seconds`
+/// and `design` are carried into the result.
+pub fn score_tracks(
+    label: &str,
+    csv_text: &str,
+    truth: &BTreeMap<i64, Vec<TruthPoint>>,
+    seconds: f64,
+    design: String,
+) -> Result<SceneRun, String> {
     let mut tracks: BTreeMap<i64, Vec<TrackPoint>> = BTreeMap::new();
-    let mut reader = csv::Reader::from_reader(run.csv.as_bytes());
+    let mut reader = csv::Reader::from_reader(csv_text.as_bytes());
     for row in reader.deserialize::<TrackRow>() {
-        let r = row.map_err(|e| format!("{} {label}: replay output: {e}", scene.name))?;
+        let r = row.map_err(|e| format!("{label}: tracker output: {e}"))?;
         let status: TrackStatus = r.status.parse()?;
         tracks.entry(ms(r.t)).or_default().push(TrackPoint {
             id: r.track_id,
@@ -666,7 +682,7 @@ pub fn run_scene(
             tracks: tracks.get(&k).cloned().unwrap_or_default(),
         })
         .collect();
-    let m = track_metrics(&scans, PAIR_LIMIT_M);
+    let m = track_metrics_with(&scans, PAIR_LIMIT_M, PairingCost::Distance);
     Ok(SceneRun {
         label: label.to_string(),
         coverage: m.completeness,
@@ -677,11 +693,29 @@ pub fn run_scene(
         false_tracks: m.mostly_unassigned_tracks.len(),
         never_paired: m.false_tracks.len(),
         reported_tracks: m.established_tracks,
-        seconds: best,
-        design: run.design.to_string(),
+        seconds,
+        design,
         scans,
     })
 }
+
+/// Stone Soup's tracks and whole-process time for `scene`, if
+/// `scripts/stonesoup_scene.py` has written them into `group_dir`.
+fn stonesoup_output(group_dir: &Path, scene: &Scene) -> Option<(String, f64)> {
+    let base = group_dir.join(STONESOUP_DIR);
+    let csv_text = fs::read_to_string(base.join(format!("{}.csv", scene.name))).ok()?;
+    let seconds = fs::read_to_string(base.join(format!("{}.time", scene.name)))
+        .ok()?
+        .trim()
+        .parse()
+        .ok()?;
+    Some((csv_text, seconds))
+}
+
+/// Where `scripts/stonesoup_scene.py` writes, under the group's folder.
+pub const STONESOUP_DIR: &str = "stonesoup";
+/// The scene table's label of those rows.
+const STONESOUP_LABEL: &str = "Stone Soup 1.9.1 GNN (scripts/stonesoup_scene.py)";
 
 /// The tracker configurations of the scene table: the default filter in
 /// f64, f32 and the fast fixed point, and `--schedule auto:sigma=50` in
@@ -938,14 +972,16 @@ pub fn run(ctx: &Context) -> Result<(), String> {
          `replay --tracker --region-m 50000 --sigma-m {SIGMA_M} --scan-period-s 4 --pd P \
          --clutter-per-km2 C` on `scene/<name>.meas.csv`. Reported tracks: confirmed or coasting. \
          Each scan, truth and reported positions are paired by the optimal assignment on distance \
-         (clipped at {PAIR_LIMIT_M} m), pairs beyond {PAIR_LIMIT_M} m dropped; coverage = paired \
+         (not clipped), pairs beyond {PAIR_LIMIT_M} m dropped; coverage = paired \
          truth points / truth points; continuity = paired points / truth points from the flight's \
          first pairing; id changes: changes of the paired track id between consecutive paired \
          scans of a flight; false tracks: paired in under half of their reported scans (never \
          paired in brackets); OSPA c = {OSPA_CUTOFF_M} m, p = 2, averaged over the scans; RMSE \
          over the paired points. Time: the whole replay (read the file, track, write the CSV) \
          in-process on this host, the least of {TIMING_REPEATS} runs; it varies between runs and \
-         hosts.\n"
+         hosts. The Stone Soup rows, when present, score the tracks `scripts/stonesoup_scene.py` \
+         wrote into `{STONESOUP_DIR}/` (Stone Soup 1.9.1's GNN tracker configured from the same \
+         design; its time is a whole Python process).\n"
     );
     let mut scene_table = Table::new([
         "scene",
@@ -960,30 +996,32 @@ pub fn run(ctx: &Context) -> Result<(), String> {
         "reported tracks",
         "replay time (ms)",
     ]);
+    let mut speed: Vec<String> = Vec::new();
     for scene in &SCENES {
         let truth = read_scene_truth(&data, scene)?;
         let mut design = String::new();
+        let mut f64_seconds = f64::NAN;
         for (label, options) in scene_configurations(scene)? {
             let r = run_scene(&data, scene, &truth, &options, &label)?;
             if design.is_empty() {
                 design = r.design.clone();
             }
-            scene_table.push([
-                scene.name.to_string(),
-                label.clone(),
-                format!("{:.3}", r.coverage),
-                format!("{:.3}", r.continuity),
-                r.id_changes.to_string(),
-                cell(r.rmse),
-                cell(r.ospa),
-                r.false_tracks.to_string(),
-                r.never_paired.to_string(),
-                r.reported_tracks.to_string(),
-                format!("{:.0}", r.seconds * 1000.0),
-            ]);
+            scene_table.push(scene_row(scene, &r));
             if label == "f64" {
                 scene_plot(&dir, scene, &r)?;
+                f64_seconds = r.seconds;
             }
+        }
+        if let Some((csv_text, seconds)) = stonesoup_output(&dir, scene) {
+            let r = score_tracks(STONESOUP_LABEL, &csv_text, &truth, seconds, String::new())?;
+            scene_table.push(scene_row(scene, &r));
+            speed.push(format!(
+                "{}: Stone Soup {:.1} s, abtrack (f64) {:.3} s: {:.0}×",
+                scene.name,
+                seconds,
+                f64_seconds,
+                seconds / f64_seconds
+            ));
         }
         let _ = writeln!(
             summary,
@@ -993,8 +1031,33 @@ pub fn run(ctx: &Context) -> Result<(), String> {
     }
     scene_table.write(&dir, "scene")?;
     summary.push_str(&scene_table.to_markdown());
+    if !speed.is_empty() {
+        let _ = writeln!(
+            summary,
+            "\nWhole-process time of Stone Soup (Python, imports included, one process per scene) \
+             against abtrack's whole replay in f64: {}.",
+            speed.join("; ")
+        );
+    }
     summary.push_str("\nTracks over truth: `scene_<name>.svg`; flights: `flight_<name>.svg`.\n");
     write_file(&dir.join("summary.md"), &summary)
+}
+
+/// One row of the scene table.
+fn scene_row(scene: &Scene, r: &SceneRun) -> Vec<String> {
+    vec![
+        scene.name.to_string(),
+        r.label.clone(),
+        format!("{:.3}", r.coverage),
+        format!("{:.3}", r.continuity),
+        r.id_changes.to_string(),
+        cell(r.rmse),
+        cell(r.ospa),
+        r.false_tracks.to_string(),
+        r.never_paired.to_string(),
+        r.reported_tracks.to_string(),
+        format!("{:.0}", r.seconds * 1000.0),
+    ]
 }
 
 /// The truth and the reported tracks' positions of every scan.
