@@ -141,7 +141,7 @@ pub struct ReplayArgs {
     /// The multi-target track table, configured from the sensor's figures.
     #[arg(long, help_heading = "Mode")]
     pub tracker: bool,
-    /// f64, f32 or fixed (Q32.32).
+    /// f64, f32, fixed (Q32.32) or fast-fixed (the Cortex-M3/M0 scans' 32-bit fixed point; --tracker, x/y input).
     #[arg(long, value_enum, default_value = "f64")]
     pub numeric: Numeric,
 

@@ -494,6 +494,9 @@ pub struct TargetMetrics {
     /// Time from the target's first scan in the truth to the first scan an
     /// established track is assigned to it; `None` if never.
     pub latency_to_confirm_s: Option<f64>,
+    /// Scans in which the target is in the truth, from its first assignment
+    /// on (that scan included): the continuity's denominator.
+    pub scans_present_since_first_assignment: usize,
 }
 
 /// An established track never assigned to any target.
@@ -531,6 +534,17 @@ pub struct TrackMetrics {
     pub unassigned_track_scans: usize,
     /// Distinct track ids that were established at some scan.
     pub established_tracks: usize,
+    /// Σ scans_tracked / Σ scans_present_since_first_assignment: how much
+    /// of a target's life is tracked once it has been picked up; NaN if no
+    /// target was ever assigned.
+    pub continuity: f64,
+    /// √(Σ d²/K) over the K assigned (target, track) pairs of every scan, d
+    /// their distance (m); NaN with no pair.
+    pub assigned_rmse: f64,
+    /// Established track ids assigned to a target in fewer than half of the
+    /// scans in which they were established (a superset of
+    /// [`Self::false_tracks`]' ids), ascending.
+    pub mostly_unassigned_tracks: Vec<u32>,
 }
 
 impl TrackMetrics {
@@ -558,8 +572,31 @@ impl TrackMetrics {
 /// * completeness, id changes and latency to confirm: see [`TargetMetrics`];
 /// * a false track is an established track id that is assigned to no target
 ///   in any scan where it is established; its duration is from its first to
-///   its last established scan ([`FalseTrack`]).
+///   its last established scan ([`FalseTrack`]);
+/// * continuity, the RMSE of the assigned pairs, and the tracks assigned in
+///   under half of their established scans: see [`TrackMetrics`].
+///
+/// The minimised cost is clipped at the gate, so a pair beyond it costs the
+/// same whichever it is and never displaces a pair inside it
+/// ([`PairingCost::ClippedAtGate`]; [`track_metrics_with`] takes the other).
 pub fn track_metrics(scans: &[ScanReport], gate: f64) -> TrackMetrics {
+    track_metrics_with(scans, gate, PairingCost::ClippedAtGate)
+}
+
+/// What the per-scan assignment of [`track_metrics_with`] minimises.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum PairingCost {
+    /// Σ min(‖track − truth‖, gate).
+    ClippedAtGate,
+    /// Σ ‖track − truth‖ (pairs at or beyond the gate dropped afterwards):
+    /// the real-data evaluation's definition, under which a far pair can
+    /// displace a near one.
+    Distance,
+}
+
+/// [`track_metrics`] with the assignment minimising `cost`.
+pub fn track_metrics_with(scans: &[ScanReport], gate: f64, cost: PairingCost) -> TrackMetrics {
+    let pairing_cost = cost;
     #[derive(Default)]
     struct TargetAcc {
         first_t: Option<f64>,
@@ -569,16 +606,18 @@ pub fn track_metrics(scans: &[ScanReport], gate: f64) -> TrackMetrics {
         changes: usize,
         ids: Vec<u32>,
         first_tracked_t: Option<f64>,
+        present_since_first_tracked: usize,
     }
     struct TrackAcc {
         first_t: f64,
         last_t: f64,
         scans: usize,
-        ever_assigned: bool,
+        assigned: usize,
     }
     let mut targets: BTreeMap<u32, TargetAcc> = BTreeMap::new();
     let mut tracks: BTreeMap<u32, TrackAcc> = BTreeMap::new();
     let mut unassigned_track_scans = 0usize;
+    let (mut squared_distances, mut pairs) = (0.0f64, 0usize);
 
     for scan in scans {
         let est: Vec<&TrackPoint> = scan
@@ -586,27 +625,37 @@ pub fn track_metrics(scans: &[ScanReport], gate: f64) -> TrackMetrics {
             .iter()
             .filter(|t| t.status.is_established())
             .collect();
-        let cost: Vec<Vec<f64>> = scan
+        let distance: Vec<Vec<f64>> = scan
             .truth
             .iter()
-            .map(|p| {
-                est.iter()
-                    .map(|t| (t.x - p.x).hypot(t.y - p.y).min(gate))
-                    .collect()
-            })
+            .map(|p| est.iter().map(|t| (t.x - p.x).hypot(t.y - p.y)).collect())
             .collect();
-        let assigned = assignment(&cost);
+        let assigned = match pairing_cost {
+            PairingCost::Distance => assignment(&distance),
+            PairingCost::ClippedAtGate => assignment(
+                &distance
+                    .iter()
+                    .map(|row| row.iter().map(|d| d.min(gate)).collect())
+                    .collect::<Vec<Vec<f64>>>(),
+            ),
+        };
         let mut track_used = vec![false; est.len()];
         for (i, p) in scan.truth.iter().enumerate() {
             let acc = targets.entry(p.id).or_default();
             acc.first_t.get_or_insert(scan.t);
             acc.present += 1;
-            let Some(j) = assigned[i].filter(|&j| cost[i][j] < gate) else {
+            let Some(j) = assigned[i].filter(|&j| distance[i][j] < gate) else {
+                if acc.first_tracked_t.is_some() {
+                    acc.present_since_first_tracked += 1;
+                }
                 continue;
             };
             track_used[j] = true;
             let id = est[j].id;
             acc.tracked += 1;
+            acc.present_since_first_tracked += 1;
+            squared_distances += distance[i][j] * distance[i][j];
+            pairs += 1;
             acc.first_tracked_t.get_or_insert(scan.t);
             if acc.last_id.is_some_and(|last| last != id) {
                 acc.changes += 1;
@@ -621,11 +670,11 @@ pub fn track_metrics(scans: &[ScanReport], gate: f64) -> TrackMetrics {
                 first_t: scan.t,
                 last_t: scan.t,
                 scans: 0,
-                ever_assigned: false,
+                assigned: 0,
             });
             acc.last_t = scan.t;
             acc.scans += 1;
-            acc.ever_assigned |= track_used[j];
+            acc.assigned += usize::from(track_used[j]);
             if !track_used[j] {
                 unassigned_track_scans += 1;
             }
@@ -635,6 +684,17 @@ pub fn track_metrics(scans: &[ScanReport], gate: f64) -> TrackMetrics {
     let (present, tracked) = targets
         .values()
         .fold((0usize, 0usize), |(p, t), a| (p + a.present, t + a.tracked));
+    let present_since_first: usize = targets
+        .values()
+        .map(|a| a.present_since_first_tracked)
+        .sum();
+    let ratio = |n: usize, d: usize| {
+        if d == 0 {
+            f64::NAN
+        } else {
+            n as f64 / d as f64
+        }
+    };
     let target_metrics: Vec<TargetMetrics> = targets
         .into_iter()
         .map(|(id, a)| TargetMetrics {
@@ -648,6 +708,7 @@ pub fn track_metrics(scans: &[ScanReport], gate: f64) -> TrackMetrics {
                 (Some(f), Some(c)) => Some(c - f),
                 _ => None,
             },
+            scans_present_since_first_assignment: a.present_since_first_tracked,
         })
         .collect();
     TrackMetrics {
@@ -655,7 +716,7 @@ pub fn track_metrics(scans: &[ScanReport], gate: f64) -> TrackMetrics {
         targets: target_metrics,
         false_tracks: tracks
             .iter()
-            .filter(|(_, a)| !a.ever_assigned)
+            .filter(|(_, a)| a.assigned == 0)
             .map(|(&id, a)| FalseTrack {
                 id,
                 first_t: a.first_t,
@@ -663,14 +724,23 @@ pub fn track_metrics(scans: &[ScanReport], gate: f64) -> TrackMetrics {
                 scans: a.scans,
             })
             .collect(),
-        completeness: if present == 0 {
-            f64::NAN
-        } else {
-            tracked as f64 / present as f64
-        },
+        completeness: ratio(tracked, present),
         unassigned_track_scans,
         established_tracks: tracks.len(),
+        continuity: ratio(tracked, present_since_first),
+        assigned_rmse: (squared_distances / pairs as f64).sqrt(),
+        mostly_unassigned_tracks: tracks
+            .iter()
+            .filter(|(_, a)| 2 * a.assigned < a.scans)
+            .map(|(&id, _)| id)
+            .collect(),
     }
+}
+
+/// The mean over scans of [`ospa_against_time`].
+pub fn mean_ospa(scans: &[ScanReport], cutoff: f64, order: f64) -> f64 {
+    let per_scan = ospa_against_time(scans, cutoff, order);
+    per_scan.iter().map(|(_, o)| o.distance).sum::<f64>() / per_scan.len() as f64
 }
 
 #[cfg(test)]
@@ -959,6 +1029,22 @@ mod tests {
         // Unassigned established track-scans: 9 at t=2,3 and 7 at t=4.
         assert_eq!(m.unassigned_track_scans, 3);
         assert_eq!(m.established_tracks, 3);
+        // Continuity: A tracked 5 of the 5 scans from t = 1, B 3 of the 4
+        // from t = 2 → 8/9.
+        assert_eq!(
+            (
+                a.scans_present_since_first_assignment,
+                b.scans_present_since_first_assignment
+            ),
+            (5, 4)
+        );
+        assert!(close(m.continuity, 8.0 / 9.0, 1e-15));
+        // Assigned pairs' distances: t=1: 1; t=2: 1, 1; t=3: 2, 2;
+        // t=4: 0 (B's track is beyond the gate); t=5: 0, 0 → √(11/8).
+        assert!(close(m.assigned_rmse, (11.0f64 / 8.0).sqrt(), 1e-12));
+        // Only 9 is assigned in under half of its established scans (0 of
+        // 2); 7 in 4 of 5, 8 in 4 of 4.
+        assert_eq!(m.mostly_unassigned_tracks, vec![9]);
 
         // OSPA at t = 4 (c = 100, p = 1): truth (40,0), (40,100); established
         // tracks (40,0), (40,180): 0 + 80 → 40. At t = 0 no established
@@ -966,6 +1052,117 @@ mod tests {
         let o = ospa_against_time(&scans, 100.0, 1.0);
         assert!(close(o[4].1.distance, 40.0, 1e-12));
         assert_eq!(o[0].1.distance, 100.0);
+    }
+
+    #[test]
+    fn a_track_assigned_in_under_half_its_scans_is_counted_not_at_half() {
+        use TrackStatus::*;
+        // One target at the origin. Track 5 is on it at t = 0, then 600 m
+        // away (beyond the 500 m gate) at t = 1 and 2: assigned in 1 of 3
+        // scans, so mostly unassigned but not a false track. Track 6 appears
+        // at t = 1 on the target (assigned) and is 600 m off at t = 2: 1 of
+        // 2, exactly half, not counted. The target: id 5, then 6 → 1 change;
+        // tracked at t = 0, 1, not 2 → continuity 2/3.
+        let truth = vec![TruthPoint {
+            id: 1,
+            x: 0.0,
+            y: 0.0,
+        }];
+        let scan = |t: f64, tracks: Vec<TrackPoint>| ScanReport {
+            t,
+            truth: truth.clone(),
+            tracks,
+        };
+        let scans = vec![
+            scan(0.0, vec![tp(5, Confirmed, 3.0, 4.0)]),
+            scan(
+                1.0,
+                vec![tp(5, Coasting, 600.0, 0.0), tp(6, Confirmed, 0.0, 6.0)],
+            ),
+            scan(
+                2.0,
+                vec![tp(5, Coasting, 0.0, 600.0), tp(6, Coasting, -600.0, 0.0)],
+            ),
+        ];
+        let m = track_metrics(&scans, 500.0);
+        assert_eq!(m.mostly_unassigned_tracks, vec![5]);
+        assert!(m.false_tracks.is_empty());
+        assert_eq!(m.id_changes, 1);
+        assert!(close(m.completeness, 2.0 / 3.0, 1e-15));
+        assert!(close(m.continuity, 2.0 / 3.0, 1e-15));
+        // Pairs at 5 m and 6 m: √((25 + 36)/2).
+        assert!(close(m.assigned_rmse, 30.5f64.sqrt(), 1e-12));
+        // No pair at all: NaN, as the continuity.
+        let none = track_metrics(&scans[..1], 1.0);
+        assert!(none.assigned_rmse.is_nan() && none.continuity.is_nan());
+    }
+
+    #[test]
+    fn the_unclipped_pairing_lets_a_far_pair_displace_a_near_one() {
+        use TrackStatus::*;
+        // Targets A (0, 0) and B (300, 0); tracks 1 at (200, 0) and 2 at
+        // (10 km, 0); gate 500 m. Σ d: A–1 + B–2 = 200 + 9700 < A–2 + B–1 =
+        // 10000 + 100, so A gets track 1 (B–2 is dropped). Clipped:
+        // A–1 + B–2 = 200 + 500 > A–2 + B–1 = 500 + 100, so B gets it.
+        let scans = vec![ScanReport {
+            t: 0.0,
+            truth: vec![
+                TruthPoint {
+                    id: 1,
+                    x: 0.0,
+                    y: 0.0,
+                },
+                TruthPoint {
+                    id: 2,
+                    x: 300.0,
+                    y: 0.0,
+                },
+            ],
+            tracks: vec![
+                tp(1, Confirmed, 200.0, 0.0),
+                tp(2, Confirmed, 10_000.0, 0.0),
+            ],
+        }];
+        let tracked = |m: &TrackMetrics| -> Vec<usize> {
+            m.targets.iter().map(|t| t.scans_tracked).collect()
+        };
+        let distance = track_metrics_with(&scans, 500.0, PairingCost::Distance);
+        assert_eq!(tracked(&distance), vec![1, 0]);
+        assert!(close(distance.assigned_rmse, 200.0, 1e-12));
+        let clipped = track_metrics(&scans, 500.0);
+        assert_eq!(tracked(&clipped), vec![0, 1]);
+        assert!(close(clipped.assigned_rmse, 100.0, 1e-12));
+    }
+
+    #[test]
+    fn mean_ospa_averages_every_scan() {
+        use TrackStatus::*;
+        // c = 1000, p = 2. t = 0: one target, no established track (a
+        // tentative one does not count) → c. t = 1: a track 50 m off (3-4-5)
+        // → 50. t = 2: nothing at all → 0. Mean (1000 + 50 + 0)/3 = 350.
+        let target = TruthPoint {
+            id: 1,
+            x: 0.0,
+            y: 0.0,
+        };
+        let scans = vec![
+            ScanReport {
+                t: 0.0,
+                truth: vec![target],
+                tracks: vec![tp(1, Tentative, 0.0, 0.0)],
+            },
+            ScanReport {
+                t: 1.0,
+                truth: vec![target],
+                tracks: vec![tp(1, Confirmed, 30.0, 40.0)],
+            },
+            ScanReport {
+                t: 2.0,
+                truth: vec![],
+                tracks: vec![],
+            },
+        ];
+        assert!(close(mean_ospa(&scans, 1000.0, 2.0), 350.0, 1e-9));
     }
 
     #[test]

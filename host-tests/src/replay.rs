@@ -63,7 +63,7 @@ use abtrack::gain::{
 };
 use abtrack::tcas::{assess, Intruder, OwnAircraft, TcasError};
 use abtrack::track::{ConfigError as TrackConfigError, ScanError};
-use abtrack::{FilterError, Fix, GainError, NumError, Scalar};
+use abtrack::{FilterError, Fix, GainError, NumError, Quantity, Scalar};
 
 use abtrack::envelope::{self, Limit};
 
@@ -223,16 +223,22 @@ pub enum Numeric {
     F32,
     /// Q32.32 ([`abtrack::Fix`]).
     Fixed,
+    /// The fast fixed point ([`abtrack::Fixed32`]: 32-bit words per
+    /// quantity), the number type of the scans on the Cortex-M3 and M0;
+    /// `--tracker` with x/y input only.
+    #[value(name = "fast-fixed")]
+    FastFixed,
 }
 
 impl Numeric {
-    pub const NAMES: &'static str = "f64|f32|fixed";
+    pub const NAMES: &'static str = "f64|f32|fixed|fast-fixed";
 
     pub fn from_name(name: &str) -> Option<Numeric> {
         match name {
             "f64" => Some(Numeric::F64),
             "f32" => Some(Numeric::F32),
             "fixed" => Some(Numeric::Fixed),
+            "fast-fixed" => Some(Numeric::FastFixed),
             _ => None,
         }
     }
@@ -306,6 +312,10 @@ pub enum ReplayError {
     },
     /// `--tracker`: the sensor figures were refused.
     Design(String),
+    /// `--numeric fast-fixed` without `--tracker`, or with range/azimuth
+    /// input or `--own-alt` (the polar geometry and the threat logic run in
+    /// a `Scalar`).
+    FastFixedTrackerOnly,
 }
 
 impl fmt::Display for ReplayError {
@@ -376,6 +386,11 @@ impl fmt::Display for ReplayError {
                 limit.min, limit.max
             ),
             ReplayError::Design(e) => write!(f, "tracker design: {e}"),
+            ReplayError::FastFixedTrackerOnly => write!(
+                f,
+                "--numeric fast-fixed runs the track table only: --tracker on t,x,y input, \
+                 without --own-alt"
+            ),
         }
     }
 }
@@ -427,11 +442,12 @@ impl CsvValue for Fix {
 /// Any finite value (estimates with no envelope of their own).
 pub const FINITE: Limit = Limit::symmetric(f64::MAX);
 
-/// `Err` unless the estimate `value` (in `S`) is inside `limit`.
-pub(crate) fn check_estimate<S: Scalar>(
+/// `Err` unless the estimate `value` (a quantity of the representation) is
+/// inside `limit`.
+pub(crate) fn check_estimate<Q: Quantity>(
     line: usize,
     name: &'static str,
-    value: S,
+    value: Q,
     limit: Limit,
     unit: &'static str,
 ) -> Result<(), ReplayError> {
@@ -547,6 +563,7 @@ pub fn run(config: &ReplayConfig, data: &Measurements) -> Result<String, ReplayE
         Numeric::F64 => run_in::<f64>(&config.filter, data),
         Numeric::F32 => run_in::<f32>(&config.filter, data),
         Numeric::Fixed => run_in::<Fix>(&config.filter, data),
+        Numeric::FastFixed => Err(ReplayError::FastFixedTrackerOnly),
     }
 }
 
@@ -633,13 +650,13 @@ fn interval<S: Scalar>(previous_t: Option<f64>, t: f64, line: usize) -> Result<S
 }
 
 /// A value of the file in `S`, or an error naming where it is.
-pub(crate) fn value<S: Scalar>(
+pub(crate) fn value<Q: Quantity>(
     v: f64,
     line: usize,
     column: usize,
     name: &'static str,
-) -> Result<S, ReplayError> {
-    S::try_from_f64(v).map_err(|error| ReplayError::Value {
+) -> Result<Q, ReplayError> {
+    Q::try_from_f64(v).map_err(|error| ReplayError::Value {
         line,
         column,
         name,
@@ -877,6 +894,7 @@ pub fn run_range_azimuth(
         Numeric::F64 => run_range_azimuth_in::<f64>(options, data),
         Numeric::F32 => run_range_azimuth_in::<f32>(options, data),
         Numeric::Fixed => run_range_azimuth_in::<Fix>(options, data),
+        Numeric::FastFixed => Err(ReplayError::FastFixedTrackerOnly),
     }
 }
 

@@ -1,5 +1,6 @@
 //! `replay --tracker`: the library's multi-target [`TrackTable`] over a
-//! recording of scans, in f64, f32 or Q32.32, configured from the sensor's
+//! recording of scans, in f64, f32, Q32.32 or (x/y input, no threat
+//! columns) the fast fixed point [`Fixed32`], configured from the sensor's
 //! figures by [`TrackerDesign`].
 //!
 //! # Input
@@ -59,15 +60,16 @@ use abtrack::track::defaults::{
     Coverage, DefaultCartesianTrack, DefaultPolarTrack, DerivedParameters, SensorAccuracy,
     TrackerDesign,
 };
+use abtrack::track::TrackNumeric;
 use abtrack::track::{
     Association, DropReason, Measurement, Observation, RejectReason, ScanReport, ScheduledTrack,
     TrackFilter, TrackTable, TrackerConfig,
 };
-use abtrack::{Fix, Scalar};
+use abtrack::{Fix, Fixed32};
 
 use crate::csv_input::{read_recording, AngleUnit, ReadOptions, Recording, TimeOrder, Timed};
 use crate::replay::{
-    cell, check_estimate, own_aircraft, value, write_threat_cells, CsvValue, Failure, Numeric,
+    check_estimate, own_aircraft, value, write_threat_cells, CsvValue, Failure, Numeric,
     ReplayError, ReplaySchedule, FINITE, THREAT_COLUMNS,
 };
 
@@ -401,8 +403,15 @@ impl std::fmt::Display for Unused {
     }
 }
 
+/// A number type the table runs in here: a [`TrackNumeric`] whose lengths
+/// and speeds print as decimals (f64, f32, Q32.32 and the fast fixed point
+/// each in its own shortest exact form).
+pub trait TableNumeric: TrackNumeric<Length: std::fmt::Display, Speed: std::fmt::Display> {}
+
+impl<S: TrackNumeric<Length: std::fmt::Display, Speed: std::fmt::Display>> TableNumeric for S {}
+
 /// One scan in the table's number type.
-struct ScanInput<'a, S: Scalar> {
+struct ScanInput<'a, S: TrackNumeric> {
     /// Line of the scan's first row (0 for an added empty scan).
     line: usize,
     /// The time as written (or, for an added empty scan, from the clock).
@@ -641,6 +650,7 @@ pub fn replay_tracker_reader<R: Read>(
         Numeric::F64 => run_in::<f64>(options, &data),
         Numeric::F32 => run_in::<f32>(options, &data),
         Numeric::Fixed => run_in::<Fix>(options, &data),
+        Numeric::FastFixed => run_fast_fixed(options, &data),
     })
     .map_err(Failure::Replay)
 }
@@ -666,7 +676,7 @@ pub fn with_large_stack<T: Send>(f: impl FnOnce() -> T + Send) -> T {
 
 /// The file's scans on the table's clock, with empty scans added for gaps
 /// (module docs), in `S`.
-fn clocked_scans<'a, S: Scalar>(
+fn clocked_scans<'a, S: TrackNumeric>(
     scans: &'a [FileScan<'a>],
     period_s: f64,
 ) -> Result<(Vec<ScanInput<'a, S>>, usize), ReplayError> {
@@ -732,11 +742,19 @@ fn clock_text(first_t: f64, ms: u32) -> String {
     text.trim_end_matches('0').trim_end_matches('.').to_string()
 }
 
-fn run_in<S: CsvValue>(
+/// A file's scans, ready for the table: the design and the clocked scans.
+struct Prepared<'a, S: TrackNumeric> {
+    design: DesignUsed,
+    inputs: Vec<ScanInput<'a, S>>,
+    added: usize,
+    polar: bool,
+}
+
+fn prepare<'a, S: TrackNumeric>(
     options: &TrackerOptions,
-    data: &Recording,
-) -> Result<TrackerReplay, ReplayError> {
-    let scans = file_scans(data)?;
+    data: &'a Recording,
+    scans: &'a [FileScan<'a>],
+) -> Result<Prepared<'a, S>, ReplayError> {
     let polar = matches!(data, Recording::RangeAzimuth(_));
     let farthest = scans
         .iter()
@@ -755,20 +773,83 @@ fn run_in<S: CsvValue>(
     }
     let times: Vec<f64> = scans.iter().map(|s| s.t).collect();
     let design = design_for(&options.sensor, polar, &times, farthest)?;
-    let (inputs, added) = clocked_scans::<S>(&scans, design.design.scan_period)?;
-    let config_error = ReplayError::TrackerConfig;
-    let d = &design.design;
-    if polar {
+    let (inputs, added) = clocked_scans::<S>(scans, design.design.scan_period)?;
+    Ok(Prepared {
+        design,
+        inputs,
+        added,
+        polar,
+    })
+}
+
+/// The threat columns of one track: position and velocity relative to the
+/// own aircraft, and the row's line.
+type ThreatCells<'a, S> = &'a dyn Fn(
+    &mut String,
+    [<S as abtrack::Numeric>::Length; 2],
+    [<S as abtrack::Numeric>::Speed; 2],
+    usize,
+) -> Result<(), ReplayError>;
+
+fn run_in<S: CsvValue + std::fmt::Display>(
+    options: &TrackerOptions,
+    data: &Recording,
+) -> Result<TrackerReplay, ReplayError> {
+    let scans = file_scans(data)?;
+    let prepared = prepare::<S>(options, data, &scans)?;
+    let own = own_aircraft::<S>(options.own_altitude_ft)?;
+    let threat = own.map(|own| {
+        move |out: &mut String, position: [S; 2], velocity: [S; 2], line: usize| {
+            let intruder = Intruder {
+                relative_position_m: position,
+                relative_velocity_m_per_s: velocity,
+                altitude: None,
+            };
+            write_threat_cells(out, &own, Some(&intruder), line)
+        }
+    });
+    let threat: Option<ThreatCells<'_, S>> = threat.as_ref().map(|f| f as ThreatCells<'_, S>);
+    if prepared.polar {
         if options.schedule.is_some() {
             return Err(ReplayError::TrackerScheduleNeedsCartesian);
         }
-        let config = with_lifecycle(d.polar_config::<S>().map_err(config_error)?, options)?;
-        return by_capacity::<S, DefaultPolarTrack<S>>(options, &config, &inputs, design, added);
+        let d = &prepared.design.design;
+        let config = with_lifecycle(
+            d.polar_config::<S>().map_err(ReplayError::TrackerConfig)?,
+            options,
+        )?;
+        return by_capacity::<S, DefaultPolarTrack<S>>(options, &config, &prepared, threat);
     }
+    run_cartesian(options, &prepared, threat)
+}
+
+/// [`run_in`] in the fast fixed point ([`Numeric::FastFixed`]): x/y input
+/// and no threat columns (the polar geometry and the TCAS logic need a
+/// [`abtrack::Scalar`]).
+fn run_fast_fixed(
+    options: &TrackerOptions,
+    data: &Recording,
+) -> Result<TrackerReplay, ReplayError> {
+    if options.own_altitude_ft.is_some() || matches!(data, Recording::RangeAzimuth(_)) {
+        return Err(ReplayError::FastFixedTrackerOnly);
+    }
+    let scans = file_scans(data)?;
+    let prepared = prepare::<Fixed32>(options, data, &scans)?;
+    run_cartesian(options, &prepared, None)
+}
+
+/// The x/y table: the default filter, or `--schedule`'s.
+fn run_cartesian<S: TableNumeric>(
+    options: &TrackerOptions,
+    prepared: &Prepared<'_, S>,
+    threat: Option<ThreatCells<'_, S>>,
+) -> Result<TrackerReplay, ReplayError> {
+    let config_error = ReplayError::TrackerConfig;
+    let d = &prepared.design.design;
     match &options.schedule {
         None => {
             let config = with_lifecycle(d.cartesian_config::<S>().map_err(config_error)?, options)?;
-            by_capacity::<S, DefaultCartesianTrack<S>>(options, &config, &inputs, design, added)
+            by_capacity::<S, DefaultCartesianTrack<S>>(options, &config, prepared, threat)
         }
         Some(spec) => {
             let schedule =
@@ -778,14 +859,14 @@ fn run_in<S: CsvValue>(
                 options,
             )?;
             by_capacity::<S, ScheduledTrack<S, ReplaySchedule<S, 2>>>(
-                options, &config, &inputs, design, added,
+                options, &config, prepared, threat,
             )
         }
     }
 }
 
 /// `--confirm` and `--delete` applied to `config`.
-pub fn with_lifecycle<S: Scalar, P: Copy>(
+pub fn with_lifecycle<S: TrackNumeric, P: Copy>(
     config: TrackerConfig<S, P>,
     options: &TrackerOptions,
 ) -> Result<TrackerConfig<S, P>, ReplayError> {
@@ -806,17 +887,16 @@ pub fn with_lifecycle<S: Scalar, P: Copy>(
     Ok(config)
 }
 
-fn by_capacity<S: CsvValue, F: TrackFilter<S>>(
+fn by_capacity<S: TableNumeric, F: TrackFilter<S>>(
     options: &TrackerOptions,
     config: &TrackerConfig<S, F::Params>,
-    scans: &[ScanInput<'_, S>],
-    design: DesignUsed,
-    added: usize,
+    prepared: &Prepared<'_, S>,
+    threat: Option<ThreatCells<'_, S>>,
 ) -> Result<TrackerReplay, ReplayError> {
     match options.capacity {
-        16 => run_scans::<S, F, 16>(options, config, scans, design, added),
-        64 => run_scans::<S, F, 64>(options, config, scans, design, added),
-        _ => run_scans::<S, F, 256>(options, config, scans, design, added),
+        16 => run_scans::<S, F, 16>(config, prepared, threat),
+        64 => run_scans::<S, F, 64>(config, prepared, threat),
+        _ => run_scans::<S, F, 256>(config, prepared, threat),
     }
 }
 
@@ -847,16 +927,14 @@ fn log_scan(log: &mut String, t_text: &str, codes: &[Association], report: &Scan
     );
 }
 
-fn run_scans<S: CsvValue, F: TrackFilter<S>, const N: usize>(
-    options: &TrackerOptions,
+fn run_scans<S: TableNumeric, F: TrackFilter<S>, const N: usize>(
     config: &TrackerConfig<S, F::Params>,
-    scans: &[ScanInput<'_, S>],
-    design: DesignUsed,
-    added: usize,
+    prepared: &Prepared<'_, S>,
+    threat: Option<ThreatCells<'_, S>>,
 ) -> Result<TrackerReplay, ReplayError> {
-    let own = own_aircraft::<S>(options.own_altitude_ft)?;
+    let (scans, design, added) = (&prepared.inputs, prepared.design, prepared.added);
     let mut table: Box<TrackTable<S, F, N, MAX_MEASUREMENTS>> = Box::new(TrackTable::new());
-    let mut csv = tracker_header(own.is_some());
+    let mut csv = tracker_header(threat.is_some());
     csv.push('\n');
     let mut scan_log = String::new();
     let mut unused = Unused {
@@ -865,7 +943,7 @@ fn run_scans<S: CsvValue, F: TrackFilter<S>, const N: usize>(
         ..Unused::default()
     };
     let mut codes = Vec::new();
-    for scan in scans {
+    for scan in scans.iter() {
         codes.clear();
         codes.resize(scan.measurements.len(), Association::OutsideGates);
         let report = table
@@ -903,16 +981,9 @@ fn run_scans<S: CsvValue, F: TrackFilter<S>, const N: usize>(
                 track.id(),
                 track.status().as_str()
             );
-            for v in [x, y, vx, vy] {
-                cell(&mut csv, v);
-            }
-            if let Some(own) = &own {
-                let intruder = Intruder {
-                    relative_position_m: [x, y],
-                    relative_velocity_m_per_s: [vx, vy],
-                    altitude: None,
-                };
-                write_threat_cells(&mut csv, own, Some(&intruder), scan.line)?;
+            let _ = write!(csv, ",{x},{y},{vx},{vy}");
+            if let Some(threat) = threat {
+                threat(&mut csv, [x, y], [vx, vy], scan.line)?;
             }
             csv.push('\n');
         }

@@ -16,6 +16,7 @@ pub mod li;
 pub mod liu;
 pub mod monte_carlo;
 pub mod multi_target;
+pub mod real_adsb;
 pub mod tcas_advisory;
 pub mod tenne_singh;
 
@@ -66,6 +67,11 @@ pub const GROUPS: &[Group] = &[
         name: tcas_advisory::NAME,
         about: "TCAS: encounter suite vs the v7.1 reference, altitude tracker; converging encounter: estimated vs true tau",
         run: tcas_advisory::run,
+    },
+    Group {
+        name: real_adsb::NAME,
+        about: real_adsb::ABOUT,
+        run: real_adsb::run,
     },
     Group {
         name: tenne_singh::GROUP,

@@ -5,4 +5,5 @@ mod auto;
 mod gain_schedules;
 mod multi_target;
 mod paper_readings;
+mod real_data;
 mod range_azimuth_and_advisories;

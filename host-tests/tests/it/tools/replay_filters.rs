@@ -302,6 +302,7 @@ fn every_schedule_name_runs_in_every_representation_and_matches_the_library() {
                             (Numeric::Fixed, _) => {
                                 expected_kinematic::<Fix, 3>(order, &spec, &rows)
                             }
+                            (Numeric::FastFixed, _) => unreachable!("--tracker only"),
                         };
                         assert_eq!(got, want, "{line} (dims {dims})");
                         assert_eq!(got.lines().count(), rows.len() + 1);
@@ -688,6 +689,7 @@ fn range_azimuth_output_is_the_library_arithmetic() {
                 AltitudeQuantum::ModeC,
                 None,
             ),
+            Numeric::FastFixed => unreachable!("--tracker only"),
         };
         assert_eq!(got, want, "{n}");
         // Every option, with the threat columns.
@@ -707,6 +709,7 @@ fn range_azimuth_output_is_the_library_arithmetic() {
             Numeric::Fixed => {
                 expected_range_azimuth::<Fix>(&text, args.0, args.1, args.2, args.3, args.4)
             }
+            Numeric::FastFixed => unreachable!("--tracker only"),
         };
         assert_eq!(got, want, "{line}");
     }

@@ -1,0 +1,212 @@
+//! What holds on the real ADS-B data (host-tests/data/real/), checked on
+//! the code of the `real-adsb` experiment group
+//! (`abtrack_host_tests::experiments::real_adsb`); results/real-adsb/ has
+//! the full figures.
+
+use abtrack_host_tests::experiments::real_adsb::{
+    best_kalman_q, data_dir, evaluate_segment, median, read_scene_truth, read_segments, run_scene,
+    truth_for, Figure, Segment, Timing, GRID_MAX_GAP_S, KALMAN_Q_GRID, SCENES,
+};
+use abtrack_host_tests::metrics::{
+    mean_ospa, track_metrics_with, PairingCost, ScanReport, TrackPoint, TrackStatus, TruthPoint,
+};
+use abtrack_host_tests::replay::Numeric;
+
+/// The fixed αβ and `auto`, seed 1: enough for the claims, fast.
+const SPECS: [&str; 2] = ["fixed:alpha=0.5,beta=0.2", "auto:sigma=50"];
+
+#[test]
+fn only_streams_with_an_interval_over_20_s_are_refused() {
+    let segments = read_segments(&data_dir()).unwrap();
+    assert_eq!(segments.len(), 16);
+    for segment in &segments {
+        for timing in Timing::ALL {
+            let r = evaluate_segment(segment, timing, &[1], &SPECS).unwrap();
+            for (spec, figure) in &r.schedules {
+                if let Figure::Refused(why) = figure {
+                    assert!(
+                        r.max_interval_s > GRID_MAX_GAP_S,
+                        "{} {timing:?} {spec}: refused ({why}) with no interval over 20 s",
+                        r.segment
+                    );
+                }
+            }
+        }
+    }
+}
+
+#[test]
+fn the_one_q_kalman_filter_beats_the_raw_measurements_at_both_timings() {
+    let segments = read_segments(&data_dir()).unwrap();
+    for timing in Timing::ALL {
+        let results: Vec<_> = segments
+            .iter()
+            .map(|s| evaluate_segment(s, timing, &[1], &[]).unwrap())
+            .collect();
+        let refs: Vec<_> = results.iter().collect();
+        let (kq, kf) = best_kalman_q(&refs);
+        let raw = median(&results.iter().map(|r| r.raw).collect::<Vec<_>>());
+        // Raw is σ√2 ≈ 70.7 m; the filter is below it.
+        assert!((raw - 70.7).abs() < 3.0, "{timing:?}: raw {raw}");
+        assert!(
+            kf < 0.95 * raw,
+            "{timing:?}: Kalman q {} median {kf} vs raw {raw}",
+            KALMAN_Q_GRID[kq]
+        );
+    }
+}
+
+#[test]
+fn the_four_second_grid_skips_only_points_inside_long_gaps() {
+    // Reports at 0, 8 and 40 s: the grid 0, 4, 8 (interpolated at 4) and
+    // 40; 12 ... 36 lie inside the 32 s gap.
+    let segment = Segment {
+        name: "hand".into(),
+        points: vec![(0.0, [0.0, 0.0]), (8.0, [80.0, -8.0]), (40.0, [400.0, 0.0])],
+    };
+    let grid = truth_for(&segment, Timing::Grid);
+    assert_eq!(
+        grid,
+        vec![
+            (0.0, [0.0, 0.0]),
+            (4.0, [40.0, -4.0]),
+            (8.0, [80.0, -8.0]),
+            (40.0, [400.0, 0.0])
+        ]
+    );
+    assert_eq!(truth_for(&segment, Timing::Real), segment.points);
+}
+
+#[test]
+fn the_scene_tracker_agrees_in_f64_f32_and_the_fast_fixed_point() {
+    let dir = data_dir();
+    let scene = &SCENES[0];
+    let truth = read_scene_truth(&dir, scene).unwrap();
+    let runs: Vec<_> = [Numeric::F64, Numeric::F32, Numeric::FastFixed]
+        .iter()
+        .map(|&n| run_scene(&dir, scene, &truth, &scene.options(n, None), "").unwrap())
+        .collect();
+    let f64_run = &runs[0];
+    // Today's figures on the P_D 0.9 scene (results/real-adsb/scene.md).
+    assert!(f64_run.coverage >= 0.95, "coverage {}", f64_run.coverage);
+    assert!(
+        f64_run.continuity >= 0.98,
+        "continuity {}",
+        f64_run.continuity
+    );
+    assert!(f64_run.ospa <= 180.0, "OSPA {}", f64_run.ospa);
+    assert!(
+        f64_run.false_tracks <= 1,
+        "false tracks {}",
+        f64_run.false_tracks
+    );
+    for r in &runs[1..] {
+        assert!((r.coverage - f64_run.coverage).abs() <= 0.005);
+        assert!(r.id_changes.abs_diff(f64_run.id_changes) <= 2);
+        assert!((r.rmse - f64_run.rmse).abs() <= 1.0);
+        assert!((r.ospa - f64_run.ospa).abs() <= 0.02 * f64_run.ospa);
+    }
+}
+
+/// Metrics on a hand-made scene: two flights, scored against tracks that
+/// sit on them, 30 m off, or 600 m off (beyond the 500 m pairing limit).
+#[test]
+fn scene_metrics_of_known_configurations() {
+    let scans = |offset: f64, swap_at: Option<usize>| -> Vec<ScanReport> {
+        (0..10)
+            .map(|k| {
+                let t = 4.0 * k as f64;
+                let truth = vec![
+                    TruthPoint {
+                        id: 1,
+                        x: 100.0 * k as f64,
+                        y: 0.0,
+                    },
+                    TruthPoint {
+                        id: 2,
+                        x: 0.0,
+                        y: 5000.0 + 100.0 * k as f64,
+                    },
+                ];
+                let id = |n: u32| {
+                    if swap_at.is_some_and(|s| k >= s) {
+                        n + 10
+                    } else {
+                        n
+                    }
+                };
+                let tracks = truth
+                    .iter()
+                    .map(|p| TrackPoint {
+                        id: id(p.id),
+                        status: TrackStatus::Confirmed,
+                        x: p.x + offset,
+                        y: p.y,
+                    })
+                    .collect();
+                ScanReport { t, truth, tracks }
+            })
+            .collect()
+    };
+    let on = scans(0.0, None);
+    let m = track_metrics_with(&on, 500.0, PairingCost::Distance);
+    assert_eq!((m.completeness, m.continuity, m.id_changes), (1.0, 1.0, 0));
+    assert_eq!(m.assigned_rmse, 0.0);
+    assert_eq!(mean_ospa(&on, 1000.0, 2.0), 0.0);
+    let off = scans(30.0, Some(4));
+    let m = track_metrics_with(&off, 500.0, PairingCost::Distance);
+    assert!((m.assigned_rmse - 30.0).abs() < 1e-9);
+    assert!((mean_ospa(&off, 1000.0, 2.0) - 30.0).abs() < 1e-9);
+    // New ids from scan 4 on: one change per flight.
+    assert_eq!(m.id_changes, 2);
+    assert!(m.mostly_unassigned_tracks.is_empty());
+    let far = scans(600.0, None);
+    let m = track_metrics_with(&far, 500.0, PairingCost::Distance);
+    assert_eq!(m.completeness, 0.0);
+    assert_eq!(m.mostly_unassigned_tracks, vec![1, 2]);
+    assert!((mean_ospa(&far, 1000.0, 2.0) - 600.0).abs() < 1e-9);
+}
+
+#[test]
+fn the_fast_fixed_point_runs_the_cartesian_track_table_only() {
+    use abtrack_host_tests::replay::{
+        replay_reader, Failure, FilterKind, ReplayConfig, ReplayError,
+    };
+    use abtrack_host_tests::replay_tracker::{replay_tracker_reader, TrackerOptions};
+    let options = TrackerOptions {
+        numeric: Numeric::FastFixed,
+        ..TrackerOptions::default()
+    };
+    let cartesian = "t,x,y\n0,100,200\n1,110,200\n2,120,200\n3,130,200\n";
+    let run = replay_tracker_reader(&options, cartesian.as_bytes()).unwrap();
+    // Tentative from the second scan, confirmed at the third (2 of 3).
+    assert!(
+        run.csv.lines().any(|l| l.starts_with("3,1,confirmed,130")),
+        "{}",
+        run.csv
+    );
+    let polar = "t,range,azimuth\n0,1000,0.1\n1,1010,0.1\n";
+    assert_eq!(
+        replay_tracker_reader(&options, polar.as_bytes()).unwrap_err(),
+        Failure::Replay(ReplayError::FastFixedTrackerOnly)
+    );
+    let own_alt = TrackerOptions {
+        own_altitude_ft: Some(9000.0),
+        ..options
+    };
+    assert_eq!(
+        replay_tracker_reader(&own_alt, cartesian.as_bytes()).unwrap_err(),
+        Failure::Replay(ReplayError::FastFixedTrackerOnly)
+    );
+    let single = ReplayConfig {
+        filter: FilterKind::AlphaBeta {
+            alpha: 0.5,
+            beta: 0.2,
+        },
+        numeric: Numeric::FastFixed,
+    };
+    assert_eq!(
+        replay_reader(&single, cartesian.as_bytes()).unwrap_err(),
+        Failure::Replay(ReplayError::FastFixedTrackerOnly)
+    );
+}
