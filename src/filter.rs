@@ -24,7 +24,16 @@
 //!   [`Cartesian::update_step`]) has no division; `update(z, dt, &gains)`
 //!   builds the [`StepGains`] and calls it.
 //! * A measurement or interval that is not a valid number, or an interval ≤ 0,
-//!   is refused with a [`FilterError`] and the state is left untouched. So is
+//!   is refused with a [`FilterError`] and the state is left untouched.
+//! * The filters are specified for intervals of [`MIN_INTERVAL_S`] to
+//!   [`MAX_INTERVAL_S`] ([`IntervalSpan`]). The updates that take an
+//!   interval (`update`, `update_per_axis`) never refuse one outside: a
+//!   measurement after a longer interval restarts the estimate (it becomes
+//!   the first point of a new two-point initialisation,
+//!   [`UpdateOutcome::Restarted`]); one closer than the shortest is skipped
+//!   and the state left untouched ([`UpdateOutcome::Skipped`]). The
+//!   per-update path (`update_step`) leaves that judgement to its caller
+//!   (the track table judges each track's time since its last update). So is
 //!   an update whose arithmetic saturates (fixed point) or overflows (floats):
 //!   it is counted in [`KinematicFilter::saturations`] and discarded.
 
@@ -59,6 +68,46 @@ impl core::fmt::Display for FilterError {
 }
 
 impl core::error::Error for FilterError {}
+
+/// The shortest interval between two measurements of one target that the
+/// filters are specified for, s: the envelope's ([`crate::envelope::INTERVAL_S`]).
+/// Two reports closer carry no velocity information, and the velocity gain
+/// β/T would multiply their noise by up to 1/T.
+pub const MIN_INTERVAL_S: f64 = crate::envelope::INTERVAL_S.min;
+
+/// The longest interval between two measurements of one target that the
+/// filters are specified for, s ([`crate::envelope::INTERVAL_S`]): beyond it
+/// an estimate is restarted, not extrapolated.
+pub const MAX_INTERVAL_S: f64 = crate::envelope::INTERVAL_S.max;
+
+/// Where a valid interval falls against the range the filters are specified
+/// for ([`MIN_INTERVAL_S`] ..= [`MAX_INTERVAL_S`]).
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+#[cfg_attr(feature = "defmt", derive(defmt::Format))]
+pub enum IntervalSpan {
+    /// Shorter than [`MIN_INTERVAL_S`]: the measurement is skipped.
+    TooShort,
+    /// Inside the range: filtered.
+    InRange,
+    /// Longer than [`MAX_INTERVAL_S`]: the estimate restarts.
+    TooLong,
+}
+
+impl IntervalSpan {
+    /// The span of `dt`; refuses an interval that is not a valid number or
+    /// is ≤ 0 ([`FilterError::InvalidInterval`]): that is malformed input,
+    /// not timing.
+    pub fn of<Q: Quantity>(dt: Q) -> Result<Self, FilterError> {
+        check_interval(dt)?;
+        Ok(if dt < Q::from_f64_lossy(MIN_INTERVAL_S) {
+            IntervalSpan::TooShort
+        } else if dt > Q::from_f64_lossy(MAX_INTERVAL_S) {
+            IntervalSpan::TooLong
+        } else {
+            IntervalSpan::InRange
+        })
+    }
+}
 
 /// The prediction terms of one interval: T and T²/2, checked once.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -162,6 +211,13 @@ pub enum UpdateOutcome<N: Numeric> {
     /// A filtered update with the prediction it corrected and its residual
     /// z − prediction (Al-Wagih eq. 4).
     Filtered(Innovation<N>),
+    /// The estimate was dropped before this measurement, which became the
+    /// first point of a new one: the interval since the previous call was
+    /// longer than [`MAX_INTERVAL_S`] (or a gain schedule required it).
+    Restarted,
+    /// Less than [`MIN_INTERVAL_S`] after the previous call: the
+    /// measurement was not used and the filter is unchanged.
+    Skipped,
 }
 
 /// What an update did, without the innovation (which the filter keeps:
@@ -352,6 +408,14 @@ impl<N: Numeric, const ORDER: usize> KinematicFilter<N, ORDER> {
         self.saturations = self.saturations.saturating_add(1);
     }
 
+    /// Back to [`Phase::Empty`], keeping the saturation count.
+    pub(crate) fn restart(&mut self) {
+        *self = KinematicFilter {
+            saturations: self.saturations,
+            ..Self::new()
+        };
+    }
+
     /// The state predicted `dt` ahead, without changing the filter
     /// (Tenne & Singh eqs. 1–2; for αβ, Al-Wagih eq. 3).
     pub fn predict(&self, dt: N::Interval) -> Result<Prediction<N>, FilterError> {
@@ -447,13 +511,19 @@ impl<N: Numeric, const ORDER: usize> KinematicFilter<N, ORDER> {
     ///   x_s = x_p + αe (eq. 6), v_s = v_p + (β/T)e (eq. 8; Tenne & Singh
     ///   eq. 4), a_s = a_s + γ/(2T²)·e (Tenne & Singh eq. 5).
     ///
-    /// Forms the [`StepGains`] and calls [`Self::update_step`].
+    /// After the first measurement, an interval outside the filters'
+    /// range restarts the estimate or skips the measurement
+    /// ([`IntervalSpan`]); otherwise this forms the [`StepGains`] and calls
+    /// [`Self::update_step`].
     pub fn update(
         &mut self,
         z: N::Length,
         dt: N::Interval,
         gains: &Gains<N>,
     ) -> Result<UpdateOutcome<N>, FilterError> {
+        if let Some(o) = interval_policy(core::array::from_mut(self), &[z], dt)? {
+            return Ok(o);
+        }
         let step = step_gains(core::array::from_mut(self), [z], dt, gains)?;
         let kind = update_axes(core::array::from_mut(self), [z], &step)?;
         Ok(outcome(kind, self.last))
@@ -475,6 +545,35 @@ impl<N: Numeric, const ORDER: usize> KinematicFilter<N, ORDER> {
     /// so the position holds and the interval is remembered for eq. (9).
     pub fn coast(&mut self, dt: N::Interval) -> Result<(), FilterError> {
         coast_axes(core::array::from_mut(self), dt)
+    }
+}
+
+/// The interval policy of the updates that take an interval (module docs,
+/// [`IntervalSpan`]), for `D` axes sharing one phase: `Some` when the
+/// measurement is not filtered as usual: [`UpdateOutcome::Skipped`] (nothing
+/// changed) or [`UpdateOutcome::Restarted`] (the axes emptied, `z` their
+/// first point). The first measurement takes any valid interval.
+fn interval_policy<N: Numeric, const ORDER: usize, const D: usize>(
+    axes: &mut [KinematicFilter<N, ORDER>; D],
+    z: &[N::Length; D],
+    dt: N::Interval,
+) -> Result<Option<UpdateOutcome<N>>, FilterError> {
+    if axes.first().map_or(Phase::Empty, |a| a.phase) == Phase::Empty {
+        return Ok(None);
+    }
+    if z.iter().any(|v| !v.is_valid()) {
+        return Err(FilterError::InvalidMeasurement);
+    }
+    match IntervalSpan::of(dt)? {
+        IntervalSpan::InRange => Ok(None),
+        IntervalSpan::TooShort => Ok(Some(UpdateOutcome::Skipped)),
+        IntervalSpan::TooLong => {
+            for axis in axes.iter_mut() {
+                axis.restart();
+            }
+            initialise(axes, *z, dt)?;
+            Ok(Some(UpdateOutcome::Restarted))
+        }
     }
 }
 
@@ -760,14 +859,18 @@ impl<N: Numeric, const ORDER: usize, const D: usize> Cartesian<N, ORDER, D> {
             .fold(0u32, |n, a| n.saturating_add(a.saturations()))
     }
 
-    /// Updates every axis with the same gains (forms the [`StepGains`] and
-    /// calls [`Self::update_step`]).
+    /// Updates every axis with the same gains: the interval policy of
+    /// [`KinematicFilter::update`], then the [`StepGains`] and
+    /// [`Self::update_step`].
     pub fn update(
         &mut self,
         z: [N::Length; D],
         dt: N::Interval,
         gains: &Gains<N>,
     ) -> Result<[UpdateOutcome<N>; D], FilterError> {
+        if let Some(o) = interval_policy(&mut self.axes, &z, dt)? {
+            return Ok([o; D]);
+        }
         let step = step_gains(&mut self.axes, z, dt, gains)?;
         let kind = update_axes(&mut self.axes, z, &step)?;
         Ok(self.outcomes(kind))
@@ -784,7 +887,8 @@ impl<N: Numeric, const ORDER: usize, const D: usize> Cartesian<N, ORDER, D> {
         update_axes(&mut self.axes, z, step)
     }
 
-    /// Updates each axis with its own gains (schedules that adapt per axis).
+    /// Updates each axis with its own gains (schedules that adapt per axis),
+    /// under the interval policy of [`KinematicFilter::update`].
     pub fn update_per_axis(
         &mut self,
         z: [N::Length; D],
@@ -793,6 +897,9 @@ impl<N: Numeric, const ORDER: usize, const D: usize> Cartesian<N, ORDER, D> {
     ) -> Result<[UpdateOutcome<N>; D], FilterError> {
         if z.iter().any(|v| !v.is_valid()) {
             return Err(FilterError::InvalidMeasurement);
+        }
+        if let Some(o) = interval_policy(&mut self.axes, &z, dt)? {
+            return Ok([o; D]);
         }
         let terms = IntervalTerms::<N>::new(dt)?;
         let mut steps = [StepGains {

@@ -1193,6 +1193,7 @@ impl<S: Scalar, F: TrackFilter<S> + BearingTrack<S>, const N: usize, const M: us
         counts.coasted = sat_u16(report.coasted);
         counts.confirmed = sat_u16(report.confirmed);
         counts.deleted = sat_u16(report.deleted);
+        counts.restarted = sat_u16(report.restarted);
         counts.tracks = sat_u16(report.tracks);
         counts.confirmed_tracks = sat_u16(confirmed_tracks);
 
@@ -1202,6 +1203,7 @@ impl<S: Scalar, F: TrackFilter<S> + BearingTrack<S>, const N: usize, const M: us
         c.tracks_started = c.tracks_started.saturating_add(report.started);
         c.tracks_confirmed = c.tracks_confirmed.saturating_add(report.confirmed);
         c.tracks_deleted = c.tracks_deleted.saturating_add(report.deleted);
+        c.tracks_restarted = c.tracks_restarted.saturating_add(report.restarted);
         c.refused_table_full = c
             .refused_table_full
             .saturating_add(report.refused_table_full);
