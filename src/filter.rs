@@ -80,6 +80,11 @@ pub const MIN_INTERVAL_S: f64 = crate::envelope::INTERVAL_S.min;
 /// an estimate is restarted, not extrapolated.
 pub const MAX_INTERVAL_S: f64 = crate::envelope::INTERVAL_S.max;
 
+/// [`MIN_INTERVAL_S`] in milliseconds (the track table's clock).
+pub const MIN_INTERVAL_MS: u32 = (MIN_INTERVAL_S * 1000.0) as u32;
+/// [`MAX_INTERVAL_S`] in milliseconds (the track table's clock).
+pub const MAX_INTERVAL_MS: u32 = (MAX_INTERVAL_S * 1000.0) as u32;
+
 /// Where a valid interval falls against the range the filters are specified
 /// for ([`MIN_INTERVAL_S`] ..= [`MAX_INTERVAL_S`]).
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]

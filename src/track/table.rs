@@ -9,6 +9,7 @@ use super::gate::GateRegion;
 use super::model::{Measurement, Observation, RejectReason, ScanInterval, TrackFilter};
 use super::numeric::TrackNumeric;
 use super::pregate::MeasurementIndex;
+use crate::filter::{MAX_INTERVAL_MS, MIN_INTERVAL_MS};
 
 /// A track's identity, unique over the lifetime of its table: ids are issued
 /// in increasing order and, after 2³² of them, wrap around skipping any id
@@ -422,12 +423,6 @@ enum ScanTiming<Step> {
     /// In range: every track's step for the interval.
     Step(Step),
 }
-
-/// The shortest scan interval, ms ([`crate::filter::MIN_INTERVAL_S`]).
-const MIN_INTERVAL_MS: u32 = (crate::filter::MIN_INTERVAL_S * 1000.0) as u32;
-/// The longest time since a track's last update, ms
-/// ([`crate::filter::MAX_INTERVAL_S`]).
-const MAX_INTERVAL_MS: u32 = (crate::filter::MAX_INTERVAL_S * 1000.0) as u32;
 
 /// Whether a track last updated at `last_update_ms` is past the filters'
 /// longest interval at `now_ms`.
