@@ -26,14 +26,16 @@
 //! * A measurement or interval that is not a valid number, or an interval ≤ 0,
 //!   is refused with a [`FilterError`] and the state is left untouched.
 //! * The filters are specified for intervals of [`MIN_INTERVAL_S`] to
-//!   [`MAX_INTERVAL_S`] ([`IntervalSpan`]). The updates that take an
-//!   interval (`update`, `update_per_axis`) never refuse one outside: a
-//!   measurement after a longer interval restarts the estimate (it becomes
-//!   the first point of a new two-point initialisation,
-//!   [`UpdateOutcome::Restarted`]); one closer than the shortest is skipped
-//!   and the state left untouched ([`UpdateOutcome::Skipped`]). The
-//!   per-update path (`update_step`) leaves that judgement to its caller
-//!   (the track table judges each track's time since its last update). So is
+//!   [`MAX_INTERVAL_S`] ([`IntervalSpan`]). These filters compute the
+//!   papers' equations for any interval > 0 (their arithmetic is checked
+//!   beyond that range); what holds a track applies the interval policy,
+//!   never refusing a report for its timing: after a longer interval the
+//!   estimate restarts (the report is the first point of a new two-point
+//!   initialisation, [`UpdateOutcome::Restarted`]), a report closer than the
+//!   shortest is skipped with the state untouched ([`UpdateOutcome::Skipped`]):
+//!   [`crate::gain::ScheduledFilter`] (any schedule), the M5 bank
+//!   ([`crate::bank`]) and the track table (per track, on the time since its
+//!   last update). So is
 //!   an update whose arithmetic saturates (fixed point) or overflows (floats):
 //!   it is counted in [`KinematicFilter::saturations`] and discarded.
 
@@ -217,11 +219,12 @@ pub enum UpdateOutcome<N: Numeric> {
     /// z − prediction (Al-Wagih eq. 4).
     Filtered(Innovation<N>),
     /// The estimate was dropped before this measurement, which became the
-    /// first point of a new one: the interval since the previous call was
-    /// longer than [`MAX_INTERVAL_S`] (or a gain schedule required it).
+    /// first point of a new one: the interval since the previous update
+    /// was longer than [`MAX_INTERVAL_S`] (or a gain schedule required it).
+    /// Given by what applies the interval policy (module docs).
     Restarted,
-    /// Less than [`MIN_INTERVAL_S`] after the previous call: the
-    /// measurement was not used and the filter is unchanged.
+    /// Less than [`MIN_INTERVAL_S`] after the previous update: the
+    /// measurement was not used and the estimate is unchanged.
     Skipped,
 }
 
@@ -413,7 +416,8 @@ impl<N: Numeric, const ORDER: usize> KinematicFilter<N, ORDER> {
         self.saturations = self.saturations.saturating_add(1);
     }
 
-    /// Back to [`Phase::Empty`], keeping the saturation count.
+    /// Back to [`Phase::Empty`], keeping the saturation count (an interval
+    /// policy's restart).
     pub(crate) fn restart(&mut self) {
         *self = KinematicFilter {
             saturations: self.saturations,
@@ -516,19 +520,14 @@ impl<N: Numeric, const ORDER: usize> KinematicFilter<N, ORDER> {
     ///   x_s = x_p + αe (eq. 6), v_s = v_p + (β/T)e (eq. 8; Tenne & Singh
     ///   eq. 4), a_s = a_s + γ/(2T²)·e (Tenne & Singh eq. 5).
     ///
-    /// After the first measurement, an interval outside the filters'
-    /// range restarts the estimate or skips the measurement
-    /// ([`IntervalSpan`]); otherwise this forms the [`StepGains`] and calls
-    /// [`Self::update_step`].
+    /// Forms the [`StepGains`] and calls [`Self::update_step`] (for any
+    /// interval > 0: the interval policy is the caller's, module docs).
     pub fn update(
         &mut self,
         z: N::Length,
         dt: N::Interval,
         gains: &Gains<N>,
     ) -> Result<UpdateOutcome<N>, FilterError> {
-        if let Some(o) = interval_policy(core::array::from_mut(self), &[z], dt)? {
-            return Ok(o);
-        }
         let step = step_gains(core::array::from_mut(self), [z], dt, gains)?;
         let kind = update_axes(core::array::from_mut(self), [z], &step)?;
         Ok(outcome(kind, self.last))
@@ -550,35 +549,6 @@ impl<N: Numeric, const ORDER: usize> KinematicFilter<N, ORDER> {
     /// so the position holds and the interval is remembered for eq. (9).
     pub fn coast(&mut self, dt: N::Interval) -> Result<(), FilterError> {
         coast_axes(core::array::from_mut(self), dt)
-    }
-}
-
-/// The interval policy of the updates that take an interval (module docs,
-/// [`IntervalSpan`]), for `D` axes sharing one phase: `Some` when the
-/// measurement is not filtered as usual: [`UpdateOutcome::Skipped`] (nothing
-/// changed) or [`UpdateOutcome::Restarted`] (the axes emptied, `z` their
-/// first point). The first measurement takes any valid interval.
-fn interval_policy<N: Numeric, const ORDER: usize, const D: usize>(
-    axes: &mut [KinematicFilter<N, ORDER>; D],
-    z: &[N::Length; D],
-    dt: N::Interval,
-) -> Result<Option<UpdateOutcome<N>>, FilterError> {
-    if axes.first().map_or(Phase::Empty, |a| a.phase) == Phase::Empty {
-        return Ok(None);
-    }
-    if z.iter().any(|v| !v.is_valid()) {
-        return Err(FilterError::InvalidMeasurement);
-    }
-    match IntervalSpan::of(dt)? {
-        IntervalSpan::InRange => Ok(None),
-        IntervalSpan::TooShort => Ok(Some(UpdateOutcome::Skipped)),
-        IntervalSpan::TooLong => {
-            for axis in axes.iter_mut() {
-                axis.restart();
-            }
-            initialise(axes, *z, dt)?;
-            Ok(Some(UpdateOutcome::Restarted))
-        }
     }
 }
 
@@ -864,18 +834,14 @@ impl<N: Numeric, const ORDER: usize, const D: usize> Cartesian<N, ORDER, D> {
             .fold(0u32, |n, a| n.saturating_add(a.saturations()))
     }
 
-    /// Updates every axis with the same gains: the interval policy of
-    /// [`KinematicFilter::update`], then the [`StepGains`] and
-    /// [`Self::update_step`].
+    /// Updates every axis with the same gains (forms the [`StepGains`] and
+    /// calls [`Self::update_step`]).
     pub fn update(
         &mut self,
         z: [N::Length; D],
         dt: N::Interval,
         gains: &Gains<N>,
     ) -> Result<[UpdateOutcome<N>; D], FilterError> {
-        if let Some(o) = interval_policy(&mut self.axes, &z, dt)? {
-            return Ok([o; D]);
-        }
         let step = step_gains(&mut self.axes, z, dt, gains)?;
         let kind = update_axes(&mut self.axes, z, &step)?;
         Ok(self.outcomes(kind))
@@ -892,8 +858,7 @@ impl<N: Numeric, const ORDER: usize, const D: usize> Cartesian<N, ORDER, D> {
         update_axes(&mut self.axes, z, step)
     }
 
-    /// Updates each axis with its own gains (schedules that adapt per axis),
-    /// under the interval policy of [`KinematicFilter::update`].
+    /// Updates each axis with its own gains (schedules that adapt per axis).
     pub fn update_per_axis(
         &mut self,
         z: [N::Length; D],
@@ -902,9 +867,6 @@ impl<N: Numeric, const ORDER: usize, const D: usize> Cartesian<N, ORDER, D> {
     ) -> Result<[UpdateOutcome<N>; D], FilterError> {
         if z.iter().any(|v| !v.is_valid()) {
             return Err(FilterError::InvalidMeasurement);
-        }
-        if let Some(o) = interval_policy(&mut self.axes, &z, dt)? {
-            return Ok([o; D]);
         }
         let terms = IntervalTerms::<N>::new(dt)?;
         let mut steps = [StepGains {

@@ -9,7 +9,7 @@ use abtrack::filter::altitude::{AltitudeQuantum, AltitudeTrackerConfig};
 use abtrack::filter::{
     Cartesian, FilterError, IntervalSpan, Phase, UpdateOutcome, MAX_INTERVAL_S, MIN_INTERVAL_S,
 };
-use abtrack::gain::{LeastSquaresGains, ScheduledFilter};
+use abtrack::gain::{FixedGains, LeastSquaresGains, ScheduledError, ScheduledFilter};
 use abtrack::num::fixed32::Fixed32;
 use abtrack::num::{Numeric, Quantity};
 use abtrack::scan::{ClockConfig, MeasurementQueue, ScanConfig, ScanLoop};
@@ -44,47 +44,56 @@ fn the_range_is_the_envelope() {
     }
 }
 
-/// A 2-D αβ filter on a straight line at (10, −5) m/s: a report 10 ms
-/// after the last is skipped with the state bit-identical; one 30 s later
+/// A 2-D αβ track with fixed gains (a [`ScheduledFilter`], what holds a
+/// track; the bare [`Cartesian`] filter computes the equations for any
+/// interval > 0) on a straight line at (10, −5) m/s: a report 10 ms after
+/// the last is skipped with the state bit-identical; one 30 s later
 /// restarts (first point of a new estimate), and the next two-point
 /// initialisation takes its velocity from the new points only.
 fn gap_and_close_report<N: Numeric>() {
     let gains = Gains::<N>::alpha_beta_f64(0.5, 0.2).unwrap();
-    let mut f = Cartesian::<N, 2, 2>::new();
+    let mut f = ScheduledFilter::<N, _, 2, 2>::new(FixedGains::new(gains));
     let z = |x: f64, y: f64| [q::<N::Length>(x), q::<N::Length>(y)];
     let one: N::Interval = q(1.0);
     for k in 0..4 {
         let t = f64::from(k);
-        f.update(z(10.0 * t, -5.0 * t), one, &gains).unwrap();
+        f.update(z(10.0 * t, -5.0 * t), one).unwrap();
     }
     let before = f;
-    let out = f.update(z(31.0, -15.5), q(0.01), &gains).unwrap();
-    assert_eq!(out, [UpdateOutcome::Skipped; 2], "{}", N::NAME);
+    let out = f.update(z(31.0, -15.5), q(0.01)).unwrap();
+    assert_eq!(out.outcome, [UpdateOutcome::Skipped; 2], "{}", N::NAME);
     assert_eq!(f, before, "{}", N::NAME);
     // Malformed intervals are refused, the state untouched.
     assert_eq!(
-        f.update(z(31.0, -15.5), N::Interval::ZERO, &gains),
-        Err(FilterError::InvalidInterval)
+        f.update(z(31.0, -15.5), N::Interval::ZERO),
+        Err(ScheduledError::Filter(FilterError::InvalidInterval))
     );
     assert_eq!(f, before);
+    // The bare filter extrapolates over 30 s as its equations say.
+    let mut bare: Cartesian<N, 2, 2> = *f.filter();
+    assert!(matches!(
+        bare.update(z(340.0, -170.0), q(30.0), &gains).unwrap(),
+        [UpdateOutcome::Filtered(_), UpdateOutcome::Filtered(_)]
+    ));
     // 30 s of silence, the target reappears elsewhere.
-    let out = f.update(z(1000.0, 2000.0), q(30.0), &gains).unwrap();
-    assert_eq!(out, [UpdateOutcome::Restarted; 2], "{}", N::NAME);
-    assert_eq!(f.phase(), Phase::OnePoint);
-    let [x, y] = f.position();
+    let out = f.update(z(1000.0, 2000.0), q(30.0)).unwrap();
+    assert_eq!(out.outcome, [UpdateOutcome::Restarted; 2], "{}", N::NAME);
+    assert!(out.restarted);
+    assert_eq!(f.filter().phase(), Phase::OnePoint);
+    let [x, y] = f.filter().position();
     assert!((x.to_f64() - 1000.0).abs() < 1e-3 && (y.to_f64() - 2000.0).abs() < 1e-3);
-    let out = f.update(z(1020.0, 1990.0), q(2.0), &gains).unwrap();
-    assert_eq!(out, [UpdateOutcome::SecondPoint; 2]);
-    let [vx, vy] = f.velocity();
+    let out = f.update(z(1020.0, 1990.0), q(2.0)).unwrap();
+    assert_eq!(out.outcome, [UpdateOutcome::SecondPoint; 2]);
+    let [vx, vy] = f.filter().velocity();
     assert!((vx.to_f64() - 10.0).abs() < 1e-3 && (vy.to_f64() + 5.0).abs() < 1e-3);
     assert!(matches!(
-        f.update(z(1030.0, 1985.0), one, &gains).unwrap(),
+        f.update(z(1030.0, 1985.0), one).unwrap().outcome,
         [UpdateOutcome::Filtered(_), UpdateOutcome::Filtered(_)]
     ));
 }
 
 #[test]
-fn a_gap_restarts_the_filter_and_a_close_report_is_skipped() {
+fn a_gap_restarts_a_track_and_a_close_report_is_skipped() {
     gap_and_close_report::<f64>();
     gap_and_close_report::<f32>();
     gap_and_close_report::<Fix>();
