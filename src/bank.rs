@@ -37,8 +37,8 @@
 use core::fmt;
 
 use crate::filter::{
-    outcome as outcome_of, AlphaBeta, FilterError, Gains, Phase, Prediction, StepGains,
-    UpdateOutcome,
+    outcome as outcome_of, AlphaBeta, FilterError, Gains, IntervalSpan, Phase, Prediction,
+    StepGains, UpdateOutcome,
 };
 use crate::gains::{beta_from_alpha, check_range, config_quantity, grid_point, ConfigError};
 use crate::num::{Numeric, Quantity, Real};
@@ -116,6 +116,13 @@ pub enum BankOutcome<N: Numeric> {
     SecondPoint,
     /// A filtered update and the member selected for it (Algorithm 3, step 3).
     Filtered(BankSelection<N>),
+    /// The interval was longer than
+    /// [`MAX_INTERVAL_S`](crate::filter::MAX_INTERVAL_S): every member
+    /// restarted, with this measurement as its first point.
+    Restarted,
+    /// Less than [`MIN_INTERVAL_S`](crate::filter::MIN_INTERVAL_S) after
+    /// the previous measurement: not used, nothing changed.
+    Skipped,
 }
 
 /// M5 on one axis: up to K fixed-gain αβ trackers (storage for K, `len`
@@ -246,8 +253,50 @@ impl<N: Numeric, const K: usize> ParallelBank<N, K> {
         if !z.is_valid() {
             return Err(FilterError::InvalidMeasurement);
         }
-        let steps = self.step_gains(dt)?;
-        self.update_step(z, &steps)
+        let mut next = *self;
+        let restart = match self.interval_span(dt)? {
+            IntervalSpan::TooShort => return Ok(BankOutcome::Skipped),
+            IntervalSpan::TooLong => {
+                next.restart();
+                true
+            }
+            IntervalSpan::InRange => false,
+        };
+        match next
+            .step_gains(dt)
+            .and_then(|steps| next.update_step(z, &steps))
+        {
+            Ok(outcome) => {
+                *self = next;
+                Ok(if restart {
+                    BankOutcome::Restarted
+                } else {
+                    outcome
+                })
+            }
+            Err(e) => {
+                self.saturations = next.saturations;
+                Err(e)
+            }
+        }
+    }
+
+    /// The interval policy of the filters ([`IntervalSpan`]; the first
+    /// measurement takes any valid interval).
+    fn interval_span(&self, dt: N::Interval) -> Result<IntervalSpan, FilterError> {
+        if self.phase() == Phase::Empty {
+            return Ok(IntervalSpan::InRange);
+        }
+        IntervalSpan::of(dt)
+    }
+
+    /// Every member back to its first point's wait (the counts kept).
+    fn restart(&mut self) {
+        for member in self.members.iter_mut() {
+            member.restart();
+        }
+        self.selected = 0;
+        self.last = None;
     }
 
     /// Every member's [`StepGains`] at `dt`, formed once per interval (a
@@ -286,7 +335,11 @@ impl<N: Numeric, const K: usize> ParallelBank<N, K> {
                 .update_step(z, step)
                 .map(|kind| outcome_of(kind, member.last_innovation()));
             match result {
-                Ok(UpdateOutcome::FirstPoint) => outcome = BankOutcome::FirstPoint,
+                // `update_step` does not judge the interval: it neither
+                // restarts nor skips.
+                Ok(
+                    UpdateOutcome::FirstPoint | UpdateOutcome::Restarted | UpdateOutcome::Skipped,
+                ) => outcome = BankOutcome::FirstPoint,
                 Ok(UpdateOutcome::SecondPoint) => outcome = BankOutcome::SecondPoint,
                 Ok(UpdateOutcome::Filtered(inn)) => {
                     let size = inn.residual.abs();
@@ -379,7 +432,25 @@ impl<N: Numeric, const K: usize, const D: usize> CartesianBank<N, K, D> {
         z: [N::Length; D],
         dt: N::Interval,
     ) -> Result<[BankOutcome<N>; D], FilterError> {
+        // As the axes one after the other: the first axis's measurement,
+        // then the interval, then the others' measurements.
+        let invalid = |v: &N::Length| !v.is_valid();
+        if z.first().is_some_and(invalid) {
+            return Err(FilterError::InvalidMeasurement);
+        }
+        let span = match self.axes.first() {
+            Some(axis) => axis.interval_span(dt)?,
+            None => IntervalSpan::InRange,
+        };
         let mut next = self.axes;
+        match span {
+            IntervalSpan::TooShort if z.iter().any(invalid) => {
+                return Err(FilterError::InvalidMeasurement)
+            }
+            IntervalSpan::TooShort => return Ok([BankOutcome::Skipped; D]),
+            IntervalSpan::TooLong => next.iter_mut().for_each(ParallelBank::restart),
+            IntervalSpan::InRange => {}
+        }
         let mut out = [BankOutcome::FirstPoint; D];
         // The first axis's measurement is checked before the interval, as
         // an axis's own update does; the members' step gains are formed
@@ -408,6 +479,9 @@ impl<N: Numeric, const K: usize, const D: usize> CartesianBank<N, K, D> {
             }
         }
         self.axes = next;
+        if span == IntervalSpan::TooLong {
+            out = [BankOutcome::Restarted; D];
+        }
         Ok(out)
     }
 

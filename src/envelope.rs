@@ -1,7 +1,9 @@
 //! The numeric envelope: the largest values the filters are specified for
 //! (the fixed-point format of [`crate::num`] is sized for them) and the
 //! values a sensor may report. One set of limits for the wire edge, the
-//! firmware and the host tools; a value outside is refused where it enters.
+//! firmware and the host tools; a value outside is refused where it enters,
+//! except an interval: outside [`INTERVAL_S`] a report restarts the estimate
+//! or is skipped ([`crate::filter::IntervalSpan`]).
 //!
 //! The figures are those of the numeric specification (see
 //! `docs/numerics.md`): positions ±400 km, velocities ±1500 m/s,

@@ -24,7 +24,18 @@
 //!   [`Cartesian::update_step`]) has no division; `update(z, dt, &gains)`
 //!   builds the [`StepGains`] and calls it.
 //! * A measurement or interval that is not a valid number, or an interval ≤ 0,
-//!   is refused with a [`FilterError`] and the state is left untouched. So is
+//!   is refused with a [`FilterError`] and the state is left untouched.
+//! * The filters are specified for intervals of [`MIN_INTERVAL_S`] to
+//!   [`MAX_INTERVAL_S`] ([`IntervalSpan`]). These filters compute the
+//!   papers' equations for any interval > 0 (their arithmetic is checked
+//!   beyond that range); what holds a track applies the interval policy,
+//!   never refusing a report for its timing: after a longer interval the
+//!   estimate restarts (the report is the first point of a new two-point
+//!   initialisation, [`UpdateOutcome::Restarted`]), a report closer than the
+//!   shortest is skipped with the state untouched ([`UpdateOutcome::Skipped`]):
+//!   [`crate::gain::ScheduledFilter`] (any schedule), the M5 bank
+//!   ([`crate::bank`]) and the track table (per track, on the time since its
+//!   last update). So is
 //!   an update whose arithmetic saturates (fixed point) or overflows (floats):
 //!   it is counted in [`KinematicFilter::saturations`] and discarded.
 
@@ -59,6 +70,51 @@ impl core::fmt::Display for FilterError {
 }
 
 impl core::error::Error for FilterError {}
+
+/// The shortest interval between two measurements of one target that the
+/// filters are specified for, s: the envelope's ([`crate::envelope::INTERVAL_S`]).
+/// Two reports closer carry no velocity information, and the velocity gain
+/// β/T would multiply their noise by up to 1/T.
+pub const MIN_INTERVAL_S: f64 = crate::envelope::INTERVAL_S.min;
+
+/// The longest interval between two measurements of one target that the
+/// filters are specified for, s ([`crate::envelope::INTERVAL_S`]): beyond it
+/// an estimate is restarted, not extrapolated.
+pub const MAX_INTERVAL_S: f64 = crate::envelope::INTERVAL_S.max;
+
+/// [`MIN_INTERVAL_S`] in milliseconds (the track table's clock).
+pub const MIN_INTERVAL_MS: u32 = (MIN_INTERVAL_S * 1000.0) as u32;
+/// [`MAX_INTERVAL_S`] in milliseconds (the track table's clock).
+pub const MAX_INTERVAL_MS: u32 = (MAX_INTERVAL_S * 1000.0) as u32;
+
+/// Where a valid interval falls against the range the filters are specified
+/// for ([`MIN_INTERVAL_S`] ..= [`MAX_INTERVAL_S`]).
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+#[cfg_attr(feature = "defmt", derive(defmt::Format))]
+pub enum IntervalSpan {
+    /// Shorter than [`MIN_INTERVAL_S`]: the measurement is skipped.
+    TooShort,
+    /// Inside the range: filtered.
+    InRange,
+    /// Longer than [`MAX_INTERVAL_S`]: the estimate restarts.
+    TooLong,
+}
+
+impl IntervalSpan {
+    /// The span of `dt`; refuses an interval that is not a valid number or
+    /// is ≤ 0 ([`FilterError::InvalidInterval`]): that is malformed input,
+    /// not timing.
+    pub fn of<Q: Quantity>(dt: Q) -> Result<Self, FilterError> {
+        check_interval(dt)?;
+        Ok(if dt < Q::from_f64_lossy(MIN_INTERVAL_S) {
+            IntervalSpan::TooShort
+        } else if dt > Q::from_f64_lossy(MAX_INTERVAL_S) {
+            IntervalSpan::TooLong
+        } else {
+            IntervalSpan::InRange
+        })
+    }
+}
 
 /// The prediction terms of one interval: T and T²/2, checked once.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -162,6 +218,14 @@ pub enum UpdateOutcome<N: Numeric> {
     /// A filtered update with the prediction it corrected and its residual
     /// z − prediction (Al-Wagih eq. 4).
     Filtered(Innovation<N>),
+    /// The estimate was dropped before this measurement, which became the
+    /// first point of a new one: the interval since the previous update
+    /// was longer than [`MAX_INTERVAL_S`] (or a gain schedule required it).
+    /// Given by what applies the interval policy (module docs).
+    Restarted,
+    /// Less than [`MIN_INTERVAL_S`] after the previous update: the
+    /// measurement was not used and the estimate is unchanged.
+    Skipped,
 }
 
 /// What an update did, without the innovation (which the filter keeps:
@@ -352,6 +416,15 @@ impl<N: Numeric, const ORDER: usize> KinematicFilter<N, ORDER> {
         self.saturations = self.saturations.saturating_add(1);
     }
 
+    /// Back to [`Phase::Empty`], keeping the saturation count (an interval
+    /// policy's restart).
+    pub(crate) fn restart(&mut self) {
+        *self = KinematicFilter {
+            saturations: self.saturations,
+            ..Self::new()
+        };
+    }
+
     /// The state predicted `dt` ahead, without changing the filter
     /// (Tenne & Singh eqs. 1–2; for αβ, Al-Wagih eq. 3).
     pub fn predict(&self, dt: N::Interval) -> Result<Prediction<N>, FilterError> {
@@ -447,7 +520,8 @@ impl<N: Numeric, const ORDER: usize> KinematicFilter<N, ORDER> {
     ///   x_s = x_p + αe (eq. 6), v_s = v_p + (β/T)e (eq. 8; Tenne & Singh
     ///   eq. 4), a_s = a_s + γ/(2T²)·e (Tenne & Singh eq. 5).
     ///
-    /// Forms the [`StepGains`] and calls [`Self::update_step`].
+    /// Forms the [`StepGains`] and calls [`Self::update_step`] (for any
+    /// interval > 0: the interval policy is the caller's, module docs).
     pub fn update(
         &mut self,
         z: N::Length,

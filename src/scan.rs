@@ -391,7 +391,8 @@ impl ClockConfig {
     /// a longer step is a jump of the sensor's clock (re-lock).
     pub const JUMP_PERIODS: u32 = 30;
 
-    /// The scan period (> 0, < 2³¹ ms / [`JUMP_PERIODS`](Self::JUMP_PERIODS))
+    /// The scan period (inside the filters' 50 ms – 20 s,
+    /// [`crate::filter::MIN_INTERVAL_MS`], [`crate::filter::MAX_INTERVAL_MS`])
     /// with the default windows.
     pub const fn new(period_ms: u32) -> Result<Self, ConfigError> {
         let (Some(late), Some(jump)) = (
@@ -403,15 +404,17 @@ impl ClockConfig {
         Self::with_windows(period_ms, late, jump)
     }
 
-    /// Explicit windows: period > 0, late window ≥ period, jump ≥ period,
-    /// all below 2³¹ ms.
+    /// Explicit windows: a period inside the filters' 50 ms – 20 s (the
+    /// tracker's interval), late window ≥ period, jump ≥ period, all below
+    /// 2³¹ ms.
     pub const fn with_windows(
         period_ms: u32,
         late_window_ms: u32,
         jump_ms: u32,
     ) -> Result<Self, ConfigError> {
         let limit = i32::MAX as u32;
-        if period_ms == 0
+        if period_ms < crate::filter::MIN_INTERVAL_MS
+            || period_ms > crate::filter::MAX_INTERVAL_MS
             || late_window_ms < period_ms
             || jump_ms < period_ms
             || late_window_ms > limit
@@ -1193,6 +1196,7 @@ impl<S: Scalar, F: TrackFilter<S> + BearingTrack<S>, const N: usize, const M: us
         counts.coasted = sat_u16(report.coasted);
         counts.confirmed = sat_u16(report.confirmed);
         counts.deleted = sat_u16(report.deleted);
+        counts.restarted = sat_u16(report.restarted);
         counts.tracks = sat_u16(report.tracks);
         counts.confirmed_tracks = sat_u16(confirmed_tracks);
 
@@ -1202,6 +1206,7 @@ impl<S: Scalar, F: TrackFilter<S> + BearingTrack<S>, const N: usize, const M: us
         c.tracks_started = c.tracks_started.saturating_add(report.started);
         c.tracks_confirmed = c.tracks_confirmed.saturating_add(report.confirmed);
         c.tracks_deleted = c.tracks_deleted.saturating_add(report.deleted);
+        c.tracks_restarted = c.tracks_restarted.saturating_add(report.restarted);
         c.refused_table_full = c
             .refused_table_full
             .saturating_add(report.refused_table_full);

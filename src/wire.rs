@@ -694,6 +694,9 @@ counter_list! {
         tracks_confirmed => "tracks confirmed",
         /// Tracks deleted.
         tracks_deleted => "tracks deleted",
+        /// Tracks restarted: last updated more than the filters' longest
+        /// interval ago ([`crate::track::ScanReport::restarted`]).
+        tracks_restarted => "tracks restarted",
         /// Candidate tracks refused because the table was full.
         refused_table_full => "refused, table full",
         /// Track report frames emitted.
@@ -735,7 +738,8 @@ counter_list! {
         not_assigned => "not assigned",
         /// Inside no gate, and not paired (kept as a first point).
         outside_gates => "outside gates",
-        /// Refused by the tracker (not finite, or the filter refused it).
+        /// Refused by the tracker (not finite, the filter refused it, or the
+        /// scan came too soon after the previous one).
         rejected => "rejected",
         /// Would have started a track; the table was full.
         refused_table_full => "refused, table full",
@@ -749,6 +753,9 @@ counter_list! {
         confirmed => "confirmed",
         /// Tracks deleted in this scan.
         deleted => "deleted",
+        /// Tracks restarted in this scan (last updated more than the
+        /// filters' longest interval ago; not in `deleted`).
+        restarted => "restarted",
         /// Live tracks after the scan.
         tracks => "tracks",
         /// Confirmed (or coasting) tracks after the scan.

@@ -104,8 +104,10 @@ fn after_help() -> String {
          \x20 --azimuth-unit deg; alt is the target's reported pressure altitude, empty when\n\
          \x20 the reply had none. Values outside the envelope (positions and ranges beyond\n\
          \x20 400 km, altitudes outside -1000..126700 ft, an azimuth beyond one turn, t beyond\n\
-         \x20 2^33 s, intervals outside 0.05..20 s, scans closer than 0.05 s) are refused\n\
-         \x20 naming the line and column. With --tracker, rows sharing a t are one scan.\n\
+         \x20 2^33 s, a time before the previous row's) are refused naming the line and\n\
+         \x20 column. With --tracker, rows sharing a t are one scan. Timing is never refused:\n\
+         \x20 a report over 20 s after the last one used restarts the estimate, one under\n\
+         \x20 0.05 s (or a repeated time) is skipped; the last column, event, says which.\n\
          \n\
          Output (stdout, CSV, written only when the whole file has run; f32 in its shortest\n\
          form, fixed point in decimal, an undefined value empty; details: docs/host-tools.md):\n\
@@ -116,6 +118,7 @@ fn after_help() -> String {
          \x20 --own-alt adds tau,tau_mod,t_cpa,d_cpa,advisory,tau_mod_ra (TCAS II 7.1; the own\n\
          \x20 aircraft at the origin, level at FEET over sea-level terrain, own velocity zero).\n\
          An estimate outside the envelope (or not finite) stops the run with its line named.\n\
+         Restarted and skipped rows are listed on stderr.\n\
          --tracker always reports on stderr the design used and every measurement not used,\n\
          by reason. Exit status: 0 success (also when stdout is closed early), 1 bad input or a\n\
          refused row, 2 bad arguments.\n",

@@ -19,19 +19,22 @@
 //! another number of fields than the header, a field that is not a number,
 //! and a value outside [`abtrack::envelope`] (positions and ranges beyond
 //! 400 km, altitudes outside −1000 … 126 700 ft, an azimuth beyond one turn,
-//! a time stamp beyond 2³³ s, an interval outside 0.05–20 s). A radian
-//! azimuth beyond 2π is refused with a message naming `--azimuth-unit deg`:
-//! the unit is never guessed.
+//! a time stamp beyond 2³³ s) and a time before the previous row's. A
+//! radian azimuth beyond 2π is refused with a message naming
+//! `--azimuth-unit deg`: the unit is never guessed.
+//!
+//! Timing is never a reason to refuse a file: gaps and jitter are the
+//! filters' business (an interval beyond the filters' range restarts the
+//! estimate, one below it is skipped and counted, `docs/host-tools.md`).
 //!
 //! # Scans
 //!
-//! A single-target filter needs strictly increasing times
-//! ([`TimeOrder::Increasing`]), each interval inside the envelope. A
+//! A single-target filter reads one report per row
+//! ([`TimeOrder::Increasing`]); a row with the same time as the previous
+//! one (a duplicate report) is read, and skipped by the runner. A
 //! multi-target tracker reads *scans* ([`TimeOrder::Scans`]): consecutive
-//! rows sharing a `t` are one scan; a time before the previous row's, and a
-//! scan less than the envelope's shortest interval after the previous one,
-//! are refused ([`Measurements::scans`], [`RangeAzimuthMeasurements::scans`]
-//! group the rows).
+//! rows sharing a `t` are one scan ([`Measurements::scans`],
+//! [`RangeAzimuthMeasurements::scans`] group the rows).
 
 use std::fmt;
 use std::io::Read;
@@ -87,12 +90,13 @@ pub enum AngleUnit {
 /// Whether rows may share a time.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
 pub enum TimeOrder {
-    /// Every row strictly after the previous one, by an interval inside
-    /// [`envelope::INTERVAL_S`] (single-target filters).
+    /// One report per row, none before the previous one (single-target
+    /// filters; a repeated time is a duplicate report, skipped by the
+    /// runner).
     #[default]
     Increasing,
-    /// Rows sharing a `t` form one scan; a new scan comes at least
-    /// [`envelope::INTERVAL_S`]`.min` after the previous one (trackers).
+    /// Rows sharing a `t` form one scan; none before the previous one
+    /// (trackers).
     Scans,
 }
 
@@ -233,26 +237,11 @@ pub enum CsvError {
         text: String,
         why: Refusal,
     },
-    /// A time not after the previous row's ([`TimeOrder::Increasing`]).
-    TimeNotIncreasing {
-        line: usize,
-        t: String,
-        previous: String,
-    },
-    /// A time before the previous row's ([`TimeOrder::Scans`]).
+    /// A time before the previous row's.
     TimeDecreasing {
         line: usize,
         t: String,
         previous: String,
-    },
-    /// An interval outside [`envelope::INTERVAL_S`] (single target), or a
-    /// new scan closer than its minimum to the previous one (scans).
-    Interval {
-        line: usize,
-        t: String,
-        previous: String,
-        interval: f64,
-        scans: bool,
     },
 }
 
@@ -372,39 +361,10 @@ impl fmt::Display for CsvError {
                     ),
                 }
             }
-            CsvError::TimeNotIncreasing { line, t, previous } => write!(
-                f,
-                "line {line}, column 1 (t): time {t} does not increase (previous row: {previous})"
-            ),
             CsvError::TimeDecreasing { line, t, previous } => write!(
                 f,
                 "line {line}, column 1 (t): time {t} is before the previous row's ({previous})"
             ),
-            CsvError::Interval {
-                line,
-                t,
-                previous,
-                interval,
-                scans,
-            } => {
-                let limit = envelope::INTERVAL_S;
-                if *scans {
-                    write!(
-                        f,
-                        "line {line}, column 1 (t): scan at {t} is {interval:.3e} s after the \
-                         previous one ({previous}), closer than the envelope's {} s: give \
-                         the rows of one scan the same t",
-                        limit.min
-                    )
-                } else {
-                    write!(
-                        f,
-                        "line {line}, column 1 (t): interval {interval:.3e} s since the previous \
-                         row ({previous}) is outside the envelope {} ..= {} s",
-                        limit.min, limit.max
-                    )
-                }
-            }
         }
     }
 }
@@ -660,7 +620,6 @@ impl Timed for RangeAzimuthRow {
 fn read_rows<F: serde::de::DeserializeOwned, T: Timed>(
     mut reader: Reader,
     header: &Header,
-    times: TimeOrder,
     row: impl Fn(&Cell<'_>, F) -> Result<T, CsvError>,
 ) -> Result<Vec<T>, CsvError> {
     let mut rows: Vec<T> = Vec::new();
@@ -677,77 +636,42 @@ fn read_rows<F: serde::de::DeserializeOwned, T: Timed>(
         };
         let parsed = row(&cell, fields)?;
         let (t, t_text) = parsed.time();
-        check_time(times, line, t, t_text, rows.last().map(Timed::time))?;
+        check_time(line, t, t_text, rows.last().map(Timed::time))?;
         rows.push(parsed);
     }
     Ok(rows)
 }
 
-/// Checks the time order (and interval) of a row after `previous`.
+/// Checks that a row is not before `previous` (both orders: equal times
+/// are a scan's rows, or a duplicate report).
 fn check_time(
-    times: TimeOrder,
     line: usize,
     t: f64,
     t_text: &str,
     previous: Option<(f64, &str)>,
 ) -> Result<(), CsvError> {
-    let Some((p, p_text)) = previous else {
-        return Ok(());
-    };
-    let dt = t - p;
-    // The limits hold to 10⁻⁹ relative: 0.15 − 0.1 is 0.04999… in f64.
-    let tolerance = 1e-9;
-    let limit = envelope::INTERVAL_S;
-    let refused = match times {
-        TimeOrder::Increasing if dt <= 0.0 => Some(CsvError::TimeNotIncreasing {
+    match previous {
+        Some((p, p_text)) if t < p => Err(CsvError::TimeDecreasing {
             line,
             t: echo(t_text),
             previous: echo(p_text),
         }),
-        TimeOrder::Increasing
-            if dt < limit.min * (1.0 - tolerance) || dt > limit.max * (1.0 + tolerance) =>
-        {
-            Some(CsvError::Interval {
-                line,
-                t: echo(t_text),
-                previous: echo(p_text),
-                interval: dt,
-                scans: false,
-            })
-        }
-        TimeOrder::Scans if dt < 0.0 => Some(CsvError::TimeDecreasing {
-            line,
-            t: echo(t_text),
-            previous: echo(p_text),
-        }),
-        TimeOrder::Scans if dt > 0.0 && dt < limit.min * (1.0 - tolerance) => {
-            Some(CsvError::Interval {
-                line,
-                t: echo(t_text),
-                previous: echo(p_text),
-                interval: dt,
-                scans: true,
-            })
-        }
-        _ => None,
-    };
-    refused.map_or(Ok(()), Err)
+        _ => Ok(()),
+    }
 }
 
-/// Reads a whole Cartesian file. Stops at the first error.
+/// Reads a whole Cartesian file. Stops at the first error. (`_options`:
+/// neither the time order, which only groups the rows, nor the azimuth
+/// unit changes how Cartesian rows are read.)
 pub fn read_measurements<R: Read>(
     input: R,
-    options: ReadOptions,
+    _options: ReadOptions,
 ) -> Result<Measurements, CsvError> {
     let (reader, header) = open(input, Some(InputFormat::Cartesian))?;
-    cartesian_rows(reader, header, options)
+    cartesian_rows(reader, header)
 }
 
-fn cartesian_rows(
-    reader: Reader,
-    header: Header,
-    options: ReadOptions,
-) -> Result<Measurements, CsvError> {
+fn cartesian_rows(reader: Reader, header: Header) -> Result<Measurements, CsvError> {
     let missing: Vec<&'static str> = ["t", "x"]
         .into_iter()
         .chain(if header.has("z") { Some("y") } else { None })
@@ -761,30 +685,25 @@ fn cartesian_rows(
         });
     }
     let dims = 1 + usize::from(header.has("y")) + usize::from(header.has("z"));
-    let rows = read_rows(
-        reader,
-        &header,
-        options.times,
-        |cell, fields: CartesianFields| {
-            let t = cell.value("t", fields.t, envelope::TIME_S, "s")?;
-            let mut z = [0.0; 3];
-            for ((zi, name), v) in z
-                .iter_mut()
-                .zip(AXIS_NAMES)
-                .zip([fields.x, fields.y, fields.z])
-                .take(dims)
-            {
-                *zi = cell.value(name, v, envelope::POSITION_M, "m")?;
-            }
-            Ok(Row {
-                line: cell.line,
-                t_text: cell.t_text(),
-                t,
-                z,
-                alt: cell.altitude(fields.alt)?,
-            })
-        },
-    )?;
+    let rows = read_rows(reader, &header, |cell, fields: CartesianFields| {
+        let t = cell.value("t", fields.t, envelope::TIME_S, "s")?;
+        let mut z = [0.0; 3];
+        for ((zi, name), v) in z
+            .iter_mut()
+            .zip(AXIS_NAMES)
+            .zip([fields.x, fields.y, fields.z])
+            .take(dims)
+        {
+            *zi = cell.value(name, v, envelope::POSITION_M, "m")?;
+        }
+        Ok(Row {
+            line: cell.line,
+            t_text: cell.t_text(),
+            t,
+            z,
+            alt: cell.altitude(fields.alt)?,
+        })
+    })?;
     Ok(Measurements { dims, rows })
 }
 
@@ -815,40 +734,35 @@ fn polar_rows(
             found: header.text(),
         });
     }
-    let rows = read_rows(
-        reader,
-        &header,
-        options.times,
-        |cell, fields: PolarFields| {
-            let t = cell.value("t", fields.t, envelope::TIME_S, "s")?;
-            let range = cell.value("range", fields.range, envelope::RANGE_M, "m")?;
-            if range <= 0.0 {
-                return Err(cell.refuse("range", Refusal::NotPositive));
-            }
-            let azimuth = match options.azimuth_unit {
-                AngleUnit::Radians => {
-                    let b = fields
-                        .azimuth
-                        .ok_or_else(|| cell.refuse("azimuth", Refusal::NotANumber))?;
-                    if b.is_finite() && !envelope::AZIMUTH_RAD.contains(b) {
-                        return Err(cell.refuse("azimuth", Refusal::LooksLikeDegrees));
-                    }
-                    cell.value("azimuth", Some(b), envelope::AZIMUTH_RAD, "rad")?
+    let rows = read_rows(reader, &header, |cell, fields: PolarFields| {
+        let t = cell.value("t", fields.t, envelope::TIME_S, "s")?;
+        let range = cell.value("range", fields.range, envelope::RANGE_M, "m")?;
+        if range <= 0.0 {
+            return Err(cell.refuse("range", Refusal::NotPositive));
+        }
+        let azimuth = match options.azimuth_unit {
+            AngleUnit::Radians => {
+                let b = fields
+                    .azimuth
+                    .ok_or_else(|| cell.refuse("azimuth", Refusal::NotANumber))?;
+                if b.is_finite() && !envelope::AZIMUTH_RAD.contains(b) {
+                    return Err(cell.refuse("azimuth", Refusal::LooksLikeDegrees));
                 }
-                AngleUnit::Degrees => cell
-                    .value("azimuth", fields.azimuth, envelope::AZIMUTH_DEG, "°")?
-                    .to_radians(),
-            };
-            Ok(RangeAzimuthRow {
-                line: cell.line,
-                t_text: cell.t_text(),
-                t,
-                range,
-                azimuth,
-                alt: cell.altitude(fields.alt)?,
-            })
-        },
-    )?;
+                cell.value("azimuth", Some(b), envelope::AZIMUTH_RAD, "rad")?
+            }
+            AngleUnit::Degrees => cell
+                .value("azimuth", fields.azimuth, envelope::AZIMUTH_DEG, "°")?
+                .to_radians(),
+        };
+        Ok(RangeAzimuthRow {
+            line: cell.line,
+            t_text: cell.t_text(),
+            t,
+            range,
+            azimuth,
+            alt: cell.altitude(fields.alt)?,
+        })
+    })?;
     Ok(RangeAzimuthMeasurements {
         has_alt: header.has("alt"),
         rows,
@@ -863,7 +777,7 @@ pub fn read_recording<R: Read>(input: R, options: ReadOptions) -> Result<Recordi
     let polar = header.has("range") && header.has("azimuth");
     let cartesian = header.has("x") && header.has("y");
     match (cartesian, polar) {
-        (true, false) => cartesian_rows(reader, header, options).map(Recording::Cartesian),
+        (true, false) => cartesian_rows(reader, header).map(Recording::Cartesian),
         (false, true) => polar_rows(reader, header, options).map(Recording::RangeAzimuth),
         (both, _) => Err(CsvError::UnknownLayout {
             found: header.text(),

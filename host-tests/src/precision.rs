@@ -178,6 +178,10 @@ pub fn compare_axis<N: Numeric, const ORDER: usize, const D: usize>(
                     Ok(UpdateOutcome::FirstPoint)
                     | Ok(UpdateOutcome::SecondPoint)
                     | Ok(UpdateOutcome::Filtered(_)) => {}
+                    // The scenarios' intervals are inside the filters' range.
+                    Ok(o @ (UpdateOutcome::Restarted | UpdateOutcome::Skipped)) => {
+                        return Err(format!("interval outside the filters' range: {o:?}"))
+                    }
                     Err(FilterError::Saturated) => refused += 1,
                     Err(e) => return Err(format!("update refused: {e}")),
                 }

@@ -40,8 +40,17 @@
 //!
 //! The first row's interval is not used by the filters (two-point
 //! initialisation takes the position only), so it is given as 1 s. Each later
-//! interval is the difference of consecutive times, computed in `f64` and then
-//! converted to the representation.
+//! interval is the time since the last report used, computed in `f64` and
+//! then converted to the representation.
+//!
+//! Timing never stops a run: the filters' interval policy
+//! ([`abtrack::filter::IntervalSpan`]) restarts the estimate at a report
+//! more than 20 s after the last one used, and skips a report less than
+//! 0.05 s after it (a repeated time, a duplicate report, is skipped the
+//! same way), leaving the estimate as it was. Every output has a last
+//! column `event`: `restarted`, `skipped` or empty; the rows of both are
+//! listed on stderr ([`TimingEvents`]). The range–azimuth filter gets the
+//! same policy from the runner.
 //!
 //! Adding a filter kind: a variant of [`FilterKind`], its arm in [`run_in`]
 //! (or its own runner, as range–azimuth), and its options in [`crate::cli`].
@@ -54,7 +63,7 @@ use abtrack::filter::altitude::{AltitudeQuantum, AltitudeTracker, AltitudeTracke
 use abtrack::filter::range_azimuth::{
     NoiseError, RangeAzimuthFilter, RangeAzimuthNoise, RangeAzimuthOutcome, PAPER_BEARING_VARIANCE,
 };
-use abtrack::filter::{Cartesian, Gains, Phase, UpdateOutcome};
+use abtrack::filter::{Cartesian, Gains, IntervalSpan, Phase, UpdateOutcome};
 use abtrack::gain::auto::AutoConfig;
 use abtrack::gain::spec::ScheduleSpec;
 use abtrack::gain::{
@@ -416,6 +425,125 @@ impl fmt::Display for Failure {
 
 impl std::error::Error for Failure {}
 
+/// What the timing policy did to one row (module docs, "Intervals").
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum RowEvent {
+    /// Used as usual.
+    Used,
+    /// More than 20 s after the last report used: the estimate restarted.
+    Restarted,
+    /// Less than 0.05 s after the last report used: skipped.
+    Skipped,
+    /// The same time as the last report used: skipped.
+    Duplicate,
+}
+
+impl RowEvent {
+    /// The `event` column's text.
+    pub const fn name(self) -> &'static str {
+        match self {
+            RowEvent::Used => "",
+            RowEvent::Restarted => "restarted",
+            RowEvent::Skipped | RowEvent::Duplicate => "skipped",
+        }
+    }
+
+    fn of<N: abtrack::Numeric>(outcome: Option<&UpdateOutcome<N>>) -> Self {
+        match outcome {
+            Some(UpdateOutcome::Restarted) => RowEvent::Restarted,
+            Some(UpdateOutcome::Skipped) => RowEvent::Skipped,
+            _ => RowEvent::Used,
+        }
+    }
+
+    /// Whether the row was used (its time is the next interval's start).
+    fn used(self) -> bool {
+        matches!(self, RowEvent::Used | RowEvent::Restarted)
+    }
+}
+
+/// The rows the timing policy did not use as usual, by their `t` as
+/// written (stderr, when any).
+#[derive(Debug, Clone, PartialEq, Default)]
+pub struct TimingEvents {
+    /// Rows where the estimate restarted.
+    pub restarted: Vec<String>,
+    /// Rows skipped (duplicates included).
+    pub skipped: Vec<String>,
+    /// Of the skipped, rows repeating the last used report's time.
+    pub duplicates: usize,
+}
+
+impl TimingEvents {
+    fn record(&mut self, event: RowEvent, t_text: &str) {
+        match event {
+            RowEvent::Used => {}
+            RowEvent::Restarted => self.restarted.push(t_text.to_string()),
+            RowEvent::Skipped => self.skipped.push(t_text.to_string()),
+            RowEvent::Duplicate => {
+                self.skipped.push(t_text.to_string());
+                self.duplicates += 1;
+            }
+        }
+    }
+
+    /// No row restarted or skipped.
+    pub fn is_empty(&self) -> bool {
+        self.restarted.is_empty() && self.skipped.is_empty()
+    }
+}
+
+/// At most this many times are listed per event on stderr.
+pub const LISTED_TIMES: usize = 8;
+
+fn times_text(times: &[String]) -> String {
+    let shown: Vec<&str> = times
+        .iter()
+        .take(LISTED_TIMES)
+        .map(String::as_str)
+        .collect();
+    let more = if times.len() > LISTED_TIMES {
+        ", …"
+    } else {
+        ""
+    };
+    format!("t = {}{more}", shown.join(", "))
+}
+
+impl fmt::Display for TimingEvents {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        if !self.restarted.is_empty() {
+            writeln!(
+                f,
+                "replay: {} restarted: more than {} s after the last report used, the estimate \
+                 started again there ({})",
+                self.restarted.len(),
+                abtrack::filter::MAX_INTERVAL_S,
+                times_text(&self.restarted)
+            )?;
+        }
+        if !self.skipped.is_empty() {
+            writeln!(
+                f,
+                "replay: {} skipped: less than {} s after the last report used, {} of them at \
+                 the same time ({})",
+                self.skipped.len(),
+                abtrack::filter::MIN_INTERVAL_S,
+                self.duplicates,
+                times_text(&self.skipped)
+            )?;
+        }
+        Ok(())
+    }
+}
+
+/// A run's output CSV and its timing events.
+#[derive(Debug, Clone, PartialEq, Default)]
+pub struct Replayed {
+    pub csv: String,
+    pub events: TimingEvents,
+}
+
 /// A [`Scalar`] that can be written to the output CSV.
 pub trait CsvValue: Scalar {
     fn write_csv(self, out: &mut String);
@@ -504,6 +632,11 @@ fn optional_cell<S: CsvValue>(out: &mut String, v: Option<S>) {
 /// Reads the layout `config`'s filter needs from `input` and runs it: the
 /// whole output CSV, or the first error (no partial output).
 pub fn replay_reader<R: Read>(config: &ReplayConfig, input: R) -> Result<String, Failure> {
+    replay_events(config, input).map(|r| r.csv)
+}
+
+/// [`replay_reader`] with the run's timing events.
+pub fn replay_events<R: Read>(config: &ReplayConfig, input: R) -> Result<Replayed, Failure> {
     match config.filter {
         FilterKind::RangeAzimuth(options) => {
             let read = ReadOptions {
@@ -511,7 +644,7 @@ pub fn replay_reader<R: Read>(config: &ReplayConfig, input: R) -> Result<String,
                 azimuth_unit: options.azimuth_unit,
             };
             let data = read_range_azimuth(input, read).map_err(Failure::Input)?;
-            run_range_azimuth(&options, config.numeric, &data).map_err(Failure::Replay)
+            replay_range_azimuth(&options, config.numeric, &data).map_err(Failure::Replay)
         }
         FilterKind::AutoPolar {
             config: auto,
@@ -547,11 +680,11 @@ pub fn replay_reader<R: Read>(config: &ReplayConfig, input: R) -> Result<String,
                 filter,
                 numeric: config.numeric,
             };
-            run(&config, &converted).map_err(Failure::Replay)
+            replay(&config, &converted).map_err(Failure::Replay)
         }
         _ => {
             let data = read_measurements(input, ReadOptions::default()).map_err(Failure::Input)?;
-            run(config, &data).map_err(Failure::Replay)
+            replay(config, &data).map_err(Failure::Replay)
         }
     }
 }
@@ -559,10 +692,15 @@ pub fn replay_reader<R: Read>(config: &ReplayConfig, input: R) -> Result<String,
 /// Runs a Cartesian file and returns the output CSV, or the first error (no
 /// partial output).
 pub fn run(config: &ReplayConfig, data: &Measurements) -> Result<String, ReplayError> {
+    replay(config, data).map(|r| r.csv)
+}
+
+/// [`run`] with the timing events.
+pub fn replay(config: &ReplayConfig, data: &Measurements) -> Result<Replayed, ReplayError> {
     match config.numeric {
-        Numeric::F64 => run_in::<f64>(&config.filter, data),
-        Numeric::F32 => run_in::<f32>(&config.filter, data),
-        Numeric::Fixed => run_in::<Fix>(&config.filter, data),
+        Numeric::F64 => replay_in::<f64>(&config.filter, data),
+        Numeric::F32 => replay_in::<f32>(&config.filter, data),
+        Numeric::Fixed => replay_in::<Fix>(&config.filter, data),
         Numeric::FastFixed => Err(ReplayError::FastFixedTrackerOnly),
     }
 }
@@ -572,6 +710,14 @@ pub fn run_in<S: CsvValue>(
     filter: &FilterKind,
     data: &Measurements,
 ) -> Result<String, ReplayError> {
+    replay_in::<S>(filter, data).map(|r| r.csv)
+}
+
+/// [`replay`] in representation `S`.
+pub fn replay_in<S: CsvValue>(
+    filter: &FilterKind,
+    data: &Measurements,
+) -> Result<Replayed, ReplayError> {
     match filter {
         FilterKind::AlphaBeta { .. } | FilterKind::AlphaBetaGamma { .. } => {
             let gains = filter
@@ -623,6 +769,7 @@ pub fn header(order: usize, dims: usize) -> String {
             let _ = write!(h, ",a{a}");
         }
     }
+    h.push_str(",event");
     h
 }
 
@@ -632,20 +779,29 @@ pub fn bank_header(dims: usize) -> String {
     for a in AXIS_NAMES.iter().take(dims) {
         let _ = write!(h, ",{a},v{a},res_{a},member_{a}");
     }
+    h.push_str(",event");
     h
 }
 
-/// The interval since the previous row (1 s for the first row, see the
-/// module docs) in `S`.
-fn interval<S: Scalar>(previous_t: Option<f64>, t: f64, line: usize) -> Result<S, ReplayError> {
+/// The interval since the last report used (1 s for the first row, see the
+/// module docs) in `S`; `None` for a repeated time (a duplicate report,
+/// skipped).
+fn interval<S: Scalar>(
+    previous_t: Option<f64>,
+    t: f64,
+    line: usize,
+) -> Result<Option<S>, ReplayError> {
     match previous_t {
-        None => Ok(S::ONE),
-        Some(p) => S::try_from_f64(t - p).map_err(|error| ReplayError::Value {
-            line,
-            column: 1,
-            name: "t",
-            error,
-        }),
+        None => Ok(Some(S::ONE)),
+        Some(p) if t == p => Ok(None),
+        Some(p) => S::try_from_f64(t - p)
+            .map(Some)
+            .map_err(|error| ReplayError::Value {
+                line,
+                column: 1,
+                name: "t",
+                error,
+            }),
     }
 }
 
@@ -696,6 +852,8 @@ fn write_kinematic_row<S: CsvValue, const ORDER: usize, const D: usize>(
             cell(out, axis.acceleration());
         }
     }
+    out.push(',');
+    out.push_str(RowEvent::of(outcomes.first()).name());
     out.push('\n');
 }
 
@@ -721,14 +879,14 @@ fn check_filter<S: Scalar, const ORDER: usize, const D: usize>(
 fn run_cartesian<S: CsvValue, const ORDER: usize, const D: usize>(
     gains: &Gains<S>,
     data: &Measurements,
-) -> Result<String, ReplayError> {
+) -> Result<Replayed, ReplayError> {
     run_schedule::<S, _, ORDER, D>(FixedGains::new(*gains), data)
 }
 
 fn run_scheduled<S: CsvValue, const ORDER: usize, const D: usize>(
     spec: &ScheduleSpec,
     data: &Measurements,
-) -> Result<String, ReplayError> {
+) -> Result<Replayed, ReplayError> {
     let schedule = ReplaySchedule::<S, D>::from_spec(spec).map_err(ReplayError::Schedule)?;
     run_schedule::<S, _, ORDER, D>(schedule, data)
 }
@@ -736,51 +894,71 @@ fn run_scheduled<S: CsvValue, const ORDER: usize, const D: usize>(
 fn run_schedule<S: CsvValue, G: GainSchedule<S, D>, const ORDER: usize, const D: usize>(
     schedule: G,
     data: &Measurements,
-) -> Result<String, ReplayError> {
+) -> Result<Replayed, ReplayError> {
     let mut track = ScheduledFilter::<S, _, ORDER, D>::new(schedule);
     let mut out = header(ORDER, D);
     out.push('\n');
+    let mut events = TimingEvents::default();
     let mut previous_t: Option<f64> = None;
     for row in &data.rows {
-        let dt = interval::<S>(previous_t, row.t, row.line)?;
+        let Some(dt) = interval::<S>(previous_t, row.t, row.line)? else {
+            events.record(RowEvent::Duplicate, &row.t_text);
+            let skipped = [UpdateOutcome::Skipped; D];
+            write_kinematic_row(&mut out, &row.t_text, track.filter(), &skipped);
+            continue;
+        };
         let z = positions::<S, D>(row)?;
         let update = track.update(z, dt).map_err(|e| match e {
             ScheduledError::Filter(error) => ReplayError::Filter {
                 line: row.line,
                 error,
             },
-            ScheduledError::IntervalTooShort => ReplayError::Filter {
-                line: row.line,
-                error: FilterError::InvalidInterval,
-            },
             ScheduledError::Schedule(error) => ReplayError::ScheduledGains {
                 line: row.line,
                 error,
             },
         })?;
-        previous_t = Some(row.t);
+        let event = RowEvent::of(update.outcome.first());
+        if event.used() {
+            previous_t = Some(row.t);
+        }
+        events.record(event, &row.t_text);
         check_filter(row.line, track.filter())?;
         write_kinematic_row(&mut out, &row.t_text, track.filter(), &update.outcome);
     }
-    Ok(out)
+    Ok(Replayed { csv: out, events })
 }
 
 fn run_bank<S: CsvValue, const D: usize>(
     config: &BankConfig,
     data: &Measurements,
-) -> Result<String, ReplayError> {
+) -> Result<Replayed, ReplayError> {
     let mut bank = ReplayBank::<S, D>::from_config(config).map_err(ReplayError::Schedule)?;
     let mut out = bank_header(D);
     out.push('\n');
+    let mut events = TimingEvents::default();
     let mut previous_t: Option<f64> = None;
     for row in &data.rows {
-        let dt = interval::<S>(previous_t, row.t, row.line)?;
-        let z = positions::<S, D>(row)?;
-        let outcomes = bank.update(z, dt).map_err(|error| ReplayError::Filter {
-            line: row.line,
-            error,
-        })?;
-        previous_t = Some(row.t);
+        let (outcomes, event) = match interval::<S>(previous_t, row.t, row.line)? {
+            None => ([BankOutcome::Skipped; D], RowEvent::Duplicate),
+            Some(dt) => {
+                let z = positions::<S, D>(row)?;
+                let outcomes = bank.update(z, dt).map_err(|error| ReplayError::Filter {
+                    line: row.line,
+                    error,
+                })?;
+                let event = match outcomes.first() {
+                    Some(BankOutcome::Restarted) => RowEvent::Restarted,
+                    Some(BankOutcome::Skipped) => RowEvent::Skipped,
+                    _ => RowEvent::Used,
+                };
+                (outcomes, event)
+            }
+        };
+        if event.used() {
+            previous_t = Some(row.t);
+        }
+        events.record(event, &row.t_text);
         check_kinematics(
             row.line,
             bank.axes()
@@ -799,9 +977,11 @@ fn run_bank<S: CsvValue, const D: usize>(
                 _ => out.push_str(",,"),
             }
         }
+        out.push(',');
+        out.push_str(event.name());
         out.push('\n');
     }
-    Ok(out)
+    Ok(Replayed { csv: out, events })
 }
 
 /// The output header of the range–azimuth filter: with `has_alt` (the input
@@ -836,6 +1016,7 @@ pub fn range_azimuth_header(has_alt: bool, threat: bool) -> String {
         h.push(',');
         h.push_str(THREAT_COLUMNS);
     }
+    h.push_str(",event");
     h
 }
 
@@ -890,10 +1071,19 @@ pub fn run_range_azimuth(
     numeric: Numeric,
     data: &RangeAzimuthMeasurements,
 ) -> Result<String, ReplayError> {
+    replay_range_azimuth(options, numeric, data).map(|r| r.csv)
+}
+
+/// [`run_range_azimuth`] with the timing events.
+pub fn replay_range_azimuth(
+    options: &RangeAzimuthOptions,
+    numeric: Numeric,
+    data: &RangeAzimuthMeasurements,
+) -> Result<Replayed, ReplayError> {
     match numeric {
-        Numeric::F64 => run_range_azimuth_in::<f64>(options, data),
-        Numeric::F32 => run_range_azimuth_in::<f32>(options, data),
-        Numeric::Fixed => run_range_azimuth_in::<Fix>(options, data),
+        Numeric::F64 => replay_range_azimuth_in::<f64>(options, data),
+        Numeric::F32 => replay_range_azimuth_in::<f32>(options, data),
+        Numeric::Fixed => replay_range_azimuth_in::<Fix>(options, data),
         Numeric::FastFixed => Err(ReplayError::FastFixedTrackerOnly),
     }
 }
@@ -912,6 +1102,17 @@ pub fn run_range_azimuth_in<S: CsvValue>(
     options: &RangeAzimuthOptions,
     data: &RangeAzimuthMeasurements,
 ) -> Result<String, ReplayError> {
+    replay_range_azimuth_in::<S>(options, data).map(|r| r.csv)
+}
+
+/// [`run_range_azimuth_in`] with the timing events. He et al.'s filter
+/// takes the filters' interval policy from here ([`IntervalSpan`] on the
+/// time since the last report used): a new filter after a longer interval,
+/// the row skipped after a shorter one.
+pub fn replay_range_azimuth_in<S: CsvValue>(
+    options: &RangeAzimuthOptions,
+    data: &RangeAzimuthMeasurements,
+) -> Result<Replayed, ReplayError> {
     let noise = options.noise::<S>().map_err(ReplayError::Noise)?;
     let mut filter = RangeAzimuthFilter::new(noise);
     let altitude_config = AltitudeTrackerConfig::<S>::default_for(options.altitude_quantum)
@@ -920,25 +1121,42 @@ pub fn run_range_azimuth_in<S: CsvValue>(
     let own = own_aircraft::<S>(options.own_altitude_ft)?;
     let mut out = range_azimuth_header(data.has_alt, own.is_some());
     out.push('\n');
+    let mut events = TimingEvents::default();
     let mut previous_t: Option<f64> = None;
     for row in &data.rows {
         let line = row.line;
-        let dt = interval::<S>(previous_t, row.t, line)?;
         let range: S = value(row.range, line, 2, "range")?;
         let azimuth: S = value(row.azimuth, line, 3, "azimuth")?;
         let report = match row.alt {
             Some(a) => Some(value::<S>(a, line, 4, "alt")?),
             None => None,
         };
-        let outcome = filter
-            .update(range, azimuth, dt)
-            .map_err(|error| ReplayError::Filter { line, error })?;
-        if data.has_alt {
-            altitude
-                .scan(report, dt)
-                .map_err(|error| ReplayError::Altitude { line, error })?;
+        let event = match (interval::<S>(previous_t, row.t, line)?, previous_t) {
+            (None, _) => RowEvent::Duplicate,
+            (Some(_), None) => RowEvent::Used,
+            (Some(_), Some(p)) => match IntervalSpan::of(row.t - p) {
+                Ok(IntervalSpan::TooShort) => RowEvent::Skipped,
+                Ok(IntervalSpan::TooLong) if filter.phase() != Phase::Empty => RowEvent::Restarted,
+                _ => RowEvent::Used,
+            },
+        };
+        let mut outcome = RangeAzimuthOutcome::FirstPoint;
+        if event.used() {
+            let dt = interval::<S>(previous_t, row.t, line)?.unwrap_or(S::ONE);
+            if event == RowEvent::Restarted {
+                filter = RangeAzimuthFilter::new(noise);
+            }
+            outcome = filter
+                .update(range, azimuth, dt)
+                .map_err(|error| ReplayError::Filter { line, error })?;
+            if data.has_alt {
+                altitude
+                    .scan(report, dt)
+                    .map_err(|error| ReplayError::Altitude { line, error })?;
+            }
+            previous_t = Some(row.t);
         }
-        previous_t = Some(row.t);
+        events.record(event, &row.t_text);
         let position = filter.position();
         let velocity = filter.velocity();
         check_kinematics(
@@ -957,7 +1175,7 @@ pub fn run_range_azimuth_in<S: CsvValue>(
 
         out.push_str(&row.t_text);
         let residual = match outcome {
-            RangeAzimuthOutcome::Filtered(innovation) => {
+            RangeAzimuthOutcome::Filtered(innovation) if event.used() => {
                 // The same products the filter formed for its measurement.
                 let (sin_b, cos_b) = azimuth.sin_cos();
                 let measured = [range * sin_b, range * cos_b];
@@ -984,7 +1202,9 @@ pub fn run_range_azimuth_in<S: CsvValue>(
                 .then(|| Intruder::from_track(&filter, estimate));
             write_threat_cells(&mut out, &own, intruder.as_ref(), line)?;
         }
+        out.push(',');
+        out.push_str(event.name());
         out.push('\n');
     }
-    Ok(out)
+    Ok(Replayed { csv: out, events })
 }

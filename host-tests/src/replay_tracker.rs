@@ -35,7 +35,11 @@
 //! Where the file skips scans (a gap g between two scans longer than 1.5
 //! scan periods T), empty scans are run, as a sensor would report them: the
 //! gap is cut into round(g/T) equal intervals, so tracks miss one scan per
-//! period and the deletion rule counts scans, not rows.
+//! period and the deletion rule counts scans, not rows. A track last
+//! updated more than 20 s before a scan restarts there (the table ends it,
+//! its target starts again by two-point initiation; counted on stderr); a
+//! scan less than 0.05 s after the previous one (or in the same
+//! millisecond) is skipped, its measurements counted, and writes no rows.
 //!
 //! # Output
 //!
@@ -298,6 +302,12 @@ pub struct Unused {
     pub negative_range: Tally,
     /// Refused by the filter (its arithmetic saturated).
     pub filter_refused: Tally,
+    /// Their scan came less than 0.05 s after the previous one (or in the
+    /// same millisecond of the table's clock): the scan was skipped.
+    pub too_close: Tally,
+    /// Tracks restarted: last updated more than 20 s before a scan, ended
+    /// there (their targets start again by two-point initiation).
+    pub tracks_restarted: usize,
 }
 
 impl Unused {
@@ -328,6 +338,7 @@ impl Unused {
             + self.not_finite.count
             + self.negative_range.count
             + self.filter_refused.count
+            + self.too_close.count
     }
 
     fn record(&mut self, code: Association, line: usize, outside_region: bool) {
@@ -340,6 +351,7 @@ impl Unused {
             Association::Rejected(RejectReason::NotFinite) => self.not_finite.add(line),
             Association::Rejected(RejectReason::NegativeRange) => self.negative_range.add(line),
             Association::Rejected(RejectReason::FilterRefused) => self.filter_refused.add(line),
+            Association::Rejected(RejectReason::TooClose) => self.too_close.add(line),
             Association::Dropped(DropReason::ScanOverflow) => self.over_scan_capacity.add(line),
             Association::Dropped(DropReason::TableFull) => self.table_full.add(line),
         }
@@ -399,6 +411,20 @@ impl std::fmt::Display for Unused {
             self.negative_range.lines_text(),
             self.filter_refused.count,
             self.filter_refused.lines_text()
+        )?;
+        writeln!(
+            f,
+            "{p}   skipped: {} in scans less than {} s after the previous one{}",
+            self.too_close.count,
+            abtrack::filter::MIN_INTERVAL_S,
+            self.too_close.lines_text()
+        )?;
+        writeln!(
+            f,
+            "{p} tracks restarted: {} (last updated more than {} s before a scan; their targets \
+             start again by two-point initiation)",
+            self.tracks_restarted,
+            abtrack::filter::MAX_INTERVAL_S
         )
     }
 }
@@ -913,7 +939,7 @@ fn log_scan(log: &mut String, t_text: &str, codes: &[Association], report: &Scan
     let _ = writeln!(
         log,
         "t={t_text} measurements={} updated={} started={} not-assigned={} outside-gates={} \
-         rejected={} dropped={} | confirmed={} deleted={} tracks={}",
+         rejected={} dropped={} | confirmed={} deleted={} restarted={} tracks={}",
         codes.len(),
         count(|c| matches!(c, Association::Updated(_))),
         count(|c| matches!(c, Association::Started(_))),
@@ -923,6 +949,7 @@ fn log_scan(log: &mut String, t_text: &str, codes: &[Association], report: &Scan
         count(|c| matches!(c, Association::Dropped(_))),
         report.confirmed,
         report.deleted,
+        report.restarted,
         report.tracks,
     );
 }
@@ -944,8 +971,18 @@ fn run_scans<S: TableNumeric, F: TrackFilter<S>, const N: usize>(
     };
     let mut codes = Vec::new();
     for scan in scans.iter() {
+        if table.last_scan_ms() == Some(scan.now_ms) {
+            // Rounds to the previous scan's millisecond: too close, as the
+            // table skips any scan under 0.05 s.
+            for &line in &scan.lines {
+                unused.measurements += 1;
+                unused.too_close.add(line);
+            }
+            continue;
+        }
         codes.clear();
         codes.resize(scan.measurements.len(), Association::OutsideGates);
+        let skipped_before = table.stats().scans_skipped;
         let report = table
             .scan(config, scan.now_ms, &scan.measurements, &mut codes)
             .map_err(|error| ReplayError::Scan {
@@ -960,6 +997,11 @@ fn run_scans<S: TableNumeric, F: TrackFilter<S>, const N: usize>(
                 .is_some_and(|v| Observation::new(*m).is_ok_and(|o| !v.contains(o.xy())));
             unused.measurements += 1;
             unused.record(code, line, outside);
+        }
+        unused.tracks_restarted += report.restarted as usize;
+        if table.stats().scans_skipped != skipped_before {
+            // Skipped: the tracks are as at the previous scan.
+            continue;
         }
         let mut tracks: Vec<_> = table.tracks().collect();
         tracks.sort_by_key(|t| t.id());

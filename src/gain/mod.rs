@@ -263,15 +263,9 @@ pub enum ScheduledError {
     Filter(FilterError),
     /// The schedule gave no gains.
     Schedule(ScheduleError),
-    /// The measurement came less than [`MIN_INTERVAL_S`] after the previous
-    /// one: two reports that close carry no velocity information, and the
-    /// velocity gain β/T would multiply their noise by up to 1/T.
-    IntervalTooShort,
 }
 
-/// The shortest interval a [`ScheduledFilter`] accepts between two
-/// measurements of a track, s: the envelope's ([`crate::envelope::INTERVAL_S`]).
-pub const MIN_INTERVAL_S: f64 = crate::envelope::INTERVAL_S.min;
+pub use crate::filter::{IntervalSpan, MAX_INTERVAL_S, MIN_INTERVAL_S};
 
 impl From<FilterError> for ScheduledError {
     fn from(e: FilterError) -> Self {
@@ -290,10 +284,6 @@ impl fmt::Display for ScheduledError {
         match self {
             ScheduledError::Filter(e) => fmt::Display::fmt(e, f),
             ScheduledError::Schedule(e) => fmt::Display::fmt(e, f),
-            ScheduledError::IntervalTooShort => write!(
-                f,
-                "measurement less than {MIN_INTERVAL_S} s after the previous one"
-            ),
         }
     }
 }
@@ -306,10 +296,13 @@ impl core::error::Error for ScheduledError {}
 pub struct ScheduledUpdate<N: Numeric, const D: usize> {
     /// The filter's outcome per axis.
     pub outcome: [UpdateOutcome<N>; D],
-    /// The gains applied; `None` during two-point initialisation.
+    /// The gains applied; `None` during two-point initialisation, and for
+    /// a skipped measurement.
     pub gains: Option<[Gains<N>; D]>,
-    /// The schedule restarted the track before this measurement, which
-    /// became its first point.
+    /// The track was restarted before this measurement, which became its
+    /// first point (the outcome is [`UpdateOutcome::Restarted`]): the
+    /// interval was longer than [`MAX_INTERVAL_S`], or the schedule
+    /// required it ([`GainSchedule::restart_required`]).
     pub restarted: bool,
 }
 
@@ -322,7 +315,8 @@ pub struct ScheduledUpdate<N: Numeric, const D: usize> {
 /// One axis under M2, the least-squares gains (Al-Wagih & Abdulla eq. 24):
 ///
 /// ```
-/// use abtrack::gain::{LeastSquaresGains, ScheduledError, ScheduledFilter};
+/// use abtrack::filter::UpdateOutcome;
+/// use abtrack::gain::{LeastSquaresGains, ScheduledFilter};
 ///
 /// let mut track = ScheduledFilter::<f64, _, 2, 1>::new(LeastSquaresGains::default());
 /// track.update([0.0], 1.0)?;
@@ -333,9 +327,15 @@ pub struct ScheduledUpdate<N: Numeric, const D: usize> {
 /// // Prediction 20 m, innovation 1 m: x = 20 + α·1, v = 10 + β·1/T.
 /// assert!((track.filter().position()[0] - (20.0 + 5.0 / 6.0)).abs() < 1e-9);
 /// assert!((track.filter().velocity()[0] - 10.5).abs() < 1e-9);
-/// // A report 1 ms after the previous one is refused; nothing changes.
-/// assert_eq!(track.update([21.0], 0.001), Err(ScheduledError::IntervalTooShort));
+/// // A report 1 ms after the previous one is skipped; nothing changes.
+/// let skipped = track.update([21.0], 0.001)?;
+/// assert_eq!(skipped.outcome, [UpdateOutcome::Skipped]);
 /// assert_eq!(track.measurements(), 3);
+/// // One 30 s later (beyond the 20 s the filters are specified for)
+/// // restarts the track: it is the first point of a new estimate.
+/// let restarted = track.update([400.0], 30.0)?;
+/// assert!(restarted.restarted && restarted.outcome == [UpdateOutcome::Restarted]);
+/// assert_eq!(track.measurements(), 1);
 /// # Ok::<(), Box<dyn std::error::Error>>(())
 /// ```
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -402,8 +402,11 @@ where
 
     /// Incorporates measurement `z`, taken `dt` after the previous call.
     ///
-    /// If the schedule requires a restart, the filter is emptied first and
-    /// `z` becomes the first point of the restarted track. The first two
+    /// If the interval is longer than [`MAX_INTERVAL_S`] (after the first
+    /// measurement) or the schedule requires a restart, the filter is
+    /// emptied and the schedule [reset](GainSchedule::reset) first, and `z`
+    /// becomes the first point of the restarted track
+    /// ([`UpdateOutcome::Restarted`]). The first two
     /// measurements initialise the filter (no gains). Later ones: each axis
     /// predicts, the [`GainContext`] is built, the schedule gives the gains,
     /// the filter updates every axis with them (all or none) and the
@@ -414,7 +417,8 @@ where
     /// # Real timing
     ///
     /// A measurement less than [`MIN_INTERVAL_S`] after the previous one is
-    /// refused ([`ScheduledError::IntervalTooShort`]). When the interval
+    /// skipped ([`UpdateOutcome::Skipped`]): neither the filter nor the
+    /// schedule changes. When the interval
     /// differs from the previous ones, the schedule's gains are bounded for
     /// this update ([`robust_gains`]): α at most 1, β at most Kalata's
     /// steady-state β for α, and the velocity correction of a short
@@ -425,7 +429,26 @@ where
         z: [N::Length; D],
         dt: N::Interval,
     ) -> Result<ScheduledUpdate<N, D>, ScheduledError> {
-        let restarted = self.schedule.restart_required(self.filter.phase());
+        let gap = match self.filter.phase() {
+            Phase::Empty => false,
+            _ => {
+                if z.iter().any(|v| !v.is_valid()) {
+                    return Err(FilterError::InvalidMeasurement.into());
+                }
+                match IntervalSpan::of(dt)? {
+                    IntervalSpan::InRange => false,
+                    IntervalSpan::TooLong => true,
+                    IntervalSpan::TooShort => {
+                        return Ok(ScheduledUpdate {
+                            outcome: [UpdateOutcome::Skipped; D],
+                            gains: None,
+                            restarted: false,
+                        })
+                    }
+                }
+            }
+        };
+        let restarted = gap || self.schedule.restart_required(self.filter.phase());
         let mut filter = if restarted {
             Cartesian::new()
         } else {
@@ -436,13 +459,6 @@ where
         } else {
             self.measurements.saturating_add(1)
         };
-
-        if filter.phase() != Phase::Empty
-            && dt.is_valid()
-            && dt < N::Interval::from_f64_lossy(MIN_INTERVAL_S)
-        {
-            return Err(ScheduledError::IntervalTooShort);
-        }
 
         if filter.phase() != Phase::Tracking {
             // Two-point initialisation ignores gains; any valid pair will do.
@@ -462,7 +478,11 @@ where
                     }
                     self.schedule.initialised(n);
                     Ok(ScheduledUpdate {
-                        outcome,
+                        outcome: if restarted {
+                            [UpdateOutcome::Restarted; D]
+                        } else {
+                            outcome
+                        },
                         gains: None,
                         restarted,
                     })

@@ -48,12 +48,15 @@ use crate::filter::{FilterError, Gains, Phase, Prediction, UpdateKind, UpdateOut
 use crate::gain::{GainContext, GainSchedule, ScheduledError, ScheduledFilter};
 use crate::num::{Numeric, Quantity, Real, Scalar};
 
-/// What an update did, without its innovation.
-fn kind_of<N: Numeric>(outcome: &UpdateOutcome<N>) -> UpdateKind {
+/// What an update did, without its innovation; `None` for a skipped one
+/// (the table never offers a track a measurement that close: it skips the
+/// whole scan).
+fn kind_of<N: Numeric>(outcome: &UpdateOutcome<N>) -> Option<UpdateKind> {
     match outcome {
-        UpdateOutcome::FirstPoint => UpdateKind::FirstPoint,
-        UpdateOutcome::SecondPoint => UpdateKind::SecondPoint,
-        UpdateOutcome::Filtered(_) => UpdateKind::Filtered,
+        UpdateOutcome::FirstPoint | UpdateOutcome::Restarted => Some(UpdateKind::FirstPoint),
+        UpdateOutcome::SecondPoint => Some(UpdateKind::SecondPoint),
+        UpdateOutcome::Filtered(_) => Some(UpdateKind::Filtered),
+        UpdateOutcome::Skipped => None,
     }
 }
 
@@ -71,7 +74,6 @@ fn filter_error(e: ScheduledError) -> FilterError {
     match e {
         ScheduledError::Filter(e) => e,
         ScheduledError::Schedule(_) => FilterError::Saturated,
-        ScheduledError::IntervalTooShort => FilterError::InvalidInterval,
     }
 }
 
@@ -198,6 +200,10 @@ impl<S: TrackNumeric, G: GainSchedule<S, 2>> TrackFilter<S> for ScheduledTrack<S
                 return Err(filter_error(e));
             }
         };
+        if update.outcome.contains(&UpdateOutcome::Skipped) {
+            // Nothing changed: refused as an interval outside the filter's.
+            return Err(FilterError::InvalidInterval);
+        }
         let mut uncertainty = self.uncertainty;
         for (i, (u, outcome)) in uncertainty
             .iter_mut()
@@ -216,7 +222,7 @@ impl<S: TrackNumeric, G: GainSchedule<S, 2>> TrackFilter<S> for ScheduledTrack<S
             let velocity_gain = S::to_variance(beta) / seconds;
             *u = u
                 .after_update(
-                    kind_of(outcome),
+                    kind_of(outcome).ok_or(FilterError::InvalidInterval)?,
                     S::to_variance(alpha),
                     velocity_gain,
                     seconds,

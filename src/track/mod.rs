@@ -53,6 +53,17 @@
 //! once to seconds in the filter's number type. The table keeps each track's
 //! start time and last update time.
 //!
+//! The filters are specified for intervals of 0.05–20 s
+//! ([`crate::filter::IntervalSpan`]); outside, nothing is refused. A track
+//! last updated more than 20 s before a scan (a coasting track accumulates
+//! the scans' intervals) is ended there and counted
+//! ([`ScanReport::restarted`]): it gets no gate, and its target's next
+//! reports start it again by two-point initiation. A scan more than 20 s
+//! after the previous one restarts every track and drops the previous
+//! scan's first points. A scan less than 0.05 s after the previous one is
+//! skipped: nothing changes, its measurements are coded
+//! [`RejectReason::TooClose`] and counted ([`ScanReport::too_close`]).
+//!
 //! # Initiation pairing: why not optimal
 //!
 //! Pairing first points with second points is done by sequential nearest

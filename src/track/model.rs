@@ -43,6 +43,9 @@ pub enum RejectReason {
     /// It won its track's gate, but the filter refused the update (the
     /// arithmetic saturated); the track coasted instead.
     FilterRefused,
+    /// Its scan came less than [`crate::filter::MIN_INTERVAL_S`] after the
+    /// previous scan: the whole scan was skipped, no track changed.
+    TooClose,
 }
 
 /// A validated measurement with its Cartesian projection, computed once.

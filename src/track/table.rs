@@ -9,6 +9,7 @@ use super::gate::GateRegion;
 use super::model::{Measurement, Observation, RejectReason, ScanInterval, TrackFilter};
 use super::numeric::TrackNumeric;
 use super::pregate::MeasurementIndex;
+use crate::filter::{MAX_INTERVAL_MS, MIN_INTERVAL_MS};
 
 /// A track's identity, unique over the lifetime of its table: ids are issued
 /// in increasing order and, after 2³² of them, wrap around skipping any id
@@ -326,6 +327,17 @@ pub struct ScanReport {
     pub deleted_left_volume: u32,
     /// ... whose filter could not advance (arithmetic saturated).
     pub deleted_numeric: u32,
+    /// Tracks ended because their last update was more than
+    /// [`MAX_INTERVAL_S`](crate::filter::MAX_INTERVAL_S) ago (not counted in
+    /// `deleted`): beyond what the filters are specified for, the estimate
+    /// restarts, and the target's next reports start a new track by
+    /// two-point initiation.
+    pub restarted: u32,
+    /// Measurements of a scan that came less than
+    /// [`MIN_INTERVAL_S`](crate::filter::MIN_INTERVAL_S) after the previous
+    /// one: the scan was skipped (nothing changed), each measurement coded
+    /// [`RejectReason::TooClose`].
+    pub too_close: u32,
     // --- result
     /// Live tracks after the scan.
     pub tracks: u32,
@@ -349,6 +361,12 @@ pub struct TableStats {
     pub dropped_overflow: u32,
     /// Measurements rejected as bad input.
     pub rejected: u32,
+    /// Tracks restarted (ended for an interval beyond the filters' range,
+    /// [`ScanReport::restarted`]).
+    pub tracks_restarted: u32,
+    /// Scans skipped for coming too close to the previous one
+    /// ([`ScanReport::too_close`]).
+    pub scans_skipped: u32,
 }
 
 /// The stages of [`TrackTable::scan`], in order: what
@@ -387,6 +405,29 @@ enum Outcome {
     Miss,
     /// Could not advance (arithmetic saturated): to be deleted.
     Failed,
+    /// Last updated more than the filters' longest interval ago: ended, to
+    /// be started again by initiation.
+    Restarted,
+}
+
+/// How a scan's time stands to the previous scan's.
+#[derive(Clone, Copy)]
+enum ScanTiming<Step> {
+    /// The first scan (or the first after [`TrackTable::clear`]).
+    First,
+    /// Less than the shortest interval: the scan is skipped.
+    TooClose,
+    /// More than the longest interval: every track restarts, and the
+    /// previous scan's first points are too old to pair with.
+    Gap,
+    /// In range: every track's step for the interval.
+    Step(Step),
+}
+
+/// Whether a track last updated at `last_update_ms` is past the filters'
+/// longest interval at `now_ms`.
+fn is_stale(last_update_ms: u32, now_ms: u32) -> bool {
+    now_ms.wrapping_sub(last_update_ms) > MAX_INTERVAL_MS
 }
 
 /// A fixed-capacity multi-target tracker: at most `N` tracks and `M`
@@ -483,6 +524,8 @@ impl<S: TrackNumeric, F: TrackFilter<S>, const N: usize, const M: usize> TrackTa
                 refused_table_full: 0,
                 dropped_overflow: 0,
                 rejected: 0,
+                tracks_restarted: 0,
+                scans_skipped: 0,
             },
             observations: [const { None }; M],
             codes: [Association::OutsideGates; M],
@@ -616,7 +659,7 @@ impl<S: TrackNumeric, F: TrackFilter<S>, const N: usize, const M: usize> TrackTa
         rule: &impl PairRule,
         mut probe: impl FnMut(ScanStage),
     ) -> Result<ScanReport, ScanError> {
-        let (interval_ms, dt) = self.interval_to(now_ms, config)?;
+        let (interval_ms, timing) = self.interval_to(now_ms, config)?;
         let used = measurements.len().min(M);
         let mut report = ScanReport {
             time_ms: now_ms,
@@ -625,12 +668,17 @@ impl<S: TrackNumeric, F: TrackFilter<S>, const N: usize, const M: usize> TrackTa
             dropped_overflow: sat_u32(measurements.len().saturating_sub(M)),
             ..ScanReport::default()
         };
+        let dt = match timing {
+            ScanTiming::TooClose => return Ok(self.skip(measurements, codes, report)),
+            ScanTiming::Step(step) => Some(step),
+            ScanTiming::First | ScanTiming::Gap => None,
+        };
         self.intake(measurements, &mut report);
         probe(ScanStage::Intake);
         if let Some(dt) = &dt {
             self.index.build(&self.observations);
             probe(ScanStage::Index);
-            self.gate(config, dt, rule, &mut report);
+            self.gate(config, dt, now_ms, rule, &mut report);
             probe(ScanStage::Gate);
             self.clusters.link();
             probe(ScanStage::Cluster);
@@ -640,8 +688,11 @@ impl<S: TrackNumeric, F: TrackFilter<S>, const N: usize, const M: usize> TrackTa
         // From here on the table changes: the scan is accepted.
         self.last_scan_ms = Some(now_ms);
         self.stats.scans = self.stats.scans.saturating_add(1);
+        if matches!(timing, ScanTiming::Gap) {
+            self.restart_all(&mut report);
+        }
         if let Some(dt) = &dt {
-            self.update(config, dt, &mut report);
+            self.update(config, dt, now_ms, &mut report);
             probe(ScanStage::Update);
             self.manage(config, now_ms, &mut report);
             probe(ScanStage::Manage);
@@ -654,15 +705,16 @@ impl<S: TrackNumeric, F: TrackFilter<S>, const N: usize, const M: usize> TrackTa
         Ok(report)
     }
 
-    /// The interval since the last scan in ms, and the filters' step for it
-    /// (`None` for the first scan), formed once for every track.
+    /// The interval since the last scan in ms, and how it stands to the
+    /// filters' range: in range, the filters' step for it, formed once for
+    /// every track.
     fn interval_to(
         &self,
         now_ms: u32,
         config: &TrackerConfig<S, F::Params>,
-    ) -> Result<(u32, Option<F::Step>), ScanError> {
+    ) -> Result<(u32, ScanTiming<F::Step>), ScanError> {
         let Some(previous_ms) = self.last_scan_ms else {
-            return Ok((0, None));
+            return Ok((0, ScanTiming::First));
         };
         let interval = now_ms.wrapping_sub(previous_ms);
         if interval == 0 || interval > i32::MAX as u32 {
@@ -671,10 +723,46 @@ impl<S: TrackNumeric, F: TrackFilter<S>, const N: usize, const M: usize> TrackTa
                 now_ms,
             });
         }
+        if interval < MIN_INTERVAL_MS {
+            return Ok((interval, ScanTiming::TooClose));
+        }
+        if interval > MAX_INTERVAL_MS {
+            return Ok((interval, ScanTiming::Gap));
+        }
         let step = ScanInterval::from_ms(interval)
             .and_then(|i| F::step(config.params(), &i).ok())
             .ok_or(ScanError::IntervalNotRepresentable)?;
-        Ok((interval, Some(step)))
+        Ok((interval, ScanTiming::Step(step)))
+    }
+
+    /// A scan too close to the previous one: nothing changes but the
+    /// counts; every measurement is coded [`RejectReason::TooClose`].
+    fn skip(
+        &mut self,
+        measurements: &[Measurement<S>],
+        codes: &mut [Association],
+        mut report: ScanReport,
+    ) -> ScanReport {
+        report.too_close = sat_u32(measurements.len());
+        report.dropped_overflow = 0;
+        report.tracks = sat_u32(self.len());
+        for code in codes.iter_mut().take(measurements.len()) {
+            *code = Association::Rejected(RejectReason::TooClose);
+        }
+        self.stats.scans_skipped = self.stats.scans_skipped.saturating_add(1);
+        report
+    }
+
+    /// A scan more than the longest interval after the previous one:
+    /// every track restarts (is ended, counted), and the previous scan's
+    /// first points are dropped (too old to pair with).
+    fn restart_all(&mut self, report: &mut ScanReport) {
+        for slot in self.slots.iter_mut() {
+            if slot.take().is_some() {
+                increment(&mut report.restarted);
+            }
+        }
+        self.pending.fill(None);
     }
 
     /// Intake: validate and project every measurement once, and forget the
@@ -707,12 +795,17 @@ impl<S: TrackNumeric, F: TrackFilter<S>, const N: usize, const M: usize> TrackTa
         &mut self,
         config: &TrackerConfig<S, F::Params>,
         dt: &F::Step,
+        now_ms: u32,
         rule: &impl PairRule,
         report: &mut ScanReport,
     ) {
         let params = config.params();
         for (t, slot) in self.slots.iter().enumerate() {
             let Some(track) = slot else { continue };
+            if is_stale(track.last_update_ms, now_ms) {
+                // Restarted in the update stage: offered nothing.
+                continue;
+            }
             let Ok(predicted) = track.filter.predict(params, dt) else {
                 continue;
             };
@@ -841,11 +934,13 @@ impl<S: TrackNumeric, F: TrackFilter<S>, const N: usize, const M: usize> TrackTa
         Ok(())
     }
 
-    /// Update each assigned track; coast every other one.
+    /// Update each assigned track; coast every other one; a track last
+    /// updated more than the filters' longest interval ago restarts.
     fn update(
         &mut self,
         config: &TrackerConfig<S, F::Params>,
         dt: &F::Step,
+        now_ms: u32,
         report: &mut ScanReport,
     ) {
         let params = config.params();
@@ -856,6 +951,10 @@ impl<S: TrackNumeric, F: TrackFilter<S>, const N: usize, const M: usize> TrackTa
             .enumerate()
         {
             let Some(track) = slot else { continue };
+            if is_stale(track.last_update_ms, now_ms) {
+                *outcome = Outcome::Restarted;
+                continue;
+            }
             *outcome = Outcome::Miss;
             if let Some(k) = self.clusters.assigned(t) {
                 if let (Some(Some(o)), Some(code)) =
@@ -895,6 +994,11 @@ impl<S: TrackNumeric, F: TrackFilter<S>, const N: usize, const M: usize> TrackTa
     ) {
         for (slot, outcome) in self.slots.iter_mut().zip(self.outcomes.iter()) {
             let Some(track) = slot else { continue };
+            if *outcome == Outcome::Restarted {
+                *slot = None;
+                increment(&mut report.restarted);
+                continue;
+            }
             let hit = *outcome == Outcome::Hit;
             track.record_scan(hit, now_ms);
             let delete = if *outcome == Outcome::Failed {
@@ -1089,6 +1193,7 @@ impl<S: TrackNumeric, F: TrackFilter<S>, const N: usize, const M: usize> TrackTa
             .saturating_add(report.refused_table_full);
         s.dropped_overflow = s.dropped_overflow.saturating_add(report.dropped_overflow);
         s.rejected = s.rejected.saturating_add(report.rejected);
+        s.tracks_restarted = s.tracks_restarted.saturating_add(report.restarted);
     }
 }
 

@@ -13,6 +13,11 @@
 //!
 //! or, inside `host-tests/`, `cargo run --release --bin replay -- ...`.
 //!
+//! Gaps and jitter never stop a run: the rows where the estimate restarted
+//! (more than 20 s after the last report used) or that were skipped (less
+//! than 0.05 s after it) are marked in the `event` column and listed on
+//! stderr.
+//!
 //! The output is built in memory and written only when the whole file has run:
 //! on any error stdout stays empty, the message (naming the line and column)
 //! goes to stderr and the exit status is non-zero (1: input or refused row,
@@ -24,7 +29,7 @@ use std::process::ExitCode;
 
 use abtrack_host_tests::cli::{Command, Input, ReplayArgs};
 use abtrack_host_tests::output::write_stdout;
-use abtrack_host_tests::replay::replay_reader;
+use abtrack_host_tests::replay::replay_events;
 use abtrack_host_tests::replay_tracker::replay_tracker_reader;
 use clap::Parser;
 
@@ -60,7 +65,10 @@ fn main() -> ExitCode {
         }
     };
     let output = match &command {
-        Command::Replay { config, .. } => replay_reader(config, bytes.as_slice()),
+        Command::Replay { config, .. } => replay_events(config, bytes.as_slice()).map(|run| {
+            eprint!("{}", run.events);
+            run.csv
+        }),
         Command::Tracker {
             options, verbose, ..
         } => replay_tracker_reader(options, bytes.as_slice()).map(|run| {

@@ -3,6 +3,7 @@
 
 mod bad_input;
 mod f32_refusals;
+mod gaps_restart;
 mod range_azimuth;
 mod readme_example;
 mod reference;

@@ -571,7 +571,7 @@ mod replay_cli {
             "--filter auto --range-sigma-m 20 --bearing-sigma-deg 0.1",
             &polar,
         );
-        assert_eq!(out.lines().next(), Some("t,x,vx,res_x,y,vy,res_y"));
+        assert_eq!(out.lines().next(), Some("t,x,vx,res_x,y,vy,res_y,event"));
         assert_eq!(out.lines().count(), xy.lines().count());
         let deg: String = polar
             .lines()

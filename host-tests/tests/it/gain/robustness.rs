@@ -5,11 +5,11 @@
 
 use super::support;
 
-use abtrack::filter::{Cartesian, Gains};
+use abtrack::filter::{Cartesian, Gains, UpdateOutcome};
 use abtrack::gain::spec::{ScheduleSpec, SensorScale};
 use abtrack::gain::{
-    next_reference, robust_gains, AnySchedule, FixedGains, GainSchedule, ScheduledError,
-    ScheduledFilter, MIN_INTERVAL_S,
+    next_reference, robust_gains, AnySchedule, FixedGains, GainSchedule, ScheduledFilter,
+    MIN_INTERVAL_S,
 };
 use abtrack::gains::li_beta;
 use abtrack::track::defaults::BANK_30_ACCELERATION;
@@ -267,28 +267,27 @@ fn robust_gains_leave_equal_intervals_alone_and_bound_the_others() {
 // ------------------------------------------------ near-coincident reports
 
 /// Finding: "two reports 1 ms apart make `m2` print values around 1e190".
-/// The library refuses a measurement less than 0.05 s after the previous
+/// The library skips a measurement less than 0.05 s after the previous
 /// one, in initialisation and in tracking, and changes nothing.
 #[test]
-fn near_coincident_reports_are_refused_and_change_nothing() {
+fn near_coincident_reports_are_skipped_and_change_nothing() {
     assert_eq!(MIN_INTERVAL_S, 0.05);
     let mut t = any_track("least-squares");
     t.update([0.0, 0.0], 1.0).unwrap();
     let before = t;
-    assert_eq!(
-        t.update([1.0, 1.0], 0.001),
-        Err(ScheduledError::IntervalTooShort)
-    );
+    let skipped = t.update([1.0, 1.0], 0.001).unwrap();
+    assert_eq!(skipped.outcome, [UpdateOutcome::Skipped; 2]);
     assert_eq!(t, before);
     t.update([10.0, 5.0], 1.0).unwrap();
     t.update([20.0, 10.0], 1.0).unwrap();
     let before = t;
-    assert_eq!(
-        t.update([20.01, 10.0], 0.049),
-        Err(ScheduledError::IntervalTooShort)
-    );
+    let skipped = t.update([20.01, 10.0], 0.049).unwrap();
+    assert_eq!(skipped.outcome, [UpdateOutcome::Skipped; 2]);
     assert_eq!(t, before);
-    assert!(t.update([20.5, 10.25], 0.05).is_ok());
+    assert!(matches!(
+        t.update([20.5, 10.25], 0.05).unwrap().outcome,
+        [UpdateOutcome::Filtered(_), UpdateOutcome::Filtered(_)]
+    ));
 }
 
 /// Reports 60 ms apart (just above the shortest accepted) in pairs, one pair a

@@ -103,10 +103,10 @@ fn bytes_per_track() {
 
     // The whole table, rounded up to its alignment (8).
     let round = |b: usize| b.div_ceil(8) * 8;
-    let f64_bytes = |n: usize, m: usize| round(60 + 143 * n + 182 * m);
-    let f32_bytes = |n: usize, m: usize| round(56 + 111 * n + 126 * m);
-    let fixed_bytes = |n: usize, m: usize| round(56 + 111 * n + 134 * m);
-    let scaled_bytes = |n: usize, m: usize| round(56 + 139 * n + 166 * m);
+    let f64_bytes = |n: usize, m: usize| round(68 + 143 * n + 182 * m);
+    let f32_bytes = |n: usize, m: usize| round(64 + 111 * n + 126 * m);
+    let fixed_bytes = |n: usize, m: usize| round(64 + 111 * n + 134 * m);
+    let scaled_bytes = |n: usize, m: usize| round(64 + 139 * n + 166 * m);
     let tables = [
         ("f64", size_of::<Table<f64, 32, 32>>()),
         ("f32", size_of::<Table<f32, 32, 32>>()),

@@ -1,0 +1,489 @@
+//! Gaps and timing never refuse a recording: an interval beyond the
+//! filters' range (20 s) restarts the estimate, one below it (0.05 s) is
+//! skipped and leaves the state as it was, in every layer (filter,
+//! scheduled filter, M5 bank, track table, scan loop, replay) and every
+//! number system (f64, f32, Q32.32, the fast fixed point).
+
+use abtrack::bank::{BankConfig, BankOutcome, CartesianBank};
+use abtrack::filter::altitude::{AltitudeQuantum, AltitudeTrackerConfig};
+use abtrack::filter::{
+    Cartesian, FilterError, IntervalSpan, Phase, UpdateOutcome, MAX_INTERVAL_S, MIN_INTERVAL_S,
+};
+use abtrack::gain::{FixedGains, LeastSquaresGains, ScheduledError, ScheduledFilter};
+use abtrack::num::fixed32::Fixed32;
+use abtrack::num::{Numeric, Quantity};
+use abtrack::scan::{ClockConfig, MeasurementQueue, ScanConfig, ScanLoop};
+use abtrack::tcas::OwnAircraft;
+use abtrack::track::{
+    Association, FixedGainTrack, Gate, Measurement, RejectReason, TrackNumeric, TrackTable,
+    TrackerConfig,
+};
+use abtrack::wire::{MeasurementReport, Message};
+use abtrack::{Fix, Gains};
+use abtrack_host_tests::replay::{replay_events, Replayed};
+use abtrack_host_tests::replay_tracker::{replay_tracker_reader, TrackerReplay};
+
+fn q<Q: Quantity>(v: f64) -> Q {
+    Q::try_from_f64(v).unwrap()
+}
+
+#[test]
+fn the_range_is_the_envelope() {
+    assert_eq!((MIN_INTERVAL_S, MAX_INTERVAL_S), (0.05, 20.0));
+    assert_eq!(IntervalSpan::of(0.049), Ok(IntervalSpan::TooShort));
+    assert_eq!(IntervalSpan::of(0.05), Ok(IntervalSpan::InRange));
+    assert_eq!(IntervalSpan::of(20.0), Ok(IntervalSpan::InRange));
+    assert_eq!(IntervalSpan::of(20.001), Ok(IntervalSpan::TooLong));
+    // Malformed intervals stay errors.
+    for dt in [0.0, -1.0, f64::NAN, f64::INFINITY] {
+        assert_eq!(
+            IntervalSpan::of(dt),
+            Err(FilterError::InvalidInterval),
+            "{dt}"
+        );
+    }
+}
+
+/// A 2-D αβ track with fixed gains (a [`ScheduledFilter`], what holds a
+/// track; the bare [`Cartesian`] filter computes the equations for any
+/// interval > 0) on a straight line at (10, −5) m/s: a report 10 ms after
+/// the last is skipped with the state bit-identical; one 30 s later
+/// restarts (first point of a new estimate), and the next two-point
+/// initialisation takes its velocity from the new points only.
+fn gap_and_close_report<N: Numeric>() {
+    let gains = Gains::<N>::alpha_beta_f64(0.5, 0.2).unwrap();
+    let mut f = ScheduledFilter::<N, _, 2, 2>::new(FixedGains::new(gains));
+    let z = |x: f64, y: f64| [q::<N::Length>(x), q::<N::Length>(y)];
+    let one: N::Interval = q(1.0);
+    for k in 0..4 {
+        let t = f64::from(k);
+        f.update(z(10.0 * t, -5.0 * t), one).unwrap();
+    }
+    let before = f;
+    let out = f.update(z(31.0, -15.5), q(0.01)).unwrap();
+    assert_eq!(out.outcome, [UpdateOutcome::Skipped; 2], "{}", N::NAME);
+    assert_eq!(f, before, "{}", N::NAME);
+    // Malformed intervals are refused, the state untouched.
+    assert_eq!(
+        f.update(z(31.0, -15.5), N::Interval::ZERO),
+        Err(ScheduledError::Filter(FilterError::InvalidInterval))
+    );
+    assert_eq!(f, before);
+    // The bare filter extrapolates over 30 s as its equations say.
+    let mut bare: Cartesian<N, 2, 2> = *f.filter();
+    assert!(matches!(
+        bare.update(z(340.0, -170.0), q(30.0), &gains).unwrap(),
+        [UpdateOutcome::Filtered(_), UpdateOutcome::Filtered(_)]
+    ));
+    // 30 s of silence, the target reappears elsewhere.
+    let out = f.update(z(1000.0, 2000.0), q(30.0)).unwrap();
+    assert_eq!(out.outcome, [UpdateOutcome::Restarted; 2], "{}", N::NAME);
+    assert!(out.restarted);
+    assert_eq!(f.filter().phase(), Phase::OnePoint);
+    let [x, y] = f.filter().position();
+    assert!((x.to_f64() - 1000.0).abs() < 1e-3 && (y.to_f64() - 2000.0).abs() < 1e-3);
+    let out = f.update(z(1020.0, 1990.0), q(2.0)).unwrap();
+    assert_eq!(out.outcome, [UpdateOutcome::SecondPoint; 2]);
+    let [vx, vy] = f.filter().velocity();
+    assert!((vx.to_f64() - 10.0).abs() < 1e-3 && (vy.to_f64() + 5.0).abs() < 1e-3);
+    assert!(matches!(
+        f.update(z(1030.0, 1985.0), one).unwrap().outcome,
+        [UpdateOutcome::Filtered(_), UpdateOutcome::Filtered(_)]
+    ));
+}
+
+#[test]
+fn a_gap_restarts_a_track_and_a_close_report_is_skipped() {
+    gap_and_close_report::<f64>();
+    gap_and_close_report::<f32>();
+    gap_and_close_report::<Fix>();
+    gap_and_close_report::<Fixed32>();
+}
+
+/// The schedule restarts with the filter: after a gap the least-squares
+/// count starts again (n = 3 gives α̂ = 5/6, β̂ = 1/2, Al-Wagih eq. 24).
+fn schedule_restarts<N: Numeric>() {
+    let mut track = ScheduledFilter::<N, _, 2, 1>::new(LeastSquaresGains::default());
+    let one: N::Interval = q(1.0);
+    for k in 0..10 {
+        track.update([q(10.0 * f64::from(k))], one).unwrap();
+    }
+    assert_eq!(track.measurements(), 10);
+    let before = track;
+    let skipped = track.update([q(95.0)], q(0.02)).unwrap();
+    assert_eq!(skipped.outcome, [UpdateOutcome::Skipped]);
+    assert!(!skipped.restarted && skipped.gains.is_none());
+    assert_eq!(track, before, "{}", N::NAME);
+    let restarted = track.update([q(500.0)], q(25.0)).unwrap();
+    assert!(restarted.restarted, "{}", N::NAME);
+    assert_eq!(restarted.outcome, [UpdateOutcome::Restarted]);
+    assert_eq!(track.measurements(), 1);
+    track.update([q(510.0)], one).unwrap();
+    let third = track.update([q(520.0)], one).unwrap();
+    let g = third.gains.unwrap()[0];
+    assert!((g.alpha().to_f64() - 5.0 / 6.0).abs() < 1e-6, "{}", N::NAME);
+    assert!((g.beta().to_f64() - 0.5).abs() < 1e-6, "{}", N::NAME);
+}
+
+#[test]
+fn a_scheduled_filter_restarts_its_schedule_on_a_gap() {
+    schedule_restarts::<f64>();
+    schedule_restarts::<f32>();
+    schedule_restarts::<Fix>();
+    schedule_restarts::<Fixed32>();
+}
+
+#[test]
+fn the_m5_bank_restarts_and_skips_the_same_way() {
+    let mut bank = CartesianBank::<f64, 8, 2>::from_config(&BankConfig::DEFAULT).unwrap();
+    for k in 0..5 {
+        let t = f64::from(k);
+        bank.update([10.0 * t, 0.0], 1.0).unwrap();
+    }
+    let before = bank;
+    assert_eq!(
+        bank.update([41.0, 0.0], 0.001).unwrap(),
+        [BankOutcome::Skipped; 2]
+    );
+    assert_eq!(bank, before);
+    assert_eq!(
+        bank.update([900.0, 0.0], 21.0).unwrap(),
+        [BankOutcome::Restarted; 2]
+    );
+    assert_eq!(bank.phase(), Phase::OnePoint);
+    assert_eq!(bank.position(), [900.0, 0.0]);
+}
+
+// ------------------------------------------------------------ track table
+
+type Table<S> = TrackTable<S, FixedGainTrack<S>, 8, 8>;
+
+/// σ 5 m, G 13.8, a_max 5 m/s², v_max 300 m/s; confirmed tracks deleted
+/// only after 255 misses, so a coasting track outlives the filters' range.
+fn long_coast_config<S: TrackNumeric>() -> TrackerConfig<S, Gains<S>> {
+    let gains = Gains::alpha_beta_f64(0.5, 0.2).unwrap();
+    let gate = Gate::uncertainty(q(5.0), q(13.8), q(5.0)).unwrap();
+    TrackerConfig::new(gains, gate, q(300.0))
+        .unwrap()
+        .with_deletion(255, 2)
+        .unwrap()
+}
+
+fn cart<S: TrackNumeric>(x: f64, y: f64) -> Measurement<S> {
+    Measurement::Cartesian { x: q(x), y: q(y) }
+}
+
+/// A target seen every 4 s, then unseen: the confirmed track coasts (the
+/// time since its last update grows by 4 s a scan); at the first scan more
+/// than 20 s after its last update it restarts (ended, counted, not among
+/// the deleted), and the target's next reports start a new track.
+fn coasting_track_restarts<S: TrackNumeric>() {
+    let config = long_coast_config::<S>();
+    let mut table = Box::new(Table::<S>::new());
+    let mut codes = [Association::NotAssigned; 1];
+    let position = |t: f64| cart::<S>(1000.0 + 50.0 * t, 2000.0);
+    for k in 0..4u32 {
+        let t = f64::from(k) * 4.0;
+        table
+            .scan(&config, k * 4000, &[position(t)], &mut codes)
+            .unwrap();
+    }
+    assert!(table.tracks().all(|t| t.is_confirmed()));
+    let first = table.tracks().next().unwrap().id();
+    // Last update at 12 s. Coasts at 16, 20, 24, 28, 32 s (20 s since).
+    for k in 4..9u32 {
+        let r = table.scan(&config, k * 4000, &[], &mut codes).unwrap();
+        assert_eq!((r.restarted, r.coasted), (0, 1), "{} at {k}", S::NAME);
+    }
+    // 36 s: 24 s since the last update, beyond the filters' 20 s.
+    let r = table
+        .scan(&config, 36_000, &[position(36.0)], &mut codes)
+        .unwrap();
+    assert_eq!((r.restarted, r.deleted, r.tracks), (1, 0, 0), "{}", S::NAME);
+    assert_eq!(codes[0], Association::OutsideGates);
+    assert_eq!(table.stats().tracks_restarted, 1);
+    // Two-point initiation starts the target again, under a new id.
+    table
+        .scan(&config, 40_000, &[position(40.0)], &mut codes)
+        .unwrap();
+    let Association::Started(id) = codes[0] else {
+        panic!("{}: {:?}", S::NAME, codes[0]);
+    };
+    assert_ne!(id, first);
+    let [vx, _] = table.track(id).unwrap().velocity();
+    assert!((vx.to_f64() - 50.0).abs() < 0.01, "{}", S::NAME);
+}
+
+#[test]
+fn a_coasting_track_restarts_past_the_longest_interval() {
+    coasting_track_restarts::<f64>();
+    coasting_track_restarts::<f32>();
+    coasting_track_restarts::<Fix>();
+    coasting_track_restarts::<Fixed32>();
+}
+
+/// A scan interval beyond 20 s restarts every track and drops the previous
+/// scan's first points; the scan's measurements are the new first points.
+#[test]
+fn a_scan_after_a_long_silence_restarts_every_track() {
+    let config = long_coast_config::<f64>();
+    let mut table = Box::new(Table::<f64>::new());
+    let mut codes = [Association::NotAssigned; 3];
+    let scan = |k: f64| {
+        [
+            cart(50.0 * k, 0.0),
+            cart(0.0, 5000.0 + 40.0 * k),
+            cart(-9000.0 * k, 9000.0),
+        ]
+    };
+    for k in 0..3u32 {
+        table
+            .scan(&config, k * 1000, &scan(f64::from(k)), &mut codes)
+            .unwrap();
+    }
+    assert_eq!(table.len(), 2);
+    assert!(table.pending() >= 1);
+    let r = table
+        .scan(&config, 60_000, &scan(60.0), &mut codes)
+        .unwrap();
+    assert_eq!((r.restarted, r.tracks, r.interval_ms), (2, 0, 58_000));
+    assert!(codes.iter().all(|c| *c == Association::OutsideGates));
+    assert_eq!(table.pending(), 3);
+    table
+        .scan(&config, 61_000, &scan(61.0), &mut codes)
+        .unwrap();
+    assert_eq!(
+        codes
+            .iter()
+            .filter(|c| matches!(c, Association::Started(_)))
+            .count(),
+        2
+    );
+}
+
+/// A scan less than 0.05 s after the previous one is skipped: every
+/// measurement is coded and counted, the tracks and the scan time are
+/// unchanged; the next scan's interval is from the last accepted one.
+fn close_scan_is_skipped<S: TrackNumeric>() {
+    let config = long_coast_config::<S>();
+    let mut table = Box::new(Table::<S>::new());
+    let mut codes = [Association::NotAssigned; 2];
+    for k in 0..3u32 {
+        let t = f64::from(k);
+        table
+            .scan(&config, k * 1000, &[cart(100.0 * t, 0.0)], &mut codes[..1])
+            .unwrap();
+    }
+    let tracks: Vec<_> = table.tracks().copied().collect();
+    let stats = *table.stats();
+    let r = table
+        .scan(
+            &config,
+            2040,
+            &[cart(204.0, 0.0), cart(7.0, 7.0)],
+            &mut codes,
+        )
+        .unwrap();
+    assert_eq!(
+        (r.too_close, r.updated, r.coasted),
+        (2, 0, 0),
+        "{}",
+        S::NAME
+    );
+    assert_eq!(codes, [Association::Rejected(RejectReason::TooClose); 2]);
+    assert_eq!(table.tracks().copied().collect::<Vec<_>>(), tracks);
+    assert_eq!(table.last_scan_ms(), Some(2000));
+    assert_eq!(table.stats().scans_skipped, stats.scans_skipped + 1);
+    assert_eq!(table.stats().scans, stats.scans);
+    let r = table
+        .scan(&config, 3000, &[cart(300.0, 0.0)], &mut codes[..1])
+        .unwrap();
+    assert_eq!((r.interval_ms, r.updated), (1000, 1));
+}
+
+#[test]
+fn a_scan_too_close_to_the_previous_is_skipped() {
+    close_scan_is_skipped::<f64>();
+    close_scan_is_skipped::<f32>();
+    close_scan_is_skipped::<Fix>();
+    close_scan_is_skipped::<Fixed32>();
+}
+
+// ------------------------------------------------------------- scan loop
+
+/// The scan loop runs one period per scan, so only a coasting track can
+/// pass the filters' range: its restart is counted in the scan summary and
+/// in the health report's lifetime counters.
+#[test]
+fn the_scan_loop_counts_restarts_in_its_health_report() {
+    let v = |x: f64| <f64 as Quantity>::try_from_f64(x).unwrap();
+    let config = ScanConfig {
+        tracker: long_coast_config::<f64>(),
+        own: OwnAircraft::over_sea_level(v(5000.0), 0.0),
+        altitude: AltitudeTrackerConfig::default_for(AltitudeQuantum::ModeC).unwrap(),
+        altitude_25ft: AltitudeTrackerConfig::default_for(AltitudeQuantum::ModeS25).unwrap(),
+        clock: ClockConfig::new(1000).unwrap(),
+    };
+    let at = |t: u32| {
+        MeasurementReport::cartesian_from_metres(t, 1, 1000.0 + 0.05 * f64::from(t), 0.0, None)
+            .unwrap()
+    };
+    let mut queue = Box::new(MeasurementQueue::<64>::new());
+    for t in [0, 1000, 2000, 3000, 28_000] {
+        queue.push(at(t)).unwrap();
+    }
+    let mut scan_loop: Box<ScanLoop<f64, FixedGainTrack<f64>, 4, 8>> = Box::new(ScanLoop::new());
+    let mut summaries = Vec::new();
+    let mut health = Vec::new();
+    for _ in 0..29 {
+        scan_loop
+            .on_tick(&config, queue.as_mut(), |m| match m {
+                Message::Scan(s) => summaries.push(*s),
+                Message::Health(h) => health.push(*h),
+                _ => {}
+            })
+            .unwrap();
+    }
+    // Last update at 3 s; the scan at 24 s is 21 s after it.
+    let restarted: Vec<u32> = summaries
+        .iter()
+        .filter(|s| s.counts.restarted > 0)
+        .map(|s| s.time_ms)
+        .collect();
+    assert_eq!(restarted, [24_000]);
+    assert_eq!(scan_loop.counters().tracks_restarted, 1);
+    assert_eq!(health.last().unwrap().scan.tracks_restarted, 1);
+    assert_eq!(scan_loop.counters().tracks_deleted, 0);
+}
+
+// ------------------------------------------------------------------ replay
+
+/// A recording with the timing of real ADS-B coverage: a repeated time, a
+/// report 20 ms after the last, and holes of 26 and 60 s (a glider's).
+const GAPPY: &str = "t,x,y\n\
+0,0,0\n1,10,-5\n2,20,-10\n2,20.5,-10\n2.02,20.2,-10.1\n3,30,-15\n4,40,-20\n\
+30,300,-150\n31,310,-155\n32,320,-160\n33,330,-165\n\
+93,930,-465\n94,940,-470\n95,950,-475\n96,960,-480\n";
+
+fn replay(filter: &str, numeric: &str, text: &str) -> Replayed {
+    use abtrack_host_tests::cli::{Command, ReplayArgs};
+    use clap::Parser;
+    let args: Vec<String> = ["replay"]
+        .into_iter()
+        .chain(filter.split_whitespace())
+        .chain(["--numeric", numeric, "-"])
+        .map(String::from)
+        .collect();
+    let Command::Replay { config, .. } = ReplayArgs::parse_from(args).into_command().unwrap()
+    else {
+        panic!("not a replay command");
+    };
+    replay_events(&config, text.as_bytes()).unwrap()
+}
+
+fn events(csv: &str) -> Vec<(String, String)> {
+    csv.lines()
+        .skip(1)
+        .filter_map(|l| {
+            let (t, event) = (l.split(',').next()?, l.rsplit(',').next()?);
+            (!event.is_empty()).then(|| (t.to_string(), event.to_string()))
+        })
+        .collect()
+}
+
+#[test]
+fn replay_runs_through_gaps_and_jitter_in_every_number_system() {
+    let want: Vec<(String, String)> = [
+        ("2", "skipped"),
+        ("2.02", "skipped"),
+        ("30", "restarted"),
+        ("93", "restarted"),
+    ]
+    .map(|(t, e)| (t.to_string(), e.to_string()))
+    .to_vec();
+    for filter in [
+        "--filter ab --schedule least-squares",
+        "--filter ab --alpha 0.5 --beta 0.2",
+        "--filter abg --schedule tcas-firmness",
+        "--filter auto --sigma-m 5",
+        "--filter ab --schedule bank",
+    ] {
+        for numeric in ["f64", "f32", "fixed"] {
+            let run = replay(filter, numeric, GAPPY);
+            assert_eq!(run.csv.lines().count(), 16, "{filter} {numeric}");
+            assert_eq!(events(&run.csv), want, "{filter} {numeric}");
+            assert_eq!(run.events.restarted, ["30", "93"], "{filter} {numeric}");
+            assert_eq!(run.events.skipped, ["2", "2.02"]);
+            assert_eq!(run.events.duplicates, 1);
+            let text = run.events.to_string();
+            assert!(text.contains("replay: 2 restarted"), "{text}");
+            assert!(text.contains("replay: 2 skipped"), "{text}");
+        }
+    }
+    // A skipped row repeats the estimate; the restarted one is its report.
+    let run = replay("--filter ab --schedule least-squares", "f64", GAPPY);
+    let rows: Vec<&str> = run.csv.lines().collect();
+    let x = |row: &str| row.split(',').nth(1).unwrap().to_string();
+    assert_eq!(x(rows[4]), x(rows[3]));
+    assert_eq!(x(rows[8]), "300");
+    // A time going back is still refused (a malformed file).
+    let back = "t,x\n0,0\n2,20\n1,10\n";
+    use abtrack_host_tests::cli::{Command, ReplayArgs};
+    use clap::Parser;
+    let Command::Replay { config, .. } =
+        ReplayArgs::parse_from(["replay", "--filter", "ab", "--schedule", "m2", "-"])
+            .into_command()
+            .unwrap()
+    else {
+        panic!()
+    };
+    assert!(replay_events(&config, back.as_bytes()).is_err());
+}
+
+#[test]
+fn range_azimuth_replay_restarts_and_skips_too() {
+    let text = "t,range,azimuth\n0,5000,0.5\n1,4990,0.5\n1,4991,0.5\n2,4980,0.5\n\
+                40,4600,0.52\n41,4590,0.52\n42,4580,0.52\n";
+    for numeric in ["f64", "f32", "fixed"] {
+        let run = replay("--filter range-azimuth", numeric, text);
+        assert_eq!(run.events.restarted, ["40"], "{numeric}");
+        assert_eq!(run.events.skipped, ["1"], "{numeric}");
+        assert!(run.csv.lines().next().unwrap().ends_with(",event"));
+    }
+}
+
+/// The tracker reads the same recording: the 60 s hole outlives the
+/// tracks (with deletion after 30 misses they coast past 20 s and
+/// restart), the repeated time is one scan, the 20 ms scan is skipped.
+#[test]
+fn tracker_replay_restarts_and_skips() {
+    use abtrack_host_tests::cli::{Command, ReplayArgs};
+    use clap::Parser;
+    for numeric in ["f64", "f32", "fixed"] {
+        let args = [
+            "replay",
+            "--tracker",
+            "--sigma-m",
+            "5",
+            "--scan-period-s",
+            "1",
+            "--delete",
+            "30",
+            "--numeric",
+            numeric,
+            "-",
+        ];
+        let Command::Tracker { options, .. } = ReplayArgs::parse_from(args).into_command().unwrap()
+        else {
+            panic!()
+        };
+        let run: TrackerReplay = replay_tracker_reader(&options, GAPPY.as_bytes()).unwrap();
+        assert_eq!(run.unused.too_close.count, 1, "{numeric}");
+        assert_eq!(run.unused.too_close.lines, [6]);
+        assert!(run.unused.tracks_restarted >= 1, "{numeric}");
+        let report = run.report();
+        assert!(report.contains("tracks restarted: "), "{report}");
+        // The target is tracked again after the hole.
+        assert!(run.csv.lines().any(|l| l.starts_with("96,")), "{numeric}");
+    }
+}
