@@ -41,6 +41,8 @@ pub const Q_MAX: u64 = 100_000;
 /// The time constant of the fading average of the normalised innovation
 /// squared, s (a power of two: its weight T/τ is formed by halvings).
 pub const NIS_MEMORY_S: u64 = 8;
+/// The largest normalised innovation squared the average takes in.
+pub const NIS_CAP: u64 = 100;
 
 /// Configuration of [`AutoGains`] (`auto:sigma=S` or
 /// `auto:range-sigma=R,bearing-sigma-deg=B`). The sensor is given either as
@@ -262,7 +264,14 @@ fn step_axis<N: Numeric>(
         let floor = cross * cross / position;
         velocity = floor + floor;
     }
-    let nis = nu * nu * inverse;
+    // A NIS beyond the cap is a manoeuvre whatever its size; capping it
+    // keeps the average (and ν² in a narrow format) in range.
+    let cap = N::Ratio::from_ratio(NIS_CAP, 1);
+    let nis = if nu.abs() < cap {
+        (nu * nu * inverse).min_of(cap)
+    } else {
+        cap
+    };
     let mean = a.nis + (nis - a.nis) * s.weight;
     let manoeuvre = (a.manoeuvre + a.manoeuvre * (mean - one).half().half())
         .min_of(bounds.1)
@@ -416,7 +425,16 @@ impl<N: Numeric, const D: usize> AutoGains<N, D> {
         let mut gains = [Gains::alpha_beta(one, one)?; D];
         let mut next = self.current(dt);
         for ((g, a), (r, nu)) in gains.iter_mut().zip(next.iter_mut()).zip(ratios) {
-            *g = step_axis(a, &span, r, nu, bounds)?;
+            *g = match step_axis(a, &span, r, nu, bounds) {
+                Ok(g) => g,
+                // The covariance left the number format (a narrow format,
+                // a tiny σ and a long interval): the axis starts again from
+                // a two-point start over the span at the ceiling.
+                Err(_) => {
+                    *a = Self::two_point(span.tau, self.manoeuvre_max);
+                    step_axis(a, &Span::new(N::Ratio::ZERO, dt), r, nu, bounds)?
+                }
+            };
         }
         Ok((gains, next))
     }
