@@ -360,7 +360,7 @@ impl<N: Numeric, const D: usize> AutoGains<N, D> {
     /// polar one σ along the axis at the predicted position p,
     /// σ_x² = (σ_R·x/|p|)² + (σ_B·y)² and likewise σ_y (range and
     /// cross-range errors projected, their correlation ignored), over σ_R².
-    /// Axes past the second use σ_R.
+    /// The ratio is at least 2⁻¹⁰. Axes past the second use σ_R.
     fn measurement_ratios(&self, ctx: &GainContext<N, D>) -> [(N::Ratio, N::Ratio); D] {
         let one = N::Ratio::ONE;
         let mut out = [(one, N::Ratio::ZERO); D];
@@ -387,7 +387,10 @@ impl<N: Numeric, const D: usize> AutoGains<N, D> {
                     if range > N::Length::ZERO {
                         let u = along / range;
                         let c = N::Ratio::from(across) * bearing_over_range;
-                        o.0 = u * u + c * c;
+                        // Floored at (σ_R/32)²: a target at the sensor
+                        // would otherwise have no measurement noise.
+                        let floor = (0..10).fold(one, |f, _| f.half());
+                        o.0 = (u * u + c * c).max_of(floor);
                     }
                 }
             }

@@ -306,7 +306,18 @@ impl<S: TrackNumeric, G: GainSchedule<S, 2>> TrackFilter<S> for ScheduledTrack<S
                 max_acceleration,
             } => {
                 let p = self.predicted_variance_ratio(params, step)?;
-                uncertainty_radius(measurement_sigma, threshold, max_acceleration, p, step)
+                // A schedule that carries its covariance has the manoeuvre
+                // in p already: no allowance on top.
+                let schedule = self.filter.schedule();
+                let allowance = if schedule
+                    .predicted_variance_ratios(step.interval())
+                    .is_some()
+                {
+                    S::Acceleration::ZERO
+                } else {
+                    max_acceleration
+                };
+                uncertainty_radius(measurement_sigma, threshold, allowance, p, step)
             }
             Gate::Wave {
                 range_sigma,
