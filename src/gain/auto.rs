@@ -43,6 +43,7 @@ pub const Q_MAX: u64 = 100_000;
 pub const NIS_MEMORY_S: u64 = 8;
 /// The largest normalised innovation squared the average takes in.
 pub const NIS_CAP: u64 = 100;
+const _: () = assert!(NIS_CAP == 100, "Span::new builds the cap as 10·10");
 
 /// Configuration of [`AutoGains`] (`auto:sigma=S` or
 /// `auto:range-sigma=R,bearing-sigma-deg=B`). The sensor is given either as
@@ -204,6 +205,8 @@ struct Span<R> {
     triple: R,
     weight: R,
     interval: R,
+    /// [`NIS_CAP`], built by additions (no conversion per update).
+    nis_cap: R,
 }
 
 impl<R: Real> Span<R> {
@@ -220,6 +223,11 @@ impl<R: Real> Span<R> {
             triple: tau + tau + tau,
             weight,
             interval: dt,
+            nis_cap: {
+                let two = R::ONE + R::ONE;
+                let ten = (two + two) + (two + two) + two;
+                ten * ten
+            },
         }
     }
 }
@@ -266,7 +274,7 @@ fn step_axis<N: Numeric>(
     }
     // A NIS beyond the cap is a manoeuvre whatever its size; capping it
     // keeps the average (and ν² in a narrow format) in range.
-    let cap = N::Ratio::from_ratio(NIS_CAP, 1);
+    let cap = s.nis_cap;
     let nis = if nu.abs() < cap {
         (nu * nu * inverse).min_of(cap)
     } else {
@@ -433,9 +441,17 @@ impl<N: Numeric, const D: usize> AutoGains<N, D> {
                 // The covariance left the number format (a narrow format,
                 // a tiny σ and a long interval): the axis starts again from
                 // a two-point start over the span at the ceiling.
+                // Should that fail too, the axis takes the gains of a
+                // two-point start at equal intervals without process noise
+                // (α = 5/6, β = 1/2: Al-Wagih & Abdulla eq. 24 at n = 3).
                 Err(_) => {
                     *a = Self::two_point(span.tau, self.manoeuvre_max);
-                    step_axis(a, &Span::new(N::Ratio::ZERO, dt), r, nu, bounds)?
+                    match step_axis(a, &Span::new(N::Ratio::ZERO, dt), r, nu, bounds) {
+                        Ok(g) => g,
+                        Err(_) => {
+                            Gains::alpha_beta(N::Ratio::from_ratio(5, 6), N::Ratio::ONE.half())?
+                        }
+                    }
                 }
             };
         }
