@@ -348,3 +348,91 @@ impl RefLiuResidual {
             .collect()
     }
 }
+
+/// One axis of `auto` written straight from the Kalman filter's equations
+/// in metres (Bar-Shalom, Li & Kirubarajan 2001 §5.2.3, CWNA Q of §6.2.2,
+/// two-point start of §5.5.3), not normalised: P⁻ = FPFᵀ + Q,
+/// S = P⁻_xx + σ², K = P⁻Hᵀ/S, P = (I − KH)P⁻, x = x_p + K·ν; the
+/// manoeuvre level q by the documented covariance matching: m += w(ν²/S −
+/// m) with w = min(τ/8, ½), q ← clamp(q·(1 + (m − 1)/4), q_min, q_max).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct RefKalmanAxis {
+    pub sigma: f64,
+    pub q_bounds: (f64, f64, f64),
+    pub x: f64,
+    pub v: f64,
+    /// [P_xx, P_xv, P_vv], m², m²/s, m²/s².
+    pub p: [f64; 3],
+    pub q: f64,
+    pub nis_mean: f64,
+    stage: Option<f64>,
+    started: bool,
+    coasted: f64,
+}
+
+impl RefKalmanAxis {
+    /// `q_bounds` = (q_min, q_start, q_max), m²/s³.
+    pub fn new(sigma: f64, q_bounds: (f64, f64, f64)) -> Self {
+        RefKalmanAxis {
+            sigma,
+            q_bounds,
+            x: 0.0,
+            v: 0.0,
+            p: [0.0; 3],
+            q: q_bounds.1,
+            nis_mean: 1.0,
+            stage: None,
+            started: false,
+            coasted: 0.0,
+        }
+    }
+
+    /// No measurement for `dt`: the state is predicted, the covariance
+    /// waits (CWNA over T₁ then T₂ is CWNA over T₁ + T₂).
+    pub fn coast(&mut self, dt: f64) {
+        if self.started {
+            self.x += self.v * dt;
+        }
+        self.coasted += dt;
+    }
+
+    /// Measurement `z`, `dt` after the previous call; returns (α, β).
+    pub fn update(&mut self, z: f64, dt: f64) -> Option<(f64, f64)> {
+        let r = self.sigma * self.sigma;
+        let tau = self.coasted + dt;
+        self.coasted = 0.0;
+        match (self.stage, self.started) {
+            (None, _) => {
+                self.stage = Some(z);
+                self.x = z;
+                return None;
+            }
+            (Some(z1), false) => {
+                self.v = (z - z1) / tau;
+                self.x = z;
+                self.p = [r, r / tau, 2.0 * r / (tau * tau)];
+                self.q = self.q_bounds.1;
+                self.nis_mean = 1.0;
+                self.started = true;
+                return None;
+            }
+            _ => {}
+        }
+        let [pxx, pxv, pvv] = self.p;
+        let q = self.q;
+        let mxx = pxx + 2.0 * tau * pxv + tau * tau * pvv + q * tau.powi(3) / 3.0;
+        let mxv = pxv + tau * pvv + q * tau * tau / 2.0;
+        let mvv = pvv + q * tau;
+        let xp = self.x + self.v * dt;
+        let s = mxx + r;
+        let (kx, kv) = (mxx / s, mxv / s);
+        let nu = z - xp;
+        self.x = xp + kx * nu;
+        self.v += kv * nu;
+        self.p = [(1.0 - kx) * mxx, (1.0 - kx) * mxv, mvv - kv * mxv];
+        let w = (tau / 8.0).min(0.5);
+        self.nis_mean += w * (nu * nu / s - self.nis_mean);
+        self.q = (q * (1.0 + (self.nis_mean - 1.0) / 4.0)).clamp(self.q_bounds.0, self.q_bounds.2);
+        Some((kx, kv * dt))
+    }
+}

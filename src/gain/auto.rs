@@ -1,46 +1,49 @@
-//! `auto`: a gain schedule configured from the sensor's noise alone, which
-//! adapts its gains to the target from the innovations (see `docs/auto.md`
-//! for the design, its derivation and the measured figures).
+//! `auto`: a gain schedule configured from the sensor's noise alone — a
+//! decoupled per-axis constant-velocity Kalman filter written as αβ gains,
+//! whose manoeuvre level is estimated online (design, derivation and the
+//! measured figures in `docs/auto.md`).
 //!
-//! Per axis it keeps an *effective count* n and uses the least-squares gains
-//! α̂(n), β̂(n) of Al-Wagih & Abdulla eq. (24) (the Kalman gains of a
-//! constant-velocity target without process noise, from a two-point start).
-//! The count grows by one per update, as in the least-squares filter, and is
-//! cut when the normalised innovation squared (NIS, Bar-Shalom, Li &
-//! Kirubarajan 2001, §5.4) shows the target leaving the straight line:
+//! Per axis it carries the 2×2 covariance of (position, velocity),
+//! normalised by the measurement variance (p̃ = P/σ², three numbers), and
+//! propagates it with the real interval T under the continuous white-noise
+//! acceleration model (Bar-Shalom, Li & Kirubarajan 2001 §6.2.2:
+//! Q = q·[T³/3, T²/2; T²/2, T]). The gains are the Kalman gains:
+//! S̃ = p̃⁻_xx + 1, α = p̃⁻_xx/S̃, β/T = p̃⁻_xv/S̃ (ibid. §5.2.3), so each
+//! update has one reciprocal per axis and the updated covariance is
+//! (α, β/T, p̃⁻_vv − (β/T)·p̃⁻_xv) (the standard form (I − KH)P⁻, whose
+//! position row is the gains themselves once normalised). Coasting is
+//! exact: the CWNA covariance over T₁ then T₂ is the covariance over
+//! T₁ + T₂, so missed scans add to the next interval. The track starts from
+//! its two points: p̃ = [1, 1/T; 1/T, 2/T²] (ibid. §5.5.3).
 //!
-//! * a fast test on a fading average of the NIS (weight ½) catches the onset
-//!   of a manoeuvre and lowers n so that the innovation's variance is what
-//!   the filter expects (covariance matching, ibid. §11.2.2);
-//! * a slow average (weight 1/16) catches a sustained manoeuvre too weak for
-//!   the fast test and holds a ceiling on n, which then relaxes.
-//!
-//! Li, Zhao, Liang & Zhang's improved filter (eqs. 13–15) drives an
-//! effective count by an innovation ratio in the same way; here the ratio is
-//! the NIS, whose distribution is known, so the thresholds are probabilities.
-//! Every pair (α̂(n), β̂(n)) with n ≥ 3 lies inside the stability triangle and
-//! below Kalata's steady-state β for its α, and n can only fall by a cut or
-//! rise by one per update, as a Kalman filter's covariance does.
+//! The manoeuvre level q is estimated per axis by covariance matching on
+//! the normalised innovation squared ν²/S (ibid. §5.4, §11.2.2): a fading
+//! average m of it (weight T/8 s, at most ½) moves q by the factor
+//! 1 + (m − 1)/4 each update, within the physical bounds [`Q_MIN`] ..
+//! [`Q_MAX`]. Kalman gains lie inside the αβ stability triangle for every
+//! interval (0 < α < 1, 0 < β < 2(2 − α)); a rounding failure is clamped
+//! there.
 
-use super::al_wagih::LeastSquaresConfig;
 use super::{check_range, config_quantity, ConfigError, GainContext, GainSchedule, ScheduleError};
 use crate::filter::Gains;
 use crate::num::{Numeric, Quantity, Real};
 
-/// The fast test's threshold on the fading-average NIS: under white noise
-/// matching σ it is exceeded about 4·10⁻⁴ of the time per axis and update
-/// (host-tests `tests/it/gain/auto.rs` measures it).
-pub const DETECTION_LEVEL: u64 = 7;
-/// The slow average's threshold: twice the expected NIS.
-pub const SUSTAINED_LEVEL: u64 = 2;
-/// The slow average's weight of the newest NIS is 1/`SLOW_MEMORY` (a power
-/// of two: the weight is formed by halvings).
-pub const SLOW_MEMORY: u64 = 16;
-/// The ceiling grows by 1/`CEILING_GROWTH` of itself per update without a
-/// sustained manoeuvre (a power of two).
-pub const CEILING_GROWTH: u64 = 64;
-/// The first filtered update has count 3 (Al-Wagih eq. 24, "n > 2").
-pub const FIRST_COUNT: u64 = 3;
+/// The manoeuvre level's floor, m²/s³: the white-acceleration spectral
+/// density of an aircraft in straight flight (turbulence, autopilot and
+/// report-time jitter), below which real tracks are never smoother.
+pub const Q_MIN: u64 = 30;
+/// The manoeuvre level of a new track, m²/s³: a ±0.5 g manoeuvre over 2 s
+/// (Bar-Shalom, Li & Kirubarajan 2001 §6.2.2: q ≈ a²·T).
+pub const Q_START: u64 = 100;
+/// The manoeuvre level's ceiling, m²/s³: a 3 g manoeuvre sustained over
+/// about 10 s.
+pub const Q_MAX: u64 = 100_000;
+/// The time constant of the fading average of the normalised innovation
+/// squared, s (a power of two: its weight T/τ is formed by halvings).
+pub const NIS_MEMORY_S: u64 = 8;
+/// The largest normalised innovation squared the average takes in.
+pub const NIS_CAP: u64 = 100;
+const _: () = assert!(NIS_CAP == 100, "Span::new builds the cap as 10·10");
 
 /// Configuration of [`AutoGains`] (`auto:sigma=S` or
 /// `auto:range-sigma=R,bearing-sigma-deg=B`). The sensor is given either as
@@ -55,9 +58,6 @@ pub struct AutoConfig {
     pub range_sigma: Option<f64>,
     /// σ_B, degrees, in (0, 90].
     pub bearing_sigma_deg: Option<f64>,
-    /// The largest count (as [`LeastSquaresConfig::n_max`]), 3..=10 000.
-    /// Default 1000.
-    pub n_max: u32,
 }
 
 /// The sensor an [`AutoConfig`] describes.
@@ -84,7 +84,6 @@ impl AutoConfig {
         sigma: None,
         range_sigma: None,
         bearing_sigma_deg: None,
-        n_max: 1000,
     };
 
     /// A Cartesian sensor with σ per axis (m).
@@ -130,10 +129,9 @@ impl AutoConfig {
         })
     }
 
-    /// Checks the sensor figures and `n_max`.
+    /// Checks the sensor figures.
     pub fn validate(&self) -> Result<(), ConfigError> {
-        self.sensor()?;
-        LeastSquaresConfig { n_max: self.n_max }.validate()
+        self.sensor().map(|_| ())
     }
 }
 
@@ -141,27 +139,45 @@ impl AutoConfig {
 #[derive(Debug, Clone, Copy, PartialEq)]
 #[cfg_attr(feature = "defmt", derive(defmt::Format))]
 enum Noise<N: Numeric> {
-    /// 1/σ (per metre), so that e/σ is a product.
+    /// 1/σ (per metre): the covariance is normalised by σ².
     Cartesian { inverse_sigma: N::Ratio },
-    /// σ_R and σ_B (rad).
+    /// 1/σ_R (per metre; the covariance is normalised by σ_R²) and σ_B/σ_R
+    /// (rad per metre).
     Polar {
-        range_sigma: N::Length,
-        bearing_sigma: N::Ratio,
+        inverse_range_sigma: N::Ratio,
+        bearing_over_range: N::Ratio,
     },
 }
 
-/// What `auto` keeps per axis.
+/// What `auto` keeps per axis: the normalised covariance of the last update
+/// (P/σ²) and the manoeuvre level's estimate.
 #[derive(Debug, Clone, Copy, PartialEq)]
 #[cfg_attr(feature = "defmt", derive(defmt::Format))]
 pub struct AutoAxis<N: Numeric> {
-    /// n, the effective count of the next update (≥ 3, real-valued).
-    pub count: N::Ratio,
-    /// The fast fading average of the NIS (weight ½).
-    pub fast: N::Ratio,
-    /// The slow fading average of the NIS (weight 1/16).
-    pub slow: N::Ratio,
-    /// The ceiling on n a sustained manoeuvre set (n_max when none).
-    pub ceiling: N::Ratio,
+    /// P_xx/σ².
+    pub position: N::Ratio,
+    /// P_xv/σ², 1/s.
+    pub cross: N::Ratio,
+    /// P_vv/σ², 1/s².
+    pub velocity: N::Ratio,
+    /// q/(3σ²), 1/s³: the manoeuvre level, scaled so that Q/σ² is
+    /// (q̃·T³, 1.5·q̃·T², 3·q̃·T) without a division.
+    pub manoeuvre: N::Ratio,
+    /// The fading average of ν²/S.
+    pub nis: N::Ratio,
+}
+
+/// Where the track is in its start.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+#[cfg_attr(feature = "defmt", derive(defmt::Format))]
+enum Start {
+    /// No measurement yet.
+    Empty,
+    /// One measurement: the coasted time is summed toward the two-point
+    /// interval.
+    FirstPoint,
+    /// Two or more: the covariance holds.
+    Tracking,
 }
 
 /// The self-tuning schedule (module docs; `docs/auto.md`).
@@ -169,230 +185,278 @@ pub struct AutoAxis<N: Numeric> {
 #[cfg_attr(feature = "defmt", derive(defmt::Format))]
 pub struct AutoGains<N: Numeric, const D: usize> {
     noise: Noise<N>,
-    n_max: N::Ratio,
+    /// [`Q_MIN`] and [`Q_MAX`] as q/(3σ²).
+    manoeuvre_min: N::Ratio,
+    manoeuvre_max: N::Ratio,
     axes: [AutoAxis<N>; D],
-    /// Scans missed since the last update.
-    misses: u16,
-    /// T of the last update (zero before the first) and (1 m)/T.
-    last_interval: N::Interval,
-    per_last_interval: N::Speed,
+    /// Time coasted since the last update, s (added to the next interval).
+    coasted: N::Ratio,
+    start: Start,
 }
 
-/// The integer `k` as a ratio, by doubling and adding one (exact; no
-/// conversion from a float, which costs a fixed-point core code and time).
-fn int<R: Real>(k: u64) -> R {
-    let mut out = R::ZERO;
-    let bits = u64::BITS.saturating_sub(k.leading_zeros());
-    for bit in (0..bits).rev() {
-        out = out + out;
-        if (k >> bit) & 1 == 1 {
-            out = out + R::ONE;
-        }
-    }
-    out
-}
-
-/// 1/2^k (k halvings of one).
-fn inverse_power_of_two<R: Real>(k: u32) -> R {
-    (0..k).fold(R::ONE, |r, _| r.half())
-}
-
-/// (α̂(n), β̂(n)) = (2(2n − 1), 6)/(n(n + 1)) (Al-Wagih & Abdulla eq. 24) for
-/// a real count n ≥ 3.
-#[inline(never)]
-fn least_squares<R: Real>(n: R) -> (R, R) {
-    let q = R::ONE / (n * (n + R::ONE));
-    let two = R::ONE + R::ONE;
-    let six = two + two + two;
-    ((two * (two * n - R::ONE)) * q, six * q)
-}
-
-/// The count whose least-squares α is `alpha` ∈ (0, 1): the larger root of
-/// αn² + (α − 4)n + 2 = 0 (eq. 24a solved for n).
-#[inline(never)]
-fn count_for_alpha<R: Real>(alpha: R) -> R {
-    let two = R::ONE + R::ONE;
-    let four = two + two;
-    let b = four - alpha;
-    let root = (b * b - (four + four) * alpha).sqrt();
-    (b + root) / (two * alpha)
-}
-
-/// The thresholds and weights of the rules, in the schedule's ratio type.
+/// The per-interval terms shared by the axes: τ (the next interval plus the
+/// time coasted), τ³, 1.5τ², 3τ, the fading weight min(τ/8 s, ½), and the
+/// update's own interval T.
 #[derive(Clone, Copy)]
-struct Constants<R> {
-    floor: R,
-    detection: R,
-    sustained: R,
-    slow_weight: R,
-    growth: R,
+struct Span<R> {
+    tau: R,
+    cube: R,
+    square: R,
+    triple: R,
+    weight: R,
+    interval: R,
+    /// [`NIS_CAP`], built by additions (no conversion per update).
+    nis_cap: R,
 }
 
-impl<R: Real> Constants<R> {
-    fn new() -> Self {
-        Constants {
-            floor: int(FIRST_COUNT),
-            detection: int(DETECTION_LEVEL),
-            sustained: int(SUSTAINED_LEVEL),
-            slow_weight: inverse_power_of_two(SLOW_MEMORY.trailing_zeros()),
-            growth: R::ONE + inverse_power_of_two(CEILING_GROWTH.trailing_zeros()),
+impl<R: Real> Span<R> {
+    fn new(coasted: R, dt: R) -> Self {
+        let tau = coasted + dt;
+        let squared = tau * tau;
+        let weight = (0..NIS_MEMORY_S.trailing_zeros())
+            .fold(tau, |w, _| w.half())
+            .min_of(R::ONE.half());
+        Span {
+            tau,
+            cube: squared * tau,
+            square: squared + squared.half(),
+            triple: tau + tau + tau,
+            weight,
+            interval: dt,
+            nis_cap: {
+                let two = R::ONE + R::ONE;
+                let ten = (two + two) + (two + two) + two;
+                ten * ten
+            },
         }
     }
+}
+
+/// An axis's covariance predicted over the span (P⁻ = FPFᵀ + Q), as
+/// (p̃_xx, p̃_xv, p̃_vv).
+#[inline(always)]
+fn predicted<N: Numeric>(a: &AutoAxis<N>, s: &Span<N::Ratio>) -> (N::Ratio, N::Ratio, N::Ratio) {
+    let q = a.manoeuvre;
+    let cross = a.cross + s.tau * a.velocity;
+    (
+        a.position + s.tau * (a.cross + cross) + q * s.cube,
+        cross + q * s.square,
+        a.velocity + q * s.triple,
+    )
+}
+
+/// One axis's Kalman update: the gains for measurement variance ratio `r`
+/// (R/σ²) and normalised innovation `nu` (ν/σ), and `a` moved to the state
+/// after the update.
+#[inline(always)]
+fn step_axis<N: Numeric>(
+    a: &mut AutoAxis<N>,
+    s: &Span<N::Ratio>,
+    r: N::Ratio,
+    nu: N::Ratio,
+    bounds: (N::Ratio, N::Ratio),
+) -> Result<Gains<N>, ScheduleError> {
+    let one = N::Ratio::ONE;
+    let (pxx, pxv, pvv) = predicted(a, s);
+    let inverse = one / (pxx + r);
+    let alpha = pxx * inverse;
+    let rate = pxv * inverse;
+    // Inside the stability triangle (β < 2(2 − α)) whatever the rounding.
+    let two = one + one;
+    let beta = (rate * s.interval).min_of((two - alpha) + (two - alpha).half());
+    let mut velocity = pvv - rate * pxv;
+    let (position, cross) = (alpha * r, rate * r);
+    if velocity * position <= cross * cross {
+        // Rounding left P⁺ not positive definite (its determinant is
+        // det P⁻·r/S > 0 exactly): the smallest p̃_vv that keeps it so.
+        let floor = cross * cross / position;
+        velocity = floor + floor;
+    }
+    // A NIS beyond the cap is a manoeuvre whatever its size; capping it
+    // keeps the average (and ν² in a narrow format) in range.
+    let cap = s.nis_cap;
+    let nis = if nu.abs() < cap {
+        (nu * nu * inverse).min_of(cap)
+    } else {
+        cap
+    };
+    let mean = a.nis + (nis - a.nis) * s.weight;
+    let manoeuvre = (a.manoeuvre + a.manoeuvre * (mean - one).half().half())
+        .min_of(bounds.1)
+        .max_of(bounds.0);
+    let next = AutoAxis {
+        position,
+        cross,
+        velocity,
+        manoeuvre,
+        nis: mean,
+    };
+    let valid = [position, cross, velocity, manoeuvre, mean]
+        .iter()
+        .all(|v| v.is_valid());
+    if !valid {
+        return Err(ScheduleError::InvalidContext);
+    }
+    *a = next;
+    Ok(Gains::alpha_beta(alpha, beta)?)
 }
 
 impl<N: Numeric, const D: usize> AutoGains<N, D> {
     /// The schedule for the sensor `c` describes (`docs/auto.md`).
     pub fn new(c: &AutoConfig) -> Result<Self, ConfigError> {
         c.validate()?;
-        let noise = match c.sensor()? {
-            AutoSensor::Cartesian { sigma } => Noise::Cartesian {
-                inverse_sigma: config_quantity(1.0 / sigma, "sigma")?,
-            },
+        let (noise, reference_sigma) = match c.sensor()? {
+            AutoSensor::Cartesian { sigma } => (
+                Noise::Cartesian {
+                    inverse_sigma: config_quantity(1.0 / sigma, "sigma")?,
+                },
+                sigma,
+            ),
             AutoSensor::Polar {
                 range_sigma,
                 bearing_sigma,
-            } => Noise::Polar {
-                range_sigma: config_quantity(range_sigma, "range-sigma")?,
-                bearing_sigma: config_quantity(bearing_sigma, "bearing-sigma-deg")?,
-            },
+            } => (
+                Noise::Polar {
+                    inverse_range_sigma: config_quantity(1.0 / range_sigma, "range-sigma")?,
+                    bearing_over_range: config_quantity(
+                        bearing_sigma / range_sigma,
+                        "bearing-sigma-deg",
+                    )?,
+                },
+                range_sigma,
+            ),
         };
-        let n_max: N::Ratio = config_quantity(f64::from(c.n_max), "n-max")?;
-        Ok(AutoGains {
+        let variance = 3.0 * reference_sigma * reference_sigma;
+        let manoeuvre_min = config_quantity(Q_MIN as f64 / variance, "sigma")?;
+        let manoeuvre_max = config_quantity(Q_MAX as f64 / variance, "sigma")?;
+        let mut out = AutoGains {
             noise,
-            n_max,
-            axes: [Self::fresh_axis(n_max); D],
-            misses: 0,
-            last_interval: N::Interval::ZERO,
-            per_last_interval: N::Speed::ZERO,
-        })
+            manoeuvre_min,
+            manoeuvre_max,
+            axes: [Self::two_point(N::Ratio::ONE, N::Ratio::ZERO); D],
+            coasted: N::Ratio::ZERO,
+            start: Start::Empty,
+        };
+        GainSchedule::<N, D>::reset(&mut out);
+        Ok(out)
     }
 
-    fn fresh_axis(n_max: N::Ratio) -> AutoAxis<N> {
-        AutoAxis {
-            count: int::<N::Ratio>(FIRST_COUNT),
-            fast: N::Ratio::ONE,
-            slow: N::Ratio::ONE,
-            ceiling: n_max,
-        }
-    }
-
-    /// The per-axis state (the count of the next update, the averages, the
-    /// ceiling).
+    /// The per-axis state after the last update.
     pub fn axes(&self) -> &[AutoAxis<N>; D] {
         &self.axes
     }
 
-    /// e/σ of every axis: Cartesian σ, or for a polar sensor σ along the
-    /// axis at the predicted position p: σ_x = √((σ_R·x/|p|)² + (σ_B·y)²),
-    /// σ_y likewise (range and cross-range errors projected; their
-    /// correlation ignored). Axes past the second use σ_R.
-    fn normalised_innovations(&self, ctx: &GainContext<N, D>) -> [N::Ratio; D] {
-        let mut out = [N::Ratio::ZERO; D];
+    /// The two-point start over interval `t` (ibid. §5.5.3): p̃ =
+    /// [1, 1/T; 1/T, 2/T²], the manoeuvre level at [`Q_START`].
+    fn two_point(t: N::Ratio, manoeuvre: N::Ratio) -> AutoAxis<N> {
+        let per = N::Ratio::ONE / t;
+        let per_squared = per * per;
+        AutoAxis {
+            position: N::Ratio::ONE,
+            cross: per,
+            velocity: per_squared + per_squared,
+            manoeuvre,
+            nis: N::Ratio::ONE,
+        }
+    }
+
+    fn start_manoeuvre(&self) -> N::Ratio {
+        self.manoeuvre_min * N::Ratio::from_ratio(Q_START, Q_MIN)
+    }
+
+    /// R/σ² and ν/σ of every axis: 1 and e/σ for a Cartesian sensor; for a
+    /// polar one σ along the axis at the predicted position p,
+    /// σ_x² = (σ_R·x/|p|)² + (σ_B·y)² and likewise σ_y (range and
+    /// cross-range errors projected, their correlation ignored), over σ_R².
+    /// The ratio is at least 2⁻¹⁰. Axes past the second use σ_R.
+    fn measurement_ratios(&self, ctx: &GainContext<N, D>) -> [(N::Ratio, N::Ratio); D] {
+        let one = N::Ratio::ONE;
+        let mut out = [(one, N::Ratio::ZERO); D];
         match self.noise {
             Noise::Cartesian { inverse_sigma } => {
                 for (o, a) in out.iter_mut().zip(&ctx.axes) {
-                    *o = N::Ratio::from(a.innovation) * inverse_sigma;
+                    o.1 = N::Ratio::from(a.innovation) * inverse_sigma;
                 }
             }
             Noise::Polar {
-                range_sigma,
-                bearing_sigma,
+                inverse_range_sigma,
+                bearing_over_range,
             } => {
                 let x = ctx.axes.first().map_or(N::Length::ZERO, |a| a.predicted);
                 let y = ctx.axes.get(1).map_or(N::Length::ZERO, |a| a.predicted);
                 let range = N::hypot(x, y);
                 for (i, (o, a)) in out.iter_mut().zip(&ctx.axes).enumerate() {
-                    let sigma = match (i, range > N::Length::ZERO) {
-                        (0, true) => N::hypot((x / range) * range_sigma, bearing_sigma * y),
-                        (1, true) => N::hypot((y / range) * range_sigma, bearing_sigma * x),
-                        _ => range_sigma,
+                    o.1 = N::Ratio::from(a.innovation) * inverse_range_sigma;
+                    let (along, across) = match i {
+                        0 => (x, y),
+                        1 => (y, x),
+                        _ => continue,
                     };
-                    *o = a.innovation / sigma;
+                    if range > N::Length::ZERO {
+                        let u = along / range;
+                        let c = N::Ratio::from(across) * bearing_over_range;
+                        // Floored at (σ_R/32)²: a target at the sensor
+                        // would otherwise have no measurement noise.
+                        let floor = (0..10).fold(one, |f, _| f.half());
+                        o.0 = (u * u + c * c).max_of(floor);
+                    }
                 }
             }
         }
         out
     }
 
-    /// h², the extrapolation span of this update over that of the last
-    /// (scans missed in between, and T over the last T), when it exceeds 1.
-    fn span_squared(&self, dt: N::Interval) -> Option<N::Ratio> {
-        let mut h = int::<N::Ratio>(u64::from(self.misses).saturating_add(1));
-        if self.last_interval > N::Interval::ZERO && dt != self.last_interval {
-            h = h * N::Ratio::from(self.per_last_interval * dt);
+    /// The covariance the next update starts from: the axes', or a
+    /// two-point start over the update's interval for a filter handed over
+    /// already tracking.
+    fn current(&self, dt: N::Ratio) -> [AutoAxis<N>; D] {
+        if self.start == Start::Tracking {
+            self.axes
+        } else {
+            [Self::two_point(dt, self.start_manoeuvre()); D]
         }
-        (h.is_valid() && h > N::Ratio::ONE).then_some(h * h)
+    }
+
+    /// p̃⁻_xx per axis for an update `dt` from now (the predicted position
+    /// variance over σ²): the innovation variance over σ² is this plus
+    /// R/σ² (1 for a Cartesian sensor), which a gate uses.
+    pub fn predicted_position_ratios(&self, dt: N::Interval) -> [N::Ratio; D] {
+        let dt = N::Ratio::from(dt);
+        let span = Span::new(self.coasted, dt);
+        self.current(dt).map(|a| predicted(&a, &span).0)
     }
 
     /// The gains of the update `ctx` and the state after it.
     fn plan(&self, ctx: &GainContext<N, D>) -> Result<Plan<N, D>, ScheduleError> {
-        let constants = Constants::new();
-        let span = self.span_squared(ctx.dt);
-        let nu = self.normalised_innovations(ctx);
+        let dt = N::Ratio::from(ctx.dt);
+        let span = Span::new(self.coasted, dt);
+        let ratios = self.measurement_ratios(ctx);
+        let bounds = (self.manoeuvre_min, self.manoeuvre_max);
         let one = N::Ratio::ONE;
         let mut gains = [Gains::alpha_beta(one, one)?; D];
-        let mut next = self.axes;
-        for ((g, s), nu) in gains.iter_mut().zip(next.iter_mut()).zip(nu) {
-            *g = step_axis(s, nu, span, self.n_max, &constants)?;
+        let mut next = self.current(dt);
+        for ((g, a), (r, nu)) in gains.iter_mut().zip(next.iter_mut()).zip(ratios) {
+            *g = match step_axis(a, &span, r, nu, bounds) {
+                Ok(g) => g,
+                // The covariance left the number format (a narrow format,
+                // a tiny σ and a long interval): the axis starts again from
+                // a two-point start over the span at the ceiling.
+                // Should that fail too, the axis takes the gains of a
+                // two-point start at equal intervals without process noise
+                // (α = 5/6, β = 1/2: Al-Wagih & Abdulla eq. 24 at n = 3).
+                Err(_) => {
+                    *a = Self::two_point(span.tau, self.manoeuvre_max);
+                    match step_axis(a, &Span::new(N::Ratio::ZERO, dt), r, nu, bounds) {
+                        Ok(g) => g,
+                        Err(_) => {
+                            Gains::alpha_beta(N::Ratio::from_ratio(5, 6), N::Ratio::ONE.half())?
+                        }
+                    }
+                }
+            };
         }
         Ok((gains, next))
     }
-}
-
-/// One axis's update of the rules (module docs): the gains, and `s` moved
-/// to the state after the update. `nu` = e/σ, `span` = h² when above 1.
-#[inline(never)]
-fn step_axis<N: Numeric>(
-    s: &mut AutoAxis<N>,
-    nu: N::Ratio,
-    span: Option<N::Ratio>,
-    n_max: N::Ratio,
-    c: &Constants<N::Ratio>,
-) -> Result<Gains<N>, ScheduleError> {
-    let one = N::Ratio::ONE;
-    let (alpha, _) = least_squares(s.count);
-    // NIS = e²/S with S = σ²(1 − α + αh²)/(1 − α): the least-squares
-    // prediction variance is σ²α/(1 − α), its velocity part scaled by the
-    // span h².
-    let keep = one - alpha;
-    let nis = match span {
-        None => nu * nu * keep,
-        Some(h2) => nu * nu * keep / (keep + alpha * h2),
-    };
-    let fast = (s.fast + nis).half();
-    let slow = s.slow + (nis - s.slow) * c.slow_weight;
-    let mut count = s.count;
-    if slow.is_valid() && slow <= c.sustained {
-        s.slow = slow;
-        s.ceiling = (s.ceiling * c.growth).min_of(n_max);
-    } else {
-        // A sustained manoeuvre: halve the ceiling (below the count).
-        s.slow = one;
-        s.ceiling = s.ceiling.min_of(count).half().max_of(c.floor);
-    }
-    if fast.is_valid() && fast <= c.detection {
-        s.fast = fast;
-    } else {
-        // The onset of a manoeuvre: cut the count so that the prediction
-        // variance absorbs the excess of the NIS over the threshold,
-        // 1 − α* = (1 − α)·level/m.
-        s.fast = one;
-        count = if fast.is_valid() {
-            let target = one - keep * c.detection / fast;
-            count.min_of(count_for_alpha(target)).max_of(c.floor)
-        } else {
-            c.floor
-        };
-        if !count.is_valid() {
-            count = c.floor;
-        }
-    }
-    let (a, b) = least_squares(count);
-    s.count = (count + one)
-        .min_of(s.ceiling)
-        .min_of(n_max)
-        .max_of(c.floor);
-    Ok(Gains::alpha_beta(a, b)?)
 }
 
 impl<N: Numeric, const D: usize> GainSchedule<N, D> for AutoGains<N, D> {
@@ -403,32 +467,42 @@ impl<N: Numeric, const D: usize> GainSchedule<N, D> for AutoGains<N, D> {
     fn accepted(&mut self, ctx: &GainContext<N, D>, _used: &[Gains<N>; D]) {
         if let Ok((_, next)) = self.plan(ctx) {
             self.axes = next;
+            self.start = Start::Tracking;
         }
-        self.misses = 0;
-        if ctx.dt != self.last_interval {
-            let per = N::Length::from_f64_lossy(1.0) / ctx.dt;
-            if per.is_valid() {
-                self.last_interval = ctx.dt;
-                self.per_last_interval = per;
-            }
-        }
+        self.coasted = N::Ratio::ZERO;
     }
 
-    fn initialised(&mut self, n: u32) {
+    fn initialised(&mut self, n: u32, dt: N::Interval) {
         if n <= 1 {
             GainSchedule::<N, D>::reset(self);
+            self.start = Start::FirstPoint;
+        } else {
+            let t = self.coasted + N::Ratio::from(dt);
+            self.axes = [Self::two_point(t, self.start_manoeuvre()); D];
+            self.coasted = N::Ratio::ZERO;
+            self.start = Start::Tracking;
         }
     }
 
-    fn missed(&mut self) {
-        self.misses = self.misses.saturating_add(1);
+    fn missed(&mut self, dt: N::Interval) {
+        let coasted = self.coasted + N::Ratio::from(dt);
+        if coasted.is_valid() {
+            self.coasted = coasted;
+        }
+    }
+
+    fn gains_follow_interval(&self) -> bool {
+        true
+    }
+
+    fn predicted_variance_ratios(&self, dt: N::Interval) -> Option<[N::Ratio; D]> {
+        (self.start == Start::Tracking).then(|| self.predicted_position_ratios(dt))
     }
 
     fn reset(&mut self) {
-        self.axes = [Self::fresh_axis(self.n_max); D];
-        self.misses = 0;
-        self.last_interval = N::Interval::ZERO;
-        self.per_last_interval = N::Speed::ZERO;
+        self.axes = [Self::two_point(N::Ratio::ONE, self.start_manoeuvre()); D];
+        self.coasted = N::Ratio::ZERO;
+        self.start = Start::Empty;
     }
 }
 

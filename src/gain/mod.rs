@@ -20,7 +20,7 @@
 //! | | [`ResidualAccumulationGains`] | Liu, Wang & Yang eqs. (6)–(11) |
 //! | | [`AdaptiveSwitchGains`] | Liu, Wang & Yang eqs. (12)–(15) |
 //! | [`tcas`] | [`FirmnessGains`] | TCAS range tracker (DO-185B firmness table) |
-//! | [`auto`] | [`AutoGains`] | beyond the papers: least-squares gains cut by NIS tests (`docs/auto.md`) |
+//! | [`auto`] | [`AutoGains`] | beyond the papers: a per-axis Kalman filter as αβ gains, q from the innovations (`docs/auto.md`) |
 //!
 //! Al-Wagih & Abdulla's M5 (a bank of K fixed-gain trackers) is not a
 //! schedule: it owns K filter states and outputs one of their predictions, so
@@ -237,11 +237,26 @@ pub trait GainSchedule<N: Numeric, const D: usize>: Copy {
     /// gains `gains` returned).
     fn accepted(&mut self, ctx: &GainContext<N, D>, used: &[Gains<N>; D]);
 
-    /// Measurement `n` (1 or 2) initialised the filter; no gains were used.
-    fn initialised(&mut self, _n: u32) {}
+    /// Measurement `n` (1 or 2), `dt` after the previous call, initialised
+    /// the filter; no gains were used.
+    fn initialised(&mut self, _n: u32, _dt: N::Interval) {}
 
-    /// A scan passed without a measurement for this track.
-    fn missed(&mut self) {}
+    /// A scan `dt` long passed without a measurement for this track.
+    fn missed(&mut self, _dt: N::Interval) {}
+
+    /// Whether the gains already account for the real interval (a
+    /// covariance propagated with it), so that [`ScheduledFilter`] applies
+    /// them without [`robust_gains`]' bounds.
+    fn gains_follow_interval(&self) -> bool {
+        false
+    }
+
+    /// The predicted position variance over the measurement variance per
+    /// axis, for an update `dt` from now, when the schedule carries a
+    /// covariance (a gate scales with it).
+    fn predicted_variance_ratios(&self, _dt: N::Interval) -> Option<[N::Ratio; D]> {
+        None
+    }
 
     /// Whether the track must be restarted (filter emptied, schedule
     /// [`reset`](Self::reset)) before the next measurement, given the
@@ -476,7 +491,7 @@ where
                     if restarted {
                         self.schedule.reset();
                     }
-                    self.schedule.initialised(n);
+                    self.schedule.initialised(n, dt);
                     Ok(ScheduledUpdate {
                         outcome: if restarted {
                             [UpdateOutcome::Restarted; D]
@@ -516,12 +531,16 @@ where
                 // overflowed.
                 Err(_) => return self.refuse_overflow(filter, z, dt),
             };
-            let gains = robust_gains(
-                self.schedule.gains(&ctx)?,
-                dt,
-                self.previous_interval,
-                self.reference_interval,
-            )?;
+            let gains = if self.schedule.gains_follow_interval() {
+                self.schedule.gains(&ctx)?
+            } else {
+                robust_gains(
+                    self.schedule.gains(&ctx)?,
+                    dt,
+                    self.previous_interval,
+                    self.reference_interval,
+                )?
+            };
             match filter.update_per_axis(z, dt, &gains) {
                 Ok(outcome) => {
                     self.filter = filter;
@@ -571,7 +590,7 @@ where
     /// the miss.
     pub fn coast(&mut self, dt: N::Interval) -> Result<(), FilterError> {
         self.filter.coast(dt)?;
-        self.schedule.missed();
+        self.schedule.missed(dt);
         Ok(())
     }
 }
@@ -690,7 +709,7 @@ pub enum AnySchedule<N: Numeric, const D: usize, const W: usize> {
     AdaptiveSwitch(AdaptiveSwitchGains<N, D, W>),
     /// `tcas-firmness`: the DO-185B firmness table.
     Firmness(FirmnessGains),
-    /// `auto`: least-squares gains cut by NIS tests (`docs/auto.md`).
+    /// `auto`: per-axis Kalman gains, q from the innovations (`docs/auto.md`).
     Auto(AutoGains<N, D>),
 }
 
@@ -747,11 +766,17 @@ impl<N: Numeric, const D: usize, const W: usize> GainSchedule<N, D> for AnySched
     fn accepted(&mut self, ctx: &GainContext<N, D>, used: &[Gains<N>; D]) {
         dispatch!(self, s => s.accepted(ctx, used))
     }
-    fn initialised(&mut self, n: u32) {
-        dispatch!(self, s => GainSchedule::<N, D>::initialised(s, n))
+    fn initialised(&mut self, n: u32, dt: N::Interval) {
+        dispatch!(self, s => GainSchedule::<N, D>::initialised(s, n, dt))
     }
-    fn missed(&mut self) {
-        dispatch!(self, s => GainSchedule::<N, D>::missed(s))
+    fn missed(&mut self, dt: N::Interval) {
+        dispatch!(self, s => GainSchedule::<N, D>::missed(s, dt))
+    }
+    fn gains_follow_interval(&self) -> bool {
+        dispatch!(self, s => GainSchedule::<N, D>::gains_follow_interval(s))
+    }
+    fn predicted_variance_ratios(&self, dt: N::Interval) -> Option<[N::Ratio; D]> {
+        dispatch!(self, s => GainSchedule::<N, D>::predicted_variance_ratios(s, dt))
     }
     fn restart_required(&self, phase: Phase) -> bool {
         dispatch!(self, s => GainSchedule::<N, D>::restart_required(s, phase))

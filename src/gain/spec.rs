@@ -108,8 +108,8 @@ pub const SCHEDULES: &[ScheduleInfo] = &[
     },
     ScheduleInfo {
         names: &["auto"],
-        parameters: "sigma=S | range-sigma=R,bearing-sigma-deg=B (required), n-max=1000",
-        summary: "least-squares gains, count cut by innovation tests: given only the sensor noise",
+        parameters: "sigma=S | range-sigma=R,bearing-sigma-deg=B (required)",
+        summary: "per-axis Kalman gains, manoeuvre level from the innovations: given only the sensor noise",
     },
 ];
 
@@ -338,7 +338,7 @@ impl ScheduleSpec {
                 &["limit", "alpha", "beta", "n", "sigma-m2", "alpha-min"]
             }
             ScheduleSpec::Firmness => &[],
-            ScheduleSpec::Auto(_) => &["sigma", "range-sigma", "bearing-sigma-deg", "n-max"],
+            ScheduleSpec::Auto(_) => &["sigma", "range-sigma", "bearing-sigma-deg"],
         }
     }
 
@@ -381,7 +381,6 @@ impl ScheduleSpec {
             (ScheduleSpec::Auto(c), 0) => c.sigma = Some(number(value)?),
             (ScheduleSpec::Auto(c), 1) => c.range_sigma = Some(number(value)?),
             (ScheduleSpec::Auto(c), 2) => c.bearing_sigma_deg = Some(number(value)?),
-            (ScheduleSpec::Auto(c), 3) => c.n_max = integer(value)?,
             _ => return Err(SpecErrorKind::UnknownParameter),
         }
         Ok(())
@@ -594,7 +593,7 @@ impl fmt::Display for ScheduleSpec {
                         separator = ',';
                     }
                 }
-                write!(f, "{separator}n-max={}", c.n_max)
+                Ok(())
             }
         }
     }

@@ -108,11 +108,11 @@ impl<N: Numeric, const D: usize> GainSchedule<N, D> for FirmnessGains {
         self.count_report();
     }
 
-    fn initialised(&mut self, _n: u32) {
+    fn initialised(&mut self, _n: u32, _dt: N::Interval) {
         self.count_report();
     }
 
-    fn missed(&mut self) {
+    fn missed(&mut self, _dt: N::Interval) {
         self.firmness = self.firmness.saturating_sub(1);
     }
 

@@ -265,8 +265,17 @@ impl<S: TrackNumeric, G: GainSchedule<S, 2>> TrackFilter<S> for ScheduledTrack<S
         self.filter.filter().velocity()
     }
 
-    /// The larger of the two axes' predicted position variance ratios.
+    /// The larger of the two axes' predicted position variance ratios: the
+    /// schedule's own covariance when it carries one (`auto`), else the
+    /// covariance the gains imply for a constant-velocity target.
     fn predicted_variance_ratio(&self, _: &G, step: &ScanInterval<S>) -> Option<S::Ratio> {
+        if let Some([px, py]) = self
+            .filter
+            .schedule()
+            .predicted_variance_ratios(step.interval())
+        {
+            return Some(px.max_of(py));
+        }
         let [ux, uy] = &self.uncertainty;
         let px = ux.predicted_variance_ratio(step.seconds())?;
         let py = uy.predicted_variance_ratio(step.seconds())?;
@@ -303,7 +312,18 @@ impl<S: TrackNumeric, G: GainSchedule<S, 2>> TrackFilter<S> for ScheduledTrack<S
                 max_acceleration,
             } => {
                 let p = self.predicted_variance_ratio(params, step)?;
-                uncertainty_radius(measurement_sigma, threshold, max_acceleration, p, step)
+                // A schedule that carries its covariance has the manoeuvre
+                // in p already: no allowance on top.
+                let schedule = self.filter.schedule();
+                let allowance = if schedule
+                    .predicted_variance_ratios(step.interval())
+                    .is_some()
+                {
+                    S::Acceleration::ZERO
+                } else {
+                    max_acceleration
+                };
+                uncertainty_radius(measurement_sigma, threshold, allowance, p, step)
             }
             Gate::Wave {
                 range_sigma,

@@ -30,11 +30,12 @@
 //! 2. **Manoeuvre model.** σ_w = a_max/2, the lower end of Bar-Shalom's
 //!    ½–1 × a_max rule for a white-acceleration model. Kalata's tracking
 //!    index Λ = σ_w·T²/σ (σ_max of rule 3 for a polar sensor) and its
-//!    steady-state α_K ([`crate::design`]). The
-//!    Cartesian filter is M2, the least-squares gains of Al-Wagih & Abdulla
-//!    eq. (24) (the optimal gains for a constant-velocity target while the
-//!    track is young), held once they reach α_K: n_max = the first n with
-//!    α̂(n) ≤ α_K. The polar filter (He et al.) gets Q = σ_w².
+//!    steady-state α_K ([`crate::design`]) give M2's count n_max, the first
+//!    n with α̂(n) ≤ α_K (`least_squares_n_max`, for M2 when chosen). The
+//!    Cartesian filter is `auto` ([`AutoGains`]): a per-axis Kalman filter
+//!    written as αβ gains, configured from σ_max, its manoeuvre level
+//!    estimated from the innovations, its covariance sizing the gate. The
+//!    polar filter (He et al.) gets Q = σ_w².
 //! 3. **Gate allowance** ½·a_max·T² (the drift an unmodelled acceleration
 //!    causes over one interval) and **initiation radius** v_max·T plus a
 //!    margin √(2G)·σ_max: the two points of a new track each carry the
@@ -83,7 +84,7 @@
 //!
 //! | | nominal radar | nominal TCAS |
 //! |---|---|---|
-//! | filter | `ScheduledTrack<S, LeastSquaresGains>`, n_max = 9 | `RangeAzimuthTrack<S>`, Q = 8.01 m²/s⁴ |
+//! | filter | `ScheduledTrack<S, AutoGains<S, 2>>`, σ = 20 m | `RangeAzimuthTrack<S>`, Q = 8.01 m²/s⁴ |
 //! | gate | uncertainty, G = 13.82, a_max = 5.66 m/s² | range/azimuth window, G = 13.82, a_max = 5.66 m/s² |
 //! | initiation radius | 300 m + 105 m | 617 m + 11.9 km |
 //! | confirmation | 3 of 4 | 3 of 4 |
@@ -106,7 +107,7 @@ use super::gate::{ConfigError, Gate};
 use crate::design::{kalata_gains, tracking_index};
 use crate::filter::range_azimuth::RangeAzimuthNoise;
 use crate::gain::al_wagih::{least_squares_alpha, LeastSquaresConfig};
-use crate::gain::LeastSquaresGains;
+use crate::gain::{AutoConfig, AutoGains};
 use crate::num::{Quantity, Scalar};
 use crate::track::TrackNumeric;
 
@@ -518,19 +519,19 @@ impl TrackerDesign {
         self.config_with(params, d.max_sigma, &d)
     }
 
-    /// The default Cartesian tracker: [`ScheduledTrack`] with M2's
-    /// least-squares gains held at n_max (rule 2), the uncertainty gate with
+    /// The default Cartesian tracker: [`ScheduledTrack`] with `auto`, the
+    /// per-axis Kalman gains configured from the sensor's σ (σ_max for a
+    /// polar sensor; `docs/auto.md`), whose covariance sizes the
+    /// uncertainty gate with
     /// the sensor's σ (for a polar sensor, σ_max: the conversion to x, y is
     /// then covered everywhere, at the cost of gates as wide across range as
     /// at the edge of the region), and the lifecycle of the module docs.
     pub fn cartesian_config<S: TrackNumeric>(
         &self,
-    ) -> Result<TrackerConfig<S, LeastSquaresGains>, ConfigError> {
+    ) -> Result<TrackerConfig<S, AutoGains<S, 2>>, ConfigError> {
         let d = self.derive()?;
-        let schedule = LeastSquaresGains::new(&LeastSquaresConfig {
-            n_max: d.least_squares_n_max,
-        })
-        .map_err(|_| ConfigError::OutOfRange)?;
+        let schedule = AutoGains::new(&AutoConfig::cartesian(d.max_sigma))
+            .map_err(|_| ConfigError::OutOfRange)?;
         self.config_with(schedule, d.max_sigma, &d)
     }
 
@@ -565,8 +566,8 @@ impl TrackerDesign {
 
 /// [`TrackerDesign::NOMINAL_RADAR`]'s Cartesian tracker (see the module
 /// docs): the configuration `replay --tracker` uses for `t,x,y` input.
-pub fn default_cartesian<S: TrackNumeric>(
-) -> Result<TrackerConfig<S, LeastSquaresGains>, ConfigError> {
+pub fn default_cartesian<S: TrackNumeric>() -> Result<TrackerConfig<S, AutoGains<S, 2>>, ConfigError>
+{
     TrackerDesign::NOMINAL_RADAR.cartesian_config()
 }
 
@@ -578,6 +579,6 @@ pub fn default_polar<S: Scalar>() -> Result<TrackerConfig<S, RangeAzimuthNoise<S
 }
 
 /// The table types the defaults are meant for.
-pub type DefaultCartesianTrack<S> = ScheduledTrack<S, LeastSquaresGains>;
+pub type DefaultCartesianTrack<S> = ScheduledTrack<S, AutoGains<S, 2>>;
 /// See [`DefaultCartesianTrack`].
 pub type DefaultPolarTrack<S> = RangeAzimuthTrack<S>;

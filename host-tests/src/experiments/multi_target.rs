@@ -10,7 +10,7 @@
 //! from f64 on the same measurements.
 //!
 //! Configurations: the Cartesian scenarios run
-//! `ScheduledTrack<S, LeastSquaresGains>` with
+//! `ScheduledTrack<S, AutoGains<S, 2>>` with
 //! `TrackerDesign::cartesian_config`, `tcas-30` runs `RangeAzimuthTrack<S>`
 //! (polar measurements used as range and azimuth, gated by a window in
 //! range and azimuth) with `TrackerDesign::polar_config`; the design is
@@ -22,7 +22,9 @@ use std::fmt::Write as _;
 use std::mem::size_of;
 use std::time::Instant;
 
-use abtrack::gain::{AnySchedule, FirmnessGains, FixedGains, LeastSquaresGains, LiImprovedGains};
+use abtrack::gain::{
+    AnySchedule, AutoGains, FirmnessGains, FixedGains, LeastSquaresGains, LiImprovedGains,
+};
 use abtrack::track::defaults::DerivedParameters;
 use abtrack::track::{FixedGainTrack, RangeAzimuthTrack, ScheduledTrack, Track};
 use abtrack::Fix;
@@ -153,7 +155,7 @@ pub fn run_types(
             ]
         }};
     }
-    type Cart<S> = ScheduledTrack<S, LeastSquaresGains>;
+    type Cart<S> = abtrack::track::defaults::DefaultCartesianTrack<S>;
     Ok(match (info.frame, plan.capacity) {
         (MeasurementFrame::Polar, (64, 64)) if plan.cartesian_converted => {
             three!(Cart, cartesian_config, 64, 64)
@@ -478,10 +480,16 @@ fn bytes_table() -> Table {
         FixedGainTrack
     );
     row!(
-        "ScheduledTrack<S, LeastSquaresGains> (default Cartesian)",
+        "ScheduledTrack<S, LeastSquaresGains> (M2)",
         ScheduledTrack,
         LeastSquaresGains
     );
+    t.push([
+        "ScheduledTrack<S, AutoGains<S, 2>> (default Cartesian)".to_string(),
+        size_of::<Slot<f64, ScheduledTrack<f64, AutoGains<f64, 2>>>>().to_string(),
+        size_of::<Slot<f32, ScheduledTrack<f32, AutoGains<f32, 2>>>>().to_string(),
+        size_of::<Slot<Fix, ScheduledTrack<Fix, AutoGains<Fix, 2>>>>().to_string(),
+    ]);
     t.push([
         "ScheduledTrack<S, FixedGains<S>> (M1)".to_string(),
         size_of::<Slot<f64, ScheduledTrack<f64, FixedGains<f64>>>>().to_string(),
@@ -610,7 +618,7 @@ pub fn run(ctx: &Context) -> Result<(), String> {
         s,
         "Default tracker (`abtrack::track::defaults`, derived from each scenario's sensor \
          figures; nothing tuned to these results): Cartesian scenarios \
-         `ScheduledTrack<S, LeastSquaresGains>` with the uncertainty gate; `tcas-30` \
+         `ScheduledTrack<S, AutoGains<S, 2>>` with the uncertainty gate; `tcas-30` \
          `RangeAzimuthTrack<S>` on the polar measurements with the range/azimuth window gate. \
          Base seed {BASE_SEED:#x}; OSPA order p = {OSPA_ORDER}, cut-off c per scenario below \
          (also the track-to-truth gate of the track metrics). Intervals are 95 % (Student t \

@@ -1,8 +1,8 @@
 //! Gain design and the gain schedules: formulas, hand-computed sequences,
 //! properties, representations, robustness, the bank and `auto`.
 
-mod auto;
 mod bank;
+mod covariance;
 mod design;
 mod properties;
 mod representations;

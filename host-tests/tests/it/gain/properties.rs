@@ -102,7 +102,7 @@ fn drive<S: Scalar>(spec: &str, events: &[Event]) {
     let mut phase = Phase::Empty;
     for e in events {
         match context::<S>(n + 1, e) {
-            None => GainSchedule::<S, 2>::missed(&mut s),
+            None => GainSchedule::<S, 2>::missed(&mut s, S::ONE),
             Some(ctx) => {
                 if s.restart_required(phase) {
                     s.reset();
@@ -111,7 +111,7 @@ fn drive<S: Scalar>(spec: &str, events: &[Event]) {
                 }
                 n += 1;
                 if phase != Phase::Tracking {
-                    GainSchedule::<S, 2>::initialised(&mut s, n);
+                    GainSchedule::<S, 2>::initialised(&mut s, n, ctx.dt);
                     phase = if n >= 2 {
                         Phase::Tracking
                     } else {

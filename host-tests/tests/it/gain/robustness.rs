@@ -340,7 +340,7 @@ fn defaults_scale_with_the_sensor() {
     );
     assert!(parsed("liu-adaptive").starts_with("liu-adaptive:limit=190,"));
     assert!(parsed("liu-count-adjusted").starts_with("liu-count-adjusted:threshold=700,"));
-    assert_eq!(parsed("auto"), "auto:sigma=50,n-max=1000");
+    assert_eq!(parsed("auto"), "auto:sigma=50");
     // Without a sensor the papers' defaults stay (the experiments use them).
     assert_eq!(
         ScheduleSpec::parse("m2").unwrap().to_string(),
