@@ -10,9 +10,9 @@
 use std::collections::BTreeSet;
 
 use abtrack::filter::range_azimuth::RangeAzimuthNoise;
-use abtrack::gain::{FirmnessGains, FixedGains, LeastSquaresGains, LiImprovedGains};
+use abtrack::gain::{FirmnessGains, FixedGains, LiImprovedGains};
 use abtrack::track::defaults::{
-    default_cartesian, default_polar, DerivedParameters, TrackerDesign,
+    default_cartesian, default_polar, DefaultCartesianTrack, DerivedParameters, TrackerDesign,
 };
 use abtrack::track::{
     Association, DropReason, FixedGainTrack, Gate, GateRegion, Measurement, Observation,
@@ -30,7 +30,7 @@ use abtrack_host_tests::tracking::{
 /// Monte Carlo runs per scenario and number type in these tests.
 const RUNS: usize = 100;
 
-type Cart<S> = ScheduledTrack<S, LeastSquaresGains>;
+type Cart<S> = DefaultCartesianTrack<S>;
 
 fn cutoff(name: &str) -> f64 {
     PLANS
