@@ -540,7 +540,7 @@ struct IntruderSlot<S: Scalar> {
 /// modified tau; more are counted, `ra_threats_over_capacity`).
 pub const MAX_RA_THREATS: usize = 8;
 
-/// Reply identity (issue 10 item 3): a reply with a Mode S address
+/// Reply identity: a reply with a Mode S address
 /// updates only the track of that address, and starts a track only if no
 /// track has it; a reply without one (Mode C) updates only a track without
 /// an address whose altitude it correlates with, and starts one only with a
@@ -1390,7 +1390,7 @@ impl<S: Scalar, F: TrackFilter<S> + BearingTrack<S>, const N: usize, const M: us
         }
     }
 
-    /// The TCAS cycle (issue 10): the sensitivity level for the own
+    /// The TCAS cycle: the sensitivity level for the own
     /// aircraft, the threat logic of every confirmed track (advisories only
     /// from firm tracks: [`crate::tcas::ThreatState::assess`]), then the RA
     /// against the RA threats ([`CollisionAvoidance::resolve`]). Failures

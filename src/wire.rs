@@ -56,7 +56,7 @@
 //! A measurement frame with a valid CRC is still refused
 //! ([`WireError::OutOfEnvelope`], counted) when it is not physical for the
 //! tracker: a position or range beyond 400 km ([`MAX_POSITION_CM`], the
-//! numeric envelope of the fixed-point filters, issue 2) or a reported
+//! numeric envelope of the fixed-point filters) or a reported
 //! altitude outside Mode C's −1000 … 126 700 ft. The decoder then examines
 //! the candidate's bytes again, so a made-up frame (a CRC collision in
 //! garbage) cannot swallow a real frame behind it. Times are checked by the
@@ -92,7 +92,7 @@ const fn frame_len_for(payload: usize) -> usize {
 }
 
 /// Largest |x|, |y| or range accepted, cm: 400 km, the position envelope of
-/// the fixed-point filters (issue 2).
+/// the fixed-point filters.
 pub const MAX_POSITION_CM: u32 = 40_000_000;
 /// Lowest pressure altitude accepted, ft (Mode C, ICAO Annex 10 Vol. IV).
 pub const MIN_ALTITUDE_FT: i32 = -1_000;
