@@ -17,6 +17,7 @@ pub mod liu;
 pub mod monte_carlo;
 pub mod multi_target;
 pub mod tcas_advisory;
+pub mod tcas_random;
 pub mod tenne_singh;
 
 use common::Context;
@@ -66,6 +67,11 @@ pub const GROUPS: &[Group] = &[
         name: tcas_advisory::NAME,
         about: "TCAS: encounter suite vs the v7.1 reference, altitude tracker; converging encounter: estimated vs true tau",
         run: tcas_advisory::run,
+    },
+    Group {
+        name: tcas_random::NAME,
+        about: tcas_random::ABOUT,
+        run: tcas_random::run,
     },
     Group {
         name: tenne_singh::GROUP,
