@@ -18,6 +18,7 @@ use abtrack::filter::altitude::{AltitudeQuantum, AltitudeTrackerConfig};
 use abtrack::filter::range_azimuth::{RangeAzimuthFilter, RangeAzimuthNoise};
 use abtrack::tcas::{
     Advisory, CollisionAvoidance, IntruderTrack, OwnAircraft, RaSense, Reply, ThreatGeometry,
+    MAX_CLOSURE_SPEED_M_PER_S,
 };
 use abtrack::Scalar;
 
@@ -345,6 +346,7 @@ pub fn run_library_for<S: Scalar>(
         sensor.bearing_sigma_rad * sensor.bearing_sigma_rad,
         BEARING_TRACKER_PROCESS_NOISE,
     )
+    .and_then(|n| n.with_speed_bound_f64(MAX_CLOSURE_SPEED_M_PER_S))
     .map_err(|e| e.to_string())?;
     let mut bearing = RangeAzimuthFilter::<S>::new(noise);
     let own = OwnAircraft::over_sea_level(c(e.own_altitude_ft), S::ZERO);
