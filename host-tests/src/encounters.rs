@@ -324,17 +324,20 @@ pub fn run_library<S: Scalar>(
     e: &Encounter,
     meas: &[Measurement],
 ) -> Result<Vec<ScanOutcome>, String> {
-    run_library_for::<S>(e, meas, &SENSOR)
+    run_library_for::<S>(e, meas, &SENSOR, None)
 }
 
 /// [`run_library`] with the bearing tracker configured for `sensor`. The
 /// bearing track's estimate must stay within the numeric envelope
 /// (positions, velocity components: [`abtrack::envelope`]), as `replay`
 /// requires of every row it writes: a run whose track leaves it is refused.
+/// `miss_distance_confidence` overrides the HMD filter's confidence factor
+/// for the bearing-based miss distance (`Cycle::with_miss_distance_confidence`).
 pub fn run_library_for<S: Scalar>(
     e: &Encounter,
     meas: &[Measurement],
     sensor: &Sensor,
+    miss_distance_confidence: Option<f64>,
 ) -> Result<Vec<ScanOutcome>, String> {
     let c = |v: f64| S::from_f64_lossy(v);
     let one = S::ONE;
@@ -352,9 +355,12 @@ pub fn run_library_for<S: Scalar>(
     let own = OwnAircraft::over_sea_level(c(e.own_altitude_ft), S::ZERO);
     let mut out = Vec::with_capacity(meas.len());
     for (k, m) in meas.iter().enumerate() {
-        let cycle = cas
+        let mut cycle = cas
             .begin_cycle(&own, false)
             .map_err(|e| format!("scan {k}: {e}"))?;
+        if let Some(sigmas) = miss_distance_confidence {
+            cycle = cycle.with_miss_distance_confidence(c(sigmas));
+        }
         track
             .scan(
                 Some(Reply {

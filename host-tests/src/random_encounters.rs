@@ -256,12 +256,15 @@ pub fn run_seed(index: usize, run: usize) -> u64 {
 }
 
 /// Run `run` of `e` under `condition` in `S` (the exact condition ignores
-/// `run`), against the reference's timeline `reference`.
+/// `run`), against the reference's timeline `reference`; the HMD filter's
+/// confidence factor for the bearing-based miss distance is the library's
+/// unless `miss_distance_confidence` is given.
 pub fn run_one<S: Scalar>(
     e: &RandomEncounter,
     condition: &Condition,
     run: usize,
     reference: &[ScanOutcome],
+    miss_distance_confidence: Option<f64>,
 ) -> RunResult {
     let encounter = Encounter {
         quantum: condition.quantum,
@@ -273,7 +276,12 @@ pub fn run_one<S: Scalar>(
         Noise::Exact
     };
     let meas = measurements_by(&encounter, noise, &condition.sensor);
-    match run_library_for::<S>(&encounter, &meas, &condition.sensor) {
+    match run_library_for::<S>(
+        &encounter,
+        &meas,
+        &condition.sensor,
+        miss_distance_confidence,
+    ) {
         Ok(out) => compare(&out, reference),
         Err(_) => RunResult {
             refused: true,

@@ -38,7 +38,7 @@ fn runs_in<S: Scalar>(
 ) -> Vec<RunResult> {
     let n = if condition.noisy { seeds } else { 1 };
     (0..n)
-        .map(|run| run_one::<S>(e, condition, run, reference))
+        .map(|run| run_one::<S>(e, condition, run, reference, None))
         .collect()
 }
 
@@ -214,6 +214,35 @@ pub fn run(ctx: &Context) -> Result<(), String> {
         &series,
     )?;
 
+    false_ra_table(&encounters, &results[1][0]).write(&dir, "false_ras")?;
+    let trade_off = trade_off_table(&encounters, seeds);
+    trade_off.write(&dir, "trade_off")?;
+    let point = |row: &Vec<String>, col: usize| row[col].trim_end_matches(" %").parse::<f64>();
+    let mut false_missed = Vec::new();
+    let mut false_delay = Vec::new();
+    for row in &trade_off.rows {
+        if let (Ok(f), Ok(m)) = (point(row, 1), point(row, 2)) {
+            false_missed.push((f, m));
+            if let Ok(d) = point(row, 4) {
+                false_delay.push((f, d));
+            }
+        }
+    }
+    plot(
+        &dir.join("trade_off.svg"),
+        &PlotSpec {
+            title: "HMD filter confidence k (bearing σB 5°, 25 ft, f64): false vs missed RAs, p95 delay",
+            x_label: "false RAs (% of runs)",
+            y_label: "missed RAs (%) / p95 onset delay (s)",
+            equal_aspect: false,
+            y_max: None,
+        },
+        &[
+            Series::line("missed RAs (%)", false_missed),
+            Series::line("p95 onset delay (s)", false_delay),
+        ],
+    )?;
+
     let mut s = String::new();
     let _ = writeln!(s, "# Randomized TCAS encounters\n");
     let _ = writeln!(
@@ -226,12 +255,98 @@ pub fn run(ctx: &Context) -> Result<(), String> {
          exact and with {seeds} noise seeds per encounter and condition (range σ 15 m), through \
          the library in f64, f32 and the scaled format, against the f64 reference of the rules \
          on the true states. Definitions in the module docs. Table by level: `by_level.md`; \
-         plots: `false_vs_missed.svg`, `onset_delay.svg`.\n",
+         plots: `false_vs_missed.svg`, `onset_delay.svg`; the HMD filter's confidence factor \
+         k swept in `trade_off.md` and `trade_off.svg`.\n",
         encounters.len()
     );
     let overall: Vec<&Vec<String>> = table.rows.iter().filter(|r| r[2] == "all").collect();
     let mut t = Table::new(table.headers.clone());
     overall.into_iter().for_each(|r| t.push(r.clone()));
     let _ = writeln!(s, "## All levels\n\n{}", t.to_markdown());
+    let _ = writeln!(
+        s,
+        "## HMD filter confidence (σB 5°, 25 ft, f64)\n\n{}",
+        trade_off.to_markdown()
+    );
     write_file(&dir.join("summary.md"), &s)
+}
+
+/// The confidence factors k the trade-off sweeps (the bearing-based miss
+/// distance counts as its estimate minus k standard deviations); the last,
+/// 1000, leaves the bearing-based miss distance unused.
+pub const CONFIDENCES: [f64; 8] = [0.0, 0.5, 1.0, 1.5, 2.0, 3.0, 4.0, 1000.0];
+
+/// False and missed RAs and the onset delay as the HMD filter's confidence
+/// factor varies (condition σB 5°, 25 ft, f64).
+pub fn trade_off_table(encounters: &[RandomEncounter], seeds: usize) -> Table {
+    let condition = &CONDITIONS[1];
+    let mut table = Table::new([
+        "k (σ)",
+        "false RA",
+        "missed RA",
+        "onset delay median (s)",
+        "onset delay p95 (s)",
+        "RA in pieces",
+        "wrong sense",
+    ]);
+    let references: Vec<_> = encounters.par_iter().map(reference).collect();
+    for k in CONFIDENCES {
+        let runs: Vec<Vec<RunResult>> = encounters
+            .par_iter()
+            .zip(&references)
+            .map(|(e, r)| {
+                (0..seeds)
+                    .map(|run| run_one::<f64>(e, condition, run, r, Some(k)))
+                    .collect()
+            })
+            .collect();
+        let t = tally(encounters, &runs, None);
+        let a = t.accepted();
+        table.push([
+            format!("{k}"),
+            pct(t.false_ra, a),
+            pct(t.missed_ra, a),
+            seconds(t.delay_quantile(0.5)),
+            seconds(t.delay_quantile(0.95)),
+            t.in_pieces.to_string(),
+            t.wrong_sense.to_string(),
+        ]);
+    }
+    table
+}
+
+/// The encounters with false RAs under `runs` (one condition and type):
+/// how many of their runs, and the encounter's figures against the
+/// level's HMD threshold.
+pub fn false_ra_table(encounters: &[RandomEncounter], runs: &[Vec<RunResult>]) -> Table {
+    let mut table = Table::new([
+        "encounter",
+        "level",
+        "false RA runs",
+        "HMD (m)",
+        "HMD / threshold",
+        "VMD (ft)",
+        "closure (kt)",
+        "intruder rate (ft/min)",
+    ]);
+    for (e, rs) in encounters.iter().zip(runs) {
+        let n = rs.iter().filter(|r| r.ra && !r.reference_ra).count();
+        if n == 0 {
+            continue;
+        }
+        let threshold = crate::reference_tcas::level_for(e.encounter.own_altitude_ft)
+            .ra
+            .map_or(f64::NAN, |ra| ra.hmd_m);
+        table.push([
+            e.index.to_string(),
+            format!("SL{}", e.level),
+            n.to_string(),
+            format!("{:.0}", e.hmd_m),
+            format!("{:.2}", e.hmd_m / threshold),
+            format!("{:+.0}", e.vmd_ft),
+            format!("{:.0}", e.closure_kt),
+            format!("{:+.0}", e.intruder_rate_ft_per_min),
+        ]);
+    }
+    table
 }
