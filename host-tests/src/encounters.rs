@@ -13,10 +13,12 @@
 
 use std::f64::consts::PI;
 
+use abtrack::envelope::{POSITION_M, VELOCITY_M_PER_S};
 use abtrack::filter::altitude::{AltitudeQuantum, AltitudeTrackerConfig};
 use abtrack::filter::range_azimuth::{RangeAzimuthFilter, RangeAzimuthNoise};
 use abtrack::tcas::{
     Advisory, CollisionAvoidance, IntruderTrack, OwnAircraft, RaSense, Reply, ThreatGeometry,
+    MAX_CLOSURE_SPEED_M_PER_S,
 };
 use abtrack::Scalar;
 
@@ -249,8 +251,29 @@ pub enum Noise {
     Seeded(u64),
 }
 
-/// The measurements of an encounter, one per scan.
+/// The sensor of a run: its noise, which the bearing tracker is also
+/// configured with.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Sensor {
+    /// Range σ, m.
+    pub range_sigma_m: f64,
+    /// Bearing σ, rad.
+    pub bearing_sigma_rad: f64,
+}
+
+/// The suite's sensor: [`RANGE_SIGMA_M`], [`BEARING_SIGMA_RAD`].
+pub const SENSOR: Sensor = Sensor {
+    range_sigma_m: RANGE_SIGMA_M,
+    bearing_sigma_rad: BEARING_SIGMA_RAD,
+};
+
+/// The measurements of an encounter, one per scan, by [`SENSOR`].
 pub fn measurements(e: &Encounter, noise: Noise) -> Vec<Measurement> {
+    measurements_by(e, noise, &SENSOR)
+}
+
+/// The measurements of an encounter, one per scan, with `sensor`'s noise.
+pub fn measurements_by(e: &Encounter, noise: Noise, sensor: &Sensor) -> Vec<Measurement> {
     let mut rng: Option<SimRng> = match noise {
         Noise::Exact => None,
         Noise::Seeded(seed) => Some(rng_from_seed(seed)),
@@ -263,8 +286,8 @@ pub fn measurements(e: &Encounter, noise: Noise) -> Vec<Measurement> {
             let (dr, db) = match rng.as_mut() {
                 None => (0.0, 0.0),
                 Some(g) => (
-                    RANGE_SIGMA_M * standard_normal(g),
-                    BEARING_SIGMA_RAD * standard_normal(g),
+                    sensor.range_sigma_m * standard_normal(g),
+                    sensor.bearing_sigma_rad * standard_normal(g),
                 ),
             };
             Measurement {
@@ -294,11 +317,27 @@ fn alert_of(a: Advisory) -> Alert {
     }
 }
 
-/// Runs the library in `S` on the measurements; `None` for an input the
-/// library refused (counted by the caller as a failure).
+/// Runs the library in `S` on the measurements, its bearing tracker
+/// configured for [`SENSOR`]; `Err` for an input the library refused
+/// (counted by the caller as a failure).
 pub fn run_library<S: Scalar>(
     e: &Encounter,
     meas: &[Measurement],
+) -> Result<Vec<ScanOutcome>, String> {
+    run_library_for::<S>(e, meas, &SENSOR, None)
+}
+
+/// [`run_library`] with the bearing tracker configured for `sensor`. The
+/// bearing track's estimate must stay within the numeric envelope
+/// (positions, velocity components: [`abtrack::envelope`]), as `replay`
+/// requires of every row it writes: a run whose track leaves it is refused.
+/// `miss_distance_confidence` overrides the HMD filter's confidence factor
+/// for the bearing-based miss distance (`Cycle::with_miss_distance_confidence`).
+pub fn run_library_for<S: Scalar>(
+    e: &Encounter,
+    meas: &[Measurement],
+    sensor: &Sensor,
+    miss_distance_confidence: Option<f64>,
 ) -> Result<Vec<ScanOutcome>, String> {
     let c = |v: f64| S::from_f64_lossy(v);
     let one = S::ONE;
@@ -306,18 +345,22 @@ pub fn run_library<S: Scalar>(
     let altitude = AltitudeTrackerConfig::<S>::default_for(e.quantum).map_err(|e| e.to_string())?;
     let mut track = IntruderTrack::<S>::new(altitude);
     let noise = RangeAzimuthNoise::<S>::new_f64(
-        RANGE_SIGMA_M * RANGE_SIGMA_M,
-        BEARING_SIGMA_RAD * BEARING_SIGMA_RAD,
+        sensor.range_sigma_m * sensor.range_sigma_m,
+        sensor.bearing_sigma_rad * sensor.bearing_sigma_rad,
         BEARING_TRACKER_PROCESS_NOISE,
     )
+    .and_then(|n| n.with_speed_bound_f64(MAX_CLOSURE_SPEED_M_PER_S))
     .map_err(|e| e.to_string())?;
     let mut bearing = RangeAzimuthFilter::<S>::new(noise);
     let own = OwnAircraft::over_sea_level(c(e.own_altitude_ft), S::ZERO);
     let mut out = Vec::with_capacity(meas.len());
     for (k, m) in meas.iter().enumerate() {
-        let cycle = cas
+        let mut cycle = cas
             .begin_cycle(&own, false)
             .map_err(|e| format!("scan {k}: {e}"))?;
+        if let Some(sigmas) = miss_distance_confidence {
+            cycle = cycle.with_miss_distance_confidence(c(sigmas));
+        }
         track
             .scan(
                 Some(Reply {
@@ -330,6 +373,20 @@ pub fn run_library<S: Scalar>(
         bearing
             .update(c(m.range_m), c(m.bearing_rad), one)
             .map_err(|e| format!("scan {k}: bearing refused: {e}"))?;
+        let inside = bearing
+            .position()
+            .iter()
+            .all(|p| POSITION_M.contains(p.to_f64()))
+            && bearing
+                .velocity()
+                .iter()
+                .all(|v| VELOCITY_M_PER_S.contains(v.to_f64()));
+        if !inside {
+            return Err(format!(
+                "scan {k}: the bearing track left the envelope (velocity {:?} m/s)",
+                bearing.velocity().map(|v| v.to_f64())
+            ));
+        }
         let status = track
             .assess(&cycle, Some(&bearing), one)
             .map_err(|e| format!("scan {k}: {e}"))?;

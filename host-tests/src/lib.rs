@@ -36,6 +36,7 @@ pub mod metrics;
 pub mod noise;
 pub mod output;
 pub mod precision;
+pub mod random_encounters;
 pub mod reference;
 pub mod reference_ra;
 pub mod reference_tcas;

@@ -67,6 +67,26 @@
 //! points' standard deviations in that direction), and filtering with eqs.
 //! (7)–(13) starts at the third measurement.
 //!
+//! # Initiation under bearing noise
+//!
+//! A two-point velocity carries the cross-range noise over T: at 18.5 km
+//! with σ_B = 2° it is √2·646 m/s per scan, faster than any aircraft.
+//! With a bound V on the relative speed
+//! ([`RangeAzimuthNoise::with_speed_bound`]; TCAS II tracks closures up to
+//! 1200 kt, FAA booklet "Introduction to TCAS II Version 7.1", Surveillance) the
+//! first point is a state with covariance: position measured (σ_R along,
+//! R·σ_B across), velocity zero with σ_v = V/2 per component (a velocity
+//! uniform on the disc |v| ≤ V has that variance), and the second
+//! measurement is an ordinary filtered update over the time since the
+//! first (Bar-Shalom, Li & Kirubarajan, *Estimation with Applications to
+//! Tracking and Navigation*, §5.5.3: one-point initialisation with a
+//! velocity prior). Each direction keeps its own weights: along range
+//! σ_R ≪ T·σ_v and the range rate is taken from the two ranges; across
+//! range R·σ_B ≫ T·σ_v and the cross-range velocity stays with the prior
+//! until the bearing track has the information. A filtered velocity faster
+//! than V is scaled onto it (the projection onto the speeds that exist),
+//! so noise alone never takes the track out of the envelope.
+//!
 //! # Fixed point: covariances as square-root factors
 //!
 //! In m² the covariances do not fit Q32.32 (range ±2.1·10⁹) in the paper's
@@ -171,6 +191,11 @@ pub struct RangeAzimuthNoise<N: Numeric> {
     bearing_sigma: N::Ratio,
     /// √Q, m/s².
     process_sigma: N::Ratio,
+    /// The largest speed of the target relative to the sensor, m/s, and
+    /// the prior standard deviation of each velocity component it implies
+    /// (half of it: a velocity uniform on the disc of that radius); `None`:
+    /// He et al.'s two-point initiation.
+    speed_bound: Option<(N::Ratio, N::Ratio)>,
 }
 
 impl<N: Numeric> RangeAzimuthNoise<N> {
@@ -210,7 +235,40 @@ impl<N: Numeric> RangeAzimuthNoise<N> {
             range_sigma,
             bearing_sigma,
             process_sigma,
+            speed_bound: None,
         })
+    }
+
+    /// The same noise with a bound `max_speed` (m/s, > 0) on the target's
+    /// speed relative to the sensor: initiation then weights the
+    /// measurements by their covariance against a velocity prior (zero
+    /// mean, σ = `max_speed`/2 per component, along and across range
+    /// apart) instead of differencing two points, and a filtered velocity
+    /// is never faster than the bound (see the module docs, "Initiation
+    /// under bearing noise").
+    pub fn with_speed_bound(self, max_speed: N::Ratio) -> Result<Self, NoiseError> {
+        if !max_speed.is_valid() {
+            return Err(NoiseError::NotFinite);
+        }
+        let prior = max_speed.half();
+        if max_speed <= N::Ratio::ZERO || prior <= N::Ratio::ZERO {
+            return Err(NoiseError::OutOfRange);
+        }
+        Ok(RangeAzimuthNoise {
+            speed_bound: Some((max_speed, prior)),
+            ..self
+        })
+    }
+
+    /// [`Self::with_speed_bound`] from an `f64` speed, m/s.
+    pub fn with_speed_bound_f64(self, max_speed: f64) -> Result<Self, NoiseError> {
+        let v = N::Ratio::try_from_f64(max_speed).map_err(|_| NoiseError::NotFinite)?;
+        self.with_speed_bound(v)
+    }
+
+    /// The bound on the relative speed, m/s, if any.
+    pub fn speed_bound(&self) -> Option<N::Ratio> {
+        self.speed_bound.map(|(v, _)| v)
     }
 
     /// [`Self::new`] from `f64` values (configuration, tools).
@@ -280,6 +338,16 @@ impl<N: Numeric> CovarianceFactor<N> {
     pub fn covariance_f64(&self) -> [f64; 3] {
         let (a, b, c) = (self.a.to_f64(), self.b.to_f64(), self.c.to_f64());
         [a * a, a * b, b * b + c * c]
+    }
+
+    /// A measured position (σ) and a velocity prior (σ_v, uncorrelated):
+    /// P = [σ², 0; 0, σ_v²], whose factor is a = σ, b = 0, c = σ_v.
+    fn position_with_prior(sigma: N::Ratio, velocity_sigma: N::Ratio) -> Self {
+        CovarianceFactor {
+            a: sigma,
+            b: N::Ratio::ZERO,
+            c: velocity_sigma,
+        }
     }
 
     /// Two-point differencing: P = [σ², σ²/T; σ²/T, (σ₁² + σ²)/T²], whose
@@ -654,8 +722,25 @@ impl<N: Numeric> RangeAzimuthFilter<N> {
                 self.velocity = [N::Ratio::ZERO; 2];
                 self.since_first = N::Interval::ZERO;
                 self.first_cross_sigma = cross_sigma;
+                if let Some((_, prior)) = self.noise.speed_bound {
+                    self.range_factor =
+                        CovarianceFactor::position_with_prior(self.noise.range_sigma, prior);
+                    self.cross_factor = CovarianceFactor::position_with_prior(cross_sigma, prior);
+                }
                 self.phase = Phase::OnePoint;
                 Ok(RangeAzimuthOutcome::FirstPoint)
+            }
+            Phase::OnePoint if self.noise.speed_bound.is_some() => {
+                // The first point and the velocity prior are a state with
+                // its covariance: the second measurement is a filtered
+                // update over the time since the first.
+                let elapsed = self.since_first + dt;
+                if !elapsed.is_valid() {
+                    return Err(self.saturated());
+                }
+                let outcome = self.filter(range, sin_b, cos_b, cross_sigma, elapsed)?;
+                self.phase = Phase::Tracking;
+                Ok(outcome)
             }
             Phase::OnePoint => {
                 let measured = self.measured_point(range, sin_b, cos_b)?;
@@ -735,10 +820,10 @@ impl<N: Numeric> RangeAzimuthFilter<N> {
             yp + alpha * along_y + w1 * across_y,
         ];
         let metres = |l: N::Length| N::Ratio::from(l);
-        let velocity = [
+        let velocity = self.within_speed_bound([
             vx + range_velocity_gain * metres(along_x) - w2 * metres(across_x),
             vy + range_velocity_gain * metres(along_y) + w2 * metres(across_y),
-        ];
+        ]);
         let innovation = RangeAzimuthInnovation::<N> {
             predicted: [xp, yp],
             range_residual,
@@ -766,6 +851,23 @@ impl<N: Numeric> RangeAzimuthFilter<N> {
         self.cross_factor = cross_factor;
         self.last = Some(innovation);
         Ok(RangeAzimuthOutcome::Filtered(innovation))
+    }
+
+    /// `velocity` scaled onto the speed bound when it is faster (the
+    /// projection onto the speeds real targets fly); unchanged without a
+    /// bound or when invalid (the caller refuses that).
+    fn within_speed_bound(&self, velocity: [N::Ratio; 2]) -> [N::Ratio; 2] {
+        let Some((max_speed, _)) = self.noise.speed_bound else {
+            return velocity;
+        };
+        let [vx, vy] = velocity;
+        let speed = vx.hypot(vy);
+        if speed.is_valid() && speed > max_speed {
+            let scale = max_speed / speed;
+            [vx * scale, vy * scale]
+        } else {
+            velocity
+        }
     }
 
     /// No measurement this scan: advance the state and both covariances by

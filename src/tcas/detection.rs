@@ -57,6 +57,11 @@ pub const MANOEUVRE_SHUTDOWN_CYCLES: u8 = 10;
 /// The bearing cross-check: a range-based HMD more than this times the
 /// bearing tracker's is a manoeuvre (DO-185B `rbratio`).
 pub const BEARING_CROSS_CHECK_RATIO: f64 = 2.0;
+/// The bearing-based miss distance counts for the filter only as its lower
+/// confidence bound, the estimate minus this many standard deviations
+/// (US patent 5,566,074: each miss-distance estimate is used with its
+/// uncertainty; the bound and the factor are ours, see docs/tcas.md).
+pub const BEARING_MISS_DISTANCE_CONFIDENCE: f64 = 2.0;
 /// The largest modified tau kept by the tau cap, s (any value above every
 /// TAU does).
 pub const TAU_CAP_LIMIT_S: f64 = 60.0;
@@ -132,6 +137,7 @@ struct Constants<S> {
     miss_distance_tau_limit_s: S,
     continuing_hmd_dmod_factor: S,
     bearing_cross_check_ratio: S,
+    bearing_miss_distance_confidence: S,
     tau_cap_limit_s: S,
     proximate_range_m: S,
     proximate_altitude_ft: S,
@@ -183,6 +189,7 @@ impl<S: Scalar> CycleThresholds<S> {
                 miss_distance_tau_limit_s: c(MISS_DISTANCE_TAU_LIMIT_S),
                 continuing_hmd_dmod_factor: c(CONTINUING_HMD_DMOD_FACTOR),
                 bearing_cross_check_ratio: c(BEARING_CROSS_CHECK_RATIO),
+                bearing_miss_distance_confidence: c(BEARING_MISS_DISTANCE_CONFIDENCE),
                 tau_cap_limit_s: c(TAU_CAP_LIMIT_S),
                 proximate_range_m: c(PROXIMATE_RANGE_NM * METRES_PER_NAUTICAL_MILE),
                 proximate_altitude_ft: c(PROXIMATE_ALTITUDE_FT),
@@ -432,20 +439,30 @@ pub struct MissDistanceFilter {
 }
 
 impl MissDistanceFilter {
-    /// The HMD the filter uses this cycle, m: the range tracker's
-    /// projection, capped by the bearing tracker's; `None` (filter off)
-    /// until the range track is initialised, while r̈ is below its
-    /// threshold, and for [`MANOEUVRE_SHUTDOWN_CYCLES`] after a manoeuvre (r̈
-    /// below minus the threshold, or the range HMD more than twice the
-    /// bearing HMD).
+    /// The HMD the filter uses this cycle, m. The bearing tracker's miss
+    /// distance b counts with its standard deviation σ (US patent
+    /// 5,566,074: each miss-distance estimate with its uncertainty), as
+    /// the interval b ± kσ (k = [`BEARING_MISS_DISTANCE_CONFIDENCE`], or
+    /// the cycle's): the range tracker's projection is capped by b + kσ
+    /// (DO-185B `miss_distance_calculations` caps it by b); while r̈ is
+    /// below its threshold (no range projection), b − kσ if positive.
+    /// `None` (filter off) until the range track is initialised, and for
+    /// [`MANOEUVRE_SHUTDOWN_CYCLES`] after a manoeuvre (DO-185B
+    /// `detect_maneuvers`: r̈ below minus the threshold, or the range HMD
+    /// more than twice b + kσ). Without σ, b itself.
     fn miss_distance<S: Scalar>(
         &mut self,
         range: &RangeEstimate<S>,
         bearing_miss_distance_m: Option<S>,
+        bearing_miss_distance_sigma_m: Option<S>,
         k: &Constants<S>,
     ) -> Option<S> {
         let from_range = range.miss_distance_m();
-        let bearing_disagrees = match (from_range, bearing_miss_distance_m) {
+        let spread = bearing_miss_distance_sigma_m
+            .map(|sigma| k.bearing_miss_distance_confidence.times(sigma))
+            .filter(|s| s.is_valid());
+        let bearing_upper = bearing_miss_distance_m.map(|b| spread.map_or(b, |s| b + s));
+        let bearing_disagrees = match (from_range, bearing_upper) {
             (Some(r), Some(b)) => k.bearing_cross_check_ratio.times(b) < r,
             _ => false,
         };
@@ -460,7 +477,14 @@ impl MissDistanceFilter {
         if self.shutdown_cycles > 0 || !range.initialised {
             return None;
         }
-        from_range.map(|r| bearing_miss_distance_m.map_or(r, |b| r.min_of(b)))
+        match (from_range, bearing_miss_distance_m, spread) {
+            (Some(r), _, _) => Some(bearing_upper.map_or(r, |b| r.min_of(b))),
+            (None, Some(b), Some(spread)) => {
+                let lower = b - spread;
+                (lower.is_valid() && lower > S::ZERO).then_some(lower)
+            }
+            _ => None,
+        }
     }
 
     /// Whether the filter removes the range hit this cycle: for a new
@@ -505,6 +529,9 @@ pub struct IntruderObservation<S> {
     /// The horizontal miss distance of the bearing (range–azimuth) track,
     /// m, for the cross-check; `None` without one.
     pub bearing_miss_distance_m: Option<S>,
+    /// Its standard deviation, m ([`crate::tcas::logic::IntruderTrack::observation`]);
+    /// `None` without one.
+    pub bearing_miss_distance_sigma_m: Option<S>,
     /// Tracked pressure altitude and rate; `None` for an intruder that does
     /// not report altitude.
     pub altitude: Option<AltitudeEstimate<S>>,
@@ -589,6 +616,14 @@ impl<S: Scalar> Cycle<S> {
         &self.inhibits
     }
 
+    /// The same cycle with the bearing-based miss distance's confidence
+    /// factor set to `sigmas` (default [`BEARING_MISS_DISTANCE_CONFIDENCE`]):
+    /// for studies of the trade-off between false and missed RAs.
+    pub fn with_miss_distance_confidence(mut self, sigmas: S) -> Self {
+        self.thresholds.constants.bearing_miss_distance_confidence = sigmas;
+        self
+    }
+
     pub(crate) fn thresholds(&self) -> &CycleThresholds<S> {
         &self.thresholds
     }
@@ -669,6 +704,7 @@ impl<S: Scalar> ThreatState<S> {
         let miss_distance = self.miss_distance.miss_distance(
             range,
             observation.bearing_miss_distance_m,
+            observation.bearing_miss_distance_sigma_m,
             &cycle.thresholds.constants,
         );
         let firm = range.firmness >= MIN_ALERT_FIRMNESS;

@@ -13,10 +13,10 @@ use super::range_tracker::RangeTracker;
 use super::resolution::{LowAltitudeInhibits, ResolutionOutput, ResolutionState};
 use super::sensitivity::{OwnAircraft, SensitivitySelector};
 use super::TcasError;
-use crate::filter::altitude::{AltitudeTracker, AltitudeTrackerConfig};
+use crate::filter::altitude::{AltitudeTracker, AltitudeTrackerConfig, OutOfLine};
 use crate::filter::range_azimuth::RangeAzimuthFilter;
 use crate::filter::{FilterError, Phase};
-use crate::num::Scalar;
+use crate::num::{hypot, Scalar};
 
 /// The system-wide state of the collision-avoidance logic.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -149,12 +149,13 @@ impl<S: Scalar> IntruderTrack<S> {
         bearing_track: Option<&RangeAzimuthFilter<S>>,
     ) -> Option<IntruderObservation<S>> {
         let range = self.range.estimate()?;
-        let bearing_miss_distance_m = bearing_track
-            .filter(|t| t.phase() == Phase::Tracking)
-            .and_then(|t| line_miss_distance(t.position(), t.velocity()));
+        let bearing_track = bearing_track.filter(|t| t.phase() == Phase::Tracking);
+        let bearing_miss_distance_m =
+            bearing_track.and_then(|t| line_miss_distance(t.position(), t.velocity()));
         Some(IntruderObservation {
             range,
             bearing_miss_distance_m,
+            bearing_miss_distance_sigma_m: bearing_track.and_then(miss_distance_sigma),
             altitude: self.altitude.estimate(),
             altitude_firmness: self.altitude.firmness(),
         })
@@ -172,4 +173,21 @@ impl<S: Scalar> IntruderTrack<S> {
             Some(o) => self.threat.assess(cycle, &o, dt).map(Some),
         }
     }
+}
+
+/// The standard deviation of a bearing track's straight-line miss
+/// distance, m: its cross-range position σ combined with the cross-range
+/// velocity σ carried over the time to go r/|v| (the miss distance is the
+/// cross-range offset at closest approach; US patent 5,566,074 uses a
+/// bearing-based miss distance with its uncertainty). `None` at zero speed.
+fn miss_distance_sigma<S: Scalar>(track: &RangeAzimuthFilter<S>) -> Option<S> {
+    let [vx, vy] = track.velocity();
+    let speed = hypot(vx, vy);
+    if !(speed.is_valid() && speed > S::ZERO) {
+        return None;
+    }
+    let across = track.cross_range_covariance();
+    let time_to_go = track.range().over(speed);
+    let sigma = hypot(across.a, time_to_go.times(hypot(across.b, across.c)));
+    sigma.is_valid().then_some(sigma)
 }

@@ -78,6 +78,13 @@ pub const METRES_PER_SECOND_PER_KNOT: f64 = METRES_PER_NAUTICAL_MILE / 3600.0;
 pub const CLOSURE_RATE_FLOOR_FT_PER_S: f64 = 10.0;
 /// The same floor in m/s.
 pub const CLOSURE_RATE_FLOOR_M_PER_S: f64 = CLOSURE_RATE_FLOOR_FT_PER_S * METRES_PER_FOOT;
+/// The largest closure speed TCAS II surveillance is designed for, kt
+/// (FAA booklet, "Surveillance": closure rates up to 1200 kt): the bound
+/// on an intruder's speed relative to the own aircraft given to the
+/// bearing tracker ([`crate::filter::range_azimuth::RangeAzimuthNoise::with_speed_bound`]).
+pub const MAX_CLOSURE_SPEED_KT: f64 = 1200.0;
+/// The same in m/s.
+pub const MAX_CLOSURE_SPEED_M_PER_S: f64 = MAX_CLOSURE_SPEED_KT * METRES_PER_SECOND_PER_KNOT;
 /// Proximate traffic: within this range, NM … (DO-185B `PROXR`)
 pub const PROXIMATE_RANGE_NM: f64 = 6.0;
 /// … and within this relative altitude, ft (DO-185B `PROXA`).

@@ -554,11 +554,15 @@ impl TrackerDesign {
                 sigma / positive(self.coverage.max_range().unwrap_or(self.max_range))?,
             ),
         };
+        // v_max bounds the filter's initiation and velocity, so bearing
+        // noise never gives a track a speed no target has
+        // (`filter::range_azimuth`, "Initiation under bearing noise").
         let noise = RangeAzimuthNoise::new_f64(
             range_sigma * range_sigma,
             bearing_sigma * bearing_sigma,
             d.process_noise,
         )
+        .and_then(|n| n.with_speed_bound_f64(self.max_speed))
         .map_err(|_| ConfigError::OutOfRange)?;
         self.config_with(noise, range_sigma, &d)
     }

@@ -18,6 +18,7 @@ pub mod monte_carlo;
 pub mod multi_target;
 pub mod real_adsb;
 pub mod tcas_advisory;
+pub mod tcas_random;
 pub mod tenne_singh;
 
 use common::Context;
@@ -72,6 +73,11 @@ pub const GROUPS: &[Group] = &[
         name: real_adsb::NAME,
         about: real_adsb::ABOUT,
         run: real_adsb::run,
+    },
+    Group {
+        name: tcas_random::NAME,
+        about: tcas_random::ABOUT,
+        run: tcas_random::run,
     },
     Group {
         name: tenne_singh::GROUP,

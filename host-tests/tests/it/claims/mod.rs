@@ -6,4 +6,5 @@ mod gain_schedules;
 mod multi_target;
 mod paper_readings;
 mod real_data;
+mod tcas_random;
 mod range_azimuth_and_advisories;

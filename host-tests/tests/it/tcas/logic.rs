@@ -171,6 +171,7 @@ fn observation<S: Scalar>(
             acceleration_threshold_m_per_s2: c(0.457),
         },
         bearing_miss_distance_m: None,
+        bearing_miss_distance_sigma_m: None,
         altitude: altitude.map(|(z, zd)| AltitudeEstimate {
             altitude_ft: c(z),
             vertical_rate_ft_per_s: c(zd),

@@ -1,0 +1,352 @@
+//! Group `tcas-random`: the randomized encounter suite
+//! ([`crate::random_encounters`]) exact and under a TCAS receiver's noise,
+//! in f64, f32 and the firmware's scaled format, against the f64 reference
+//! of the rules on the true states. Writes `results/tcas-random/`: the
+//! table by level (`by_level.md`/`.csv`), false vs missed RAs by level
+//! (`false_vs_missed.svg`), the distribution of RA onset delays
+//! (`onset_delay.svg`) and `summary.md`.
+
+use std::fmt::Write as _;
+
+use rayon::prelude::*;
+
+use abtrack::{Scalar, ScaledScalar};
+
+use super::common::{plot, write_file, Context, PlotSpec, Series, Table};
+use crate::random_encounters::{
+    reference, run_one, suite, Condition, RandomEncounter, RunResult, Tally, CONDITIONS, LEVELS,
+    PER_LEVEL,
+};
+
+/// The group's name (`--only tcas-random`, `results/tcas-random/`).
+pub const NAME: &str = "tcas-random";
+/// One line for `experiments --list`.
+pub const ABOUT: &str =
+    "TCAS: randomized encounters (SL 3-7) exact and noisy vs the v7.1 reference, f64/f32/scaled";
+/// Documented noisy runs (seeds) per encounter and condition.
+pub const RUNS: usize = 5;
+
+/// The number types, in table order.
+pub const TYPES: [&str; 3] = ["f64", "f32", "scaled"];
+
+/// Every run of one encounter under one condition in one type.
+fn runs_in<S: Scalar>(
+    e: &RandomEncounter,
+    condition: &Condition,
+    seeds: usize,
+    reference: &[crate::encounters::ScanOutcome],
+) -> Vec<RunResult> {
+    let n = if condition.noisy { seeds } else { 1 };
+    (0..n)
+        .map(|run| run_one::<S>(e, condition, run, reference, None))
+        .collect()
+}
+
+/// The results of the suite: `[condition][type][encounter]` → runs.
+pub type SuiteResults = Vec<Vec<Vec<Vec<RunResult>>>>;
+
+/// Runs the whole suite with `seeds` noisy runs per encounter.
+pub fn simulate(seeds: usize) -> (Vec<RandomEncounter>, SuiteResults) {
+    let encounters = suite();
+    let per_encounter: Vec<Vec<Vec<Vec<RunResult>>>> = encounters
+        .par_iter()
+        .map(|e| {
+            let reference = reference(e);
+            CONDITIONS
+                .iter()
+                .map(|c| {
+                    vec![
+                        runs_in::<f64>(e, c, seeds, &reference),
+                        runs_in::<f32>(e, c, seeds, &reference),
+                        runs_in::<ScaledScalar>(e, c, seeds, &reference),
+                    ]
+                })
+                .collect()
+        })
+        .collect();
+    // Transpose to [condition][type][encounter].
+    let results = (0..CONDITIONS.len())
+        .map(|c| {
+            (0..TYPES.len())
+                .map(|t| per_encounter.iter().map(|e| e[c][t].clone()).collect())
+                .collect()
+        })
+        .collect();
+    (encounters, results)
+}
+
+/// The tally of `runs` over the encounters whose level is `level` (`None`:
+/// all).
+pub fn tally(encounters: &[RandomEncounter], runs: &[Vec<RunResult>], level: Option<u8>) -> Tally {
+    let mut t = Tally::default();
+    for (e, rs) in encounters.iter().zip(runs) {
+        if level.is_none_or(|l| l == e.level) {
+            rs.iter().for_each(|r| t.add(r));
+        }
+    }
+    t
+}
+
+fn pct(n: usize, d: usize) -> String {
+    if d == 0 {
+        "–".into()
+    } else {
+        format!("{:.1} %", 100.0 * n as f64 / d as f64)
+    }
+}
+
+fn seconds(v: Option<f64>) -> String {
+    v.map_or("–".into(), |v| format!("{v:+.0}"))
+}
+
+/// The table by condition, type and level.
+pub fn by_level_table(encounters: &[RandomEncounter], results: &SuiteResults) -> Table {
+    let mut table = Table::new([
+        "condition",
+        "type",
+        "level",
+        "runs",
+        "refused",
+        "reference RAs",
+        "TA agree",
+        "RA agree",
+        "false RA",
+        "missed RA",
+        "onset delay median (s)",
+        "onset delay p95 (s)",
+        "wrong sense",
+        "RA in pieces",
+    ]);
+    for (c, condition) in CONDITIONS.iter().enumerate() {
+        for (t, type_name) in TYPES.iter().enumerate() {
+            let levels = LEVELS.iter().map(|l| Some(l.0)).chain([None]);
+            for level in levels {
+                let s = tally(encounters, &results[c][t], level);
+                let a = s.accepted();
+                table.push([
+                    condition.name.to_string(),
+                    type_name.to_string(),
+                    level.map_or("all".into(), |l| format!("SL{l}")),
+                    s.runs.to_string(),
+                    s.refused.to_string(),
+                    s.reference_ra.to_string(),
+                    pct(s.ta_agree, a),
+                    pct(s.ra_agree, a),
+                    pct(s.false_ra, a),
+                    pct(s.missed_ra, a),
+                    seconds(s.delay_quantile(0.5)),
+                    seconds(s.delay_quantile(0.95)),
+                    s.wrong_sense.to_string(),
+                    s.in_pieces.to_string(),
+                ]);
+            }
+        }
+    }
+    table
+}
+
+pub fn run(ctx: &Context) -> Result<(), String> {
+    let dir = ctx.group_dir(NAME)?;
+    let seeds = ctx.runs(RUNS);
+    let (encounters, results) = simulate(seeds);
+    let table = by_level_table(&encounters, &results);
+    table.write(&dir, "by_level")?;
+
+    // False vs missed RAs by level, f64, one series per condition.
+    let fraction = |n: usize, d: usize| 100.0 * n as f64 / d.max(1) as f64;
+    let series: Vec<Series> = CONDITIONS
+        .iter()
+        .enumerate()
+        .map(|(c, condition)| {
+            let points = LEVELS
+                .iter()
+                .map(|l| {
+                    let s = tally(&encounters, &results[c][0], Some(l.0));
+                    (
+                        fraction(s.false_ra, s.accepted()),
+                        fraction(s.missed_ra, s.accepted()),
+                    )
+                })
+                .collect();
+            Series::points(condition.name, points)
+        })
+        .collect();
+    plot(
+        &dir.join("false_vs_missed.svg"),
+        &PlotSpec {
+            title: "False vs missed RAs by level (SL 3-7), f64",
+            x_label: "false RAs (% of runs)",
+            y_label: "missed RAs (% of runs)",
+            equal_aspect: false,
+            y_max: None,
+        },
+        &series,
+    )?;
+    // RA onset delay: its distribution (sorted delays against the fraction
+    // of runs), f64, per condition.
+    let series: Vec<Series> = CONDITIONS
+        .iter()
+        .enumerate()
+        .filter_map(|(c, condition)| {
+            let mut d = tally(&encounters, &results[c][0], None).onset_delays_s;
+            if d.is_empty() {
+                return None;
+            }
+            d.sort_by(f64::total_cmp);
+            let n = d.len() as f64;
+            let points = d
+                .iter()
+                .enumerate()
+                .map(|(k, &v)| (v, (k + 1) as f64 / n))
+                .collect();
+            Some(Series::line(condition.name, points))
+        })
+        .collect();
+    plot(
+        &dir.join("onset_delay.svg"),
+        &PlotSpec {
+            title: "RA onset delay against the reference (f64)",
+            x_label: "onset delay (s)",
+            y_label: "fraction of runs with both RAs",
+            equal_aspect: false,
+            y_max: None,
+        },
+        &series,
+    )?;
+
+    false_ra_table(&encounters, &results[1][0]).write(&dir, "false_ras")?;
+    let trade_off = trade_off_table(&encounters, seeds);
+    trade_off.write(&dir, "trade_off")?;
+    let point = |row: &Vec<String>, col: usize| row[col].trim_end_matches(" %").parse::<f64>();
+    let mut false_missed = Vec::new();
+    let mut false_delay = Vec::new();
+    for row in &trade_off.rows {
+        if let (Ok(f), Ok(m)) = (point(row, 1), point(row, 2)) {
+            false_missed.push((f, m));
+            if let Ok(d) = point(row, 4) {
+                false_delay.push((f, d));
+            }
+        }
+    }
+    plot(
+        &dir.join("trade_off.svg"),
+        &PlotSpec {
+            title: "HMD filter confidence k (bearing σB 5°, 25 ft, f64): false vs missed RAs, p95 delay",
+            x_label: "false RAs (% of runs)",
+            y_label: "missed RAs (%) / p95 onset delay (s)",
+            equal_aspect: false,
+            y_max: None,
+        },
+        &[
+            Series::line("missed RAs (%)", false_missed),
+            Series::line("p95 onset delay (s)", false_delay),
+        ],
+    )?;
+
+    let mut s = String::new();
+    let _ = writeln!(s, "# Randomized TCAS encounters\n");
+    let _ = writeln!(
+        s,
+        "Generated by `cd host-tests && cargo run --release --bin experiments -- --only {NAME}`.\n"
+    );
+    let _ = writeln!(
+        s,
+        "{} encounters ({PER_LEVEL} at each of SL 3-7; `host-tests/src/random_encounters.rs`), \
+         exact and with {seeds} noise seeds per encounter and condition (range σ 15 m), through \
+         the library in f64, f32 and the scaled format, against the f64 reference of the rules \
+         on the true states. Definitions in the module docs. Table by level: `by_level.md`; \
+         plots: `false_vs_missed.svg`, `onset_delay.svg`; the HMD filter's confidence factor \
+         k swept in `trade_off.md` and `trade_off.svg`.\n",
+        encounters.len()
+    );
+    let overall: Vec<&Vec<String>> = table.rows.iter().filter(|r| r[2] == "all").collect();
+    let mut t = Table::new(table.headers.clone());
+    overall.into_iter().for_each(|r| t.push(r.clone()));
+    let _ = writeln!(s, "## All levels\n\n{}", t.to_markdown());
+    let _ = writeln!(
+        s,
+        "## HMD filter confidence (σB 5°, 25 ft, f64)\n\n{}",
+        trade_off.to_markdown()
+    );
+    write_file(&dir.join("summary.md"), &s)
+}
+
+/// The confidence factors k the trade-off sweeps (the bearing-based miss
+/// distance counts as its estimate minus k standard deviations); the last,
+/// 1000, leaves the bearing-based miss distance unused.
+pub const CONFIDENCES: [f64; 8] = [0.0, 0.5, 1.0, 1.5, 2.0, 3.0, 4.0, 1000.0];
+
+/// False and missed RAs and the onset delay as the HMD filter's confidence
+/// factor varies (condition σB 5°, 25 ft, f64).
+pub fn trade_off_table(encounters: &[RandomEncounter], seeds: usize) -> Table {
+    let condition = &CONDITIONS[1];
+    let mut table = Table::new([
+        "k (σ)",
+        "false RA",
+        "missed RA",
+        "onset delay median (s)",
+        "onset delay p95 (s)",
+        "RA in pieces",
+        "wrong sense",
+    ]);
+    let references: Vec<_> = encounters.par_iter().map(reference).collect();
+    for k in CONFIDENCES {
+        let runs: Vec<Vec<RunResult>> = encounters
+            .par_iter()
+            .zip(&references)
+            .map(|(e, r)| {
+                (0..seeds)
+                    .map(|run| run_one::<f64>(e, condition, run, r, Some(k)))
+                    .collect()
+            })
+            .collect();
+        let t = tally(encounters, &runs, None);
+        let a = t.accepted();
+        table.push([
+            format!("{k}"),
+            pct(t.false_ra, a),
+            pct(t.missed_ra, a),
+            seconds(t.delay_quantile(0.5)),
+            seconds(t.delay_quantile(0.95)),
+            t.in_pieces.to_string(),
+            t.wrong_sense.to_string(),
+        ]);
+    }
+    table
+}
+
+/// The encounters with false RAs under `runs` (one condition and type):
+/// how many of their runs, and the encounter's figures against the
+/// level's HMD threshold.
+pub fn false_ra_table(encounters: &[RandomEncounter], runs: &[Vec<RunResult>]) -> Table {
+    let mut table = Table::new([
+        "encounter",
+        "level",
+        "false RA runs",
+        "HMD (m)",
+        "HMD / threshold",
+        "VMD (ft)",
+        "closure (kt)",
+        "intruder rate (ft/min)",
+    ]);
+    for (e, rs) in encounters.iter().zip(runs) {
+        let n = rs.iter().filter(|r| r.ra && !r.reference_ra).count();
+        if n == 0 {
+            continue;
+        }
+        let threshold = crate::reference_tcas::level_for(e.encounter.own_altitude_ft)
+            .ra
+            .map_or(f64::NAN, |ra| ra.hmd_m);
+        table.push([
+            e.index.to_string(),
+            format!("SL{}", e.level),
+            n.to_string(),
+            format!("{:.0}", e.hmd_m),
+            format!("{:.2}", e.hmd_m / threshold),
+            format!("{:+.0}", e.vmd_ft),
+            format!("{:.0}", e.closure_kt),
+            format!("{:+.0}", e.intruder_rate_ft_per_min),
+        ]);
+    }
+    table
+}

@@ -1,0 +1,194 @@
+//! Claims of the randomized TCAS encounter suite
+//! (`host-tests/src/random_encounters.rs`; figures in
+//! `results/tcas-random/`, written by
+//! `cd host-tests && cargo run --release --bin experiments -- --only tcas-random`)
+//! and of the bearing tracker's initiation under bearing noise
+//! (`abtrack::filter::range_azimuth`, "Initiation under bearing noise").
+
+use std::f64::consts::PI;
+
+use abtrack::filter::range_azimuth::{RangeAzimuthFilter, RangeAzimuthNoise};
+use abtrack::tcas::MAX_CLOSURE_SPEED_M_PER_S;
+use abtrack::{Scalar, ScaledScalar};
+use abtrack_host_tests::noise::{rng_from_seed, standard_normal};
+use abtrack_host_tests::random_encounters::{
+    reference, run_one, suite, Condition, RandomEncounter, Tally, CONDITIONS, LEVELS, PER_LEVEL,
+};
+use rayon::prelude::*;
+
+const SEEDS: usize = 5;
+
+fn tally<S: Scalar>(
+    encounters: &[RandomEncounter],
+    references: &[Vec<abtrack_host_tests::encounters::ScanOutcome>],
+    condition: &Condition,
+) -> Tally {
+    let runs: Vec<_> = encounters
+        .par_iter()
+        .zip(references)
+        .flat_map_iter(|(e, r)| {
+            let n = if condition.noisy { SEEDS } else { 1 };
+            (0..n).map(move |run| run_one::<S>(e, condition, run, r, None))
+        })
+        .collect();
+    let mut t = Tally::default();
+    runs.iter().for_each(|r| t.add(r));
+    t
+}
+
+fn fraction(n: usize, d: usize) -> f64 {
+    n as f64 / d as f64
+}
+
+#[test]
+fn the_suite_spans_the_specified_ranges() {
+    let s = suite();
+    assert!(s.len() >= 300);
+    for (i, (level, _, _)) in LEVELS.iter().enumerate() {
+        let at: Vec<_> = s.iter().filter(|e| e.level == *level).collect();
+        assert_eq!(at.len(), PER_LEVEL, "SL{level}");
+        assert!(at.iter().all(|e| e.index / PER_LEVEL == i));
+    }
+    let (lo, hi) = s.iter().fold((f64::MAX, f64::MIN), |(lo, hi), e| {
+        (lo.min(e.closure_kt), hi.max(e.closure_kt))
+    });
+    assert!(lo >= 100.0 && lo < 150.0 && hi <= 1000.0 && hi > 950.0);
+    assert!(s
+        .iter()
+        .all(|e| e.hmd_m <= 1.5 * 1852.0 && e.vmd_ft.abs() <= 1200.0));
+    assert!(s.iter().all(|e| e.intruder_rate_ft_per_min.abs() <= 3000.0));
+    // Both RA and no-RA encounters at every level.
+    for (level, _, _) in LEVELS {
+        let with_ra = s
+            .iter()
+            .filter(|e| e.level == level)
+            .filter(|e| reference(e).iter().any(|o| o.sense.is_some()))
+            .count();
+        assert!(with_ra > 0 && with_ra < PER_LEVEL, "SL{level}: {with_ra}");
+    }
+}
+
+/// Under a TCAS receiver's noise (range σ 15 m, bearing σ 5° or 10°) no
+/// run is refused, in f64, f32 and the firmware's scaled format; at 5°
+/// and 25 ft: missed RAs ≤ 1 %, RA onset delay median ≤ 1 s and 95th
+/// percentile ≤ 5 s, false RAs below the 6.9 % of the two-point
+/// initiation (measured 5.7 %), and the three types agree run for run.
+#[test]
+fn noisy_runs_are_never_refused_and_ras_are_timely_in_every_type() {
+    let encounters = suite();
+    let references: Vec<_> = encounters.par_iter().map(reference).collect();
+    for condition in CONDITIONS.iter().filter(|c| c.noisy) {
+        let tallies = [
+            tally::<f64>(&encounters, &references, condition),
+            tally::<f32>(&encounters, &references, condition),
+            tally::<ScaledScalar>(&encounters, &references, condition),
+        ];
+        for t in &tallies {
+            assert_eq!(t.runs, encounters.len() * SEEDS);
+            assert_eq!(t.refused, 0, "{}", condition.name);
+            assert!(
+                fraction(t.missed_ra, t.accepted()) <= 0.01,
+                "{}: missed {}",
+                condition.name,
+                t.missed_ra
+            );
+            assert!(t.delay_quantile(0.5).unwrap() <= 1.0, "{}", condition.name);
+            assert!(t.delay_quantile(0.95).unwrap() <= 5.0, "{}", condition.name);
+            assert_eq!(
+                (t.false_ra, t.missed_ra, t.wrong_sense, t.in_pieces),
+                (
+                    tallies[0].false_ra,
+                    tallies[0].missed_ra,
+                    tallies[0].wrong_sense,
+                    tallies[0].in_pieces
+                ),
+                "{}: the types differ",
+                condition.name
+            );
+        }
+        if condition.name == "σB 5°, 25 ft" {
+            let f = fraction(tallies[0].false_ra, tallies[0].accepted());
+            assert!(f < 0.069, "false RAs {f}");
+        }
+    }
+}
+
+/// On exact measurements no RA is missed and no run refused.
+#[test]
+fn exact_runs_miss_no_ra() {
+    let encounters = suite();
+    let references: Vec<_> = encounters.par_iter().map(reference).collect();
+    let t = tally::<f64>(&encounters, &references, &CONDITIONS[0]);
+    assert_eq!((t.refused, t.missed_ra), (0, 0));
+    assert!(t.reference_ra > 0);
+}
+
+/// A head-on from `range_m` at 500 kt closure measured with range σ 15 m
+/// and bearing σ `bearing_deg`: the bearing tracker with the TCAS speed
+/// bound accepts every scan and never reports a speed above the bound.
+/// (Its range rate is not claimed: at 40 km and 10° it was measured up to
+/// 275 m/s off after 20 scans; the TCAS logic takes ṙ from the range
+/// tracker.)
+fn head_on_under_bearing_noise<S: Scalar>(range_m: f64, bearing_deg: f64, seed: u64) {
+    let sigma_b = bearing_deg * PI / 180.0;
+    let noise = RangeAzimuthNoise::<S>::new_f64(225.0, sigma_b * sigma_b, 1.0)
+        .unwrap()
+        .with_speed_bound_f64(MAX_CLOSURE_SPEED_M_PER_S)
+        .unwrap();
+    let mut filter = RangeAzimuthFilter::new(noise);
+    let mut rng = rng_from_seed(seed);
+    let closure = 500.0 * 1852.0 / 3600.0;
+    let bearing = 0.3;
+    for k in 0..40 {
+        let r = range_m - closure * k as f64;
+        let measured_r = r + 15.0 * standard_normal(&mut rng);
+        let measured_b = bearing + sigma_b * standard_normal(&mut rng);
+        filter
+            .update(
+                S::from_f64_lossy(measured_r),
+                S::from_f64_lossy(measured_b),
+                S::ONE,
+            )
+            .unwrap_or_else(|e| panic!("{range_m} m, {bearing_deg}°, scan {k}: {e}"));
+        let [vx, vy] = filter.velocity().map(|v| v.to_f64());
+        assert!(
+            vx.hypot(vy) <= MAX_CLOSURE_SPEED_M_PER_S * (1.0 + 1e-5),
+            "{range_m} m, {bearing_deg}°, scan {k}: speed {}",
+            vx.hypot(vy)
+        );
+    }
+}
+
+#[test]
+fn bearing_noise_up_to_10_degrees_at_40_km_never_leaves_the_speed_bound() {
+    for seed in 0..20 {
+        for (range_m, bearing_deg) in [(18_520.0, 2.0), (18_520.0, 5.0), (40_000.0, 10.0)] {
+            head_on_under_bearing_noise::<f64>(range_m, bearing_deg, seed);
+            head_on_under_bearing_noise::<f32>(range_m, bearing_deg, seed);
+            head_on_under_bearing_noise::<ScaledScalar>(range_m, bearing_deg, seed);
+        }
+    }
+}
+
+/// Without a bound the two-point start of the same head-on (10 NM,
+/// bearing σ 2°) is faster than any aircraft in some runs: the case the
+/// bound exists for.
+#[test]
+fn the_two_point_start_alone_exceeds_the_envelope() {
+    let sigma_b: f64 = 2.0 * PI / 180.0;
+    let too_fast = (0..20)
+        .filter(|&seed| {
+            let noise = RangeAzimuthNoise::<f64>::new_f64(225.0, sigma_b * sigma_b, 1.0).unwrap();
+            let mut filter = RangeAzimuthFilter::new(noise);
+            let mut rng = rng_from_seed(seed);
+            for k in 0..2 {
+                let r = 18_520.0 - 257.0 * k as f64 + 15.0 * standard_normal(&mut rng);
+                let b = 0.3 + sigma_b * standard_normal(&mut rng);
+                filter.update(r, b, 1.0).unwrap();
+            }
+            let [vx, vy] = filter.velocity();
+            vx.hypot(vy) > MAX_CLOSURE_SPEED_M_PER_S
+        })
+        .count();
+    assert!(too_fast >= 5, "{too_fast}");
+}
