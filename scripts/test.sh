@@ -8,7 +8,7 @@
 #   4. the firmware (every binary of boards/qemu, the benchmark with its
 #      feature bench-anchors) for the three targets; no call into
 #      core::panicking in any release ELF; the stack below the static data
-#      (flip-link); a deliberate stack overflow ends in a clean HardFault
+#      (flip-link); the demo's .data under 4 KiB; a deliberate stack overflow ends in a clean HardFault
 #      report on each board; stack high-water marks with 25 % margin
 #      (scripts/stack.sh),
 #   5. the nRF52840-DK build of the demo, and a short run of each fuzz
@@ -129,6 +129,18 @@ check_no_panic_calls() {
     return "$status"
 }
 
+# A static table initialised to zero bytes goes to .bss, costing no flash
+# and no copy at reset; .data holds only the few statics with other initial
+# values. The demo images must keep it under 4 KiB.
+check_demo_data_size() {
+    local tool t elves=()
+    tool=$(firmware_check_tool) || return
+    for t in "${ABTRACK_TARGETS[@]}"; do
+        elves+=("target/$t/release/abtrack-firmware")
+    done
+    "$tool" data --max-bytes 4096 "${elves[@]}"
+}
+
 check_stack_layout() {
     local tool
     tool=$(firmware_check_tool) || return
@@ -137,7 +149,7 @@ check_stack_layout() {
     "$tool" layout --ram-origin 0x20000000 $(firmware_elves)
 }
 
-# The deliberate overflow (src/bin/stack_overflow.rs) must end in the
+# The deliberate overflow (boards/qemu/src/bin/stack_overflow.rs) must end in the
 # HardFault handler's report with the statics intact and exit status 1; not
 # in QEMU's "Lockup" abort (134), a hang (124) or a normal exit.
 run_stack_overflow() {
@@ -190,6 +202,7 @@ for t in "${ABTRACK_TARGETS[@]}"; do
 done
 step "firmware: no call into core::panicking in any release ELF" check_no_panic_calls
 step "firmware: stack below the static data in every release ELF (flip-link)" check_stack_layout
+step "firmware: demo .data under 4 KiB (zero-initialised statics in .bss)" check_demo_data_size
 for t in "${ABTRACK_TARGETS[@]}"; do
     step "stack overflow faults cleanly on $(board_for_target "$t")" run_stack_overflow "$t"
 done

@@ -1,6 +1,6 @@
 //! The demo's scan-loop configurations, the own aircraft at the origin:
 //!
-//! * [`demo_config`], the firmware's: TCAS surveillance (issue 10), the
+//! * [`demo_config`], the firmware's: TCAS surveillance, the
 //!   range–azimuth tracker of [`default_polar`] (σ_R = 15.24 m, σ_B = 5°,
 //!   the 14 NM disc), altitude trackers for 100 ft and 25 ft reports, own
 //!   aircraft level at 8000 ft;
@@ -10,11 +10,9 @@
 //!   clutter over a 10 km × 10 km square), for the host tests of the scan
 //!   loop and (with a larger square) the soak.
 //!
-//! Depends on the library only: the firmware (demo and soak) includes it
-//! (`#[path]`), and so do the host tests, which run this exact
-//! configuration on the same inputs on the host.
-// Each includer uses part of it.
-#![allow(dead_code)]
+//! Depends on the abtrack library only, so it builds for the host too: the
+//! firmware (demo and soak) uses it, and so do the host tests, which run
+//! this exact configuration on the same inputs on the host.
 
 use abtrack::filter::altitude::{AltitudeQuantum, AltitudeTrackerConfig};
 use abtrack::filter::range_azimuth::RangeAzimuthNoise;

@@ -1,10 +1,11 @@
 //! On-target self-test, second image: the TCAS inputs and the multi-target
-//! tracker of issues 4 and 5 on the emulated core, in the core's natural
-//! numeric type (`f32` on the Cortex-M4F, the scaled format `ScaledScalar` on the Cortex-M3 and M0)
+//! tracker on the emulated core, in the core's type for the code written
+//! for `Scalar` (`board::TableScalar`: `f32` on the Cortex-M4F, the scaled
+//! format `ScaledScalar` on the Cortex-M3 and M0)
 //! against `f64` on the same core, or against values computed by hand.
 //! Split from `selftest` (filters, gain schedules, M5 bank) because both
 //! together do not fit the micro:bit's 256 KiB of flash; same harness
-//! (`firmware/selftest_support.rs`), same last line `N passed, M failed`.
+//! (`abtrack_firmware::selftest_support`), same last line `N passed, M failed`.
 //!
 //! What is checked:
 //! * the range–azimuth filter (He et al.) on a short He-like scenario and a
@@ -14,7 +15,7 @@
 //! * the altitude tracker: a quantised climb against f64 (the same
 //!   classification every scan, altitude and rate within 0.05 ft and
 //!   0.05 ft/s: a provisional tolerance until the quantisation-aware
-//!   tracker of issue 10 gets a derived bound), coasting through missing
+//!   tracker gets a derived bound), coasting through missing
 //!   reports and reverting to non-reporting, bad inputs refused;
 //! * TCAS threat assessment on the analytic head-on encounter (600 kt
 //!   closure, 8000 ft, SL 5: TA from 6.75 NM, RA from 4.238 NM, range tau,
@@ -31,15 +32,8 @@
 #![no_std]
 #![no_main]
 
-#[path = "../firmware/board.rs"]
-mod board;
-#[macro_use]
-#[path = "../firmware/selftest_support.rs"]
-mod support;
-#[path = "../firmware/propagation.rs"]
-mod propagation;
-#[path = "../firmware/synth.rs"]
-mod synth;
+use abtrack_firmware::selftest_support as support;
+use abtrack_firmware::{board, ensure, propagation, synth};
 
 use core::mem::size_of;
 
@@ -390,7 +384,7 @@ fn ra_state<S: Scalar>(f: &RangeAzimuthFilter<S>) -> [f64; 4] {
 /// measurement R·(sin B, cos B): R·(τ + 2u) + 1.5ε, and of the difference
 /// quotient; a coast propagates by Φ(T) and injects the prediction's
 /// rounding. The bound then follows from the windowed propagation of
-/// `firmware/propagation.rs`.
+/// `abtrack_firmware::propagation`.
 fn compare_range_azimuth<S: TestScalar>(
     what: &str,
     scenario: &RaScenario,
@@ -713,8 +707,8 @@ fn altitude_quantised_climb_vs_f64() -> TestResult {
 /// The tracker in `S` against f64 on the quantised climb, 80 reports: the
 /// same status, class and firmness every scan, and altitude and rate within
 /// [`ALTITUDE_TOLERANCE`] (provisional: the tracker's branches compare
-/// times, so a derived bound needs the decision margins, which issue 10's
-/// second round adds).
+/// times, so a derived bound needs the decision margins, not derived
+/// yet).
 fn altitude_climb<S: TestScalar>() -> TestResult {
     let cs = altitude_config::<S>(AltitudeQuantum::ModeC)?;
     let cf = altitude_config::<f64>(AltitudeQuantum::ModeC)?;
@@ -779,7 +773,7 @@ type CycleOutcome = (Option<Advisory>, Option<(RaSense, RaStrength)>, bool);
 
 /// One intruder through the firmware's TCAS cycle in `S`, one scan a second
 /// (`IntruderTrack::scan`/`assess`, `CollisionAvoidance::resolve`): the
-/// demo's threat (issue 10 item 7), head-on 0.2 NM abeam from 14 NM at 500
+/// demo's threat, head-on 0.2 NM abeam from 14 NM at 500
 /// kt closure, level 300 ft above an own aircraft level at 8000 ft, exact
 /// ranges, altitude in 25 ft steps. Calls `each` with the scan's outcome
 /// and range estimate (range m, range rate m/s).
