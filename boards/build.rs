@@ -1,15 +1,20 @@
 //! Firmware link set-up, shared by the firmware packages (`boards/qemu`, the
 //! three emulated boards, and `boards/nrf52840-dk`, the real one): picks the
-//! board from the package and the target triple, puts that board's memory
-//! layout on the linker search path as `memory.x`, and passes the linker
-//! scripts.
+//! board from the package, its features and the target triple, puts that
+//! board's memory layout on the linker search path as `memory.x`, and passes
+//! the linker scripts.
 //!
 //! | package | target | board | memory layout |
 //! |---|---|---|---|
 //! | abtrack-firmware | thumbv7em-none-eabihf | mps2-an386 (QEMU) | `boards/mps2/memory.x` |
 //! | abtrack-firmware | thumbv7m-none-eabi | mps2-an385 (QEMU) | `boards/mps2/memory.x` |
 //! | abtrack-firmware | thumbv6m-none-eabi | microbit (QEMU) | `boards/microbit/memory.x` |
+//! | abtrack-firmware, feature `nrf52840-dk` | thumbv7em-none-eabihf | nrf52840-dk | `boards/nrf52840-dk/memory.x` |
 //! | abtrack-nrf52840-dk | thumbv7em-none-eabihf | nrf52840-dk | `boards/nrf52840-dk/memory.x` |
+//!
+//! For a target with an operating system (the host, where host-tests and
+//! fuzz build abtrack-firmware's hardware-free modules) there is no board:
+//! no `abtrack_board` cfg, no link set-up.
 //!
 //! The layout goes on the search path as `abtrack-board-memory.x`: rust-lld
 //! reads cortex-m-rt's `INCLUDE memory.x` from the directory it runs in (the
@@ -35,7 +40,7 @@ struct Board {
 /// Every board name, for `cfg(abtrack_board = "...")`.
 const BOARD_NAMES: [&str; 4] = ["mps2-an386", "mps2-an385", "microbit", "nrf52840-dk"];
 
-fn board_for(package: &str, target: &str) -> Option<Board> {
+fn board_for(package: &str, target: &str, nrf52840_dk: bool) -> Option<Board> {
     let board = |name, core, layout_dir| {
         Some(Board {
             name,
@@ -44,6 +49,9 @@ fn board_for(package: &str, target: &str) -> Option<Board> {
         })
     };
     match (package, target) {
+        ("abtrack-firmware", "thumbv7em-none-eabihf") if nrf52840_dk => {
+            board("nrf52840-dk", "Cortex-M4F", "nrf52840-dk")
+        }
         ("abtrack-firmware", "thumbv7em-none-eabihf") => board("mps2-an386", "Cortex-M4F", "mps2"),
         ("abtrack-firmware", "thumbv7m-none-eabi") => board("mps2-an385", "Cortex-M3", "mps2"),
         ("abtrack-firmware", "thumbv6m-none-eabi") => board("microbit", "Cortex-M0", "microbit"),
@@ -57,7 +65,7 @@ fn board_for(package: &str, target: &str) -> Option<Board> {
 fn main() -> ExitCode {
     println!("cargo:rerun-if-changed=../build.rs");
     // `cfg(abtrack_board = "...")` picks the board's peripherals in the
-    // firmware (src/firmware/io.rs, src/firmware/board.rs).
+    // firmware (boards/qemu/src/io.rs, boards/qemu/src/board.rs).
     let names: Vec<String> = BOARD_NAMES.iter().map(|n| format!("\"{n}\"")).collect();
     println!(
         "cargo::rustc-check-cfg=cfg(abtrack_board, values({}))",
@@ -66,7 +74,12 @@ fn main() -> ExitCode {
 
     let target = env::var("TARGET").unwrap_or_default();
     let package = env::var("CARGO_PKG_NAME").unwrap_or_default();
-    let Some(board) = board_for(&package, &target) else {
+    if env::var("CARGO_CFG_TARGET_OS").is_ok_and(|os| os != "none") {
+        // The host: only the library's hardware-free modules build.
+        return ExitCode::SUCCESS;
+    }
+    let nrf52840_dk = env::var_os("CARGO_FEATURE_NRF52840_DK").is_some();
+    let Some(board) = board_for(&package, &target, nrf52840_dk) else {
         eprintln!(
             "{package}: no board for target {target}; abtrack-firmware builds for \
              thumbv7em-none-eabihf, thumbv7m-none-eabi and thumbv6m-none-eabi, \
@@ -98,7 +111,7 @@ fn main() -> ExitCode {
     println!("cargo:rustc-link-arg-bins=--nmagic");
     println!("cargo:rustc-link-arg-bins=-Tlink.x");
     println!("cargo:rustc-link-arg-bins=-Tdefmt.x");
-    // Read by src/firmware/board.rs (`env!`), for the firmware's reports.
+    // Read by boards/qemu/src/board.rs (`env!`), for the firmware's reports.
     println!("cargo:rustc-env=ABTRACK_BOARD={}", board.name);
     println!("cargo:rustc-env=ABTRACK_CORE={}", board.core);
     println!("cargo:rustc-cfg=abtrack_board=\"{}\"", board.name);

@@ -3,7 +3,7 @@
 # numeric type the core runs, beside the anchors (a minimal αβ update, a
 # hand-written Kalman filter, minikalman), and the track table's scans, on
 # the three emulated cores under QEMU -icount (instructions, not cycles).
-# Builds and runs the benchmark firmware (src/bin/bench/, feature
+# Builds and runs the benchmark firmware (boards/qemu/src/bin/bench/, feature
 # bench-anchors) on each board, keeps each board's output in
 # target/bench/<core>.log, and turns them into the report files with the
 # host tool bench_report (host-tests/src/bench_report.rs).

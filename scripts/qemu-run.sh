@@ -80,7 +80,7 @@ else
     qemu_args+=(-serial none)
 fi
 # The benchmark counts instructions with a timer: make QEMU's virtual clock
-# advance exactly 1 ns per instruction (see src/bin/bench.rs).
+# advance exactly 1 ns per instruction (see boards/qemu/src/bin/bench/).
 if [ "$(basename "$elf")" = bench ]; then
     qemu_args+=(-icount shift=0)
 fi

@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # The soak: a simulated operational day (86,400 scans at 1 Hz, 45 intruders,
 # detection probability 0.9, 20 clutter returns per scan) through the demo's
-# scan loop on an emulated board under -icount shift=0 (src/bin/soak.rs),
+# scan loop on an emulated board under -icount shift=0 (boards/qemu/src/bin/soak/),
 # checked hour by hour and against the same day run in f64 on the host
 # (host-tests/tests/it/firmware/soak.rs). Writes the figures to results/soak-<board>.md.
 #

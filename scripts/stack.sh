@@ -7,7 +7,7 @@
 #   scripts/stack.sh [--all] [target | board | core ...]   (default: all three)
 #
 # The demo paints its stack at start and prints `stack: N of M bytes used`
-# at the end (src/firmware/board.rs): N counts from the top of the stack to
+# at the end (boards/qemu/src/board.rs): N counts from the top of the stack to
 # the deepest word written, M is the whole stack, from below the static data
 # (flip-link) to the bottom of RAM. The fault inputs are written to
 # target/stack-inputs/ with the frames tool:

@@ -168,7 +168,7 @@ check_stack_layout() {
     "$tool" layout --ram-origin 0x20000000 $(firmware_elves)
 }
 
-# The deliberate overflow (src/bin/stack_overflow.rs) must end in the
+# The deliberate overflow (boards/qemu/src/bin/stack_overflow.rs) must end in the
 # HardFault handler's report with the statics intact and exit status 1; not
 # in QEMU's "Lockup" abort (134), a hang (124) or a normal exit.
 run_stack_overflow() {

@@ -28,9 +28,7 @@ use abtrack::{Fix, Scalar};
 use arbitrary::{Result, Unstructured};
 use libfuzzer_sys::fuzz_target;
 
-#[path = "../../src/firmware/demo_config.rs"]
-#[allow(dead_code)]
-mod demo_config;
+use abtrack_firmware::demo_config;
 
 const TRACKS: usize = 8;
 const PER_SCAN: usize = 16;

@@ -188,8 +188,8 @@ fn shorten_path(location: &str, root: &str) -> String {
         .strip_prefix(root)
         .and_then(|r| r.strip_prefix('/'))
     {
-        // The firmware packages name their sources from boards/<package>/
-        // (`boards/qemu/../../src/main.rs`): drop the detour.
+        // A package may name sources outside its directory
+        // (`boards/nrf52840-dk/../qemu/src/main.rs`): drop the detour.
         let mut parts: Vec<&str> = Vec::new();
         for part in relative.split('/') {
             match part {
@@ -249,6 +249,16 @@ pub struct Section {
     pub name: String,
     pub size: u64,
     pub address: u64,
+}
+
+/// The size of the section `name` (0 if the ELF has none; sizes of
+/// sections of the same name add up).
+pub fn section_size(sections: &[Section], name: &str) -> u64 {
+    sections
+        .iter()
+        .filter(|s| s.name == name)
+        .map(|s| s.size)
+        .sum()
 }
 
 /// Parses `llvm-objdump -h` (`Idx Name Size VMA Type`).
@@ -452,7 +462,7 @@ pub enum Owner {
 /// What a source frame's location says about whose code it is.
 #[derive(Clone, Debug, PartialEq, Eq)]
 pub enum FrameKind {
-    /// Our sources (`src/`, as [`parse_symbolizer`] shortens them).
+    /// Our sources ([`is_own_source`]).
     Own,
     /// Rust's own libraries (`core/`, `alloc/`, `std/`,
     /// `compiler_builtins-…/`), or no location.
@@ -462,9 +472,15 @@ pub enum FrameKind {
     Crate(String),
 }
 
+/// True for a location in our sources, as [`parse_symbolizer`] shortens
+/// them: the library's (`src/`) or a firmware package's (`boards/`).
+pub fn is_own_source(location: &str) -> bool {
+    location.starts_with("src/") || location.starts_with("boards/")
+}
+
 pub fn frame_kind(frame: &SourceFrame) -> FrameKind {
     let location = frame.location.as_str();
-    if location.starts_with("src/") {
+    if is_own_source(location) {
         return FrameKind::Own;
     }
     let first = location.split('/').next().unwrap_or("");

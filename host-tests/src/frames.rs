@@ -445,7 +445,7 @@ pub fn message_line(m: &Message) -> String {
 }
 
 /// The demo firmware's decisions, on the host: the same scan-loop core fed
-/// the same bytes in the same order, paced as `src/main.rs` paces it (a
+/// the same bytes in the same order, paced as `boards/qemu/src/main.rs` paces it (a
 /// scan runs once the input has moved past it; after the input, the line
 /// goes idle, the rest is scanned, then three idle scans), with the same
 /// capacities (`N` tracks, `M` measurements per scan, a queue of `Q`) and
@@ -463,7 +463,7 @@ pub fn run_like_the_firmware<
     input: &[u8],
     config: &ScanConfig<S, F::Params>,
 ) -> FirmwareRun {
-    /// `IDLE_SCANS` of src/main.rs.
+    /// `IDLE_SCANS` of boards/qemu/src/main.rs.
     const IDLE_SCANS: u32 = 3;
     let mut intake: Box<Intake<Q>> = Box::new(Intake::new());
     let mut scan_loop: Box<ScanLoop<S, F, N, M>> = Box::new(ScanLoop::new());

@@ -10,9 +10,9 @@ use std::process::ExitCode;
 use clap::{Parser, Subcommand};
 
 use abtrack_host_tests::firmware_elf::{
-    branches, callers_of, check_layout, crate_of, find_llvm_tool, frame_kind, is_rust_library,
-    only_rust_library, owner_of, panic_calls, panic_symbols, parse_sections, parse_symbolizer,
-    run_tool, Allowance, Branch, FrameKind, Owner, SourceFrame,
+    branches, callers_of, check_layout, crate_of, find_llvm_tool, frame_kind, is_own_source,
+    is_rust_library, only_rust_library, owner_of, panic_calls, panic_symbols, parse_sections,
+    parse_symbolizer, run_tool, section_size, Allowance, Branch, FrameKind, Owner, SourceFrame,
 };
 
 /// Checks on release firmware ELFs. Uses llvm-objdump, llvm-symbolizer and
@@ -53,6 +53,16 @@ enum Check {
         #[arg(value_name = "ELF", required = true)]
         elves: Vec<PathBuf>,
     },
+    /// Initialised static data (`.data`), which costs its size in flash
+    /// too and is copied at reset: each ELF's `.data` and `.bss`. Exit
+    /// status 1 if any `.data` exceeds the limit.
+    Data {
+        /// The largest `.data` allowed, bytes.
+        #[arg(long, value_name = "BYTES")]
+        max_bytes: u64,
+        #[arg(value_name = "ELF", required = true)]
+        elves: Vec<PathBuf>,
+    },
 }
 
 fn hex_address(text: &str) -> Result<u64, String> {
@@ -65,6 +75,7 @@ fn main() -> ExitCode {
     let result = match Cli::parse().check {
         Check::Panics { allowances, elves } => panics(&allowances, &elves),
         Check::Layout { ram_origin, elves } => layout(ram_origin, &elves),
+        Check::Data { max_bytes, elves } => data(max_bytes, &elves),
     };
     match result {
         Ok(true) => ExitCode::SUCCESS,
@@ -124,15 +135,19 @@ fn panics(allowances: &[Allowance], elves: &[PathBuf]) -> Result<bool, String> {
         args.extend(addresses.iter().map(String::as_str));
         let symbolized = run_tool(&symbolizer, &args)?;
         let frames = parse_symbolizer(&symbolized, &root);
-        // Our crates: the library and this binary (its file name), and any
-        // crate a frame in our sources belongs to.
+        // Our crates: the library, the firmware's library and this binary
+        // (its file name), and any crate a frame in our sources belongs to.
         let binary = elf
             .file_name()
             .map(|n| n.to_string_lossy().replace('-', "_"))
             .unwrap_or_default();
-        let mut own_crates = BTreeSet::from(["abtrack".to_string(), binary]);
+        let mut own_crates = BTreeSet::from([
+            "abtrack".to_string(),
+            "abtrack_firmware".to_string(),
+            binary,
+        ]);
         for (_, chain) in &frames {
-            for frame in chain.iter().filter(|f| f.location.starts_with("src/")) {
+            for frame in chain.iter().filter(|f| is_own_source(&f.location)) {
                 own_crates.insert(crate_of(&frame.function).to_string());
             }
         }
@@ -253,11 +268,11 @@ fn panics(allowances: &[Allowance], elves: &[PathBuf]) -> Result<bool, String> {
 }
 
 /// The innermost frame in abtrack's own sources (the library or the
-/// firmware, under the repository's src/): who to blame for the call.
+/// firmware): who to blame for the call.
 fn first_own_function(chain: &[SourceFrame]) -> Option<&str> {
     chain
         .iter()
-        .find(|f| f.location.starts_with("src/"))
+        .find(|f| is_own_source(&f.location))
         .map(|f| f.function.as_str())
 }
 
@@ -322,6 +337,31 @@ fn layout(ram_origin: u64, elves: &[PathBuf]) -> Result<bool, String> {
     Ok(ok)
 }
 
+/// True if no ELF's `.data` exceeds `max_bytes`.
+fn data(max_bytes: u64, elves: &[PathBuf]) -> Result<bool, String> {
+    let objdump = tool("llvm-objdump")?;
+    let mut ok = true;
+    for elf in elves {
+        let elf_arg = elf.to_string_lossy();
+        let sections = parse_sections(&run_tool(&objdump, &["-h", &elf_arg])?);
+        let (data, bss) = (
+            section_size(&sections, ".data"),
+            section_size(&sections, ".bss"),
+        );
+        let verdict = if data <= max_bytes {
+            "ok"
+        } else {
+            ok = false;
+            "too large"
+        };
+        println!(
+            "{}: .data {data} bytes (limit {max_bytes}: {verdict}), .bss {bss} bytes",
+            elf.display()
+        );
+    }
+    Ok(ok)
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -364,6 +404,27 @@ mod tests {
             panic!("layout not parsed")
         };
         assert_eq!((ram_origin, elves.len()), (0x2000_0000, 1));
+        let Ok(Check::Data { max_bytes, elves }) =
+            parse(&["data", "--max-bytes", "4096", "a.elf", "b.elf"])
+        else {
+            panic!("data not parsed")
+        };
+        assert_eq!((max_bytes, elves.len()), (4096, 2));
+    }
+
+    #[test]
+    fn data_and_bss_sizes_are_read_from_the_section_headers() {
+        let sections = parse_sections(
+            "Idx Name            Size     VMA      LMA      Type
+  0                 00000000 00000000 00000000
+  1 .text           00008220 00000400 00000400 TEXT
+  2 .data           00001004 203fac68 00008c98 DATA
+  3 .bss            00000e90 203fbc6c 203fbc6c BSS
+",
+        );
+        assert_eq!(section_size(&sections, ".data"), 0x1004);
+        assert_eq!(section_size(&sections, ".bss"), 0xe90);
+        assert_eq!(section_size(&sections, ".uninit"), 0, "no such section");
     }
 
     #[test]
@@ -375,6 +436,9 @@ mod tests {
             &["layout", "a.elf"],
             &["layout", "--ram-origin", "0xzz", "a.elf"],
             &["layout", "--ram-origin", "0x20000000"],
+            &["data", "a.elf"],
+            &["data", "--max-bytes", "4k", "a.elf"],
+            &["data", "--max-bytes", "4096"],
             &["frobnicate"],
         ] {
             let e = parse(args).map(|_| ()).unwrap_err();

@@ -21,15 +21,9 @@
 //!     fault_injection::demo_runs_are_identical_mps2_an386
 //! ```
 
-#[path = "../../../../src/firmware/capacity.rs"]
-mod capacity;
-#[path = "../../../../src/firmware/demo_config.rs"]
-mod demo_config;
-#[allow(dead_code)] // the host model uses the table types only
-#[path = "../../../../src/firmware/number_types.rs"]
-mod number_types;
-use capacity::{microbit, mps2};
-use number_types::{with_fpu, without_fpu};
+use abtrack_firmware::capacity::{microbit, mps2};
+use abtrack_firmware::demo_config;
+use abtrack_firmware::number_types::{with_fpu, without_fpu};
 
 use abtrack::scan::RunVerdict;
 use abtrack::track::RangeAzimuthTrack;
@@ -40,7 +34,7 @@ use std::path::{Path, PathBuf};
 use std::process::Command;
 
 /// A demo firmware build: its board, and its capacities
-/// (src/firmware/capacity.rs).
+/// (boards/qemu/src/capacity.rs).
 struct Board {
     target: &'static str,
     machine: &'static str,
@@ -137,7 +131,7 @@ fn run_firmware(board: &Board, elf: &Path, input: &[u8], name: &str) -> Run {
 
 /// The same input through the scan-loop core on the host, in the
 /// firmware's table type for the board's core
-/// (src/firmware/number_types.rs).
+/// (boards/qemu/src/number_types.rs).
 fn model(board: &Board, input: &[u8]) -> FirmwareRun {
     match board.machine {
         "mps2-an386" => frames::run_like_the_firmware::<

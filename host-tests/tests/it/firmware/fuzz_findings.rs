@@ -8,9 +8,7 @@
 //! Fixed in track/table.rs ("Counters that lie": only this scan's
 //! codes are counted).
 
-#[path = "../../../../src/firmware/demo_config.rs"]
-#[allow(dead_code)]
-mod demo_config;
+use abtrack_firmware::demo_config;
 
 use abtrack::track::{Association, FixedGainTrack, Measurement, TrackTable};
 

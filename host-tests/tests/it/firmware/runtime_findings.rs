@@ -4,12 +4,9 @@
 //! that reproduced them); the CRC collision finding
 //! is `a_made_up_frame_does_not_swallow_the_real_one` in tests/it/wire/codec.rs.
 
-#[path = "../../../../src/firmware/capacity.rs"]
-mod capacity;
 use crate::scan::support;
-#[path = "../../../../src/firmware/demo_config.rs"]
-mod demo_config;
-use capacity::{microbit, mps2};
+use abtrack_firmware::capacity::{microbit, mps2};
+use abtrack_firmware::demo_config;
 
 use support::{crossing_truth, Lcg};
 
@@ -143,7 +140,7 @@ fn flood_beyond_capacity_is_counted_as_over_capacity() {
         let s = run.health.scan;
         [s.late, s.over_capacity, s.used]
     }
-    // The firmware's capacities (src/firmware/capacity.rs): M of the flood
+    // The firmware's capacities (boards/qemu/src/capacity.rs): M of the flood
     // used in its scan, the rest over capacity, and the next scan's one.
     use mps2::{MEASUREMENTS_PER_SCAN as M, QUEUE_LEN as Q, TRACKS as N};
     let m = M as u32;

@@ -9,8 +9,7 @@
 //!
 //! cargo test --release --test it firmware::tcas_demo -- --nocapture
 
-#[path = "../../../../src/firmware/demo_config.rs"]
-mod demo_config;
+use abtrack_firmware::demo_config;
 
 use abtrack::tcas::{Advisory, RaSense};
 use abtrack::track::RangeAzimuthTrack;

@@ -4,14 +4,9 @@
 
 #![allow(clippy::needless_range_loop)]
 
-// Every board's capacities; these tests use some of them.
-#[allow(dead_code)]
-#[path = "../../../../src/firmware/capacity.rs"]
-mod capacity;
 use crate::scan::support;
-#[path = "../../../../src/firmware/demo_config.rs"]
-mod demo_config;
-use capacity::{microbit, mps2};
+use abtrack_firmware::capacity::{microbit, mps2};
+use abtrack_firmware::demo_config;
 
 use support::{crossing_truth, Lcg};
 
@@ -31,7 +26,7 @@ use abtrack_host_tests::scenario;
 use std::collections::{BTreeMap, BTreeSet};
 
 type Loop<S, const N: usize, const M: usize> = ScanLoop<S, FixedGainTrack<S>, N, M>;
-/// The demo's scan loop on the micro:bit (src/main.rs).
+/// The demo's scan loop on the micro:bit (boards/qemu/src/main.rs).
 type MicrobitLoop = ScanLoop<Fix, abtrack::track::RangeAzimuthTrack<Fix>, 8, 12>;
 
 /// Numbers the frames of the test's sensor.
@@ -678,7 +673,7 @@ fn demo_input_is_tracked<S: Scalar, const N: usize, const M: usize, const Q: usi
 
 #[test]
 fn demo_input_is_tracked_in_every_number_type() {
-    // The firmware's capacities (src/firmware/capacity.rs).
+    // The firmware's capacities (boards/qemu/src/capacity.rs).
     use mps2::{MEASUREMENTS_PER_SCAN as M, QUEUE_LEN as Q, TRACKS as N};
     let f64_ids = demo_input_is_tracked::<f64, N, M, Q>();
     assert_eq!(demo_input_is_tracked::<f32, N, M, Q>(), f64_ids);

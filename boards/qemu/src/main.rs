@@ -42,12 +42,13 @@
 #![no_std]
 #![no_main]
 
-#[path = "firmware/board.rs"]
-mod board;
-#[path = "firmware/demo_config.rs"]
-mod demo_config;
-#[path = "firmware/io.rs"]
-mod io;
+use abtrack_firmware::{board, demo_config, io};
+// The real board (boards/nrf52840-dk): defmt over RTT and probe-rs's panic
+// handler.
+#[cfg(abtrack_board = "nrf52840-dk")]
+use defmt_rtt as _;
+#[cfg(abtrack_board = "nrf52840-dk")]
+use panic_probe as _;
 
 use core::cell::RefCell;
 use core::sync::atomic::{AtomicBool, AtomicU32, Ordering::Relaxed};
@@ -69,13 +70,10 @@ use cortex_m::peripheral::NVIC;
 use cortex_m_rt::exception;
 
 // Every board's capacities; this build uses its own board's.
-#[allow(dead_code)]
-#[path = "firmware/capacity.rs"]
-mod capacities;
 #[cfg(abtrack_board = "microbit")]
-use capacities::microbit as capacity;
+use abtrack_firmware::capacity::microbit as capacity;
 #[cfg(not(abtrack_board = "microbit"))]
-use capacities::mps2 as capacity;
+use abtrack_firmware::capacity::mps2 as capacity;
 use capacity::{MEASUREMENTS_PER_SCAN, QUEUE_LEN, TRACKS};
 
 type DemoLoop = ScanLoop<Native, RangeAzimuthTrack<Native>, TRACKS, MEASUREMENTS_PER_SCAN>;

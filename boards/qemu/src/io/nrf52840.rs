@@ -1,5 +1,5 @@
 //! The demo's peripherals on the nRF52840-DK (PCA10056): the same small
-//! interface as the emulated boards' in `io.rs` (which includes this file as
+//! interface as the emulated boards' in `io.rs` (which uses this module as
 //! its `board_io` for `cfg(abtrack_board = "nrf52840-dk")`).
 //!
 //! | part | nRF52840-DK |

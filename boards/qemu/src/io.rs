@@ -247,8 +247,9 @@ mod board_io {
 
 // The real board, nRF52840-DK (boards/nrf52840-dk): in its own file.
 #[cfg(abtrack_board = "nrf52840-dk")]
-#[path = "io_nrf52840.rs"]
-mod board_io;
+mod nrf52840;
+#[cfg(abtrack_board = "nrf52840-dk")]
+use nrf52840 as board_io;
 
 pub use board_io::{
     uart_init, uart_overrun, uart_read, uart_write, CORE_CLOCK_HZ, PINS_NAME, UART_NAME,

@@ -1,7 +1,7 @@
-//! The firmware's number types per core, declared once: `board.rs` takes
-//! its core's (`board::Native`, `board::TableScalar`), and the host model
-//! of the fault-injection tests (host-tests/tests/it/firmware/fault_injection.rs) the
-//! same, so the two cannot drift apart.
+//! The firmware's number types per core, declared once: the board support
+//! takes its core's (`board::Native`, `board::TableScalar`), and the host
+//! model of the fault-injection tests (host-tests/tests/it/firmware/fault_injection.rs)
+//! the same, so the two cannot drift apart.
 
 /// A core with a hardware FPU (the hard-float ABI, thumbv7em-none-eabihf:
 /// Cortex-M4F): `f32` throughout.

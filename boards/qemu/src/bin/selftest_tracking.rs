@@ -1,10 +1,11 @@
 //! On-target self-test, second image: the TCAS inputs and the multi-target
-//! tracker of issues 4 and 5 on the emulated core, in the core's natural
-//! numeric type (`f32` on the Cortex-M4F, the scaled format `ScaledScalar` on the Cortex-M3 and M0)
+//! tracker on the emulated core, in the core's type for the code written
+//! for `Scalar` (`board::TableScalar`: `f32` on the Cortex-M4F, the scaled
+//! format `ScaledScalar` on the Cortex-M3 and M0)
 //! against `f64` on the same core, or against values computed by hand.
 //! Split from `selftest` (filters, gain schedules, M5 bank) because both
 //! together do not fit the micro:bit's 256 KiB of flash; same harness
-//! (`firmware/selftest_support.rs`), same last line `N passed, M failed`.
+//! (`abtrack_firmware::selftest_support`), same last line `N passed, M failed`.
 //!
 //! What is checked:
 //! * the range–azimuth filter (He et al.) on a short He-like scenario and a
@@ -31,15 +32,8 @@
 #![no_std]
 #![no_main]
 
-#[path = "../firmware/board.rs"]
-mod board;
-#[macro_use]
-#[path = "../firmware/selftest_support.rs"]
-mod support;
-#[path = "../firmware/propagation.rs"]
-mod propagation;
-#[path = "../firmware/synth.rs"]
-mod synth;
+use abtrack_firmware::selftest_support as support;
+use abtrack_firmware::{board, ensure, propagation, synth};
 
 use core::mem::size_of;
 
@@ -390,7 +384,7 @@ fn ra_state<S: Scalar>(f: &RangeAzimuthFilter<S>) -> [f64; 4] {
 /// measurement R·(sin B, cos B): R·(τ + 2u) + 1.5ε, and of the difference
 /// quotient; a coast propagates by Φ(T) and injects the prediction's
 /// rounding. The bound then follows from the windowed propagation of
-/// `firmware/propagation.rs`.
+/// `abtrack_firmware::propagation`.
 fn compare_range_azimuth<S: TestScalar>(
     what: &str,
     scenario: &RaScenario,

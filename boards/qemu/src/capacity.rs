@@ -1,10 +1,10 @@
-//! The demo's capacities per board, declared once: the firmware (src/main.rs)
-//! takes its board's, and the host model of the fault-injection tests
+//! The demo's capacities per board, declared once: the demo firmware
+//! (boards/qemu/src/main.rs) takes its board's, and the host model of the fault-injection tests
 //! (host-tests/tests/it/firmware/fault_injection.rs) the same. RAM per table:
 //! docs/track-table.md.
 
-/// The mps2 boards (4 MiB of RAM): 256 tracks and 256
-/// measurements per scan.
+/// The mps2 boards (4 MiB of RAM): 256 tracks and 256 measurements per
+/// scan.
 pub mod mps2 {
     pub const TRACKS: usize = 256;
     pub const MEASUREMENTS_PER_SCAN: usize = 256;

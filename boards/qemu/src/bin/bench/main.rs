@@ -26,18 +26,9 @@
 #![no_std]
 #![no_main]
 
-// Not every item is used here (the natural type: the scan rows choose their
-// types themselves).
-#[allow(dead_code)]
-#[path = "../../firmware/board.rs"]
-mod board;
-#[path = "../../firmware/synth.rs"]
-mod synth;
-// The calibration loop (`known_instructions`); the bench times with its own
-// `counter::Ticks`, not `InstructionCounter`.
-#[allow(dead_code)]
-#[path = "../../firmware/icount.rs"]
-mod icount;
+// The calibration loop (`icount::known_instructions`); the bench times with
+// its own `counter::Ticks`, not `icount::InstructionCounter`.
+use abtrack_firmware::{board, icount, synth};
 
 mod anchors;
 mod counter;
@@ -78,7 +69,7 @@ fn main() -> ! {
 
 fn run(bench: &mut Bench) {
     // One line per number system. A new one: implement `Numeric` for it
-    // (src/bin/bench/numeric.rs) and add its line here.
+    // (boards/qemu/src/bin/bench/numeric.rs) and add its line here.
     bench_numeric::<f32>(bench);
     bench_numeric::<Fixed32>(bench);
     bench_numeric::<Fix>(bench);

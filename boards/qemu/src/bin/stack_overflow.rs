@@ -2,7 +2,7 @@
 //!
 //! With flip-link the stack sits below the static data and grows towards
 //! the bottom of RAM, so the overflow runs off the bottom of RAM and faults;
-//! the HardFault handler (src/firmware/board.rs) moves the stack pointer back
+//! the HardFault handler (boards/qemu/src/board.rs) moves the stack pointer back
 //! to the top of the stack, reports the overflow, runs this image's hook and
 //! leaves QEMU with status 1. The hook checks that every word of a static
 //! guard block, filled with a known pattern at start-up, still holds it: the
@@ -14,8 +14,7 @@
 #![no_std]
 #![no_main]
 
-#[path = "../firmware/board.rs"]
-mod board;
+use abtrack_firmware::board;
 
 use core::hint::black_box;
 use core::sync::atomic::{AtomicU32, Ordering::Relaxed};

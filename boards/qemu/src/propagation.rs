@@ -1,4 +1,3 @@
-#![allow(dead_code)]
 //! A bound on how far two runs of a linear(ised) filter drift apart when the
 //! gains change from step to step: the self-test's fallback where the
 //! library's error budget ([`abtrack::budget`]) refuses (its small-gain

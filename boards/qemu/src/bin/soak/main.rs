@@ -21,9 +21,7 @@
 #![no_std]
 #![no_main]
 
-#[path = "../firmware/board.rs"]
-#[cfg_attr(abtrack_board = "microbit", allow(dead_code))]
-mod board;
+use abtrack_firmware::board;
 
 /// The micro:bit's 16 KiB of RAM cannot hold the soak's 64 tracks.
 #[cfg(abtrack_board = "microbit")]
@@ -37,14 +35,6 @@ fn main() -> ! {
 }
 
 #[cfg(not(abtrack_board = "microbit"))]
-#[path = "soak/day.rs"]
 mod day;
 #[cfg(not(abtrack_board = "microbit"))]
-#[path = "../firmware/demo_config.rs"]
-mod demo_config;
-#[cfg(not(abtrack_board = "microbit"))]
-#[path = "../firmware/icount.rs"]
-mod icount;
-#[cfg(not(abtrack_board = "microbit"))]
-#[path = "../firmware/synth.rs"]
-mod synth;
+use abtrack_firmware::{demo_config, icount, synth};

@@ -1,4 +1,4 @@
-//! The benchmark's inputs: deterministic noisy trajectories (src/firmware/synth.rs),
+//! The benchmark's inputs: deterministic noisy trajectories (boards/qemu/src/synth.rs),
 //! computed in f64 and converted to the number system under test.
 
 use core::hint::black_box;

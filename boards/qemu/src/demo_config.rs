@@ -10,11 +10,9 @@
 //!   clutter over a 10 km × 10 km square), for the host tests of the scan
 //!   loop and (with a larger square) the soak.
 //!
-//! Depends on the library only: the firmware (demo and soak) includes it
-//! (`#[path]`), and so do the host tests, which run this exact
-//! configuration on the same inputs on the host.
-// Each includer uses part of it.
-#![allow(dead_code)]
+//! Depends on the abtrack library only, so it builds for the host too: the
+//! firmware (demo and soak) uses it, and so do the host tests, which run
+//! this exact configuration on the same inputs on the host.
 
 use abtrack::filter::altitude::{AltitudeQuantum, AltitudeTrackerConfig};
 use abtrack::filter::range_azimuth::RangeAzimuthNoise;

@@ -3,9 +3,8 @@
 //! is for, the defmt transport, how to stop with a status, and the fault
 //! handlers.
 //!
-//! Not part of the library: each binary includes it with `#[path]`. It is the
-//! only place (with the binaries and `io.rs`) that touches the hardware, per
-//! DESIGN.md.
+//! Not part of the abtrack library: with the binaries and [`crate::io`], the
+//! only code that touches the hardware.
 //!
 //! The package and the target triple pick the board (boards/build.rs):
 //! thumbv7em-none-eabihf → mps2-an386 (Cortex-M4F), thumbv7m-none-eabi →
@@ -33,12 +32,6 @@ use core::cell::UnsafeCell;
 #[cfg(not(abtrack_board = "nrf52840-dk"))]
 use core::panic::PanicInfo;
 
-// The real board: RTT transport and probe-rs's panic handler.
-#[cfg(abtrack_board = "nrf52840-dk")]
-use defmt_rtt as _;
-#[cfg(abtrack_board = "nrf52840-dk")]
-use panic_probe as _;
-
 /// The board this build runs on (set by boards/build.rs from the package and
 /// target): the QEMU machine name for the emulated boards.
 pub const BOARD: &str = env!("ABTRACK_BOARD");
@@ -46,28 +39,23 @@ pub const BOARD: &str = env!("ABTRACK_BOARD");
 /// The core of [`BOARD`].
 pub const CORE: &str = env!("ABTRACK_CORE");
 
-#[allow(dead_code)] // each build uses one core's types
-#[path = "number_types.rs"]
-mod number_types;
 #[cfg(target_abi = "eabihf")]
-use number_types::with_fpu as core_types;
+use crate::number_types::with_fpu as core_types;
 #[cfg(not(target_abi = "eabihf"))]
-use number_types::without_fpu as core_types;
+use crate::number_types::without_fpu as core_types;
 
 /// The core's natural number system for the filters, the gain schedules
 /// and the bank: `f32` where the core has a hardware FPU (the hard-float
 /// ABI, thumbv7em-none-eabihf: Cortex-M4F), the fast fixed point
 /// ([`abtrack::Fixed32`]) on cores without one (Cortex-M3, Cortex-M0),
 /// where every float operation would be a software library call
-/// (src/firmware/number_types.rs).
-#[allow(dead_code)] // the demo uses `TableScalar` until src/track is ported; the stack-overflow image neither
+/// ([`crate::number_types`]).
 pub type Native = core_types::Native;
 
 /// The type of the code written for `Scalar` (the scan loop and its track
 /// table, TCAS, the altitude tracker, the demo): `f32` with an FPU; without
 /// one the fast fixed point's wide format ([`abtrack::ScaledScalar`])
-/// (src/firmware/number_types.rs).
-#[allow(dead_code)] // the filter self-test uses `Native` only
+/// ([`crate::number_types`]).
 pub type TableScalar = core_types::TableScalar;
 
 // ---------------------------------------------------------------------------
@@ -107,7 +95,7 @@ mod semihosting {
 
     /// Opens the host console for writing (the special file `:tt`); its
     /// handle, or None (the call returns −1 on failure).
-    #[allow(dead_code)] // only the emulated boards log through semihosting
+    #[cfg_attr(abtrack_board = "nrf52840-dk", allow(dead_code))] // only the emulated boards log through semihosting
     pub fn open_console() -> Option<u32> {
         const NAME: &[u8; 4] = b":tt\0";
         let handle = call(SYS_OPEN, &[NAME.as_ptr() as u32, MODE_WRITE, 3]);
@@ -115,7 +103,7 @@ mod semihosting {
     }
 
     /// Writes `bytes` to `handle`; false if the host did not take them all.
-    #[allow(dead_code)]
+    #[cfg_attr(abtrack_board = "nrf52840-dk", allow(dead_code))]
     pub fn write(handle: u32, bytes: &[u8]) -> bool {
         // SYS_WRITE returns the number of bytes *not* written.
         let not_written = call(
@@ -427,7 +415,6 @@ static FAULT_HOOK: Installed<fn()> = cortex_m::interrupt::Mutex::new(Cell::new(N
 type Installed<F> = cortex_m::interrupt::Mutex<Cell<Option<F>>>;
 
 /// Installs the hook [`hard_fault`] calls after its report.
-#[allow(dead_code)] // only the stack-overflow image has one
 pub fn set_fault_hook(hook: fn()) {
     cortex_m::interrupt::free(|cs| FAULT_HOOK.borrow(cs).set(Some(hook)));
 }
@@ -444,7 +431,6 @@ pub type InterruptHandler = fn(i16) -> bool;
 
 /// Installs the handler of the binary's device interrupts (`irqn` = IRQ
 /// number, exception number − 16). Install it before unmasking them.
-#[allow(dead_code)] // the self-test and the benchmark use no interrupt
 pub fn set_interrupt_handler(handler: InterruptHandler) {
     cortex_m::interrupt::free(|cs| INTERRUPT_HANDLER.borrow(cs).set(Some(handler)));
 }
@@ -511,7 +497,6 @@ fn first_unpainted_word(from: usize, to: usize) -> usize {
 
 /// Fills the unused stack (below the current frame, with a margin) with a
 /// pattern. Call once, first thing in `main`.
-#[allow(dead_code)] // the stack-overflow image measures nothing
 pub fn paint_stack() {
     let (bottom, _) = stack_bounds();
     let sp = cortex_m::register::msp::read() as usize;
@@ -527,7 +512,6 @@ pub fn stack_usage() -> (u32, u32) {
 }
 
 /// Logs the stack high-water mark.
-#[allow(dead_code)] // the self-tests report per test instead
 pub fn report_stack() {
     let (used, available) = stack_usage();
     defmt::println!(

@@ -1,11 +1,11 @@
-#![allow(dead_code)]
-//! The on-target self-tests' harness and shared helpers (src/bin/selftest.rs,
-//! src/bin/selftest_tracking.rs): named test functions returning `Result`,
+//! The on-target self-tests' harness and shared helpers (boards/qemu/src/bin/selftest.rs,
+//! boards/qemu/src/bin/selftest_tracking.rs): named test functions returning `Result`,
 //! a line per test, `N passed, M failed` alone on the last line and the QEMU
 //! exit status; the numeric types under test; the run envelope and the
 //! library's error budget for fixed-gain runs.
 //!
-//! Included with `#[macro_use] #[path]` by each self-test binary.
+//! Used by each self-test binary; [`ensure!`](crate::ensure) is exported at
+//! the crate root.
 
 use abtrack::budget::{error_budget_around_reference, ErrorBound, GainSpread, RunEnvelope};
 use abtrack::filter::{Gains, KinematicFilter, Phase};
@@ -15,12 +15,13 @@ use crate::board;
 
 /// Fails the current test, logging the message, unless the condition holds.
 /// (A comparison with NaN does not hold, so a NaN deviation fails.)
+#[macro_export]
 macro_rules! ensure {
     ($cond:expr, $($msg:tt)+) => {
         let holds: bool = $cond;
         if !holds {
             defmt::error!($($msg)+);
-            return Err($crate::support::Failure);
+            return Err($crate::selftest_support::Failure);
         }
     };
 }

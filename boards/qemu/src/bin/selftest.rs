@@ -1,12 +1,12 @@
-//! On-target self-test, first image: the filters, the gain
-//! schedules and the M5 bank run on the emulated core itself, in
-//! the core's natural numeric type (`f32` on the Cortex-M4F, Q32.32 fixed
-//! point on the Cortex-M3 and M0) against the same generic code in `f64`
+//! On-target self-test, first image: the filters, the gain schedules and the
+//! M5 bank run on the emulated core itself, in the core's natural numeric
+//! type (`board::Native`: `f32` on the Cortex-M4F, the fast fixed point
+//! `Fixed32` on the Cortex-M3 and M0) against the same generic code in `f64`
 //! (software floating point on all three cores). The TCAS inputs and the
 //! track table are in the second image, `selftest-tracking` (both together
 //! do not fit the micro:bit's 256 KiB of flash).
 //!
-//! The harness (`firmware/selftest_support.rs`): named test functions
+//! The harness (`abtrack_firmware::selftest_support`): named test functions
 //! returning `Result`, a line per test with its stack high-water mark, then
 //! `N passed, M failed` alone on the last line; QEMU exits with status 1 if
 //! any test failed (scripts/test.sh runs both images on the three boards).
@@ -37,15 +37,8 @@
 #![no_std]
 #![no_main]
 
-#[path = "../firmware/board.rs"]
-mod board;
-#[macro_use]
-#[path = "../firmware/selftest_support.rs"]
-mod support;
-#[path = "../firmware/propagation.rs"]
-mod propagation;
-#[path = "../firmware/synth.rs"]
-mod synth;
+use abtrack_firmware::selftest_support as support;
+use abtrack_firmware::{board, ensure, propagation, synth};
 
 use abtrack::bank::{BankConfig, BankOutcome, CartesianBank};
 use abtrack::budget::{error_budget_around_reference, BudgetError, ErrorBound, GainSpread};
@@ -1136,7 +1129,7 @@ type ScheduledTrack<S, const ORDER: usize> = ScheduledFilter<S, Schedule<S>, ORD
 
 /// Lags kept exactly by the error propagation of the schedule runs: with
 /// the gains these runs reach (α ≥ 0.04) the closed loop forgets an error by
-/// e⁻¹ within about 25 steps (`firmware/propagation.rs`).
+/// e⁻¹ within about 25 steps (`abtrack_firmware::propagation`).
 const SCHEDULE_LAGS: usize = 32;
 
 /// A target in the plane for the schedule and bank tests, after Liu, Wang &
@@ -1412,7 +1405,7 @@ fn run_schedule<S: TestNumeric, const ORDER: usize>(
 ///   certify: it answers `NotContractive`. Besides, gains computed in `S`
 ///   differ from the f64 run's by more than one conversion, which the
 ///   budget does not model.
-/// * Fallback (`firmware/propagation.rs`): the exact error recursion
+/// * Fallback (`abtrack_firmware::propagation`): the exact error recursion
 ///   d ← A·d + w along the gains the f64 run actually used, with |w| at most
 ///   the library's per-update error budget at the largest gains of the run
 ///   ([`error_budget_around_reference`] with fixed gains bounds the local

@@ -2,10 +2,6 @@
 //! a tiny pseudo-random generator and target trajectories, in `f64` (the
 //! truth is always computed in `f64`; the filters under test get it converted
 //! to their own numeric type). No std, no heap, no panics.
-//!
-//! Included with `#[path]` by each firmware binary; not all of them use every
-//! item.
-#![allow(dead_code)]
 
 /// Knuth's MMIX linear congruential generator (multiplier
 /// 6364136223846793005, increment 1442695040888963407, modulus 2⁶⁴), output

@@ -3,8 +3,7 @@
 //! run with `-icount shift=0`, its virtual clock advances exactly 1 ns per
 //! executed instruction, so SysTick counts instructions (one tick per 40 on
 //! the mps2 boards' 25 MHz). The ratio is measured, not assumed: a loop of
-//! a known number of instructions is timed first (as `src/bin/bench.rs`
-//! does). These are instructions, not cycles.
+//! a known number of instructions is timed first. These are instructions, not cycles.
 
 use core::hint::black_box;
 
