@@ -176,7 +176,11 @@ enum Start {
     /// One measurement: the coasted time is summed toward the two-point
     /// interval.
     FirstPoint,
-    /// Two or more: the covariance holds.
+    /// Two: the two-point covariance is held in units of the reference σ²
+    /// and scaled by each axis's measurement variance at the next update
+    /// (a polar sensor's variance depends on where the target is).
+    TwoPoint,
+    /// Three or more: the covariance holds.
     Tracking,
 }
 
@@ -273,10 +277,14 @@ fn step_axis<N: Numeric>(
         velocity = floor + floor;
     }
     // A NIS beyond the cap is a manoeuvre whatever its size; capping it
-    // keeps the average (and ν² in a narrow format) in range.
+    // keeps the average in range. ν²/S is formed as (ν/S)·ν: when |ν/S| < 1
+    // the product is smaller than |ν|, and when |ν| is under the cap it is
+    // at most cap²/S, so neither overflows a narrow format; a polar axis's
+    // S can be far above 1, and then a large ν is not a manoeuvre.
     let cap = s.nis_cap;
-    let nis = if nu.abs() < cap {
-        (nu * nu * inverse).min_of(cap)
+    let weighted = nu * inverse;
+    let nis = if weighted.abs() < one || nu.abs() < cap {
+        (weighted * nu).min_of(cap)
     } else {
         cap
     };
@@ -409,21 +417,36 @@ impl<N: Numeric, const D: usize> AutoGains<N, D> {
     /// The covariance the next update starts from: the axes', or a
     /// two-point start over the update's interval for a filter handed over
     /// already tracking.
-    fn current(&self, dt: N::Ratio) -> [AutoAxis<N>; D] {
-        if self.start == Start::Tracking {
-            self.axes
-        } else {
-            [Self::two_point(dt, self.start_manoeuvre()); D]
+    /// A two-point covariance is that of the two measurements, so it is
+    /// scaled by the axis's variance ratio `r` (1 for a Cartesian sensor).
+    fn current(
+        &self,
+        dt: N::Ratio,
+        ratios: Option<&[(N::Ratio, N::Ratio); D]>,
+    ) -> [AutoAxis<N>; D] {
+        let mut axes = match self.start {
+            Start::Tracking => return self.axes,
+            Start::TwoPoint => self.axes,
+            Start::Empty | Start::FirstPoint => [Self::two_point(dt, self.start_manoeuvre()); D],
+        };
+        if let Some(ratios) = ratios {
+            for (a, (r, _)) in axes.iter_mut().zip(ratios) {
+                a.position = a.position * *r;
+                a.cross = a.cross * *r;
+                a.velocity = a.velocity * *r;
+            }
         }
+        axes
     }
 
     /// p̃⁻_xx per axis for an update `dt` from now (the predicted position
     /// variance over σ²): the innovation variance over σ² is this plus
-    /// R/σ² (1 for a Cartesian sensor), which a gate uses.
+    /// R/σ² (1 for a Cartesian sensor), which a gate uses. A polar
+    /// sensor's two-point start is in units of σ_R² until its first update.
     pub fn predicted_position_ratios(&self, dt: N::Interval) -> [N::Ratio; D] {
         let dt = N::Ratio::from(dt);
         let span = Span::new(self.coasted, dt);
-        self.current(dt).map(|a| predicted(&a, &span).0)
+        self.current(dt, None).map(|a| predicted(&a, &span).0)
     }
 
     /// The gains of the update `ctx` and the state after it.
@@ -434,7 +457,7 @@ impl<N: Numeric, const D: usize> AutoGains<N, D> {
         let bounds = (self.manoeuvre_min, self.manoeuvre_max);
         let one = N::Ratio::ONE;
         let mut gains = [Gains::alpha_beta(one, one)?; D];
-        let mut next = self.current(dt);
+        let mut next = self.current(dt, Some(&ratios));
         for ((g, a), (r, nu)) in gains.iter_mut().zip(next.iter_mut()).zip(ratios) {
             *g = match step_axis(a, &span, r, nu, bounds) {
                 Ok(g) => g,
@@ -445,7 +468,13 @@ impl<N: Numeric, const D: usize> AutoGains<N, D> {
                 // two-point start at equal intervals without process noise
                 // (α = 5/6, β = 1/2: Al-Wagih & Abdulla eq. 24 at n = 3).
                 Err(_) => {
-                    *a = Self::two_point(span.tau, self.manoeuvre_max);
+                    let start = Self::two_point(span.tau, self.manoeuvre_max);
+                    *a = AutoAxis {
+                        position: start.position * r,
+                        cross: start.cross * r,
+                        velocity: start.velocity * r,
+                        ..start
+                    };
                     match step_axis(a, &Span::new(N::Ratio::ZERO, dt), r, nu, bounds) {
                         Ok(g) => g,
                         Err(_) => {
@@ -480,7 +509,7 @@ impl<N: Numeric, const D: usize> GainSchedule<N, D> for AutoGains<N, D> {
             let t = self.coasted + N::Ratio::from(dt);
             self.axes = [Self::two_point(t, self.start_manoeuvre()); D];
             self.coasted = N::Ratio::ZERO;
-            self.start = Start::Tracking;
+            self.start = Start::TwoPoint;
         }
     }
 
@@ -496,7 +525,8 @@ impl<N: Numeric, const D: usize> GainSchedule<N, D> for AutoGains<N, D> {
     }
 
     fn predicted_variance_ratios(&self, dt: N::Interval) -> Option<[N::Ratio; D]> {
-        (self.start == Start::Tracking).then(|| self.predicted_position_ratios(dt))
+        matches!(self.start, Start::Tracking | Start::TwoPoint)
+            .then(|| self.predicted_position_ratios(dt))
     }
 
     fn reset(&mut self) {

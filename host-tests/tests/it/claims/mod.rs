@@ -5,6 +5,6 @@ mod auto;
 mod gain_schedules;
 mod multi_target;
 mod paper_readings;
+mod range_azimuth_and_advisories;
 mod real_data;
 mod tcas_random;
-mod range_azimuth_and_advisories;

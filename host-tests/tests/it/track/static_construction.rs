@@ -6,6 +6,7 @@ use std::mem::size_of;
 use std::sync::Mutex;
 
 use abtrack::num::fixed32::Fixed32;
+use abtrack::track::defaults::DefaultCartesianTrack;
 use abtrack::track::{
     Association, FixedGainTrack, Observation, PredictedState, ScanInterval, Track, TrackFilter,
     TrackStatus,
@@ -244,6 +245,13 @@ fn bytes_per_track_of_every_filter() {
             size_of::<Slot<Fixed32, ScheduledTrack<Fixed32, AnySchedule<Fixed32, 2, 8>>>>(),
         ),
         (
+            "ScheduledTrack, auto (the default Cartesian track)",
+            size_of::<Slot<f64, DefaultCartesianTrack<f64>>>(),
+            size_of::<Slot<f32, DefaultCartesianTrack<f32>>>(),
+            size_of::<Slot<Fix, DefaultCartesianTrack<Fix>>>(),
+            size_of::<Slot<Fixed32, DefaultCartesianTrack<Fixed32>>>(),
+        ),
+        (
             "RangeAzimuthTrack",
             size_of::<Slot<f64, RangeAzimuthTrack<f64>>>(),
             size_of::<Slot<f32, RangeAzimuthTrack<f32>>>(),
@@ -276,7 +284,14 @@ fn bytes_per_track_of_every_filter() {
                 880,
                 528
             ),
-            ("RangeAzimuthTrack", 248, 140, 248, 0),
+            (
+                "ScheduledTrack, auto (the default Cartesian track)",
+                376,
+                208,
+                376,
+                268
+            ),
+            ("RangeAzimuthTrack", 272, 152, 272, 0),
         ]
     );
 }
