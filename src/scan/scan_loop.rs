@@ -1,0 +1,582 @@
+//! The consumer half, run from the main loop: the scan clock, the scan's
+//! batch, the tracker scan and the reports.
+
+mod capacity;
+mod intruders;
+
+use super::{bump, bump16, ClockConfig, MeasurementSource};
+use capacity::{Priority, TrackGate, CLASS_OTHER};
+pub use intruders::MAX_RA_THREATS;
+use intruders::{IdentityRule, IntruderSlot, ReplyData};
+
+use crate::filter::altitude::{AltitudeEstimate, AltitudeTrackerConfig};
+use crate::filter::range_azimuth::RangeAzimuthFilter;
+use crate::num::Scalar;
+use crate::tcas::{Advisory, CollisionAvoidance, IntruderTrack, OwnAircraft};
+use crate::track::{
+    Association, DropReason, FixedGainTrack, Measurement, Observation, RangeAzimuthTrack,
+    ScanError, ScanReport, TrackFilter, TrackId, TrackTable, TrackerConfig,
+};
+use crate::wire::{
+    Health, LoopCounters, MeasurementReport, Message, ModeSAddress, RaCode, ScanCounts,
+    ScanSummary, TrackReport,
+};
+
+/// What a [`ScanLoop`] needs besides its state. Kept outside it (as
+/// [`TrackerConfig`] is kept outside [`TrackTable`]) so that the loop can be
+/// built by a `const fn` in a `static`.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct ScanConfig<S: Scalar, P> {
+    /// The track table's configuration (gates, lifecycle, region).
+    pub tracker: TrackerConfig<S, P>,
+    /// The own aircraft, for the threat assessment.
+    pub own: OwnAircraft<S>,
+    /// The altitude tracker of an intruder reporting in 100 ft steps
+    /// (Mode C) …
+    pub altitude: AltitudeTrackerConfig<S>,
+    /// … and of one reporting in 25 ft steps (Mode S with the Q bit).
+    pub altitude_25ft: AltitudeTrackerConfig<S>,
+    /// The scan period and the clock's windows.
+    pub clock: ClockConfig,
+}
+
+/// What [`ScanLoop::collect`] found.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+#[cfg_attr(feature = "defmt", derive(defmt::Format))]
+pub enum Collected {
+    /// The queue is empty: this scan may still get measurements.
+    Waiting,
+    /// The input has moved past this scan (a measurement for a later scan
+    /// is at the head of the queue, or the clock must re-lock): run it.
+    ScanDue,
+}
+
+/// The result of one tick.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+#[cfg_attr(feature = "defmt", derive(defmt::Format))]
+pub struct TickReport {
+    /// The tracker's per-stage counts.
+    pub scan: ScanReport,
+    /// What was emitted as the scan summary.
+    pub summary: ScanSummary,
+}
+
+/// The position track's bearing tracker, for the threat logic's
+/// miss-distance cross-check (He et al.'s range–azimuth filter; none for a
+/// Cartesian track).
+pub trait BearingTrack<S: Scalar> {
+    /// The range–azimuth filter of this track, if it has one.
+    fn bearing_track(&self) -> Option<&RangeAzimuthFilter<S>>;
+}
+
+impl<S: Scalar> BearingTrack<S> for RangeAzimuthTrack<S> {
+    fn bearing_track(&self) -> Option<&RangeAzimuthFilter<S>> {
+        Some(self.filter())
+    }
+}
+
+impl<S: Scalar> BearingTrack<S> for FixedGainTrack<S> {
+    fn bearing_track(&self) -> Option<&RangeAzimuthFilter<S>> {
+        None
+    }
+}
+
+/// Where a measurement's time puts it ([`crate::scan`], "Time").
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+enum Timing {
+    ThisScan,
+    LaterScan,
+    Late,
+    OutOfWindow,
+}
+
+/// `d` of [`crate::scan`]'s docs: `t − n` as a signed 32-bit difference.
+fn signed_difference(t: u32, n: u32) -> i32 {
+    i32::from_ne_bytes(t.wrapping_sub(n).to_ne_bytes())
+}
+
+fn sat_u16(v: u32) -> u16 {
+    u16::try_from(v).unwrap_or(u16::MAX)
+}
+
+fn sat_u32(v: usize) -> u32 {
+    u32::try_from(v).unwrap_or(u32::MAX)
+}
+
+/// `v·scale` rounded to an integer, saturated to the i32 range (NaN → 0).
+/// Reports carry tracks inside the ±400 km envelope, where nothing saturates.
+fn scaled_i32<S: Scalar>(v: S, scale: f64) -> i32 {
+    let f = libm::round(v.to_f64() * scale);
+    if f.is_nan() {
+        0
+    } else if f >= i32::MAX as f64 {
+        i32::MAX
+    } else if f <= i32::MIN as f64 {
+        i32::MIN
+    } else {
+        f as i32
+    }
+}
+
+/// The consumer half: sorts queued measurements into scans, turns each scan
+/// into a tracker scan, threat assessments and reports. At most `N` tracks,
+/// `M` measurements per scan.
+///
+/// Memory: the [`TrackTable`] (see [`crate::track`] for its size), plus per
+/// measurement slot one `Measurement<S>`, one `Option<S>`, a priority and an
+/// [`Association`], plus per track slot a gate region and an `Option` of an
+/// [`AltitudeTracker<S>`](crate::filter::altitude::AltitudeTracker).
+/// `host-tests/tests/it/scan/loop_on_host.rs` prints the sizes; the firmware prints
+/// its own at start-up.
+#[derive(Debug)]
+pub struct ScanLoop<S: Scalar, F, const N: usize, const M: usize> {
+    table: TrackTable<S, F, N, M>,
+    /// The tracker's time of the next scan (ms; +1 period per scan).
+    tracker_ms: u32,
+    /// The sensor's time of the scan being assembled.
+    scan_ms: u32,
+    locked: bool,
+    /// A measurement outside the window, held until the next one.
+    candidate: Option<MeasurementReport>,
+    /// The next measurement confirmed the candidate: re-lock after this scan.
+    relock: bool,
+    batch: heapless::Vec<Measurement<S>, M>,
+    /// Per batch entry: altitude and Mode S address.
+    batch_replies: heapless::Vec<ReplyData<S>, M>,
+    /// The previous scan's (the first points of new tracks).
+    previous_replies: heapless::Vec<ReplyData<S>, M>,
+    batch_priorities: heapless::Vec<Priority<S>, M>,
+    /// Per batch entry: of how many confirmed tracks it is the champion.
+    batch_champions: heapless::Vec<u8, M>,
+    gates: [Option<TrackGate<S>>; N],
+    /// The batch overflowed: `gates` and the priorities are computed.
+    ranked: bool,
+    /// Counts of the scan being assembled (the intake part).
+    pending_counts: ScanCounts,
+    codes: [Association; M],
+    intruders: [Option<IntruderSlot<S>>; N],
+    /// The system's TCAS state: sensitivity level, inhibits, the RA.
+    cas: CollisionAvoidance<S>,
+    counters: LoopCounters,
+}
+
+impl<S: Scalar, F: TrackFilter<S> + BearingTrack<S>, const N: usize, const M: usize> Default
+    for ScanLoop<S, F, N, M>
+{
+    fn default() -> Self {
+        Self::new()
+    }
+}
+
+impl<S: Scalar, F: TrackFilter<S> + BearingTrack<S>, const N: usize, const M: usize>
+    ScanLoop<S, F, N, M>
+{
+    /// An empty loop: no tracks, no queued batch, zero counters (a `const fn`,
+    /// for a `static`).
+    pub const fn new() -> Self {
+        ScanLoop {
+            table: TrackTable::new(),
+            tracker_ms: 0,
+            scan_ms: 0,
+            locked: false,
+            candidate: None,
+            relock: false,
+            batch: heapless::Vec::new(),
+            batch_replies: heapless::Vec::new(),
+            previous_replies: heapless::Vec::new(),
+            batch_priorities: heapless::Vec::new(),
+            batch_champions: heapless::Vec::new(),
+            gates: [const { None }; N],
+            ranked: false,
+            pending_counts: ScanCounts::new(),
+            codes: [Association::OutsideGates; M],
+            intruders: [const { None }; N],
+            cas: CollisionAvoidance::new(),
+            counters: LoopCounters::new(),
+        }
+    }
+
+    /// The track table.
+    pub fn table(&self) -> &TrackTable<S, F, N, M> {
+        &self.table
+    }
+
+    /// The loop's counters (scans, measurements used and not used by reason).
+    pub fn counters(&self) -> &LoopCounters {
+        &self.counters
+    }
+
+    /// The sensor's time of the scan being assembled (meaningful once the
+    /// clock has locked).
+    pub fn scan_time_ms(&self) -> u32 {
+        self.scan_ms
+    }
+
+    /// Whether the clock has locked onto the sensor's.
+    pub fn is_locked(&self) -> bool {
+        self.locked
+    }
+
+    /// Measurements collected for the next scan.
+    pub fn batch_len(&self) -> usize {
+        self.batch.len()
+    }
+
+    /// Measurements taken from the queue and not yet used or dropped: the
+    /// batch and a held out-of-window measurement.
+    pub fn held(&self) -> usize {
+        self.batch
+            .len()
+            .saturating_add(usize::from(self.candidate.is_some()))
+    }
+
+    /// The altitude estimate of a track, if it reported altitude.
+    pub fn altitude(&self, track: TrackId) -> Option<AltitudeEstimate<S>> {
+        self.intruder(track)
+            .and_then(|t| t.altitude_tracker().estimate())
+    }
+
+    /// The TCAS surveillance of a track: range and altitude trackers,
+    /// threat state.
+    pub fn intruder(&self, track: TrackId) -> Option<&IntruderTrack<S>> {
+        self.slot(track).map(|s| &s.tcas)
+    }
+
+    /// The Mode S address a track keeps.
+    pub fn address(&self, track: TrackId) -> Option<ModeSAddress> {
+        self.slot(track).and_then(|s| s.address)
+    }
+
+    fn slot(&self, track: TrackId) -> Option<&IntruderSlot<S>> {
+        self.intruders.iter().flatten().find(|s| s.track == track)
+    }
+
+    fn timing(&self, clock: &ClockConfig, t: u32) -> Timing {
+        let d = signed_difference(t, self.scan_ms);
+        let distance = d.unsigned_abs();
+        if d > 0 {
+            if distance <= clock.jump_ms {
+                Timing::LaterScan
+            } else {
+                Timing::OutOfWindow
+            }
+        } else if distance < clock.period_ms {
+            Timing::ThisScan
+        } else if distance <= clock.late_window_ms {
+            Timing::Late
+        } else {
+            Timing::OutOfWindow
+        }
+    }
+
+    /// Drops the held out-of-window measurement, counted.
+    fn drop_candidate(&mut self) {
+        if self.candidate.take().is_some() {
+            bump16(&mut self.pending_counts.out_of_window);
+            bump(&mut self.counters.out_of_window);
+        }
+    }
+
+    /// Takes the queued measurements that belong to the scan being
+    /// assembled into its batch (converting them: the checked edge), and
+    /// counts the late and out-of-window ones; stops at the first one for a
+    /// later scan. Call it as often as wanted between scans: it frees queue
+    /// space early.
+    pub fn collect(
+        &mut self,
+        config: &ScanConfig<S, F::Params>,
+        source: &mut impl MeasurementSource,
+    ) -> Collected {
+        let clock = &config.clock;
+        loop {
+            if self.relock {
+                return Collected::ScanDue;
+            }
+            let Some(head) = source.peek() else {
+                return Collected::Waiting;
+            };
+            if !self.locked {
+                self.locked = true;
+                self.scan_ms = head.time_ms;
+                bump(&mut self.counters.clock_locks);
+            }
+            match self.timing(clock, head.time_ms) {
+                Timing::ThisScan => {
+                    self.drop_candidate();
+                    if let Some(m) = source.pop() {
+                        self.take(config, &m);
+                    }
+                }
+                Timing::LaterScan => {
+                    self.drop_candidate();
+                    return Collected::ScanDue;
+                }
+                Timing::Late => {
+                    self.drop_candidate();
+                    if source.pop().is_some() {
+                        bump16(&mut self.pending_counts.late);
+                        bump(&mut self.counters.late);
+                    }
+                }
+                Timing::OutOfWindow => {
+                    let consistent = self.candidate.is_some_and(|c| {
+                        signed_difference(head.time_ms, c.time_ms).unsigned_abs() <= clock.period_ms
+                    });
+                    if consistent {
+                        self.relock = true;
+                        return Collected::ScanDue;
+                    }
+                    self.drop_candidate();
+                    self.candidate = source.pop();
+                }
+            }
+        }
+    }
+
+    /// Re-locks onto the held measurement's time; it joins the (empty)
+    /// batch.
+    fn apply_relock(&mut self, config: &ScanConfig<S, F::Params>) {
+        self.relock = false;
+        if let Some(c) = self.candidate.take() {
+            self.scan_ms = c.time_ms;
+            bump(&mut self.counters.clock_relocks);
+            self.take(config, &c);
+        }
+    }
+
+    /// One measurement of this scan: converted, then into the batch; by
+    /// priority once the batch is full.
+    fn take(&mut self, config: &ScanConfig<S, F::Params>, report: &MeasurementReport) {
+        let converted = report
+            .position::<S>()
+            .and_then(|m| report.altitude::<S>().map(|a| (m, a)));
+        let Ok((measurement, altitude_ft)) = converted else {
+            bump16(&mut self.pending_counts.invalid);
+            bump(&mut self.counters.invalid);
+            return;
+        };
+        if self.batch.len() < M {
+            // Room: no priority needed (yet). Four pushes on vectors of the
+            // same length below M.
+            let reply = ReplyData {
+                altitude_ft,
+                altitude_25ft: report.altitude_25ft,
+                address: report.address,
+            };
+            let _ = self.batch.push(measurement);
+            let _ = self.batch_replies.push(reply);
+            let _ = self.batch_priorities.push(Priority {
+                class: CLASS_OTHER,
+                gate_cost: 0,
+                range: S::ZERO,
+            });
+            let _ = self.batch_champions.push(0);
+            return;
+        }
+        if !self.ranked {
+            self.rank_batch(config);
+        }
+        let observation = Observation::new(measurement).ok();
+        let priority = self.priority(observation.as_ref());
+        let Some(index) = self.evictable(&priority, observation.as_ref()) else {
+            bump16(&mut self.pending_counts.over_capacity);
+            bump(&mut self.counters.over_capacity);
+            return;
+        };
+        self.release(index);
+        bump16(&mut self.pending_counts.over_capacity);
+        bump(&mut self.counters.over_capacity);
+        if let Some(slot) = self.batch.get_mut(index) {
+            *slot = measurement;
+        }
+        if let Some(slot) = self.batch_replies.get_mut(index) {
+            *slot = ReplyData {
+                altitude_ft,
+                altitude_25ft: report.altitude_25ft,
+                address: report.address,
+            };
+        }
+        if let Some(slot) = self.batch_priorities.get_mut(index) {
+            *slot = priority;
+        }
+        if let Some(o) = observation {
+            self.crown(index, &o);
+        }
+    }
+
+    /// Runs the scan being assembled: collects what is due from `source`,
+    /// runs the tracker, updates the altitude trackers, assesses every
+    /// confirmed track and passes the reports to `emit`: one
+    /// [`Message::Track`] per confirmed track, one [`Message::Scan`], one
+    /// [`Message::Health`]. Then the next scan is one period later (or at
+    /// the re-lock time).
+    ///
+    /// On `Err` (the tracker refused the scan: its time does not advance,
+    /// which the loop's own tracker clock rules out) nothing is emitted and
+    /// the batch is kept for the next call.
+    pub fn on_tick(
+        &mut self,
+        config: &ScanConfig<S, F::Params>,
+        source: &mut impl MeasurementSource,
+        mut emit: impl FnMut(&Message),
+    ) -> Result<TickReport, ScanError> {
+        if self.relock && self.batch.is_empty() {
+            // Nothing for the old time base: re-lock at once.
+            self.apply_relock(config);
+        }
+        self.collect(config, source);
+        let used = self.batch.len();
+        let dt = S::from_f64_lossy(f64::from(config.clock.period_ms) / 1000.0);
+        let rule = IdentityRule {
+            intruders: &self.intruders,
+            replies: &self.batch_replies,
+            previous: &self.previous_replies,
+            dt,
+        };
+        let report = self.table.scan_with_rule(
+            &config.tracker,
+            self.tracker_ms,
+            &self.batch,
+            &mut self.codes,
+            &rule,
+            |_| {},
+        )?;
+        self.update_intruders(config, &report);
+        let ra = self.assess_tracks(config, &report);
+        let (highest, confirmed_tracks) = self.report_tracks(ra.advisory, &mut emit);
+
+        let mut counts = self.pending_counts;
+        counts.used = sat_u16(sat_u32(used));
+        for code in self.codes.iter().take(used) {
+            bump16(match code {
+                Association::Updated(_) => &mut counts.updated,
+                Association::Started(_) => &mut counts.started,
+                Association::NotAssigned => &mut counts.not_assigned,
+                Association::OutsideGates => &mut counts.outside_gates,
+                Association::Rejected(_) => &mut counts.rejected,
+                Association::Dropped(DropReason::TableFull) => &mut counts.refused_table_full,
+                Association::Dropped(DropReason::ScanOverflow) => &mut counts.over_capacity,
+            });
+        }
+        counts.predicted = sat_u16(report.predicted);
+        counts.gated_pairs = sat_u16(report.gated_pairs);
+        counts.coasted = sat_u16(report.coasted);
+        counts.confirmed = sat_u16(report.confirmed);
+        counts.deleted = sat_u16(report.deleted);
+        counts.restarted = sat_u16(report.restarted);
+        counts.tracks = sat_u16(report.tracks);
+        counts.confirmed_tracks = sat_u16(confirmed_tracks);
+
+        let c = &mut self.counters;
+        bump(&mut c.scans);
+        c.used = c.used.saturating_add(sat_u32(used));
+        c.tracks_started = c.tracks_started.saturating_add(report.started);
+        c.tracks_confirmed = c.tracks_confirmed.saturating_add(report.confirmed);
+        c.tracks_deleted = c.tracks_deleted.saturating_add(report.deleted);
+        c.tracks_restarted = c.tracks_restarted.saturating_add(report.restarted);
+        c.refused_table_full = c
+            .refused_table_full
+            .saturating_add(report.refused_table_full);
+
+        let summary = ScanSummary {
+            time_ms: self.scan_ms,
+            interval_ms: report.interval_ms,
+            counts,
+            highest_advisory: highest,
+            ra: ra.advisory,
+            clear_of_conflict: ra.clear_of_conflict,
+        };
+        emit(&Message::Scan(summary));
+
+        // The next scan.
+        self.batch.clear();
+        core::mem::swap(&mut self.previous_replies, &mut self.batch_replies);
+        self.batch_replies.clear();
+        self.batch_priorities.clear();
+        self.batch_champions.clear();
+        self.pending_counts = ScanCounts::new();
+        self.tracker_ms = self.tracker_ms.wrapping_add(config.clock.period_ms);
+        let time_ms = self.scan_ms;
+        self.scan_ms = self.scan_ms.wrapping_add(config.clock.period_ms);
+        self.ranked = false;
+        if self.relock {
+            self.apply_relock(config);
+        }
+
+        let (decoder, intake) = source.receiver_counters();
+        emit(&Message::Health(Health {
+            time_ms,
+            decoder,
+            intake,
+            scan: self.counters,
+        }));
+        Ok(TickReport {
+            scan: report,
+            summary,
+        })
+    }
+
+    /// At the end of a run: drops a held out-of-window measurement
+    /// (counted), so that every measurement taken is accounted for.
+    pub fn finish(&mut self) {
+        self.drop_candidate();
+    }
+
+    /// Emits a track report per confirmed track, with this scan's
+    /// assessment and, on an RA threat, the RA in force; returns the highest
+    /// advisory and the number of confirmed tracks.
+    fn report_tracks(
+        &mut self,
+        ra: Option<RaCode>,
+        emit: &mut impl FnMut(&Message),
+    ) -> (Advisory, u32) {
+        let mut highest = Advisory::None;
+        let mut confirmed = 0u32;
+        for track in self.table.tracks().filter(|t| t.is_confirmed()) {
+            confirmed = confirmed.saturating_add(1);
+            let slot = self
+                .intruders
+                .iter()
+                .flatten()
+                .find(|s| s.track == track.id());
+            let assessed = slot.and_then(|s| s.assessed);
+            let advisory = assessed.map_or(Advisory::None, |a| a.advisory);
+            highest = highest.max(advisory);
+            let altitude = slot.and_then(|s| s.tcas.altitude_tracker().estimate());
+            let [x, y] = track.position();
+            let [vx, vy] = track.velocity();
+            let tau_ds = assessed.and_then(|a| a.range_tau_s).map(|tau| {
+                let ds = scaled_i32(tau, 10.0);
+                u16::try_from(ds.max(0)).unwrap_or(u16::MAX)
+            });
+            let report = TrackReport {
+                time_ms: self.scan_ms,
+                track_id: track.id().get(),
+                status: track.status(),
+                advisory,
+                sensitivity: assessed.map(|a| a.sensitivity),
+                x_cm: scaled_i32(x, 100.0),
+                y_cm: scaled_i32(y, 100.0),
+                vx_cm_per_s: scaled_i32(vx, 100.0),
+                vy_cm_per_s: scaled_i32(vy, 100.0),
+                altitude: altitude.map(|a| {
+                    let rate = scaled_i32(a.vertical_rate_ft_per_s, 60.0);
+                    (
+                        scaled_i32(a.altitude_ft, 1.0),
+                        i16::try_from(rate).unwrap_or(if rate < 0 { i16::MIN } else { i16::MAX }),
+                    )
+                }),
+                range_tau_ds: tau_ds,
+                address: slot.and_then(|s| s.address),
+                ra: if advisory == Advisory::Resolution {
+                    ra
+                } else {
+                    None
+                },
+            };
+            emit(&Message::Track(report));
+            bump(&mut self.counters.track_reports);
+        }
+        (highest, confirmed)
+    }
+}

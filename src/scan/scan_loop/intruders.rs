@@ -1,0 +1,308 @@
+//! Each track's TCAS surveillance: reply identity, range and altitude
+//! trackers, threat assessment and the RA.
+
+use super::super::bump;
+use super::{BearingTrack, ScanConfig, ScanLoop};
+
+use crate::filter::altitude::AltitudeQuantum;
+use crate::num::{hypot, Scalar};
+use crate::tcas::detection::MAX_INTRUDER_RATE_FT_PER_S;
+use crate::tcas::{range_tau, Advisory, IntruderTrack, Reply, SensitivityLevel, ThreatGeometry};
+use crate::track::{Association, Measurement, PairRule, ScanReport, TrackFilter, TrackId};
+use crate::wire::{LoopCounters, ModeSAddress, RaCode};
+
+/// What a scan's reply carries besides its position.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub(super) struct ReplyData<S> {
+    pub(super) altitude_ft: Option<S>,
+    pub(super) altitude_25ft: bool,
+    pub(super) address: Option<ModeSAddress>,
+}
+
+/// This scan's assessment of one confirmed track.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub(super) struct Assessed<S> {
+    pub(super) advisory: Advisory,
+    pub(super) sensitivity: SensitivityLevel,
+    pub(super) range_tau_s: Option<S>,
+}
+
+/// One track's TCAS surveillance: its intruder's Mode S address (kept for
+/// the track's life), range and altitude trackers and threat state.
+#[derive(Debug, Clone, Copy)]
+pub(super) struct IntruderSlot<S: Scalar> {
+    pub(super) track: TrackId,
+    pub(super) address: Option<ModeSAddress>,
+    pub(super) quantum: AltitudeQuantum,
+    pub(super) tcas: IntruderTrack<S>,
+    pub(super) updated: bool,
+    pub(super) assessed: Option<Assessed<S>>,
+}
+
+/// RA threats resolved together at most (the ones with the smallest
+/// modified tau; more are counted, `ra_threats_over_capacity`).
+pub const MAX_RA_THREATS: usize = 8;
+
+/// Reply identity: a reply with a Mode S address
+/// updates only the track of that address, and starts a track only if no
+/// track has it; a reply without one (Mode C) updates only a track without
+/// an address whose altitude it correlates with, and starts one only with a
+/// first point without an address whose altitude correlates.
+pub(super) struct IdentityRule<'a, S: Scalar> {
+    pub(super) intruders: &'a [Option<IntruderSlot<S>>],
+    pub(super) replies: &'a [ReplyData<S>],
+    pub(super) previous: &'a [ReplyData<S>],
+    pub(super) dt: S,
+}
+
+impl<S: Scalar> IdentityRule<'_, S> {
+    fn slot(&self, track: TrackId) -> Option<&IntruderSlot<S>> {
+        self.intruders.iter().flatten().find(|s| s.track == track)
+    }
+
+    /// |a − b| within the altitude correlation window for `dt`: two
+    /// quanta plus the detection logic's 10 000 ft/min intruder-rate limit
+    /// (our choice: the public sources do not give DO-185B's window).
+    fn altitudes_correlate(&self, a: S, b: S, quantum: AltitudeQuantum) -> bool {
+        let window = S::from_f64_lossy(2.0 * quantum.feet())
+            + S::from_f64_lossy(MAX_INTRUDER_RATE_FT_PER_S) * self.dt;
+        (a - b).abs() <= window
+    }
+}
+
+impl<S: Scalar> PairRule for IdentityRule<'_, S> {
+    fn may_update(&self, track: TrackId, k: usize) -> bool {
+        let Some(reply) = self.replies.get(k) else {
+            return false;
+        };
+        let slot = self.slot(track);
+        match (reply.address, slot.and_then(|s| s.address)) {
+            (Some(a), Some(b)) => a == b,
+            (None, None) => {
+                let predicted = slot
+                    .and_then(|s| s.tcas.altitude_tracker().estimate())
+                    .map(|e| e.altitude_ft + e.vertical_rate_ft_per_s * self.dt);
+                match (reply.altitude_ft, predicted, slot) {
+                    (Some(z), Some(p), Some(s)) => self.altitudes_correlate(z, p, s.quantum),
+                    _ => true,
+                }
+            }
+            _ => false,
+        }
+    }
+
+    fn may_start(&self, p: usize, k: usize) -> bool {
+        let (Some(first), Some(second)) = (self.previous.get(p), self.replies.get(k)) else {
+            return false;
+        };
+        if first.address != second.address {
+            return false;
+        }
+        if let Some(a) = second.address {
+            if self
+                .intruders
+                .iter()
+                .flatten()
+                .any(|s| s.address == Some(a))
+            {
+                return false;
+            }
+        }
+        match (first.altitude_ft, second.altitude_ft) {
+            (Some(a), Some(b)) => self.altitudes_correlate(a, b, quantum_of(second)),
+            _ => true,
+        }
+    }
+}
+
+fn quantum_of<S>(reply: &ReplyData<S>) -> AltitudeQuantum {
+    if reply.altitude_25ft {
+        AltitudeQuantum::ModeS25
+    } else {
+        AltitudeQuantum::ModeC
+    }
+}
+
+impl<S: Scalar, F: TrackFilter<S> + BearingTrack<S>, const N: usize, const M: usize>
+    ScanLoop<S, F, N, M>
+{
+    /// Feeds each reply the tracker used to its track's range and altitude
+    /// trackers (a started track gets its slot, its address and the
+    /// altitude tracker of its reply's quantum); coasts the others; frees
+    /// the slots of deleted tracks.
+    pub(super) fn update_intruders(
+        &mut self,
+        config: &ScanConfig<S, F::Params>,
+        report: &ScanReport,
+    ) {
+        for slot in self.intruders.iter_mut() {
+            match slot {
+                Some(s) if self.table.track(s.track).is_some() => {
+                    s.updated = false;
+                    s.assessed = None;
+                }
+                _ => *slot = None,
+            }
+        }
+        // The first scan has no interval, and no track yet.
+        if report.interval_ms == 0 {
+            return;
+        }
+        let Ok(dt) = S::try_from_f64(f64::from(report.interval_ms) / 1000.0) else {
+            return;
+        };
+        let n = self.batch.len().min(M);
+        let replies = self.batch.iter().zip(self.batch_replies.iter());
+        for (code, (measurement, reply)) in self.codes.iter().take(n).zip(replies) {
+            let (Association::Updated(id) | Association::Started(id)) = *code else {
+                continue;
+            };
+            let index = match self
+                .intruders
+                .iter()
+                .position(|s| matches!(s, Some(s) if s.track == id))
+            {
+                Some(i) => Some(i),
+                None => {
+                    // A track per slot at most, and a slot per track: a free
+                    // slot exists for every live track.
+                    let free = self.intruders.iter().position(|s| s.is_none());
+                    let quantum = quantum_of(reply);
+                    let altitude = match quantum {
+                        AltitudeQuantum::ModeC => config.altitude,
+                        AltitudeQuantum::ModeS25 => config.altitude_25ft,
+                    };
+                    if let Some(Some(slot)) = free.map(|i| self.intruders.get_mut(i)) {
+                        *slot = Some(IntruderSlot {
+                            track: id,
+                            address: reply.address,
+                            quantum,
+                            tcas: IntruderTrack::new(altitude),
+                            updated: false,
+                            assessed: None,
+                        });
+                    }
+                    free
+                }
+            };
+            let range_m = match *measurement {
+                Measurement::Polar { range, .. } => range,
+                Measurement::Cartesian { x, y } => hypot(x, y),
+            };
+            if let Some(Some(s)) = index.and_then(|i| self.intruders.get_mut(i)) {
+                let reply = Reply {
+                    range_m,
+                    altitude_ft: reply.altitude_ft,
+                };
+                if s.tcas.scan(Some(reply), dt).is_err() {
+                    bump(&mut self.counters.intruder_tracker_errors);
+                }
+                s.updated = true;
+            }
+        }
+        for s in self.intruders.iter_mut().flatten() {
+            if !s.updated && s.tcas.scan(None, dt).is_err() {
+                bump(&mut self.counters.intruder_tracker_errors);
+            }
+        }
+    }
+
+    /// The TCAS cycle: the sensitivity level for the own
+    /// aircraft, the threat logic of every confirmed track (advisories only
+    /// from firm tracks: [`crate::tcas::ThreatState::assess`]), then the RA
+    /// against the RA threats ([`CollisionAvoidance::resolve`]). Failures
+    /// are counted (`assessment_errors`) and give no advisory.
+    pub(super) fn assess_tracks(
+        &mut self,
+        config: &ScanConfig<S, F::Params>,
+        report: &ScanReport,
+    ) -> RaOutput {
+        let none = RaOutput {
+            advisory: None,
+            clear_of_conflict: false,
+        };
+        if report.interval_ms == 0 {
+            return none;
+        }
+        let Ok(dt) = S::try_from_f64(f64::from(report.interval_ms) / 1000.0) else {
+            return none;
+        };
+        let Ok(cycle) = self.cas.begin_cycle(&config.own, false) else {
+            bump(&mut self.counters.assessment_errors);
+            return none;
+        };
+        let mut threats: heapless::Vec<ThreatGeometry<S>, MAX_RA_THREATS> = heapless::Vec::new();
+        for track in self.table.tracks().filter(|t| t.is_confirmed()) {
+            let Some(slot) = self
+                .intruders
+                .iter_mut()
+                .flatten()
+                .find(|s| s.track == track.id())
+            else {
+                continue;
+            };
+            let status = match slot.tcas.assess(&cycle, track.filter().bearing_track(), dt) {
+                Ok(status) => status,
+                Err(_) => {
+                    bump(&mut self.counters.assessment_errors);
+                    continue;
+                }
+            };
+            let range = slot.tcas.range_tracker().estimate();
+            slot.assessed = Some(Assessed {
+                advisory: status.map_or(Advisory::None, |s| s.advisory),
+                sensitivity: cycle.params.level,
+                range_tau_s: range
+                    .and_then(|r| range_tau(r.range_m, r.range_rate_m_per_s).ok().flatten()),
+            });
+            if let Some(g) = status.and_then(|s| s.geometry) {
+                add_threat(&mut threats, g, &mut self.counters);
+            }
+        }
+        match self.cas.resolve(&cycle, &threats, dt) {
+            Ok(out) => RaOutput {
+                advisory: out.advisory.map(|a| RaCode {
+                    sense: a.sense,
+                    strength: a.strength,
+                }),
+                clear_of_conflict: out.clear_of_conflict,
+            },
+            Err(_) => {
+                bump(&mut self.counters.assessment_errors);
+                none
+            }
+        }
+    }
+}
+
+/// This scan's RA, as reported.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub(super) struct RaOutput {
+    pub(super) advisory: Option<RaCode>,
+    pub(super) clear_of_conflict: bool,
+}
+
+/// Adds an RA threat; beyond [`MAX_RA_THREATS`] the one with the largest
+/// modified tau is left out (counted).
+fn add_threat<S: Scalar>(
+    threats: &mut heapless::Vec<ThreatGeometry<S>, MAX_RA_THREATS>,
+    threat: ThreatGeometry<S>,
+    counters: &mut LoopCounters,
+) {
+    let Err(threat) = threats.push(threat) else {
+        return;
+    };
+    bump(&mut counters.ra_threats_over_capacity);
+    let latest = threats.iter_mut().reduce(|a, b| {
+        if b.modified_tau_s > a.modified_tau_s {
+            b
+        } else {
+            a
+        }
+    });
+    if let Some(latest) = latest {
+        if threat.modified_tau_s < latest.modified_tau_s {
+            *latest = threat;
+        }
+    }
+}
