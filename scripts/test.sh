@@ -168,6 +168,18 @@ check_stack_layout() {
     "$tool" layout --ram-origin 0x20000000 $(firmware_elves)
 }
 
+# The demo images' initialised statics (.data, copied from flash at reset)
+# under 4 KiB: the scan loop's and the intake's state start as zero bytes,
+# in .bss.
+check_demo_data() {
+    local tool t elves=()
+    tool=$(firmware_check_tool) || return
+    for t in "${ABTRACK_TARGETS[@]}"; do
+        elves+=("target/$t/release/abtrack-firmware")
+    done
+    "$tool" data --max-bytes 4095 "${elves[@]}"
+}
+
 # The deliberate overflow (boards/qemu/src/bin/stack_overflow.rs) must end in the
 # HardFault handler's report with the statics intact and exit status 1; not
 # in QEMU's "Lockup" abort (134), a hang (124) or a normal exit.
@@ -232,6 +244,7 @@ for t in "${ABTRACK_TARGETS[@]}"; do
 done
 step "firmware: no call into core::panicking in any release ELF" check_no_panic_calls
 step "firmware: stack below the static data in every release ELF (flip-link)" check_stack_layout
+step "firmware: each demo image's .data under 4 KiB" check_demo_data
 
 # The benchmark image (its own feature: the minikalman anchor) must run to
 # its end and print a complete, well-formed report: bench_report --check

@@ -9,10 +9,13 @@ use crate::wire::{
 };
 
 /// A fixed-capacity FIFO of measurements: `Q` slots, no heap, no panic
-/// path (indices wrap by comparison, never by `%`).
+/// path (indices wrap by comparison, never by `%`). An empty queue is
+/// all-zero bytes, so a `static` one costs no flash.
 #[derive(Debug, Clone)]
 pub struct MeasurementQueue<const Q: usize> {
-    slots: [Option<MeasurementReport>; Q],
+    /// The ring's slots, written in order `0, 1, …, Q − 1, 0, …`: the
+    /// vector grows to `Q` as the ring's write position first passes each.
+    slots: heapless::Vec<MeasurementReport, Q>,
     head: usize,
     len: usize,
 }
@@ -27,7 +30,7 @@ impl<const Q: usize> MeasurementQueue<Q> {
     /// An empty queue (a `const fn`, for a `static`).
     pub const fn new() -> Self {
         MeasurementQueue {
-            slots: [None; Q],
+            slots: heapless::Vec::new(),
             head: 0,
             len: 0,
         }
@@ -69,14 +72,15 @@ impl<const Q: usize> MeasurementQueue<Q> {
             return Err(m);
         }
         let i = self.index(self.len);
+        let written = self.slots.len();
         match self.slots.get_mut(i) {
-            Some(slot) => {
-                *slot = Some(m);
-                self.len = self.len.saturating_add(1);
-                Ok(())
-            }
-            None => Err(m),
+            Some(slot) => *slot = m,
+            // The write position reaches a slot for the first time.
+            None if i == written => self.slots.push(m)?,
+            None => return Err(m),
         }
+        self.len = self.len.saturating_add(1);
+        Ok(())
     }
 
     /// The oldest measurement.
@@ -84,7 +88,7 @@ impl<const Q: usize> MeasurementQueue<Q> {
         if self.len == 0 {
             return None;
         }
-        self.slots.get(self.head).and_then(|s| s.as_ref())
+        self.slots.get(self.head)
     }
 
     /// Takes the oldest measurement.
@@ -92,7 +96,7 @@ impl<const Q: usize> MeasurementQueue<Q> {
         if self.len == 0 {
             return None;
         }
-        let m = self.slots.get_mut(self.head).and_then(|s| s.take());
+        let m = self.slots.get(self.head).copied();
         self.head = self.index(1);
         self.len = self.len.saturating_sub(1);
         m

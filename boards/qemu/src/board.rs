@@ -177,16 +177,22 @@ mod log {
 
     /// Encoded bytes on their way to the host console.
     struct Output {
-        /// Not opened yet, or the result of opening it.
-        console: Option<Option<u32>>,
+        /// Opening the console has been tried (a flag beside the handle,
+        /// so that the initial state is all-zero bytes: `.bss`).
+        opened: bool,
+        /// The result of opening it.
+        console: Option<u32>,
         buffer: [u8; BUFFER_LEN],
         buffered: usize,
     }
 
     impl Output {
         fn flush(&mut self) {
-            let console = *self.console.get_or_insert_with(semihosting::open_console);
-            if let (Some(handle), Some(bytes)) = (console, self.buffer.get(..self.buffered)) {
+            if !self.opened {
+                self.opened = true;
+                self.console = semihosting::open_console();
+            }
+            if let (Some(handle), Some(bytes)) = (self.console, self.buffer.get(..self.buffered)) {
                 // A console that refuses bytes loses them: nothing else to do.
                 let _ = semihosting::write(handle, bytes);
             }
@@ -220,6 +226,7 @@ mod log {
         interrupts_were_enabled: false,
         encoder: defmt::Encoder::new(),
         out: Output {
+            opened: false,
             console: None,
             buffer: [0; BUFFER_LEN],
             buffered: 0,

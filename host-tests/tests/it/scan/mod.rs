@@ -3,3 +3,4 @@
 
 mod loop_on_host;
 pub(crate) mod support;
+mod zero_state;
