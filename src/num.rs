@@ -251,6 +251,76 @@ pub trait Scalar:
     fn is_valid_and_positive(self) -> bool {
         self.is_valid() && self > Self::ZERO
     }
+
+    /// A time in milliseconds as seconds, `ms / 1000` rounded to nearest
+    /// (through `f64` by default; `f32` divides in `f32`, the same value for
+    /// every `ms` ≤ 2²⁴, so no double-precision library call on the M4F).
+    #[inline]
+    fn seconds_from_ms(ms: u32) -> Self {
+        Self::from_f64_lossy(f64::from(ms) / 1000.0)
+    }
+
+    /// `self·scale` rounded half away from zero to an integer, saturated to
+    /// the `i32` range, NaN → 0: a report's fixed-point field. By default
+    /// through `f64` (exact for `f64`'s and `f32`'s products with a scale
+    /// below 2²⁹); `f32` gives the same integer from its bits.
+    #[inline]
+    fn round_scaled_i32(self, scale: u32) -> i32 {
+        let f = libm::round(self.to_f64() * f64::from(scale));
+        if f.is_nan() {
+            0
+        } else if f >= i32::MAX as f64 {
+            i32::MAX
+        } else if f <= i32::MIN as f64 {
+            i32::MIN
+        } else {
+            f as i32
+        }
+    }
+}
+
+/// `v·scale` rounded half away from zero, saturated to `i32`, NaN → 0, in
+/// integer arithmetic on `v`'s bits (`m·2ᵉ·scale` is exact in `u64`):
+/// [`Scalar::round_scaled_i32`] for `f32`.
+fn round_scaled_f32(v: f32, scale: u32) -> i32 {
+    if v.is_nan() {
+        return 0;
+    }
+    let bits = v.to_bits();
+    let negative = bits >> 31 != 0;
+    let biased = (bits >> 23) & 0xFF;
+    let fraction = bits & 0x007F_FFFF;
+    // v = mantissa·2^exponent (subnormals: exponent −149).
+    let (mantissa, exponent) = if biased == 0 {
+        (fraction, -149i32)
+    } else {
+        (
+            fraction | 0x0080_0000,
+            biased.cast_signed().wrapping_sub(150),
+        )
+    };
+    // Exact: below 2⁵⁶.
+    let product = u64::from(mantissa).saturating_mul(u64::from(scale));
+    let magnitude = if exponent >= 0 {
+        // Beyond 2⁸ a non-zero product is ≥ 2³¹ (∞ included): saturated.
+        match 1u64.checked_shl(exponent.unsigned_abs()) {
+            Some(power) if exponent < 9 => product.saturating_mul(power),
+            _ if product == 0 => 0,
+            _ => u64::MAX,
+        }
+    } else {
+        let shift = exponent.unsigned_abs();
+        match 1u64.checked_shl(shift.wrapping_sub(1)) {
+            // Half away from zero on the magnitude: add half, truncate.
+            Some(half) => product.saturating_add(half).checked_shr(shift).unwrap_or(0),
+            None => 0,
+        }
+    };
+    if negative {
+        i32::try_from(magnitude).map_or(i32::MIN, i32::wrapping_neg)
+    } else {
+        i32::try_from(magnitude).unwrap_or(i32::MAX)
+    }
 }
 
 impl Scalar for f64 {
@@ -318,6 +388,14 @@ impl Scalar for f32 {
     #[inline]
     fn from_f64_lossy(v: f64) -> Self {
         v as f32
+    }
+    #[inline]
+    fn seconds_from_ms(ms: u32) -> Self {
+        ms as f32 / 1000.0
+    }
+    #[inline]
+    fn round_scaled_i32(self, scale: u32) -> i32 {
+        round_scaled_f32(self, scale)
     }
     #[inline]
     fn to_f64(self) -> f64 {

@@ -105,17 +105,8 @@ fn sat_u32(v: usize) -> u32 {
 
 /// `v·scale` rounded to an integer, saturated to the i32 range (NaN → 0).
 /// Reports carry tracks inside the ±400 km envelope, where nothing saturates.
-fn scaled_i32<S: Scalar>(v: S, scale: f64) -> i32 {
-    let f = libm::round(v.to_f64() * scale);
-    if f.is_nan() {
-        0
-    } else if f >= i32::MAX as f64 {
-        i32::MAX
-    } else if f <= i32::MIN as f64 {
-        i32::MIN
-    } else {
-        f as i32
-    }
+fn scaled_i32<S: Scalar>(v: S, scale: u32) -> i32 {
+    v.round_scaled_i32(scale)
 }
 
 /// The consumer half: sorts queued measurements into scans, turns each scan
@@ -136,8 +127,9 @@ pub struct ScanLoop<S: Scalar, F, const N: usize, const M: usize> {
     /// The sensor's time of the scan being assembled.
     scan_ms: u32,
     locked: bool,
-    /// A measurement outside the window, held until the next one.
-    candidate: Option<MeasurementReport>,
+    /// A measurement outside the window, held until the next one (at most
+    /// one: a vector, so that "none" is all-zero bytes).
+    candidate: heapless::Vec<MeasurementReport, 1>,
     /// The next measurement confirmed the candidate: re-lock after this scan.
     relock: bool,
     batch: heapless::Vec<Measurement<S>, M>,
@@ -148,13 +140,16 @@ pub struct ScanLoop<S: Scalar, F, const N: usize, const M: usize> {
     batch_priorities: heapless::Vec<Priority<S>, M>,
     /// Per batch entry: of how many confirmed tracks it is the champion.
     batch_champions: heapless::Vec<u8, M>,
-    gates: [Option<TrackGate<S>>; N],
+    /// The confirmed tracks' gates (vectors, here and below, so that the
+    /// empty loop is all-zero bytes).
+    gates: heapless::Vec<TrackGate<S>, N>,
     /// The batch overflowed: `gates` and the priorities are computed.
     ranked: bool,
     /// Counts of the scan being assembled (the intake part).
     pending_counts: ScanCounts,
-    codes: [Association; M],
-    intruders: [Option<IntruderSlot<S>>; N],
+    /// Per batch entry, the tracker's code; filled to `M` at the first scan.
+    codes: heapless::Vec<Association, M>,
+    intruders: heapless::Vec<IntruderSlot<S>, N>,
     /// The system's TCAS state: sensitivity level, inhibits, the RA.
     cas: CollisionAvoidance<S>,
     counters: LoopCounters,
@@ -179,18 +174,18 @@ impl<S: Scalar, F: TrackFilter<S> + BearingTrack<S>, const N: usize, const M: us
             tracker_ms: 0,
             scan_ms: 0,
             locked: false,
-            candidate: None,
+            candidate: heapless::Vec::new(),
             relock: false,
             batch: heapless::Vec::new(),
             batch_replies: heapless::Vec::new(),
             previous_replies: heapless::Vec::new(),
             batch_priorities: heapless::Vec::new(),
             batch_champions: heapless::Vec::new(),
-            gates: [const { None }; N],
+            gates: heapless::Vec::new(),
             ranked: false,
             pending_counts: ScanCounts::new(),
-            codes: [Association::OutsideGates; M],
-            intruders: [const { None }; N],
+            codes: heapless::Vec::new(),
+            intruders: heapless::Vec::new(),
             cas: CollisionAvoidance::new(),
             counters: LoopCounters::new(),
         }
@@ -225,9 +220,7 @@ impl<S: Scalar, F: TrackFilter<S> + BearingTrack<S>, const N: usize, const M: us
     /// Measurements taken from the queue and not yet used or dropped: the
     /// batch and a held out-of-window measurement.
     pub fn held(&self) -> usize {
-        self.batch
-            .len()
-            .saturating_add(usize::from(self.candidate.is_some()))
+        self.batch.len().saturating_add(self.candidate.len())
     }
 
     /// The altitude estimate of a track, if it reported altitude.
@@ -248,7 +241,7 @@ impl<S: Scalar, F: TrackFilter<S> + BearingTrack<S>, const N: usize, const M: us
     }
 
     fn slot(&self, track: TrackId) -> Option<&IntruderSlot<S>> {
-        self.intruders.iter().flatten().find(|s| s.track == track)
+        self.intruders.iter().find(|s| s.track == track)
     }
 
     fn timing(&self, clock: &ClockConfig, t: u32) -> Timing {
@@ -271,7 +264,7 @@ impl<S: Scalar, F: TrackFilter<S> + BearingTrack<S>, const N: usize, const M: us
 
     /// Drops the held out-of-window measurement, counted.
     fn drop_candidate(&mut self) {
-        if self.candidate.take().is_some() {
+        if self.candidate.pop().is_some() {
             bump16(&mut self.pending_counts.out_of_window);
             bump(&mut self.counters.out_of_window);
         }
@@ -319,7 +312,7 @@ impl<S: Scalar, F: TrackFilter<S> + BearingTrack<S>, const N: usize, const M: us
                     }
                 }
                 Timing::OutOfWindow => {
-                    let consistent = self.candidate.is_some_and(|c| {
+                    let consistent = self.candidate.first().is_some_and(|c| {
                         signed_difference(head.time_ms, c.time_ms).unsigned_abs() <= clock.period_ms
                     });
                     if consistent {
@@ -327,7 +320,9 @@ impl<S: Scalar, F: TrackFilter<S> + BearingTrack<S>, const N: usize, const M: us
                         return Collected::ScanDue;
                     }
                     self.drop_candidate();
-                    self.candidate = source.pop();
+                    if let Some(m) = source.pop() {
+                        let _ = self.candidate.push(m);
+                    }
                 }
             }
         }
@@ -337,7 +332,7 @@ impl<S: Scalar, F: TrackFilter<S> + BearingTrack<S>, const N: usize, const M: us
     /// batch.
     fn apply_relock(&mut self, config: &ScanConfig<S, F::Params>) {
         self.relock = false;
-        if let Some(c) = self.candidate.take() {
+        if let Some(c) = self.candidate.pop() {
             self.scan_ms = c.time_ms;
             bump(&mut self.counters.clock_relocks);
             self.take(config, &c);
@@ -426,7 +421,12 @@ impl<S: Scalar, F: TrackFilter<S> + BearingTrack<S>, const N: usize, const M: us
         }
         self.collect(config, source);
         let used = self.batch.len();
-        let dt = S::from_f64_lossy(f64::from(config.clock.period_ms) / 1000.0);
+        let dt = S::seconds_from_ms(config.clock.period_ms);
+        if self.codes.len() < M {
+            // Empty in a new loop (zero bytes); the tracker writes one per
+            // measurement of each scan.
+            let _ = self.codes.resize(M, Association::NotAssigned);
+        }
         let rule = IdentityRule {
             intruders: &self.intruders,
             replies: &self.batch_replies,
@@ -534,11 +534,7 @@ impl<S: Scalar, F: TrackFilter<S> + BearingTrack<S>, const N: usize, const M: us
         let mut confirmed = 0u32;
         for track in self.table.tracks().filter(|t| t.is_confirmed()) {
             confirmed = confirmed.saturating_add(1);
-            let slot = self
-                .intruders
-                .iter()
-                .flatten()
-                .find(|s| s.track == track.id());
+            let slot = self.intruders.iter().find(|s| s.track == track.id());
             let assessed = slot.and_then(|s| s.assessed);
             let advisory = assessed.map_or(Advisory::None, |a| a.advisory);
             highest = highest.max(advisory);
@@ -546,7 +542,7 @@ impl<S: Scalar, F: TrackFilter<S> + BearingTrack<S>, const N: usize, const M: us
             let [x, y] = track.position();
             let [vx, vy] = track.velocity();
             let tau_ds = assessed.and_then(|a| a.range_tau_s).map(|tau| {
-                let ds = scaled_i32(tau, 10.0);
+                let ds = scaled_i32(tau, 10);
                 u16::try_from(ds.max(0)).unwrap_or(u16::MAX)
             });
             let report = TrackReport {
@@ -555,14 +551,14 @@ impl<S: Scalar, F: TrackFilter<S> + BearingTrack<S>, const N: usize, const M: us
                 status: track.status(),
                 advisory,
                 sensitivity: assessed.map(|a| a.sensitivity),
-                x_cm: scaled_i32(x, 100.0),
-                y_cm: scaled_i32(y, 100.0),
-                vx_cm_per_s: scaled_i32(vx, 100.0),
-                vy_cm_per_s: scaled_i32(vy, 100.0),
+                x_cm: scaled_i32(x, 100),
+                y_cm: scaled_i32(y, 100),
+                vx_cm_per_s: scaled_i32(vx, 100),
+                vy_cm_per_s: scaled_i32(vy, 100),
                 altitude: altitude.map(|a| {
-                    let rate = scaled_i32(a.vertical_rate_ft_per_s, 60.0);
+                    let rate = scaled_i32(a.vertical_rate_ft_per_s, 60);
                     (
-                        scaled_i32(a.altitude_ft, 1.0),
+                        scaled_i32(a.altitude_ft, 1),
                         i16::try_from(rate).unwrap_or(if rate < 0 { i16::MIN } else { i16::MAX }),
                     )
                 }),

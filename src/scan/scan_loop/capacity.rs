@@ -67,12 +67,7 @@ impl<S: Scalar, F: TrackFilter<S> + BearingTrack<S>, const N: usize, const M: us
                 range: S::ZERO,
             };
         };
-        let best = self
-            .gates
-            .iter()
-            .flatten()
-            .filter_map(|g| g.region.cost(o))
-            .min();
+        let best = self.gates.iter().filter_map(|g| g.region.cost(o)).min();
         // Positions are relative to the own aircraft.
         let [x, y] = o.xy();
         let range = hypot(x, y);
@@ -104,7 +99,7 @@ impl<S: Scalar, F: TrackFilter<S> + BearingTrack<S>, const N: usize, const M: us
         let mut dethroned = [0u8; M];
         let mut crowned = false;
         if let Some(o) = observation {
-            for gate in self.gates.iter().flatten() {
+            for gate in self.gates.iter() {
                 let Some(cost) = gate.region.cost(o) else {
                     continue;
                 };
@@ -146,7 +141,7 @@ impl<S: Scalar, F: TrackFilter<S> + BearingTrack<S>, const N: usize, const M: us
 
     /// Clears a batch entry's champion places (it is being replaced).
     pub(super) fn release(&mut self, index: usize) {
-        for gate in self.gates.iter_mut().flatten() {
+        for gate in self.gates.iter_mut() {
             if gate.champion.is_some_and(|(i, _)| i == index) {
                 gate.champion = None;
             }
@@ -159,7 +154,7 @@ impl<S: Scalar, F: TrackFilter<S> + BearingTrack<S>, const N: usize, const M: us
     /// Makes the entry at `index` the champion of every confirmed track
     /// whose gate it is nearest to so far.
     pub(super) fn crown(&mut self, index: usize, observation: &Observation<S>) {
-        for gate in self.gates.iter_mut().flatten() {
+        for gate in self.gates.iter_mut() {
             let Some(cost) = gate.region.cost(observation) else {
                 continue;
             };
@@ -182,7 +177,7 @@ impl<S: Scalar, F: TrackFilter<S> + BearingTrack<S>, const N: usize, const M: us
     /// The gates of the confirmed tracks for the scan being assembled (one
     /// period after the last).
     fn prepare_gates(&mut self, config: &ScanConfig<S, F::Params>) {
-        self.gates = [const { None }; N];
+        self.gates.clear();
         let params = config.tracker.params();
         let Some(step) = ScanInterval::from_ms(config.clock.period_ms)
             .and_then(|interval| F::step(params, &interval).ok())
@@ -190,16 +185,21 @@ impl<S: Scalar, F: TrackFilter<S> + BearingTrack<S>, const N: usize, const M: us
             return;
         };
         let confirmed = self.table.tracks().filter(|t| t.is_confirmed());
-        for (gate, track) in self.gates.iter_mut().zip(confirmed) {
+        for track in confirmed {
             let region = track.filter().predict(params, &step).ok().and_then(|p| {
                 track
                     .filter()
                     .gate_region(params, &p, &step, config.tracker.gate())
             });
-            *gate = region.map(|region| TrackGate {
-                region,
-                champion: None,
-            });
+            if let Some(region) = region {
+                let gate = TrackGate {
+                    region,
+                    champion: None,
+                };
+                if self.gates.push(gate).is_err() {
+                    break;
+                }
+            }
         }
     }
 }

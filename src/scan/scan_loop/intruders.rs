@@ -49,7 +49,7 @@ pub const MAX_RA_THREATS: usize = 8;
 /// an address whose altitude it correlates with, and starts one only with a
 /// first point without an address whose altitude correlates.
 pub(super) struct IdentityRule<'a, S: Scalar> {
-    pub(super) intruders: &'a [Option<IntruderSlot<S>>],
+    pub(super) intruders: &'a [IntruderSlot<S>],
     pub(super) replies: &'a [ReplyData<S>],
     pub(super) previous: &'a [ReplyData<S>],
     pub(super) dt: S,
@@ -57,15 +57,19 @@ pub(super) struct IdentityRule<'a, S: Scalar> {
 
 impl<S: Scalar> IdentityRule<'_, S> {
     fn slot(&self, track: TrackId) -> Option<&IntruderSlot<S>> {
-        self.intruders.iter().flatten().find(|s| s.track == track)
+        self.intruders.iter().find(|s| s.track == track)
     }
 
     /// |a − b| within the altitude correlation window for `dt`: two
     /// quanta plus the detection logic's 10 000 ft/min intruder-rate limit
     /// (our choice: the public sources do not give DO-185B's window).
     fn altitudes_correlate(&self, a: S, b: S, quantum: AltitudeQuantum) -> bool {
-        let window = S::from_f64_lossy(2.0 * quantum.feet())
-            + S::from_f64_lossy(MAX_INTRUDER_RATE_FT_PER_S) * self.dt;
+        // Each quantum's constant folds (no runtime `f64`).
+        let two_quanta = match quantum {
+            AltitudeQuantum::ModeC => S::from_f64_lossy(2.0 * AltitudeQuantum::ModeC.feet()),
+            AltitudeQuantum::ModeS25 => S::from_f64_lossy(2.0 * AltitudeQuantum::ModeS25.feet()),
+        };
+        let window = two_quanta + S::from_f64_lossy(MAX_INTRUDER_RATE_FT_PER_S) * self.dt;
         (a - b).abs() <= window
     }
 }
@@ -99,12 +103,7 @@ impl<S: Scalar> PairRule for IdentityRule<'_, S> {
             return false;
         }
         if let Some(a) = second.address {
-            if self
-                .intruders
-                .iter()
-                .flatten()
-                .any(|s| s.address == Some(a))
-            {
+            if self.intruders.iter().any(|s| s.address == Some(a)) {
                 return false;
             }
         }
@@ -135,61 +134,53 @@ impl<S: Scalar, F: TrackFilter<S> + BearingTrack<S>, const N: usize, const M: us
         config: &ScanConfig<S, F::Params>,
         report: &ScanReport,
     ) {
-        for slot in self.intruders.iter_mut() {
-            match slot {
-                Some(s) if self.table.track(s.track).is_some() => {
-                    s.updated = false;
-                    s.assessed = None;
-                }
-                _ => *slot = None,
-            }
+        let table = &self.table;
+        self.intruders.retain(|s| table.track(s.track).is_some());
+        for s in self.intruders.iter_mut() {
+            s.updated = false;
+            s.assessed = None;
         }
         // The first scan has no interval, and no track yet.
         if report.interval_ms == 0 {
             return;
         }
-        let Ok(dt) = S::try_from_f64(f64::from(report.interval_ms) / 1000.0) else {
+        let dt = S::seconds_from_ms(report.interval_ms);
+        if !dt.is_valid() {
             return;
-        };
+        }
         let n = self.batch.len().min(M);
         let replies = self.batch.iter().zip(self.batch_replies.iter());
         for (code, (measurement, reply)) in self.codes.iter().take(n).zip(replies) {
             let (Association::Updated(id) | Association::Started(id)) = *code else {
                 continue;
             };
-            let index = match self
-                .intruders
-                .iter()
-                .position(|s| matches!(s, Some(s) if s.track == id))
-            {
+            let index = match self.intruders.iter().position(|s| s.track == id) {
                 Some(i) => Some(i),
                 None => {
-                    // A track per slot at most, and a slot per track: a free
-                    // slot exists for every live track.
-                    let free = self.intruders.iter().position(|s| s.is_none());
+                    // A track per slot at most, and a slot per track: there
+                    // is room for every live track.
                     let quantum = quantum_of(reply);
                     let altitude = match quantum {
                         AltitudeQuantum::ModeC => config.altitude,
                         AltitudeQuantum::ModeS25 => config.altitude_25ft,
                     };
-                    if let Some(Some(slot)) = free.map(|i| self.intruders.get_mut(i)) {
-                        *slot = Some(IntruderSlot {
-                            track: id,
-                            address: reply.address,
-                            quantum,
-                            tcas: IntruderTrack::new(altitude),
-                            updated: false,
-                            assessed: None,
-                        });
-                    }
-                    free
+                    let slot = IntruderSlot {
+                        track: id,
+                        address: reply.address,
+                        quantum,
+                        tcas: IntruderTrack::new(altitude),
+                        updated: false,
+                        assessed: None,
+                    };
+                    let free = self.intruders.len();
+                    self.intruders.push(slot).ok().map(|()| free)
                 }
             };
             let range_m = match *measurement {
                 Measurement::Polar { range, .. } => range,
                 Measurement::Cartesian { x, y } => hypot(x, y),
             };
-            if let Some(Some(s)) = index.and_then(|i| self.intruders.get_mut(i)) {
+            if let Some(s) = index.and_then(|i| self.intruders.get_mut(i)) {
                 let reply = Reply {
                     range_m,
                     altitude_ft: reply.altitude_ft,
@@ -200,7 +191,7 @@ impl<S: Scalar, F: TrackFilter<S> + BearingTrack<S>, const N: usize, const M: us
                 s.updated = true;
             }
         }
-        for s in self.intruders.iter_mut().flatten() {
+        for s in self.intruders.iter_mut() {
             if !s.updated && s.tcas.scan(None, dt).is_err() {
                 bump(&mut self.counters.intruder_tracker_errors);
             }
@@ -224,21 +215,17 @@ impl<S: Scalar, F: TrackFilter<S> + BearingTrack<S>, const N: usize, const M: us
         if report.interval_ms == 0 {
             return none;
         }
-        let Ok(dt) = S::try_from_f64(f64::from(report.interval_ms) / 1000.0) else {
+        let dt = S::seconds_from_ms(report.interval_ms);
+        if !dt.is_valid() {
             return none;
-        };
+        }
         let Ok(cycle) = self.cas.begin_cycle(&config.own, false) else {
             bump(&mut self.counters.assessment_errors);
             return none;
         };
         let mut threats: heapless::Vec<ThreatGeometry<S>, MAX_RA_THREATS> = heapless::Vec::new();
         for track in self.table.tracks().filter(|t| t.is_confirmed()) {
-            let Some(slot) = self
-                .intruders
-                .iter_mut()
-                .flatten()
-                .find(|s| s.track == track.id())
-            else {
+            let Some(slot) = self.intruders.iter_mut().find(|s| s.track == track.id()) else {
                 continue;
             };
             let status = match slot.tcas.assess(&cycle, track.filter().bearing_track(), dt) {

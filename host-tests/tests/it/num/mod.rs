@@ -3,6 +3,7 @@
 
 mod cordic;
 mod error_budget;
+mod f32_integer_paths;
 mod fix;
 mod fixed32;
 mod hypot3;
