@@ -11,10 +11,11 @@ use crate::num::{Numeric, Quantity, Real, Scalar};
 
 /// One detection of one scan, as the sensor reports it. (The tags start at
 /// 1 so that an absent measurement, `None`, is zero bytes: a table's
-/// measurement slots start as zeros.)
+/// measurement slots start as zeros; a word, as the payload's alignment
+/// would make it anyway, so that copies stay whole words.)
 #[derive(Debug, Clone, Copy, PartialEq)]
 #[cfg_attr(feature = "defmt", derive(defmt::Format))]
-#[repr(u8)]
+#[repr(u32)]
 pub enum Measurement<S: TrackNumeric> {
     /// Position in the tracking plane (m).
     Cartesian {
