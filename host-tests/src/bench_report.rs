@@ -626,6 +626,14 @@ pub const OPERATIONS: &[(&str, &str)] = &[
         "scan_crowded",
         "track table, one whole scan: clusters of 4–8 targets 12 m apart, gates overlapping",
     ),
+    (
+        "scan_default_separated",
+        "track table with the default filter (auto), one whole scan: N targets 2 km apart",
+    ),
+    (
+        "scan_default_crowded",
+        "track table with the default filter (auto), one whole scan: clusters of 4–8 targets 12 m apart",
+    ),
 ];
 
 /// Why a row is not measured (the `reason` of a `bench-omitted` line), with

@@ -159,6 +159,15 @@ impl<S: TrackNumeric, G: GainSchedule<S, 2>> ScheduledTrack<S, G> {
         self.filter.schedule().gains(&ctx).ok()
     }
 
+    /// The larger of the two axes' predicted position variance ratios from
+    /// the covariance the gains imply for a constant-velocity target.
+    fn uncertainty_variance_ratio(&self, step: &ScanInterval<S>) -> Option<S::Ratio> {
+        let [ux, uy] = &self.uncertainty;
+        let px = ux.predicted_variance_ratio(step.seconds())?;
+        let py = uy.predicted_variance_ratio(step.seconds())?;
+        Some(S::from_variance(px).max_of(S::from_variance(py)))
+    }
+
     fn next_alpha(&self, predicted: &PredictedState<S>, dt: S::Interval) -> Option<S::Ratio> {
         let [gx, gy] = self.next_gains(predicted, dt)?;
         Some(gx.alpha().max_of(gy.alpha()))
@@ -276,10 +285,7 @@ impl<S: TrackNumeric, G: GainSchedule<S, 2>> TrackFilter<S> for ScheduledTrack<S
         {
             return Some(px.max_of(py));
         }
-        let [ux, uy] = &self.uncertainty;
-        let px = ux.predicted_variance_ratio(step.seconds())?;
-        let py = uy.predicted_variance_ratio(step.seconds())?;
-        Some(S::from_variance(px).max_of(S::from_variance(py)))
+        self.uncertainty_variance_ratio(step)
     }
 
     /// The larger per-axis α of [`Self::next_gains`] for a scan 1 s ahead
@@ -297,7 +303,7 @@ impl<S: TrackNumeric, G: GainSchedule<S, 2>> TrackFilter<S> for ScheduledTrack<S
 
     fn gate_region(
         &self,
-        params: &G,
+        _: &G,
         predicted: &PredictedState<S>,
         step: &ScanInterval<S>,
         gate: &Gate<S>,
@@ -311,17 +317,16 @@ impl<S: TrackNumeric, G: GainSchedule<S, 2>> TrackFilter<S> for ScheduledTrack<S
                 threshold,
                 max_acceleration,
             } => {
-                let p = self.predicted_variance_ratio(params, step)?;
                 // A schedule that carries its covariance has the manoeuvre
-                // in p already: no allowance on top.
-                let schedule = self.filter.schedule();
-                let allowance = if schedule
-                    .predicted_variance_ratios(step.interval())
-                    .is_some()
-                {
-                    S::Acceleration::ZERO
-                } else {
-                    max_acceleration
+                // in p already: no allowance on top. (Asked once: it is the
+                // largest part of the gate's cost for `auto`.)
+                let carried = self
+                    .filter
+                    .schedule()
+                    .predicted_variance_ratios(step.interval());
+                let (p, allowance) = match carried {
+                    Some([px, py]) => (px.max_of(py), S::Acceleration::ZERO),
+                    None => (self.uncertainty_variance_ratio(step)?, max_acceleration),
                 };
                 uncertainty_radius(measurement_sigma, threshold, allowance, p, step)
             }

@@ -174,10 +174,24 @@ impl<const R: usize, const C: usize> AssignmentSolver<R, C> {
     pub const fn new() -> Self {
         #[allow(clippy::let_unit_value)]
         let () = Self::CAPACITY_OK;
+        // Zero bytes (a `static` table lands in `.bss`): each solve resets
+        // the nodes it uses before reading them.
+        let row = RowNode {
+            dual: 0,
+            mate: 0,
+            visited: false,
+        };
+        let column = ColumnNode {
+            dual: 0,
+            shortest: 0,
+            path: 0,
+            mate: 0,
+            visited: false,
+        };
         AssignmentSolver {
-            rows: [RowNode::EMPTY; R],
-            cols: [ColumnNode::EMPTY; C],
-            unassigned: [ColumnNode::EMPTY; R],
+            rows: [row; R],
+            cols: [column; C],
+            unassigned: [column; R],
             n_rows: 0,
             n_cols: 0,
         }

@@ -93,19 +93,33 @@ pub(super) struct Clusters<const N: usize, const M: usize> {
 }
 
 impl<const N: usize, const M: usize> Clusters<N, M> {
+    /// Zero bytes, not yet a valid workspace: [`Self::reset`] before each
+    /// scan makes it one.
     pub(super) const fn new() -> Self {
+        const ZERO: u16 = 0;
         Clusters {
-            tracks: [TrackLinks::EMPTY; N],
-            measurements: [MeasurementLinks::EMPTY; M],
+            tracks: [TrackLinks {
+                parent: ZERO,
+                next: ZERO,
+                first_measurement: ZERO,
+                first_pair: ZERO,
+                pairs: ZERO,
+                assigned: ZERO,
+            }; N],
+            measurements: [MeasurementLinks {
+                owner: ZERO,
+                next: ZERO,
+            }; M],
             pairs: [[GatedPair {
-                measurement: NONE,
-                cost: 0,
+                measurement: ZERO,
+                cost: ZERO,
             }; PAIRS_PER_MEASUREMENT]; M],
             pairs_used: 0,
         }
     }
 
-    /// Forgets the previous scan.
+    /// Forgets the previous scan (and makes [`Self::new`]'s zeros a valid
+    /// workspace).
     pub(super) fn reset(&mut self) {
         self.tracks.fill(TrackLinks::EMPTY);
         self.measurements.fill(MeasurementLinks::EMPTY);

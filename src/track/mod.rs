@@ -122,5 +122,5 @@ pub use model::{
 pub use numeric::{FixedVariance, TrackNumeric};
 pub use table::{
     AnyPair, Association, DropReason, PairRule, ScanError, ScanReport, ScanStage, TableStats,
-    Track, TrackId, TrackStatus, TrackTable,
+    Track, TrackId, TrackSlot, TrackStatus, TrackTable,
 };

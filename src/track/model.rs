@@ -9,9 +9,13 @@ use crate::filter::{
 };
 use crate::num::{Numeric, Quantity, Real, Scalar};
 
-/// One detection of one scan, as the sensor reports it.
+/// One detection of one scan, as the sensor reports it. (The tags start at
+/// 1 so that an absent measurement, `None`, is zero bytes: a table's
+/// measurement slots start as zeros; a word, as the payload's alignment
+/// would make it anyway, so that copies stay whole words.)
 #[derive(Debug, Clone, Copy, PartialEq)]
 #[cfg_attr(feature = "defmt", derive(defmt::Format))]
+#[repr(u32)]
 pub enum Measurement<S: TrackNumeric> {
     /// Position in the tracking plane (m).
     Cartesian {
@@ -19,7 +23,7 @@ pub enum Measurement<S: TrackNumeric> {
         x: S::Length,
         /// y (m).
         y: S::Length,
-    },
+    } = 1,
     /// Range (m, ≥ 0) and azimuth (rad, clockwise from the +y axis) from a
     /// sensor at the origin; projected as x = R·sin B, y = R·cos B
     /// (He, Peng, Ling & Quan, §2).
@@ -28,7 +32,7 @@ pub enum Measurement<S: TrackNumeric> {
         range: S::Length,
         /// B, the azimuth (rad, clockwise from the +y axis).
         azimuth: S::Ratio,
-    },
+    } = 2,
 }
 
 /// Why a measurement was rejected (it touched no track).
@@ -118,9 +122,14 @@ impl<S: TrackNumeric> ScanInterval<S> {
     /// The interval of `ms` milliseconds (> 0); `None` if it is 0 or not
     /// representable.
     pub fn from_ms(ms: u32) -> Option<Self> {
-        let dt = S::Interval::try_from_f64(f64::from(ms) / 1000.0).ok()?;
+        let dt = match single_seconds_of_ms(ms) {
+            Some(dt) => dt,
+            None => S::Interval::try_from_f64(f64::from(ms) / 1000.0).ok()?,
+        };
         let terms = IntervalTerms::new(dt).ok()?;
-        let seconds = S::to_variance(S::Ratio::from_ratio(u64::from(ms), 1000));
+        let seconds =
+            single_seconds_of_ms(ms).unwrap_or_else(|| S::Ratio::from_ratio(u64::from(ms), 1000));
+        let seconds = S::to_variance(seconds);
         (seconds.is_valid() && seconds != S::Variance::ZERO)
             .then_some(ScanInterval { terms, seconds })
     }
@@ -139,6 +148,19 @@ impl<S: TrackNumeric> ScanInterval<S> {
     pub fn seconds(&self) -> S::Variance {
         self.seconds
     }
+}
+
+/// `ms` milliseconds in seconds if `Q` is `f32`, rounded once in `f32`: no
+/// double-precision arithmetic (in software on every core here) on the
+/// scan's path. `None` for the other types.
+fn single_seconds_of_ms<Q: Quantity>(ms: u32) -> Option<Q> {
+    let mut seconds = Q::ZERO;
+    let any: &mut dyn core::any::Any = &mut seconds;
+    let single = any.downcast_mut::<f32>()?;
+    // Both operands exact in f32 below 2²⁴ ms (4.6 hours; the filters'
+    // intervals are far shorter), so the quotient is rounded once.
+    *single = ms as f32 / 1000.0;
+    Some(seconds)
 }
 
 /// What a filter must provide to live in a [`TrackTable`](super::TrackTable).

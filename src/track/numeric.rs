@@ -67,16 +67,19 @@ pub trait TrackNumeric: Numeric {
     fn from_variance(v: Self::Variance) -> Self::Ratio;
 }
 
-/// A value in [0, 1] to `0 ..= MAX_COST`, rounded to nearest.
+/// A value in [0, 1] to `0 ..= MAX_COST`, rounded to nearest: scaled in
+/// `S` (one product and one sum), then to an integer, `f32` directly (one
+/// instruction with an FPU; through `f64` it costs ~110 on the M4F, whose FPU
+/// has no double precision), the others through `f64`.
 pub(super) fn quantise_unit<S: Scalar>(v: S) -> u16 {
-    let scaled = v.to_f64() * MAX_COST as f64 + 0.5;
+    let scaled = v * S::from_f64_lossy(MAX_COST as f64) + S::from_f64_lossy(0.5);
+    let any: &dyn core::any::Any = &scaled;
     // `as` saturates (and maps NaN to 0); the caller checked 0 ≤ v ≤ 1.
-    let q = scaled as u32;
-    if q > MAX_COST as u32 {
-        MAX_COST
-    } else {
-        q as u16
-    }
+    let q = match any.downcast_ref::<f32>() {
+        Some(single) => *single as u32,
+        None => scaled.to_f64() as u32,
+    };
+    q.min(MAX_COST as u32) as u16
 }
 
 impl<S: Scalar> TrackNumeric for S {
@@ -102,18 +105,7 @@ impl<S: Scalar> TrackNumeric for S {
         if !(d2.is_valid() && d2 <= S::ONE) {
             return None;
         }
-        // Scaled in S (one product and one sum), then to an integer: `f32`
-        // directly (one instruction with an FPU; through f64 it costs ~110
-        // on the M4F, whose FPU has no double precision), the others
-        // through f64.
-        let scaled = d2 * S::from_f64_lossy(MAX_COST as f64) + S::from_f64_lossy(0.5);
-        let any: &dyn core::any::Any = &scaled;
-        let q = match any.downcast_ref::<f32>() {
-            // `as` saturates; 0 ≤ scaled ≤ MAX_COST + 0.5 here.
-            Some(single) => *single as u32,
-            None => scaled.to_f64() as u32,
-        };
-        Some(q.min(MAX_COST as u32) as u16)
+        Some(quantise_unit(d2))
     }
 
     fn length_to_polar(v: S) -> S {

@@ -49,16 +49,18 @@ pub(super) struct MeasurementIndex<S: TrackNumeric, const M: usize> {
 }
 
 impl<S: TrackNumeric, const M: usize> MeasurementIndex<S, M> {
+    /// No measurement indexed; zero bytes (the entries beyond `len` are
+    /// never read).
     pub(super) const fn new() -> Self {
         let empty = Entry {
             key: S::Length::ZERO,
-            slot: u16::MAX,
+            slot: 0,
         };
         MeasurementIndex {
             by_x: [empty; M],
             by_y: [empty; M],
             len: 0,
-            strip: 1,
+            strip: 0,
         }
     }
 
@@ -106,10 +108,8 @@ impl<S: TrackNumeric, const M: usize> MeasurementIndex<S, M> {
             len
         };
         // len ≤ M < 65535; the strip width changes only with it.
-        if !reusable {
-            self.len = len as u16;
-            self.strip = ceil_sqrt(len).max(1) as u16;
-        }
+        self.len = len as u16;
+        self.strip = ceil_sqrt(len).max(1) as u16;
         let strip = usize::from(self.strip);
         let (Some(by_x), Some(by_y)) = (self.by_x.get_mut(..len), self.by_y.get_mut(..len)) else {
             return;
@@ -158,7 +158,7 @@ impl<S: TrackNumeric, const M: usize> MeasurementIndex<S, M> {
         bounds: &BoundingBox<S>,
         mut visit: impl FnMut(usize),
     ) {
-        let (len, strip) = (self.len as usize, self.strip as usize);
+        let (len, strip) = (self.len as usize, usize::from(self.strip).max(1));
         let (Some(by_x), Some(by_y)) = (self.by_x.get(..len), self.by_y.get(..len)) else {
             return;
         };

@@ -67,6 +67,48 @@ enum Lifecycle {
     Confirmed,
 }
 
+/// One slot of a [`TrackTable`]: empty or a track. An explicit tag, 0 for
+/// empty (not `Option`, whose `None` the compiler would store in a niche
+/// of the filter's state, a non-zero byte), so that a new table is zero
+/// bytes and a `static` one lands in `.bss`. Its size is the table's bytes
+/// per track (`docs/track-table.md`).
+#[derive(Debug, Clone, Copy, PartialEq)]
+#[repr(u8)]
+pub enum TrackSlot<S: TrackNumeric, F> {
+    /// No track.
+    Empty = 0,
+    /// A live track.
+    Live(Track<S, F>) = 1,
+}
+
+impl<S: TrackNumeric, F> TrackSlot<S, F> {
+    /// The track, if the slot holds one.
+    pub fn track(&self) -> Option<&Track<S, F>> {
+        match self {
+            TrackSlot::Live(track) => Some(track),
+            TrackSlot::Empty => None,
+        }
+    }
+
+    fn track_mut(&mut self) -> Option<&mut Track<S, F>> {
+        match self {
+            TrackSlot::Live(track) => Some(track),
+            TrackSlot::Empty => None,
+        }
+    }
+
+    fn is_live(&self) -> bool {
+        matches!(self, TrackSlot::Live(_))
+    }
+
+    /// Empties the slot; whether it held a track.
+    fn clear(&mut self) -> bool {
+        let was_live = self.is_live();
+        *self = TrackSlot::Empty;
+        was_live
+    }
+}
+
 /// One record of the table: the filter and the lifecycle, nothing that can
 /// be derived (the status from the confirmation and the last scan's hit;
 /// bytes per track in `docs/track-table.md`).
@@ -205,6 +247,11 @@ pub enum DropReason {
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 #[cfg_attr(feature = "defmt", derive(defmt::Format))]
 pub enum Association {
+    /// Inside no gate and paired with nothing; kept (if inside the
+    /// surveillance volume) as a first point for initiation in the next scan.
+    /// (First: the code of a table's workspace before its first scan is zero
+    /// bytes.)
+    OutsideGates,
     /// Updated this track.
     Updated(TrackId),
     /// Paired with a measurement of the previous scan and started this
@@ -214,9 +261,6 @@ pub enum Association {
     /// other measurements. Not used to start tracks (it would duplicate a
     /// neighbouring track).
     NotAssigned,
-    /// Inside no gate and paired with nothing; kept (if inside the
-    /// surveillance volume) as a first point for initiation in the next scan.
-    OutsideGates,
     /// Bad input (or refused by the filter); no track was changed.
     Rejected(RejectReason),
     /// Not used for lack of room.
@@ -468,8 +512,10 @@ fn is_stale(last_update_ms: u32, now_ms: u32) -> bool {
 /// ```
 #[derive(Debug)]
 pub struct TrackTable<S: TrackNumeric, F, const N: usize, const M: usize> {
-    slots: [Option<Track<S, F>>; N],
-    next_id: u32,
+    slots: [TrackSlot<S, F>; N],
+    /// The id the next track gets, minus 1 (wrapping): 0 for a new table,
+    /// whose first id is 1.
+    previous_id: u32,
     last_scan_ms: Option<u32>,
     /// Unused measurements of the previous scan: first points for two-point
     /// initiation.
@@ -501,7 +547,8 @@ impl<S: TrackNumeric, F: TrackFilter<S>, const N: usize, const M: usize> TrackTa
         "track table capacities must be below 65535 together"
     );
 
-    /// An empty table whose first track gets id 1.
+    /// An empty table whose first track gets id 1: all zero bytes (a
+    /// `static` table costs no flash).
     pub const fn new() -> Self {
         Self::with_first_id(1)
     }
@@ -512,8 +559,8 @@ impl<S: TrackNumeric, F: TrackFilter<S>, const N: usize, const M: usize> TrackTa
         #[allow(clippy::let_unit_value)]
         let () = Self::CAPACITY_OK;
         TrackTable {
-            slots: [const { None }; N],
-            next_id: first_id,
+            slots: [const { TrackSlot::Empty }; N],
+            previous_id: first_id.wrapping_sub(1),
             last_scan_ms: None,
             pending: [const { None }; M],
             stats: TableStats {
@@ -527,13 +574,15 @@ impl<S: TrackNumeric, F: TrackFilter<S>, const N: usize, const M: usize> TrackTa
                 tracks_restarted: 0,
                 scans_skipped: 0,
             },
+            // The workspace is written at the start of each scan before it
+            // is read; zero bytes until then.
             observations: [const { None }; M],
             codes: [Association::OutsideGates; M],
             index: MeasurementIndex::new(),
             clusters: Clusters::new(),
             outcomes: [Outcome::Empty; N],
-            row_slot: [NONE; N],
-            col_measurement: [NONE; M],
+            row_slot: [0; N],
+            col_measurement: [0; M],
             solver: AssignmentSolver::new(),
         }
     }
@@ -548,19 +597,19 @@ impl<S: TrackNumeric, F: TrackFilter<S>, const N: usize, const M: usize> TrackTa
     }
     /// Live tracks.
     pub fn len(&self) -> usize {
-        self.slots.iter().filter(|s| s.is_some()).count()
+        self.slots.iter().filter(|s| s.is_live()).count()
     }
     /// No live track.
     pub fn is_empty(&self) -> bool {
-        self.slots.iter().all(|s| s.is_none())
+        self.slots.iter().all(|s| !s.is_live())
     }
     /// Every slot holds a live track (new candidates are refused).
     pub fn is_full(&self) -> bool {
-        self.slots.iter().all(|s| s.is_some())
+        self.slots.iter().all(TrackSlot::is_live)
     }
     /// Live tracks, in slot order.
     pub fn tracks(&self) -> impl Iterator<Item = &Track<S, F>> {
-        self.slots.iter().flatten()
+        self.slots.iter().filter_map(TrackSlot::track)
     }
     /// The live track with this id, if any.
     pub fn track(&self, id: TrackId) -> Option<&Track<S, F>> {
@@ -580,20 +629,20 @@ impl<S: TrackNumeric, F: TrackFilter<S>, const N: usize, const M: usize> TrackTa
     }
     /// The id the next track will get (unless it is in use then).
     pub fn next_id(&self) -> u32 {
-        self.next_id
+        self.previous_id.wrapping_add(1)
     }
 
     /// Sets the id the next track will get, e.g. a sequence restored from
     /// persistent storage after a restart. Ids of live tracks are still
     /// skipped, so this cannot create a duplicate.
     pub fn set_next_id(&mut self, next_id: u32) {
-        self.next_id = next_id;
+        self.previous_id = next_id.wrapping_sub(1);
     }
 
     /// Deletes every track and pending point and forgets the scan time; the
     /// id sequence and the lifetime counters continue.
     pub fn clear(&mut self) {
-        self.slots.fill(None);
+        self.slots.fill(TrackSlot::Empty);
         self.pending.fill(None);
         self.last_scan_ms = None;
     }
@@ -605,14 +654,14 @@ impl<S: TrackNumeric, F: TrackFilter<S>, const N: usize, const M: usize> TrackTa
     /// The next id not in use. Called only when a slot is free, so at most
     /// N − 1 ids are live and one of N consecutive candidates is free.
     fn allocate_id(&mut self) -> TrackId {
-        let mut candidate = self.next_id;
+        let mut candidate = self.next_id();
         for _ in 0..N {
             if !self.id_in_use(candidate) {
                 break;
             }
             candidate = candidate.wrapping_add(1);
         }
-        self.next_id = candidate.wrapping_add(1);
+        self.previous_id = candidate;
         TrackId(candidate)
     }
 
@@ -758,7 +807,7 @@ impl<S: TrackNumeric, F: TrackFilter<S>, const N: usize, const M: usize> TrackTa
     /// first points are dropped (too old to pair with).
     fn restart_all(&mut self, report: &mut ScanReport) {
         for slot in self.slots.iter_mut() {
-            if slot.take().is_some() {
+            if slot.clear() {
                 increment(&mut report.restarted);
             }
         }
@@ -801,7 +850,7 @@ impl<S: TrackNumeric, F: TrackFilter<S>, const N: usize, const M: usize> TrackTa
     ) {
         let params = config.params();
         for (t, slot) in self.slots.iter().enumerate() {
-            let Some(track) = slot else { continue };
+            let Some(track) = slot.track() else { continue };
             if is_stale(track.last_update_ms, now_ms) {
                 // Restarted in the update stage: offered nothing.
                 continue;
@@ -908,7 +957,7 @@ impl<S: TrackNumeric, F: TrackFilter<S>, const N: usize, const M: usize> TrackTa
                 CachedCost::Gated(cost) => cost,
                 CachedCost::NotGated => FORBIDDEN,
                 CachedCost::Uncached => {
-                    let track = slots.get(t).and_then(|s| s.as_ref());
+                    let track = slots.get(t).and_then(TrackSlot::track);
                     let obs = observations.get(k).and_then(|o| o.as_ref());
                     match (track, obs) {
                         (Some(track), Some(o)) => gate_cost(track, config, dt, o),
@@ -950,7 +999,9 @@ impl<S: TrackNumeric, F: TrackFilter<S>, const N: usize, const M: usize> TrackTa
             .zip(self.outcomes.iter_mut())
             .enumerate()
         {
-            let Some(track) = slot else { continue };
+            let Some(track) = slot.track_mut() else {
+                continue;
+            };
             if is_stale(track.last_update_ms, now_ms) {
                 *outcome = Outcome::Restarted;
                 continue;
@@ -993,9 +1044,11 @@ impl<S: TrackNumeric, F: TrackFilter<S>, const N: usize, const M: usize> TrackTa
         report: &mut ScanReport,
     ) {
         for (slot, outcome) in self.slots.iter_mut().zip(self.outcomes.iter()) {
-            let Some(track) = slot else { continue };
+            let Some(track) = slot.track_mut() else {
+                continue;
+            };
             if *outcome == Outcome::Restarted {
-                *slot = None;
+                slot.clear();
                 increment(&mut report.restarted);
                 continue;
             }
@@ -1009,7 +1062,7 @@ impl<S: TrackNumeric, F: TrackFilter<S>, const N: usize, const M: usize> TrackTa
                 })
             };
             if let Some(reason) = delete {
-                *slot = None;
+                slot.clear();
                 increment(&mut report.deleted);
                 match reason {
                     Deletion::Misses => increment(&mut report.deleted_misses),
@@ -1100,7 +1153,7 @@ impl<S: TrackNumeric, F: TrackFilter<S>, const N: usize, const M: usize> TrackTa
         second: &Observation<S>,
         report: &mut ScanReport,
     ) -> Association {
-        let Some(free) = self.slots.iter().position(|s| s.is_none()) else {
+        let Some(free) = self.slots.iter().position(|s| !s.is_live()) else {
             increment(&mut report.refused_table_full);
             return Association::Dropped(DropReason::TableFull);
         };
@@ -1132,7 +1185,7 @@ impl<S: TrackNumeric, F: TrackFilter<S>, const N: usize, const M: usize> TrackTa
             increment(&mut report.confirmed);
         }
         if let Some(slot) = self.slots.get_mut(free) {
-            *slot = Some(track);
+            *slot = TrackSlot::Live(track);
         }
         Association::Started(id)
     }

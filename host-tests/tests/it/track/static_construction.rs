@@ -8,7 +8,7 @@ use std::sync::Mutex;
 use abtrack::num::fixed32::Fixed32;
 use abtrack::track::defaults::DefaultCartesianTrack;
 use abtrack::track::{
-    Association, FixedGainTrack, Observation, PredictedState, ScanInterval, Track, TrackFilter,
+    Association, FixedGainTrack, Observation, PredictedState, ScanInterval, TrackFilter, TrackSlot,
     TrackStatus,
 };
 use abtrack::ScaledScalar;
@@ -55,16 +55,16 @@ fn const_table_is_empty() {
 #[test]
 fn bytes_per_track() {
     let per_track = [
-        ("f64", size_of::<Option<Track<f64, FixedGainTrack<f64>>>>()),
-        ("f32", size_of::<Option<Track<f32, FixedGainTrack<f32>>>>()),
-        ("q32", size_of::<Option<Track<Fix, FixedGainTrack<Fix>>>>()),
+        ("f64", size_of::<TrackSlot<f64, FixedGainTrack<f64>>>()),
+        ("f32", size_of::<TrackSlot<f32, FixedGainTrack<f32>>>()),
+        ("q32", size_of::<TrackSlot<Fix, FixedGainTrack<Fix>>>()),
         (
             "fixed",
-            size_of::<Option<Track<Fixed32, FixedGainTrack<Fixed32>>>>(),
+            size_of::<TrackSlot<Fixed32, FixedGainTrack<Fixed32>>>(),
         ),
         (
             "scaled",
-            size_of::<Option<Track<ScaledScalar, FixedGainTrack<ScaledScalar>>>>(),
+            size_of::<TrackSlot<ScaledScalar, FixedGainTrack<ScaledScalar>>>(),
         ),
     ];
     let filters = [
@@ -81,11 +81,11 @@ fn bytes_per_track() {
     assert_eq!(
         per_track,
         [
-            ("f64", 88),
-            ("f32", 56),
-            ("q32", 88),
-            ("fixed", 56),
-            ("scaled", 84)
+            ("f64", 96),
+            ("f32", 60),
+            ("q32", 96),
+            ("fixed", 60),
+            ("scaled", 88)
         ]
     );
     assert_eq!(
@@ -99,15 +99,16 @@ fn bytes_per_track() {
         ]
     );
     // The record header (id, two times, history, hits, scans, lifecycle,
-    // misses, refusals): 23 bytes, padded with the filter.
-    assert_eq!(size_of::<Option<Track<f32, Tiny>>>(), 24);
+    // misses, refusals): 23 bytes, padded with the filter, and the slot's
+    // tag, padded to the record's alignment.
+    assert_eq!(size_of::<TrackSlot<f32, Tiny>>(), 28);
 
     // The whole table, rounded up to its alignment (8).
     let round = |b: usize| b.div_ceil(8) * 8;
-    let f64_bytes = |n: usize, m: usize| round(68 + 143 * n + 182 * m);
-    let f32_bytes = |n: usize, m: usize| round(64 + 111 * n + 126 * m);
-    let fixed_bytes = |n: usize, m: usize| round(64 + 111 * n + 134 * m);
-    let scaled_bytes = |n: usize, m: usize| round(64 + 139 * n + 166 * m);
+    let f64_bytes = |n: usize, m: usize| round(68 + 151 * n + 182 * m);
+    let f32_bytes = |n: usize, m: usize| round(64 + 115 * n + 126 * m);
+    let fixed_bytes = |n: usize, m: usize| round(64 + 115 * n + 134 * m);
+    let scaled_bytes = |n: usize, m: usize| round(64 + 143 * n + 166 * m);
     let tables = [
         ("f64", size_of::<Table<f64, 32, 32>>()),
         ("f32", size_of::<Table<f32, 32, 32>>()),
@@ -199,7 +200,7 @@ fn bytes_per_track_of_every_filter() {
     use abtrack::gain::tcas::FirmnessGains;
     use abtrack::gain::AnySchedule;
     use abtrack::track::{RangeAzimuthTrack, ScheduledTrack};
-    type Slot<S, F> = Option<Track<S, F>>;
+    type Slot<S, F> = TrackSlot<S, F>;
     macro_rules! row {
         ($name:expr, $f:ident $(, $g:ident)?) => {
             (
@@ -272,26 +273,70 @@ fn bytes_per_track_of_every_filter() {
     assert_eq!(
         rows,
         [
-            ("FixedGainTrack", 88, 56, 88, 56),
-            ("ScheduledTrack, M2 least squares", 240, 144, 240, 144),
-            ("ScheduledTrack, TCAS firmness", 240, 144, 240, 144),
-            ("ScheduledTrack, M1 fixed gains", 264, 152, 264, 164),
-            ("ScheduledTrack, Li", 288, 168, 288, 180),
+            ("FixedGainTrack", 96, 60, 96, 60),
+            ("ScheduledTrack, M2 least squares", 248, 148, 248, 148),
+            ("ScheduledTrack, TCAS firmness", 248, 148, 248, 148),
+            ("ScheduledTrack, M1 fixed gains", 272, 156, 272, 168),
+            ("ScheduledTrack, Li", 296, 172, 296, 184),
             (
                 "ScheduledTrack, any schedule (windows of 8)",
-                880,
-                480,
-                880,
-                528
+                888,
+                488,
+                888,
+                536
             ),
             (
                 "ScheduledTrack, auto (the default Cartesian track)",
-                376,
-                208,
-                376,
-                268
+                384,
+                212,
+                384,
+                272
             ),
-            ("RangeAzimuthTrack", 272, 152, 272, 0),
+            ("RangeAzimuthTrack", 280, 156, 280, 0),
         ]
     );
+}
+
+/// Whether `value`'s bytes are all zero.
+fn is_zero_bytes<T>(value: &T) -> bool {
+    // SAFETY: `value` is a live `T` of `size_of::<T>()` bytes, read as bytes
+    // only; the statics below are written by the compiler in full (padding
+    // included, as zeros).
+    let bytes =
+        unsafe { std::slice::from_raw_parts((value as *const T).cast::<u8>(), size_of::<T>()) };
+    bytes.iter().all(|&b| b == 0)
+}
+
+mod zero_tables {
+    use abtrack::num::fixed32::Fixed32;
+    use abtrack::track::defaults::{DefaultCartesianTrack, DefaultPolarTrack};
+    use abtrack::track::{FixedGainTrack, TrackTable};
+    use abtrack::Fix;
+
+    pub static F32_FIXED_GAINS: TrackTable<f32, FixedGainTrack<f32>, 16, 16> = TrackTable::new();
+    pub static F32_DEFAULT: TrackTable<f32, DefaultCartesianTrack<f32>, 16, 16> = TrackTable::new();
+    pub static F32_POLAR: TrackTable<f32, DefaultPolarTrack<f32>, 16, 16> = TrackTable::new();
+    pub static FIXED_FIXED_GAINS: TrackTable<Fixed32, FixedGainTrack<Fixed32>, 16, 16> =
+        TrackTable::new();
+    pub static FIXED_DEFAULT: TrackTable<Fixed32, DefaultCartesianTrack<Fixed32>, 16, 16> =
+        TrackTable::new();
+    pub static Q32_FIXED_GAINS: TrackTable<Fix, FixedGainTrack<Fix>, 8, 8> = TrackTable::new();
+    pub static F64_DEFAULT: TrackTable<f64, DefaultCartesianTrack<f64>, 8, 8> = TrackTable::new();
+}
+
+/// A new table, its tracks' slots and every workspace, is zero bytes, so a
+/// `static` table lands in `.bss` and costs no flash.
+#[test]
+fn new_table_is_zero_bytes() {
+    use zero_tables::*;
+    assert!(is_zero_bytes(&F32_FIXED_GAINS), "f32, fixed gains");
+    assert!(is_zero_bytes(&F32_DEFAULT), "f32, default filter");
+    assert!(is_zero_bytes(&F32_POLAR), "f32, range-azimuth filter");
+    assert!(is_zero_bytes(&FIXED_FIXED_GAINS), "fixed, fixed gains");
+    assert!(is_zero_bytes(&FIXED_DEFAULT), "fixed, default filter");
+    assert!(is_zero_bytes(&Q32_FIXED_GAINS), "q32, fixed gains");
+    assert!(is_zero_bytes(&F64_DEFAULT), "f64, default filter");
+    // And it is a working empty table: first id 1.
+    assert_eq!(F32_DEFAULT.next_id(), 1);
+    assert!(FIXED_DEFAULT.is_empty());
 }

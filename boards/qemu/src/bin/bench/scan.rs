@@ -1,5 +1,7 @@
 //! The track table's scan (the benchmark's scan rows): `scan_separated` and
-//! `scan_crowded`, N confirmed tracks in steady state and M = N
+//! `scan_crowded` with fixed gains (`FixedGainTrack`), `scan_default_separated`
+//! and `scan_default_crowded` with the tracker's default filter
+//! (`DefaultCartesianTrack`), N confirmed tracks in steady state and M = N
 //! measurements per scan, with the scan's stages timed inside the scan
 //! (`TrackTable::scan_with_probe`), the counts the table reports and the
 //! sizes of the clusters of the gated pairs.
@@ -7,10 +9,11 @@
 use core::hint::black_box;
 
 use abtrack::filter::Gains;
+use abtrack::gain::{AutoConfig, AutoGains};
 use abtrack::num::Quantity;
 use abtrack::track::{
-    Association, FixedGainTrack, Gate, Measurement, Observation, ScanReport, ScanStage,
-    TrackFilter, TrackTable, TrackerConfig,
+    defaults::DefaultCartesianTrack, Association, FixedGainTrack, Gate, Measurement, Observation,
+    ScanReport, ScanStage, TrackFilter, TrackTable, TrackerConfig,
 };
 use abtrack::track::{ScanInterval, TrackNumeric};
 use cortex_m::peripheral::SYST;
@@ -20,18 +23,84 @@ use crate::numeric::Numeric;
 
 /// The scan rows in `S`, one line per size (each a table type of its own,
 /// with its own code). The micro:bit's 16 KiB of RAM hold the table (on
-/// the stack) up to 32 × 32 in the fast fixed point (`docs/track-table.md`
-/// gives its bytes).
+/// the stack) up to 32 × 32 in the fast fixed point, and 64 tracks with 32
+/// measurements a scan (11,712 bytes; 64 × 64 is 16,000, the whole RAM);
+/// with the default filter (272 bytes a track) up to 16 × 16
+/// (`docs/track-table.md` gives the bytes). The default filter's rows stop
+/// at 64 × 64 (the sizes the cost targets are set for).
 #[inline(never)]
 pub fn sizes<S: Numeric + TrackNumeric>(bench: &mut Bench) {
-    run::<S, 8, 8>(bench);
-    run::<S, 16, 16>(bench);
-    run::<S, 32, 32>(bench);
+    run::<S, FixedGainTrack<S>, 8, 8>(bench);
+    run::<S, FixedGainTrack<S>, 16, 16>(bench);
+    run::<S, FixedGainTrack<S>, 32, 32>(bench);
+    #[cfg(abtrack_board = "microbit")]
+    run::<S, FixedGainTrack<S>, 64, 32>(bench);
     #[cfg(not(abtrack_board = "microbit"))]
     {
-        run::<S, 64, 64>(bench);
-        run::<S, 128, 128>(bench);
-        run::<S, 256, 256>(bench);
+        run::<S, FixedGainTrack<S>, 64, 64>(bench);
+        run::<S, FixedGainTrack<S>, 128, 128>(bench);
+        run::<S, FixedGainTrack<S>, 256, 256>(bench);
+    }
+    run::<S, DefaultCartesianTrack<S>, 8, 8>(bench);
+    run::<S, DefaultCartesianTrack<S>, 16, 16>(bench);
+    #[cfg(not(abtrack_board = "microbit"))]
+    {
+        run::<S, DefaultCartesianTrack<S>, 32, 32>(bench);
+        run::<S, DefaultCartesianTrack<S>, 64, 64>(bench);
+    }
+}
+
+/// A filter of the scan rows: its configuration and its rows' names.
+pub trait BenchFilter<S: TrackNumeric>: TrackFilter<S> {
+    /// The rows of the separated and the crowded scene.
+    const ROWS: [Rows; 2];
+    /// The filter's parameters in the scenes.
+    fn params() -> Option<Self::Params>;
+}
+
+/// The names of one scene's rows: the whole scan and each stage of
+/// [`STAGES`].
+pub struct Rows {
+    scan: &'static str,
+    stages: [&'static str; 8],
+}
+
+/// The rows of one scan operation: `<scan>` and `<scan>/<stage>`.
+macro_rules! rows {
+    ($scan:literal) => {
+        Rows {
+            scan: $scan,
+            stages: [
+                concat!($scan, "/intake"),
+                concat!($scan, "/index"),
+                concat!($scan, "/gate"),
+                concat!($scan, "/cluster"),
+                concat!($scan, "/assign"),
+                concat!($scan, "/update"),
+                concat!($scan, "/manage"),
+                concat!($scan, "/initiate"),
+            ],
+        }
+    };
+}
+
+/// Fixed gains α = 0.5, β = 0.2.
+impl<S: TrackNumeric> BenchFilter<S> for FixedGainTrack<S> {
+    const ROWS: [Rows; 2] = [rows!("scan_separated"), rows!("scan_crowded")];
+    fn params() -> Option<Gains<S>> {
+        Gains::<S>::alpha_beta_f64(0.5, 0.2).ok()
+    }
+}
+
+/// The default filter (`auto`, the per-axis Kalman gains) for σ = 5 m, the
+/// σ of the scenes' gate.
+impl<S: TrackNumeric> BenchFilter<S> for DefaultCartesianTrack<S> {
+    const ROWS: [Rows; 2] = [
+        rows!("scan_default_separated"),
+        rows!("scan_default_crowded"),
+    ];
+    fn params() -> Option<AutoGains<S, 2>> {
+        AutoGains::new(&AutoConfig::cartesian(GATE_SIGMA_M)).ok()
     }
 }
 use crate::synth::Lcg;
@@ -47,6 +116,8 @@ const APART_M: f64 = 2_000.0;
 /// overlap, and six times the noise bound, so the nearest measurement is
 /// still each track's own.
 const CROWDED_SPACING_M: f64 = 12.0;
+/// σ of the gate (and of the default filter's sensor), m.
+const GATE_SIGMA_M: f64 = 5.0;
 /// Measurement noise: uniform in ± this, m.
 const NOISE_M: f64 = 2.0;
 /// Ground speed of every target, m/s (along x).
@@ -77,45 +148,17 @@ const REPORT_COUNTS: &[(&str, ReportField)] = &[
     ("tracks", |r| r.tracks),
 ];
 
-/// The scan's stages in the order `scan_with_probe` reports them, with
-/// each scene's operation name for the stage's figure.
-const STAGES: [(ScanStage, &str, &str); 8] = [
-    (
-        ScanStage::Intake,
-        "scan_separated/intake",
-        "scan_crowded/intake",
-    ),
-    (
-        ScanStage::Index,
-        "scan_separated/index",
-        "scan_crowded/index",
-    ),
-    (ScanStage::Gate, "scan_separated/gate", "scan_crowded/gate"),
-    (
-        ScanStage::Cluster,
-        "scan_separated/cluster",
-        "scan_crowded/cluster",
-    ),
-    (
-        ScanStage::Assign,
-        "scan_separated/assign",
-        "scan_crowded/assign",
-    ),
-    (
-        ScanStage::Update,
-        "scan_separated/update",
-        "scan_crowded/update",
-    ),
-    (
-        ScanStage::Manage,
-        "scan_separated/manage",
-        "scan_crowded/manage",
-    ),
-    (
-        ScanStage::Initiate,
-        "scan_separated/initiate",
-        "scan_crowded/initiate",
-    ),
+/// The scan's stages in the order `scan_with_probe` reports them (the
+/// order of [`Rows::stages`]).
+const STAGES: [ScanStage; 8] = [
+    ScanStage::Intake,
+    ScanStage::Index,
+    ScanStage::Gate,
+    ScanStage::Cluster,
+    ScanStage::Assign,
+    ScanStage::Update,
+    ScanStage::Manage,
+    ScanStage::Initiate,
 ];
 
 /// Cluster sizes counted (tracks per cluster): the bounds of each class
@@ -137,19 +180,11 @@ enum Scene {
 }
 
 impl Scene {
-    fn operation(self) -> &'static str {
+    /// The scene's rows for filter `F`.
+    fn rows<S: TrackNumeric, F: BenchFilter<S>>(self) -> &'static Rows {
         match self {
-            Scene::Separated => "scan_separated",
-            Scene::Crowded => "scan_crowded",
-        }
-    }
-
-    /// The stage rows' operation: `<scene>/<stage>`.
-    fn stage(self, stage: usize) -> &'static str {
-        match (self, STAGES.get(stage)) {
-            (Scene::Separated, Some((_, separated, _))) => separated,
-            (Scene::Crowded, Some((_, _, crowded))) => crowded,
-            (_, None) => "scan/unknown",
+            Scene::Separated => &F::ROWS[0],
+            Scene::Crowded => &F::ROWS[1],
         }
     }
 
@@ -226,13 +261,11 @@ fn crowded_cluster(i: usize, targets: usize) -> (usize, usize, usize) {
     (found.0, found.1, cluster)
 }
 
-type BenchTable<S, const N: usize, const M: usize> = TrackTable<S, FixedGainTrack<S>, N, M>;
-
 /// One scan; `marks[i]` gets SysTick's value as stage `STAGES[i]` ends.
 #[inline(never)]
-fn run_scan<S: TrackNumeric, const N: usize, const M: usize>(
-    table: &mut BenchTable<S, N, M>,
-    config: &TrackerConfig<S, Gains<S>>,
+fn run_scan<S: TrackNumeric, F: TrackFilter<S>, const N: usize, const M: usize>(
+    table: &mut TrackTable<S, F, N, M>,
+    config: &TrackerConfig<S, F::Params>,
     now_ms: u32,
     measurements: &[Measurement<S>; M],
     codes: &mut [Association; M],
@@ -249,9 +282,11 @@ fn run_scan<S: TrackNumeric, const N: usize, const M: usize>(
 
 /// Both scenes at N tracks, M measurements per scan.
 #[inline(never)]
-fn run<S: Numeric + TrackNumeric, const N: usize, const M: usize>(bench: &mut Bench) {
-    scene::<S, N, M>(bench, Scene::Separated);
-    scene::<S, N, M>(bench, Scene::Crowded);
+fn run<S: Numeric + TrackNumeric, F: BenchFilter<S>, const N: usize, const M: usize>(
+    bench: &mut Bench,
+) {
+    scene::<S, F, N, M>(bench, Scene::Separated);
+    scene::<S, F, N, M>(bench, Scene::Crowded);
 }
 
 /// One scene in steady state: the whole `scan` and each of its stages,
@@ -259,17 +294,18 @@ fn run<S: Numeric + TrackNumeric, const N: usize, const M: usize>(bench: &mut Be
 /// SysTick read where the scan reports the stage's end); the counts of the
 /// last scan; the sizes of the clusters of the gated pairs.
 #[inline(never)]
-fn scene<S: Numeric + TrackNumeric, const N: usize, const M: usize>(
+fn scene<S: Numeric + TrackNumeric, F: BenchFilter<S>, const N: usize, const M: usize>(
     bench: &mut Bench,
     scene: Scene,
 ) {
     let numeric = S::LABEL;
-    let operation = scene.operation();
+    let rows = scene.rows::<S, F>();
+    let operation = rows.scan;
     let size = Size { n: N, m: M };
-    let (Some(gains), Ok(gate)) = (
-        Gains::<S>::alpha_beta_f64(0.5, 0.2).ok(),
+    let (Some(params), Ok(gate)) = (
+        F::params(),
         Gate::uncertainty(
-            S::Length::from_f64_lossy(5.0),
+            S::Length::from_f64_lossy(GATE_SIGMA_M),
             S::Ratio::from_f64_lossy(13.8),
             S::Acceleration::from_f64_lossy(5.0),
         ),
@@ -277,13 +313,13 @@ fn scene<S: Numeric + TrackNumeric, const N: usize, const M: usize>(
         bench.fail(numeric, operation, "tracker configuration refused");
         return;
     };
-    let Ok(config) = TrackerConfig::new(gains, gate, S::Speed::from_f64_lossy(300.0)) else {
+    let Ok(config) = TrackerConfig::new(params, gate, S::Speed::from_f64_lossy(300.0)) else {
         bench.fail(numeric, operation, "tracker configuration refused");
         return;
     };
     // A constant, copied into place: `new()` would build the table in its
     // own frame and copy it here, twice the table on the stack.
-    let mut table = const { BenchTable::<S, N, M>::new() };
+    let mut table = const { TrackTable::<S, F, N, M>::new() };
     let mut rng = Lcg::new(5);
     let mut codes = [Association::OutsideGates; M];
     let mut marks = [0u32; STAGES.len()];
@@ -359,8 +395,8 @@ fn scene<S: Numeric + TrackNumeric, const N: usize, const M: usize>(
     let per_scan = |ticks: u32| bench.instructions(ticks) / TIMED_SCANS as f64;
     let (scan, stages) = (per_scan(net), stage_ticks.map(per_scan));
     bench.figure(numeric, operation, Some(size), scan);
-    for (i, instructions) in stages.iter().enumerate() {
-        bench.figure(numeric, scene.stage(i), Some(size), *instructions);
+    for (stage, instructions) in rows.stages.iter().zip(stages.iter()) {
+        bench.figure(numeric, stage, Some(size), *instructions);
     }
     for (name, count) in REPORT_COUNTS {
         bench.count(numeric, operation, size, name, count(&last));
@@ -393,9 +429,9 @@ struct ClusterSizes<const N: usize> {
 }
 
 impl<const N: usize> ClusterSizes<N> {
-    fn of<S: TrackNumeric, const M: usize>(
-        table: &BenchTable<S, N, M>,
-        config: &TrackerConfig<S, Gains<S>>,
+    fn of<S: TrackNumeric, F: TrackFilter<S>, const M: usize>(
+        table: &TrackTable<S, F, N, M>,
+        config: &TrackerConfig<S, F::Params>,
         measurements: &[Measurement<S>; M],
     ) -> Self {
         let mut sizes = ClusterSizes {
@@ -403,8 +439,7 @@ impl<const N: usize> ClusterSizes<N> {
             gated: [false; N],
         };
         let mut owner = [u16::MAX; M];
-        let Some(dt) = ScanInterval::from_ms(1000)
-            .and_then(|i| FixedGainTrack::step(config.params(), &i).ok())
+        let Some(dt) = ScanInterval::from_ms(1000).and_then(|i| F::step(config.params(), &i).ok())
         else {
             return sizes;
         };
