@@ -245,7 +245,7 @@ fn bytes_per_track_of_every_filter() {
             size_of::<Slot<Fixed32, ScheduledTrack<Fixed32, AnySchedule<Fixed32, 2, 8>>>>(),
         ),
         (
-            "ScheduledTrack, auto (the default Cartesian track)",
+            "AutoFilter, auto fused (the default Cartesian track)",
             size_of::<Slot<f64, DefaultCartesianTrack<f64>>>(),
             size_of::<Slot<f32, DefaultCartesianTrack<f32>>>(),
             size_of::<Slot<Fix, DefaultCartesianTrack<Fix>>>(),
@@ -285,7 +285,7 @@ fn bytes_per_track_of_every_filter() {
                 528
             ),
             (
-                "ScheduledTrack, auto (the default Cartesian track)",
+                "AutoFilter, auto fused (the default Cartesian track)",
                 376,
                 208,
                 376,
