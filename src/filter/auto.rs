@@ -65,11 +65,6 @@ impl<N: Numeric, const D: usize> Default for AutoFilter<N, D> {
 }
 
 impl<N: Numeric, const D: usize> AutoFilter<N, D> {
-    const AXES_POWER_OF_TWO: () = assert!(
-        D.is_power_of_two(),
-        "the manoeuvre level averages the axes by halvings"
-    );
-
     /// A filter that has seen no measurement.
     pub const fn new() -> Self {
         let one = N::Ratio::ONE;
@@ -147,7 +142,6 @@ impl<N: Numeric, const D: usize> AutoFilter<N, D> {
         z: [N::Length; D],
         dt: N::Interval,
     ) -> Result<AutoUpdate, FilterError> {
-        let () = Self::AXES_POWER_OF_TWO;
         let mut guard = N::Guard::default();
         for v in &z {
             v.check_input(&mut guard);

@@ -39,8 +39,9 @@ pub const Q_START: u64 = 100;
 /// about 10 s.
 pub const Q_MAX: u64 = 100_000;
 /// The time constant of the fading average of the normalised innovation
-/// squared, s (a power of two: its weight T/τ is formed by halvings).
+/// squared, s (its weight T/τ is formed by three halvings).
 pub const NIS_MEMORY_S: u64 = 8;
+const _: () = assert!(NIS_MEMORY_S == 8, "Span::new halves three times");
 /// The largest normalised innovation squared the average takes in.
 pub const NIS_CAP: u64 = 100;
 const _: () = assert!(NIS_CAP == 100, "Span::new builds the cap as 10·10");
@@ -238,9 +239,7 @@ impl<R: Real> Span<R> {
     pub(crate) fn new(coasted: R, dt: R) -> Self {
         let tau = coasted + dt;
         let squared = tau * tau;
-        let weight = (0..NIS_MEMORY_S.trailing_zeros())
-            .fold(tau, |w, _| w.half())
-            .min_of(R::ONE.half());
+        let weight = tau.half().half().half().min_of(R::ONE.half());
         Span {
             tau,
             cube: squared * tau,
@@ -289,11 +288,11 @@ pub(crate) struct KalmanGains<R> {
 /// moved to the state after the update. The manoeuvre level follows the
 /// mean of the axes' ν²/S. One division (1/S); no other libm.
 #[inline(always)]
-pub(crate) fn kalman_step<N: Numeric>(
+pub(crate) fn kalman_step<N: Numeric, const K: usize>(
     a: &mut AutoAxis<N>,
     s: &Span<N::Ratio>,
     r: N::Ratio,
-    nu: &[N::Ratio],
+    nu: &[N::Ratio; K],
     bounds: (N::Ratio, N::Ratio),
 ) -> Result<KalmanGains<N::Ratio>, ScheduleError> {
     let one = N::Ratio::ONE;
@@ -324,7 +323,7 @@ pub(crate) fn kalman_step<N: Numeric>(
     // S can be far above 1, and then a large ν is not a manoeuvre.
     let cap = s.nis_cap;
     let mut nis = N::Ratio::ZERO;
-    for &nu in nu {
+    for &nu in nu.iter() {
         let weighted = nu * inverse;
         nis = nis
             + if weighted.abs() < one || nu.abs() < cap {
@@ -334,10 +333,9 @@ pub(crate) fn kalman_step<N: Numeric>(
             };
     }
     // The mean over the axes (their number is a power of two).
-    let mut count = nu.len();
-    while count > 1 {
+    let () = AxesPowerOfTwo::<K>::CHECK;
+    for _ in 0..K.trailing_zeros() {
         nis = nis.half();
-        count /= 2;
     }
     let mean = a.nis + (nis - a.nis) * s.weight;
     let manoeuvre = (a.manoeuvre + a.manoeuvre * (mean - one).half().half())
@@ -350,14 +348,19 @@ pub(crate) fn kalman_step<N: Numeric>(
         manoeuvre,
         nis: mean,
     };
-    let valid = [position, cross, velocity, manoeuvre, mean, alpha, rate]
-        .iter()
-        .all(|v| v.is_valid());
-    if !valid {
+    if !N::Ratio::all_valid([position, cross, velocity, manoeuvre, mean, alpha, rate]) {
         return Err(ScheduleError::InvalidContext);
     }
     *a = next;
     Ok(KalmanGains { alpha, rate, beta })
+}
+
+/// Refuses, at compile time, a number of axes sharing a covariance that is
+/// not a power of two (their mean ν²/S is formed by halvings).
+struct AxesPowerOfTwo<const K: usize>;
+
+impl<const K: usize> AxesPowerOfTwo<K> {
+    const CHECK: () = assert!(K.is_power_of_two(), "axes sharing a covariance: 1, 2, 4…");
 }
 
 /// [`kalman_step`], and should the covariance have left the number format
@@ -367,11 +370,11 @@ pub(crate) fn kalman_step<N: Numeric>(
 /// intervals without process noise (α = 5/6, β = 1/2: Al-Wagih & Abdulla
 /// eq. 24 at n = 3).
 #[inline(always)]
-pub(crate) fn kalman_step_or_restart<N: Numeric>(
+pub(crate) fn kalman_step_or_restart<N: Numeric, const K: usize>(
     a: &mut AutoAxis<N>,
     s: &Span<N::Ratio>,
     r: N::Ratio,
-    nu: &[N::Ratio],
+    nu: &[N::Ratio; K],
     bounds: (N::Ratio, N::Ratio),
 ) -> KalmanGains<N::Ratio> {
     if let Ok(g) = kalman_step(a, s, r, nu, bounds) {

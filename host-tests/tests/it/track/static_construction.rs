@@ -286,10 +286,10 @@ fn bytes_per_track_of_every_filter() {
             ),
             (
                 "AutoFilter, auto fused (the default Cartesian track)",
-                376,
-                208,
-                376,
-                268
+                112,
+                68,
+                112,
+                88
             ),
             ("RangeAzimuthTrack", 272, 152, 272, 0),
         ]
