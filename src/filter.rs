@@ -44,6 +44,7 @@ use crate::num::{AddProduct, Checked, Guard, Numeric, Quantity, SubGuarded};
 pub use crate::gains::{GainError, Gains};
 
 pub mod altitude;
+pub mod auto;
 pub mod range_azimuth;
 
 /// Why a filter refused a call. The filter's state is unchanged.

@@ -580,7 +580,7 @@ pub const OPERATIONS: &[(&str, &str)] = &[
     ),
     (
         "auto2d_update",
-        "2-D αβ with the self-tuning `auto` schedule (`ScheduledFilter`, docs/auto.md)",
+        "2-D `auto`, fused with its filter (`filter::auto::AutoFilter`: one covariance for both axes; docs/auto.md)",
     ),
     (
         "range_azimuth_update",

@@ -39,8 +39,9 @@ pub const Q_START: u64 = 100;
 /// about 10 s.
 pub const Q_MAX: u64 = 100_000;
 /// The time constant of the fading average of the normalised innovation
-/// squared, s (a power of two: its weight T/τ is formed by halvings).
+/// squared, s (its weight T/τ is formed by three halvings).
 pub const NIS_MEMORY_S: u64 = 8;
+const _: () = assert!(NIS_MEMORY_S == 8, "Span::new halves three times");
 /// The largest normalised innovation squared the average takes in.
 pub const NIS_CAP: u64 = 100;
 const _: () = assert!(NIS_CAP == 100, "Span::new builds the cap as 10·10");
@@ -184,6 +185,27 @@ enum Start {
     Tracking,
 }
 
+/// The configuration of a filter whose axes share one σ: 1/σ and the
+/// manoeuvre level's bounds as q/(3σ²) ([`AutoGains::shared_noise`]).
+#[derive(Debug, Clone, Copy, PartialEq)]
+#[cfg_attr(feature = "defmt", derive(defmt::Format))]
+pub struct SharedNoise<N: Numeric> {
+    pub(crate) inverse_sigma: N::Ratio,
+    pub(crate) manoeuvre_min: N::Ratio,
+    pub(crate) manoeuvre_max: N::Ratio,
+}
+
+impl<N: Numeric> SharedNoise<N> {
+    /// The manoeuvre level of a new track ([`Q_START`]).
+    pub(crate) fn start_manoeuvre(&self) -> N::Ratio {
+        self.manoeuvre_min * N::Ratio::from_ratio(Q_START, Q_MIN)
+    }
+
+    pub(crate) fn bounds(&self) -> (N::Ratio, N::Ratio) {
+        (self.manoeuvre_min, self.manoeuvre_max)
+    }
+}
+
 /// The self-tuning schedule (module docs; `docs/auto.md`).
 #[derive(Debug, Clone, Copy, PartialEq)]
 #[cfg_attr(feature = "defmt", derive(defmt::Format))]
@@ -202,7 +224,7 @@ pub struct AutoGains<N: Numeric, const D: usize> {
 /// time coasted), τ³, 1.5τ², 3τ, the fading weight min(τ/8 s, ½), and the
 /// update's own interval T.
 #[derive(Clone, Copy)]
-struct Span<R> {
+pub(crate) struct Span<R> {
     tau: R,
     cube: R,
     square: R,
@@ -214,12 +236,10 @@ struct Span<R> {
 }
 
 impl<R: Real> Span<R> {
-    fn new(coasted: R, dt: R) -> Self {
+    pub(crate) fn new(coasted: R, dt: R) -> Self {
         let tau = coasted + dt;
         let squared = tau * tau;
-        let weight = (0..NIS_MEMORY_S.trailing_zeros())
-            .fold(tau, |w, _| w.half())
-            .min_of(R::ONE.half());
+        let weight = tau.half().half().half().min_of(R::ONE.half());
         Span {
             tau,
             cube: squared * tau,
@@ -239,7 +259,10 @@ impl<R: Real> Span<R> {
 /// An axis's covariance predicted over the span (P⁻ = FPFᵀ + Q), as
 /// (p̃_xx, p̃_xv, p̃_vv).
 #[inline(always)]
-fn predicted<N: Numeric>(a: &AutoAxis<N>, s: &Span<N::Ratio>) -> (N::Ratio, N::Ratio, N::Ratio) {
+pub(crate) fn predicted<N: Numeric>(
+    a: &AutoAxis<N>,
+    s: &Span<N::Ratio>,
+) -> (N::Ratio, N::Ratio, N::Ratio) {
     let q = a.manoeuvre;
     let cross = a.cross + s.tau * a.velocity;
     (
@@ -249,25 +272,42 @@ fn predicted<N: Numeric>(a: &AutoAxis<N>, s: &Span<N::Ratio>) -> (N::Ratio, N::R
     )
 }
 
-/// One axis's Kalman update: the gains for measurement variance ratio `r`
-/// (R/σ²) and normalised innovation `nu` (ν/σ), and `a` moved to the state
-/// after the update.
+/// The gains of one Kalman step of a normalised covariance: α, the
+/// velocity gain β/T (1/s) and β, inside the stability triangle.
+#[derive(Clone, Copy)]
+pub(crate) struct KalmanGains<R> {
+    pub(crate) alpha: R,
+    pub(crate) rate: R,
+    pub(crate) beta: R,
+}
+
+/// One Kalman update of the normalised covariance `a` for measurement
+/// variance ratio `r` (R/σ²) and the normalised innovations `nu` (ν/σ) of
+/// the axes that share it (one per axis, or every axis of a sensor with
+/// the same σ on each; their number a power of two): the gains, and `a`
+/// moved to the state after the update. The manoeuvre level follows the
+/// mean of the axes' ν²/S. One division (1/S); no other libm.
 #[inline(always)]
-fn step_axis<N: Numeric>(
+pub(crate) fn kalman_step<N: Numeric, const K: usize>(
     a: &mut AutoAxis<N>,
     s: &Span<N::Ratio>,
     r: N::Ratio,
-    nu: N::Ratio,
+    nu: &[N::Ratio; K],
     bounds: (N::Ratio, N::Ratio),
-) -> Result<Gains<N>, ScheduleError> {
+) -> Result<KalmanGains<N::Ratio>, ScheduleError> {
     let one = N::Ratio::ONE;
     let (pxx, pxv, pvv) = predicted(a, s);
     let inverse = one / (pxx + r);
     let alpha = pxx * inverse;
-    let rate = pxv * inverse;
+    let mut rate = pxv * inverse;
     // Inside the stability triangle (β < 2(2 − α)) whatever the rounding.
     let two = one + one;
-    let beta = (rate * s.interval).min_of((two - alpha) + (two - alpha).half());
+    let limit = (two - alpha) + (two - alpha).half();
+    let mut beta = rate * s.interval;
+    if beta > limit {
+        beta = limit;
+        rate = limit / s.interval;
+    }
     let mut velocity = pvv - rate * pxv;
     let (position, cross) = (alpha * r, rate * r);
     if velocity * position <= cross * cross {
@@ -282,12 +322,21 @@ fn step_axis<N: Numeric>(
     // at most cap²/S, so neither overflows a narrow format; a polar axis's
     // S can be far above 1, and then a large ν is not a manoeuvre.
     let cap = s.nis_cap;
-    let weighted = nu * inverse;
-    let nis = if weighted.abs() < one || nu.abs() < cap {
-        (weighted * nu).min_of(cap)
-    } else {
-        cap
-    };
+    let mut nis = N::Ratio::ZERO;
+    for &nu in nu.iter() {
+        let weighted = nu * inverse;
+        nis = nis
+            + if weighted.abs() < one || nu.abs() < cap {
+                (weighted * nu).min_of(cap)
+            } else {
+                cap
+            };
+    }
+    // The mean over the axes (their number is a power of two).
+    let () = AxesPowerOfTwo::<K>::CHECK;
+    for _ in 0..K.trailing_zeros() {
+        nis = nis.half();
+    }
     let mean = a.nis + (nis - a.nis) * s.weight;
     let manoeuvre = (a.manoeuvre + a.manoeuvre * (mean - one).half().half())
         .min_of(bounds.1)
@@ -299,14 +348,84 @@ fn step_axis<N: Numeric>(
         manoeuvre,
         nis: mean,
     };
-    let valid = [position, cross, velocity, manoeuvre, mean]
-        .iter()
-        .all(|v| v.is_valid());
-    if !valid {
+    if !N::Ratio::all_valid([position, cross, velocity, manoeuvre, mean, alpha, rate]) {
         return Err(ScheduleError::InvalidContext);
     }
     *a = next;
-    Ok(Gains::alpha_beta(alpha, beta)?)
+    Ok(KalmanGains { alpha, rate, beta })
+}
+
+/// Refuses, at compile time, a number of axes sharing a covariance that is
+/// not a power of two (their mean ν²/S is formed by halvings).
+struct AxesPowerOfTwo<const K: usize>;
+
+impl<const K: usize> AxesPowerOfTwo<K> {
+    const CHECK: () = assert!(K.is_power_of_two(), "axes sharing a covariance: 1, 2, 4…");
+}
+
+/// [`kalman_step`], and should the covariance have left the number format
+/// (a narrow format, a tiny σ and a long interval), a restart of `a` from
+/// a two-point start over the span at the ceiling `bounds.1`, scaled by
+/// `r`; should that fail too, the gains of a two-point start at equal
+/// intervals without process noise (α = 5/6, β = 1/2: Al-Wagih & Abdulla
+/// eq. 24 at n = 3).
+#[inline(always)]
+pub(crate) fn kalman_step_or_restart<N: Numeric, const K: usize>(
+    a: &mut AutoAxis<N>,
+    s: &Span<N::Ratio>,
+    r: N::Ratio,
+    nu: &[N::Ratio; K],
+    bounds: (N::Ratio, N::Ratio),
+) -> KalmanGains<N::Ratio> {
+    if let Ok(g) = kalman_step(a, s, r, nu, bounds) {
+        return g;
+    }
+    let start = two_point::<N>(s.tau, bounds.1);
+    *a = AutoAxis {
+        position: start.position * r,
+        cross: start.cross * r,
+        velocity: start.velocity * r,
+        ..start
+    };
+    match kalman_step(a, &Span::new(N::Ratio::ZERO, s.interval), r, nu, bounds) {
+        Ok(g) => g,
+        Err(_) => {
+            let beta = N::Ratio::ONE.half();
+            KalmanGains {
+                alpha: N::Ratio::from_ratio(5, 6),
+                rate: beta / s.interval,
+                beta,
+            }
+        }
+    }
+}
+
+/// One axis's update as a schedule gives it: [`kalman_step_or_restart`]
+/// with its own innovation, as [`Gains`].
+#[inline(always)]
+fn step_axis<N: Numeric>(
+    a: &mut AutoAxis<N>,
+    s: &Span<N::Ratio>,
+    r: N::Ratio,
+    nu: N::Ratio,
+    bounds: (N::Ratio, N::Ratio),
+) -> Result<Gains<N>, ScheduleError> {
+    let g = kalman_step_or_restart(a, s, r, &[nu], bounds);
+    Ok(Gains::alpha_beta(g.alpha, g.beta)?)
+}
+
+/// The two-point start over interval `t` (Bar-Shalom, Li & Kirubarajan
+/// 2001 §5.5.3): p̃ = [1, 1/T; 1/T, 2/T²], the manoeuvre level `manoeuvre`.
+pub(crate) fn two_point<N: Numeric>(t: N::Ratio, manoeuvre: N::Ratio) -> AutoAxis<N> {
+    let per = N::Ratio::ONE / t;
+    let per_squared = per * per;
+    AutoAxis {
+        position: N::Ratio::ONE,
+        cross: per,
+        velocity: per_squared + per_squared,
+        manoeuvre,
+        nis: N::Ratio::ONE,
+    }
 }
 
 impl<N: Numeric, const D: usize> AutoGains<N, D> {
@@ -341,7 +460,7 @@ impl<N: Numeric, const D: usize> AutoGains<N, D> {
             noise,
             manoeuvre_min,
             manoeuvre_max,
-            axes: [Self::two_point(N::Ratio::ONE, N::Ratio::ZERO); D],
+            axes: [two_point::<N>(N::Ratio::ONE, N::Ratio::ZERO); D],
             coasted: N::Ratio::ZERO,
             start: Start::Empty,
         };
@@ -354,22 +473,25 @@ impl<N: Numeric, const D: usize> AutoGains<N, D> {
         &self.axes
     }
 
-    /// The two-point start over interval `t` (ibid. §5.5.3): p̃ =
-    /// [1, 1/T; 1/T, 2/T²], the manoeuvre level at [`Q_START`].
-    fn two_point(t: N::Ratio, manoeuvre: N::Ratio) -> AutoAxis<N> {
-        let per = N::Ratio::ONE / t;
-        let per_squared = per * per;
-        AutoAxis {
-            position: N::Ratio::ONE,
-            cross: per,
-            velocity: per_squared + per_squared,
-            manoeuvre,
-            nis: N::Ratio::ONE,
+    /// What the fused filter [`crate::filter::auto::AutoFilter`] needs of
+    /// this configuration: 1/σ (a polar sensor's 1/σ_R: that filter takes
+    /// one σ for every axis) and the manoeuvre level's bounds.
+    pub fn shared_noise(&self) -> SharedNoise<N> {
+        SharedNoise {
+            inverse_sigma: match self.noise {
+                Noise::Cartesian { inverse_sigma } => inverse_sigma,
+                Noise::Polar {
+                    inverse_range_sigma,
+                    ..
+                } => inverse_range_sigma,
+            },
+            manoeuvre_min: self.manoeuvre_min,
+            manoeuvre_max: self.manoeuvre_max,
         }
     }
 
     fn start_manoeuvre(&self) -> N::Ratio {
-        self.manoeuvre_min * N::Ratio::from_ratio(Q_START, Q_MIN)
+        self.shared_noise().start_manoeuvre()
     }
 
     /// R/σ² and ν/σ of every axis: 1 and e/σ for a Cartesian sensor; for a
@@ -427,7 +549,7 @@ impl<N: Numeric, const D: usize> AutoGains<N, D> {
         let mut axes = match self.start {
             Start::Tracking => return self.axes,
             Start::TwoPoint => self.axes,
-            Start::Empty | Start::FirstPoint => [Self::two_point(dt, self.start_manoeuvre()); D],
+            Start::Empty | Start::FirstPoint => [two_point::<N>(dt, self.start_manoeuvre()); D],
         };
         if let Some(ratios) = ratios {
             for (a, (r, _)) in axes.iter_mut().zip(ratios) {
@@ -459,30 +581,7 @@ impl<N: Numeric, const D: usize> AutoGains<N, D> {
         let mut gains = [Gains::alpha_beta(one, one)?; D];
         let mut next = self.current(dt, Some(&ratios));
         for ((g, a), (r, nu)) in gains.iter_mut().zip(next.iter_mut()).zip(ratios) {
-            *g = match step_axis(a, &span, r, nu, bounds) {
-                Ok(g) => g,
-                // The covariance left the number format (a narrow format,
-                // a tiny σ and a long interval): the axis starts again from
-                // a two-point start over the span at the ceiling.
-                // Should that fail too, the axis takes the gains of a
-                // two-point start at equal intervals without process noise
-                // (α = 5/6, β = 1/2: Al-Wagih & Abdulla eq. 24 at n = 3).
-                Err(_) => {
-                    let start = Self::two_point(span.tau, self.manoeuvre_max);
-                    *a = AutoAxis {
-                        position: start.position * r,
-                        cross: start.cross * r,
-                        velocity: start.velocity * r,
-                        ..start
-                    };
-                    match step_axis(a, &Span::new(N::Ratio::ZERO, dt), r, nu, bounds) {
-                        Ok(g) => g,
-                        Err(_) => {
-                            Gains::alpha_beta(N::Ratio::from_ratio(5, 6), N::Ratio::ONE.half())?
-                        }
-                    }
-                }
-            };
+            *g = step_axis(a, &span, r, nu, bounds)?;
         }
         Ok((gains, next))
     }
@@ -507,7 +606,7 @@ impl<N: Numeric, const D: usize> GainSchedule<N, D> for AutoGains<N, D> {
             self.start = Start::FirstPoint;
         } else {
             let t = self.coasted + N::Ratio::from(dt);
-            self.axes = [Self::two_point(t, self.start_manoeuvre()); D];
+            self.axes = [two_point::<N>(t, self.start_manoeuvre()); D];
             self.coasted = N::Ratio::ZERO;
             self.start = Start::TwoPoint;
         }
@@ -530,7 +629,7 @@ impl<N: Numeric, const D: usize> GainSchedule<N, D> for AutoGains<N, D> {
     }
 
     fn reset(&mut self) {
-        self.axes = [Self::two_point(N::Ratio::ONE, self.start_manoeuvre()); D];
+        self.axes = [two_point::<N>(N::Ratio::ONE, self.start_manoeuvre()); D];
         self.coasted = N::Ratio::ZERO;
         self.start = Start::Empty;
     }

@@ -163,6 +163,14 @@ pub trait Real: Quantity + Mul<Output = Self> + Div<Output = Self> {
     fn hypot3(self, b: Self, c: Self) -> Self {
         self.hypot(b).hypot(c)
     }
+
+    /// Whether every value is valid: [`Quantity::is_valid`] of each, or a
+    /// format's cheaper running check (a [`Scalar`]'s
+    /// [`Scalar::accumulate_check`]).
+    #[inline(always)]
+    fn all_valid<const K: usize>(values: [Self; K]) -> bool {
+        values.iter().all(|v| v.is_valid())
+    }
 }
 
 /// The hot path's validity check (see the module docs).
@@ -361,6 +369,16 @@ impl<S: Scalar> Quantity for S {
 
 impl<S: Scalar> Real for S {
     const ONE: Self = <S as Scalar>::ONE;
+
+    /// One running check over the values ([`Scalar::accumulate_check`]).
+    #[inline(always)]
+    fn all_valid<const K: usize>(values: [Self; K]) -> bool {
+        S::check_passed(
+            values
+                .iter()
+                .fold(<S as Scalar>::ZERO, |c, &v| S::accumulate_check(c, v)),
+        )
+    }
 
     /// Rounded once in `f64`, then to `S` (exact for `f64`).
     fn from_ratio(numerator: u64, denominator: u64) -> Self {

@@ -84,7 +84,7 @@
 //!
 //! | | nominal radar | nominal TCAS |
 //! |---|---|---|
-//! | filter | `ScheduledTrack<S, AutoGains<S, 2>>`, σ = 20 m | `RangeAzimuthTrack<S>`, Q = 8.01 m²/s⁴ |
+//! | filter | `AutoFilter<S, 2>` (params `AutoGains<S, 2>`), σ = 20 m | `RangeAzimuthTrack<S>`, Q = 8.01 m²/s⁴ |
 //! | gate | uncertainty, G = 13.82, a_max = 5.66 m/s² | range/azimuth window, G = 13.82, a_max = 5.66 m/s² |
 //! | initiation radius | 300 m + 105 m | 617 m + 11.9 km |
 //! | confirmation | 3 of 4 | 3 of 4 |
@@ -101,10 +101,11 @@
 //! across range, tentative tracks pick up intruders' measurements not yet
 //! claimed by their own tracks, and coasting widens the windows further.
 
-use super::adapters::{RangeAzimuthTrack, ScheduledTrack};
+use super::adapters::RangeAzimuthTrack;
 use super::config::{TrackerConfig, Volume};
 use super::gate::{ConfigError, Gate};
 use crate::design::{kalata_gains, tracking_index};
+use crate::filter::auto::AutoFilter;
 use crate::filter::range_azimuth::RangeAzimuthNoise;
 use crate::gain::al_wagih::{least_squares_alpha, LeastSquaresConfig};
 use crate::gain::{AutoConfig, AutoGains};
@@ -519,7 +520,7 @@ impl TrackerDesign {
         self.config_with(params, d.max_sigma, &d)
     }
 
-    /// The default Cartesian tracker: [`ScheduledTrack`] with `auto`, the
+    /// The default Cartesian tracker: [`AutoFilter`] (`auto` fused with its filter), the
     /// per-axis Kalman gains configured from the sensor's σ (σ_max for a
     /// polar sensor; `docs/auto.md`), whose covariance sizes the
     /// uncertainty gate with
@@ -583,6 +584,6 @@ pub fn default_polar<S: Scalar>() -> Result<TrackerConfig<S, RangeAzimuthNoise<S
 }
 
 /// The table types the defaults are meant for.
-pub type DefaultCartesianTrack<S> = ScheduledTrack<S, AutoGains<S, 2>>;
+pub type DefaultCartesianTrack<S> = AutoFilter<S, 2>;
 /// See [`DefaultCartesianTrack`].
 pub type DefaultPolarTrack<S> = RangeAzimuthTrack<S>;

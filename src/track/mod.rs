@@ -102,6 +102,7 @@
 
 mod adapters;
 pub mod assign;
+mod auto;
 mod cluster;
 mod config;
 pub mod defaults;

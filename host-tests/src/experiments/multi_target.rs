@@ -10,7 +10,7 @@
 //! from f64 on the same measurements.
 //!
 //! Configurations: the Cartesian scenarios run
-//! `ScheduledTrack<S, AutoGains<S, 2>>` with
+//! `AutoFilter<S, 2>` (`auto` fused, params `AutoGains<S, 2>`) with
 //! `TrackerDesign::cartesian_config`, `tcas-30` runs `RangeAzimuthTrack<S>`
 //! (polar measurements used as range and azimuth, gated by a window in
 //! range and azimuth) with `TrackerDesign::polar_config`; the design is
@@ -22,9 +22,8 @@ use std::fmt::Write as _;
 use std::mem::size_of;
 use std::time::Instant;
 
-use abtrack::gain::{
-    AnySchedule, AutoGains, FirmnessGains, FixedGains, LeastSquaresGains, LiImprovedGains,
-};
+use abtrack::filter::auto::AutoFilter;
+use abtrack::gain::{AnySchedule, FirmnessGains, FixedGains, LeastSquaresGains, LiImprovedGains};
 use abtrack::track::defaults::DerivedParameters;
 use abtrack::track::{FixedGainTrack, RangeAzimuthTrack, ScheduledTrack, Track};
 use abtrack::Fix;
@@ -485,10 +484,10 @@ fn bytes_table() -> Table {
         LeastSquaresGains
     );
     t.push([
-        "ScheduledTrack<S, AutoGains<S, 2>> (default Cartesian)".to_string(),
-        size_of::<Slot<f64, ScheduledTrack<f64, AutoGains<f64, 2>>>>().to_string(),
-        size_of::<Slot<f32, ScheduledTrack<f32, AutoGains<f32, 2>>>>().to_string(),
-        size_of::<Slot<Fix, ScheduledTrack<Fix, AutoGains<Fix, 2>>>>().to_string(),
+        "AutoFilter<S, 2>, auto fused (default Cartesian)".to_string(),
+        size_of::<Slot<f64, AutoFilter<f64, 2>>>().to_string(),
+        size_of::<Slot<f32, AutoFilter<f32, 2>>>().to_string(),
+        size_of::<Slot<Fix, AutoFilter<Fix, 2>>>().to_string(),
     ]);
     t.push([
         "ScheduledTrack<S, FixedGains<S>> (M1)".to_string(),
@@ -618,7 +617,7 @@ pub fn run(ctx: &Context) -> Result<(), String> {
         s,
         "Default tracker (`abtrack::track::defaults`, derived from each scenario's sensor \
          figures; nothing tuned to these results): Cartesian scenarios \
-         `ScheduledTrack<S, AutoGains<S, 2>>` with the uncertainty gate; `tcas-30` \
+         `AutoFilter<S, 2>` (`auto` fused) with the uncertainty gate; `tcas-30` \
          `RangeAzimuthTrack<S>` on the polar measurements with the range/azimuth window gate. \
          Base seed {BASE_SEED:#x}; OSPA order p = {OSPA_ORDER}, cut-off c per scenario below \
          (also the track-to-truth gate of the track metrics). Intervals are 95 % (Student t \

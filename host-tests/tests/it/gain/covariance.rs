@@ -206,3 +206,43 @@ fn coasting_grows_the_gate_variance() {
         assert!(after[i] > 2.0 * before[i], "{:?} vs {:?}", after, before);
     }
 }
+
+/// The fused filter (`AutoFilter`, one covariance for every axis) and the
+/// schedule in a `ScheduledFilter` are one mechanism: on one axis, where
+/// the shared covariance is that axis's, they give the same estimates to
+/// rounding over irregular intervals, coasts and a manoeuvre.
+#[test]
+fn the_fused_filter_is_the_schedule_on_one_axis() {
+    use abtrack::filter::auto::{AutoFilter, AutoUpdate};
+    let sigma = 50.0;
+    let gains = AutoGains::<f64, 1>::new(&AutoConfig::cartesian(sigma)).expect("auto builds");
+    let mut scheduled: ScheduledFilter<f64, AutoGains<f64, 1>, 2, 1> = ScheduledFilter::new(gains);
+    let mut fused = AutoFilter::<f64, 1>::new();
+    let mut filtered = 0;
+    for (dt, z) in events(11, 400, sigma, 0.5, 6.0, 20.0) {
+        match z {
+            Some([x, _]) => {
+                scheduled.update([x], dt).expect("scheduled update");
+                let outcome = fused
+                    .update(&gains.shared_noise(), [x], dt)
+                    .expect("fused update");
+                filtered += usize::from(outcome == AutoUpdate::Filtered);
+            }
+            None => {
+                scheduled.coast(dt).expect("scheduled coast");
+                fused.coast(dt).expect("fused coast");
+            }
+        }
+        let (a, b) = (scheduled.filter().position()[0], fused.position()[0]);
+        assert!(
+            (a - b).abs() <= 1e-6 * (1.0 + a.abs()),
+            "position {a} vs {b}"
+        );
+        let (a, b) = (scheduled.filter().velocity()[0], fused.velocity()[0]);
+        assert!(
+            (a - b).abs() <= 1e-6 * (1.0 + a.abs()),
+            "velocity {a} vs {b}"
+        );
+    }
+    assert!(filtered > 300, "{filtered} filtered updates");
+}

@@ -246,7 +246,7 @@ fn bytes_per_track_of_every_filter() {
             size_of::<Slot<Fixed32, ScheduledTrack<Fixed32, AnySchedule<Fixed32, 2, 8>>>>(),
         ),
         (
-            "ScheduledTrack, auto (the default Cartesian track)",
+            "AutoFilter, auto fused (the default Cartesian track)",
             size_of::<Slot<f64, DefaultCartesianTrack<f64>>>(),
             size_of::<Slot<f32, DefaultCartesianTrack<f32>>>(),
             size_of::<Slot<Fix, DefaultCartesianTrack<Fix>>>(),
@@ -286,11 +286,11 @@ fn bytes_per_track_of_every_filter() {
                 536
             ),
             (
-                "ScheduledTrack, auto (the default Cartesian track)",
-                384,
-                212,
-                384,
-                272
+                "AutoFilter, auto fused (the default Cartesian track)",
+                120,
+                72,
+                120,
+                92
             ),
             ("RangeAzimuthTrack", 280, 156, 280, 0),
         ]

@@ -207,11 +207,15 @@ fn axis_kalman_update<S: Scalar>(
 }
 
 /// `axis_kalman_cv2d_update`: two independent per-axis CV Kalman filters
-/// (x and y), q = 1 m²/s³, σ = 25 m, on the `ab2d_update` row's data; in
-/// f32 only (in Q32.32 it alone took 18 KiB of the micro:bit's flash).
+/// (x and y), q = 1 m²/s³, σ = 25 m, on the `ab2d_update` row's data, as
+/// a user would write them for `S`: f32, and the fast fixed point's
+/// [`abtrack::ScaledScalar`] on every core (not Q32.32: it alone took
+/// 18 KiB of the micro:bit's flash).
 #[inline(never)]
-pub fn axis_kalman(bench: &mut Bench) {
-    type S = f32;
+pub fn axis_kalman<S>(bench: &mut Bench)
+where
+    S: Scalar + crate::numeric::Numeric + abtrack::Numeric<Length = S>,
+{
     const OPERATION: &str = "axis_kalman_cv2d_update";
     let numeric = S::LABEL;
     let c = |v: f64| <S as Scalar>::from_f64_lossy(v);

@@ -11,9 +11,11 @@ use core::hint::black_box;
 use abtrack::filter::altitude::{
     AltitudeEstimate, AltitudeQuantum, AltitudeTracker, AltitudeTrackerConfig,
 };
+use abtrack::filter::auto::AutoFilter;
 use abtrack::filter::range_azimuth::{RangeAzimuthFilter, RangeAzimuthNoise};
 use abtrack::filter::{Cartesian, Gains, KinematicFilter, StepGains};
 use abtrack::gain::al_wagih::LeastSquaresConfig;
+use abtrack::gain::auto::SharedNoise;
 use abtrack::gain::liu::AdaptiveSwitchConfig;
 use abtrack::gain::{
     AdaptiveSwitchGains, AutoConfig, AutoGains, GainSchedule, LeastSquaresGains, ScheduledFilter,
@@ -34,11 +36,7 @@ pub fn run<N: Numeric>(bench: &mut Bench) {
     kinematic::<N>(bench);
     scheduled::<N>(bench);
     range_azimuth::<N>(bench);
-    // `auto` does not fit the micro:bit's 256 KiB of flash beside the rest:
-    // measured on the other boards only.
-    if !cfg!(abtrack_board = "microbit") {
-        auto::<N>(bench);
-    }
+    auto::<N>(bench);
 }
 
 /// The operations still written for [`Scalar`] (`f32`, `f64`, Q32.32): the
@@ -84,6 +82,16 @@ fn update_scheduled<N: abtrack::Numeric, G: GainSchedule<N, 2>>(
     dt: N::Interval,
 ) -> bool {
     filter.update(z, dt).is_ok()
+}
+
+#[inline(never)]
+fn update_auto<N: abtrack::Numeric>(
+    filter: &mut AutoFilter<N, 2>,
+    noise: &SharedNoise<N>,
+    z: [N::Length; 2],
+    dt: N::Interval,
+) -> bool {
+    filter.update(noise, z, dt).is_ok()
 }
 
 #[inline(never)]
@@ -222,8 +230,9 @@ fn scheduled<N: Numeric>(bench: &mut Bench) {
     );
 }
 
-/// The `auto` schedule (docs/auto.md), configured with the data's σ, on
-/// the same target as the scheduled rows.
+/// `auto` as the default Cartesian track runs it ([`AutoFilter`]: one
+/// covariance for both axes, docs/auto.md), configured with the data's σ,
+/// on the same target as the scheduled rows.
 #[inline(never)]
 fn auto<N: Numeric>(bench: &mut Bench) {
     let numeric = N::LABEL;
@@ -233,11 +242,12 @@ fn auto<N: Numeric>(bench: &mut Bench) {
         bench.fail(numeric, "auto2d_update", "schedule refused");
         return;
     };
-    let mut auto_track: ScheduledFilter<N, _, 2, 2> = ScheduledFilter::new(auto);
+    let noise = black_box(auto.shared_noise());
+    let mut filter = AutoFilter::<N, 2>::new();
     bench.per_accepted_call(
         numeric,
         "auto2d_update",
-        |k| update_scheduled(&mut auto_track, target.get(k), dt),
+        |k| update_auto(&mut filter, &noise, target.get(k), dt),
         |k| target.fetch(k),
     );
 }

@@ -80,9 +80,10 @@ fn run(bench: &mut Bench) {
     bench_scalar::<ScaledScalar>(bench);
     bench_scalar::<Fix>(bench);
     bench_scalar::<f64>(bench);
-    // Anchors in f32 only: the hand-written Kalman filter, and minikalman
-    // (with its I16F16 build).
-    anchors::axis_kalman(bench);
+    // Anchors: the hand-written Kalman filter in f32 and the fast fixed
+    // point, and minikalman (f32, with its I16F16 build).
+    anchors::axis_kalman::<f32>(bench);
+    anchors::axis_kalman::<ScaledScalar>(bench);
     minikalman::run(bench);
     // Integer-only code, the same in every numeric.
     decoder::parse_byte(bench);

@@ -1,0 +1,270 @@
+//! `auto` fused with its filter: the per-axis constant-velocity Kalman
+//! filter of [`crate::gain::auto`] for a sensor with the same σ on every
+//! axis, in one call per measurement and one covariance for all axes
+//! (design and figures in `docs/auto.md`).
+//!
+//! With the same measurement variance on every axis, the axes' normalised
+//! covariances p̃ = P/σ² follow the same recursion from the same two-point
+//! start, so one 2×2 p̃ (three numbers), one manoeuvre level and one gain
+//! pair serve them all; the manoeuvre level is matched on the mean of the
+//! axes' ν²/S (Bar-Shalom, Li & Kirubarajan 2001 §5.4, §11.2.2). The update
+//! is [`kalman_step_or_restart`] (one division, no libm) and then per axis
+//! x = x_p + α·e, v = v + (β/T)·e (Al-Wagih & Abdulla eqs. 3–8). A sensor
+//! whose σ differs per axis (range–bearing) is the schedule
+//! [`crate::gain::AutoGains`] (one covariance per axis) with
+//! [`crate::gain::ScheduledFilter`].
+
+use crate::filter::{FilterError, IntervalSpan, Phase};
+use crate::gain::auto::{
+    kalman_step_or_restart, predicted, two_point, AutoAxis, SharedNoise, Span,
+};
+use crate::num::{AddProduct, Checked, Guard, Numeric, Quantity, Real, SubGuarded};
+
+/// What [`AutoFilter::update`] did.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+#[cfg_attr(feature = "defmt", derive(defmt::Format))]
+pub enum AutoUpdate {
+    /// First measurement: the position is the estimate.
+    FirstPoint,
+    /// Second: velocity from the difference (Al-Wagih eq. 9), the
+    /// two-point covariance.
+    SecondPoint,
+    /// A Kalman update.
+    Filtered,
+    /// The interval was longer than [`crate::filter::MAX_INTERVAL_S`]: the
+    /// estimate was dropped and this measurement is its first point.
+    Restarted,
+    /// Less than [`crate::filter::MIN_INTERVAL_S`] after the previous
+    /// measurement: nothing changed.
+    Skipped,
+}
+
+/// A D-axis constant-velocity Kalman filter with one σ on every axis and
+/// the manoeuvre level estimated online (module docs): the state per axis,
+/// one normalised covariance, the time coasted and the phase. The
+/// configuration ([`SharedNoise`]) is passed to every call, so it costs no
+/// bytes per filter.
+#[derive(Debug, Clone, Copy, PartialEq)]
+#[cfg_attr(feature = "defmt", derive(defmt::Format))]
+pub struct AutoFilter<N: Numeric, const D: usize> {
+    position: [N::Length; D],
+    velocity: [N::Speed; D],
+    /// P/σ² after the last update, and the manoeuvre level.
+    covariance: AutoAxis<N>,
+    /// Time since the last update (coasts; while one point is known, the
+    /// time since it), s. A coast that would take it out of the interval's
+    /// format is not added.
+    coasted: N::Interval,
+    phase: Phase,
+}
+
+impl<N: Numeric, const D: usize> Default for AutoFilter<N, D> {
+    fn default() -> Self {
+        Self::new()
+    }
+}
+
+impl<N: Numeric, const D: usize> AutoFilter<N, D> {
+    /// A filter that has seen no measurement.
+    pub const fn new() -> Self {
+        let one = N::Ratio::ONE;
+        AutoFilter {
+            position: [N::Length::ZERO; D],
+            velocity: [N::Speed::ZERO; D],
+            covariance: AutoAxis {
+                position: one,
+                cross: N::Ratio::ZERO,
+                velocity: one,
+                manoeuvre: one,
+                nis: one,
+            },
+            coasted: N::Interval::ZERO,
+            phase: Phase::Empty,
+        }
+    }
+
+    /// Which stage of two-point initialisation the filter is in.
+    pub fn phase(&self) -> Phase {
+        self.phase
+    }
+
+    /// Smoothed position per axis.
+    pub fn position(&self) -> [N::Length; D] {
+        self.position
+    }
+
+    /// Smoothed velocity per axis (zero before the second measurement).
+    pub fn velocity(&self) -> [N::Speed; D] {
+        self.velocity
+    }
+
+    /// The normalised covariance (P/σ²) and manoeuvre level after the last
+    /// update.
+    pub fn covariance(&self) -> &AutoAxis<N> {
+        &self.covariance
+    }
+
+    /// The position predicted `dt` ahead per axis, without changing the
+    /// filter.
+    pub fn predict(&self, dt: N::Interval) -> Result<[N::Length; D], FilterError> {
+        crate::filter::check_interval(dt)?;
+        let mut guard = N::Guard::default();
+        let mut out = self.position;
+        for (x, v) in out.iter_mut().zip(&self.velocity) {
+            *x = x.add_product(*v, dt, &mut guard);
+            x.check_output(&mut guard);
+        }
+        if guard.passed() {
+            Ok(out)
+        } else {
+            Err(FilterError::Saturated)
+        }
+    }
+
+    /// p̃⁻_xx for an update `dt` from now (the predicted position variance
+    /// over σ²; the innovation variance over σ² is this plus 1); `None`
+    /// before two measurements.
+    pub fn predicted_variance_ratio(&self, dt: N::Interval) -> Option<N::Ratio> {
+        if self.phase != Phase::Tracking {
+            return None;
+        }
+        let span = Span::new(N::Ratio::from(self.coasted), N::Ratio::from(dt));
+        let p = predicted(&self.covariance, &span).0;
+        p.is_valid().then_some(p)
+    }
+
+    /// Incorporates measurement `z`, taken `dt` after the previous call,
+    /// under the interval policy of [`crate::filter`] (skipped when too
+    /// short, restarted when too long). An `Err` changes nothing.
+    pub fn update(
+        &mut self,
+        noise: &SharedNoise<N>,
+        z: [N::Length; D],
+        dt: N::Interval,
+    ) -> Result<AutoUpdate, FilterError> {
+        let mut guard = N::Guard::default();
+        for v in &z {
+            v.check_input(&mut guard);
+        }
+        if !guard.passed() {
+            return Err(FilterError::InvalidMeasurement);
+        }
+        if self.phase == Phase::Empty {
+            crate::filter::check_interval(dt)?;
+            self.start(z);
+            return Ok(AutoUpdate::FirstPoint);
+        }
+        match IntervalSpan::of(dt)? {
+            IntervalSpan::InRange => {}
+            IntervalSpan::TooShort => return Ok(AutoUpdate::Skipped),
+            IntervalSpan::TooLong => {
+                self.start(z);
+                return Ok(AutoUpdate::Restarted);
+            }
+        }
+        let tau = self.coasted + dt;
+        if self.phase == Phase::OnePoint {
+            // Al-Wagih eq. 9 over the time since the first point.
+            let mut velocity = self.velocity;
+            for ((v, z), x) in velocity.iter_mut().zip(&z).zip(&self.position) {
+                let difference = z.sub_guarded(*x, &mut guard);
+                difference.check_output(&mut guard);
+                *v = difference / tau;
+                v.check_output(&mut guard);
+            }
+            if !guard.passed() {
+                return Err(FilterError::Saturated);
+            }
+            self.position = z;
+            self.velocity = velocity;
+            self.covariance = two_point::<N>(N::Ratio::from(tau), noise.start_manoeuvre());
+            self.coasted = N::Interval::ZERO;
+            self.phase = Phase::Tracking;
+            return Ok(AutoUpdate::SecondPoint);
+        }
+        let span = Span::new(N::Ratio::from(self.coasted), N::Ratio::from(dt));
+        let mut predicted = self.position;
+        let mut residual = [N::Length::ZERO; D];
+        let mut nu = [N::Ratio::ZERO; D];
+        for i in 0..D {
+            let (Some(p), Some(e), Some(n), Some(x), Some(v), Some(z)) = (
+                predicted.get_mut(i),
+                residual.get_mut(i),
+                nu.get_mut(i),
+                self.position.get(i),
+                self.velocity.get(i),
+                z.get(i),
+            ) else {
+                continue;
+            };
+            *p = x.add_product(*v, dt, &mut guard);
+            *e = z.sub_guarded(*p, &mut guard);
+            p.check_output(&mut guard);
+            e.check_output(&mut guard);
+            *n = N::Ratio::from(*e) * noise.inverse_sigma;
+        }
+        if !guard.passed() {
+            return Err(FilterError::Saturated);
+        }
+        let mut covariance = self.covariance;
+        let gains =
+            kalman_step_or_restart(&mut covariance, &span, N::Ratio::ONE, &nu, noise.bounds());
+        let (alpha, rate) = (N::gain(gains.alpha), N::Rate::from(gains.rate));
+        let mut velocity = self.velocity;
+        for ((p, v), e) in predicted.iter_mut().zip(velocity.iter_mut()).zip(&residual) {
+            *p = p.add_product(alpha, *e, &mut guard);
+            *v = v.add_product(rate, *e, &mut guard);
+            p.check_output(&mut guard);
+            v.check_output(&mut guard);
+        }
+        if !guard.passed() {
+            return Err(FilterError::Saturated);
+        }
+        self.position = predicted;
+        self.velocity = velocity;
+        self.covariance = covariance;
+        self.coasted = N::Interval::ZERO;
+        Ok(AutoUpdate::Filtered)
+    }
+
+    /// No measurement for `dt`: the state moves to its prediction and the
+    /// covariance's interval grows (coasting is exact: the covariance over
+    /// T₁ then T₂ is that over T₁ + T₂). An `Err` changes nothing.
+    pub fn coast(&mut self, dt: N::Interval) -> Result<(), FilterError> {
+        crate::filter::check_interval(dt)?;
+        if self.phase == Phase::Tracking {
+            self.position = self.predict(dt)?;
+        }
+        let coasted = self.coasted + dt;
+        if coasted.is_valid() {
+            self.coasted = coasted;
+        }
+        Ok(())
+    }
+
+    /// The position gain α an update `dt` from now would use (before two
+    /// measurements, 1).
+    pub fn next_alpha(&self, dt: N::Interval) -> N::Ratio {
+        let one = N::Ratio::ONE;
+        match self.predicted_variance_ratio(dt) {
+            Some(p) => {
+                let alpha = p / (p + one);
+                if alpha.is_valid() {
+                    alpha
+                } else {
+                    one
+                }
+            }
+            None => one,
+        }
+    }
+
+    /// `z` as the first point of a new estimate.
+    fn start(&mut self, z: [N::Length; D]) {
+        *self = AutoFilter {
+            position: z,
+            ..Self::new()
+        };
+        self.phase = Phase::OnePoint;
+    }
+}
