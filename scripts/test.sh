@@ -250,20 +250,37 @@ step "library alone for the three targets: clippy, no panic paths (indexing, unw
 step "library: no firmware crates among its dependencies" library_has_no_firmware_dependencies
 
 # The package as crates.io gets it: `cargo publish --dry-run --no-verify`
-# makes it without its verification build; the unpacked package is then
-# checked for the three targets (a missing file fails here), sharing the
-# dependencies' checks above. Its code generation is the library's in the
-# firmware build below.
+# makes it without its verification build (a build of the packaged
+# sources); instead, every file the library's compilation read (its
+# dep-info from the clippy pass above: sources, include_str! files) must be
+# in the package. The packaged sources are then the ones clippy checked for
+# the three targets and the firmware build below compiles.
 check_package() {
     cargo publish --quiet --dry-run --no-verify -p abtrack --allow-dirty || return
-    local crate unpacked root=$PWD
-    crate=$(ls -t target/package/abtrack-*.crate | head -n 1)
-    unpacked=$(mktemp -d "$log_dir/package.XXXXXX")
-    tar -xzf "$crate" -C "$unpacked" || return
-    (cd "$unpacked"/abtrack-* &&
-        cargo check --quiet --lib --no-default-features --target-dir "$root/target" "${target_args[@]}")
+    local listed dep_info missing=0 f t root=$PWD
+    listed=$(cargo package --quiet --list -p abtrack --allow-dirty) || return
+    for t in "${ABTRACK_TARGETS[@]}"; do
+        dep_info=$(ls -t target/"$t"/debug/deps/abtrack-*.d 2>/dev/null | head -n 1)
+        [ -n "$dep_info" ] || {
+            echo "no dep-info of the library for $t (the clippy step makes it)" >&2
+            return 1
+        }
+        # "<output>: <source> <source> ...", one line per output.
+        for f in $(sed -n '1s/^[^:]*: *//p' "$dep_info"); do
+            case "$f" in
+                "$root"/target/* | target/*) continue ;;
+                "$root"/*) f=${f#"$root"/} ;;
+                /*) continue ;;
+            esac
+            grep -qxF "$f" <<<"$listed" || {
+                echo "$f is read by the library's build for $t but is not in the package" >&2
+                missing=1
+            }
+        done
+    done
+    [ "$missing" -eq 0 ] && echo "the package ($(wc -l <<<"$listed") files) holds every file the library's build reads"
 }
-step "library: the crates.io package (cargo publish --dry-run --no-verify, then checked)" check_package
+step "library: the crates.io package (cargo publish --dry-run --no-verify; every file the build reads packaged)" check_package
 
 # Every image as the runs below use it: the binaries without features, the
 # benchmark with its own (bench-anchors), so each is built once; the three

@@ -13,10 +13,11 @@
 //!
 //! Needs qemu-system-arm and defmt-print (scripts/setup.sh installs them),
 //! so the tests are ignored by a plain `cargo test`; scripts/test.sh runs
-//! them, one board per step:
+//! them, one board per step (the boards in parallel lanes; each test runs
+//! its QEMU runs side by side):
 //!
 //! ```text
-//! cd host-tests && cargo test --release --test it -- --ignored --test-threads=1 \
+//! cd host-tests && cargo test --release --test it -- --ignored --test-threads=2 \
 //!     fault_injection::fault_injection_mps2_an386 \
 //!     fault_injection::demo_runs_are_identical_mps2_an386
 //! ```
