@@ -108,8 +108,14 @@ fn main() -> ExitCode {
     }
     println!("cargo:rustc-link-search={}", out_dir.display());
     // Flash starts at 0x0 on every board: no page-alignment padding. The
-    // binaries and the examples are images.
-    for kind in ["bins", "examples"] {
+    // binaries are images, and so are abtrack-firmware's examples (cargo
+    // refuses the examples' instruction for a package without one).
+    let kinds: &[&str] = if package == "abtrack-firmware" {
+        &["bins", "examples"]
+    } else {
+        &["bins"]
+    };
+    for kind in kinds {
         println!("cargo:rustc-link-arg-{kind}=--nmagic");
         println!("cargo:rustc-link-arg-{kind}=-Tlink.x");
         println!("cargo:rustc-link-arg-{kind}=-Tdefmt.x");
