@@ -107,10 +107,19 @@ fn main() -> ExitCode {
         }
     }
     println!("cargo:rustc-link-search={}", out_dir.display());
-    // Flash starts at 0x0 on every board: no page-alignment padding.
-    println!("cargo:rustc-link-arg-bins=--nmagic");
-    println!("cargo:rustc-link-arg-bins=-Tlink.x");
-    println!("cargo:rustc-link-arg-bins=-Tdefmt.x");
+    // Flash starts at 0x0 on every board: no page-alignment padding. The
+    // binaries are images, and so are abtrack-firmware's examples (cargo
+    // refuses the examples' instruction for a package without one).
+    let kinds: &[&str] = if package == "abtrack-firmware" {
+        &["bins", "examples"]
+    } else {
+        &["bins"]
+    };
+    for kind in kinds {
+        println!("cargo:rustc-link-arg-{kind}=--nmagic");
+        println!("cargo:rustc-link-arg-{kind}=-Tlink.x");
+        println!("cargo:rustc-link-arg-{kind}=-Tdefmt.x");
+    }
     // Read by boards/qemu/src/board.rs (`env!`), for the firmware's reports.
     println!("cargo:rustc-env=ABTRACK_BOARD={}", board.name);
     println!("cargo:rustc-env=ABTRACK_CORE={}", board.core);

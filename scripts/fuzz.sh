@@ -4,8 +4,15 @@
 # (fuzz/corpus/<target>/), and prints the executions per target.
 #
 #   scripts/fuzz.sh [--grow] [seconds per target] [target ...]
+#   scripts/fuzz.sh --build
 #
-# Default: 20 s per target (the test command's short run), every target.
+# Each target first runs every input of its committed corpus (libFuzzer
+# reads the corpus before it mutates), then fuzzes until the time is up.
+# Default: 20 s per target, every target (the long run the README
+# documents). The test command runs `scripts/fuzz.sh 5`: the committed
+# corpora replayed plus a few seconds of fuzzing each, after
+# `scripts/fuzz.sh --build` (which only builds the targets, so the test
+# command can start that early, beside the other builds).
 # New inputs go to a temporary directory, so the committed corpus stays as
 # it is; with --grow they are added to fuzz/corpus/<target>/ (for a long
 # run; then minimise with `cd fuzz && cargo +nightly fuzz cmin <target>`
@@ -22,6 +29,14 @@ set -euo pipefail
 cd "$(dirname "$0")/.."
 # shellcheck source=scripts/setup.sh
 . scripts/setup.sh
+
+if [ "${1:-}" = --build ]; then
+    ensure_host_linker
+    ensure_cargo_fuzz
+    # The same build options as `cargo fuzz run --release` below, so that
+    # the runs reuse this build.
+    cd fuzz && exec cargo +nightly fuzz build --release
+fi
 
 grow=
 if [ "${1:-}" = --grow ]; then

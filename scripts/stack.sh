@@ -103,20 +103,43 @@ report() {
     printf '%-22s %-11s %-34s %10d %12d %9d %%  %s\n' "$target" "$(board_for_target "$target")" "$what" "$used" "$available" "$margin" "$verdict"
 }
 
-log=$(mktemp "${TMPDIR:-/tmp}/abtrack-stack.XXXXXX")
-trap 'rm -f "$log"' EXIT
+log_dir=$(mktemp -d "${TMPDIR:-/tmp}/abtrack-stack.XXXXXX")
+trap 'rm -rf "$log_dir"' EXIT
 
+# run <log> <target> <bin> [env...]: one image under QEMU (the target's
+# runner, scripts/qemu-run.sh), its output in <log>; the exit status does
+# not matter here (the stack figure does).
+run() {
+    local log=$1 target=$2 bin=$3
+    shift 3
+    env "$@" scripts/qemu-run.sh "$(board_for_target "$target")" \
+        "target/$target/release/$bin" >"$log" 2>&1 || true
+}
+
+# Every run of a target at once, then the reports in order: a run mostly
+# waits (the demo ends an input without its end frame after 10 s of
+# silence), and its figures depend only on its input.
 printf '%-22s %-11s %-34s %10s %12s %11s\n' target board "run (input)" "used (B)" "stack (B)" margin
 for t in "${targets[@]}"; do
     cargo build --quiet --release --target "$t"
+    [ -z "$all" ] || cargo build --quiet --release --target "$t" --features bench-anchors --bin bench
     for i in "${!inputs[@]}"; do
-        ABTRACK_UART_INPUT=${input_files[$i]} ABTRACK_UART_OUTPUT=/dev/null \
-            cargo run --quiet --release --target "$t" --bin abtrack-firmware >"$log" 2>&1 || true
-        report "$t" "demo (${inputs[$i]})" "$log"
+        run "$log_dir/$t-demo-$i" "$t" abtrack-firmware \
+            ABTRACK_UART_INPUT="${input_files[$i]}" ABTRACK_UART_OUTPUT=/dev/null &
+    done
+    run "$log_dir/$t-overflow" "$t" stack-overflow &
+    if [ -n "$all" ]; then
+        for bin in selftest selftest-tracking bench; do
+            run "$log_dir/$t-$bin" "$t" "$bin" &
+        done
+    fi
+    wait
+    for i in "${!inputs[@]}"; do
+        report "$t" "demo (${inputs[$i]})" "$log_dir/$t-demo-$i"
     done
     # The HardFault handler after an overflow: its own high-water mark on
     # the stack it resets to, out of the whole stack.
-    cargo run --quiet --release --target "$t" --bin stack-overflow >"$log" 2>&1 || true
+    log=$log_dir/$t-overflow
     used=$(sed -n 's/.*hard fault handler: \([0-9]*\) bytes of stack used.*/\1/p' "$log")
     available=$(sed -n 's/.*: \([0-9]*\) bytes of stack below the statics.*/\1/p' "$log")
     printf 'stack: %s of %s bytes used\n' "${used:-}" "${available:-}" >"$log"
@@ -127,8 +150,7 @@ for t in "${targets[@]}"; do
     fi
     if [ -n "$all" ]; then
         for bin in selftest selftest-tracking bench; do
-            cargo run --quiet --release --target "$t" --features bench-anchors --bin "$bin" >"$log" 2>&1 || true
-            report "$t" "$bin (deepest)" "$log"
+            report "$t" "$bin (deepest)" "$log_dir/$t-$bin"
         done
     fi
 done

@@ -3,36 +3,43 @@
 #   1. formatting (cargo fmt --check, root crate and host-tests),
 #   2. host tests (cd host-tests && cargo test --release; the integration
 #      tests are one binary, host-tests/tests/it/), the library's doc
-#      examples (cargo test --doc, run from host-tests for the host target)
+#      examples and examples/ built (cargo test -p abtrack, run from
+#      host-tests for the host target; examples/tcas_cycle.rs is then run)
 #      and its documentation with no rustdoc warning (cargo doc, as docs.rs
 #      builds it),
-#   3. the library alone for the three thumb targets (no default features),
-#      clippy's no-panic lints, its dependency tree (no firmware crates) and
-#      `cargo publish --dry-run`,
+#   3. the library alone (no default features) for the three thumb targets
+#      in one clippy pass with its no-panic lints, on the minimum Rust
+#      version declared in Cargo.toml (cargo +MSRV check), its dependency
+#      tree (no firmware crates), and the package as crates.io gets it
+#      (`cargo publish --dry-run --no-verify`, then the unpacked package
+#      checked: the verification build without its code generation, which
+#      the firmware build does for the three targets),
 #   4. the firmware (every binary of boards/qemu, the benchmark with its
-#      feature bench-anchors) for the three targets; no call into
-#      core::panicking in any release ELF; the stack below the static data
-#      (flip-link);
-#   then two lanes side by side (QEMU runs on one core):
+#      feature bench-anchors, the example static_track_table) for the three
+#      targets; no call into core::panicking in any release ELF; the stack
+#      below the static data (flip-link);
+#   then the runs, in lanes side by side (a QEMU run mostly waits):
 #   5. the firmware images under QEMU on the three boards
 #      (mps2-an386 / Cortex-M4F, mps2-an385 / Cortex-M3, microbit / Cortex-M0):
 #      a deliberate stack overflow ends in a clean HardFault report; stack
 #      high-water marks with 25 % margin (scripts/stack.sh); the demo; the
 #      on-target self-tests (selftest, selftest-tracking); a smoke run of the
 #      benchmark image, which must run to its end and print a well-formed
-#      report (nothing about speed is checked; scripts/bench.sh measures),
-#   6. fault injection and repeated demo runs on the three boards, a
-#      one-hour soak on the Cortex-M3 (docs/firmware-runtime.md), a short
-#      run of each fuzz target (scripts/fuzz.sh 20; installs nightly and
-#      cargo-fuzz) and the nRF52840-DK build of the demo.
+#      report (nothing about speed is checked; scripts/bench.sh measures);
+#      the static track table example on the mps2-an386,
+#   6. fault injection and repeated demo runs on the three boards (one lane
+#      each), a one-hour soak on the Cortex-M3 (docs/firmware-runtime.md),
+#      each fuzz target's committed corpus replayed plus 5 s of fuzzing
+#      (scripts/fuzz.sh 5; its build starts first, in the background; the
+#      longer run is scripts/fuzz.sh) and the nRF52840-DK build of the demo.
 #
 #   scripts/test.sh
 #
-# Installs what is missing (Rust targets, rustfmt, qemu-system-arm, a C
-# compiler and llvm when root, defmt-print, flip-link, nightly and
-# cargo-fuzz). Every step runs even if an earlier one failed; the summary
-# lists them and the exit status is non-zero if any failed. `.ci/run` calls
-# this.
+# Installs what is missing (Rust targets, rustfmt, the minimum-version
+# toolchain, qemu-system-arm, a C compiler and llvm when root, defmt-print,
+# flip-link, nightly and cargo-fuzz). Every step runs even if an earlier one
+# failed; the summary lists them with their times and the exit status is
+# non-zero if any failed. `.ci/run` calls this.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 # shellcheck source=scripts/setup.sh
@@ -44,11 +51,34 @@ ensure_host_linker
 ensure_qemu
 ensure_defmt_print
 ensure_llvm_tools
+ensure_msrv_toolchain
 
 log_dir=$(mktemp -d "${TMPDIR:-/tmp}/abtrack-test.XXXXXX")
-trap 'rm -rf "$log_dir"' EXIT
 results_file=$log_dir/results
 : >"$results_file"
+
+# The fuzz targets' build (nightly, its own workspace and target directory)
+# starts now, beside the builds below; the fuzz step waits for it.
+fuzz_build_log=$log_dir/fuzz-build.log
+(
+    status=0
+    bash scripts/fuzz.sh --build >"$fuzz_build_log" 2>&1 || status=$?
+    echo "$status" >"$log_dir/fuzz-build.status"
+) &
+fuzz_build_pid=$!
+trap 'kill "$fuzz_build_pid" 2>/dev/null; rm -rf "$log_dir"' EXIT
+# The fuzz step (in a lane: a subshell, which cannot `wait` for the build).
+fuzz_after_build() {
+    until [ -s "$log_dir/fuzz-build.status" ]; do sleep 1; done
+    local status
+    status=$(cat "$log_dir/fuzz-build.status")
+    cat "$fuzz_build_log"
+    [ "$status" -eq 0 ] || {
+        echo "the fuzz targets' build failed (exit status $status)" >&2
+        return 1
+    }
+    bash scripts/fuzz.sh 5
+}
 
 # step <name> <command...>: runs one step, records PASS/FAIL and its wall
 # time (in $step_results inside a parallel lane, else in the summary).
@@ -218,33 +248,70 @@ build_nrf52840_dk() {
 step "cargo fmt --check" cargo fmt --check
 step "cargo fmt --check (host-tests)" in_host_tests cargo fmt --check
 step "host tests (cargo test --release)" in_host_tests cargo test --release
-step "library doc examples (cargo test --doc)" in_host_tests cargo test --release --doc --manifest-path ../Cargo.toml -p abtrack
-# The documentation docs.rs builds (all features, the host target), with no
-# rustdoc warning (broken intra-doc links among them).
-step "library: cargo doc, no warnings" in_host_tests env RUSTDOCFLAGS="-D warnings" \
-    cargo doc --manifest-path ../Cargo.toml -p abtrack --lib --no-deps --all-features
+# The library alone (no default features) for the three targets, in one
+# clippy pass with its no-panic lints (Cargo.toml [lints.clippy],
+# .clippy.toml): indexing, unwrap/expect, panic! and integer arithmetic are
+# errors, and so is every other clippy warning (docs/safety.md). Its code
+# generation for the three targets is the firmware build's, below.
+target_args=()
 for t in "${ABTRACK_TARGETS[@]}"; do
-    step "library alone for $t" cargo build --release --lib --no-default-features --target "$t"
+    target_args+=(--target "$t")
 done
-# The library's no-panic lints (Cargo.toml [lints.clippy], .clippy.toml):
-# indexing, unwrap/expect, panic! and integer arithmetic are errors, and so
-# is every other clippy warning (docs/safety.md).
-step "library: clippy, no panic paths (indexing, unwrap, arithmetic)" \
-    cargo clippy -p abtrack --lib --no-default-features --target thumbv7em-none-eabihf -- -D warnings
+step "library alone for the three targets: clippy, no panic paths (indexing, unwrap, arithmetic)" \
+    cargo clippy -p abtrack --lib --no-default-features "${target_args[@]}" -- -D warnings
 step "library: no firmware crates among its dependencies" library_has_no_firmware_dependencies
-step "library: cargo publish --dry-run" cargo publish --quiet --dry-run -p abtrack --allow-dirty
-# Every image as the runs below use it: the binaries without features, the
-# benchmark with its own (bench-anchors), so each is built once.
-build_firmware() {
-    cargo build --release --target "$1" &&
-        cargo build --release --target "$1" --features bench-anchors --bin bench
+
+# The package as crates.io gets it: `cargo publish --dry-run --no-verify`
+# makes it without its verification build (a build of the packaged
+# sources); instead, every file the library's compilation read (its
+# dep-info from the clippy pass above: sources, include_str! files) must be
+# in the package. The packaged sources are then the ones clippy checked for
+# the three targets and the firmware build below compiles.
+check_package() {
+    cargo publish --quiet --dry-run --no-verify -p abtrack --allow-dirty || return
+    local listed dep_info missing=0 f t root=$PWD
+    listed=$(cargo package --quiet --list -p abtrack --allow-dirty) || return
+    for t in "${ABTRACK_TARGETS[@]}"; do
+        dep_info=$(ls -t target/"$t"/debug/deps/abtrack-*.d 2>/dev/null | head -n 1)
+        [ -n "$dep_info" ] || {
+            echo "no dep-info of the library for $t (the clippy step makes it)" >&2
+            return 1
+        }
+        # "<output>: <source> <source> ...", one line per output.
+        for f in $(sed -n '1s/^[^:]*: *//p' "$dep_info"); do
+            case "$f" in
+                "$root"/target/* | target/*) continue ;;
+                "$root"/*) f=${f#"$root"/} ;;
+                /*) continue ;;
+            esac
+            grep -qxF "$f" <<<"$listed" || {
+                echo "$f is read by the library's build for $t but is not in the package" >&2
+                missing=1
+            }
+        done
+    done
+    [ "$missing" -eq 0 ] && echo "the package ($(wc -l <<<"$listed") files) holds every file the library's build reads"
 }
-for t in "${ABTRACK_TARGETS[@]}"; do
-    step "firmware build for $t" build_firmware "$t"
-done
+step "library: the crates.io package (cargo publish --dry-run --no-verify; every file the build reads packaged)" check_package
+
+# Every image as the runs below use it: the binaries without features, the
+# benchmark with its own (bench-anchors), so each is built once; the three
+# targets in one cargo invocation (it keeps both cores busy through the
+# single-threaded link-time optimisation of each image).
+build_firmware() {
+    cargo build --release "${target_args[@]}" &&
+        cargo build --release "${target_args[@]}" --features bench-anchors --bin bench &&
+        cargo build --release --target thumbv7em-none-eabihf -p abtrack-firmware --example static_track_table
+}
+step "firmware build for the three targets (and the example static_track_table)" build_firmware
 step "firmware: no call into core::panicking in any release ELF" check_no_panic_calls
 step "firmware: stack below the static data in every release ELF (flip-link)" check_stack_layout
 step "firmware: each demo image's .data under 4 KiB" check_demo_data
+# The soak image shortened to one hour of scans (ABTRACK_SOAK_SCANS, read at
+# build time), built here so that no lane holds the build directory's lock
+# for a link while the others run.
+step "soak image, one hour of scans, for mps2-an385" env ABTRACK_SOAK_SCANS=3600 \
+    cargo build --release --target thumbv7m-none-eabi --bin soak
 
 # The benchmark image (its own feature: the minikalman anchor) must run to
 # its end and print a complete, well-formed report: bench_report --check
@@ -259,15 +326,15 @@ run_bench_smoke() {
     in_host_tests cargo run --quiet --release --bin bench_report -- --check "$log"
 }
 
-# The runs under QEMU (one core each) in two lanes, beside the builds that
-# remain. Lane 1: the firmware images of the root workspace on the three
-# boards.
+# The runs, in lanes side by side once the builds above are made (QEMU
+# runs one core each and mostly waits: for its input, or for the demo's
+# 10 s of silence after an input without its end frame). Lane 1: the
+# firmware images of the root workspace on the three boards.
 emulated_images() {
     local t bin
     for t in "${ABTRACK_TARGETS[@]}"; do
         step "stack overflow faults cleanly on $(board_for_target "$t")" run_stack_overflow "$t"
     done
-    step "stack high-water marks, demo and fault inputs (>= 25 % margin)" bash scripts/stack.sh
     for t in "${ABTRACK_TARGETS[@]}"; do
         step "demo on $(board_for_target "$t")" cargo run --release --target "$t" --bin abtrack-firmware
     done
@@ -280,31 +347,79 @@ emulated_images() {
     for t in "${ABTRACK_TARGETS[@]}"; do
         step "benchmark smoke run on $(board_for_target "$t")" run_bench_smoke "$t"
     done
+    step "example static_track_table on mps2-an386" run_static_track_table
 }
 
-# Lane 2: the host-tests runs of the firmware (fault injection through each
-# board's UART, every fault of host-tests/src/frames.rs `Fault`, and three
-# runs of the demo compared byte for byte, with each other and with the same
-# core run on the host: host-tests/tests/it/firmware/fault_injection.rs,
-# about 30 s per board; the soak shortened to one hour of scans,
-# scripts/soak.sh runs the day), then the fuzzers and the nRF52840-DK build
-# (their own workspaces and target directories).
-host_driven_runs() {
-    local t b
-    for t in "${ABTRACK_TARGETS[@]}"; do
-        b=$(board_for_target "$t")
-        step "fault injection and repeated runs on $b" in_host_tests \
-            cargo test --release --test it -- --ignored --test-threads=1 \
-            "firmware::fault_injection::fault_injection_${b//-/_}" \
-            "firmware::fault_injection::demo_runs_are_identical_${b//-/_}"
-    done
+# The example's last line is its verdict; its exit status too.
+run_static_track_table() {
+    local log="$log_dir/static_track_table.log"
+    cargo run --release --target thumbv7em-none-eabihf -p abtrack-firmware \
+        --example static_track_table | tee "$log" || return
+    grep -q '^static track table: 3 confirmed tracks, all within 1 m' "$log" || {
+        echo "static_track_table: no '3 confirmed tracks, all within 1 m' line" >&2
+        return 1
+    }
+}
+
+# Lane 2: the stack high-water marks (scripts/stack.sh runs each target's
+# inputs side by side).
+stack_marks() {
+    step "stack high-water marks, demo and fault inputs (>= 25 % margin)" bash scripts/stack.sh
+}
+
+# Lanes 3-5: the host-tests runs of the firmware, one board each (fault
+# injection through the board's UART, every fault of host-tests/src/frames.rs
+# `Fault` side by side, and three runs of the demo compared byte for byte,
+# with each other and with the same core run on the host:
+# host-tests/tests/it/firmware/fault_injection.rs).
+fault_injection_on() {
+    local b=$1
+    step "fault injection and repeated runs on $b" in_host_tests \
+        cargo test --release --test it -- --ignored --test-threads=2 \
+        "firmware::fault_injection::fault_injection_${b//-/_}" \
+        "firmware::fault_injection::demo_runs_are_identical_${b//-/_}"
+}
+fault_injection_mps2_an386() { fault_injection_on mps2-an386; }
+fault_injection_mps2_an385() { fault_injection_on mps2-an385; }
+fault_injection_microbit() { fault_injection_on microbit; }
+
+# Lane 6: the soak shortened to one hour of scans (scripts/soak.sh runs the
+# day; its image is built above), the fuzz targets (their build started
+# first) and the nRF52840-DK build (their own workspaces and target
+# directories).
+soak_fuzz_nrf() {
     step "soak, one hour, on mps2-an385" in_host_tests env ABTRACK_SOAK_SCANS=3600 \
         cargo test --release --test it -- --ignored firmware::soak::soak_mps2_an385
-    step "fuzz: each target 20 s from the committed corpus (scripts/fuzz.sh)" bash scripts/fuzz.sh 20
+    step "fuzz: each target's committed corpus replayed, then 5 s of fuzzing (scripts/fuzz.sh 5)" \
+        fuzz_after_build
     step "nRF52840-DK demo build (boards/nrf52840-dk: defmt-rtt, probe-rs runner, flip-link)" build_nrf52840_dk
 }
 
-in_parallel emulated_images host_driven_runs
+# Lane 7: the library's host-side checks, each in its own target directory
+# (under target/) so that no lane waits for another's build lock: its doc
+# examples run and examples/ built in one pass (one build of the library for
+# both), then examples/tcas_cycle.rs run; the documentation docs.rs builds
+# (all features, the host target) with no rustdoc warning (broken intra-doc
+# links among them); the library on its minimum Rust version (Cargo.toml
+# `rust-version`).
+library_on_the_host() {
+    local host_triple
+    host_triple=$(rustc -vV | sed -n 's/^host: //p')
+    step "library doc examples and examples/ (cargo test -p abtrack)" \
+        in_host_tests cargo test --release --manifest-path ../Cargo.toml -p abtrack \
+        --target-dir ../target/host-examples
+    step "example tcas_cycle (examples/tcas_cycle.rs) on the host" \
+        "target/host-examples/$host_triple/release/examples/tcas_cycle"
+    step "library: cargo doc, no warnings" in_host_tests env RUSTDOCFLAGS="-D warnings" \
+        cargo doc --manifest-path ../Cargo.toml -p abtrack --lib --no-deps --all-features \
+        --target-dir ../target/doc-check
+    step "library on its minimum Rust version $(msrv) (cargo +$(msrv) check)" \
+        cargo "+$(msrv)" check -p abtrack --lib --no-default-features \
+        --target thumbv7em-none-eabihf --target-dir target/msrv
+}
+
+in_parallel emulated_images stack_marks fault_injection_mps2_an386 fault_injection_mps2_an385 \
+    fault_injection_microbit soak_fuzz_nrf library_on_the_host
 
 echo
 echo "abtrack test summary:"

@@ -13,10 +13,11 @@
 //!
 //! Needs qemu-system-arm and defmt-print (scripts/setup.sh installs them),
 //! so the tests are ignored by a plain `cargo test`; scripts/test.sh runs
-//! them, one board per step:
+//! them, one board per step (the boards in parallel lanes; each test runs
+//! its QEMU runs side by side):
 //!
 //! ```text
-//! cd host-tests && cargo test --release --test it -- --ignored --test-threads=1 \
+//! cd host-tests && cargo test --release --test it -- --ignored --test-threads=2 \
 //!     fault_injection::fault_injection_mps2_an386 \
 //!     fault_injection::demo_runs_are_identical_mps2_an386
 //! ```
@@ -508,9 +509,19 @@ fn fault_injection(board: &Board) {
         "|---|---|---|---|---|---|---|---|---|---|---|".to_string(),
     ];
     let baseline = baseline(board);
-    for fault in Fault::ALL {
-        table.push(check(board, &elf, fault, baseline));
-    }
+    // One QEMU per fault, all at once: a run mostly waits (for its input's
+    // end, up to the firmware's 10 s of silence), and its output depends
+    // only on its bytes. A failed check fails the test through `join`.
+    let elf = elf.as_path();
+    std::thread::scope(|s| {
+        let checks: Vec<_> = Fault::ALL
+            .into_iter()
+            .map(|fault| s.spawn(move || check(board, elf, fault, baseline)))
+            .collect();
+        for c in checks {
+            table.push(c.join().expect("a fault's check passed"));
+        }
+    });
     println!("{}", table.join("\n"));
     // scripts/fault-injection.sh: the table as a results file.
     if let Ok(dir) = std::env::var("ABTRACK_FAULT_RESULTS") {
@@ -584,9 +595,16 @@ fn demo_runs_are_identical(board: &Board) {
     )
     .bytes;
     let host = model(board, &input);
-    let runs: Vec<Run> = (0..RUNS)
-        .map(|k| run_firmware(board, &elf, &input, &format!("demo-run-{k}")))
-        .collect();
+    // The runs side by side, as the faults above.
+    let (elf, input) = (elf.as_path(), input.as_slice());
+    let runs: Vec<Run> = std::thread::scope(|s| {
+        let runs: Vec<_> = (0..RUNS)
+            .map(|k| s.spawn(move || run_firmware(board, elf, input, &format!("demo-run-{k}"))))
+            .collect();
+        runs.into_iter()
+            .map(|r| r.join().expect("the run ended"))
+            .collect()
+    });
     for (k, run) in runs.iter().enumerate() {
         assert_eq!(run.status, 0, "run {k} on {}:\n{}", board.machine, run.log);
         assert!(

@@ -1,0 +1,264 @@
+use super::*;
+
+/// Declares a list of counters once: the struct, its names and labels in
+/// wire order, the wire encoding ([`WireValue`]), the log line
+/// (`defmt::Format`, non-zero counters) and the text ([`core::fmt::Display`],
+/// every counter), so that none of them can drift from the others.
+macro_rules! counter_list {
+    (
+        $(#[$meta:meta])*
+        pub struct $name:ident: $int:ty {
+            $( $(#[doc = $doc:literal])* $field:ident => $label:literal, )+
+        }
+    ) => {
+        $(#[$meta])*
+        #[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+        pub struct $name {
+            $( $(#[doc = $doc])* pub $field: $int, )+
+        }
+
+        impl $name {
+            /// Number of counters.
+            pub const LEN: usize = [$(stringify!($field)),+].len();
+            /// Field names in wire order (CSV column names).
+            pub const NAMES: [&'static str; Self::LEN] = [$(stringify!($field)),+];
+            /// What each counter counts, in wire order (log and text).
+            pub const LABELS: [&'static str; Self::LEN] = [$($label),+];
+
+            /// All zero.
+            pub const fn new() -> Self {
+                Self::from_values([0; Self::LEN])
+            }
+            /// The values in wire order.
+            pub const fn values(&self) -> [$int; Self::LEN] {
+                [$(self.$field),+]
+            }
+            /// From values in wire order.
+            pub const fn from_values(values: [$int; Self::LEN]) -> Self {
+                let [$($field),+] = values;
+                Self { $($field),+ }
+            }
+            /// The counters added one by one, saturating.
+            pub fn saturating_add(self, other: Self) -> Self {
+                let mut sum = self.values();
+                for (s, o) in sum.iter_mut().zip(other.values()) {
+                    *s = s.saturating_add(o);
+                }
+                Self::from_values(sum)
+            }
+        }
+
+        impl WireValue for $name {
+            const WIDTH: usize = Self::LEN.saturating_mul(<$int as WireValue>::WIDTH);
+            fn read(bytes: &[u8]) -> Self {
+                let mut values = [0; Self::LEN];
+                for (v, chunk) in values
+                    .iter_mut()
+                    .zip(bytes.chunks(<$int as WireValue>::WIDTH))
+                {
+                    *v = <$int as WireValue>::read(chunk);
+                }
+                Self::from_values(values)
+            }
+            fn write(self, bytes: &mut [u8]) {
+                for (v, chunk) in self
+                    .values()
+                    .into_iter()
+                    .zip(bytes.chunks_mut(<$int as WireValue>::WIDTH))
+                {
+                    v.write(chunk);
+                }
+            }
+        }
+
+        impl core::fmt::Display for $name {
+            fn fmt(&self, f: &mut core::fmt::Formatter<'_>) -> core::fmt::Result {
+                for (i, (value, label)) in self.values().into_iter().zip(Self::LABELS).enumerate() {
+                    if i > 0 {
+                        f.write_str(", ")?;
+                    }
+                    write!(f, "{value} {label}")?;
+                }
+                Ok(())
+            }
+        }
+
+        #[cfg(feature = "defmt")]
+        impl defmt::Format for $name {
+            fn format(&self, f: defmt::Formatter) {
+                let mut first = true;
+                for (value, label) in self.values().into_iter().zip(Self::LABELS) {
+                    if value == 0 {
+                        continue;
+                    }
+                    if !first {
+                        defmt::write!(f, ", ");
+                    }
+                    defmt::write!(f, "{} {=str}", value, label);
+                    first = false;
+                }
+                if first {
+                    defmt::write!(f, "all zero");
+                }
+            }
+        }
+    };
+}
+
+counter_list! {
+    /// What the [`Decoder`] has seen over its lifetime (saturating).
+    ///
+    /// Invariants (`host-tests/tests/it/wire/codec.rs`): `bytes = frame_bytes +
+    /// bytes_skipped + held`, and `frames = accepted + crc_errors +
+    /// unknown_type + bad_length + bad_field + out_of_envelope + truncated`.
+    pub struct DecoderStats: u32 {
+        /// Bytes pushed.
+        bytes => "bytes",
+        /// Bytes of the accepted frames.
+        frame_bytes => "frame bytes",
+        /// Bytes discarded: not part of any accepted frame (garbage, the
+        /// bytes of refused candidates).
+        bytes_skipped => "bytes skipped",
+        /// Frame candidates decided: accepted or refused for one reason.
+        frames => "frames",
+        /// Valid frames returned.
+        accepted => "accepted",
+        /// Refused: the CRC did not match.
+        crc_errors => "CRC errors",
+        /// Refused: a message type the format does not define.
+        unknown_type => "unknown type",
+        /// Refused: a length byte other than the type's fixed payload length.
+        bad_length => "bad length",
+        /// Valid CRC, a value the format does not allow.
+        bad_field => "bad field",
+        /// Valid CRC, a measurement outside the envelope.
+        out_of_envelope => "out of envelope",
+        /// Cut short: the line went idle, or another frame started inside.
+        truncated => "truncated",
+        /// Frames missing from the sender's sequence numbers.
+        frames_lost => "frames lost",
+        /// Accepted frames whose sequence number went back or repeated
+        /// (a sender restart or a replayed frame); the count restarts there.
+        out_of_sequence => "out of sequence",
+    }
+}
+
+counter_list! {
+    /// The receive side's own counters ([`crate::scan::Intake`]): what
+    /// became of the accepted frames (saturating).
+    ///
+    /// Invariant: `decoder.accepted = measurements + not_measurement`.
+    pub struct IntakeCounters: u32 {
+        /// Measurement frames accepted (queued or lost to a full queue).
+        measurements => "measurements received",
+        /// Measurements lost because the queue was full.
+        queue_full => "lost, queue full",
+        /// Accepted frames of a type the receiver does not take as input.
+        not_measurement => "not measurements",
+        /// Bytes the UART lost before the decoder saw them (hardware
+        /// overrun).
+        rx_overruns => "UART overruns",
+    }
+}
+
+counter_list! {
+    /// The scan loop's lifetime counters ([`crate::scan::ScanLoop`]),
+    /// saturating.
+    ///
+    /// Every measurement taken from the queue ends in exactly one of `used`,
+    /// `late`, `out_of_window`, `over_capacity`, `invalid` (or is still
+    /// held for the next scan): `intake.measurements = intake.queue_full +
+    /// those + held` ([`crate::scan::ScanLoop::held`]).
+    pub struct LoopCounters: u32 {
+        /// Scans run.
+        scans => "scans",
+        /// The scan clock locked onto the sensor's clock (the first
+        /// measurement).
+        clock_locks => "clock locks",
+        /// ... and locked again after a jump beyond the window.
+        clock_relocks => "clock re-locks",
+        /// Measurements that entered a tracker scan.
+        used => "used",
+        /// Timestamped for a scan already run (within the late window).
+        late => "late",
+        /// Timestamped outside the clock's window, and not confirmed as a
+        /// new time base by the next measurement.
+        out_of_window => "out of time window",
+        /// Beyond a scan's capacity (the lowest priority ones).
+        over_capacity => "over capacity",
+        /// Not representable in the tracker's number type.
+        invalid => "not representable",
+        /// Tentative tracks started.
+        tracks_started => "tracks started",
+        /// Tracks confirmed.
+        tracks_confirmed => "tracks confirmed",
+        /// Tracks deleted.
+        tracks_deleted => "tracks deleted",
+        /// Tracks restarted: last updated more than the filters' longest
+        /// interval ago ([`crate::track::ScanReport::restarted`]).
+        tracks_restarted => "tracks restarted",
+        /// Candidate tracks refused because the table was full.
+        refused_table_full => "refused, table full",
+        /// Track report frames emitted.
+        track_reports => "track reports",
+        /// Confirmed tracks whose threat assessment failed (or the
+        /// cycle's sensitivity selection or resolution).
+        assessment_errors => "assessment errors",
+        /// RA threats beyond the [`crate::scan::MAX_RA_THREATS`] resolved
+        /// together (the latest by modified tau are left out).
+        ra_threats_over_capacity => "RA threats over capacity",
+        /// Replies the intruder's range or altitude tracker refused.
+        intruder_tracker_errors => "intruder tracker errors",
+    }
+}
+
+counter_list! {
+    /// One scan's counts (the scan summary, type `0x82`), u16 saturating.
+    ///
+    /// The measurements taken for the scan: `used + late + out_of_window +
+    /// over_capacity + invalid`; the used ones, by what the tracker did with
+    /// them: `used = updated + started + not_assigned + outside_gates +
+    /// rejected + refused_table_full`.
+    pub struct ScanCounts: u16 {
+        /// Entered the tracker scan.
+        used => "used",
+        /// Timestamped for a scan already run.
+        late => "late",
+        /// Outside the clock's window.
+        out_of_window => "out of time window",
+        /// Beyond the scan's capacity.
+        over_capacity => "over capacity",
+        /// Not representable in the number type.
+        invalid => "not representable",
+        /// Updated a track.
+        updated => "updated",
+        /// Started a (tentative) track with a point of the previous scan.
+        started => "started",
+        /// Inside a gate, but the assignment gave the track another one.
+        not_assigned => "not assigned",
+        /// Inside no gate, and not paired (kept as a first point).
+        outside_gates => "outside gates",
+        /// Refused by the tracker (not finite, the filter refused it, or the
+        /// scan came too soon after the previous one).
+        rejected => "rejected",
+        /// Would have started a track; the table was full.
+        refused_table_full => "refused, table full",
+        /// Tracks predicted to the scan time.
+        predicted => "predicted",
+        /// (track, measurement) pairs inside a gate.
+        gated_pairs => "gated pairs",
+        /// Tracks without a measurement this scan.
+        coasted => "coasted",
+        /// Tracks confirmed in this scan.
+        confirmed => "confirmed",
+        /// Tracks deleted in this scan.
+        deleted => "deleted",
+        /// Tracks restarted in this scan (last updated more than the
+        /// filters' longest interval ago; not in `deleted`).
+        restarted => "restarted",
+        /// Live tracks after the scan.
+        tracks => "tracks",
+        /// Confirmed (or coasting) tracks after the scan.
+        confirmed_tracks => "confirmed tracks",
+    }
+}
