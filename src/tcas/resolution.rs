@@ -1,8 +1,8 @@
 //! Resolution advisories: the sense (up or down, preferring not to cross the
 //! intruder's altitude when the other sense gives ALIM), the strength
 //! (preventive, level-off, climb/descend, increase), strengthening,
-//! weakening, clear of conflict, and one defined behaviour against several
-//! threats. Sources: FAA, "Introduction to TCAS II Version 7.1" (sense and
+//! weakening, one sense reversal, clear of conflict, and one defined
+//! behaviour against several threats. Sources: FAA, "Introduction to TCAS II Version 7.1" (sense and
 //! strength selection, weakening, v7.1's level-off RA); DO-185B as
 //! transcribed in ledieuke/tcas_simulator `detect.py` (`model_sep`,
 //! `project_vertical_given_zdgoal`, `model_maneuvers`) and
