@@ -17,7 +17,10 @@
 //!   TA); agreement: the run has a TA (RA) exactly when the reference has;
 //! * onset delay: the run's first RA scan minus the reference's, s;
 //! * wrong sense: both have an RA and the senses at onset differ;
-//! * RA in pieces: the run's RA starts more than once.
+//! * RA in pieces: the run's RA starts more than once;
+//! * RA reversed: the run's RA changes sense while in force (a sense
+//!   reversal; the reference has none: the own aircraft does not follow
+//!   the RA, and the reference does not model reversals).
 
 use abtrack::filter::altitude::AltitudeQuantum;
 use abtrack::Scalar;
@@ -217,6 +220,8 @@ pub struct RunResult {
     pub wrong_sense: bool,
     /// How many times the run's RA starts.
     pub ra_pieces: usize,
+    /// The run's RA changes sense while in force.
+    pub reversed: bool,
 }
 
 fn ra_onset(scans: &[ScanOutcome]) -> Option<(usize, Option<Sense>)> {
@@ -247,6 +252,9 @@ pub fn compare(run: &[ScanOutcome], reference: &[ScanOutcome]) -> RunResult {
         },
         wrong_sense: matches!((got, expected), (Some((_, a)), Some((_, b))) if a != b),
         ra_pieces,
+        reversed: run
+            .windows(2)
+            .any(|w| matches!((w[0].sense, w[1].sense), (Some(a), Some(b)) if a != b)),
     }
 }
 
@@ -311,6 +319,7 @@ pub struct Tally {
     pub ra_agree: usize,
     pub wrong_sense: usize,
     pub in_pieces: usize,
+    pub reversed: usize,
     pub onset_delays_s: Vec<f64>,
 }
 
@@ -330,6 +339,7 @@ impl Tally {
         self.ra_agree += usize::from(r.ra == r.reference_ra);
         self.wrong_sense += usize::from(r.wrong_sense);
         self.in_pieces += usize::from(r.ra_pieces > 1);
+        self.reversed += usize::from(r.reversed);
         self.onset_delays_s.extend(r.onset_delay_s);
     }
 

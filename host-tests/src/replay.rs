@@ -33,7 +33,8 @@
 //! He, Peng, Ling & Quan's filter ([`RangeAzimuthFilter`]) on `t,range,azimuth`
 //! rows. Output: `t,x,vx,res_x,y,vy,res_y,range,azimuth`, then `alt,alt_rate`
 //! when the input has an `alt` column, then
-//! `tau,tau_mod,t_cpa,d_cpa,advisory,tau_mod_ra` with an own altitude. See
+//! `tau,tau_mod,t_cpa,d_cpa,advisory,tau_mod_ra,ra_sense,ra_strength,clear_of_conflict`
+//! with an own altitude. See
 //! [`range_azimuth_header`] for each column's meaning.
 //!
 //! # Intervals
@@ -70,7 +71,9 @@ use abtrack::gain::{
     AnySchedule, ConfigError, FixedGains, GainSchedule, ScheduleError, ScheduledError,
     ScheduledFilter,
 };
-use abtrack::tcas::{assess, Intruder, OwnAircraft, TcasError};
+use abtrack::tcas::{
+    assess, CollisionAvoidance, Intruder, OwnAircraft, ResolutionAdvisory, TcasError, ThreatState,
+};
 use abtrack::track::{ConfigError as TrackConfigError, ScanError};
 use abtrack::{FilterError, Fix, GainError, NumError, Quantity, Scalar};
 
@@ -1007,6 +1010,15 @@ fn run_bank<S: CsvValue, const D: usize>(
 ///   DMOD, `tau_mod_ra` at SL 2 (no RAs), `t_cpa`/`d_cpa` when the time is
 ///   beyond the representation, and every threat column on the first row
 ///   (no velocity yet).
+/// * `ra_sense` (up, down), `ra_strength` (preventive, level-off,
+///   positive, increase), `clear_of_conflict` (1 on the row the RA ends):
+///   the RA in force after this row, from the logic with memory
+///   ([`abtrack::tcas::ThreatState::assess_intruder`] and
+///   [`abtrack::tcas::CollisionAvoidance::resolve`]: TA hysteresis, the
+///   continuing threat, strengthening, weakening, sense reversal). A sense
+///   reversal shows as a change of `ra_sense` within one RA. A row not
+///   used (skipped) repeats the RA in force. `advisory` stays the
+///   stateless assessment of the row.
 pub fn range_azimuth_header(has_alt: bool, threat: bool) -> String {
     let mut h = String::from("t,x,vx,res_x,y,vy,res_y,range,azimuth");
     if has_alt {
@@ -1015,9 +1027,82 @@ pub fn range_azimuth_header(has_alt: bool, threat: bool) -> String {
     if threat {
         h.push(',');
         h.push_str(THREAT_COLUMNS);
+        h.push(',');
+        h.push_str(RA_COLUMNS);
     }
     h.push_str(",event");
     h
+}
+
+/// The RA columns of `--filter range-azimuth --own-alt`; see
+/// [`range_azimuth_header`].
+pub const RA_COLUMNS: &str = "ra_sense,ra_strength,clear_of_conflict";
+
+/// The collision-avoidance logic with memory behind [`RA_COLUMNS`]: the
+/// system's state and the one intruder's threat state.
+#[derive(Debug, Clone, Copy)]
+struct RaMemory<S> {
+    cas: CollisionAvoidance<S>,
+    threat: ThreatState<S>,
+    in_force: Option<ResolutionAdvisory<S>>,
+}
+
+impl<S: CsvValue> RaMemory<S> {
+    fn new() -> Self {
+        RaMemory {
+            cas: CollisionAvoidance::new(),
+            threat: ThreatState::new(),
+            in_force: None,
+        }
+    }
+
+    /// One used row `dt` s after the previous: the cells of
+    /// [`RA_COLUMNS`], each preceded by a comma. Without an intruder state
+    /// (no velocity yet) the intruder is not a threat.
+    fn update(
+        &mut self,
+        out: &mut String,
+        own: &OwnAircraft<S>,
+        intruder: Option<&Intruder<S>>,
+        dt: S,
+        line: usize,
+    ) -> Result<(), ReplayError> {
+        let threat_error = |error| ReplayError::Threat { line, error };
+        let cycle = self.cas.begin_cycle(own, false).map_err(threat_error)?;
+        let geometry = match intruder {
+            Some(i) => {
+                self.threat
+                    .assess_intruder(&cycle, i, dt)
+                    .map_err(threat_error)?
+                    .geometry
+            }
+            None => None,
+        };
+        let threats: Vec<_> = geometry.into_iter().collect();
+        let output = self
+            .cas
+            .resolve(&cycle, &threats, dt)
+            .map_err(threat_error)?;
+        self.in_force = output.advisory;
+        self.write(out, output.clear_of_conflict);
+        Ok(())
+    }
+
+    /// The RA in force, each cell preceded by a comma.
+    fn write(&self, out: &mut String, clear_of_conflict: bool) {
+        out.push(',');
+        if let Some(ra) = self.in_force {
+            out.push_str(ra.sense.name());
+            out.push(',');
+            out.push_str(ra.strength.name());
+        } else {
+            out.push(',');
+        }
+        out.push(',');
+        if clear_of_conflict {
+            out.push('1');
+        }
+    }
 }
 
 /// The threat columns (`--own-alt`), shared by `--filter range-azimuth` and
@@ -1123,6 +1208,7 @@ pub fn replay_range_azimuth_in<S: CsvValue>(
     out.push('\n');
     let mut events = TimingEvents::default();
     let mut previous_t: Option<f64> = None;
+    let mut ra_memory = RaMemory::<S>::new();
     for row in &data.rows {
         let line = row.line;
         let range: S = value(row.range, line, 2, "range")?;
@@ -1141,10 +1227,13 @@ pub fn replay_range_azimuth_in<S: CsvValue>(
             },
         };
         let mut outcome = RangeAzimuthOutcome::FirstPoint;
+        let mut used_dt = None;
         if event.used() {
             let dt = interval::<S>(previous_t, row.t, line)?.unwrap_or(S::ONE);
+            used_dt = Some(dt);
             if event == RowEvent::Restarted {
                 filter = RangeAzimuthFilter::new(noise);
+                ra_memory = RaMemory::new();
             }
             outcome = filter
                 .update(range, azimuth, dt)
@@ -1201,6 +1290,10 @@ pub fn replay_range_azimuth_in<S: CsvValue>(
             let intruder = (filter.phase() == Phase::Tracking)
                 .then(|| Intruder::from_track(&filter, estimate));
             write_threat_cells(&mut out, &own, intruder.as_ref(), line)?;
+            match used_dt {
+                Some(dt) => ra_memory.update(&mut out, &own, intruder.as_ref(), dt, line)?,
+                None => ra_memory.write(&mut out, false),
+            }
         }
         out.push(',');
         out.push_str(event.name());

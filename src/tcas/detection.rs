@@ -438,15 +438,47 @@ pub struct MissDistanceFilter {
     shutdown_cycles: u8,
 }
 
+/// The HMDs of one cycle for the two thresholds of the filter, m (`None`:
+/// filter off).
+#[derive(Debug, Clone, Copy, PartialEq)]
+struct MissDistances<S> {
+    /// Against the level's HMD threshold, for a new threat.
+    new_threat: Option<S>,
+    /// Against 1.05·DMOD, for a continuing threat (the lower bound).
+    continuing: Option<S>,
+}
+
+impl<S> MissDistances<S> {
+    const OFF: Self = MissDistances {
+        new_threat: None,
+        continuing: None,
+    };
+
+    /// The same HMD for both (a state vector's exact miss distance).
+    fn both(hmd: Option<S>) -> Self
+    where
+        S: Copy,
+    {
+        MissDistances {
+            new_threat: hmd,
+            continuing: hmd,
+        }
+    }
+}
+
 impl MissDistanceFilter {
-    /// The HMD the filter uses this cycle, m. The bearing tracker's miss
+    /// The HMDs the filter uses this cycle, m. The bearing tracker's miss
     /// distance b counts with its standard deviation σ (US patent
-    /// 5,566,074: each miss-distance estimate with its uncertainty), as
-    /// the interval b ± kσ (k = [`BEARING_MISS_DISTANCE_CONFIDENCE`], or
-    /// the cycle's): the range tracker's projection is capped by b + kσ
-    /// (DO-185B `miss_distance_calculations` caps it by b); while r̈ is
-    /// below its threshold (no range projection), b − kσ if positive.
-    /// `None` (filter off) until the range track is initialised, and for
+    /// 5,566,074: each miss-distance estimate with its uncertainty, the
+    /// smaller of the range- and bearing-based ones), as the interval
+    /// b ± kσ (k = [`BEARING_MISS_DISTANCE_CONFIDENCE`], or the cycle's).
+    /// For a new threat the range tracker's projection is capped by b + kσ
+    /// (DO-185B `miss_distance_calculations` caps it by b) and, while r̈ is
+    /// below its threshold (no range projection), b − kσ if positive. For
+    /// a continuing threat, whose RA the filter may end only when it is
+    /// confident the miss is large (booklet, "CAS Logic Changes" of v7.0),
+    /// the projection is capped by the lower bound b − kσ. `None` (filter
+    /// off) until the range track is initialised, and for
     /// [`MANOEUVRE_SHUTDOWN_CYCLES`] after a manoeuvre (DO-185B
     /// `detect_maneuvers`: r̈ below minus the threshold, or the range HMD
     /// more than twice b + kσ). Without σ, b itself.
@@ -456,12 +488,15 @@ impl MissDistanceFilter {
         bearing_miss_distance_m: Option<S>,
         bearing_miss_distance_sigma_m: Option<S>,
         k: &Constants<S>,
-    ) -> Option<S> {
+    ) -> MissDistances<S> {
         let from_range = range.miss_distance_m();
         let spread = bearing_miss_distance_sigma_m
             .map(|sigma| k.bearing_miss_distance_confidence.times(sigma))
             .filter(|s| s.is_valid());
         let bearing_upper = bearing_miss_distance_m.map(|b| spread.map_or(b, |s| b + s));
+        let bearing_lower = bearing_miss_distance_m
+            .map(|b| spread.map_or(b, |s| b - s))
+            .filter(|l| l.is_valid());
         let bearing_disagrees = match (from_range, bearing_upper) {
             (Some(r), Some(b)) => k.bearing_cross_check_ratio.times(b) < r,
             _ => false,
@@ -475,15 +510,21 @@ impl MissDistanceFilter {
             self.shutdown_cycles.saturating_sub(1)
         };
         if self.shutdown_cycles > 0 || !range.initialised {
-            return None;
+            return MissDistances::OFF;
         }
-        match (from_range, bearing_miss_distance_m, spread) {
-            (Some(r), _, _) => Some(bearing_upper.map_or(r, |b| r.min_of(b))),
-            (None, Some(b), Some(spread)) => {
-                let lower = b - spread;
-                (lower.is_valid() && lower > S::ZERO).then_some(lower)
-            }
-            _ => None,
+        let positive_lower = bearing_lower.filter(|l| *l > S::ZERO);
+        let new_threat = match (from_range, spread) {
+            (Some(r), _) => Some(bearing_upper.map_or(r, |b| r.min_of(b))),
+            (None, Some(_)) => positive_lower,
+            (None, None) => None,
+        };
+        let continuing = match from_range {
+            Some(r) => Some(bearing_lower.map_or(r, |l| r.min_of(l))),
+            None => positive_lower.filter(|_| spread.is_some()),
+        };
+        MissDistances {
+            new_threat,
+            continuing,
         }
     }
 
@@ -493,7 +534,7 @@ impl MissDistanceFilter {
     /// cycles. Applies only while τ_mod < 35 s.
     fn filters<S: Scalar>(
         &mut self,
-        miss_distance_m: Option<S>,
+        miss_distance: &MissDistances<S>,
         modified_tau_s: S,
         continuing: bool,
         new_threshold_m: S,
@@ -503,10 +544,13 @@ impl MissDistanceFilter {
         if modified_tau_s >= k.miss_distance_tau_limit_s {
             return false;
         }
-        let threshold = if continuing {
-            k.continuing_hmd_dmod_factor.times(dmod_m)
+        let (threshold, miss_distance_m) = if continuing {
+            (
+                k.continuing_hmd_dmod_factor.times(dmod_m),
+                miss_distance.continuing,
+            )
         } else {
-            new_threshold_m
+            (new_threshold_m, miss_distance.new_threat)
         };
         self.exceed_cycles = match miss_distance_m {
             Some(hmd) if hmd > threshold => self.exceed_cycles.saturating_add(1),
@@ -559,7 +603,8 @@ pub struct ThreatStatus<S> {
     pub advisory: Advisory,
     /// The TA started this cycle.
     pub new_traffic: bool,
-    /// The HMD the filter used, m (`None`: filter off).
+    /// The HMD the filter used, m (`None`: filter off): a continuing
+    /// threat's lower bound, or a new one's estimate.
     pub miss_distance_m: Option<S>,
     /// The RA range test passed but the miss-distance filter removed it.
     pub miss_distance_filtered: bool,
@@ -655,7 +700,7 @@ impl<S: Scalar> Default for ThreatState<S> {
 /// trackers or a relative state vector.
 #[derive(Debug, Clone, Copy)]
 struct Inputs<S> {
-    miss_distance_m: Option<S>,
+    miss_distance: MissDistances<S>,
     altitude: Option<AltitudeEstimate<S>>,
     /// Track firmness allows a new TA / a new RA.
     firm_for_ta: bool,
@@ -709,7 +754,7 @@ impl<S: Scalar> ThreatState<S> {
         );
         let firm = range.firmness >= MIN_ALERT_FIRMNESS;
         let inputs = Inputs {
-            miss_distance_m: miss_distance,
+            miss_distance,
             altitude: observation.altitude,
             firm_for_ta: firm,
             firm_for_ra: firm && observation.altitude_firmness >= MIN_RA_VERTICAL_FIRMNESS,
@@ -720,22 +765,24 @@ impl<S: Scalar> ThreatState<S> {
     }
 
     /// One cycle from a relative state vector (range `geometry`, the
-    /// straight-line miss distance): the firmness gates are open. Used by
-    /// [`super::assess`], which reads the taus from `geometry` afterwards.
+    /// straight-line miss distance), `dt` s after the previous one (`None`:
+    /// no memory of time, as the stateless [`super::assess`], which reads
+    /// the taus from `geometry` afterwards): the firmness gates are open.
     pub(crate) fn assess_state(
         &mut self,
         cycle: &Cycle<S>,
         geometry: &mut RangeGeometry<S>,
         miss_distance_m: Option<S>,
         altitude: Option<AltitudeEstimate<S>>,
+        dt: Option<S>,
     ) -> Result<ThreatStatus<S>, TcasError> {
         let inputs = Inputs {
-            miss_distance_m,
+            miss_distance: MissDistances::both(miss_distance_m),
             altitude,
             firm_for_ta: true,
             firm_for_ra: true,
         };
-        self.evaluate(cycle, geometry, &inputs, None)
+        self.evaluate(cycle, geometry, &inputs, dt)
     }
 
     /// The tests of one cycle; `geometry.r` ≥ 0 and valid, as both callers
@@ -748,6 +795,7 @@ impl<S: Scalar> ThreatState<S> {
         dt: Option<S>,
     ) -> Result<ThreatStatus<S>, TcasError> {
         let own = &cycle.own;
+        let continuing_threat = self.ra_threat;
         let thresholds = &cycle.thresholds;
         let k = &thresholds.constants;
         let vertical = match inputs.altitude {
@@ -821,7 +869,7 @@ impl<S: Scalar> ThreatState<S> {
                     g.r <= k.max_ra_range_m && modified_tau < ra.tau_s
                 };
                 let filtered = self.miss_distance.filters(
-                    inputs.miss_distance_m,
+                    &inputs.miss_distance,
                     modified_tau,
                     self.ra_threat,
                     limits.hmd_m,
@@ -923,7 +971,11 @@ impl<S: Scalar> ThreatState<S> {
         Ok(ThreatStatus {
             advisory,
             new_traffic: ta_now && !had_ta,
-            miss_distance_m: inputs.miss_distance_m,
+            miss_distance_m: if continuing_threat {
+                inputs.miss_distance.continuing
+            } else {
+                inputs.miss_distance.new_threat
+            },
             miss_distance_filtered: status_filtered,
             held_by_firmness,
             vertical,

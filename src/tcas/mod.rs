@@ -227,11 +227,7 @@ pub fn assess_in<S: Scalar>(
     cycle: &Cycle<S>,
     intruder: &Intruder<S>,
 ) -> Result<ThreatAssessment<S>, TcasError> {
-    let relative = RelativeRange::new(
-        intruder.relative_position_m,
-        intruder.relative_velocity_m_per_s,
-    )?;
-    let closest = relative.closest_approach(intruder.relative_velocity_m_per_s)?;
+    let (relative, closest) = relative_state(intruder)?;
     let (range, range_rate) = (relative.range_m, relative.range_rate_m_per_s);
     let mut geometry = RangeGeometry::new(range, range_rate, cycle.thresholds());
     let status = ThreatState::new().assess_state(
@@ -239,6 +235,7 @@ pub fn assess_in<S: Scalar>(
         &mut geometry,
         closest.map(|c| c.distance_m),
         intruder.altitude,
+        None,
     )?;
     // The taus of the report from the quotients the tests formed: none
     // while the range opens, except τ_mod = 0 inside DMOD.
@@ -274,4 +271,48 @@ pub fn assess_in<S: Scalar>(
         miss_distance_filtered: status.miss_distance_filtered,
         advisory: status.advisory,
     })
+}
+
+/// The range, range rate and closest approach of a relative state vector.
+fn relative_state<S: Scalar>(
+    intruder: &Intruder<S>,
+) -> Result<(RelativeRange<S>, Option<ClosestApproach<S>>), TcasError> {
+    let relative = RelativeRange::new(
+        intruder.relative_position_m,
+        intruder.relative_velocity_m_per_s,
+    )?;
+    let closest = relative.closest_approach(intruder.relative_velocity_m_per_s)?;
+    Ok((relative, closest))
+}
+
+impl<S: Scalar> ThreatState<S> {
+    /// [`assess_in`]'s tests with this intruder's memory, `dt` s after the
+    /// previous cycle: TA hysteresis and minimum time, the continuing RA
+    /// threat and its tau cap, the miss-distance filter's count (the HMD
+    /// is the state vector's straight-line d_cpa). The status carries the
+    /// RA geometry for [`CollisionAvoidance::resolve`]; for tools that
+    /// have a state vector rather than the TCAS trackers (`replay`).
+    pub fn assess_intruder(
+        &mut self,
+        cycle: &Cycle<S>,
+        intruder: &Intruder<S>,
+        dt: S,
+    ) -> Result<ThreatStatus<S>, TcasError> {
+        if !(dt.is_valid() && dt > S::ZERO) {
+            return Err(TcasError::InvalidInput);
+        }
+        let (relative, closest) = relative_state(intruder)?;
+        let mut geometry = RangeGeometry::new(
+            relative.range_m,
+            relative.range_rate_m_per_s,
+            cycle.thresholds(),
+        );
+        self.assess_state(
+            cycle,
+            &mut geometry,
+            closest.map(|c| c.distance_m),
+            intruder.altitude,
+            Some(dt),
+        )
+    }
 }

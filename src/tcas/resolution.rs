@@ -1,15 +1,15 @@
 //! Resolution advisories: the sense (up or down, preferring not to cross the
 //! intruder's altitude when the other sense gives ALIM), the strength
 //! (preventive, level-off, climb/descend, increase), strengthening,
-//! weakening, clear of conflict, and one defined behaviour against several
-//! threats. Sources: FAA, "Introduction to TCAS II Version 7.1" (sense and
+//! weakening, one sense reversal, clear of conflict, and one defined
+//! behaviour against several threats. Sources: FAA, "Introduction to TCAS II Version 7.1" (sense and
 //! strength selection, weakening, v7.1's level-off RA); DO-185B as
 //! transcribed in ledieuke/tcas_simulator `detect.py` (`model_sep`,
 //! `project_vertical_given_zdgoal`, `model_maneuvers`) and
-//! `tcasConstant.py` (the constants below); FlightGear `tcas.cxx`
-//! (`determineRAsense`). Coordination with another TCAS aircraft, sense
-//! reversals and DO-185B's multi-threat composite RAs are not modelled
-//! (docs/tcas.md).
+//! `tcasConstant.py` (the constants below) and `resolution.py` (the
+//! reversal conditions); FlightGear `tcas.cxx` (`determineRAsense`).
+//! Coordination with another TCAS aircraft and DO-185B's multi-threat
+//! composite RAs are not modelled (docs/tcas.md).
 
 use super::detection::{Cycle, ThreatGeometry};
 use super::measures::all_valid;
@@ -37,6 +37,21 @@ pub const MAX_MODEL_RATE_FT_PER_S: f64 = 4400.0 / 60.0;
 pub const CROSSING_THRESHOLD_FT: f64 = 100.0;
 /// An RA is not weakened before this age, s (DO-185B `NOWEAK`).
 pub const NO_WEAKENING_S: f64 = 10.0;
+/// A reversed RA is not weakened before this time after the reversal, s
+/// (DO-185B `TRVSNOWEAK`).
+pub const REVERSAL_NO_WEAKENING_S: f64 = 5.0;
+/// No sense reversal within this range tau of closest approach, s
+/// (DO-185B `MINRITIME`, "inhibit reversals and increases").
+pub const MIN_REVERSAL_TAU_S: f64 = 4.0;
+/// Within this range tau a threat must be [`REVERSAL_CLOSE_ALTITUDE_FT`]
+/// on the RA's side of the own aircraft for a reversal, beyond it
+/// [`CROSSING_THRESHOLD_FT`], s (DO-185B `MINRVSTIME`).
+pub const REVERSAL_CLOSE_TAU_S: f64 = 10.0;
+/// See [`REVERSAL_CLOSE_TAU_S`], ft (DO-185B `AVEVALT`).
+pub const REVERSAL_CLOSE_ALTITUDE_FT: f64 = 200.0;
+/// The reversed sense must model this much more separation than the
+/// current one, ft (DO-185B `NOZCROSS`).
+pub const REVERSAL_MARGIN_FT: f64 = 100.0;
 /// An own rate this far on the wrong side of the goal makes the RA
 /// corrective, ft/s (DO-185B `HYSTERCOR`, 300 ft/min).
 pub const CORRECTIVE_HYSTERESIS_FT_PER_S: f64 = 300.0 / 60.0;
@@ -131,6 +146,8 @@ pub struct ResolutionAdvisory<S> {
     pub threats: u8,
     /// Time since the RA started, s.
     pub age_s: S,
+    /// The sense was reversed in this encounter (at most once).
+    pub reversed: bool,
 }
 
 /// What the resolution logic decided this cycle.
@@ -294,6 +311,7 @@ struct ActiveRa<S> {
     crossing: bool,
     age_s: S,
     strength_age_s: S,
+    reversed: bool,
 }
 
 /// The resolution logic's memory: the active RA, if any.
@@ -407,6 +425,77 @@ impl<S: Scalar> ResolutionState<S> {
         best
     }
 
+    /// Whether the active RA `a` is to be reversed this cycle, after
+    /// DO-185B `reversal_check`/`reversal_proj_check`/`reversal_modeling`
+    /// for an intruder without TCAS (booklet, "Sense Reversal": when the
+    /// threat manoeuvres so that the current sense no longer provides
+    /// adequate separation), reduced to: no reversal yet in this encounter
+    /// (DO-185B `rev_geom`); every threat's range tau above 4 s
+    /// (`MINRITIME`); a threat on the RA's side of the own aircraft by
+    /// 100 ft (`CROSSTHR`), or by 200 ft (`AVEVALT`) within 10 s
+    /// (`MINRVSTIME`); the current sense, climbing or descending at
+    /// 1500 ft/min after what remains of the 5 s delay, models less than
+    /// ALIM; the reversed sense, after 2.5 s (`QUIKREAC`) at 0.35 g
+    /// (`RACCEL`), models a positive separation and 100 ft (`NOZCROSS`)
+    /// more than the current one; and a positive RA in the reversed sense
+    /// is not inhibited.
+    fn reversal_due(
+        &self,
+        cycle: &Cycle<S>,
+        threats: &[ThreatGeometry<S>],
+        a: &ActiveRa<S>,
+        alim: S,
+    ) -> bool {
+        let reversed = a.sense.other();
+        if !Self::allowed(cycle, reversed, RaStrength::Positive) {
+            return false;
+        }
+        let own = cycle.own.pressure_altitude_ft;
+        let min_tau = c::<S>(MIN_REVERSAL_TAU_S);
+        let close_tau = c::<S>(REVERSAL_CLOSE_TAU_S);
+        let on_ra_side = |t: &ThreatGeometry<S>| {
+            let h = t.intruder.altitude_ft - own;
+            let h = if a.sense == RaSense::Up { h } else { -h };
+            let threshold = if t.range_tau_s <= close_tau {
+                REVERSAL_CLOSE_ALTITUDE_FT
+            } else {
+                CROSSING_THRESHOLD_FT
+            };
+            h >= c(threshold)
+        };
+        if threats.iter().any(|t| t.range_tau_s <= min_tau) || !threats.iter().any(on_ra_side) {
+            return false;
+        }
+        let remaining = (c::<S>(INITIAL_DELAY_S) - a.age_s).max_of(S::ZERO);
+        let nominal = Manoeuvre {
+            goal: goal_rate(
+                a.sense,
+                RaStrength::Positive,
+                cycle.own.vertical_rate_ft_per_s,
+            ),
+            delay: remaining,
+            accel: c(RESPONSE_ACCELERATION_FT_PER_S2),
+        };
+        let reversal = Manoeuvre {
+            goal: goal_rate(
+                reversed,
+                RaStrength::Positive,
+                cycle.own.vertical_rate_ft_per_s,
+            ),
+            delay: remaining.max_of(c(CHANGE_DELAY_S)),
+            accel: c(INCREASE_ACCELERATION_FT_PER_S2),
+        };
+        match (
+            worst(cycle, threats, a.sense, nominal),
+            worst(cycle, threats, reversed, reversal),
+        ) {
+            (Some(current), Some(other)) => {
+                current < alim && other > S::ZERO && other > current + c(REVERSAL_MARGIN_FT)
+            }
+            _ => false,
+        }
+    }
+
     /// One cycle: `threats` are this cycle's RA threats ([`ThreatGeometry`]
     /// of every intruder whose status is an RA), `dt` s after the previous
     /// cycle.
@@ -422,7 +511,9 @@ impl<S: Scalar> ResolutionState<S> {
     ///   positive → increase after 5 s) when the modelled separation with a
     ///   2.5 s delay falls below ALIM, and weakens to level-off after 10 s
     ///   when the own aircraft is already ALIM clear of every threat and
-    ///   levelling off keeps it so.
+    ///   levelling off keeps it so (5 s after a reversal).
+    /// * Sense reversal, at most once: [`ResolutionState::reversal_due`];
+    ///   the reversed RA is positive.
     /// * No threat left: the RA ends and `clear_of_conflict` is set once.
     pub fn resolve(
         &mut self,
@@ -496,7 +587,17 @@ impl<S: Scalar> ResolutionState<S> {
                     crossing: crosses(cycle, threats, sense),
                     age_s: S::ZERO,
                     strength_age_s: S::ZERO,
+                    reversed: false,
                 }
+            }
+            Some(mut a) if !a.reversed && self.reversal_due(cycle, threats, &a, alim) => {
+                a.age_s = a.age_s + dt;
+                a.sense = a.sense.other();
+                a.strength = RaStrength::Positive;
+                a.strength_age_s = S::ZERO;
+                a.crossing = crosses(cycle, threats, a.sense);
+                a.reversed = true;
+                a
             }
             Some(mut a) => {
                 a.age_s = a.age_s + dt;
@@ -516,9 +617,14 @@ impl<S: Scalar> ResolutionState<S> {
                 } else {
                     a.strength
                 };
+                let weakening_allowed = if a.reversed {
+                    a.strength_age_s >= c(REVERSAL_NO_WEAKENING_S)
+                } else {
+                    a.age_s >= c(NO_WEAKENING_S)
+                };
                 let next = if next == a.strength
                     && a.strength >= RaStrength::Positive
-                    && a.age_s >= c(NO_WEAKENING_S)
+                    && weakening_allowed
                 {
                     let level =
                         self.manoeuvre(cycle, a.sense, RaStrength::LevelOff, CHANGE_DELAY_S);
@@ -560,6 +666,7 @@ impl<S: Scalar> ResolutionState<S> {
                 corrective,
                 threats: u8::try_from(threats.len()).unwrap_or(u8::MAX),
                 age_s: active.age_s,
+                reversed: active.reversed,
             }),
             clear_of_conflict: false,
         })

@@ -116,6 +116,7 @@ pub fn by_level_table(encounters: &[RandomEncounter], results: &SuiteResults) ->
         "onset delay p95 (s)",
         "wrong sense",
         "RA in pieces",
+        "RA reversed",
     ]);
     for (c, condition) in CONDITIONS.iter().enumerate() {
         for (t, type_name) in TYPES.iter().enumerate() {
@@ -138,6 +139,7 @@ pub fn by_level_table(encounters: &[RandomEncounter], results: &SuiteResults) ->
                     seconds(s.delay_quantile(0.95)),
                     s.wrong_sense.to_string(),
                     s.in_pieces.to_string(),
+                    s.reversed.to_string(),
                 ]);
             }
         }

@@ -306,8 +306,9 @@ pub fn write(dir: &Path, runs: usize) -> Result<String, String> {
         "\nThe false RAs are on the passes beyond the HMD threshold: the HMD filter needs the range \
          acceleration above DO-185B's noise-scaled threshold (≈ 0.7 m/s² with 15 m range noise); at 500 kt \
          with 0.8 NM offset the RA range test passes at r ≈ 6.3 km where r̈ ≈ 0.58 m/s², so many runs get an \
-         RA that the continuing-threat filter drops within seconds (`tests/it/tcas/encounter_suite.rs` checks each ends \
-         within 15 s and before the closest approach). The 1.2 NM pass at 480 kt has r̈ ≈ 1.5 m/s² there and \
+         RA that the continuing-threat filter drops once the range projection and the bearing track's lower \
+         bound both put the miss beyond 1.05·DMOD (`tests/it/tcas/encounter_suite.rs` checks each is one RA, \
+         ends within 20 s and before the closest approach). The 1.2 NM pass at 480 kt has r̈ ≈ 1.5 m/s² there and \
          few. The false TAs of `overtaking` are early onsets at 100 kt closure, where τ_mod is DMOD-dominated \
          and range noise moves it by seconds.\n"
     );

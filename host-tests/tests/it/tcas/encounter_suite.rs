@@ -219,9 +219,13 @@ fn noisy_runs_miss_nothing_and_false_alerts_are_bounded_scaled() {
     noise_counts::<ScaledScalar>();
 }
 
-/// The false RAs of the passes beyond the HMD threshold are short: each
-/// ends within 15 s of its onset and before the closest approach (the
-/// continuing-threat filter drops it once r̈ is estimated).
+/// The false RAs of the passes beyond the HMD threshold are one RA each
+/// and end before the closest approach: the continuing-threat filter drops
+/// them once the range projection and the bearing track's lower bound both
+/// put the miss beyond 1.05·DMOD. Measured: 18 of the 30 runs of the
+/// 0.8 NM pass have one, lasting 6–20 s (at most 15 s while the filter
+/// ended an RA on the range projection alone, which also cut true RAs
+/// into pieces).
 #[test]
 fn false_ras_beyond_the_hmd_threshold_are_short() {
     use abtrack_host_tests::encounters::{derive_run_seed, ScanOutcome};
@@ -236,7 +240,7 @@ fn false_ras_beyond_the_hmd_threshold_are_short() {
             let t = timeline(&out);
             if let (Some(on), Some(off)) = (t.ra_onset_s, t.clear_of_conflict_s) {
                 assert!(
-                    off - on <= 15.0 && off < cpa,
+                    off - on <= 20.0 && off < cpa,
                     "{} run {run}: RA {on}–{off}",
                     e.name
                 );

@@ -314,6 +314,28 @@ fn miss_distance_filter_new_and_continuing_threats() {
     }
     assert_eq!(levels[..4], [Advisory::Resolution; 4]);
     assert_eq!(levels[4], Advisory::Traffic);
+    // With the bearing HMD's σ, a continuing threat ends only when the
+    // lower bound b − 2σ is over 1.05·DMOD (booklet: the filter ends an RA
+    // when confident): b = 1100 ± 2·100 m keeps the RA (900 m), b = 1400 ±
+    // 2·100 m drops it on the fifth cycle (1200 m).
+    let with_sigma = |b: f64| {
+        let mut o = with_hmd(b);
+        o.bearing_miss_distance_sigma_m = Some(100.0);
+        o
+    };
+    let mut s = ThreatState::new();
+    let a = s.assess(&cycle, &with_hmd(900.0), 1.0).unwrap();
+    assert_eq!(a.advisory, Advisory::Resolution);
+    for _ in 0..8 {
+        let a = s.assess(&cycle, &with_sigma(1100.0), 1.0).unwrap();
+        assert_eq!(a.advisory, Advisory::Resolution);
+        assert!((a.miss_distance_m.unwrap() - 900.0).abs() < 1e-6, "{a:?}");
+    }
+    let levels: Vec<_> = (0..5)
+        .map(|_| s.assess(&cycle, &with_sigma(1400.0), 1.0).unwrap().advisory)
+        .collect();
+    assert_eq!(levels[..4], [Advisory::Resolution; 4]);
+    assert_eq!(levels[4], Advisory::Traffic);
     // A bearing HMD under half the range's is a manoeuvre: the filter is
     // off (10 cycles) and a new threat gets its RA.
     let mut s = ThreatState::new();
@@ -502,6 +524,74 @@ fn positive_ra_weakens_to_level_off_after_10_s() {
         "{strengths:?}"
     );
     assert_eq!(strengths[9], RaStrength::LevelOff);
+}
+
+/// Sense reversal (booklet, "Sense Reversal"; DO-185B `reversal_check`):
+/// an up RA against an intruder 300 ft below, level (τ 25 s: climb models
+/// 761 ft above it, descend 161 ft below), then the intruder climbs at
+/// 50 ft/s while the own aircraft stays level (it does not follow). At
+/// k = 8 s the intruder is 100 ft (`CROSSTHR`) above own with τ = 17 s:
+/// climbing at 1500 ft/min models 8386 − 8950 = −564 ft < ALIM, descending
+/// after 2.5 s at 0.35 g models 8950 − 7665 = 1285 ft: the RA reverses to
+/// a positive descend, once; at k = 7 (50 ft above) it does not.
+fn reversal<S: Scalar>() {
+    let cycle = own_cycle::<S>(8000.0, 0.0);
+    let mut r = ResolutionState::<S>::new();
+    let mut senses = Vec::new();
+    for k in 0..20 {
+        let tau = 25.0 - k as f64;
+        let z = 7700.0 + if k == 0 { 0.0 } else { 50.0 * k as f64 };
+        let zd = if k == 0 { 0.0 } else { 50.0 };
+        let ra = r
+            .resolve(&cycle, &[threat(z, zd, tau, tau)], S::ONE)
+            .unwrap()
+            .advisory
+            .unwrap();
+        senses.push((ra.sense, ra.reversed));
+        if k == 8 {
+            assert_eq!(ra.strength, RaStrength::Positive, "{}", S::NAME);
+        }
+    }
+    assert!(
+        senses[..8].iter().all(|&s| s == (RaSense::Up, false)),
+        "{}: {senses:?}",
+        S::NAME
+    );
+    assert!(
+        senses[8..].iter().all(|&s| s == (RaSense::Down, true)),
+        "{}: {senses:?}",
+        S::NAME
+    );
+}
+
+#[test]
+fn sense_reverses_once_when_the_intruder_crosses() {
+    reversal::<f64>();
+    reversal::<f32>();
+    reversal::<Fix>();
+    reversal::<ScaledScalar>();
+}
+
+/// No reversal within 4 s of closest approach (`MINRITIME`): the same
+/// intruder already 200 ft above when τ reaches 4 s keeps the up RA.
+#[test]
+fn no_reversal_within_4_s() {
+    let cycle = own_cycle::<f64>(8000.0, 0.0);
+    let mut r = ResolutionState::new();
+    let ra = r
+        .resolve(&cycle, &[threat(7700.0, 0.0, 5.0, 5.0)], 1.0)
+        .unwrap()
+        .advisory
+        .unwrap();
+    assert_eq!(ra.sense, RaSense::Up);
+    for tau in [4.0, 3.0, 2.0] {
+        let ra = r
+            .resolve(&cycle, &[threat(8200.0, 50.0, tau, tau)], 1.0)
+            .unwrap()
+            .advisory
+            .unwrap();
+        assert_eq!((ra.sense, ra.reversed), (RaSense::Up, false), "τ {tau}");
+    }
 }
 
 /// Two threats, one 300 ft above and one 600 ft below, both at τ = 20 s:

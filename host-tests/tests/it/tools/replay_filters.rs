@@ -20,7 +20,8 @@ use abtrack::filter::{Phase, UpdateOutcome};
 use abtrack::gain::spec::{ScheduleSpec, SpecErrorKind, SCHEDULES};
 use abtrack::gain::{AnySchedule, ConfigError, ScheduledFilter};
 use abtrack::tcas::{
-    assess, Advisory, Intruder, OwnAircraft, METRES_PER_NAUTICAL_MILE, METRES_PER_SECOND_PER_KNOT,
+    assess, Advisory, CollisionAvoidance, Intruder, OwnAircraft, ThreatState,
+    METRES_PER_NAUTICAL_MILE, METRES_PER_SECOND_PER_KNOT,
 };
 use abtrack::{Fix, Scalar};
 use abtrack_host_tests::cli::{parse_schedule, Command, ReplayArgs, ScheduleArgError};
@@ -581,10 +582,14 @@ fn expected_range_azimuth<S: Scalar + Display>(
         out.push_str(",alt,alt_rate");
     }
     if own.is_some() {
-        out.push_str(",tau,tau_mod,t_cpa,d_cpa,advisory,tau_mod_ra");
+        out.push_str(
+            ",tau,tau_mod,t_cpa,d_cpa,advisory,tau_mod_ra,ra_sense,ra_strength,clear_of_conflict",
+        );
     }
     out.push_str(",event\n");
     let mut previous = None;
+    let mut cas = CollisionAvoidance::<S>::new();
+    let mut threat_state = ThreatState::<S>::new();
     for row in &data.rows {
         let dt = interval::<S>(previous, row.t);
         previous = Some(row.t);
@@ -630,6 +635,33 @@ fn expected_range_azimuth<S: Scalar + Display>(
                 optional(&mut out, a.ra_modified_tau_s);
             } else {
                 out.push_str(",,,,,,");
+            }
+            // The RA with memory: the threat state and the resolution.
+            let cycle = cas.begin_cycle(&own, false).unwrap();
+            let threats: Vec<_> = (filter.phase() == Phase::Tracking)
+                .then(|| {
+                    threat_state
+                        .assess_intruder(
+                            &cycle,
+                            &Intruder::from_track(&filter, altitude.estimate()),
+                            dt,
+                        )
+                        .unwrap()
+                        .geometry
+                })
+                .flatten()
+                .into_iter()
+                .collect();
+            let ra = cas.resolve(&cycle, &threats, dt).unwrap();
+            match ra.advisory {
+                Some(a) => {
+                    let _ = write!(out, ",{},{}", a.sense.name(), a.strength.name());
+                }
+                None => out.push_str(",,"),
+            }
+            out.push(',');
+            if ra.clear_of_conflict {
+                out.push('1');
             }
         }
         out.push_str(",\n");
@@ -827,6 +859,51 @@ fn run_of(s: &str, n: usize) -> Vec<String> {
     vec![s.to_string(); n]
 }
 
+/// The RA columns: a head-on 0.1 NM abeam from 5 NM at 600 kt, the
+/// intruder level 100 ft above the own aircraft (8000 ft), past closest
+/// approach (t = 30 s) to t = 59. One RA: a positive descend (the
+/// non-crossing sense, as the head-on worked by hand in
+/// `tcas::logic::sense_and_strength_of_the_head_on`) from the first row
+/// the stateless advisory is an RA, in force on every row until the range
+/// opens, then clear of conflict on exactly one row and no RA after it.
+#[test]
+fn ra_columns_give_one_descend_then_clear_of_conflict() {
+    let mut text = String::from("t,range,azimuth,alt\n");
+    for k in 0..60 {
+        let (x, y) = (0.1 * NM, 5.0 * NM - 600.0 * KT * k as f64);
+        let azimuth = x.atan2(y).rem_euclid(std::f64::consts::TAU);
+        let _ = writeln!(text, "{k},{},{azimuth},8100", x.hypot(y));
+    }
+    for (_, n) in NUMERICS {
+        let out = replay(
+            &format!("--filter range-azimuth --range-sigma-m 15 --own-alt 8000 --numeric {n}"),
+            &text,
+        )
+        .unwrap();
+        let sense = column(&out, "ra_sense");
+        let strength = column(&out, "ra_strength");
+        let coc = column(&out, "clear_of_conflict");
+        let onset = sense.iter().position(Option::is_some).unwrap();
+        let end = coc.iter().position(Option::is_some).unwrap();
+        assert_eq!(
+            Some(onset),
+            advisories(&out).iter().position(|a| a == "ra"),
+            "{n}"
+        );
+        assert!(end > 30 && end < 45, "{n}: clear of conflict at {end}");
+        assert!(
+            sense[onset..end]
+                .iter()
+                .all(|s| s.as_deref() == Some("down")),
+            "{n}: {sense:?}"
+        );
+        assert_eq!(strength[onset].as_deref(), Some("positive"), "{n}");
+        assert!(sense[end..].iter().all(Option::is_none), "{n}");
+        assert_eq!(coc.iter().filter(|c| c.is_some()).count(), 1, "{n}");
+        assert_eq!(coc[end].as_deref(), Some("1"), "{n}");
+    }
+}
+
 #[test]
 fn head_on_encounter_gives_ta_then_ra_at_the_analytic_onsets() {
     let text = head_on_file(|_| Some(8000.0), true);
@@ -891,7 +968,7 @@ fn without_altitude_the_intruder_raises_at_most_a_ta() {
             out.lines().next(),
             Some(
                 "t,x,vx,res_x,y,vy,res_y,range,azimuth,tau,tau_mod,t_cpa,d_cpa,advisory,tau_mod_ra,\
-                 event"
+                 ra_sense,ra_strength,clear_of_conflict,event"
             )
         );
         let mut want = run_of("", 1);
