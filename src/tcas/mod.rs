@@ -41,6 +41,7 @@ use detection::RangeGeometry;
 use measures::RelativeRange;
 
 pub mod detection;
+mod held;
 pub mod logic;
 pub mod measures;
 pub mod range_tracker;

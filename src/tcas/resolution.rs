@@ -12,6 +12,7 @@
 //! composite RAs are not modelled (docs/tcas.md).
 
 use super::detection::{Cycle, ThreatGeometry};
+use super::held::Held;
 use super::measures::all_valid;
 use super::TcasError;
 use crate::filter::altitude::OutOfLine;
@@ -177,10 +178,10 @@ pub struct Inhibits {
 /// The inhibits' hysteresis on the radio altitude: each is set below its
 /// low bound and cleared above its high bound; without a radio altitude
 /// (above the altimeter's range) none is set.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
 #[cfg_attr(feature = "defmt", derive(defmt::Format))]
 pub struct LowAltitudeInhibits {
-    current: Option<Inhibits>,
+    current: Held<Inhibits>,
 }
 
 fn hysteresis<S: Scalar>(was: Option<bool>, radio_ft: Option<S>, (low, high): (f64, f64)) -> bool {
@@ -192,16 +193,29 @@ fn hysteresis<S: Scalar>(was: Option<bool>, radio_ft: Option<S>, (low, high): (f
     }
 }
 
+impl Default for LowAltitudeInhibits {
+    fn default() -> Self {
+        Self::new()
+    }
+}
+
 impl LowAltitudeInhibits {
     /// No inhibit set yet: the first radio altitude decides each one.
     pub const fn new() -> Self {
-        LowAltitudeInhibits { current: None }
+        LowAltitudeInhibits {
+            current: Held::unset(Inhibits {
+                climb: false,
+                descend: false,
+                increase_descent: false,
+                aural: false,
+            }),
+        }
     }
 
     /// This cycle's inhibits for a radio altitude (ft) and the climb
     /// inhibit input.
     pub fn update<S: Scalar>(&mut self, radio_altitude_ft: Option<S>, climb: bool) -> Inhibits {
-        let was = self.current;
+        let was = self.current.get();
         let next = Inhibits {
             climb,
             descend: hysteresis(
@@ -216,7 +230,7 @@ impl LowAltitudeInhibits {
             ),
             aural: hysteresis(was.map(|w| w.aural), radio_altitude_ft, AURAL_INHIBIT_FT),
         };
-        self.current = Some(next);
+        self.current.put(next);
         next
     }
 }
@@ -318,7 +332,7 @@ struct ActiveRa<S> {
 #[derive(Debug, Clone, Copy, PartialEq)]
 #[cfg_attr(feature = "defmt", derive(defmt::Format))]
 pub struct ResolutionState<S> {
-    active: Option<ActiveRa<S>>,
+    active: Held<ActiveRa<S>>,
 }
 
 impl<S: Scalar> Default for ResolutionState<S> {
@@ -363,12 +377,21 @@ fn crosses<S: Scalar>(cycle: &Cycle<S>, threats: &[ThreatGeometry<S>], sense: Ra
 impl<S: Scalar> ResolutionState<S> {
     /// No active RA.
     pub const fn new() -> Self {
-        ResolutionState { active: None }
+        ResolutionState {
+            active: Held::unset(ActiveRa {
+                sense: RaSense::Up,
+                strength: RaStrength::Preventive,
+                crossing: false,
+                age_s: S::ZERO,
+                strength_age_s: S::ZERO,
+                reversed: false,
+            }),
+        }
     }
 
     /// Whether an RA is in force.
     pub fn is_active(&self) -> bool {
-        self.active.is_some()
+        self.active.get().is_some()
     }
 
     fn allowed(cycle: &Cycle<S>, sense: RaSense, strength: RaStrength) -> bool {
@@ -542,7 +565,7 @@ impl<S: Scalar> ResolutionState<S> {
         }
         let alim = c::<S>(alim_ft);
         let own_rate = cycle.own.vertical_rate_ft_per_s;
-        let active = match self.active {
+        let active = match self.active.get() {
             None => {
                 let up = self.manoeuvre(cycle, RaSense::Up, RaStrength::Positive, INITIAL_DELAY_S);
                 let up = if Self::allowed(cycle, RaSense::Up, RaStrength::Positive) {
@@ -650,7 +673,7 @@ impl<S: Scalar> ResolutionState<S> {
                 a
             }
         };
-        self.active = Some(active);
+        self.active.put(active);
         let goal = goal_rate(active.sense, active.strength, own_rate);
         let hysteresis = c::<S>(CORRECTIVE_HYSTERESIS_FT_PER_S);
         let corrective = match active.sense {

@@ -31,6 +31,19 @@ impl SensitivityLevel {
         self as u8
     }
 
+    /// The level numbered `n` (2–7), if any.
+    pub const fn from_number(n: u8) -> Option<Self> {
+        match n {
+            2 => Some(SensitivityLevel::Sl2),
+            3 => Some(SensitivityLevel::Sl3),
+            4 => Some(SensitivityLevel::Sl4),
+            5 => Some(SensitivityLevel::Sl5),
+            6 => Some(SensitivityLevel::Sl6),
+            7 => Some(SensitivityLevel::Sl7),
+            _ => None,
+        }
+    }
+
     /// The next level up (SL 7 stays).
     const fn up(self) -> Self {
         match self {
@@ -77,6 +90,19 @@ impl AltitudeLayer {
     /// The layer's number, 1–6.
     pub const fn number(self) -> u8 {
         self as u8
+    }
+
+    /// The layer numbered `n` (1–6), if any.
+    pub const fn from_number(n: u8) -> Option<Self> {
+        match n {
+            1 => Some(AltitudeLayer::Below2350Ft),
+            2 => Some(AltitudeLayer::To5000Ft),
+            3 => Some(AltitudeLayer::To10000Ft),
+            4 => Some(AltitudeLayer::To20000Ft),
+            5 => Some(AltitudeLayer::To42000Ft),
+            6 => Some(AltitudeLayer::Above42000Ft),
+            _ => None,
+        }
     }
 }
 
@@ -386,18 +412,24 @@ pub fn sensitivity<S: Scalar>(own: &OwnAircraft<S>) -> Result<SensitivityParamet
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
 #[cfg_attr(feature = "defmt", derive(defmt::Format))]
 pub struct SensitivitySelector {
-    current: Option<(SensitivityLevel, AltitudeLayer)>,
+    /// The level and layer numbers selected last; 0 before the first call
+    /// (all-zero bytes: a `static` holding it goes to `.bss`).
+    current: (u8, u8),
 }
 
 impl SensitivitySelector {
     /// A selector with no level yet: the first call takes the booklet band.
     pub const fn new() -> Self {
-        SensitivitySelector { current: None }
+        SensitivitySelector { current: (0, 0) }
     }
 
     /// The level and layer selected last, if any.
     pub fn current(&self) -> Option<(SensitivityLevel, AltitudeLayer)> {
-        self.current
+        let (level, layer) = self.current;
+        Some((
+            SensitivityLevel::from_number(level)?,
+            AltitudeLayer::from_number(layer)?,
+        ))
     }
 
     /// This cycle's parameters.
@@ -408,14 +440,14 @@ impl SensitivitySelector {
         if !own.is_valid() {
             return Err(TcasError::InvalidInput);
         }
-        let (level, layer) = match self.current {
+        let (level, layer) = match self.current() {
             None => (band_level(own), band_layer(own.pressure_altitude_ft)),
             Some((level, layer)) => (
                 next_level(level, own),
                 next_layer(layer, own.pressure_altitude_ft),
             ),
         };
-        self.current = Some((level, layer));
+        self.current = (level.number(), layer.number());
         Ok(parameters(level, layer))
     }
 }
@@ -474,17 +506,6 @@ fn next_level<S: Scalar>(mut level: SensitivityLevel, own: &OwnAircraft<S>) -> S
     level
 }
 
-fn layer_from_number(n: u8) -> AltitudeLayer {
-    match n {
-        0 | 1 => AltitudeLayer::Below2350Ft,
-        2 => AltitudeLayer::To5000Ft,
-        3 => AltitudeLayer::To10000Ft,
-        4 => AltitudeLayer::To20000Ft,
-        5 => AltitudeLayer::To42000Ft,
-        _ => AltitudeLayer::Above42000Ft,
-    }
-}
-
 fn next_layer<S: Scalar>(layer: AltitudeLayer, pressure_altitude_ft: S) -> AltitudeLayer {
     let mut n = layer.number();
     for _ in 0..5 {
@@ -504,5 +525,6 @@ fn next_layer<S: Scalar>(layer: AltitudeLayer, pressure_altitude_ft: S) -> Altit
         }
         break;
     }
-    layer_from_number(n)
+    // n stays within 1..=6 (one step a pass from a valid layer).
+    AltitudeLayer::from_number(n.clamp(1, 6)).unwrap_or(AltitudeLayer::Above42000Ft)
 }
