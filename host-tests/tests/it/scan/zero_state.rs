@@ -7,29 +7,38 @@ use abtrack::scan::{Intake, ScanLoop};
 use abtrack::track::RangeAzimuthTrack;
 use abtrack_firmware::capacity::{microbit, mps2};
 use abtrack_firmware::number_types::with_fpu;
-use std::mem::{size_of, MaybeUninit};
+use std::mem::size_of;
 
-/// Offsets of the non-zero bytes of `make()`'s value, written into a zeroed
-/// allocation (padding reads as the allocation's zeros or the constant's).
-fn nonzero_offsets<T>(make: impl FnOnce() -> T) -> Vec<usize> {
-    let mut slot: Box<MaybeUninit<T>> = Box::new_zeroed();
-    slot.write(make());
-    // SAFETY: the allocation is `size_of::<T>()` bytes, zeroed before the
-    // write; bytes are read as `u8`, and the value is dropped afterwards.
-    let bytes = unsafe { std::slice::from_raw_parts(slot.as_ptr().cast::<u8>(), size_of::<T>()) };
-    let offsets = bytes
+type M4fLoop = ScanLoop<
+    with_fpu::TableScalar,
+    RangeAzimuthTrack<with_fpu::TableScalar>,
+    { mps2::TRACKS },
+    { mps2::MEASUREMENTS_PER_SCAN },
+>;
+
+// Statics, as the firmware declares them: their bytes are what the
+// compiler emits for the image (a value moved through the stack would
+// carry whatever its padding and unused slots held there).
+static MPS2_INTAKE: Intake<{ mps2::QUEUE_LEN }> = Intake::new();
+static MICROBIT_INTAKE: Intake<{ microbit::QUEUE_LEN }> = Intake::new();
+static M4F_SCAN_LOOP: M4fLoop = ScanLoop::new();
+
+/// Offsets of the non-zero bytes of a value.
+fn nonzero_offsets<T>(value: &T) -> Vec<usize> {
+    // SAFETY: `value` is a live reference to `size_of::<T>()` bytes, read as
+    // `u8` (a static's padding and unused slots are emitted as zeros).
+    let bytes =
+        unsafe { std::slice::from_raw_parts((value as *const T).cast::<u8>(), size_of::<T>()) };
+    bytes
         .iter()
         .enumerate()
         .filter(|(_, b)| **b != 0)
         .map(|(i, _)| i)
-        .collect();
-    // SAFETY: initialised by the write above.
-    drop(unsafe { slot.assume_init() });
-    offsets
+        .collect()
 }
 
-fn assert_zero<T>(name: &str, make: impl FnOnce() -> T) {
-    let offsets = nonzero_offsets(make);
+fn assert_zero<T>(name: &str, value: &T) {
+    let offsets = nonzero_offsets(value);
     assert!(
         offsets.is_empty(),
         "{name}: {} of {} bytes non-zero, first at offsets {:?}",
@@ -41,29 +50,22 @@ fn assert_zero<T>(name: &str, make: impl FnOnce() -> T) {
 
 #[test]
 fn intake_starts_all_zero() {
-    assert_zero(
-        "Intake<mps2::QUEUE_LEN>",
-        Intake::<{ mps2::QUEUE_LEN }>::new,
-    );
-    assert_zero(
-        "Intake<microbit::QUEUE_LEN>",
-        Intake::<{ microbit::QUEUE_LEN }>::new,
-    );
+    assert_zero("Intake<mps2::QUEUE_LEN>", &MPS2_INTAKE);
+    assert_zero("Intake<microbit::QUEUE_LEN>", &MICROBIT_INTAKE);
 }
 
 #[test]
 fn the_check_sees_a_non_zero_byte() {
     // The helper itself: a value with one non-zero field is found.
-    assert_eq!(nonzero_offsets(|| [0u8, 0, 7, 0]), vec![2]);
-    assert_eq!(nonzero_offsets(|| Option::<bool>::None), vec![0]);
+    static SEVEN: [u8; 4] = [0, 0, 7, 0];
+    static NONE: Option<bool> = None;
+    assert_eq!(nonzero_offsets(&SEVEN), vec![2]);
+    assert_eq!(nonzero_offsets(&NONE), vec![0]);
 }
 
 /// The M4F demo's scan loop (f32). Not yet the M3's and M0's: their
 /// `ScaledScalar` zero has a non-zero exponent (docs/firmware-and-boards.md).
 #[test]
 fn demo_scan_loop_starts_all_zero_on_the_m4f() {
-    type M4f = with_fpu::TableScalar;
-    assert_zero("ScanLoop on the mps2-an386 (M4F)", || {
-        ScanLoop::<M4f, RangeAzimuthTrack<M4f>, { mps2::TRACKS }, { mps2::MEASUREMENTS_PER_SCAN }>::new()
-    });
+    assert_zero("ScanLoop on the mps2-an386 (M4F)", &M4F_SCAN_LOOP);
 }
