@@ -8,7 +8,7 @@
 //! start, so one 2×2 p̃ (three numbers), one manoeuvre level and one gain
 //! pair serve them all; the manoeuvre level is matched on the mean of the
 //! axes' ν²/S (Bar-Shalom, Li & Kirubarajan 2001 §5.4, §11.2.2). The update
-//! is [`kalman_step_or_restart`] (one division, no libm) and then per axis
+//! is `kalman_step_or_restart` (one division, no libm) and then per axis
 //! x = x_p + α·e, v = v + (β/T)·e (Al-Wagih & Abdulla eqs. 3–8). A sensor
 //! whose σ differs per axis (range–bearing) is the schedule
 //! [`crate::gain::AutoGains`] (one covariance per axis) with

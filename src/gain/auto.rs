@@ -400,7 +400,7 @@ pub(crate) fn kalman_step_or_restart<N: Numeric, const K: usize>(
     }
 }
 
-/// One axis's update as a schedule gives it: [`kalman_step_or_restart`]
+/// One axis's update as a schedule gives it: `kalman_step_or_restart`
 /// with its own innovation, as [`Gains`].
 #[inline(always)]
 fn step_axis<N: Numeric>(

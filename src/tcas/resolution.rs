@@ -535,7 +535,7 @@ impl<S: Scalar> ResolutionState<S> {
     ///   2.5 s delay falls below ALIM, and weakens to level-off after 10 s
     ///   when the own aircraft is already ALIM clear of every threat and
     ///   levelling off keeps it so (5 s after a reversal).
-    /// * Sense reversal, at most once: [`ResolutionState::reversal_due`];
+    /// * Sense reversal, at most once: the conditions of `reversal_due` (DO-185B, docs/tcas.md);
     ///   the reversed RA is positive.
     /// * No threat left: the RA ends and `clear_of_conflict` is set once.
     pub fn resolve(

@@ -54,7 +54,7 @@ use abtrack::tcas::{
 use abtrack::track::TrackNumeric;
 use abtrack::track::{
     Association, DropReason, FixedGainTrack, Gate, Measurement, RejectReason, ScanError,
-    ScanReport, Track, TrackId, TrackStatus, TrackTable, TrackerConfig,
+    ScanReport, Track, TrackId, TrackSlot, TrackStatus, TrackTable, TrackerConfig,
 };
 use abtrack::Scalar;
 use board::TableScalar as Native;
@@ -1330,9 +1330,9 @@ fn track_config<S: TrackNumeric>() -> Result<Config<S>, Failure> {
 /// 111·N + 126·M; the scaled format: 64 + 139·N + 166·M.
 fn documented_table_bytes<S: Scalar>(n: usize, m: usize) -> usize {
     let bytes = match S::NAME {
-        "f32" => 64 + 111 * n + 126 * m,
-        "scaled" => 64 + 139 * n + 166 * m,
-        _ => 68 + 143 * n + 182 * m,
+        "f32" => 64 + 115 * n + 126 * m,
+        "scaled" => 64 + 143 * n + 166 * m,
+        _ => 68 + 151 * n + 182 * m,
     };
     bytes.div_ceil(8) * 8
 }
@@ -1375,11 +1375,11 @@ fn track_table_sizes_match_documentation() -> TestResult {
             documented
         );
     }
-    let slot = size_of::<Option<Track<Native, FixedGainTrack<Native>>>>();
+    let slot = size_of::<TrackSlot<Native, FixedGainTrack<Native>>>();
     let documented_slot = match Native::NAME {
-        "f32" => 56,
-        "scaled" => 84,
-        _ => 88,
+        "f32" => 60,
+        "scaled" => 88,
+        _ => 96,
     };
     ensure!(
         slot == documented_slot,
@@ -1388,7 +1388,7 @@ fn track_table_sizes_match_documentation() -> TestResult {
         documented_slot
     );
     defmt::println!(
-        "       size_of per track slot Option<Track<native, FixedGainTrack>> = {=usize}, TrackerConfig<native> = {=usize}, RangeAzimuthFilter<native> = {=usize}, AltitudeTracker<native> = {=usize}, ThreatAssessment<native> = {=usize} bytes",
+        "       size_of per track slot TrackSlot<native, FixedGainTrack> = {=usize}, TrackerConfig<native> = {=usize}, RangeAzimuthFilter<native> = {=usize}, AltitudeTracker<native> = {=usize}, ThreatAssessment<native> = {=usize} bytes",
         slot,
         size_of::<Config<Native>>(),
         size_of::<RangeAzimuthFilter<Native>>(),
