@@ -10,3 +10,20 @@ mod replay_filters;
 mod replay_tracker;
 mod shell;
 mod simulate;
+
+use std::path::PathBuf;
+use std::process::Command as Process;
+
+/// The replay binary, as a user runs it.
+fn replay_binary() -> Process {
+    Process::new(env!("CARGO_BIN_EXE_replay"))
+}
+
+/// Writes `contents` to a file named `name` (unique among the tools'
+/// tests) in cargo's temporary directory for this process.
+fn temp_file(name: &str, contents: &str) -> PathBuf {
+    let dir = PathBuf::from(env!("CARGO_TARGET_TMPDIR"));
+    let path = dir.join(format!("replay-{}-{name}", std::process::id()));
+    std::fs::write(&path, contents).unwrap();
+    path
+}

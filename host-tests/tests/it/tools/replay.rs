@@ -2,9 +2,10 @@
 //! the library's arithmetic, the command line is checked, and the binary runs
 //! end to end.
 
+use super::{replay_binary, temp_file};
 use std::io::Write;
 use std::path::PathBuf;
-use std::process::{Command as Process, Stdio};
+use std::process::Stdio;
 
 use abtrack::filter::{Gains, UpdateOutcome};
 use abtrack::gain::{FixedGains, ScheduledFilter};
@@ -739,17 +740,6 @@ fn help_names_no_issue_number() {
 }
 
 // -------------------------------------------------------------- end to end
-
-fn replay_binary() -> Process {
-    Process::new(env!("CARGO_BIN_EXE_replay"))
-}
-
-fn temp_file(name: &str, contents: &str) -> PathBuf {
-    let dir = PathBuf::from(env!("CARGO_TARGET_TMPDIR"));
-    let path = dir.join(format!("replay-{}-{name}", std::process::id()));
-    std::fs::write(&path, contents).unwrap();
-    path
-}
 
 #[test]
 fn binary_runs_a_file() {

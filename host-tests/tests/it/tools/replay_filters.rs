@@ -7,9 +7,8 @@
 //! every value with `Display`, so the comparisons are exact string equality
 //! in all three representations.
 
+use super::{replay_binary, temp_file};
 use std::fmt::{Display, Write as _};
-use std::path::PathBuf;
-use std::process::Command as Process;
 
 use abtrack::bank::{BankOutcome, CartesianBank};
 use abtrack::filter::altitude::{AltitudeQuantum, AltitudeTracker, AltitudeTrackerConfig};
@@ -1312,55 +1311,28 @@ fn help_lists_every_schedule_and_option() {
 
 // -------------------------------------------------------------- end to end
 
-fn replay_binary() -> Process {
-    Process::new(env!("CARGO_BIN_EXE_replay"))
-}
-
-fn temp_file(name: &str, contents: &str) -> PathBuf {
-    let dir = PathBuf::from(env!("CARGO_TARGET_TMPDIR"));
-    let path = dir.join(format!("replay-ext-{}-{name}", std::process::id()));
-    std::fs::write(&path, contents).unwrap();
-    path
-}
-
 #[test]
 fn binary_runs_schedules_and_range_azimuth() {
     let (text, _) = generated_track(2);
-    let path = temp_file("track.csv", &text);
-    let out = replay_binary()
-        .args([
-            "--filter",
-            "ab",
-            "--schedule",
-            "liu-adaptive",
-            "--numeric",
-            "fixed",
-        ])
-        .arg(&path)
-        .output()
-        .unwrap();
-    assert!(
-        out.status.success(),
-        "{}",
-        String::from_utf8_lossy(&out.stderr)
+    binary_writes_what_the_library_does(
+        "--filter ab --schedule liu-adaptive --numeric fixed",
+        "track.csv",
+        &text,
     );
-    assert_eq!(
-        String::from_utf8(out.stdout).unwrap(),
-        replay("--filter ab --schedule liu-adaptive --numeric fixed", &text).unwrap()
-    );
-    let _ = std::fs::remove_file(path);
-
     let text = head_on_file(|_| Some(8000.0), true);
-    let path = temp_file("head-on.csv", &text);
+    binary_writes_what_the_library_does(
+        "--filter range-azimuth --own-alt 8000 --numeric f32",
+        "head-on.csv",
+        &text,
+    );
+}
+
+/// The binary, run on `text` written to a file, succeeds and prints what
+/// the library's replay gives for the same arguments.
+fn binary_writes_what_the_library_does(args: &str, file_name: &str, text: &str) {
+    let path = temp_file(file_name, text);
     let out = replay_binary()
-        .args([
-            "--filter",
-            "range-azimuth",
-            "--own-alt",
-            "8000",
-            "--numeric",
-            "f32",
-        ])
+        .args(args.split_whitespace())
         .arg(&path)
         .output()
         .unwrap();
@@ -1371,7 +1343,7 @@ fn binary_runs_schedules_and_range_azimuth() {
     );
     assert_eq!(
         String::from_utf8(out.stdout).unwrap(),
-        replay("--filter range-azimuth --own-alt 8000 --numeric f32", &text).unwrap()
+        replay(args, text).unwrap()
     );
     let _ = std::fs::remove_file(path);
 }

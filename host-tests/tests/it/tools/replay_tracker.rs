@@ -8,10 +8,9 @@
 //! the comparisons are exact string equality in all three representations,
 //! and they also check the CSV round trip.
 
+use super::{replay_binary, temp_file};
 use std::collections::{BTreeMap, BTreeSet};
 use std::fmt::{Display, Write as _};
-use std::path::PathBuf;
-use std::process::Command as Process;
 
 use abtrack::gain::spec::ScheduleSpec;
 use abtrack::tcas::{assess, Intruder, OwnAircraft};
@@ -593,18 +592,11 @@ fn tracker_options_are_checked() {
 
 // -------------------------------------------------------------- end to end
 
-fn temp_file(name: &str, contents: &str) -> PathBuf {
-    let dir = PathBuf::from(env!("CARGO_TARGET_TMPDIR"));
-    let path = dir.join(format!("replay-tracker-{}-{name}", std::process::id()));
-    std::fs::write(&path, contents).unwrap();
-    path
-}
-
 #[test]
 fn binary_runs_the_tracker_and_names_the_bad_line() {
     let csv = crossing().measurements_csv();
     let path = temp_file("crossing.csv", &csv);
-    let out = Process::new(env!("CARGO_BIN_EXE_replay"))
+    let out = replay_binary()
         .args(["--tracker", "--numeric", "fixed", "--verbose"])
         .arg(&path)
         .output()
@@ -624,7 +616,7 @@ fn binary_runs_the_tracker_and_names_the_bad_line() {
     let _ = std::fs::remove_file(path);
 
     let path = temp_file("decreasing.csv", "t,x,y\n0,1,1\n2,2,2\n2,3,3\n1,4,4\n");
-    let out = Process::new(env!("CARGO_BIN_EXE_replay"))
+    let out = replay_binary()
         .arg("--tracker")
         .arg(&path)
         .output()
