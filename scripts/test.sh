@@ -66,7 +66,9 @@ fuzz_build_log=$log_dir/fuzz-build.log
     echo "$status" >"$log_dir/fuzz-build.status"
 ) &
 fuzz_build_pid=$!
-trap 'kill "$fuzz_build_pid" 2>/dev/null; rm -rf "$log_dir"' EXIT
+# `|| true`: by the end the build has usually finished, and a failing `kill`
+# under `set -e` would turn a passing run's exit status into 1.
+trap 'kill "$fuzz_build_pid" 2>/dev/null || true; rm -rf "$log_dir"' EXIT
 # The fuzz step (in a lane: a subshell, which cannot `wait` for the build).
 fuzz_after_build() {
     until [ -s "$log_dir/fuzz-build.status" ]; do sleep 1; done
