@@ -177,9 +177,11 @@ panic_allowances_for() {
     esac
 }
 
-# Each image with its own allowances (none but the benchmark's).
+# Each image with its own allowances (none but the benchmark's); the images
+# side by side (each check is one llvm-objdump at a time), their reports in
+# order.
 check_no_panic_calls() {
-    local tool status=0 b t allow
+    local tool status=0 b t allow pids=() bins=()
     tool=$(firmware_check_tool) || return
     for b in $(firmware_bins); do
         allow=$(panic_allowances_for "$b")
@@ -187,7 +189,14 @@ check_no_panic_calls() {
         for t in "${ABTRACK_TARGETS[@]}"; do
             elves+=("target/$t/release/$b")
         done
-        "$tool" panics ${allow:+"$allow"} "${elves[@]}" || status=1
+        "$tool" panics ${allow:+"$allow"} "${elves[@]}" >"$log_dir/panics-$b.log" 2>&1 &
+        pids+=("$!")
+        bins+=("$b")
+    done
+    local i
+    for i in "${!pids[@]}"; do
+        wait "${pids[$i]}" || status=1
+        cat "$log_dir/panics-${bins[$i]}.log"
     done
     return "$status"
 }
@@ -245,29 +254,26 @@ build_nrf52840_dk() {
     bash scripts/sizes.sh --nrf52840-dk
 }
 
-# Builds and host checks, one after another (each uses both cores).
-step "cargo fmt --check" cargo fmt --check
-step "cargo fmt --check (host-tests)" in_host_tests cargo fmt --check
-step "host tests (cargo test --release)" in_host_tests cargo test --release
-# The library alone (no default features) for the three targets, in one
-# clippy pass with its no-panic lints (Cargo.toml [lints.clippy],
-# .clippy.toml): indexing, unwrap/expect, panic! and integer arithmetic are
-# errors, and so is every other clippy warning (docs/safety.md). Its code
-# generation for the three targets is the firmware build's, below.
+# The builds, in two lanes side by side: the host tests' build is mostly
+# one rustc at a time (the host-tests library, then the test binary), so the
+# library's checks and the firmware builds use the other core meanwhile.
+# They share no build directory: host-tests/target and target/.
+host_tests_lane() {
+    step "cargo fmt --check (host-tests)" in_host_tests cargo fmt --check
+    step "host tests (cargo test --release)" in_host_tests cargo test --release
+}
+
 target_args=()
 for t in "${ABTRACK_TARGETS[@]}"; do
     target_args+=(--target "$t")
 done
-step "library alone for the three targets: clippy, no panic paths (indexing, unwrap, arithmetic)" \
-    cargo clippy -p abtrack --lib --no-default-features "${target_args[@]}" -- -D warnings
-step "library: no firmware crates among its dependencies" library_has_no_firmware_dependencies
 
 # The package as crates.io gets it: `cargo publish --dry-run --no-verify`
 # makes it without its verification build (a build of the packaged
 # sources); instead, every file the library's compilation read (its
-# dep-info from the clippy pass above: sources, include_str! files) must be
-# in the package. The packaged sources are then the ones clippy checked for
-# the three targets and the firmware build below compiles.
+# dep-info from the clippy pass: sources, include_str! files) must be in the
+# package. The packaged sources are then the ones clippy checked for the
+# three targets and the firmware build compiles.
 check_package() {
     cargo publish --quiet --dry-run --no-verify -p abtrack --allow-dirty || return
     local listed dep_info missing=0 f t root=$PWD
@@ -293,7 +299,6 @@ check_package() {
     done
     [ "$missing" -eq 0 ] && echo "the package ($(wc -l <<<"$listed") files) holds every file the library's build reads"
 }
-step "library: the crates.io package (cargo publish --dry-run --no-verify; every file the build reads packaged)" check_package
 
 # Every image as the runs below use it: the binaries without features, the
 # benchmark with its own (bench-anchors), so each is built once; the three
@@ -304,15 +309,33 @@ build_firmware() {
         cargo build --release "${target_args[@]}" --features bench-anchors --bin bench &&
         cargo build --release --target thumbv7em-none-eabihf -p abtrack-firmware --example static_track_table
 }
-step "firmware build for the three targets (and the example static_track_table)" build_firmware
+
+# The library alone (no default features) for the three targets, in one
+# clippy pass with its no-panic lints (Cargo.toml [lints.clippy],
+# .clippy.toml): indexing, unwrap/expect, panic! and integer arithmetic are
+# errors, and so is every other clippy warning (docs/safety.md). Its code
+# generation for the three targets is the firmware build's. The soak image
+# is shortened to one hour of scans (ABTRACK_SOAK_SCANS, read at build
+# time) and built here so that no later lane holds the build directory's
+# lock for a link while the others run.
+library_and_firmware_lane() {
+    step "cargo fmt --check" cargo fmt --check
+    step "library alone for the three targets: clippy, no panic paths (indexing, unwrap, arithmetic)" \
+        cargo clippy -p abtrack --lib --no-default-features "${target_args[@]}" -- -D warnings
+    step "library: no firmware crates among its dependencies" library_has_no_firmware_dependencies
+    step "library: the crates.io package (cargo publish --dry-run --no-verify; every file the build reads packaged)" check_package
+    step "firmware build for the three targets (and the example static_track_table)" build_firmware
+    step "soak image, one hour of scans, for mps2-an385" env ABTRACK_SOAK_SCANS=3600 \
+        cargo build --release --target thumbv7m-none-eabi --bin soak
+}
+
+in_parallel host_tests_lane library_and_firmware_lane
+
+# The ELF checks (firmware-check is a host-tests binary, built by the host
+# tests' lane).
 step "firmware: no call into core::panicking in any release ELF" check_no_panic_calls
 step "firmware: stack below the static data in every release ELF (flip-link)" check_stack_layout
 step "firmware: the M4F demo image's .data under 4 KiB" check_demo_data
-# The soak image shortened to one hour of scans (ABTRACK_SOAK_SCANS, read at
-# build time), built here so that no lane holds the build directory's lock
-# for a link while the others run.
-step "soak image, one hour of scans, for mps2-an385" env ABTRACK_SOAK_SCANS=3600 \
-    cargo build --release --target thumbv7m-none-eabi --bin soak
 
 # The benchmark image (its own feature: the minikalman anchor) must run to
 # its end and print a complete, well-formed report: bench_report --check
@@ -399,7 +422,8 @@ soak_fuzz_nrf() {
 # Lane 7: the library's host-side checks, each in its own target directory
 # (under target/) so that no lane waits for another's build lock: its doc
 # examples run and examples/ built in one pass (one build of the library for
-# both), then examples/tcas_cycle.rs run; the documentation docs.rs builds
+# both; the test profile, with overflow checks, and no link-time
+# optimisation to wait for), then examples/tcas_cycle.rs run; the documentation docs.rs builds
 # (all features, the host target) with no rustdoc warning (broken intra-doc
 # links among them); the library on its minimum Rust version (Cargo.toml
 # `rust-version`).
@@ -407,10 +431,10 @@ library_on_the_host() {
     local host_triple
     host_triple=$(rustc -vV | sed -n 's/^host: //p')
     step "library doc examples and examples/ (cargo test -p abtrack)" \
-        in_host_tests cargo test --release --manifest-path ../Cargo.toml -p abtrack \
+        in_host_tests cargo test --manifest-path ../Cargo.toml -p abtrack \
         --target-dir ../target/host-examples
     step "example tcas_cycle (examples/tcas_cycle.rs) on the host" \
-        "target/host-examples/$host_triple/release/examples/tcas_cycle"
+        "target/host-examples/$host_triple/debug/examples/tcas_cycle"
     step "library: cargo doc, no warnings" in_host_tests env RUSTDOCFLAGS="-D warnings" \
         cargo doc --manifest-path ../Cargo.toml -p abtrack --lib --no-deps --all-features \
         --target-dir ../target/doc-check
