@@ -205,7 +205,7 @@ impl<N: Numeric, const D: usize> AutoFilter<N, D> {
                 e.check_output(&mut guard);
             }
             let nu = N::Ratio::from(e) * noise.inverse_sigma;
-            nis = nis + capped_nis(nu, step.inverse, span.nis_cap);
+            nis = nis + capped_nis(nu, step.inverse, noise.nis_cap);
             *x = p.add_product(alpha, e, &mut guard);
             *v = v.add_product(rate, e, &mut guard);
             x.check_output(&mut guard);

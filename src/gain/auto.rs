@@ -44,7 +44,7 @@ pub const NIS_MEMORY_S: u64 = 8;
 const _: () = assert!(NIS_MEMORY_S == 8, "Span::new halves three times");
 /// The largest normalised innovation squared the average takes in.
 pub const NIS_CAP: u64 = 100;
-const _: () = assert!(NIS_CAP == 100, "Span::new builds the cap as 10·10");
+const _: () = assert!(NIS_CAP == 100, "nis_cap builds the cap as 10·10");
 
 /// Configuration of [`AutoGains`] (`auto:sigma=S` or
 /// `auto:range-sigma=R,bearing-sigma-deg=B`). The sensor is given either as
@@ -193,6 +193,8 @@ pub struct SharedNoise<N: Numeric> {
     pub(crate) inverse_sigma: N::Ratio,
     pub(crate) manoeuvre_min: N::Ratio,
     pub(crate) manoeuvre_max: N::Ratio,
+    /// [`NIS_CAP`].
+    pub(crate) nis_cap: N::Ratio,
 }
 
 impl<N: Numeric> SharedNoise<N> {
@@ -214,6 +216,8 @@ pub struct AutoGains<N: Numeric, const D: usize> {
     /// [`Q_MIN`] and [`Q_MAX`] as q/(3σ²).
     manoeuvre_min: N::Ratio,
     manoeuvre_max: N::Ratio,
+    /// [`NIS_CAP`].
+    nis_cap: N::Ratio,
     axes: [AutoAxis<N>; D],
     /// Time coasted since the last update, s (added to the next interval).
     coasted: N::Ratio,
@@ -231,8 +235,6 @@ pub(crate) struct Span<R> {
     triple: R,
     weight: R,
     interval: R,
-    /// [`NIS_CAP`], built by additions (no conversion per update).
-    pub(crate) nis_cap: R,
 }
 
 impl<R: Real> Span<R> {
@@ -247,13 +249,16 @@ impl<R: Real> Span<R> {
             triple: tau + tau + tau,
             weight,
             interval: dt,
-            nis_cap: {
-                let two = R::ONE + R::ONE;
-                let ten = (two + two) + (two + two) + two;
-                ten * ten
-            },
         }
     }
+}
+
+/// [`NIS_CAP`] in `R`, built by additions (exact in every format; formed
+/// once per configuration).
+fn nis_cap<R: Real>() -> R {
+    let two = R::ONE + R::ONE;
+    let ten = (two + two) + (two + two) + two;
+    ten * ten
 }
 
 /// An axis's covariance predicted over the span (P⁻ = FPFᵀ + Q), as
@@ -297,19 +302,6 @@ pub(crate) struct CovarianceStep<N: Numeric> {
     pub(crate) matched: bool,
 }
 
-/// Whether every value is valid. Floats and the fast fixed point's ratios
-/// keep an invalid value sticky through a sum that cannot overflow at the
-/// normalised covariance's magnitudes, so one sum is tested; Q32.32's sum
-/// could saturate, so each value is.
-#[inline(always)]
-fn valid<R: Real>(a: R, b: R, c: R) -> bool {
-    if R::RELATIVE_PRECISION {
-        (a + b + c).is_valid()
-    } else {
-        R::all_valid([a, b, c])
-    }
-}
-
 /// One Kalman update of the normalised covariance `a` for measurement
 /// variance ratio `r` (R/σ²): the gains, 1/S̃ and P⁺, or `None` when the
 /// covariance left the number format. One division (1/S̃); no libm.
@@ -341,8 +333,10 @@ pub(crate) fn covariance_step<N: Numeric>(
         velocity = floor + floor;
     }
     // α and β/T are the stored position and cross terms over r, so these
-    // three cover every result (invalid values are sticky).
-    valid(position, cross, velocity).then_some(CovarianceStep {
+    // three cover every result (invalid values are sticky). One check each:
+    // a fold over an array is a loop at opt-level "s".
+    let valid = |v: N::Ratio| N::Ratio::all_valid([v]);
+    (valid(position) & valid(cross) & valid(velocity)).then_some(CovarianceStep {
         gains: KalmanGains { alpha, rate, beta },
         inverse,
         next: AutoAxis {
@@ -440,7 +434,8 @@ pub(crate) fn match_manoeuvre<N: Numeric>(
     let manoeuvre = (a.manoeuvre + a.manoeuvre * (mean - one).half().half())
         .min_of(bounds.1)
         .max_of(bounds.0);
-    (a.nis, a.manoeuvre) = if valid(mean, manoeuvre, N::Ratio::ZERO) {
+    let valid = |v: N::Ratio| N::Ratio::all_valid([v]);
+    (a.nis, a.manoeuvre) = if valid(mean) & valid(manoeuvre) {
         (mean, manoeuvre)
     } else {
         (one, bounds.1)
@@ -465,11 +460,12 @@ fn step_axis<N: Numeric>(
     r: N::Ratio,
     nu: N::Ratio,
     bounds: (N::Ratio, N::Ratio),
+    cap: N::Ratio,
 ) -> Result<Gains<N>, ScheduleError> {
     let step = covariance_step_or_restart(a, s, r, bounds);
     *a = step.next;
     if step.matched {
-        match_manoeuvre(a, capped_nis(nu, step.inverse, s.nis_cap), s, bounds);
+        match_manoeuvre(a, capped_nis(nu, step.inverse, cap), s, bounds);
     }
     Ok(Gains::alpha_beta(step.gains.alpha, step.gains.beta)?)
 }
@@ -520,6 +516,7 @@ impl<N: Numeric, const D: usize> AutoGains<N, D> {
             noise,
             manoeuvre_min,
             manoeuvre_max,
+            nis_cap: nis_cap(),
             axes: [two_point::<N>(N::Ratio::ONE, N::Ratio::ZERO); D],
             coasted: N::Ratio::ZERO,
             start: Start::Empty,
@@ -547,6 +544,7 @@ impl<N: Numeric, const D: usize> AutoGains<N, D> {
             },
             manoeuvre_min: self.manoeuvre_min,
             manoeuvre_max: self.manoeuvre_max,
+            nis_cap: self.nis_cap,
         }
     }
 
@@ -641,7 +639,7 @@ impl<N: Numeric, const D: usize> AutoGains<N, D> {
         let mut gains = [Gains::alpha_beta(one, one)?; D];
         let mut next = self.current(dt, Some(&ratios));
         for ((g, a), (r, nu)) in gains.iter_mut().zip(next.iter_mut()).zip(ratios) {
-            *g = step_axis(a, &span, r, nu, bounds)?;
+            *g = step_axis(a, &span, r, nu, bounds, self.nis_cap)?;
         }
         Ok((gains, next))
     }
