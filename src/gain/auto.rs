@@ -389,7 +389,9 @@ pub(crate) fn covariance_step_or_restart<N: Numeric>(
 
 /// One axis's ν²/S (from ν/σ and 1/S̃), capped at `cap`: a NIS beyond the
 /// cap is a manoeuvre whatever its size, and capping it keeps the average
-/// in range. It is formed as (ν/S̃)·ν. A format with a relative precision
+/// in range; so is one that left the number format (an invalid value
+/// compares false, so `cap.min_of` gives the cap). It is formed as
+/// (ν/S̃)·ν. A format with a relative precision
 /// (floats, the fast fixed point's ratios) holds the product whatever ν;
 /// a narrow absolute one (Q32.32) forms it only when |ν/S̃| < 1 (the
 /// product is then smaller than |ν|) or |ν| is under the cap (it is then
@@ -399,7 +401,7 @@ pub(crate) fn covariance_step_or_restart<N: Numeric>(
 pub(crate) fn capped_nis<R: Real>(nu: R, inverse: R, cap: R) -> R {
     let weighted = nu * inverse;
     if R::RELATIVE_PRECISION || weighted.abs() < R::ONE || nu.abs() < cap {
-        (weighted * nu).min_of(cap)
+        cap.min_of(weighted * nu)
     } else {
         cap
     }
@@ -420,8 +422,10 @@ pub(crate) fn mean_over_axes<R: Real, const K: usize>(sum: R) -> R {
 /// Covariance matching (module docs): the fading average of ν²/S takes in
 /// `nis` (this update's, averaged over the axes sharing `a`) with the
 /// span's weight, and the manoeuvre level moves by 1 + (average − 1)/4
-/// within `bounds`. Should either leave the number format, the level goes
-/// to its ceiling and the average to 1, as a restart would.
+/// within `bounds`. Both stay valid without a check: `nis` is a mean of
+/// [`capped_nis`] (in [0, cap] whatever ν), so the average stays between
+/// the previous one and the cap, and the level's step is bounded before
+/// it is clamped.
 #[inline(always)]
 pub(crate) fn match_manoeuvre<N: Numeric>(
     a: &mut AutoAxis<N>,
@@ -429,17 +433,10 @@ pub(crate) fn match_manoeuvre<N: Numeric>(
     s: &Span<N::Ratio>,
     bounds: (N::Ratio, N::Ratio),
 ) {
-    let one = N::Ratio::ONE;
-    let mean = a.nis + (nis - a.nis) * s.weight;
-    let manoeuvre = (a.manoeuvre + a.manoeuvre * (mean - one).half().half())
+    a.nis = a.nis + (nis - a.nis) * s.weight;
+    a.manoeuvre = (a.manoeuvre + a.manoeuvre * (a.nis - N::Ratio::ONE).half().half())
         .min_of(bounds.1)
         .max_of(bounds.0);
-    let valid = |v: N::Ratio| N::Ratio::all_valid([v]);
-    (a.nis, a.manoeuvre) = if valid(mean) & valid(manoeuvre) {
-        (mean, manoeuvre)
-    } else {
-        (one, bounds.1)
-    };
 }
 
 /// Refuses, at compile time, a number of axes sharing a covariance that is
