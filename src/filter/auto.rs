@@ -8,7 +8,7 @@
 //! start, so one 2×2 p̃ (three numbers), one manoeuvre level and one gain
 //! pair serve them all; the manoeuvre level is matched on the mean of the
 //! axes' ν²/S (Bar-Shalom, Li & Kirubarajan 2001 §5.4, §11.2.2). The update
-//! is `kalman_step_or_restart` (one division, no libm) and then per axis
+//! is `covariance_step_or_restart` (one division, no libm) and then per axis
 //! x = x_p + α·e, v = v + (β/T)·e (Al-Wagih & Abdulla eqs. 3–8). A sensor
 //! whose σ differs per axis (range–bearing) is the schedule
 //! [`crate::gain::AutoGains`] (one covariance per axis) with
@@ -16,7 +16,8 @@
 
 use crate::filter::{FilterError, IntervalSpan, Phase};
 use crate::gain::auto::{
-    kalman_step_or_restart, predicted, two_point, AutoAxis, SharedNoise, Span,
+    capped_nis, covariance_step_or_restart, match_manoeuvre, mean_over_axes, predicted, two_point,
+    AutoAxis, SharedNoise, Span,
 };
 use crate::num::{AddProduct, Checked, Guard, Numeric, Quantity, Real, SubGuarded};
 
@@ -182,45 +183,42 @@ impl<N: Numeric, const D: usize> AutoFilter<N, D> {
             self.phase = Phase::Tracking;
             return Ok(AutoUpdate::SecondPoint);
         }
+        // The gains depend on the covariance alone: formed first, so that
+        // each axis is predicted, corrected and its ν²/S taken in one pass.
         let span = Span::new(N::Ratio::from(self.coasted), N::Ratio::from(dt));
-        let mut predicted = self.position;
-        let mut residual = [N::Length::ZERO; D];
-        let mut nu = [N::Ratio::ZERO; D];
-        for i in 0..D {
-            let (Some(p), Some(e), Some(n), Some(x), Some(v), Some(z)) = (
-                predicted.get_mut(i),
-                residual.get_mut(i),
-                nu.get_mut(i),
-                self.position.get(i),
-                self.velocity.get(i),
-                z.get(i),
-            ) else {
-                continue;
-            };
-            *p = x.add_product(*v, dt, &mut guard);
-            *e = z.sub_guarded(*p, &mut guard);
-            p.check_output(&mut guard);
-            e.check_output(&mut guard);
-            *n = N::Ratio::from(*e) * noise.inverse_sigma;
-        }
-        if !guard.passed() {
-            return Err(FilterError::Saturated);
-        }
-        let mut covariance = self.covariance;
-        let gains =
-            kalman_step_or_restart(&mut covariance, &span, N::Ratio::ONE, &nu, noise.bounds());
-        let (alpha, rate) = (N::gain(gains.alpha), N::Rate::from(gains.rate));
+        let bounds = noise.bounds();
+        let step = covariance_step_or_restart(&self.covariance, &span, N::Ratio::ONE, bounds);
+        let (alpha, rate) = (N::gain(step.gains.alpha), N::Rate::from(step.gains.rate));
+        let mut position = self.position;
         let mut velocity = self.velocity;
-        for ((p, v), e) in predicted.iter_mut().zip(velocity.iter_mut()).zip(&residual) {
-            *p = p.add_product(alpha, *e, &mut guard);
-            *v = v.add_product(rate, *e, &mut guard);
-            p.check_output(&mut guard);
+        let mut nis = N::Ratio::ZERO;
+        // One guard for the whole update, tested once: an `Err` writes
+        // nothing.
+        for ((x, v), z) in position.iter_mut().zip(velocity.iter_mut()).zip(&z) {
+            let p = x.add_product(*v, dt, &mut guard);
+            let e = z.sub_guarded(p, &mut guard);
+            if N::FUSED_PRODUCTS {
+                // Not sticky: a prediction or residual that is a sentinel
+                // would not show in the outputs. The sticky formats' outputs
+                // carry every intermediate.
+                p.check_output(&mut guard);
+                e.check_output(&mut guard);
+            }
+            let nu = N::Ratio::from(e) * noise.inverse_sigma;
+            nis = nis + capped_nis(nu, step.inverse, noise.nis_cap);
+            *x = p.add_product(alpha, e, &mut guard);
+            *v = v.add_product(rate, e, &mut guard);
+            x.check_output(&mut guard);
             v.check_output(&mut guard);
         }
         if !guard.passed() {
             return Err(FilterError::Saturated);
         }
-        self.position = predicted;
+        let mut covariance = step.next;
+        if step.matched {
+            match_manoeuvre(&mut covariance, mean_over_axes::<_, D>(nis), &span, bounds);
+        }
+        self.position = position;
         self.velocity = velocity;
         self.covariance = covariance;
         self.coasted = N::Interval::ZERO;

@@ -44,7 +44,7 @@ pub const NIS_MEMORY_S: u64 = 8;
 const _: () = assert!(NIS_MEMORY_S == 8, "Span::new halves three times");
 /// The largest normalised innovation squared the average takes in.
 pub const NIS_CAP: u64 = 100;
-const _: () = assert!(NIS_CAP == 100, "Span::new builds the cap as 10·10");
+const _: () = assert!(NIS_CAP == 100, "nis_cap builds the cap as 10·10");
 
 /// Configuration of [`AutoGains`] (`auto:sigma=S` or
 /// `auto:range-sigma=R,bearing-sigma-deg=B`). The sensor is given either as
@@ -193,6 +193,8 @@ pub struct SharedNoise<N: Numeric> {
     pub(crate) inverse_sigma: N::Ratio,
     pub(crate) manoeuvre_min: N::Ratio,
     pub(crate) manoeuvre_max: N::Ratio,
+    /// [`NIS_CAP`].
+    pub(crate) nis_cap: N::Ratio,
 }
 
 impl<N: Numeric> SharedNoise<N> {
@@ -214,6 +216,8 @@ pub struct AutoGains<N: Numeric, const D: usize> {
     /// [`Q_MIN`] and [`Q_MAX`] as q/(3σ²).
     manoeuvre_min: N::Ratio,
     manoeuvre_max: N::Ratio,
+    /// [`NIS_CAP`].
+    nis_cap: N::Ratio,
     axes: [AutoAxis<N>; D],
     /// Time coasted since the last update, s (added to the next interval).
     coasted: N::Ratio,
@@ -231,8 +235,6 @@ pub(crate) struct Span<R> {
     triple: R,
     weight: R,
     interval: R,
-    /// [`NIS_CAP`], built by additions (no conversion per update).
-    nis_cap: R,
 }
 
 impl<R: Real> Span<R> {
@@ -247,13 +249,16 @@ impl<R: Real> Span<R> {
             triple: tau + tau + tau,
             weight,
             interval: dt,
-            nis_cap: {
-                let two = R::ONE + R::ONE;
-                let ten = (two + two) + (two + two) + two;
-                ten * ten
-            },
         }
     }
+}
+
+/// [`NIS_CAP`] in `R`, built by additions (exact in every format; formed
+/// once per configuration).
+fn nis_cap<R: Real>() -> R {
+    let two = R::ONE + R::ONE;
+    let ten = (two + two) + (two + two) + two;
+    ten * ten
 }
 
 /// An axis's covariance predicted over the span (P⁻ = FPFᵀ + Q), as
@@ -281,20 +286,31 @@ pub(crate) struct KalmanGains<R> {
     pub(crate) beta: R,
 }
 
+/// The covariance half of one Kalman step ([`covariance_step`]): what
+/// does not depend on the innovations.
+#[derive(Clone, Copy)]
+pub(crate) struct CovarianceStep<N: Numeric> {
+    pub(crate) gains: KalmanGains<N::Ratio>,
+    /// 1/S̃ (S̃ = p̃⁻_xx + R/σ²): an axis's ν²/S is (ν/σ · 1/S̃)·ν/σ
+    /// ([`capped_nis`]).
+    pub(crate) inverse: N::Ratio,
+    /// P⁺/σ², with the manoeuvre level and NIS average not yet moved.
+    pub(crate) next: AutoAxis<N>,
+    /// Whether the manoeuvre level follows this step's innovations
+    /// ([`match_manoeuvre`]); not after the last-resort gains of
+    /// [`covariance_step_or_restart`].
+    pub(crate) matched: bool,
+}
+
 /// One Kalman update of the normalised covariance `a` for measurement
-/// variance ratio `r` (R/σ²) and the normalised innovations `nu` (ν/σ) of
-/// the axes that share it (one per axis, or every axis of a sensor with
-/// the same σ on each; their number a power of two): the gains, and `a`
-/// moved to the state after the update. The manoeuvre level follows the
-/// mean of the axes' ν²/S. One division (1/S); no other libm.
+/// variance ratio `r` (R/σ²): the gains, 1/S̃ and P⁺, or `None` when the
+/// covariance left the number format. One division (1/S̃); no libm.
 #[inline(always)]
-pub(crate) fn kalman_step<N: Numeric, const K: usize>(
-    a: &mut AutoAxis<N>,
+pub(crate) fn covariance_step<N: Numeric>(
+    a: &AutoAxis<N>,
     s: &Span<N::Ratio>,
     r: N::Ratio,
-    nu: &[N::Ratio; K],
-    bounds: (N::Ratio, N::Ratio),
-) -> Result<KalmanGains<N::Ratio>, ScheduleError> {
+) -> Option<CovarianceStep<N>> {
     let one = N::Ratio::ONE;
     let (pxx, pxv, pvv) = predicted(a, s);
     let inverse = one / (pxx + r);
@@ -316,43 +332,111 @@ pub(crate) fn kalman_step<N: Numeric, const K: usize>(
         let floor = cross * cross / position;
         velocity = floor + floor;
     }
-    // A NIS beyond the cap is a manoeuvre whatever its size; capping it
-    // keeps the average in range. ν²/S is formed as (ν/S)·ν: when |ν/S| < 1
-    // the product is smaller than |ν|, and when |ν| is under the cap it is
-    // at most cap²/S, so neither overflows a narrow format; a polar axis's
-    // S can be far above 1, and then a large ν is not a manoeuvre.
-    let cap = s.nis_cap;
-    let mut nis = N::Ratio::ZERO;
-    for &nu in nu.iter() {
-        let weighted = nu * inverse;
-        nis = nis
-            + if weighted.abs() < one || nu.abs() < cap {
-                (weighted * nu).min_of(cap)
-            } else {
-                cap
-            };
+    // α and β/T are the stored position and cross terms over r, so these
+    // three cover every result (invalid values are sticky). One check each:
+    // a fold over an array is a loop at opt-level "s".
+    let valid = |v: N::Ratio| N::Ratio::all_valid([v]);
+    (valid(position) & valid(cross) & valid(velocity)).then_some(CovarianceStep {
+        gains: KalmanGains { alpha, rate, beta },
+        inverse,
+        next: AutoAxis {
+            position,
+            cross,
+            velocity,
+            ..*a
+        },
+        matched: true,
+    })
+}
+
+/// [`covariance_step`], and should the covariance have left the number
+/// format (a narrow format, a tiny σ and a long interval), a restart from a
+/// two-point start over the span at the manoeuvre ceiling `bounds.1`,
+/// scaled by `r`; should that fail too, the gains of a two-point start at
+/// equal intervals without process noise (α = 5/6, β = 1/2: Al-Wagih &
+/// Abdulla eq. 24 at n = 3), the manoeuvre level left as it is.
+#[inline(always)]
+pub(crate) fn covariance_step_or_restart<N: Numeric>(
+    a: &AutoAxis<N>,
+    s: &Span<N::Ratio>,
+    r: N::Ratio,
+    bounds: (N::Ratio, N::Ratio),
+) -> CovarianceStep<N> {
+    if let Some(step) = covariance_step(a, s, r) {
+        return step;
     }
-    // The mean over the axes (their number is a power of two).
+    let start = two_point::<N>(s.tau, bounds.1);
+    let start = AutoAxis {
+        position: start.position * r,
+        cross: start.cross * r,
+        velocity: start.velocity * r,
+        ..start
+    };
+    covariance_step(&start, &Span::new(N::Ratio::ZERO, s.interval), r).unwrap_or_else(|| {
+        let beta = N::Ratio::ONE.half();
+        CovarianceStep {
+            gains: KalmanGains {
+                alpha: N::Ratio::from_ratio(5, 6),
+                rate: beta / s.interval,
+                beta,
+            },
+            inverse: N::Ratio::ZERO,
+            next: start,
+            matched: false,
+        }
+    })
+}
+
+/// One axis's ν²/S (from ν/σ and 1/S̃), capped at `cap`: a NIS beyond the
+/// cap is a manoeuvre whatever its size, and capping it keeps the average
+/// in range; so is one that left the number format (an invalid value
+/// compares false, so `cap.min_of` gives the cap). It is formed as
+/// (ν/S̃)·ν. A format with a relative precision
+/// (floats, the fast fixed point's ratios) holds the product whatever ν;
+/// a narrow absolute one (Q32.32) forms it only when |ν/S̃| < 1 (the
+/// product is then smaller than |ν|) or |ν| is under the cap (it is then
+/// at most cap²/S̃): a polar axis's S̃ can be far above 1, and then a large
+/// ν is not a manoeuvre.
+#[inline(always)]
+pub(crate) fn capped_nis<R: Real>(nu: R, inverse: R, cap: R) -> R {
+    let weighted = nu * inverse;
+    if R::RELATIVE_PRECISION || weighted.abs() < R::ONE || nu.abs() < cap {
+        cap.min_of(weighted * nu)
+    } else {
+        cap
+    }
+}
+
+/// The mean of the capped ν²/S of `K` axes from their sum (their number a
+/// power of two: halvings).
+#[inline(always)]
+pub(crate) fn mean_over_axes<R: Real, const K: usize>(sum: R) -> R {
     let () = AxesPowerOfTwo::<K>::CHECK;
+    let mut mean = sum;
     for _ in 0..K.trailing_zeros() {
-        nis = nis.half();
+        mean = mean.half();
     }
-    let mean = a.nis + (nis - a.nis) * s.weight;
-    let manoeuvre = (a.manoeuvre + a.manoeuvre * (mean - one).half().half())
+    mean
+}
+
+/// Covariance matching (module docs): the fading average of ν²/S takes in
+/// `nis` (this update's, averaged over the axes sharing `a`) with the
+/// span's weight, and the manoeuvre level moves by 1 + (average − 1)/4
+/// within `bounds`. Both stay valid without a check: `nis` is a mean of
+/// [`capped_nis`] (in [0, cap] whatever ν), so the average stays between
+/// the previous one and the cap, and the level's step is bounded before
+/// it is clamped.
+#[inline(always)]
+pub(crate) fn match_manoeuvre<N: Numeric>(
+    a: &mut AutoAxis<N>,
+    nis: N::Ratio,
+    s: &Span<N::Ratio>,
+    bounds: (N::Ratio, N::Ratio),
+) {
+    a.nis = a.nis + (nis - a.nis) * s.weight;
+    a.manoeuvre = (a.manoeuvre + a.manoeuvre * (a.nis - N::Ratio::ONE).half().half())
         .min_of(bounds.1)
         .max_of(bounds.0);
-    let next = AutoAxis {
-        position,
-        cross,
-        velocity,
-        manoeuvre,
-        nis: mean,
-    };
-    if !N::Ratio::all_valid([position, cross, velocity, manoeuvre, mean, alpha, rate]) {
-        return Err(ScheduleError::InvalidContext);
-    }
-    *a = next;
-    Ok(KalmanGains { alpha, rate, beta })
 }
 
 /// Refuses, at compile time, a number of axes sharing a covariance that is
@@ -363,45 +447,9 @@ impl<const K: usize> AxesPowerOfTwo<K> {
     const CHECK: () = assert!(K.is_power_of_two(), "axes sharing a covariance: 1, 2, 4…");
 }
 
-/// [`kalman_step`], and should the covariance have left the number format
-/// (a narrow format, a tiny σ and a long interval), a restart of `a` from
-/// a two-point start over the span at the ceiling `bounds.1`, scaled by
-/// `r`; should that fail too, the gains of a two-point start at equal
-/// intervals without process noise (α = 5/6, β = 1/2: Al-Wagih & Abdulla
-/// eq. 24 at n = 3).
-#[inline(always)]
-pub(crate) fn kalman_step_or_restart<N: Numeric, const K: usize>(
-    a: &mut AutoAxis<N>,
-    s: &Span<N::Ratio>,
-    r: N::Ratio,
-    nu: &[N::Ratio; K],
-    bounds: (N::Ratio, N::Ratio),
-) -> KalmanGains<N::Ratio> {
-    if let Ok(g) = kalman_step(a, s, r, nu, bounds) {
-        return g;
-    }
-    let start = two_point::<N>(s.tau, bounds.1);
-    *a = AutoAxis {
-        position: start.position * r,
-        cross: start.cross * r,
-        velocity: start.velocity * r,
-        ..start
-    };
-    match kalman_step(a, &Span::new(N::Ratio::ZERO, s.interval), r, nu, bounds) {
-        Ok(g) => g,
-        Err(_) => {
-            let beta = N::Ratio::ONE.half();
-            KalmanGains {
-                alpha: N::Ratio::from_ratio(5, 6),
-                rate: beta / s.interval,
-                beta,
-            }
-        }
-    }
-}
-
-/// One axis's update as a schedule gives it: `kalman_step_or_restart`
-/// with its own innovation, as [`Gains`].
+/// One axis's update as a schedule gives it: the covariance step (or its
+/// restart) and the manoeuvre level matched on the axis's own ν/σ, as
+/// [`Gains`].
 #[inline(always)]
 fn step_axis<N: Numeric>(
     a: &mut AutoAxis<N>,
@@ -409,9 +457,14 @@ fn step_axis<N: Numeric>(
     r: N::Ratio,
     nu: N::Ratio,
     bounds: (N::Ratio, N::Ratio),
+    cap: N::Ratio,
 ) -> Result<Gains<N>, ScheduleError> {
-    let g = kalman_step_or_restart(a, s, r, &[nu], bounds);
-    Ok(Gains::alpha_beta(g.alpha, g.beta)?)
+    let step = covariance_step_or_restart(a, s, r, bounds);
+    *a = step.next;
+    if step.matched {
+        match_manoeuvre(a, capped_nis(nu, step.inverse, cap), s, bounds);
+    }
+    Ok(Gains::alpha_beta(step.gains.alpha, step.gains.beta)?)
 }
 
 /// The two-point start over interval `t` (Bar-Shalom, Li & Kirubarajan
@@ -460,6 +513,7 @@ impl<N: Numeric, const D: usize> AutoGains<N, D> {
             noise,
             manoeuvre_min,
             manoeuvre_max,
+            nis_cap: nis_cap(),
             axes: [two_point::<N>(N::Ratio::ONE, N::Ratio::ZERO); D],
             coasted: N::Ratio::ZERO,
             start: Start::Empty,
@@ -487,6 +541,7 @@ impl<N: Numeric, const D: usize> AutoGains<N, D> {
             },
             manoeuvre_min: self.manoeuvre_min,
             manoeuvre_max: self.manoeuvre_max,
+            nis_cap: self.nis_cap,
         }
     }
 
@@ -581,7 +636,7 @@ impl<N: Numeric, const D: usize> AutoGains<N, D> {
         let mut gains = [Gains::alpha_beta(one, one)?; D];
         let mut next = self.current(dt, Some(&ratios));
         for ((g, a), (r, nu)) in gains.iter_mut().zip(next.iter_mut()).zip(ratios) {
-            *g = step_axis(a, &span, r, nu, bounds)?;
+            *g = step_axis(a, &span, r, nu, bounds, self.nis_cap)?;
         }
         Ok((gains, next))
     }
