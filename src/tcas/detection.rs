@@ -7,14 +7,16 @@
 //! Each rule's source is on its function; docs/tcas.md has the table.
 
 use super::measures::{all_valid, valid_result};
-use super::range_tracker::{RangeEstimate, MIN_ALERT_FIRMNESS};
+use super::range_tracker::{
+    RangeEstimate, ACCELERATION_SIGMA_PER_RESIDUAL_SIGMA, MIN_ALERT_FIRMNESS,
+};
 use super::sensitivity::{AlertThresholds, OwnAircraft, SensitivityParameters};
 use super::{
     Advisory, TcasError, METRES_PER_FOOT, METRES_PER_NAUTICAL_MILE, PROXIMATE_ALTITUDE_FT,
     PROXIMATE_RANGE_NM,
 };
 use crate::filter::altitude::{AltitudeEstimate, OutOfLine};
-use crate::num::{Quantity, Scalar};
+use crate::num::{hypot, Quantity, Scalar};
 
 /// Range rate above which an intruder counts as diverging, and the floor
 /// on the closure speed in the taus, ft/s (DO-185B `RDTHR`, `RDTHRTA`).
@@ -57,11 +59,17 @@ pub const MANOEUVRE_SHUTDOWN_CYCLES: u8 = 10;
 /// The bearing cross-check: a range-based HMD more than this times the
 /// bearing tracker's is a manoeuvre (DO-185B `rbratio`).
 pub const BEARING_CROSS_CHECK_RATIO: f64 = 2.0;
-/// The bearing-based miss distance counts for the filter only as its lower
-/// confidence bound, the estimate minus this many standard deviations
-/// (US patent 5,566,074: each miss-distance estimate is used with its
-/// uncertainty; the bound and the factor are ours, see docs/tcas.md).
-pub const BEARING_MISS_DISTANCE_CONFIDENCE: f64 = 2.0;
+/// The HMD filter's confidence factor k for a new threat: its RA needs
+/// the combined miss distance's upper bound m + kσ at or under the level's
+/// HMD threshold (US patent 5,566,074: each miss-distance estimate is used
+/// with its uncertainty; the bound is ours, k read off the trade-off of
+/// docs/tcas.md).
+pub const MISS_DISTANCE_CONFIDENCE: f64 = 0.35;
+/// The factor for a continuing threat: its RA ends only when the lower
+/// bound m − kσ exceeds 1.05·DMOD (booklet, v7.0 changes: the filter ends
+/// an RA when confident the miss will be large; a one-sided 97.7 % bound,
+/// ours).
+pub const CONTINUING_MISS_DISTANCE_CONFIDENCE: f64 = 2.0;
 /// The largest modified tau kept by the tau cap, s (any value above every
 /// TAU does).
 pub const TAU_CAP_LIMIT_S: f64 = 60.0;
@@ -137,7 +145,9 @@ struct Constants<S> {
     miss_distance_tau_limit_s: S,
     continuing_hmd_dmod_factor: S,
     bearing_cross_check_ratio: S,
-    bearing_miss_distance_confidence: S,
+    miss_distance_confidence: S,
+    continuing_miss_distance_confidence: S,
+    acceleration_sigma_per_residual_sigma: S,
     tau_cap_limit_s: S,
     proximate_range_m: S,
     proximate_altitude_ft: S,
@@ -189,7 +199,9 @@ impl<S: Scalar> CycleThresholds<S> {
                 miss_distance_tau_limit_s: c(MISS_DISTANCE_TAU_LIMIT_S),
                 continuing_hmd_dmod_factor: c(CONTINUING_HMD_DMOD_FACTOR),
                 bearing_cross_check_ratio: c(BEARING_CROSS_CHECK_RATIO),
-                bearing_miss_distance_confidence: c(BEARING_MISS_DISTANCE_CONFIDENCE),
+                miss_distance_confidence: c(MISS_DISTANCE_CONFIDENCE),
+                continuing_miss_distance_confidence: c(CONTINUING_MISS_DISTANCE_CONFIDENCE),
+                acceleration_sigma_per_residual_sigma: c(ACCELERATION_SIGMA_PER_RESIDUAL_SIGMA),
                 tau_cap_limit_s: c(TAU_CAP_LIMIT_S),
                 proximate_range_m: c(PROXIMATE_RANGE_NM * METRES_PER_NAUTICAL_MILE),
                 proximate_altitude_ft: c(PROXIMATE_ALTITUDE_FT),
@@ -467,37 +479,37 @@ impl<S> MissDistances<S> {
 }
 
 impl MissDistanceFilter {
-    /// The HMDs the filter uses this cycle, m. The bearing tracker's miss
-    /// distance b counts with its standard deviation σ (US patent
-    /// 5,566,074: each miss-distance estimate with its uncertainty, the
-    /// smaller of the range- and bearing-based ones), as the interval
-    /// b ± kσ (k = [`BEARING_MISS_DISTANCE_CONFIDENCE`], or the cycle's).
-    /// For a new threat the range tracker's projection is capped by b + kσ
-    /// (DO-185B `miss_distance_calculations` caps it by b) and, while r̈ is
-    /// below its threshold (no range projection), b − kσ if positive. For
-    /// a continuing threat, whose RA the filter may end only when it is
-    /// confident the miss is large (booklet, "CAS Logic Changes" of v7.0),
-    /// the projection is capped by the lower bound b − kσ. `None` (filter
-    /// off) until the range track is initialised, and for
+    /// The HMDs the filter uses this cycle, m (US patent 5,566,074: the
+    /// range- and bearing-based miss distances each with its uncertainty).
+    /// The range track's d² = r²·x/(x + ṙ²), x = r·r̈ (DO-185B
+    /// `project_hmd`), has σ r³ṙ²·σ(r̈)/(x + ṙ²)², σ(r̈) from the track's
+    /// residual RMS ([`ACCELERATION_SIGMA_PER_RESIDUAL_SIGMA`]/T²); the
+    /// bearing track's b has σ_b. Each is linearised at the threshold t it
+    /// is compared with (d²/(2t) + t/2 is d at d = t: the decision d > t
+    /// is kept exactly; [`linearised_range_miss`]) and the two are combined
+    /// with inverse-variance weights into m ± σ. A new threat's HMD is
+    /// m + kσ against the level's HMD threshold (k =
+    /// [`MISS_DISTANCE_CONFIDENCE`], or the cycle's), a continuing one's
+    /// m − k'σ against 1.05·DMOD (k' =
+    /// [`CONTINUING_MISS_DISTANCE_CONFIDENCE`]). `None` (filter off)
+    /// without an estimate, at SL 2, and for
     /// [`MANOEUVRE_SHUTDOWN_CYCLES`] after a manoeuvre (DO-185B
-    /// `detect_maneuvers`: r̈ below minus the threshold, or the range HMD
-    /// more than twice b + kσ). Without σ, b itself.
+    /// `detect_maneuvers`: r̈ below minus its threshold, or the thresholded
+    /// range HMD more than twice b + kσ_b).
     fn miss_distance<S: Scalar>(
         &mut self,
         range: &RangeEstimate<S>,
-        bearing_miss_distance_m: Option<S>,
-        bearing_miss_distance_sigma_m: Option<S>,
-        k: &Constants<S>,
+        bearing: Option<(S, Option<S>)>,
+        dt: S,
+        thresholds: &CycleThresholds<S>,
     ) -> MissDistances<S> {
-        let from_range = range.miss_distance_m();
-        let spread = bearing_miss_distance_sigma_m
-            .map(|sigma| k.bearing_miss_distance_confidence.times(sigma))
-            .filter(|s| s.is_valid());
-        let bearing_upper = bearing_miss_distance_m.map(|b| spread.map_or(b, |s| b + s));
-        let bearing_lower = bearing_miss_distance_m
-            .map(|b| spread.map_or(b, |s| b - s))
-            .filter(|l| l.is_valid());
-        let bearing_disagrees = match (from_range, bearing_upper) {
+        let k = &thresholds.constants;
+        let confidence = k.miss_distance_confidence;
+        let bearing_upper = bearing.map(|(b, sigma)| match sigma {
+            Some(sigma) => b + confidence.times(sigma),
+            None => b,
+        });
+        let bearing_disagrees = match (range.miss_distance_m(), bearing_upper) {
             (Some(r), Some(b)) => k.bearing_cross_check_ratio.times(b) < r,
             _ => false,
         };
@@ -509,22 +521,37 @@ impl MissDistanceFilter {
         } else {
             self.shutdown_cycles.saturating_sub(1)
         };
-        if self.shutdown_cycles > 0 || !range.initialised {
+        let Some(ra) = thresholds.ra else {
+            return MissDistances::OFF;
+        };
+        if self.shutdown_cycles > 0 {
             return MissDistances::OFF;
         }
-        let positive_lower = bearing_lower.filter(|l| *l > S::ZERO);
-        let new_threat = match (from_range, spread) {
-            (Some(r), _) => Some(bearing_upper.map_or(r, |b| r.min_of(b))),
-            (None, Some(_)) => positive_lower,
-            (None, None) => None,
+        let acceleration_sigma = k
+            .acceleration_sigma_per_residual_sigma
+            .times(range.residual_sigma_m)
+            .over(dt.times(dt));
+        let combined_at = |threshold: S| {
+            let from_range = if range.initialised {
+                linearised_range_miss(range, acceleration_sigma, threshold)
+            } else {
+                None
+            };
+            let from_bearing = bearing.and_then(|(b, sigma)| sigma.map(|s| (b, s)));
+            let (m, sigma) = match (from_range, from_bearing) {
+                (Some(r), Some(b)) => inverse_variance(r, b),
+                (Some(r), None) => r,
+                (None, Some(b)) => b,
+                (None, None) => return None,
+            };
+            Some((m, sigma))
         };
-        let continuing = match from_range {
-            Some(r) => Some(bearing_lower.map_or(r, |l| r.min_of(l))),
-            None => positive_lower.filter(|_| spread.is_some()),
-        };
+        let continuing_threshold = k.continuing_hmd_dmod_factor.times(ra.alert.dmod_m);
+        let continuing_confidence = k.continuing_miss_distance_confidence;
         MissDistances {
-            new_threat,
-            continuing,
+            new_threat: combined_at(ra.hmd_m).map(|(m, sigma)| m + confidence.times(sigma)),
+            continuing: combined_at(continuing_threshold)
+                .map(|(m, sigma)| m - continuing_confidence.times(sigma)),
         }
     }
 
@@ -561,6 +588,52 @@ impl MissDistanceFilter {
         } else {
             self.exceed_cycles > 0
         }
+    }
+}
+
+/// The range track's miss distance linearised at the threshold `t` (m):
+/// d²/(2t) + t/2 with d² = r²·x/(x + ṙ²), x = r·r̈, and its σ
+/// r³ṙ²·σ(r̈)/((x + ṙ²)²·2t) (σ of ṙ neglected: its share is
+/// 2r̈σ(ṙ)/(|ṙ|σ(r̈)), a few per cent), formed without a square of a range.
+/// `None` when x + ṙ² ≤ 0 (no straight path fits) or a step saturates.
+fn linearised_range_miss<S: Scalar>(
+    range: &RangeEstimate<S>,
+    acceleration_sigma: S,
+    t: S,
+) -> Option<(S, S)> {
+    let r = range.range_m;
+    let rate_squared = range.range_rate_m_per_s.times(range.range_rate_m_per_s);
+    let x = r.times(range.range_acceleration_m_per_s2);
+    let denominator = x + rate_squared;
+    if !(denominator > S::ZERO && t > S::ZERO) {
+        return None;
+    }
+    let r_over_2t = r.over(t + t);
+    let half = S::from_f64_lossy(0.5);
+    let m = r_over_2t.times(r.times(x.over(denominator))) + half.times(t);
+    let per = r
+        .times(acceleration_sigma)
+        .over(denominator)
+        .times(rate_squared.over(denominator));
+    let sigma = r_over_2t.times(r.times(per));
+    (m.is_valid() && sigma.is_valid()).then_some((m, sigma))
+}
+
+/// Two independent estimates (value, σ) combined with inverse-variance
+/// weights: m_b + (m_a − m_b)·σ_b²/(σ_a² + σ_b²), σ = σ_a·σ_b/√(σ_a² + σ_b²)
+/// (no square of a σ is formed). Both σ zero: the first.
+fn inverse_variance<S: Scalar>((a, sigma_a): (S, S), (b, sigma_b): (S, S)) -> (S, S) {
+    let h = hypot(sigma_a, sigma_b);
+    if !(h.is_valid() && h > S::ZERO) {
+        return (a, S::ZERO);
+    }
+    let share_b = sigma_b.over(h);
+    let weight_a = share_b.times(share_b);
+    let combined = (b + (a - b).times(weight_a), sigma_a.times(share_b));
+    if combined.0.is_valid() && combined.1.is_valid() {
+        combined
+    } else {
+        (a, sigma_a)
     }
 }
 
@@ -661,11 +734,11 @@ impl<S: Scalar> Cycle<S> {
         &self.inhibits
     }
 
-    /// The same cycle with the bearing-based miss distance's confidence
-    /// factor set to `sigmas` (default [`BEARING_MISS_DISTANCE_CONFIDENCE`]):
-    /// for studies of the trade-off between false and missed RAs.
+    /// The same cycle with the HMD filter's confidence factor set to
+    /// `sigmas` (default [`MISS_DISTANCE_CONFIDENCE`]): for studies of the
+    /// trade-off between false and missed RAs.
     pub fn with_miss_distance_confidence(mut self, sigmas: S) -> Self {
-        self.thresholds.constants.bearing_miss_distance_confidence = sigmas;
+        self.thresholds.constants.miss_distance_confidence = sigmas;
         self
     }
 
@@ -748,9 +821,11 @@ impl<S: Scalar> ThreatState<S> {
         }
         let miss_distance = self.miss_distance.miss_distance(
             range,
-            observation.bearing_miss_distance_m,
-            observation.bearing_miss_distance_sigma_m,
-            &cycle.thresholds.constants,
+            observation
+                .bearing_miss_distance_m
+                .map(|b| (b, observation.bearing_miss_distance_sigma_m)),
+            dt,
+            &cycle.thresholds,
         );
         let firm = range.firmness >= MIN_ALERT_FIRMNESS;
         let inputs = Inputs {

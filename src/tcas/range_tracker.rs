@@ -44,6 +44,13 @@ pub const NOMINAL_RESIDUAL_SIGMA_FT: f64 = 35.0;
 /// Weight of a new squared residual in its running mean (DO-185B
 /// `P_ALPHARESSQ`).
 pub const RESIDUAL_SMOOTHING: f64 = 0.1;
+/// σ of the firm track's r̈ per σ of its range residual, at T = 1 s
+/// (scales as 1/T²): the steady state of the firmness-8 gains (α 0.4,
+/// β 0.1, γ 0.01 with DO-185B's γ·e/T²) on white range noise, r̈ σ
+/// 0.014 20·σ_R and residual σ 1.225 6·σ_R (the Lyapunov equation of the
+/// error; `tests/it/tcas/logic.rs` solves it again). Ours: DO-185B gives
+/// r̈ no σ.
+pub const ACCELERATION_SIGMA_PER_RESIDUAL_SIGMA: f64 = 0.011_586;
 /// Residuals are clipped to this magnitude before squaring, m (a reply
 /// far off the track is a gate's business, and the square stays within
 /// Q32.32's range).
@@ -67,6 +74,9 @@ pub struct RangeEstimate<S> {
     /// Range acceleration above which the miss distance is projected,
     /// m/s² (DO-185B `rhoddthr`).
     pub acceleration_threshold_m_per_s2: S,
+    /// RMS of the range residuals, m (√ of DO-185B `smoressq`; the
+    /// nominal 35 ft until the track is initialised).
+    pub residual_sigma_m: S,
 }
 
 impl<S: Scalar> RangeEstimate<S> {
@@ -173,6 +183,7 @@ impl<S: Scalar> RangeTracker<S> {
         let scale = (self.residual_mean_square_m2.over(nominal))
             .sqrt()
             .max_of(S::ONE);
+        let residual_sigma_m = self.residual_mean_square_m2.sqrt();
         Some(RangeEstimate {
             range_m: self.range_m,
             range_rate_m_per_s: self.range_rate_m_per_s,
@@ -180,6 +191,7 @@ impl<S: Scalar> RangeTracker<S> {
             firmness: self.firmness,
             initialised: self.initialised,
             acceleration_threshold_m_per_s2: threshold.times(scale),
+            residual_sigma_m,
         })
     }
 

@@ -10,6 +10,7 @@ use std::fmt::Write as _;
 
 use rayon::prelude::*;
 
+use abtrack::tcas::detection::MISS_DISTANCE_CONFIDENCE;
 use abtrack::{Scalar, ScaledScalar};
 
 use super::common::{plot, write_file, Context, PlotSpec, Series, Table};
@@ -220,29 +221,50 @@ pub fn run(ctx: &Context) -> Result<(), String> {
     let trade_off = trade_off_table(&encounters, seeds);
     trade_off.write(&dir, "trade_off")?;
     let point = |row: &Vec<String>, col: usize| row[col].trim_end_matches(" %").parse::<f64>();
-    let mut false_missed = Vec::new();
-    let mut false_delay = Vec::new();
-    for row in &trade_off.rows {
-        if let (Ok(f), Ok(m)) = (point(row, 1), point(row, 2)) {
-            false_missed.push((f, m));
-            if let Ok(d) = point(row, 4) {
-                false_delay.push((f, d));
-            }
-        }
+    let mut series = Vec::new();
+    let mut design = Vec::new();
+    for condition in CONDITIONS.iter().filter(|c| c.noisy) {
+        let rows: Vec<&Vec<String>> = trade_off
+            .rows
+            .iter()
+            .filter(|r| r[0] == condition.name)
+            .collect();
+        let delay: Vec<(f64, f64)> = rows
+            .iter()
+            .filter_map(|r| Some((point(r, 2).ok()?, point(r, 5).ok()?)))
+            .collect();
+        let missed: Vec<(f64, f64)> = rows
+            .iter()
+            .filter_map(|r| Some((point(r, 2).ok()?, point(r, 3).ok()?)))
+            .collect();
+        design.extend(
+            rows.iter()
+                .filter(|r| r[1] == format!("{MISS_DISTANCE_CONFIDENCE}"))
+                .filter_map(|r| Some((point(r, 2).ok()?, point(r, 5).ok()?))),
+        );
+        series.push(Series::line(
+            format!("p95 onset delay (s), {}", condition.name),
+            delay,
+        ));
+        series.push(Series::line(
+            format!("missed RAs (%), {}", condition.name),
+            missed,
+        ));
     }
+    series.push(Series::points(
+        format!("the design, k = {MISS_DISTANCE_CONFIDENCE} (p95 delay)"),
+        design,
+    ));
     plot(
         &dir.join("trade_off.svg"),
         &PlotSpec {
-            title: "HMD filter confidence k (bearing σB 5°, 25 ft, f64): false vs missed RAs, p95 delay",
+            title: "HMD filter confidence k (f64): false RAs vs p95 onset delay and missed RAs",
             x_label: "false RAs (% of runs)",
-            y_label: "missed RAs (%) / p95 onset delay (s)",
+            y_label: "p95 onset delay (s) / missed RAs (%)",
             equal_aspect: false,
             y_max: None,
         },
-        &[
-            Series::line("missed RAs (%)", false_missed),
-            Series::line("p95 onset delay (s)", false_delay),
-        ],
+        &series,
     )?;
 
     let mut s = String::new();
@@ -267,22 +289,23 @@ pub fn run(ctx: &Context) -> Result<(), String> {
     let _ = writeln!(s, "## All levels\n\n{}", t.to_markdown());
     let _ = writeln!(
         s,
-        "## HMD filter confidence (σB 5°, 25 ft, f64)\n\n{}",
+        "## HMD filter confidence k (f64; the library's k = {MISS_DISTANCE_CONFIDENCE})\n\n{}",
         trade_off.to_markdown()
     );
     write_file(&dir.join("summary.md"), &s)
 }
 
-/// The confidence factors k the trade-off sweeps (the bearing-based miss
-/// distance counts as its estimate minus k standard deviations); the last,
-/// 1000, leaves the bearing-based miss distance unused.
-pub const CONFIDENCES: [f64; 8] = [0.0, 0.5, 1.0, 1.5, 2.0, 3.0, 4.0, 1000.0];
+/// The new-threat confidence factors k the trade-off sweeps (an RA needs
+/// the combined miss distance's upper bound m + kσ under the HMD
+/// threshold; `abtrack::tcas::detection::MISS_DISTANCE_CONFIDENCE`).
+pub const CONFIDENCES: [f64; 9] = [0.0, 0.25, 0.35, 0.5, 0.75, 1.0, 1.5, 2.0, 3.0];
 
-/// False and missed RAs and the onset delay as the HMD filter's confidence
-/// factor varies (condition σB 5°, 25 ft, f64).
+/// False and missed RAs, the onset delay, RAs in pieces and wrong senses as
+/// the HMD filter's confidence factor varies, for each noisy condition
+/// (f64).
 pub fn trade_off_table(encounters: &[RandomEncounter], seeds: usize) -> Table {
-    let condition = &CONDITIONS[1];
     let mut table = Table::new([
+        "condition",
         "k (σ)",
         "false RA",
         "missed RA",
@@ -292,27 +315,30 @@ pub fn trade_off_table(encounters: &[RandomEncounter], seeds: usize) -> Table {
         "wrong sense",
     ]);
     let references: Vec<_> = encounters.par_iter().map(reference).collect();
-    for k in CONFIDENCES {
-        let runs: Vec<Vec<RunResult>> = encounters
-            .par_iter()
-            .zip(&references)
-            .map(|(e, r)| {
-                (0..seeds)
-                    .map(|run| run_one::<f64>(e, condition, run, r, Some(k)))
-                    .collect()
-            })
-            .collect();
-        let t = tally(encounters, &runs, None);
-        let a = t.accepted();
-        table.push([
-            format!("{k}"),
-            pct(t.false_ra, a),
-            pct(t.missed_ra, a),
-            seconds(t.delay_quantile(0.5)),
-            seconds(t.delay_quantile(0.95)),
-            t.in_pieces.to_string(),
-            t.wrong_sense.to_string(),
-        ]);
+    for condition in CONDITIONS.iter().filter(|c| c.noisy) {
+        for k in CONFIDENCES {
+            let runs: Vec<Vec<RunResult>> = encounters
+                .par_iter()
+                .zip(&references)
+                .map(|(e, r)| {
+                    (0..seeds)
+                        .map(|run| run_one::<f64>(e, condition, run, r, Some(k)))
+                        .collect()
+                })
+                .collect();
+            let t = tally(encounters, &runs, None);
+            let a = t.accepted();
+            table.push([
+                condition.name.to_string(),
+                format!("{k}"),
+                pct(t.false_ra, a),
+                pct(t.missed_ra, a),
+                seconds(t.delay_quantile(0.5)),
+                seconds(t.delay_quantile(0.95)),
+                t.in_pieces.to_string(),
+                t.wrong_sense.to_string(),
+            ]);
+        }
     }
     table
 }

@@ -73,10 +73,11 @@ fn the_suite_spans_the_specified_ranges() {
 /// RAs ≤ 1 %, RA onset delay median ≤ 1 s and 95th percentile ≤ 5 s, one
 /// RA per encounter (no run's RA comes in pieces: the RA is held while the
 /// threat's range test holds, and the continuing HMD filter ends it only
-/// on the bearing track's lower bound); at 5° and 25 ft false RAs below
-/// the 6.9 % of the two-point initiation (85 of 1500 runs, 5.7 %), 2 missed,
-/// 24 with the other sense at onset and 11 reversed; the three types agree
-/// run for run.
+/// when the combined miss distance's lower bound m − 2σ is beyond
+/// 1.05·DMOD). At 5° and 25 ft: false RAs 39 of 1500 runs (2.6 %; 5.7 %
+/// with the bearing miss distance alone bounding the range projection) and
+/// at most 5 % at every level, 4 missed, 20 with the other sense at onset
+/// and 11 reversed; the three types agree run for run.
 #[test]
 fn noisy_runs_are_never_refused_and_ras_are_timely_in_every_type() {
     let encounters = suite();
@@ -120,26 +121,44 @@ fn noisy_runs_are_never_refused_and_ras_are_timely_in_every_type() {
         }
         if condition.name == "σB 5°, 25 ft" {
             let f = fraction(tallies[0].false_ra, tallies[0].accepted());
-            assert!(f < 0.069, "false RAs {f}");
+            assert!(f < 0.03, "false RAs {f}");
             let t = &tallies[0];
             assert_eq!(
                 (t.false_ra, t.missed_ra, t.wrong_sense, t.reversed),
-                (85, 2, 24, 11)
+                (39, 4, 20, 11)
             );
+            for (i, (level, _, _)) in LEVELS.iter().enumerate() {
+                let at = &encounters[i * PER_LEVEL..(i + 1) * PER_LEVEL];
+                let refs = &references[i * PER_LEVEL..(i + 1) * PER_LEVEL];
+                let t = tally::<f64>(at, refs, condition);
+                let f = fraction(t.false_ra, t.accepted());
+                assert!(f <= 0.05, "SL{level}: false RAs {f}");
+            }
         }
     }
 }
 
-/// On exact measurements no RA is missed, no run refused, no RA in pieces;
-/// 2 runs reverse (the intruder crosses the level own aircraft's altitude).
+/// On exact measurements no RA is false or missed, no run refused, no RA in
+/// pieces (7 false RAs before the range track's miss distance counted with
+/// its σ: its r̈ was used only above DO-185B's fixed threshold); 2 runs
+/// reverse (the intruder crosses the level own aircraft's altitude) and 4
+/// take the other sense at onset (near-ties decided by the 25 ft altitude
+/// tracker's rate; docs/tcas.md).
 #[test]
 fn exact_runs_miss_no_ra() {
     let encounters = suite();
     let references: Vec<_> = encounters.par_iter().map(reference).collect();
     let t = tally::<f64>(&encounters, &references, &CONDITIONS[0]);
     assert_eq!(
-        (t.refused, t.missed_ra, t.in_pieces, t.reversed),
-        (0, 0, 0, 2)
+        (
+            t.refused,
+            t.false_ra,
+            t.missed_ra,
+            t.in_pieces,
+            t.reversed,
+            t.wrong_sense
+        ),
+        (0, 0, 0, 0, 2, 4)
     );
     assert!(t.reference_ra > 0);
 }

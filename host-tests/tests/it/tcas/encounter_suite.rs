@@ -152,24 +152,23 @@ fn noisy<S: Scalar>() -> Vec<(Encounter, NoiseCounts)> {
 }
 
 /// With noise (range σ 15 m, bearing σ 5°, 30 seeds): no missed TA or RA,
-/// no wrong sense, nothing refused, in any type. False alerts (an onset
-/// more than 3 s from every scan at which the reference has the alert)
-/// only where the measured limits are:
+/// no wrong sense, nothing refused, no RA in pieces, in any type. False
+/// alerts (an onset more than 3 s from every scan at which the reference
+/// has the alert) only where the measured limits are:
 /// * `overtaking` (100 kt closure): TA onsets up to 4 s early in a few runs
 ///   — at slow closure τ_mod is DMOD-dominated and the 15 m range noise
 ///   moves it by seconds; at most 20 % of the runs;
-/// * `offset-beyond-hmd` and `abeam-1.2nm`: an RA at the range-test onset
-///   when r̈ is still below the miss-distance filter's noise-scaled
-///   threshold (DO-185B `P_ACCTHR`·σ/`P_RESSD_N`, ≈ 0.7 m/s² with 15 m
-///   noise), dropped by the continuing-threat filter: every such RA ends
-///   within 15 s and before the closest approach.
-/// * `offset-inside-hmd`: an RA dropped early by the continuing-threat HMD
-///   filter when both miss-distance estimates read high for five cycles
-///   (the range one is only produced when r̈ exceeds its threshold, which
-///   at a true r̈ below it selects the upward noise); at most 10 % of the
-///   runs, none elsewhere.
+/// * `offset-beyond-hmd` (0.8 NM pass, 1.46 × SL 5's HMD threshold): an
+///   RA in at most 1 of the 30 runs (measured 1; 18 before the HMD filter
+///   combined the range and bearing miss distances by their σ); none on
+///   `abeam-1.2nm`.
 ///
-/// Onsets that are not false lie within ±4 s of the reference's.
+/// Onsets that are not false lie within ±4 s of the reference's, except on
+/// `offset-inside-hmd` (0.4 NM pass, 0.73 × the threshold), where the HMD
+/// filter holds the RA until the combined miss distance's upper bound
+/// m + 0.35σ is under the threshold: measured, 20 of the 30 onsets on
+/// time, 4 later than 4 s, the latest 11 s (the trade-off of
+/// `results/tcas-random/trade_off.md`).
 fn noise_counts<S: Scalar>() {
     for (e, n) in noisy::<S>() {
         let name = format!("{} {}", S::NAME, e.name);
@@ -178,23 +177,43 @@ fn noise_counts<S: Scalar>() {
             n.missed_ta, n.missed_ra, n.false_ta, n.false_ra, n.wrong_sense, n.interrupted_ra, n.runs
         );
         assert_eq!(
-            (n.missed_ta, n.missed_ra, n.wrong_sense, n.refused),
-            (0, 0, 0, 0),
+            (
+                n.missed_ta,
+                n.missed_ra,
+                n.wrong_sense,
+                n.refused,
+                n.interrupted_ra
+            ),
+            (0, 0, 0, 0, 0),
             "{name}"
         );
         match e.name {
             "overtaking" => assert!(n.false_ta * 5 <= n.runs, "{name}: {}", n.false_ta),
             _ => assert_eq!(n.false_ta, 0, "{name}"),
         }
-        if !matches!(e.name, "offset-beyond-hmd" | "abeam-1.2nm") {
-            assert_eq!(n.false_ra, 0, "{name}");
-        }
         match e.name {
-            "offset-inside-hmd" => assert!(n.interrupted_ra * 10 <= n.runs, "{name}"),
-            _ => assert_eq!(n.interrupted_ra, 0, "{name}"),
+            "offset-beyond-hmd" => assert!(n.false_ra <= 1, "{name}: {}", n.false_ra),
+            _ => assert_eq!(n.false_ra, 0, "{name}"),
         }
-        for d in n.ta_delays.iter().chain(&n.ra_delays) {
-            assert!(d.abs() <= 4.0, "{name}: onset delay {d}");
+        for d in &n.ta_delays {
+            assert!(d.abs() <= 4.0, "{name}: TA onset delay {d}");
+        }
+        if e.name == "offset-inside-hmd" {
+            let on_time = n.ra_delays.iter().filter(|d| d.abs() <= 1.0).count();
+            let late = n.ra_delays.iter().filter(|d| d.abs() > 4.0).count();
+            assert!(
+                on_time * 3 >= n.runs * 2 && late <= 4,
+                "{name}: {:?}",
+                n.ra_delays
+            );
+            assert!(
+                n.ra_delays.iter().all(|d| (-4.0..=11.0).contains(d)),
+                "{name}"
+            );
+        } else {
+            for d in &n.ra_delays {
+                assert!(d.abs() <= 4.0, "{name}: RA onset delay {d}");
+            }
         }
     }
 }
@@ -219,13 +238,12 @@ fn noisy_runs_miss_nothing_and_false_alerts_are_bounded_scaled() {
     noise_counts::<ScaledScalar>();
 }
 
-/// The false RAs of the passes beyond the HMD threshold are one RA each
-/// and end before the closest approach: the continuing-threat filter drops
-/// them once the range projection and the bearing track's lower bound both
-/// put the miss beyond 1.05·DMOD. Measured: 18 of the 30 runs of the
-/// 0.8 NM pass have one, lasting 6–20 s (at most 15 s while the filter
-/// ended an RA on the range projection alone, which also cut true RAs
-/// into pieces).
+/// The false RAs of the passes beyond the HMD threshold are one RA each,
+/// at most 15 s long, and end before the closest approach: the
+/// continuing-threat filter drops them once the combined miss distance's
+/// lower bound m − 2σ is beyond 1.05·DMOD. Measured: 1 of the 30 runs of
+/// the 0.8 NM pass has one, 10 s long (before the combined filter, 18 of
+/// 30, lasting 6–20 s).
 #[test]
 fn false_ras_beyond_the_hmd_threshold_are_short() {
     use abtrack_host_tests::encounters::{derive_run_seed, ScanOutcome};
@@ -240,7 +258,7 @@ fn false_ras_beyond_the_hmd_threshold_are_short() {
             let t = timeline(&out);
             if let (Some(on), Some(off)) = (t.ra_onset_s, t.clear_of_conflict_s) {
                 assert!(
-                    off - on <= 20.0 && off < cpa,
+                    off - on <= 15.0 && off < cpa,
                     "{} run {run}: RA {on}–{off}",
                     e.name
                 );

@@ -169,6 +169,7 @@ fn observation<S: Scalar>(
             firmness: 8,
             initialised: true,
             acceleration_threshold_m_per_s2: c(0.457),
+            residual_sigma_m: S::ZERO,
         },
         bearing_miss_distance_m: None,
         bearing_miss_distance_sigma_m: None,
@@ -281,67 +282,129 @@ fn advisories_only_from_firm_tracks() {
 }
 
 /// The HMD filter (SL 5: HMD 3342 ft = 1018.6 m; continuing threats 1.05·
-/// DMOD = 1069.5 m for more than 4 cycles). r = 3000 m, ṙ = −200 m/s and
-/// r̈ = 4.4444 m/s² project HMD = 3000·√(13 333/(13 333 + 40 000)) = 1500 m;
-/// the bearing tracker's HMD caps it.
-fn with_hmd(bearing_hmd: f64) -> IntruderObservation<f64> {
+/// DMOD = 1069.5 m for more than 4 cycles; k = 0.35 for a new threat, 2 for
+/// a continuing one). r = 3000 m,
+/// ṙ = −200 m/s and r̈ = 4.4444 m/s² project d² = 9·10⁶·13 333/53 333 =
+/// 2.25·10⁶ m² (d = 1500 m); linearised at t = 1018.6 m, d²/(2t) + t/2 =
+/// 1613.7 m, with σ r³ṙ²σ(r̈)/((x + ṙ²)²·2t) = 186.4·σ(r̈), σ(r̈) =
+/// 0.011 586·σ_resid (T = 1 s).
+fn with_hmd(bearing_hmd: f64, bearing_sigma: f64, residual_sigma: f64) -> IntruderObservation<f64> {
     let mut o = observation::<f64>(3000.0, -200.0, Some((8100.0, 0.0)));
     o.range.range_acceleration_m_per_s2 = 13_333.33 / 3000.0;
+    o.range.residual_sigma_m = residual_sigma;
     o.bearing_miss_distance_m = Some(bearing_hmd);
+    o.bearing_miss_distance_sigma_m = Some(bearing_sigma);
     o
 }
+
+/// σ_resid giving the range statistic σ 200 m at the new-threat threshold.
+const RESIDUAL_FOR_200_M: f64 = 200.0 / 186.4 / 0.011_586;
 
 #[test]
 fn miss_distance_filter_new_and_continuing_threats() {
     let cycle = cycle_at::<f64>(8000.0);
-    // New threat, both trackers say 1500 m > 1018.6 m: filtered.
+    // Exact range track (no residual): the range statistic decides,
+    // 1613.7 m > 1018.6 m, filtered, whatever b = 900 ± 100 m says.
     let mut s = ThreatState::new();
-    let a = s.assess(&cycle, &with_hmd(1500.0), 1.0).unwrap();
-    assert!((a.miss_distance_m.unwrap() - 1500.0).abs() < 0.5, "{a:?}");
+    let a = s.assess(&cycle, &with_hmd(900.0, 100.0, 0.0), 1.0).unwrap();
+    assert!((a.miss_distance_m.unwrap() - 1613.7).abs() < 0.5, "{a:?}");
     assert_eq!(a.advisory, Advisory::Traffic);
     assert!(a.miss_distance_filtered);
-    // The bearing tracker says 900 m (2·900 > 1500: no manoeuvre): the HMD
-    // used is 900 m, an RA.
-    let a = s.assess(&cycle, &with_hmd(900.0), 1.0).unwrap();
+    // Range 1613.7 ± 200, bearing 800 ± 200: equal weights, m = 1206.9,
+    // σ = 141.4, m + 0.35σ = 1256.4 m: filtered.
+    let sigma = RESIDUAL_FOR_200_M;
+    let a = s
+        .assess(&cycle, &with_hmd(800.0, 200.0, sigma), 1.0)
+        .unwrap();
+    assert!((a.miss_distance_m.unwrap() - 1256.4).abs() < 0.5, "{a:?}");
+    assert!(a.miss_distance_filtered);
+    // Bearing 800 ± 50: weight of the range 50²/(200² + 50²) = 0.0588,
+    // m = 847.9, σ = 48.5, m + 0.35σ = 864.9 m: an RA.
+    let a = s
+        .assess(&cycle, &with_hmd(800.0, 50.0, sigma), 1.0)
+        .unwrap();
+    assert!((a.miss_distance_m.unwrap() - 864.9).abs() < 0.5, "{a:?}");
     assert_eq!(a.advisory, Advisory::Resolution);
-    // Continuing: 1060 m is under 1.05·DMOD; 1100 m is over, and the RA is
-    // dropped on the fifth cycle.
-    let a = s.assess(&cycle, &with_hmd(1060.0), 1.0).unwrap();
-    assert_eq!(a.advisory, Advisory::Resolution);
-    let mut levels = Vec::new();
-    for _ in 0..5 {
-        levels.push(s.assess(&cycle, &with_hmd(1100.0), 1.0).unwrap().advisory);
-    }
-    assert_eq!(levels[..4], [Advisory::Resolution; 4]);
-    assert_eq!(levels[4], Advisory::Traffic);
-    // With the bearing HMD's σ, a continuing threat ends only when the
-    // lower bound b − 2σ is over 1.05·DMOD (booklet: the filter ends an RA
-    // when confident): b = 1100 ± 2·100 m keeps the RA (900 m), b = 1400 ±
-    // 2·100 m drops it on the fifth cycle (1200 m).
-    let with_sigma = |b: f64| {
-        let mut o = with_hmd(b);
-        o.bearing_miss_distance_sigma_m = Some(100.0);
-        o
-    };
-    let mut s = ThreatState::new();
-    let a = s.assess(&cycle, &with_hmd(900.0), 1.0).unwrap();
-    assert_eq!(a.advisory, Advisory::Resolution);
+    // Continuing, at t = 1069.5 m (range statistic 1586.7 ± 190.5): with
+    // b = 800 ± 50 the lower bound m − 2σ = 754.0 m keeps the RA; with
+    // b = 1400 ± 50 it is 1315.3 m, over 1.05·DMOD, and the RA is dropped
+    // on the fifth cycle.
     for _ in 0..8 {
-        let a = s.assess(&cycle, &with_sigma(1100.0), 1.0).unwrap();
+        let a = s
+            .assess(&cycle, &with_hmd(800.0, 50.0, sigma), 1.0)
+            .unwrap();
         assert_eq!(a.advisory, Advisory::Resolution);
-        assert!((a.miss_distance_m.unwrap() - 900.0).abs() < 1e-6, "{a:?}");
+        assert!((a.miss_distance_m.unwrap() - 754.0).abs() < 0.5, "{a:?}");
     }
     let levels: Vec<_> = (0..5)
-        .map(|_| s.assess(&cycle, &with_sigma(1400.0), 1.0).unwrap().advisory)
+        .map(|_| {
+            let a = s
+                .assess(&cycle, &with_hmd(1400.0, 50.0, sigma), 1.0)
+                .unwrap();
+            assert!((a.miss_distance_m.unwrap() - 1315.3).abs() < 0.5, "{a:?}");
+            a.advisory
+        })
         .collect();
     assert_eq!(levels[..4], [Advisory::Resolution; 4]);
     assert_eq!(levels[4], Advisory::Traffic);
-    // A bearing HMD under half the range's is a manoeuvre: the filter is
-    // off (10 cycles) and a new threat gets its RA.
+    // A range HMD (1500 m, r̈ over its threshold 0.457·σ_resid/10.67 m)
+    // more than twice b + 0.35σ_b = 317.5 m is a manoeuvre: the filter is off
+    // (10 cycles) and a new threat gets its RA.
     let mut s = ThreatState::new();
-    let a = s.assess(&cycle, &with_hmd(600.0), 1.0).unwrap();
+    let a = s
+        .assess(&cycle, &with_hmd(300.0, 50.0, sigma), 1.0)
+        .unwrap();
     assert_eq!(a.miss_distance_m, None);
     assert_eq!(a.advisory, Advisory::Resolution);
+}
+
+/// The σ of the firm range track's r̈ per σ of its residual
+/// (`ACCELERATION_SIGMA_PER_RESIDUAL_SIGMA`) is the steady state of the
+/// firmness-8 gains on white range noise: the error covariance P of
+/// x⁺ = (I − KH)F x + Kv solved by iteration, residual variance
+/// HFPFᵀHᵀ + 1.
+#[test]
+fn acceleration_sigma_is_the_steady_state_of_the_firm_gains() {
+    use abtrack::gain::tcas::{FIRMNESS_ALPHA, FIRMNESS_BETA, FIRMNESS_GAMMA, MAX_FIRMNESS};
+    use abtrack::tcas::range_tracker::ACCELERATION_SIGMA_PER_RESIDUAL_SIGMA;
+    let i = usize::from(MAX_FIRMNESS);
+    let (a, b, g) = (FIRMNESS_ALPHA[i], FIRMNESS_BETA[i], FIRMNESS_GAMMA[i]);
+    let f = [[1.0, 1.0, 0.5], [0.0, 1.0, 1.0], [0.0, 0.0, 1.0]];
+    let k = [a, b, g];
+    // A = (I − K H) F.
+    let mut m = [[0.0; 3]; 3];
+    for r in 0..3 {
+        for col in 0..3 {
+            m[r][col] = f[r][col] - k[r] * f[0][col];
+        }
+    }
+    let mut p = [[0.0f64; 3]; 3];
+    for _ in 0..5000 {
+        let mut next = [[0.0; 3]; 3];
+        for r in 0..3 {
+            for col in 0..3 {
+                let mut sum = k[r] * k[col];
+                for u in 0..3 {
+                    for v in 0..3 {
+                        sum += m[r][u] * p[u][v] * m[col][v];
+                    }
+                }
+                next[r][col] = sum;
+            }
+        }
+        p = next;
+    }
+    let mut predicted = 0.0;
+    for u in 0..3 {
+        for v in 0..3 {
+            predicted += f[0][u] * p[u][v] * f[0][v];
+        }
+    }
+    let ratio = (p[2][2] / (predicted + 1.0)).sqrt();
+    assert!(
+        (ratio - ACCELERATION_SIGMA_PER_RESIDUAL_SIGMA).abs() < 1e-5,
+        "{ratio}"
+    );
 }
 
 /// An intruder less than 360 ft above the ground gets no advisory: own at
