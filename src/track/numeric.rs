@@ -88,13 +88,8 @@ pub trait TrackNumeric: Numeric {
 /// has no double precision), the others through `f64`.
 pub(super) fn quantise_unit<S: Scalar>(v: S) -> u16 {
     let scaled = v * S::from_f64_lossy(MAX_COST as f64) + S::from_f64_lossy(0.5);
-    let any: &dyn core::any::Any = &scaled;
-    // `as` saturates (and maps NaN to 0); the caller checked 0 ≤ v ≤ 1.
-    let q = match any.downcast_ref::<f32>() {
-        Some(single) => *single as u32,
-        None => scaled.to_f64() as u32,
-    };
-    q.min(MAX_COST as u32) as u16
+    // The caller checked 0 ≤ v ≤ 1.
+    truncate_to_u32(scaled).min(MAX_COST as u32) as u16
 }
 
 /// A number ≥ 0 truncated to an integer: `f32` directly (one instruction
@@ -317,7 +312,8 @@ impl TrackNumeric for Fixed32 {
     fn grid_cell(v: Length, min: Length, scale: FixedGridScale) -> u32 {
         let offset = v.to_bits().wrapping_sub(min.to_bits()) as u32;
         let reduced = offset >> scale.shift.min(31);
-        reduced.saturating_mul(scale.multiplier) >> 16
+        // reduced ≤ extent' for v ≤ max: the product is below cells·2¹⁶.
+        reduced.wrapping_mul(scale.multiplier) >> 16
     }
 
     fn circle_scale(radius: Length) -> Option<()> {

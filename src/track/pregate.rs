@@ -8,9 +8,9 @@
 //! axis by the same monotone map as the measurements
 //! ([`TrackNumeric::grid_cell`]); in each row of cells the range is one run
 //! of the bucketed measurements, and each measurement of the run is tested
-//! against the box. Building costs O(L), a query O(rows crossed + k) for k
-//! measurements in the cells crossed, where sorted strips cost
-//! O(L log L) to build and a binary search per strip to query.
+//! against the box. Building costs O(L) whatever the order the measurements
+//! come in, a query O(rows crossed + k) for k measurements in the cells
+//! crossed (`docs/scan-cost.md` gives the measured costs).
 //!
 //! The box must contain every point the exact test accepts
 //! ([`GateRegion::bounds`](super::GateRegion::bounds)); any point inside the
@@ -66,43 +66,37 @@ impl<S: TrackNumeric, const M: usize> MeasurementIndex<S, M> {
         }
     }
 
-    /// The cell (per axis) of a coordinate: clamped to the measurements'
-    /// bounds, then mapped; monotone in `v`.
-    fn axis_cell(&self, axis: usize, v: S::Length) -> usize {
-        let (Some(&min), Some(&max), Some(&scale)) =
-            (self.min.get(axis), self.max.get(axis), self.scale.get(axis))
-        else {
-            return 0;
-        };
-        let clamped = if v < min {
-            min
-        } else if v > max {
-            max
-        } else {
-            v
-        };
+    /// The cell of a point: its row times G plus its column.
+    fn cell(&self, [x, y]: [S::Length; 2]) -> usize {
         let last = u32::from(self.cells).saturating_sub(1);
-        S::grid_cell(clamped, min, scale).min(last) as usize
+        let ([x_min, y_min], [x_max, y_max], [x_scale, y_scale]) = (self.min, self.max, self.scale);
+        let column = axis_cell::<S>(x, x_min, x_max, x_scale, last);
+        let row = axis_cell::<S>(y, y_min, y_max, y_scale, last);
+        // row, column < G ≤ 255: no overflow.
+        row.wrapping_mul(u32::from(self.cells)).wrapping_add(column) as usize
     }
 
     /// Indexes the valid entries of `observations`.
     pub(super) fn build(&mut self, observations: &[Option<Observation<S>>; M]) {
         let mut len = 0usize;
-        let mut bounds: Option<([S::Length; 2], [S::Length; 2])> = None;
+        let mut bounds: Option<BoundingBox<S>> = None;
         for o in observations.iter().flatten() {
             let [x, y] = o.xy();
             bounds = Some(match bounds {
-                None => ([x, y], [x, y]),
-                Some((lo, hi)) => (
-                    [lo[0].min_of(x), lo[1].min_of(y)],
-                    [hi[0].max_of(x), hi[1].max_of(y)],
-                ),
+                None => BoundingBox {
+                    min: [x, y],
+                    max: [x, y],
+                },
+                Some(BoundingBox { min, max }) => BoundingBox {
+                    min: [min[0].min_of(x), min[1].min_of(y)],
+                    max: [max[0].max_of(x), max[1].max_of(y)],
+                },
             });
             len = len.saturating_add(1);
         }
         // len ≤ M < 65535.
         self.len = len as u16;
-        let Some((min, max)) = bounds else {
+        let Some(BoundingBox { min, max }) = bounds else {
             self.cells = 0;
             return;
         };
@@ -123,12 +117,7 @@ impl<S: TrackNumeric, const M: usize> MeasurementIndex<S, M> {
         // Counts per cell.
         for (k, obs) in observations.iter().enumerate() {
             let cell = match obs {
-                Some(o) => {
-                    let [x, y] = o.xy();
-                    let row = self.axis_cell(1, y);
-                    row.saturating_mul(cells)
-                        .saturating_add(self.axis_cell(0, x))
-                }
+                Some(o) => self.cell(o.xy()),
                 None => NO_CELL as usize,
             };
             if let Some(c) = self.cell_of.get_mut(k) {
@@ -178,19 +167,18 @@ impl<S: TrackNumeric, const M: usize> MeasurementIndex<S, M> {
         {
             return;
         }
-        let (x0, x1) = (
-            self.axis_cell(0, bounds.min[0]),
-            self.axis_cell(0, bounds.max[0]),
-        );
-        let (y0, y1) = (
-            self.axis_cell(1, bounds.min[1]),
-            self.axis_cell(1, bounds.max[1]),
-        );
+        let last_cell = u32::from(self.cells).saturating_sub(1);
+        let ([x_min, y_min], [x_max, y_max], [x_scale, y_scale]) = (self.min, self.max, self.scale);
+        let column = |v| axis_cell::<S>(v, x_min, x_max, x_scale, last_cell) as usize;
+        let row = |v| axis_cell::<S>(v, y_min, y_max, y_scale, last_cell) as usize;
+        let (x0, x1) = (column(bounds.min[0]), column(bounds.max[0]));
+        let (y0, y1) = (row(bounds.min[1]), row(bounds.max[1]));
         let grid = cells.saturating_mul(cells);
         for row in y0..=y1 {
-            // The cells x0 ..= x1 of a row are one run of `slots`.
-            let first = row.saturating_mul(cells).saturating_add(x0);
-            let last = row.saturating_mul(cells).saturating_add(x1);
+            // The cells x0 ..= x1 of a row are one run of `slots`; row,
+            // x0, x1 < G ≤ 255: no overflow.
+            let first = row.wrapping_mul(cells).wrapping_add(x0);
+            let last = row.wrapping_mul(cells).wrapping_add(x1);
             let start = self.cell_start.get(first).map_or(len, |&s| s as usize);
             let stop = if last.saturating_add(1) < grid {
                 self.cell_start
@@ -214,4 +202,23 @@ impl<S: TrackNumeric, const M: usize> MeasurementIndex<S, M> {
             }
         }
     }
+}
+
+/// The cell along one axis of a coordinate: clamped to `min ..= max`,
+/// mapped ([`TrackNumeric::grid_cell`]), at most `last`; monotone in `v`.
+fn axis_cell<S: TrackNumeric>(
+    v: S::Length,
+    min: S::Length,
+    max: S::Length,
+    scale: S::GridScale,
+    last: u32,
+) -> u32 {
+    let clamped = if v < min {
+        min
+    } else if v > max {
+        max
+    } else {
+        v
+    };
+    S::grid_cell(clamped, min, scale).min(last)
 }
