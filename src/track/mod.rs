@@ -16,8 +16,9 @@
 //!    prediction ([`TrackFilter::gate_region`]): sized from the filter's
 //!    predicted uncertainty, or Li et al.'s wave gate λ = √α ([`Gate`]). The
 //!    measurements inside the region's bounding box are found in an index of
-//!    the scan's measurements (sorted in strips, O(log M) per track,
-//!    [`GateRegion::bounds`]), and only those are tested exactly. Each pair
+//!    the scan's measurements (a bucket grid built in O(M), the cells the
+//!    box crosses visited per track, [`GateRegion::bounds`]), and only those
+//!    are tested exactly. Each pair
 //!    inside the gate gets a cost, the squared distance normalised by the
 //!    gate radius, quantised to `u16`.
 //! 4. **Cluster.** Gated pairs join their tracks and measurements into
@@ -120,7 +121,7 @@ pub use model::{
     ErrorVariance, FixedGainStep, FixedGainTrack, Measurement, Observation, PredictedState,
     RejectReason, ScanInterval, TrackFilter, Uncertainty, VarianceNumber,
 };
-pub use numeric::{FixedVariance, TrackNumeric};
+pub use numeric::{FixedGridScale, FixedVariance, TrackNumeric};
 pub use table::{
     AnyPair, Association, DropReason, PairRule, ScanError, ScanReport, ScanStage, TableStats,
     Track, TrackId, TrackSlot, TrackStatus, TrackTable,

@@ -52,6 +52,21 @@ pub trait TrackNumeric: Numeric {
         scale: Self::CircleScale,
     ) -> Option<u16>;
 
+    /// What the pre-gate's grid keeps per axis to map a coordinate's offset
+    /// from the measurements' minimum to its cell.
+    type GridScale: Copy + Debug;
+    /// A scale that puts every offset in cell 0.
+    const GRID_SCALE_ZERO: Self::GridScale;
+
+    /// The scale that spreads `min ..= max` over `cells` cells (about
+    /// equal widths); everything in cell 0 if it cannot be formed.
+    fn grid_scale(min: Self::Length, max: Self::Length, cells: u16) -> Self::GridScale;
+
+    /// The cell of `v` in `min ..= max` (the caller clamps `v` to that
+    /// range and the result to the last cell): non-decreasing in `v`,
+    /// rounding included, so that a box's cells hold every point inside it.
+    fn grid_cell(v: Self::Length, min: Self::Length, scale: Self::GridScale) -> u32;
+
     /// A length in the polar scalar (exact).
     fn length_to_polar(v: Self::Length) -> Self::Polar;
     /// Back, rounded to the length's resolution (invalid if out of range).
@@ -73,19 +88,42 @@ pub trait TrackNumeric: Numeric {
 /// has no double precision), the others through `f64`.
 pub(super) fn quantise_unit<S: Scalar>(v: S) -> u16 {
     let scaled = v * S::from_f64_lossy(MAX_COST as f64) + S::from_f64_lossy(0.5);
-    let any: &dyn core::any::Any = &scaled;
-    // `as` saturates (and maps NaN to 0); the caller checked 0 ≤ v ≤ 1.
-    let q = match any.downcast_ref::<f32>() {
+    // The caller checked 0 ≤ v ≤ 1.
+    truncate_to_u32(scaled).min(MAX_COST as u32) as u16
+}
+
+/// A number ≥ 0 truncated to an integer: `f32` directly (one instruction
+/// with an FPU), the others through `f64`; saturating, NaN to 0.
+fn truncate_to_u32<S: Scalar>(v: S) -> u32 {
+    let any: &dyn core::any::Any = &v;
+    match any.downcast_ref::<f32>() {
         Some(single) => *single as u32,
-        None => scaled.to_f64() as u32,
-    };
-    q.min(MAX_COST as u32) as u16
+        None => v.to_f64() as u32,
+    }
 }
 
 impl<S: Scalar> TrackNumeric for S {
     type Polar = S;
     type CircleScale = S;
     type Variance = S;
+    type GridScale = S;
+    const GRID_SCALE_ZERO: S = S::ZERO;
+
+    /// cells / (max − min), formed once per scan; the cell is
+    /// ⌊(v − min)·scale⌋ (a difference, a product and a truncation, each
+    /// monotone).
+    fn grid_scale(min: S, max: S, cells: u16) -> S {
+        let scale = S::from_f64_lossy(f64::from(cells)) / (max - min);
+        if scale.is_valid() && scale > S::ZERO {
+            scale
+        } else {
+            S::ZERO
+        }
+    }
+
+    fn grid_cell(v: S, min: S, scale: S) -> u32 {
+        truncate_to_u32((v - min) * scale)
+    }
 
     fn circle_scale(radius: S) -> Option<S> {
         let inverse = S::ONE / radius;
@@ -237,10 +275,46 @@ impl VarianceNumber for FixedVariance {
     }
 }
 
+/// The fast fixed point's grid scale: the offset's word is shifted right
+/// by `shift` (the extent then fits 16 bits), multiplied by `multiplier`
+/// (⌊cells·2¹⁶ / (extent' + 1)⌋) and shifted right by 16: integers only,
+/// no division per point, no overflow (the product is < cells·2¹⁶ ≤ 2²⁴).
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct FixedGridScale {
+    shift: u32,
+    multiplier: u32,
+}
+
 impl TrackNumeric for Fixed32 {
     type Polar = f32;
     type CircleScale = ();
     type Variance = FixedVariance;
+    type GridScale = FixedGridScale;
+    const GRID_SCALE_ZERO: FixedGridScale = FixedGridScale {
+        shift: 0,
+        multiplier: 0,
+    };
+
+    /// The offsets are the words' differences, exact in 32 bits for
+    /// min ≤ v ≤ max.
+    fn grid_scale(min: Length, max: Length, cells: u16) -> FixedGridScale {
+        let extent = max.to_bits().wrapping_sub(min.to_bits()) as u32;
+        let shift = u32::BITS
+            .saturating_sub(extent.leading_zeros())
+            .saturating_sub(16);
+        let reduced = (extent >> shift).saturating_add(1);
+        FixedGridScale {
+            shift,
+            multiplier: (u32::from(cells) << 16).checked_div(reduced).unwrap_or(0),
+        }
+    }
+
+    fn grid_cell(v: Length, min: Length, scale: FixedGridScale) -> u32 {
+        let offset = v.to_bits().wrapping_sub(min.to_bits()) as u32;
+        let reduced = offset >> scale.shift.min(31);
+        // reduced ≤ extent' for v ≤ max: the product is below cells·2¹⁶.
+        reduced.wrapping_mul(scale.multiplier) >> 16
+    }
 
     fn circle_scale(radius: Length) -> Option<()> {
         (radius.is_valid() && radius > Length::ZERO).then_some(())
