@@ -17,7 +17,8 @@
 #   4. the firmware (every binary of boards/qemu, the benchmark with its
 #      feature bench-anchors, the example static_track_table) for the three
 #      targets; no call into core::panicking in any release ELF; the stack
-#      below the static data (flip-link);
+#      below the static data (flip-link); each demo image's .data under
+#      4 KiB; no double-precision soft-float routine in the M4F example;
 #   then the runs, in lanes side by side (a QEMU run mostly waits):
 #   5. the firmware images under QEMU on the three boards
 #      (mps2-an386 / Cortex-M4F, mps2-an385 / Cortex-M3, microbit / Cortex-M0):
@@ -212,6 +213,15 @@ check_demo_data() {
     "$tool" data --max-bytes 4095 "${elves[@]}"
 }
 
+# The M4F example image (f32 on a single-precision FPU) links no
+# double-precision soft-float routine (__aeabi_dadd, __muldf3, ...):
+# firmware-check lists any, with its callers.
+check_example_soft_double() {
+    local tool
+    tool=$(firmware_check_tool) || return
+    "$tool" soft-double target/thumbv7em-none-eabihf/release/examples/static_track_table
+}
+
 # The deliberate overflow (boards/qemu/src/bin/stack_overflow.rs) must end in the
 # HardFault handler's report with the statics intact and exit status 1; not
 # in QEMU's "Lockup" abort (134), a hang (124) or a normal exit.
@@ -309,6 +319,7 @@ step "firmware build for the three targets (and the example static_track_table)"
 step "firmware: no call into core::panicking in any release ELF" check_no_panic_calls
 step "firmware: stack below the static data in every release ELF (flip-link)" check_stack_layout
 step "firmware: each demo image's .data under 4 KiB (three boards)" check_demo_data
+step "firmware: no double-precision soft-float routine in the M4F example image" check_example_soft_double
 # The soak image shortened to one hour of scans (ABTRACK_SOAK_SCANS, read at
 # build time), built here so that no lane holds the build directory's lock
 # for a link while the others run.

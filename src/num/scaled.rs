@@ -749,6 +749,13 @@ where
         Self::from_wide(wide, biased.wrapping_sub(1075))
     }
 
+    /// `ms`/1000 correctly rounded by [`Self::divide`] (the same value as
+    /// the default's through `f64`: ms/1000 is never within 2⁻⁵³ of a
+    /// rounding tie of a 31-bit mantissa unless it is one).
+    fn seconds_from_ms(ms: u32) -> Self {
+        Self::from_int(i64::from(ms)).divide(Self::from_int(1000))
+    }
+
     #[inline]
     fn to_f64(self) -> f64 {
         self.to_f64_value()
