@@ -749,7 +749,7 @@ where
         Self::from_wide(wide, biased.wrapping_sub(1075))
     }
 
-    /// `ms`/1000 correctly rounded by [`Self::divide`] (the same value as
+    /// `ms`/1000 correctly rounded by the format's division (the same value as
     /// the default's through `f64`: ms/1000 is never within 2⁻⁵³ of a
     /// rounding tie of a 31-bit mantissa unless it is one).
     fn seconds_from_ms(ms: u32) -> Self {
