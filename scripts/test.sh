@@ -17,7 +17,8 @@
 #   4. the firmware (every binary of boards/qemu, the benchmark with its
 #      feature bench-anchors, the example static_track_table) for the three
 #      targets; no call into core::panicking in any release ELF; the stack
-#      below the static data (flip-link);
+#      below the static data (flip-link); each demo image's .data under
+#      4 KiB; no double-precision soft-float routine in the M4F example;
 #   then the runs, in lanes side by side (a QEMU run mostly waits):
 #   5. the firmware images under QEMU on the three boards
 #      (mps2-an386 / Cortex-M4F, mps2-an385 / Cortex-M3, microbit / Cortex-M0):
@@ -209,15 +210,25 @@ check_stack_layout() {
     "$tool" layout --ram-origin 0x20000000 $(firmware_elves)
 }
 
-# The M4F demo image's initialised statics (.data, copied from flash at
-# reset) under 4 KiB: the scan loop's and the intake's state start as zero
-# bytes, in .bss. Not yet the M3 and M0 images: their number type's zero
-# (ScaledScalar) carries a non-zero exponent, which keeps their scan loop
-# in .data (docs/firmware-and-boards.md).
+# Each demo image's initialised statics (.data, copied from flash at reset)
+# under 4 KiB on the three boards: the scan loop's and the intake's state,
+# and every number type's zero, start as zero bytes, in .bss.
 check_demo_data() {
+    local tool t elves=()
+    tool=$(firmware_check_tool) || return
+    for t in "${ABTRACK_TARGETS[@]}"; do
+        elves+=("target/$t/release/abtrack-firmware")
+    done
+    "$tool" data --max-bytes 4095 "${elves[@]}"
+}
+
+# The M4F example image (f32 on a single-precision FPU) links no
+# double-precision soft-float routine (__aeabi_dadd, __muldf3, ...):
+# firmware-check lists any, with its callers.
+check_example_soft_double() {
     local tool
     tool=$(firmware_check_tool) || return
-    "$tool" data --max-bytes 4095 target/thumbv7em-none-eabihf/release/abtrack-firmware
+    "$tool" soft-double target/thumbv7em-none-eabihf/release/examples/static_track_table
 }
 
 # The deliberate overflow (boards/qemu/src/bin/stack_overflow.rs) must end in the
@@ -335,7 +346,8 @@ in_parallel host_tests_lane library_and_firmware_lane
 # tests' lane).
 step "firmware: no call into core::panicking in any release ELF" check_no_panic_calls
 step "firmware: stack below the static data in every release ELF (flip-link)" check_stack_layout
-step "firmware: the M4F demo image's .data under 4 KiB" check_demo_data
+step "firmware: each demo image's .data under 4 KiB (three boards)" check_demo_data
+step "firmware: no double-precision soft-float routine in the M4F example image" check_example_soft_double
 
 # The benchmark image (its own feature: the minikalman anchor) must run to
 # its end and print a complete, well-formed report: bench_report --check

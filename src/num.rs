@@ -252,9 +252,9 @@ pub trait Scalar:
         self.is_valid() && self > Self::ZERO
     }
 
-    /// A time in milliseconds as seconds, `ms / 1000` rounded to nearest
-    /// (through `f64` by default; `f32` divides in `f32`, the same value for
-    /// every `ms` ≤ 2²⁴, so no double-precision library call on the M4F).
+    /// [`Quantity::seconds_from_ms`] (whose implementation for a `Scalar`
+    /// is this): `ms / 1000` rounded to nearest, through `f64` by default;
+    /// `f32` divides in `f32` and [`ScaledScalar`] its integers.
     #[inline]
     fn seconds_from_ms(ms: u32) -> Self {
         Self::from_f64_lossy(f64::from(ms) / 1000.0)
@@ -413,9 +413,11 @@ impl Scalar for f32 {
     fn sqrt(self) -> Self {
         libm::sqrtf(self)
     }
+    /// The table sine of the exact binary angle ([`sine::sin_cos_f32`]):
+    /// no double-precision arithmetic, which libm's `sincosf` uses.
     #[inline]
     fn sin_cos(self) -> (Self, Self) {
-        libm::sincosf(self)
+        sine::sin_cos_f32(self)
     }
     #[inline]
     fn atan2(self, x: Self) -> Self {

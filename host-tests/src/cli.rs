@@ -127,7 +127,7 @@ fn after_help() -> String {
 }
 
 /// Runs the library's filters on recorded measurements, exactly as the
-/// firmware computes them (f64, f32 or Q32.32 fixed point).
+/// firmware computes them (f64, f32, the Cortex-M3/M0 fast fixed point, or Q32.32).
 #[derive(Debug, Clone, Parser)]
 #[command(
     name = "replay",
@@ -144,7 +144,7 @@ pub struct ReplayArgs {
     /// The multi-target track table, configured from the sensor's figures.
     #[arg(long, help_heading = "Mode")]
     pub tracker: bool,
-    /// f64, f32, fixed (Q32.32) or fast-fixed (the Cortex-M3/M0 scans' 32-bit fixed point; --tracker, x/y input).
+    /// f64, f32, fixed32 (the Cortex-M3/M0 firmware's fast fixed point: Fixed32, and ScaledScalar where it runs one; --tracker and --filter range-azimuth) or q32.32 (Fix).
     #[arg(long, value_enum, default_value = "f64")]
     pub numeric: Numeric,
 

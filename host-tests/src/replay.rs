@@ -75,7 +75,7 @@ use abtrack::tcas::{
     assess, CollisionAvoidance, Intruder, OwnAircraft, ResolutionAdvisory, TcasError, ThreatState,
 };
 use abtrack::track::{ConfigError as TrackConfigError, ScanError};
-use abtrack::{FilterError, Fix, GainError, NumError, Quantity, Scalar};
+use abtrack::{FilterError, Fix, GainError, NumError, Quantity, Scalar, ScaledScalar};
 
 use abtrack::envelope::{self, Limit};
 
@@ -233,24 +233,28 @@ pub enum Numeric {
     F64,
     #[value(name = "f32")]
     F32,
-    /// Q32.32 ([`abtrack::Fix`]).
-    Fixed,
-    /// The fast fixed point ([`abtrack::Fixed32`]: 32-bit words per
-    /// quantity), the number type of the scans on the Cortex-M3 and M0;
-    /// `--tracker` with x/y input only.
-    #[value(name = "fast-fixed")]
-    FastFixed,
+    /// The Cortex-M3's and M0's fast fixed point as their firmware runs it
+    /// (`abtrack_firmware::number_types::without_fpu`): [`abtrack::Fixed32`]
+    /// for the x/y track table, its wide format [`abtrack::ScaledScalar`]
+    /// for the code written for a `Scalar` (the range–azimuth filter and
+    /// tracks, the altitude tracker, the TCAS columns). Not the single x/y
+    /// filters.
+    #[value(name = "fixed32")]
+    Fixed32,
+    /// Q32.32 ([`abtrack::Fix`]), which no firmware runs.
+    #[value(name = "q32.32")]
+    Q32,
 }
 
 impl Numeric {
-    pub const NAMES: &'static str = "f64|f32|fixed|fast-fixed";
+    pub const NAMES: &'static str = "f64|f32|fixed32|q32.32";
 
     pub fn from_name(name: &str) -> Option<Numeric> {
         match name {
             "f64" => Some(Numeric::F64),
             "f32" => Some(Numeric::F32),
-            "fixed" => Some(Numeric::Fixed),
-            "fast-fixed" => Some(Numeric::FastFixed),
+            "fixed32" => Some(Numeric::Fixed32),
+            "q32.32" => Some(Numeric::Q32),
             _ => None,
         }
     }
@@ -324,10 +328,9 @@ pub enum ReplayError {
     },
     /// `--tracker`: the sensor figures were refused.
     Design(String),
-    /// `--numeric fast-fixed` without `--tracker`, or with range/azimuth
-    /// input or `--own-alt` (the polar geometry and the threat logic run in
-    /// a `Scalar`).
-    FastFixedTrackerOnly,
+    /// `--numeric fixed32` with a single x/y filter (`--filter ab|abg`):
+    /// the firmware's Fixed32 filters are not modelled by replay.
+    Fixed32SingleFilter,
 }
 
 impl fmt::Display for ReplayError {
@@ -398,10 +401,10 @@ impl fmt::Display for ReplayError {
                 limit.min, limit.max
             ),
             ReplayError::Design(e) => write!(f, "tracker design: {e}"),
-            ReplayError::FastFixedTrackerOnly => write!(
+            ReplayError::Fixed32SingleFilter => write!(
                 f,
-                "--numeric fast-fixed runs the track table only: --tracker on t,x,y input, \
-                 without --own-alt"
+                "--numeric fixed32 runs --tracker and --filter range-azimuth (as the Cortex-M3/M0 \
+                 firmware does), not the single x/y filters --filter ab|abg"
             ),
         }
     }
@@ -570,6 +573,12 @@ impl CsvValue for Fix {
     }
 }
 
+impl CsvValue for ScaledScalar {
+    fn write_csv(self, out: &mut String) {
+        let _ = write!(out, "{self}");
+    }
+}
+
 /// Any finite value (estimates with no envelope of their own).
 pub const FINITE: Limit = Limit::symmetric(f64::MAX);
 
@@ -703,8 +712,8 @@ pub fn replay(config: &ReplayConfig, data: &Measurements) -> Result<Replayed, Re
     match config.numeric {
         Numeric::F64 => replay_in::<f64>(&config.filter, data),
         Numeric::F32 => replay_in::<f32>(&config.filter, data),
-        Numeric::Fixed => replay_in::<Fix>(&config.filter, data),
-        Numeric::FastFixed => Err(ReplayError::FastFixedTrackerOnly),
+        Numeric::Q32 => replay_in::<Fix>(&config.filter, data),
+        Numeric::Fixed32 => Err(ReplayError::Fixed32SingleFilter),
     }
 }
 
@@ -1168,8 +1177,8 @@ pub fn replay_range_azimuth(
     match numeric {
         Numeric::F64 => replay_range_azimuth_in::<f64>(options, data),
         Numeric::F32 => replay_range_azimuth_in::<f32>(options, data),
-        Numeric::Fixed => replay_range_azimuth_in::<Fix>(options, data),
-        Numeric::FastFixed => Err(ReplayError::FastFixedTrackerOnly),
+        Numeric::Q32 => replay_range_azimuth_in::<Fix>(options, data),
+        Numeric::Fixed32 => replay_range_azimuth_in::<ScaledScalar>(options, data),
     }
 }
 

@@ -1,7 +1,8 @@
 //! `replay --tracker`: the library's multi-target [`TrackTable`] over a
-//! recording of scans, in f64, f32, Q32.32 or (x/y input, no threat
-//! columns) the fast fixed point [`Fixed32`], configured from the sensor's
-//! figures by [`TrackerDesign`].
+//! recording of scans, in f64, f32, Q32.32 or the Cortex-M3/M0 firmware's
+//! fast fixed point ([`Fixed32`] for x/y input, its wide format
+//! [`ScaledScalar`] for range/azimuth input and the threat columns),
+//! configured from the sensor's figures by [`TrackerDesign`].
 //!
 //! # Input
 //!
@@ -69,7 +70,7 @@ use abtrack::track::{
     Association, DropReason, Measurement, Observation, RejectReason, ScanReport, ScheduledTrack,
     TrackFilter, TrackTable, TrackerConfig,
 };
-use abtrack::{Fix, Fixed32};
+use abtrack::{Fix, Fixed32, ScaledScalar};
 
 use crate::csv_input::{read_recording, AngleUnit, ReadOptions, Recording, TimeOrder, Timed};
 use crate::replay::{
@@ -675,8 +676,8 @@ pub fn replay_tracker_reader<R: Read>(
     with_large_stack(|| match options.numeric {
         Numeric::F64 => run_in::<f64>(options, &data),
         Numeric::F32 => run_in::<f32>(options, &data),
-        Numeric::Fixed => run_in::<Fix>(options, &data),
-        Numeric::FastFixed => run_fast_fixed(options, &data),
+        Numeric::Q32 => run_in::<Fix>(options, &data),
+        Numeric::Fixed32 => run_fixed32(options, &data),
     })
     .map_err(Failure::Replay)
 }
@@ -849,15 +850,13 @@ fn run_in<S: CsvValue + std::fmt::Display>(
     run_cartesian(options, &prepared, threat)
 }
 
-/// [`run_in`] in the fast fixed point ([`Numeric::FastFixed`]): x/y input
-/// and no threat columns (the polar geometry and the TCAS logic need a
-/// [`abtrack::Scalar`]).
-fn run_fast_fixed(
-    options: &TrackerOptions,
-    data: &Recording,
-) -> Result<TrackerReplay, ReplayError> {
+/// [`run_in`] as the Cortex-M3/M0 firmware runs it ([`Numeric::Fixed32`]):
+/// x/y input without `--own-alt` in [`Fixed32`] (the scans' track table);
+/// range/azimuth input or the threat columns in its wide format
+/// [`ScaledScalar`] (the demo's range–azimuth tracks and TCAS logic).
+fn run_fixed32(options: &TrackerOptions, data: &Recording) -> Result<TrackerReplay, ReplayError> {
     if options.own_altitude_ft.is_some() || matches!(data, Recording::RangeAzimuth(_)) {
-        return Err(ReplayError::FastFixedTrackerOnly);
+        return run_in::<ScaledScalar>(options, data);
     }
     let scans = file_scans(data)?;
     let prepared = prepare::<Fixed32>(options, data, &scans)?;

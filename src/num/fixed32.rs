@@ -624,7 +624,7 @@ const TWO_PI_Q32: i64 = 26_986_075_409;
 
 /// The binary angle (2³² per turn) of a valid angle: any angle maps to one
 /// direction (the reduction modulo a turn is the wrap of the u32).
-fn turns(theta: Angle) -> u32 {
+pub(super) fn turns(theta: Angle) -> u32 {
     // θ·2³²/(2π) = m·2^e·C·2⁻² with C = 2³⁴/(2π); |m·C| < 2⁶³.
     let wide = i64::from(theta.mantissa()).wrapping_mul(TURNS_PER_RADIAN_Q34);
     let shift = 2i32.wrapping_sub(theta.exponent());

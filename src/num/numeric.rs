@@ -91,6 +91,16 @@ pub trait Quantity:
     /// invalid values.
     fn from_f64_lossy(v: f64) -> Self;
 
+    /// A time in milliseconds as seconds, `ms / 1000` rounded to nearest:
+    /// by default through `f64`; `f32` divides in `f32` (the same value for
+    /// every `ms` ≤ 2²⁴) and the [`super::scaled::Scaled`] formats divide
+    /// their integers, so no double-precision library call on a core
+    /// without a double-precision FPU.
+    #[inline]
+    fn seconds_from_ms(ms: u32) -> Self {
+        Self::from_f64_lossy(f64::from(ms) / 1000.0)
+    }
+
     /// The value in SI units (an invalid value gives ±∞ or NaN).
     fn to_f64(self) -> f64;
 
@@ -344,6 +354,10 @@ impl<S: Scalar> Quantity for S {
     #[inline]
     fn from_f64_lossy(v: f64) -> Self {
         <S as Scalar>::from_f64_lossy(v)
+    }
+    #[inline]
+    fn seconds_from_ms(ms: u32) -> Self {
+        <S as Scalar>::seconds_from_ms(ms)
     }
     #[inline]
     fn to_f64(self) -> f64 {

@@ -6,7 +6,9 @@
 //!
 //! Representation: value = `mantissa · 2^exponent` with |mantissa| in
 //! [2³⁰, 2³¹) (normalised), or mantissa 0 with exponent [`EXPONENT_MIN`]
-//! (zero). The invalid value (the
+//! (zero). The exponent is stored biased by −[`EXPONENT_MIN`] (as IEEE 754
+//! stores its exponent), so that zero is all-zero bytes and a `static`
+//! holding zeros lands in `.bss`. The invalid value (the
 //! analogue of NaN) has mantissa `i32::MIN`; it is sticky, compares unordered
 //! with everything, and is what an overflow ([`EXPONENT_MAX`]), a division
 //! by zero or the square root of a negative number gives. Results below
@@ -60,8 +62,15 @@ pub mod unit {
 /// A number `mantissa · 2^exponent` in unit `U` (module docs).
 pub struct Scaled<U> {
     mantissa: i32,
-    exponent: i16,
+    /// exponent − [`EXPONENT_MIN`], in 0..=300.
+    biased_exponent: u16,
     unit: PhantomData<U>,
+}
+
+/// The stored form of an exponent in [`EXPONENT_MIN`, `EXPONENT_MAX`].
+#[inline(always)]
+const fn biased(exponent: i32) -> u16 {
+    exponent.wrapping_sub(EXPONENT_MIN) as u16
 }
 
 impl<U> Clone for Scaled<U> {
@@ -79,7 +88,7 @@ impl<U> Default for Scaled<U> {
 
 impl<U> PartialEq for Scaled<U> {
     fn eq(&self, other: &Self) -> bool {
-        self.mantissa == other.mantissa && self.exponent == other.exponent
+        self.mantissa == other.mantissa && self.biased_exponent == other.biased_exponent
     }
 }
 
@@ -196,16 +205,17 @@ pub(crate) fn isqrt_u64(n: u64) -> u64 {
 impl<U> Scaled<U> {
     /// Zero carries the smallest exponent, so that a product with it is
     /// shifted out entirely however it is scaled (see
-    /// [`super::fixed32`]'s guarded products).
+    /// [`super::fixed32`]'s guarded products); stored biased, it is
+    /// all-zero bytes.
     const ZERO_VALUE: Self = Scaled {
         mantissa: 0,
-        exponent: EXPONENT_MIN as i16,
+        biased_exponent: biased(EXPONENT_MIN),
         unit: PhantomData,
     };
     /// The invalid value (module docs).
     pub const INVALID: Self = Scaled {
         mantissa: INVALID_MANTISSA,
-        exponent: 0,
+        biased_exponent: biased(0),
         unit: PhantomData,
     };
 
@@ -218,7 +228,8 @@ impl<U> Scaled<U> {
     /// The binary exponent (value = mantissa · 2^exponent).
     #[inline]
     pub const fn exponent(self) -> i32 {
-        self.exponent as i32
+        // At most 300 above EXPONENT_MIN: no wrap.
+        (self.biased_exponent as i32).wrapping_add(EXPONENT_MIN)
     }
 
     /// Whether this is the invalid value (the sticky result of an overflow).
@@ -239,7 +250,7 @@ impl<U> Scaled<U> {
     pub const fn cast<V>(self) -> Scaled<V> {
         Scaled {
             mantissa: self.mantissa,
-            exponent: self.exponent,
+            biased_exponent: self.biased_exponent,
             unit: PhantomData,
         }
     }
@@ -286,8 +297,8 @@ impl<U> Scaled<U> {
         if a == 0 {
             return Some(Ordering::Equal);
         }
-        let magnitude_order =
-            (self.exponent, a.unsigned_abs()).cmp(&(other.exponent, b.unsigned_abs()));
+        let magnitude_order = (self.biased_exponent, a.unsigned_abs())
+            .cmp(&(other.biased_exponent, b.unsigned_abs()));
         Some(if a > 0 {
             magnitude_order
         } else {
@@ -315,7 +326,7 @@ impl<U> Scaled<U> {
         let m = m as i32;
         Scaled {
             mantissa: if negative { m.wrapping_neg() } else { m },
-            exponent: exponent as i16,
+            biased_exponent: biased(exponent),
             unit: PhantomData,
         }
     }
@@ -381,7 +392,7 @@ impl<U> Scaled<U> {
         if other.is_zero() {
             return self;
         }
-        let (high, low) = if self.exponent >= other.exponent {
+        let (high, low) = if self.biased_exponent >= other.biased_exponent {
             (self, other)
         } else {
             (other, self)
@@ -501,7 +512,7 @@ impl<U> Scaled<U> {
             return self;
         }
         let m = u64::from(self.mantissa.unsigned_abs());
-        let (n, exponent) = if self.exponent & 1 == 0 {
+        let (n, exponent) = if self.exponent() & 1 == 0 {
             (m << 32, self.exponent().wrapping_sub(32))
         } else {
             (m << 33, self.exponent().wrapping_sub(33))
@@ -530,7 +541,7 @@ impl<U> Scaled<U> {
         if other.is_zero() {
             return self.magnitude();
         }
-        let (high, low) = if self.exponent >= other.exponent {
+        let (high, low) = if self.biased_exponent >= other.biased_exponent {
             (self, other)
         } else {
             (other, self)
@@ -559,9 +570,9 @@ impl<U> Scaled<U> {
         }
         // Zero carries the smallest exponent: the largest is a nonzero
         // one's unless all three are zero.
-        let top = self.exponent.max(b.exponent).max(c.exponent);
+        let top = self.exponent().max(b.exponent()).max(c.exponent());
         let square_at_top = |v: Self| {
-            let gap = (top as i32).wrapping_sub(v.exponent()) as u32; // ≥ 0
+            let gap = top.wrapping_sub(v.exponent()) as u32; // ≥ 0
             let magnitude = u64::from(v.mantissa.unsigned_abs());
             if gap < 32 {
                 magnitude.wrapping_mul(magnitude) >> (gap << 1)
@@ -576,7 +587,7 @@ impl<U> Scaled<U> {
         if sum == 0 {
             return Self::ZERO_VALUE;
         }
-        Self::root_of_squares(sum, i32::from(top))
+        Self::root_of_squares(sum, top)
     }
 
     /// √(`sum`)·2^`exponent` for a sum of squared mantissas in [2⁶⁰, 2⁶⁴)
@@ -621,7 +632,7 @@ impl<U> defmt::Format for Scaled<U> {
         if self.is_invalid() {
             defmt::write!(f, "invalid")
         } else {
-            defmt::write!(f, "{=i32}p{=i16}", self.mantissa, self.exponent)
+            defmt::write!(f, "{=i32}p{=i16}", self.mantissa, self.exponent() as i16)
         }
     }
 }
@@ -738,6 +749,13 @@ where
         Self::from_wide(wide, biased.wrapping_sub(1075))
     }
 
+    /// `ms`/1000 correctly rounded by the format's division (the same value as
+    /// the default's through `f64`: ms/1000 is never within 2⁻⁵³ of a
+    /// rounding tie of a 31-bit mantissa unless it is one).
+    fn seconds_from_ms(ms: u32) -> Self {
+        Self::from_int(i64::from(ms)).divide(Self::from_int(1000))
+    }
+
     #[inline]
     fn to_f64(self) -> f64 {
         self.to_f64_value()
@@ -770,7 +788,7 @@ where
         }
         Scaled {
             mantissa: self.mantissa,
-            exponent: exponent as i16,
+            biased_exponent: biased(exponent),
             unit: PhantomData,
         }
     }
@@ -779,7 +797,7 @@ where
 impl Real for Scaled<One> {
     const ONE: Self = Scaled {
         mantissa: 1 << TOP_BIT,
-        exponent: -(TOP_BIT as i16),
+        biased_exponent: biased(-(TOP_BIT as i32)),
         unit: PhantomData,
     };
 

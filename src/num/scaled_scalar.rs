@@ -76,6 +76,13 @@ impl ScaledScalar {
     }
 }
 
+impl core::fmt::Display for ScaledScalar {
+    /// The value as `f64` prints it (exact: a 31-bit mantissa).
+    fn fmt(&self, f: &mut core::fmt::Formatter<'_>) -> core::fmt::Result {
+        core::fmt::Display::fmt(&self.0, f)
+    }
+}
+
 macro_rules! scaled_scalar_ops {
     ($($trait:ident, $method:ident;)*) => {$(
         impl $trait for ScaledScalar {
@@ -120,6 +127,13 @@ impl Scalar for ScaledScalar {
     #[inline]
     fn from_f64_lossy(v: f64) -> Self {
         ScaledScalar(Ratio::from_f64_lossy(v))
+    }
+
+    /// [`Quantity::seconds_from_ms`] of the wide format: an integer
+    /// division, no `f64`.
+    #[inline]
+    fn seconds_from_ms(ms: u32) -> Self {
+        ScaledScalar(<Ratio as Quantity>::seconds_from_ms(ms))
     }
 
     #[inline]

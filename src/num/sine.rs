@@ -1,5 +1,6 @@
 //! Sine and cosine of a binary angle (2³² per turn) in 32-bit integer
-//! arithmetic, for the fast fixed point ([`super::fixed32`]): a table of
+//! arithmetic, for the fast fixed point ([`super::fixed32`]) and `f32`
+//! ([`sin_cos_f32`]): a table of
 //! sin(jπ/512), j = 0..=256, in Q31, and the angle-addition formula with
 //! the remainder d < π/512 by its Taylor polynomials (sin d ≈ d − d³/6,
 //! cos d ≈ 1 − d²/2):
@@ -116,4 +117,42 @@ pub fn sin_cos_q31(turns: u32) -> (i64, i64) {
         2 => (sin.wrapping_neg(), cos.wrapping_neg()),
         _ => (cos.wrapping_neg(), sin),
     }
+}
+
+/// Largest error of [`sin_cos_f32`] for |θ| ≤ 2π, each component, before
+/// the result's rounding to `f32` (half an ulp): the table sine's
+/// [`SIN_COS_MAX_ERROR_Q31`] units of 2⁻³¹ and the angle's conversion to
+/// turns (1.8·10⁻¹⁰ relative, as for [`super::fixed32`]'s angles).
+/// Checked by `host-tests/tests/it/num/sine.rs`.
+pub const SIN_COS_F32_MAX_ERROR: f64 =
+    SIN_COS_MAX_ERROR_Q31 / 2_147_483_648.0 + 1.8e-10 * core::f64::consts::TAU;
+
+/// (sin θ, cos θ) of an `f32` angle in integer arithmetic: θ taken exactly
+/// (its 24-bit mantissa and exponent) to a binary angle, [`sin_cos_q31`],
+/// each result rounded once to `f32` (within [`SIN_COS_F32_MAX_ERROR`]
+/// plus half an ulp). No double precision: libm's `sincosf` computes in
+/// `f64`, a software library call on the Cortex-M4F's single-precision
+/// FPU. NaN and ±∞ give NaN.
+pub fn sin_cos_f32(theta: f32) -> (f32, f32) {
+    let bits = theta.to_bits();
+    let biased = (bits >> 23) & 0xFF;
+    if biased == 0xFF {
+        return (f32::NAN, f32::NAN);
+    }
+    // θ = ±m·2^e exactly: a normal f32 has the hidden bit, a subnormal the
+    // exponent of the smallest normal.
+    let fraction = i64::from(bits & 0x7F_FFFF);
+    let (m, e) = if biased == 0 {
+        (fraction, -149)
+    } else {
+        (fraction | (1 << 23), (biased as i32).wrapping_sub(150))
+    };
+    let m = if bits >> 31 != 0 { m.wrapping_neg() } else { m };
+    // A 24-bit mantissa at an exponent in [−149, 104]: exact in the
+    // 31-bit format (range [−200, 100] for the normalised mantissa).
+    let angle = super::fixed32::Angle::from_wide(m, e);
+    let (s, c) = sin_cos_q31(super::fixed32::turns(angle));
+    // |s|, |c| ≤ 2³¹: one rounding to f32, then an exact power of two.
+    const Q31: f32 = 1.0 / 2_147_483_648.0;
+    (s as f32 * Q31, c as f32 * Q31)
 }

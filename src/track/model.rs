@@ -122,14 +122,8 @@ impl<S: TrackNumeric> ScanInterval<S> {
     /// The interval of `ms` milliseconds (> 0); `None` if it is 0 or not
     /// representable.
     pub fn from_ms(ms: u32) -> Option<Self> {
-        let dt = match single_seconds_of_ms(ms) {
-            Some(dt) => dt,
-            None => S::Interval::try_from_f64(f64::from(ms) / 1000.0).ok()?,
-        };
-        let terms = IntervalTerms::new(dt).ok()?;
-        let seconds =
-            single_seconds_of_ms(ms).unwrap_or_else(|| S::Ratio::from_ratio(u64::from(ms), 1000));
-        let seconds = S::to_variance(seconds);
+        let terms = IntervalTerms::new(S::Interval::seconds_from_ms(ms)).ok()?;
+        let seconds = S::to_variance(S::Ratio::seconds_from_ms(ms));
         (seconds.is_valid() && seconds != S::Variance::ZERO)
             .then_some(ScanInterval { terms, seconds })
     }
@@ -148,19 +142,6 @@ impl<S: TrackNumeric> ScanInterval<S> {
     pub fn seconds(&self) -> S::Variance {
         self.seconds
     }
-}
-
-/// `ms` milliseconds in seconds if `Q` is `f32`, rounded once in `f32`: no
-/// double-precision arithmetic (in software on every core here) on the
-/// scan's path. `None` for the other types.
-fn single_seconds_of_ms<Q: Quantity>(ms: u32) -> Option<Q> {
-    let mut seconds = Q::ZERO;
-    let any: &mut dyn core::any::Any = &mut seconds;
-    let single = any.downcast_mut::<f32>()?;
-    // Both operands exact in f32 below 2²⁴ ms (4.6 hours; the filters'
-    // intervals are far shorter), so the quotient is rounded once.
-    *single = ms as f32 / 1000.0;
-    Some(seconds)
 }
 
 /// What a filter must provide to live in a [`TrackTable`](super::TrackTable).

@@ -105,8 +105,10 @@ impl TestScalar for f64 {
 
 impl TestScalar for f32 {
     const HUGE: f64 = 3.0e38;
-    // libm's sincosf is within 1 ulp (≤ 2⁻²⁴ for |v| < 1); two for margin.
-    const SIN_COS_ERROR: f64 = 2.0 * <f32 as Scalar>::UNIT_ROUNDOFF;
+    // The table sine's bound for |θ| ≤ 2π, plus the rounding to f32 (half
+    // an ulp, ≤ 2⁻²⁴ for |v| ≤ 1).
+    const SIN_COS_ERROR: f64 =
+        abtrack::num::sine::SIN_COS_F32_MAX_ERROR + <f32 as Scalar>::UNIT_ROUNDOFF;
     fn bits(self) -> u64 {
         self.to_bits() as u64
     }

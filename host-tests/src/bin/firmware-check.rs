@@ -10,9 +10,10 @@ use std::process::ExitCode;
 use clap::{Parser, Subcommand};
 
 use abtrack_host_tests::firmware_elf::{
-    branches, callers_of, check_layout, crate_of, find_llvm_tool, frame_kind, is_own_source,
-    is_rust_library, only_rust_library, owner_of, panic_calls, panic_symbols, parse_sections,
-    parse_symbolizer, run_tool, section_size, Allowance, Branch, FrameKind, Owner, SourceFrame,
+    branches, callers_of, check_layout, crate_of, demangle, find_llvm_tool, frame_kind,
+    is_own_source, is_rust_library, only_rust_library, owner_of, panic_calls, panic_symbols,
+    parse_sections, parse_symbolizer, run_tool, section_size, Allowance, Branch, FrameKind, Owner,
+    SourceFrame,
 };
 
 /// Checks on release firmware ELFs. Uses llvm-objdump, llvm-symbolizer and
@@ -63,6 +64,15 @@ enum Check {
         #[arg(value_name = "ELF", required = true)]
         elves: Vec<PathBuf>,
     },
+    /// Double-precision soft-float routines (f64 arithmetic, comparisons and
+    /// conversions in software: `__aeabi_dadd`, `__muldf3`, ...), which an
+    /// f32 image on a single-precision FPU should not need: each one
+    /// defined, with the functions that call it. Exit status 1 if any ELF
+    /// defines one.
+    SoftDouble {
+        #[arg(value_name = "ELF", required = true)]
+        elves: Vec<PathBuf>,
+    },
 }
 
 fn hex_address(text: &str) -> Result<u64, String> {
@@ -76,6 +86,7 @@ fn main() -> ExitCode {
         Check::Panics { allowances, elves } => panics(&allowances, &elves),
         Check::Layout { ram_origin, elves } => layout(ram_origin, &elves),
         Check::Data { max_bytes, elves } => data(max_bytes, &elves),
+        Check::SoftDouble { elves } => soft_double(&elves),
     };
     match result {
         Ok(true) => ExitCode::SUCCESS,
@@ -362,6 +373,108 @@ fn data(max_bytes: u64, elves: &[PathBuf]) -> Result<bool, String> {
     Ok(ok)
 }
 
+/// compiler-builtins' double-precision soft-float routines, by their ARM
+/// EABI (RTABI §4.1.2) and libgcc names.
+const SOFT_DOUBLE_ROUTINES: &[&str] = &[
+    "__aeabi_dadd",
+    "__aeabi_dsub",
+    "__aeabi_drsub",
+    "__aeabi_dmul",
+    "__aeabi_ddiv",
+    "__aeabi_dneg",
+    "__aeabi_dcmpeq",
+    "__aeabi_dcmplt",
+    "__aeabi_dcmple",
+    "__aeabi_dcmpge",
+    "__aeabi_dcmpgt",
+    "__aeabi_dcmpun",
+    "__aeabi_cdcmpeq",
+    "__aeabi_cdcmple",
+    "__aeabi_cdrcmple",
+    "__aeabi_d2f",
+    "__aeabi_f2d",
+    "__aeabi_d2iz",
+    "__aeabi_d2uiz",
+    "__aeabi_d2lz",
+    "__aeabi_d2ulz",
+    "__aeabi_i2d",
+    "__aeabi_ui2d",
+    "__aeabi_l2d",
+    "__aeabi_ul2d",
+    "__adddf3",
+    "__subdf3",
+    "__muldf3",
+    "__divdf3",
+    "__negdf2",
+    "__eqdf2",
+    "__nedf2",
+    "__gedf2",
+    "__gtdf2",
+    "__ledf2",
+    "__ltdf2",
+    "__unorddf2",
+    "__cmpdf2",
+    "__extendsfdf2",
+    "__truncdfsf2",
+    "__fixdfsi",
+    "__fixunsdfsi",
+    "__fixdfdi",
+    "__fixunsdfdi",
+    "__floatsidf",
+    "__floatunsidf",
+    "__floatdidf",
+    "__floatundidf",
+    "__powidf2",
+];
+
+/// The routine `symbol` (demangled) is, if it is one of
+/// [`SOFT_DOUBLE_ROUTINES`] (compiler-builtins defines each under its
+/// module path too: `compiler_builtins::float::add::__adddf3`).
+fn soft_double_routine(symbol: &str) -> Option<&'static str> {
+    let last = symbol.rsplit("::").next().unwrap_or(symbol);
+    SOFT_DOUBLE_ROUTINES.iter().copied().find(|r| *r == last)
+}
+
+/// True if no ELF defines a double-precision soft-float routine.
+fn soft_double(elves: &[PathBuf]) -> Result<bool, String> {
+    let objdump = tool("llvm-objdump")?;
+    let nm = tool("llvm-nm")?;
+    let mut clean = true;
+    for elf in elves {
+        let elf_arg = elf.to_string_lossy();
+        let symbols = run_tool(&nm, &["--defined-only", &elf_arg])?;
+        let defined: BTreeSet<String> = symbols
+            .lines()
+            .filter_map(|l| l.splitn(3, ' ').nth(2))
+            .map(demangle)
+            .filter(|name| soft_double_routine(name).is_some())
+            .collect();
+        if defined.is_empty() {
+            println!("{}: no double-precision soft-float routine", elf.display());
+            continue;
+        }
+        clean = false;
+        let branches = branches(&run_tool(
+            &objdump,
+            &["-d", "--no-show-raw-insn", &elf_arg],
+        )?);
+        println!(
+            "{}: {} double-precision soft-float routines",
+            elf.display(),
+            defined.len()
+        );
+        for routine in &defined {
+            // Callers outside the soft-float routines themselves.
+            let callers: Vec<String> = callers_of(&branches, routine)
+                .into_iter()
+                .filter(|f| soft_double_routine(f).is_none() && !f.starts_with("compiler_builtins"))
+                .collect();
+            println!("  {routine} <- {}", callers.join(", "));
+        }
+    }
+    Ok(clean)
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -410,6 +523,30 @@ mod tests {
             panic!("data not parsed")
         };
         assert_eq!((max_bytes, elves.len()), (4096, 2));
+        let Ok(Check::SoftDouble { elves }) = parse(&["soft-double", "a.elf"]) else {
+            panic!("soft-double not parsed")
+        };
+        assert_eq!(elves.len(), 1);
+    }
+
+    #[test]
+    fn soft_double_routines_are_recognised_by_name() {
+        assert_eq!(soft_double_routine("__aeabi_dmul"), Some("__aeabi_dmul"));
+        assert_eq!(
+            soft_double_routine("compiler_builtins::float::add::__adddf3"),
+            Some("__adddf3")
+        );
+        // Single precision, integer and memory routines are not.
+        for name in [
+            "__aeabi_fmul",
+            "__addsf3",
+            "__aeabi_l2f",
+            "__aeabi_memcpy",
+            "__aeabi_uldivmod",
+        ] {
+            assert_eq!(soft_double_routine(name), None, "{name}");
+        }
+        assert_eq!(soft_double_routine("libm::math::sqrt::sqrtf"), None);
     }
 
     #[test]

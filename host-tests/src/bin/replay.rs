@@ -1,4 +1,4 @@
-//! `replay`: runs the library's filters, in f64, f32 or Q32.32 fixed point,
+//! `replay`: runs the library's filters, in f64, f32, the Cortex-M3/M0 fast fixed point or Q32.32,
 //! over a CSV recording, so that gains can be tuned on recorded data before
 //! flashing. See `replay --help` and `docs/host-tools.md`.
 //!

@@ -727,7 +727,7 @@ pub fn scene_configurations(scene: &Scene) -> Result<Vec<(String, TrackerOptions
         ("f32".into(), scene.options(Numeric::F32, None)),
         (
             "fast fixed point".into(),
-            scene.options(Numeric::FastFixed, None),
+            scene.options(Numeric::Fixed32, None),
         ),
         (
             format!("f64, --schedule {AUTO}"),

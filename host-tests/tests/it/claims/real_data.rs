@@ -82,7 +82,7 @@ fn the_scene_tracker_agrees_in_f64_f32_and_the_fast_fixed_point() {
     let dir = data_dir();
     let scene = &SCENES[0];
     let truth = read_scene_truth(&dir, scene).unwrap();
-    let runs: Vec<_> = [Numeric::F64, Numeric::F32, Numeric::FastFixed]
+    let runs: Vec<_> = [Numeric::F64, Numeric::F32, Numeric::Fixed32]
         .iter()
         .map(|&n| run_scene(&dir, scene, &truth, &scene.options(n, None), "").unwrap())
         .collect();
@@ -167,14 +167,18 @@ fn scene_metrics_of_known_configurations() {
     assert!((mean_ospa(&far, 1000.0, 2.0) - 600.0).abs() < 1e-9);
 }
 
+/// `--numeric fixed32` runs what the Cortex-M3/M0 firmware runs: the x/y
+/// track table in Fixed32, range/azimuth input and the threat columns in
+/// its wide format ScaledScalar (the demo's scan loop and TCAS logic), and
+/// refuses the single x/y filters.
 #[test]
-fn the_fast_fixed_point_runs_the_cartesian_track_table_only() {
+fn fixed32_runs_what_the_cortex_m3_and_m0_firmware_runs() {
     use abtrack_host_tests::replay::{
         replay_reader, Failure, FilterKind, ReplayConfig, ReplayError,
     };
     use abtrack_host_tests::replay_tracker::{replay_tracker_reader, TrackerOptions};
     let options = TrackerOptions {
-        numeric: Numeric::FastFixed,
+        numeric: Numeric::Fixed32,
         ..TrackerOptions::default()
     };
     let cartesian = "t,x,y\n0,100,200\n1,110,200\n2,120,200\n3,130,200\n";
@@ -185,28 +189,47 @@ fn the_fast_fixed_point_runs_the_cartesian_track_table_only() {
         "{}",
         run.csv
     );
-    let polar = "t,range,azimuth\n0,1000,0.1\n1,1010,0.1\n";
-    assert_eq!(
-        replay_tracker_reader(&options, polar.as_bytes()).unwrap_err(),
-        Failure::Replay(ReplayError::FastFixedTrackerOnly)
-    );
+    // Range/azimuth and the threat columns: ScaledScalar's run, which
+    // differs from f64's only in the rounding.
+    let polar = "t,range,azimuth\n0,1000,0.1\n1,1010,0.1\n2,1020,0.1\n3,1030,0.1\n";
     let own_alt = TrackerOptions {
         own_altitude_ft: Some(9000.0),
         ..options
     };
-    assert_eq!(
-        replay_tracker_reader(&own_alt, cartesian.as_bytes()).unwrap_err(),
-        Failure::Replay(ReplayError::FastFixedTrackerOnly)
-    );
+    for (options, input) in [(&options, polar), (&own_alt, cartesian)] {
+        let fixed32 = replay_tracker_reader(options, input.as_bytes()).unwrap();
+        let f64_options = TrackerOptions {
+            numeric: Numeric::F64,
+            ..*options
+        };
+        let f64_run = replay_tracker_reader(&f64_options, input.as_bytes()).unwrap();
+        assert_eq!(
+            fixed32.csv.lines().count(),
+            f64_run.csv.lines().count(),
+            "{}",
+            fixed32.csv
+        );
+        assert_ne!(fixed32.csv, f64_run.csv, "not run in the fixed point");
+        for (a, b) in fixed32.csv.lines().zip(f64_run.csv.lines()).skip(1) {
+            for (x, y) in a.split(',').zip(b.split(',')) {
+                match (x.parse::<f64>(), y.parse::<f64>()) {
+                    (Ok(x), Ok(y)) => {
+                        assert!((x - y).abs() <= 1e-6 * y.abs().max(1.0), "{a} / {b}")
+                    }
+                    _ => assert_eq!(x, y, "{a} / {b}"),
+                }
+            }
+        }
+    }
     let single = ReplayConfig {
         filter: FilterKind::AlphaBeta {
             alpha: 0.5,
             beta: 0.2,
         },
-        numeric: Numeric::FastFixed,
+        numeric: Numeric::Fixed32,
     };
     assert_eq!(
         replay_reader(&single, cartesian.as_bytes()).unwrap_err(),
-        Failure::Replay(ReplayError::FastFixedTrackerOnly)
+        Failure::Replay(ReplayError::Fixed32SingleFilter)
     );
 }

@@ -408,7 +408,7 @@ fn replay_runs_through_gaps_and_jitter_in_every_number_system() {
         "--filter auto --sigma-m 5",
         "--filter ab --schedule bank",
     ] {
-        for numeric in ["f64", "f32", "fixed"] {
+        for numeric in ["f64", "f32", "q32.32"] {
             let run = replay(filter, numeric, GAPPY);
             assert_eq!(run.csv.lines().count(), 16, "{filter} {numeric}");
             assert_eq!(events(&run.csv), want, "{filter} {numeric}");
@@ -444,7 +444,7 @@ fn replay_runs_through_gaps_and_jitter_in_every_number_system() {
 fn range_azimuth_replay_restarts_and_skips_too() {
     let text = "t,range,azimuth\n0,5000,0.5\n1,4990,0.5\n1,4991,0.5\n2,4980,0.5\n\
                 40,4600,0.52\n41,4590,0.52\n42,4580,0.52\n";
-    for numeric in ["f64", "f32", "fixed"] {
+    for numeric in ["f64", "f32", "q32.32"] {
         let run = replay("--filter range-azimuth", numeric, text);
         assert_eq!(run.events.restarted, ["40"], "{numeric}");
         assert_eq!(run.events.skipped, ["1"], "{numeric}");
@@ -459,7 +459,7 @@ fn range_azimuth_replay_restarts_and_skips_too() {
 fn tracker_replay_restarts_and_skips() {
     use abtrack_host_tests::cli::{Command, ReplayArgs};
     use clap::Parser;
-    for numeric in ["f64", "f32", "fixed"] {
+    for numeric in ["f64", "f32", "q32.32"] {
         let args = [
             "replay",
             "--tracker",

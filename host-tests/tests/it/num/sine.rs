@@ -1,12 +1,16 @@
 //! The fast fixed point's sine and cosine (`abtrack::num::sine`): the table
 //! against f64, and the error of sin_cos_q31 against f64 at the exact
 //! binary angle, within the stated bound, over the ends of every table
-//! interval, the quarter turns and random angles.
+//! interval, the quarter turns and random angles; `f32`'s sin_cos (the
+//! same table, no double precision) within its bound.
 
 use abtrack::num::fixed32::Angle;
-use abtrack::num::sine::{sin_cos_q31, SINE_Q31, SIN_COS_MAX_ERROR_Q31};
+use abtrack::num::sine::{
+    sin_cos_f32, sin_cos_q31, SINE_Q31, SIN_COS_F32_MAX_ERROR, SIN_COS_MAX_ERROR_Q31,
+};
 use abtrack::num::{Numeric, Quantity};
 use abtrack::Fixed32;
+use abtrack::Scalar;
 use proptest::prelude::*;
 
 const Q31: f64 = 2147483648.0;
@@ -76,6 +80,41 @@ proptest! {
         prop_assert!((s.to_f64() - exact.sin()).abs() <= bound);
         prop_assert!((c.to_f64() - exact.cos()).abs() <= bound);
     }
+
+    /// `f32`'s sin_cos (the library's, no libm `sincosf`): within
+    /// SIN_COS_F32_MAX_ERROR plus half an ulp of each result, at the exact
+    /// f32 angle, for |θ| ≤ 2π.
+    #[test]
+    fn f32_sin_cos_within_its_bound(theta in -std::f64::consts::TAU..std::f64::consts::TAU) {
+        let t = theta as f32;
+        let exact = f64::from(t);
+        let (s, c) = <f32 as Scalar>::sin_cos(t);
+        let half_ulp = |v: f32| f64::from(f32::EPSILON) / 2.0 * f64::from(v.abs());
+        prop_assert!(
+            (f64::from(s) - exact.sin()).abs() <= SIN_COS_F32_MAX_ERROR + half_ulp(s),
+            "sin {t}: {s} vs {}", exact.sin()
+        );
+        prop_assert!(
+            (f64::from(c) - exact.cos()).abs() <= SIN_COS_F32_MAX_ERROR + half_ulp(c),
+            "cos {t}: {c} vs {}", exact.cos()
+        );
+    }
+}
+
+/// `f32` sin_cos at the quarter turns' exact angles, of NaN and ±∞, and of
+/// a subnormal angle.
+#[test]
+fn f32_sin_cos_special_values() {
+    assert_eq!(sin_cos_f32(0.0), (0.0, 1.0));
+    let (s, c) = sin_cos_f32(std::f32::consts::FRAC_PI_2);
+    assert!((s - 1.0).abs() <= f32::EPSILON && c.abs() < 1e-7, "{s} {c}");
+    let (s, c) = sin_cos_f32(-std::f32::consts::PI);
+    assert!(s.abs() < 1e-7 && (c + 1.0).abs() <= f32::EPSILON, "{s} {c}");
+    for v in [f32::NAN, f32::INFINITY, f32::NEG_INFINITY] {
+        let (s, c) = sin_cos_f32(v);
+        assert!(s.is_nan() && c.is_nan(), "{v}: {s} {c}");
+    }
+    assert_eq!(sin_cos_f32(1.0e-45), (0.0, 1.0));
 }
 
 /// The largest error over a sweep of 2²⁴ evenly spaced angles (every 256th

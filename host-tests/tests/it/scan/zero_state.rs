@@ -1,12 +1,14 @@
 //! The firmware's scan-loop state starts as all-zero bytes, so its
 //! `static`s go to `.bss` (no flash copy, nothing copied at reset):
 //! `Intake::new()` and `ScanLoop::new()` with the demo's types and
-//! capacities (boards/qemu/src/main.rs, capacity.rs, number_types.rs).
+//! capacities on the three boards (boards/qemu/src/main.rs, capacity.rs,
+//! number_types.rs), and the zero of every number type.
 
 use abtrack::scan::{Intake, ScanLoop};
 use abtrack::track::RangeAzimuthTrack;
+use abtrack::{Fix, Quantity, Scalar, ScaledScalar};
 use abtrack_firmware::capacity::{microbit, mps2};
-use abtrack_firmware::number_types::with_fpu;
+use abtrack_firmware::number_types::{with_fpu, without_fpu};
 use std::mem::size_of;
 
 type M4fLoop = ScanLoop<
@@ -22,6 +24,23 @@ type M4fLoop = ScanLoop<
 static MPS2_INTAKE: Intake<{ mps2::QUEUE_LEN }> = Intake::new();
 static MICROBIT_INTAKE: Intake<{ microbit::QUEUE_LEN }> = Intake::new();
 static M4F_SCAN_LOOP: M4fLoop = ScanLoop::new();
+
+/// The Cortex-M3's (mps2-an385) and Cortex-M0's (micro:bit) demo loops:
+/// the fast fixed point's wide format.
+type M3Loop = ScanLoop<
+    without_fpu::TableScalar,
+    RangeAzimuthTrack<without_fpu::TableScalar>,
+    { mps2::TRACKS },
+    { mps2::MEASUREMENTS_PER_SCAN },
+>;
+type M0Loop = ScanLoop<
+    without_fpu::TableScalar,
+    RangeAzimuthTrack<without_fpu::TableScalar>,
+    { microbit::TRACKS },
+    { microbit::MEASUREMENTS_PER_SCAN },
+>;
+static M3_SCAN_LOOP: M3Loop = ScanLoop::new();
+static M0_SCAN_LOOP: M0Loop = ScanLoop::new();
 
 /// Offsets of the non-zero bytes of a value.
 fn nonzero_offsets<T>(value: &T) -> Vec<usize> {
@@ -63,9 +82,44 @@ fn the_check_sees_a_non_zero_byte() {
     assert_eq!(nonzero_offsets(&NONE), vec![0]);
 }
 
-/// The M4F demo's scan loop (f32). Not yet the M3's and M0's: their
-/// `ScaledScalar` zero has a non-zero exponent (docs/firmware-and-boards.md).
+/// The demo's scan loop on each board: f32 on the M4F, the fast fixed
+/// point's wide format (`ScaledScalar`, whose zero stores its exponent
+/// biased) on the M3 and M0.
 #[test]
-fn demo_scan_loop_starts_all_zero_on_the_m4f() {
+fn demo_scan_loop_starts_all_zero_on_every_board() {
     assert_zero("ScanLoop on the mps2-an386 (M4F)", &M4F_SCAN_LOOP);
+    assert_zero("ScanLoop on the mps2-an385 (M3)", &M3_SCAN_LOOP);
+    assert_zero("ScanLoop on the micro:bit (M0)", &M0_SCAN_LOOP);
+}
+
+/// Zero (and `Default`) of every number type is all-zero bytes, the
+/// fast fixed point's formats among them.
+#[test]
+fn every_number_types_zero_is_zero_bytes() {
+    static SCALED_ZERO: ScaledScalar = <ScaledScalar as Scalar>::ZERO;
+    static RATIO_ZERO: abtrack::num::fixed32::Ratio =
+        <abtrack::num::fixed32::Ratio as Quantity>::ZERO;
+    static LENGTH_ZERO: abtrack::num::fixed32::Length =
+        <abtrack::num::fixed32::Length as Quantity>::ZERO;
+    static FIX_ZERO: Fix = <Fix as Scalar>::ZERO;
+    static F32_ZERO: f32 = 0.0;
+    assert_zero("ScaledScalar::ZERO", &SCALED_ZERO);
+    assert_zero("fixed32::Ratio::ZERO", &RATIO_ZERO);
+    assert_zero("fixed32::Length::ZERO", &LENGTH_ZERO);
+    assert_zero("Fix::ZERO", &FIX_ZERO);
+    assert_zero("f32 zero", &F32_ZERO);
+    assert_zero("ScaledScalar::default()", &ScaledScalar::default());
+    assert_zero(
+        "fixed32::Ratio::default()",
+        &abtrack::num::fixed32::Ratio::default(),
+    );
+    // The zero still behaves as the smallest exponent: a product with it
+    // is zero, a sum with it the other operand.
+    let x = <ScaledScalar as Scalar>::from_f64_lossy(3.5);
+    assert_eq!(x * SCALED_ZERO, SCALED_ZERO);
+    assert_eq!(x + SCALED_ZERO, x);
+    assert_eq!(
+        SCALED_ZERO.to_ratio().exponent(),
+        abtrack::num::scaled::EXPONENT_MIN
+    );
 }

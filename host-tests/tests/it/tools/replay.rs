@@ -467,7 +467,7 @@ fn output_is_the_library_arithmetic() {
     };
     check::<f64, 2>(ab, Numeric::F64, Gains::alpha_beta_f64(0.5, 0.3).unwrap());
     check::<f32, 2>(ab, Numeric::F32, Gains::alpha_beta_f64(0.5, 0.3).unwrap());
-    check::<Fix, 2>(ab, Numeric::Fixed, Gains::alpha_beta_f64(0.5, 0.3).unwrap());
+    check::<Fix, 2>(ab, Numeric::Q32, Gains::alpha_beta_f64(0.5, 0.3).unwrap());
     check::<f64, 3>(
         abg,
         Numeric::F64,
@@ -480,7 +480,7 @@ fn output_is_the_library_arithmetic() {
     );
     check::<Fix, 3>(
         abg,
-        Numeric::Fixed,
+        Numeric::Q32,
         Gains::alpha_beta_gamma_f64(0.5, 0.3, 0.1).unwrap(),
     );
 }
@@ -536,7 +536,7 @@ fn refused_rows_and_values_name_the_line() {
     };
     // 3e9 m does not fit Q32.32: the value is refused, naming line and column.
     let data = rows(&[(0.0, 0.0), (1.0, 3e9)]);
-    let e = run(&config(ab, Numeric::Fixed), &data).unwrap_err();
+    let e = run(&config(ab, Numeric::Q32), &data).unwrap_err();
     assert_eq!(
         e,
         ReplayError::Value {
@@ -550,11 +550,11 @@ fn refused_rows_and_values_name_the_line() {
     // Two reports 1 ms apart: the second is skipped (under the filters'
     // 0.05 s), marked in the event column.
     let data = rows(&[(0.0, 0.0), (0.001, 1.0)]);
-    let out = run(&config(ab, Numeric::Fixed), &data).unwrap();
+    let out = run(&config(ab, Numeric::Q32), &data).unwrap();
     assert!(out.ends_with("\n0.001,0,0,,skipped\n"), "{out}");
     // The second point's velocity overflows Q32.32: refused, naming the line.
     let data = rows(&[(0.0, 0.0), (0.06, 2e9)]);
-    let e = run(&config(ab, Numeric::Fixed), &data).unwrap_err();
+    let e = run(&config(ab, Numeric::Q32), &data).unwrap_err();
     assert_eq!(
         e,
         ReplayError::Filter {
@@ -584,7 +584,7 @@ fn estimates_outside_the_envelope_stop_the_run_at_their_row() {
     };
     // Inside the input envelope, but the two points imply 2000 m/s.
     let text = "t,x\n0,0\n1,2000\n2,4000\n";
-    for numeric in [Numeric::F64, Numeric::F32, Numeric::Fixed] {
+    for numeric in [Numeric::F64, Numeric::F32, Numeric::Q32] {
         let e = run(&config(ab, numeric), &read(text).unwrap()).unwrap_err();
         match e {
             ReplayError::Estimate {
@@ -639,7 +639,7 @@ fn command_line() {
         }
     );
     assert_eq!(
-        args("--filter=abg --alpha=0.5 --beta 0.3 --gamma 0.1 --numeric fixed -").unwrap(),
+        args("--filter=abg --alpha=0.5 --beta 0.3 --gamma 0.1 --numeric q32.32 -").unwrap(),
         Command::Replay {
             config: config(
                 FilterKind::AlphaBetaGamma {
@@ -647,7 +647,7 @@ fn command_line() {
                     beta: 0.3,
                     gamma: 0.1
                 },
-                Numeric::Fixed
+                Numeric::Q32
             ),
             input: Input::Stdin,
         }
@@ -792,7 +792,7 @@ fn binary_reads_stdin() {
             "--gamma",
             "0.1",
             "--numeric",
-            "fixed",
+            "q32.32",
             "-",
         ])
         .stdin(Stdio::piped())

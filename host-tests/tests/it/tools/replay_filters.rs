@@ -22,7 +22,7 @@ use abtrack::tcas::{
     assess, Advisory, CollisionAvoidance, Intruder, OwnAircraft, ThreatState,
     METRES_PER_NAUTICAL_MILE, METRES_PER_SECOND_PER_KNOT,
 };
-use abtrack::{Fix, Scalar};
+use abtrack::{Fix, Scalar, ScaledScalar};
 use abtrack_host_tests::cli::{parse_schedule, Command, ReplayArgs, ScheduleArgError};
 use abtrack_host_tests::csv_input::{
     read_measurements, read_range_azimuth, CsvError, InputFormat, ReadOptions, Refusal, TimeOrder,
@@ -256,7 +256,7 @@ fn spec_text(name: &str, order: Order) -> String {
 const NUMERICS: [(Numeric, &str); 3] = [
     (Numeric::F64, "f64"),
     (Numeric::F32, "f32"),
-    (Numeric::Fixed, "fixed"),
+    (Numeric::Q32, "q32.32"),
 ];
 
 // ---------------------------------------------------------------- schedules
@@ -293,16 +293,10 @@ fn every_schedule_name_runs_in_every_representation_and_matches_the_library() {
                             (Numeric::F32, 1) => expected_kinematic::<f32, 1>(order, &spec, &rows),
                             (Numeric::F32, 2) => expected_kinematic::<f32, 2>(order, &spec, &rows),
                             (Numeric::F32, _) => expected_kinematic::<f32, 3>(order, &spec, &rows),
-                            (Numeric::Fixed, 1) => {
-                                expected_kinematic::<Fix, 1>(order, &spec, &rows)
-                            }
-                            (Numeric::Fixed, 2) => {
-                                expected_kinematic::<Fix, 2>(order, &spec, &rows)
-                            }
-                            (Numeric::Fixed, _) => {
-                                expected_kinematic::<Fix, 3>(order, &spec, &rows)
-                            }
-                            (Numeric::FastFixed, _) => unreachable!("--tracker only"),
+                            (Numeric::Q32, 1) => expected_kinematic::<Fix, 1>(order, &spec, &rows),
+                            (Numeric::Q32, 2) => expected_kinematic::<Fix, 2>(order, &spec, &rows),
+                            (Numeric::Q32, _) => expected_kinematic::<Fix, 3>(order, &spec, &rows),
+                            (Numeric::Fixed32, _) => unreachable!("not among NUMERICS"),
                         };
                         assert_eq!(got, want, "{line} (dims {dims})");
                         assert_eq!(got.lines().count(), rows.len() + 1);
@@ -691,40 +685,42 @@ fn crossing_file() -> String {
     text
 }
 
+/// [`expected_range_azimuth`] in the representation `--numeric` names
+/// (`fixed32`: the Cortex-M3/M0 firmware's range-azimuth filter runs in the
+/// fast fixed point's wide format, ScaledScalar).
+fn expected_range_azimuth_in(
+    numeric: Numeric,
+    text: &str,
+    args: (f64, f64, f64, AltitudeQuantum, Option<f64>),
+) -> String {
+    match numeric {
+        Numeric::F64 => expected_range_azimuth::<f64>(text, args.0, args.1, args.2, args.3, args.4),
+        Numeric::F32 => expected_range_azimuth::<f32>(text, args.0, args.1, args.2, args.3, args.4),
+        Numeric::Q32 => expected_range_azimuth::<Fix>(text, args.0, args.1, args.2, args.3, args.4),
+        Numeric::Fixed32 => {
+            expected_range_azimuth::<ScaledScalar>(text, args.0, args.1, args.2, args.3, args.4)
+        }
+    }
+}
+
 #[test]
 fn range_azimuth_output_is_the_library_arithmetic() {
     let text = crossing_file();
-    for (numeric, n) in NUMERICS {
+    for (numeric, n) in NUMERICS.into_iter().chain([(Numeric::Fixed32, "fixed32")]) {
         // Defaults (σ_R 100 m, σ_B² 7.569e-3, Q 1, Mode C), without threat.
         let got = replay(&format!("--filter range-azimuth --numeric {n}"), &text).unwrap();
-        let want = match numeric {
-            Numeric::F64 => expected_range_azimuth::<f64>(
-                &text,
-                1e4,
-                PAPER_BEARING_VARIANCE,
-                1.0,
-                AltitudeQuantum::ModeC,
-                None,
-            ),
-            Numeric::F32 => expected_range_azimuth::<f32>(
-                &text,
-                1e4,
-                PAPER_BEARING_VARIANCE,
-                1.0,
-                AltitudeQuantum::ModeC,
-                None,
-            ),
-            Numeric::Fixed => expected_range_azimuth::<Fix>(
-                &text,
-                1e4,
-                PAPER_BEARING_VARIANCE,
-                1.0,
-                AltitudeQuantum::ModeC,
-                None,
-            ),
-            Numeric::FastFixed => unreachable!("--tracker only"),
-        };
-        assert_eq!(got, want, "{n}");
+        let defaults = (
+            1e4,
+            PAPER_BEARING_VARIANCE,
+            1.0,
+            AltitudeQuantum::ModeC,
+            None,
+        );
+        assert_eq!(
+            got,
+            expected_range_azimuth_in(numeric, &text, defaults),
+            "{n}"
+        );
         // Every option, with the threat columns.
         let line = format!(
             "--filter range-azimuth --range-sigma-m 15 --bearing-variance 1e-4 --process-noise 0.5 \
@@ -732,19 +728,11 @@ fn range_azimuth_output_is_the_library_arithmetic() {
         );
         let got = replay(&line, &text).unwrap();
         let args = (225.0, 1e-4, 0.5, AltitudeQuantum::ModeS25, Some(9000.0));
-        let want = match numeric {
-            Numeric::F64 => {
-                expected_range_azimuth::<f64>(&text, args.0, args.1, args.2, args.3, args.4)
-            }
-            Numeric::F32 => {
-                expected_range_azimuth::<f32>(&text, args.0, args.1, args.2, args.3, args.4)
-            }
-            Numeric::Fixed => {
-                expected_range_azimuth::<Fix>(&text, args.0, args.1, args.2, args.3, args.4)
-            }
-            Numeric::FastFixed => unreachable!("--tracker only"),
-        };
-        assert_eq!(got, want, "{line}");
+        assert_eq!(
+            got,
+            expected_range_azimuth_in(numeric, &text, args),
+            "{line}"
+        );
     }
 }
 
@@ -1315,7 +1303,7 @@ fn help_lists_every_schedule_and_option() {
 fn binary_runs_schedules_and_range_azimuth() {
     let (text, _) = generated_track(2);
     binary_writes_what_the_library_does(
-        "--filter ab --schedule liu-adaptive --numeric fixed",
+        "--filter ab --schedule liu-adaptive --numeric q32.32",
         "track.csv",
         &text,
     );

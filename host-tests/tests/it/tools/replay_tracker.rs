@@ -158,7 +158,7 @@ fn default_cartesian_output_is_the_table_driven_directly_in_every_numeric() {
     }
     check::<f64>(&run, &csv, "f64");
     check::<f32>(&run, &csv, "f32");
-    check::<Fix>(&run, &csv, "fixed");
+    check::<Fix>(&run, &csv, "q32.32");
     // No option at all is the f64 default.
     assert_eq!(
         tracker("--tracker", &csv).unwrap().csv,
@@ -368,7 +368,7 @@ fn polar_tcas_picture_with_own_altitude() {
     );
 
     // Every numeric runs on the polar file too.
-    for numeric in ["f32", "fixed"] {
+    for numeric in ["f32", "q32.32", "fixed32"] {
         let o = tracker(
             &format!("--tracker --own-alt {own_ft} --numeric {numeric}"),
             &csv,
@@ -533,7 +533,7 @@ fn tracker_options_are_checked() {
         assert!(e.to_string().contains(message), "{line}: {e}");
     }
     match args(
-        "--tracker --verbose --numeric fixed --capacity=256 --confirm 2/3 --delete 6 \
+        "--tracker --verbose --numeric q32.32 --capacity=256 --confirm 2/3 --delete 6 \
          --own-alt 8000 --region-m 50000 --sigma-m 30 --scan-period-s 4.8 --pd 0.8 \
          --clutter-per-km2 0.5 --max-speed-mps 250 --max-accel-mps2 3 --azimuth-unit deg -",
     ) {
@@ -597,7 +597,7 @@ fn binary_runs_the_tracker_and_names_the_bad_line() {
     let csv = crossing().measurements_csv();
     let path = temp_file("crossing.csv", &csv);
     let out = replay_binary()
-        .args(["--tracker", "--numeric", "fixed", "--verbose"])
+        .args(["--tracker", "--numeric", "q32.32", "--verbose"])
         .arg(&path)
         .output()
         .unwrap();
@@ -606,7 +606,7 @@ fn binary_runs_the_tracker_and_names_the_bad_line() {
         "{}",
         String::from_utf8_lossy(&out.stderr)
     );
-    let want = tracker("--tracker --numeric fixed", &csv).unwrap();
+    let want = tracker("--tracker --numeric q32.32", &csv).unwrap();
     assert_eq!(String::from_utf8(out.stdout).unwrap(), want.csv);
     // --verbose's lines, then the report printed on every run.
     assert_eq!(
