@@ -269,7 +269,7 @@ build_nrf52840_dk() {
 # beside the fuzz targets' build, which runs in the background from the
 # start (two lanes of builds side by side took longer from a fresh clone:
 # 18 min 19 s against 15 min 1 s, three builds competing for two cores).
-host_tests_lane() {
+host_tests_steps() {
     step "cargo fmt --check (host-tests)" in_host_tests cargo fmt --check
     step "host tests (cargo test --release)" in_host_tests cargo test --release
 }
@@ -329,7 +329,7 @@ build_firmware() {
 # is shortened to one hour of scans (ABTRACK_SOAK_SCANS, read at build
 # time) and built here so that no later lane holds the build directory's
 # lock for a link while the others run.
-library_and_firmware_lane() {
+library_and_firmware_steps() {
     step "cargo fmt --check" cargo fmt --check
     step "library alone for the three targets: clippy, no panic paths (indexing, unwrap, arithmetic)" \
         cargo clippy -p abtrack --lib --no-default-features "${target_args[@]}" -- -D warnings
@@ -340,8 +340,8 @@ library_and_firmware_lane() {
         cargo build --release --target thumbv7m-none-eabi --bin soak
 }
 
-host_tests_lane
-library_and_firmware_lane
+host_tests_steps
+library_and_firmware_steps
 
 # The ELF checks (firmware-check is a host-tests binary, built by the host
 # tests' step).
