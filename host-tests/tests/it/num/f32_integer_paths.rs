@@ -5,22 +5,13 @@
 
 use abtrack::Scalar;
 
-/// The default method's route, written out: through `f64`.
+/// The default method's route, through `f64` (which keeps the defaults).
 fn seconds_via_f64(ms: u32) -> f32 {
-    (f64::from(ms) / 1000.0) as f32
+    <f64 as Scalar>::seconds_from_ms(ms) as f32
 }
 
 fn round_via_f64(v: f32, scale: u32) -> i32 {
-    let f = (f64::from(v) * f64::from(scale)).round();
-    if f.is_nan() {
-        0
-    } else if f >= i32::MAX as f64 {
-        i32::MAX
-    } else if f <= i32::MIN as f64 {
-        i32::MIN
-    } else {
-        f as i32
-    }
+    <f64 as Scalar>::round_scaled_i32(f64::from(v), scale)
 }
 
 #[test]
