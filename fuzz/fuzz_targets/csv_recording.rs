@@ -1,4 +1,4 @@
-//! The host tools' CSV reader (`abtrack_host_tests::csv_input::read_recording`,
+//! The host tools' CSV reader (`abtrack_csv_input::read_recording`,
 //! what `replay` reads) on arbitrary bytes, with each time order and angle
 //! unit the options allow.
 //!
@@ -11,7 +11,7 @@
 #![no_main]
 
 use abtrack::envelope;
-use abtrack_host_tests::csv_input::{
+use abtrack_csv_input::{
     read_recording, AngleUnit, CsvError, ReadOptions, Recording, TimeOrder, ECHO_CHARS,
 };
 use libfuzzer_sys::fuzz_target;

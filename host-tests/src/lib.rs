@@ -26,7 +26,8 @@
 pub mod altitude_figures;
 pub mod bench_report;
 pub mod cli;
-pub mod csv_input;
+/// The CSV reader (its own package, `csv-input/`).
+pub use abtrack_csv_input as csv_input;
 pub mod encounters;
 pub mod experiments;
 pub mod firmware_elf;

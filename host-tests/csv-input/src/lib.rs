@@ -75,15 +75,17 @@ impl InputFormat {
     }
 }
 
-/// The unit of the `azimuth` column.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, clap::ValueEnum)]
+/// The unit of the `azimuth` column (`--azimuth-unit rad|deg` with the
+/// feature `clap`, which the host tools turn on).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+#[cfg_attr(feature = "clap", derive(clap::ValueEnum))]
 pub enum AngleUnit {
     /// Radians (the default).
     #[default]
-    #[value(name = "rad")]
+    #[cfg_attr(feature = "clap", value(name = "rad"))]
     Radians,
     /// Degrees.
-    #[value(name = "deg")]
+    #[cfg_attr(feature = "clap", value(name = "deg"))]
     Degrees,
 }
 
