@@ -54,7 +54,7 @@ use abtrack::tcas::{
 use abtrack::track::TrackNumeric;
 use abtrack::track::{
     Association, DropReason, FixedGainTrack, Gate, Measurement, RejectReason, ScanError,
-    ScanReport, Track, TrackId, TrackSlot, TrackStatus, TrackTable, TrackerConfig,
+    ScanReport, TrackId, TrackSlot, TrackStatus, TrackTable, TrackerConfig,
 };
 use abtrack::Scalar;
 use board::TableScalar as Native;
