@@ -7,7 +7,7 @@
 #      host-tests for the host target; examples/tcas_cycle.rs is then run)
 #      and its documentation with no rustdoc warning (cargo doc, as docs.rs
 #      builds it),
-#   3. the library alone (no default features) for the three thumb targets
+#   3. (in a lane beside step 2) the library alone (no default features) for the three thumb targets
 #      in one clippy pass with its no-panic lints, on the minimum Rust
 #      version declared in Cargo.toml (cargo +MSRV check), its dependency
 #      tree (no firmware crates), and the package as crates.io gets it
@@ -265,10 +265,10 @@ build_nrf52840_dk() {
     bash scripts/sizes.sh --nrf52840-dk
 }
 
-# The builds and host checks, one after another, beside the fuzz targets'
-# build, which runs in the background from the start and takes the core a
-# build leaves idle (two lanes of builds side by side gained nothing from a
-# fresh clone: 18 min 19 s, against 18 min 45 s one after another).
+# The builds and host checks in two lanes side by side, beside the fuzz
+# targets' build in the background: the host tests' build is mostly one
+# crate after another (its library, then the test binary) and leaves a core
+# idle that the firmware build takes.
 host_tests_steps() {
     step "cargo fmt --check (host-tests)" in_host_tests cargo fmt --check
     step "host tests (cargo test --release)" in_host_tests cargo test --release
@@ -340,8 +340,7 @@ library_and_firmware_steps() {
         cargo build --release --target thumbv7m-none-eabi --bin soak
 }
 
-host_tests_steps
-library_and_firmware_steps
+in_parallel host_tests_steps library_and_firmware_steps
 
 # The ELF checks (firmware-check is a host-tests binary, built by the host
 # tests' step).
