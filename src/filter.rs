@@ -170,16 +170,27 @@ impl<N: Numeric> StepGains<N> {
     /// one for which β/T, γ/(2T²) or T² is not representable
     /// ([`FilterError::Saturated`]).
     pub fn new(gains: &Gains<N>, dt: N::Interval) -> Result<Self, FilterError> {
-        let terms = IntervalTerms::new(dt)?;
+        Self::with_terms(gains, &IntervalTerms::new(dt)?)
+    }
+
+    /// [`Self::new`] with the interval's terms formed already (one interval,
+    /// gains per axis). αβ gains (γ = 0) take no γ division.
+    #[inline]
+    pub fn with_terms(gains: &Gains<N>, terms: &IntervalTerms<N>) -> Result<Self, FilterError> {
+        let dt = terms.interval;
         let velocity_gain = gains.beta() / dt;
-        let squared = dt * dt;
-        let acceleration_gain = gains.gamma() / (squared + squared);
+        let acceleration_gain = if gains.gamma() == N::Ratio::ZERO {
+            N::RateSquared::ZERO
+        } else {
+            let squared = dt * dt;
+            gains.gamma() / (squared + squared)
+        };
         let alpha = N::gain(gains.alpha());
         if !(alpha.is_valid() && velocity_gain.is_valid() && acceleration_gain.is_valid()) {
             return Err(FilterError::Saturated);
         }
         Ok(StepGains {
-            terms,
+            terms: *terms,
             alpha,
             velocity_gain,
             acceleration_gain,
@@ -433,6 +444,7 @@ impl<N: Numeric, const ORDER: usize> KinematicFilter<N, ORDER> {
     }
 
     /// [`Self::predict`] with the interval's terms formed already.
+    #[inline]
     pub fn predict_terms(&self, terms: &IntervalTerms<N>) -> Result<Prediction<N>, FilterError> {
         let mut guard = N::Guard::default();
         let p = self.extrapolate(terms, &mut guard);
@@ -869,15 +881,26 @@ impl<N: Numeric, const ORDER: usize, const D: usize> Cartesian<N, ORDER, D> {
         if z.iter().any(|v| !v.is_valid()) {
             return Err(FilterError::InvalidMeasurement);
         }
-        let terms = IntervalTerms::<N>::new(dt)?;
+        self.update_per_axis_terms(z, &IntervalTerms::<N>::new(dt)?, gains)
+    }
+
+    /// [`Self::update_per_axis`] with the interval's terms formed already
+    /// (a measurement that is not valid is refused all the same).
+    #[inline(always)]
+    pub fn update_per_axis_terms(
+        &mut self,
+        z: [N::Length; D],
+        terms: &IntervalTerms<N>,
+        gains: &[Gains<N>; D],
+    ) -> Result<[UpdateOutcome<N>; D], FilterError> {
         let mut steps = [StepGains {
-            terms,
+            terms: *terms,
             alpha: N::Gain::ZERO,
             velocity_gain: N::Rate::ZERO,
             acceleration_gain: N::RateSquared::ZERO,
         }; D];
         for (s, g) in steps.iter_mut().zip(gains) {
-            match StepGains::new(g, dt) {
+            match StepGains::with_terms(g, terms) {
                 Ok(v) => *s = v,
                 Err(e) => {
                     if e == FilterError::Saturated {
@@ -900,10 +923,18 @@ impl<N: Numeric, const ORDER: usize, const D: usize> Cartesian<N, ORDER, D> {
     /// The state of every axis predicted `dt` ahead, without changing the
     /// filter ([`KinematicFilter::predict`] per axis).
     pub fn predict(&self, dt: N::Interval) -> Result<[Prediction<N>; D], FilterError> {
-        let terms = IntervalTerms::new(dt)?;
+        self.predict_terms(&IntervalTerms::new(dt)?)
+    }
+
+    /// [`Self::predict`] with the interval's terms formed already.
+    #[inline(always)]
+    pub fn predict_terms(
+        &self,
+        terms: &IntervalTerms<N>,
+    ) -> Result<[Prediction<N>; D], FilterError> {
         let mut out = [Prediction::ZERO; D];
         for (axis, prediction) in self.axes.iter().zip(out.iter_mut()) {
-            *prediction = axis.predict_terms(&terms)?;
+            *prediction = axis.predict_terms(terms)?;
         }
         Ok(out)
     }

@@ -56,6 +56,7 @@ pub struct Gains<N: Numeric> {
 impl<N: Numeric> Gains<N> {
     /// αβ gains, checked against the stability triangle 0 < α < 2, β > 0,
     /// 2α + β < 4 (Al-Wagih & Abdulla eqs. 12–14).
+    #[inline]
     pub fn alpha_beta(alpha: N::Ratio, beta: N::Ratio) -> Result<Self, GainError> {
         check_alpha_beta(alpha, beta)?;
         Ok(Gains {
@@ -128,6 +129,7 @@ fn ratio<N: Numeric>(v: f64) -> Result<N::Ratio, GainError> {
 }
 
 /// The αβ stability triangle (Al-Wagih & Abdulla eqs. 12–14).
+#[inline]
 fn check_alpha_beta<R: Real>(alpha: R, beta: R) -> Result<(), GainError> {
     if !alpha.is_valid() || !beta.is_valid() {
         return Err(GainError::NotFinite);
@@ -153,6 +155,7 @@ pub fn beta_from_alpha<R: Real>(alpha: R) -> R {
 
 /// α̂(n) = 2(2n − 1)/(n(n + 1)) (Al-Wagih & Abdulla eq. 24a; Li et al.
 /// eq. 4; Liu, Wang & Yang eq. 5), rounded once from the integer ratio.
+#[inline]
 pub fn least_squares_alpha<R: Real>(n: u32) -> R {
     let n = u64::from(n);
     // 2(2n − 1) < 2³⁴ and n(n + 1) < 2⁶⁴ for every u32 n.
@@ -162,6 +165,7 @@ pub fn least_squares_alpha<R: Real>(n: u32) -> R {
 
 /// β̂(n) = 6/(n(n + 1)) (Al-Wagih & Abdulla eq. 24b; Li et al. eq. 5;
 /// Liu, Wang & Yang eq. 5), rounded once from the integer ratio.
+#[inline]
 pub fn least_squares_beta<R: Real>(n: u32) -> R {
     let n = u64::from(n);
     R::from_ratio(6, n.wrapping_mul(n.wrapping_add(1)))

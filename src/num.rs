@@ -260,6 +260,19 @@ pub trait Scalar:
         Self::from_f64_lossy(f64::from(ms) / 1000.0)
     }
 
+    /// `numerator / denominator` rounded once ([`numeric::Real::from_ratio`],
+    /// whose implementation for a `Scalar` is this; invalid for a zero
+    /// denominator): through `f64` by default; `f32` divides in `f32` when
+    /// both are exact there (≤ 2²⁴), the same value, since `f64` rounding
+    /// first is innocuous for a quotient (53 ≥ 2·24 + 2 bits).
+    #[inline]
+    fn from_ratio(numerator: u64, denominator: u64) -> Self {
+        if denominator == 0 {
+            return Self::from_f64_lossy(f64::NAN);
+        }
+        Self::from_f64_lossy(numerator as f64 / denominator as f64)
+    }
+
     /// `self·scale` rounded half away from zero to an integer, saturated to
     /// the `i32` range, NaN → 0: a report's fixed-point field. By default
     /// through `f64` (exact for `f64`'s and `f32`'s products with a scale
@@ -392,6 +405,17 @@ impl Scalar for f32 {
     #[inline]
     fn seconds_from_ms(ms: u32) -> Self {
         ms as f32 / 1000.0
+    }
+    #[inline]
+    fn from_ratio(numerator: u64, denominator: u64) -> Self {
+        const EXACT: u64 = 1 << 24;
+        match (u32::try_from(numerator), u32::try_from(denominator)) {
+            (Ok(n), Ok(d)) if numerator <= EXACT && denominator <= EXACT && d != 0 => {
+                n as f32 / d as f32
+            }
+            _ if denominator == 0 => f32::NAN,
+            _ => (numerator as f64 / denominator as f64) as f32,
+        }
     }
     #[inline]
     fn round_scaled_i32(self, scale: u32) -> i32 {

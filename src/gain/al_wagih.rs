@@ -186,6 +186,7 @@ impl LeastSquaresGains {
     }
 
     /// The gains for measurement `n` (clamped to 3..=n_max).
+    #[inline]
     pub fn gains_at<N: Numeric>(&self, n: u32) -> Result<Gains<N>, ScheduleError> {
         let n = self.config.effective(n);
         Ok(Gains::alpha_beta(
@@ -204,6 +205,7 @@ impl Default for LeastSquaresGains {
 }
 
 impl<N: Numeric, const D: usize> GainSchedule<N, D> for LeastSquaresGains {
+    #[inline]
     fn gains(&self, ctx: &GainContext<N, D>) -> Result<[Gains<N>; D], ScheduleError> {
         Ok([self.gains_at(ctx.n)?; D])
     }

@@ -78,7 +78,9 @@
 
 use core::fmt;
 
-use crate::filter::{Cartesian, FilterError, GainError, Gains, Phase, Prediction, UpdateOutcome};
+use crate::filter::{
+    Cartesian, FilterError, GainError, Gains, IntervalTerms, Phase, Prediction, UpdateOutcome,
+};
 use crate::gains::li_beta;
 use crate::num::{Numeric, Quantity, Real};
 
@@ -129,6 +131,7 @@ pub struct GainContext<N: Numeric, const D: usize> {
 impl<N: Numeric, const D: usize> GainContext<N, D> {
     /// The context of measurement `z` against the filter's `predictions`
     /// (from [`crate::filter::KinematicFilter::predict`]).
+    #[inline(always)]
     pub fn new(
         n: u32,
         dt: N::Interval,
@@ -166,6 +169,7 @@ impl<N: Numeric, const D: usize> GainContext<N, D> {
 
     /// Refuses a context with an invalid number or an interval ≤ 0, which a
     /// schedule could otherwise learn from.
+    #[inline(always)]
     pub fn check(&self) -> Result<(), ScheduleError> {
         crate::filter::check_interval(self.dt).map_err(|_| ScheduleError::InvalidContext)?;
         for a in &self.axes {
@@ -464,6 +468,9 @@ where
             }
         };
         let restarted = gap || self.schedule.restart_required(self.filter.phase());
+        if !restarted && self.filter.phase() == Phase::Tracking {
+            return self.filtered_update(z, dt, self.measurements.saturating_add(1));
+        }
         let mut filter = if restarted {
             Cartesian::new()
         } else {
@@ -475,93 +482,91 @@ where
             self.measurements.saturating_add(1)
         };
 
-        if filter.phase() != Phase::Tracking {
-            // Two-point initialisation ignores gains; any valid pair will do.
-            let unused = unused_gains::<N>()?;
-            match filter.update(z, dt, &unused) {
-                Ok(outcome) => {
-                    self.filter = filter;
-                    self.measurements = n;
-                    self.previous_interval = if filter.phase() == Phase::Tracking {
-                        dt
+        // Two-point initialisation (the filter is empty or has one point)
+        // ignores gains; any valid pair will do.
+        let unused = unused_gains::<N>()?;
+        match filter.update(z, dt, &unused) {
+            Ok(outcome) => {
+                self.filter = filter;
+                self.measurements = n;
+                self.previous_interval = if filter.phase() == Phase::Tracking {
+                    dt
+                } else {
+                    N::Interval::ZERO
+                };
+                self.reference_interval = self.previous_interval;
+                if restarted {
+                    self.schedule.reset();
+                }
+                self.schedule.initialised(n, dt);
+                Ok(ScheduledUpdate {
+                    outcome: if restarted {
+                        [UpdateOutcome::Restarted; D]
                     } else {
-                        N::Interval::ZERO
-                    };
-                    self.reference_interval = self.previous_interval;
-                    if restarted {
-                        self.schedule.reset();
-                    }
-                    self.schedule.initialised(n, dt);
-                    Ok(ScheduledUpdate {
-                        outcome: if restarted {
-                            [UpdateOutcome::Restarted; D]
-                        } else {
-                            outcome
-                        },
-                        gains: None,
-                        restarted,
-                    })
-                }
-                Err(e) => {
-                    if e == FilterError::Saturated && !restarted {
-                        self.filter = filter;
-                    }
-                    Err(e.into())
-                }
+                        outcome
+                    },
+                    gains: None,
+                    restarted,
+                })
             }
-        } else {
-            let mut predictions = [Prediction {
-                position: N::Length::ZERO,
-                velocity: N::Speed::ZERO,
-                acceleration: N::Acceleration::ZERO,
-            }; D];
-            for (p, axis) in predictions.iter_mut().zip(filter.axes()) {
-                match axis.predict(dt) {
-                    Ok(q) => *p = q,
-                    Err(FilterError::Saturated) => return self.refuse_overflow(filter, z, dt),
-                    Err(e) => return Err(e.into()),
-                }
-            }
-            if z.iter().any(|v| !v.is_valid()) {
-                return Err(FilterError::InvalidMeasurement.into());
-            }
-            let ctx = match GainContext::new(n, dt, z, &predictions) {
-                Ok(c) => c,
-                // z and the predictions are valid, so the innovation
-                // overflowed.
-                Err(_) => return self.refuse_overflow(filter, z, dt),
-            };
-            let gains = if self.schedule.gains_follow_interval() {
-                self.schedule.gains(&ctx)?
-            } else {
-                robust_gains(
-                    self.schedule.gains(&ctx)?,
-                    dt,
-                    self.previous_interval,
-                    self.reference_interval,
-                )?
-            };
-            match filter.update_per_axis(z, dt, &gains) {
-                Ok(outcome) => {
+            Err(e) => {
+                if e == FilterError::Saturated && !restarted {
                     self.filter = filter;
-                    self.measurements = n;
-                    self.previous_interval = dt;
-                    self.reference_interval = next_reference(self.reference_interval, dt);
-                    self.schedule.accepted(&ctx, &gains);
-                    Ok(ScheduledUpdate {
-                        outcome,
-                        gains: Some(gains),
-                        restarted: false,
-                    })
                 }
-                Err(e) => {
-                    if e == FilterError::Saturated {
-                        self.filter = filter;
-                    }
-                    Err(e.into())
-                }
+                Err(e.into())
             }
         }
+    }
+
+    /// A filtered update of a tracking filter (the measurement is valid):
+    /// the axes' predictions once, the context, the gains, the update from
+    /// those predictions; all or nothing on the filter and the schedule.
+    #[inline(always)]
+    fn filtered_update(
+        &mut self,
+        z: [N::Length; D],
+        dt: N::Interval,
+        n: u32,
+    ) -> Result<ScheduledUpdate<N, D>, ScheduledError> {
+        let terms = match IntervalTerms::<N>::new(dt) {
+            Ok(t) => t,
+            Err(FilterError::Saturated) => return self.refuse_overflow(self.filter, z, dt),
+            Err(e) => return Err(e.into()),
+        };
+        let predictions = match self.filter.predict_terms(&terms) {
+            Ok(p) => p,
+            Err(FilterError::Saturated) => return self.refuse_overflow(self.filter, z, dt),
+            Err(e) => return Err(e.into()),
+        };
+        let ctx = match GainContext::new(n, dt, z, &predictions) {
+            Ok(c) => c,
+            // z and the predictions are valid, so the innovation
+            // overflowed.
+            Err(_) => return self.refuse_overflow(self.filter, z, dt),
+        };
+        let scheduled = self.schedule.gains(&ctx)?;
+        let gains = if self.schedule.gains_follow_interval()
+            || intervals_regular(dt, self.previous_interval, self.reference_interval)
+        {
+            scheduled
+        } else {
+            robust_gains(
+                scheduled,
+                dt,
+                self.previous_interval,
+                self.reference_interval,
+            )?
+        };
+        let outcome = self.filter.update_per_axis_terms(z, &terms, &gains)?;
+        self.measurements = n;
+        self.previous_interval = dt;
+        self.reference_interval = next_reference(self.reference_interval, dt);
+        self.schedule.accepted(&ctx, &gains);
+        Ok(ScheduledUpdate {
+            outcome,
+            gains: Some(gains),
+            restarted: false,
+        })
     }
 
     /// The prediction or innovation of this update overflowed: let the
@@ -624,7 +629,7 @@ pub fn robust_gains<N: Numeric, const D: usize>(
     previous: N::Interval,
     reference: N::Interval,
 ) -> Result<[Gains<N>; D], ScheduleError> {
-    if previous <= N::Interval::ZERO || (dt == previous && dt == reference) {
+    if intervals_regular(dt, previous, reference) {
         return Ok(gains);
     }
     let one = N::Ratio::ONE;
@@ -659,6 +664,13 @@ pub fn robust_gains<N: Numeric, const D: usize>(
         };
     }
     Ok(out)
+}
+
+/// Whether [`robust_gains`] leaves the gains as they are: no previous
+/// interval, or `dt` equal to the previous and the reference interval.
+#[inline(always)]
+fn intervals_regular<Q: Quantity>(dt: Q, previous: Q, reference: Q) -> bool {
+    previous <= Q::ZERO || (dt == previous && dt == reference)
 }
 
 /// The reference interval after an update at `dt`: `dt` if it is not

@@ -394,12 +394,10 @@ impl<S: Scalar> Real for S {
         )
     }
 
-    /// Rounded once in `f64`, then to `S` (exact for `f64`).
+    /// [`Scalar::from_ratio`]: rounded once (through `f64` but in `f32`).
+    #[inline]
     fn from_ratio(numerator: u64, denominator: u64) -> Self {
-        if denominator == 0 {
-            return <S as Scalar>::from_f64_lossy(f64::NAN);
-        }
-        <S as Scalar>::from_f64_lossy(numerator as f64 / denominator as f64)
+        <S as Scalar>::from_ratio(numerator, denominator)
     }
 
     #[inline]
