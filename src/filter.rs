@@ -276,7 +276,7 @@ pub struct Prediction<N: Numeric> {
 }
 
 impl<N: Numeric> Prediction<N> {
-    const ZERO: Self = Prediction {
+    pub(crate) const ZERO: Self = Prediction {
         position: N::Length::ZERO,
         velocity: N::Speed::ZERO,
         acceleration: N::Acceleration::ZERO,
@@ -893,24 +893,25 @@ impl<N: Numeric, const ORDER: usize, const D: usize> Cartesian<N, ORDER, D> {
         terms: &IntervalTerms<N>,
         gains: &[Gains<N>; D],
     ) -> Result<[UpdateOutcome<N>; D], FilterError> {
-        let mut steps = [StepGains {
-            terms: *terms,
-            alpha: N::Gain::ZERO,
-            velocity_gain: N::Rate::ZERO,
-            acceleration_gain: N::RateSquared::ZERO,
-        }; D];
-        for (s, g) in steps.iter_mut().zip(gains) {
-            match StepGains::with_terms(g, terms) {
-                Ok(v) => *s = v,
-                Err(e) => {
-                    if e == FilterError::Saturated {
-                        if let Some(first) = self.axes.first_mut() {
-                            first.count_saturation();
-                        }
-                    }
-                    return Err(e);
+        let mut refused = None;
+        let steps = gains.each_ref().map(|g| {
+            StepGains::with_terms(g, terms).unwrap_or_else(|e| {
+                refused = Some(e);
+                StepGains {
+                    terms: *terms,
+                    alpha: N::Gain::ZERO,
+                    velocity_gain: N::Rate::ZERO,
+                    acceleration_gain: N::RateSquared::ZERO,
+                }
+            })
+        });
+        if let Some(e) = refused {
+            if e == FilterError::Saturated {
+                if let Some(first) = self.axes.first_mut() {
+                    first.count_saturation();
                 }
             }
+            return Err(e);
         }
         let kind = update_axes_each(&mut self.axes, z, steps.each_ref())?;
         Ok(self.outcomes(kind))
@@ -932,11 +933,24 @@ impl<N: Numeric, const ORDER: usize, const D: usize> Cartesian<N, ORDER, D> {
         &self,
         terms: &IntervalTerms<N>,
     ) -> Result<[Prediction<N>; D], FilterError> {
-        let mut out = [Prediction::ZERO; D];
-        for (axis, prediction) in self.axes.iter().zip(out.iter_mut()) {
-            *prediction = axis.predict_terms(terms)?;
+        match self.predicted(terms) {
+            (out, true) => Ok(out),
+            (_, false) => Err(FilterError::Saturated),
         }
-        Ok(out)
+    }
+
+    /// The predictions of [`Self::predict_terms`] and whether they are all
+    /// valid (one guard over the axes).
+    #[inline(always)]
+    pub(crate) fn predicted(&self, terms: &IntervalTerms<N>) -> ([Prediction<N>; D], bool) {
+        let mut guard = N::Guard::default();
+        let out = self.axes.each_ref().map(|axis| {
+            let p = axis.extrapolate(terms, &mut guard);
+            p.position.check_output(&mut guard);
+            p.velocity.check_output(&mut guard);
+            p
+        });
+        (out, guard.passed())
     }
 
     /// Coasts every axis (no measurement this scan), all or nothing.

@@ -138,23 +138,31 @@ impl<N: Numeric, const D: usize> GainContext<N, D> {
         z: [N::Length; D],
         predictions: &[Prediction<N>; D],
     ) -> Result<Self, ScheduleError> {
-        let mut axes = [AxisObservation {
-            measurement: N::Length::ZERO,
-            predicted: N::Length::ZERO,
-            predicted_velocity: N::Speed::ZERO,
-            innovation: N::Length::ZERO,
-        }; D];
-        for ((axis, z), p) in axes.iter_mut().zip(z).zip(predictions) {
-            *axis = AxisObservation {
+        let ctx = Self::of_predictions(n, dt, z, predictions);
+        ctx.check()?;
+        Ok(ctx)
+    }
+
+    /// [`Self::new`] unchecked (the caller checks what it does not know
+    /// valid already).
+    #[inline(always)]
+    fn of_predictions(
+        n: u32,
+        dt: N::Interval,
+        z: [N::Length; D],
+        predictions: &[Prediction<N>; D],
+    ) -> Self {
+        let axes = core::array::from_fn(|i| {
+            let z = z.get(i).copied().unwrap_or(N::Length::ZERO);
+            let p = predictions.get(i).copied().unwrap_or(Prediction::ZERO);
+            AxisObservation {
                 measurement: z,
                 predicted: p.position,
                 predicted_velocity: p.velocity,
                 innovation: z - p.position,
-            };
-        }
-        let ctx = GainContext { n, dt, axes };
-        ctx.check()?;
-        Ok(ctx)
+            }
+        });
+        GainContext { n, dt, axes }
     }
 
     /// e per axis.
@@ -533,31 +541,38 @@ where
             Err(FilterError::Saturated) => return self.refuse_overflow(self.filter, z, dt),
             Err(e) => return Err(e.into()),
         };
-        let predictions = match self.filter.predict_terms(&terms) {
-            Ok(p) => p,
-            Err(FilterError::Saturated) => return self.refuse_overflow(self.filter, z, dt),
-            Err(e) => return Err(e.into()),
+        let (predictions, valid) = self.filter.predicted(&terms);
+        // z, dt and the predictions are valid: what is left to check is
+        // that no innovation overflowed.
+        let ctx = GainContext::of_predictions(n, dt, z, &predictions);
+        if !(valid && ctx.axes.iter().all(|a| a.innovation.is_valid())) {
+            return self.refuse_overflow(self.filter, z, dt);
+        }
+        // Matched rather than `?`: the conversion's temporaries cost a
+        // library copy of the gains each.
+        let scheduled = match self.schedule.gains(&ctx) {
+            Ok(g) => g,
+            Err(e) => return Err(ScheduledError::Schedule(e)),
         };
-        let ctx = match GainContext::new(n, dt, z, &predictions) {
-            Ok(c) => c,
-            // z and the predictions are valid, so the innovation
-            // overflowed.
-            Err(_) => return self.refuse_overflow(self.filter, z, dt),
-        };
-        let scheduled = self.schedule.gains(&ctx)?;
         let gains = if self.schedule.gains_follow_interval()
             || intervals_regular(dt, self.previous_interval, self.reference_interval)
         {
             scheduled
         } else {
-            robust_gains(
+            match robust_gains(
                 scheduled,
                 dt,
                 self.previous_interval,
                 self.reference_interval,
-            )?
+            ) {
+                Ok(g) => g,
+                Err(e) => return Err(ScheduledError::Schedule(e)),
+            }
         };
-        let outcome = self.filter.update_per_axis_terms(z, &terms, &gains)?;
+        let outcome = match self.filter.update_per_axis_terms(z, &terms, &gains) {
+            Ok(o) => o,
+            Err(e) => return Err(ScheduledError::Filter(e)),
+        };
         self.measurements = n;
         self.previous_interval = dt;
         self.reference_interval = next_reference(self.reference_interval, dt);
