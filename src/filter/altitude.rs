@@ -313,7 +313,7 @@ pub struct AltitudeTracker<S> {
     firmness: u8,
     bounds: RateBounds<S>,
     /// Saturating counts (u16: the tracker's bytes are per intruder,
-    /// docs/tcas.md "RAM"; the getters widen them).
+    /// docs/tcas.md "RAM per intruder"; the getters widen them).
     incredible_reports: u16,
     saturations: u16,
 }

@@ -754,7 +754,8 @@ impl<S: Scalar> Cycle<S> {
 pub struct ThreatState<S> {
     /// Time since the TA started, s; meaningful while `has_ta` (zero
     /// otherwise). A value and a flag rather than an `Option`: the flags
-    /// share the word of the miss-distance counts (docs/tcas.md, "RAM").
+    /// share the word of the miss-distance counts (docs/tcas.md, "RAM per
+    /// intruder").
     ta_age_s: S,
     has_ta: bool,
     /// An RA threat (DO-185B `KHIT` > 0).
