@@ -312,8 +312,10 @@ pub struct AltitudeTracker<S> {
     alpha_beta: bool,
     firmness: u8,
     bounds: RateBounds<S>,
-    incredible_reports: u32,
-    saturations: u32,
+    /// Saturating counts (u16: the tracker's bytes are per intruder,
+    /// docs/tcas.md "RAM per intruder"; the getters widen them).
+    incredible_reports: u16,
+    saturations: u16,
 }
 
 // Always inlined: every argument is a constant, so the conversion folds at
@@ -425,12 +427,12 @@ impl<S: Scalar> AltitudeTracker<S> {
     /// Reports refused as not credible (a jump the track cannot have made);
     /// each was coasted through instead.
     pub fn incredible_reports(&self) -> u32 {
-        self.incredible_reports
+        u32::from(self.incredible_reports)
     }
 
     /// Scans discarded because their arithmetic saturated.
     pub fn saturations(&self) -> u32 {
-        self.saturations
+        u32::from(self.saturations)
     }
 
     /// One surveillance scan, `dt` seconds after the previous one:

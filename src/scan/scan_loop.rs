@@ -12,7 +12,7 @@ use intruders::{IdentityRule, IntruderSlot, ReplyData};
 use crate::filter::altitude::{AltitudeEstimate, AltitudeTrackerConfig};
 use crate::filter::range_azimuth::RangeAzimuthFilter;
 use crate::num::Scalar;
-use crate::tcas::{Advisory, CollisionAvoidance, IntruderTrack, OwnAircraft};
+use crate::tcas::{range_tau, Advisory, CollisionAvoidance, IntruderTrack, OwnAircraft};
 use crate::track::{
     Association, DropReason, FixedGainTrack, Measurement, Observation, RangeAzimuthTrack,
     ScanError, ScanReport, TrackFilter, TrackId, TrackTable, TrackerConfig,
@@ -541,7 +541,12 @@ impl<S: Scalar, F: TrackFilter<S> + BearingTrack<S>, const N: usize, const M: us
             let altitude = slot.and_then(|s| s.tcas.altitude_tracker().estimate());
             let [x, y] = track.position();
             let [vx, vy] = track.velocity();
-            let tau_ds = assessed.and_then(|a| a.range_tau_s).map(|tau| {
+            // The range tau of this scan's assessment (the range tracker has
+            // not moved since).
+            let range_tau_s = assessed
+                .and(slot.and_then(|s| s.tcas.range_tracker().estimate()))
+                .and_then(|r| range_tau(r.range_m, r.range_rate_m_per_s).ok().flatten());
+            let tau_ds = range_tau_s.map(|tau| {
                 let ds = scaled_i32(tau, 10);
                 u16::try_from(ds.max(0)).unwrap_or(u16::MAX)
             });

@@ -752,14 +752,20 @@ impl<S: Scalar> Cycle<S> {
 #[derive(Debug, Clone, Copy, PartialEq)]
 #[cfg_attr(feature = "defmt", derive(defmt::Format))]
 pub struct ThreatState<S> {
-    /// Time since the TA started, s; `None` without a TA.
-    ta_age_s: Option<S>,
+    /// Time since the TA started, s; meaningful while `has_ta` (zero
+    /// otherwise). A value and a flag rather than an `Option`: the flags
+    /// share the word of the miss-distance counts (docs/tcas.md, "RAM per
+    /// intruder").
+    ta_age_s: S,
+    has_ta: bool,
     /// An RA threat (DO-185B `KHIT` > 0).
     ra_threat: bool,
     /// The smallest RA modified tau since the track became firm and
     /// stopped diverging, s (DO-185B `TAUCAP`: tau may not rise again, so
-    /// range noise cannot flicker the range test).
-    ra_tau_cap_s: Option<S>,
+    /// range noise cannot flicker the range test); meaningful while
+    /// `has_tau_cap` (zero otherwise).
+    ra_tau_cap_s: S,
+    has_tau_cap: bool,
     miss_distance: MissDistanceFilter,
 }
 
@@ -784,9 +790,11 @@ impl<S: Scalar> ThreatState<S> {
     /// No TA, not an RA threat, no tau cap yet (a `const fn`, for a `static`).
     pub const fn new() -> Self {
         ThreatState {
-            ta_age_s: None,
+            ta_age_s: S::ZERO,
+            has_ta: false,
             ra_threat: false,
-            ra_tau_cap_s: None,
+            ra_tau_cap_s: S::ZERO,
+            has_tau_cap: false,
             miss_distance: MissDistanceFilter {
                 exceed_cycles: 0,
                 shutdown_cycles: 0,
@@ -801,7 +809,27 @@ impl<S: Scalar> ThreatState<S> {
 
     /// The intruder has a TA (or an RA).
     pub fn has_traffic_advisory(&self) -> bool {
-        self.ta_age_s.is_some()
+        self.has_ta
+    }
+
+    /// Time since the TA started, s; `None` without a TA.
+    fn ta_age(&self) -> Option<S> {
+        self.has_ta.then_some(self.ta_age_s)
+    }
+
+    fn set_ta_age(&mut self, age: Option<S>) {
+        self.has_ta = age.is_some();
+        self.ta_age_s = age.unwrap_or(S::ZERO);
+    }
+
+    /// The RA modified-tau cap, s; `None` before it is set.
+    fn ra_tau_cap(&self) -> Option<S> {
+        self.has_tau_cap.then_some(self.ra_tau_cap_s)
+    }
+
+    fn set_ra_tau_cap(&mut self, cap: Option<S>) {
+        self.has_tau_cap = cap.is_some();
+        self.ra_tau_cap_s = cap.unwrap_or(S::ZERO);
     }
 
     /// One cycle, `dt` s after the previous one, from the trackers.
@@ -895,7 +923,7 @@ impl<S: Scalar> ThreatState<S> {
         };
 
         // Traffic advisory.
-        let had_ta = self.ta_age_s.is_some();
+        let had_ta = self.has_ta;
         let ta = &thresholds.ta;
         let ta_dmod_m = if had_ta {
             thresholds.ta_held_dmod_m
@@ -928,13 +956,13 @@ impl<S: Scalar> ThreatState<S> {
                 // 35 s); both the range test and the miss-distance filter's
                 // 35 s limit use it.
                 let modified_tau = if g.diverging {
-                    self.ra_tau_cap_s = None;
+                    self.set_ra_tau_cap(None);
                     S::ZERO
                 } else {
                     let now = k.tau_cap_limit_s.min_of(g.ra_modified_tau(ra.dmod_m));
-                    let tau = self.ra_tau_cap_s.map_or(now, |cap| cap.min_of(now));
+                    let tau = self.ra_tau_cap().map_or(now, |cap| cap.min_of(now));
                     if inputs.firm_for_ta {
-                        self.ra_tau_cap_s = Some(tau);
+                        self.set_ra_tau_cap(Some(tau));
                     }
                     tau
                 };
@@ -1020,17 +1048,18 @@ impl<S: Scalar> ThreatState<S> {
 
         let ta_start = ta_tests && (had_ta || inputs.firm_for_ta);
         held_by_firmness |= ta_tests && !had_ta && !inputs.firm_for_ta;
-        let held_by_min_time = match (self.ta_age_s, dt) {
+        let held_by_min_time = match (self.ta_age(), dt) {
             (Some(age), Some(dt)) => age + dt < k.min_ta_time_s,
             _ => false,
         };
         let ta_now = !on_ground && (ta_start || ra_now || (had_ta && held_by_min_time));
-        self.ta_age_s = match (ta_now, self.ta_age_s, dt) {
+        let ta_age = match (ta_now, self.ta_age(), dt) {
             (false, _, _) => None,
             (true, None, _) => Some(S::ZERO),
             (true, Some(age), Some(dt)) => Some(age + dt),
             (true, Some(age), None) => Some(age),
         };
+        self.set_ta_age(ta_age);
 
         let proximate = g.r <= k.proximate_range_m
             && vertical.is_none_or(|v| v.relative_altitude_ft.abs() <= k.proximate_altitude_ft);

@@ -419,6 +419,19 @@ fn start() -> DemoConfig {
         core::mem::size_of::<DemoLoop>(),
         core::mem::size_of::<DemoIntake>()
     );
+    {
+        use abtrack::filter::altitude::AltitudeTracker;
+        use abtrack::tcas::{IntruderTrack, RangeTracker, ThreatState};
+        use core::mem::size_of;
+        defmt::println!(
+            "RAM per track: table slot {=usize} B, TCAS intruder {=usize} B (range tracker {=usize}, altitude tracker {=usize}, threat state {=usize})",
+            size_of::<abtrack::track::TrackSlot<Native, RangeAzimuthTrack<Native>>>(),
+            size_of::<IntruderTrack<Native>>(),
+            size_of::<RangeTracker<Native>>(),
+            size_of::<AltitudeTracker<Native>>(),
+            size_of::<ThreatState<Native>>()
+        );
+    }
     defmt::println!(
         "input: wire frames on {=str}, receive IRQ {=u16}; SysTick every {=u32} ms; a scan every {=u32} ms of the sensor's clock; advisory lines: {=str}",
         io::UART_NAME,

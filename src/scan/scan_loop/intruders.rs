@@ -7,7 +7,7 @@ use super::{BearingTrack, ScanConfig, ScanLoop};
 use crate::filter::altitude::AltitudeQuantum;
 use crate::num::{hypot, Scalar};
 use crate::tcas::detection::MAX_INTRUDER_RATE_FT_PER_S;
-use crate::tcas::{range_tau, Advisory, IntruderTrack, Reply, SensitivityLevel, ThreatGeometry};
+use crate::tcas::{Advisory, IntruderTrack, Reply, SensitivityLevel, ThreatGeometry};
 use crate::track::{Association, Measurement, PairRule, ScanReport, TrackFilter, TrackId};
 use crate::wire::{LoopCounters, ModeSAddress, RaCode};
 
@@ -19,12 +19,12 @@ pub(super) struct ReplyData<S> {
     pub(super) address: Option<ModeSAddress>,
 }
 
-/// This scan's assessment of one confirmed track.
-#[derive(Debug, Clone, Copy, PartialEq)]
-pub(super) struct Assessed<S> {
+/// This scan's assessment of one confirmed track (its range tau is the
+/// range tracker's, recomputed for the report: not kept per intruder).
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub(super) struct Assessed {
     pub(super) advisory: Advisory,
     pub(super) sensitivity: SensitivityLevel,
-    pub(super) range_tau_s: Option<S>,
 }
 
 /// One track's TCAS surveillance: its intruder's Mode S address (kept for
@@ -36,7 +36,7 @@ pub(super) struct IntruderSlot<S: Scalar> {
     pub(super) quantum: AltitudeQuantum,
     pub(super) tcas: IntruderTrack<S>,
     pub(super) updated: bool,
-    pub(super) assessed: Option<Assessed<S>>,
+    pub(super) assessed: Option<Assessed>,
 }
 
 /// RA threats resolved together at most (the ones with the smallest
@@ -235,12 +235,9 @@ impl<S: Scalar, F: TrackFilter<S> + BearingTrack<S>, const N: usize, const M: us
                     continue;
                 }
             };
-            let range = slot.tcas.range_tracker().estimate();
             slot.assessed = Some(Assessed {
                 advisory: status.map_or(Advisory::None, |s| s.advisory),
                 sensitivity: cycle.params.level,
-                range_tau_s: range
-                    .and_then(|r| range_tau(r.range_m, r.range_rate_m_per_s).ok().flatten()),
             });
             if let Some(g) = status.and_then(|s| s.geometry) {
                 add_threat(&mut threats, g, &mut self.counters);

@@ -6,4 +6,5 @@ mod analytic_encounters;
 mod encounter_suite;
 mod logic;
 mod sensitivity;
+mod state_size;
 mod threat;
