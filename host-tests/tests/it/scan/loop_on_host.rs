@@ -27,7 +27,12 @@ use std::collections::{BTreeMap, BTreeSet};
 
 type Loop<S, const N: usize, const M: usize> = ScanLoop<S, FixedGainTrack<S>, N, M>;
 /// The demo's scan loop on the micro:bit (boards/qemu/src/main.rs).
-type MicrobitLoop = ScanLoop<Fix, abtrack::track::RangeAzimuthTrack<Fix>, 8, 12>;
+type MicrobitLoop = ScanLoop<
+    Fix,
+    abtrack::track::RangeAzimuthTrack<Fix>,
+    { microbit::TRACKS },
+    { microbit::MEASUREMENTS_PER_SCAN },
+>;
 
 /// Numbers the frames of the test's sensor.
 #[derive(Default)]
@@ -841,7 +846,7 @@ fn print_memory_sizes() {
             std::mem::size_of::<Loop<Fix, 8, 24>>(),
         ),
         (
-            "ScanLoop<Fix, RangeAzimuthTrack, 8, 12> (the micro:bit's)",
+            "ScanLoop<Fix, RangeAzimuthTrack, micro:bit capacities>",
             std::mem::size_of::<MicrobitLoop>(),
         ),
         ("Intake<128>", std::mem::size_of::<Intake<128>>()),
