@@ -5,9 +5,13 @@
 //!
 //! * The gate test of a circle and its cost, the squared distance
 //!   normalised by the radius, quantised to `u16` (the solver's currency):
-//!   floats and Q32.32 multiply by the reciprocal of the radius, formed once
-//!   per track; [`Fixed32`] compares the squared offsets with the squared
-//!   radius exactly in 64-bit integers and divides once per gated pair.
+//!   floats multiply the squared distance by 1/r², Q32.32 the offsets by
+//!   1/r (its squares of metres would overflow), each formed once per
+//!   track; [`Fixed32`] compares the squared offsets with the squared
+//!   radius exactly in 64-bit integers and divides once per gated pair. A
+//!   gate given by its squared radius σ²·F ([`TrackNumeric::scaled_circle`])
+//!   needs no square root in floats: the box around it takes an upper bound
+//!   of √(σ²·F) from the float's bits (within 6.1 %).
 //! * Polar geometry (projecting range and azimuth; range/azimuth windows)
 //!   runs in a [`Scalar`]: the type itself, or `f32` for [`Fixed32`], which
 //!   has no sine or arctangent (in software on its cores, library calls
@@ -26,7 +30,7 @@ use core::fmt::Debug;
 use super::assign::MAX_COST;
 use super::model::VarianceNumber;
 use crate::num::fixed32::{Fixed32, Length, Ratio};
-use crate::num::{Numeric, Quantity, Scalar};
+use crate::num::{Numeric, Quantity, Real, Scalar};
 
 /// A [`Numeric`] the track table runs in (module docs).
 pub trait TrackNumeric: Numeric {
@@ -42,13 +46,33 @@ pub trait TrackNumeric: Numeric {
     /// formed.
     fn circle_scale(radius: Self::Length) -> Option<Self::CircleScale>;
 
+    /// The circle of radius σ·√`factor` (σ = `sigma` > 0, `factor` > 0):
+    /// a half-width at least the radius (its reach: the pre-gate's box and
+    /// the first test of each offset) and its scale, or `None` if it cannot
+    /// be formed. By default the radius itself and [`Self::circle_scale`];
+    /// floats form r² and bound √r² without a square root (module docs).
+    fn scaled_circle(
+        sigma: Self::Length,
+        factor: Self::Ratio,
+    ) -> Option<(Self::Length, Self::CircleScale)> {
+        let radius = factor.sqrt() * sigma;
+        Some((radius, Self::circle_scale(radius)?))
+    }
+
+    /// The radius of a circle of reach `reach` and scale `scale`: by
+    /// default the reach itself.
+    fn circle_radius(reach: Self::Length, _scale: Self::CircleScale) -> Self::Length {
+        reach
+    }
+
     /// The cost `round((dx² + dy²)/r²·MAX_COST)` of a measurement offset
-    /// (dx, dy) from the centre of a circle of radius `r`, or `None` if it
-    /// lies outside (or an operand is invalid).
+    /// (dx, dy) from the centre of a circle of reach `reach` (at least its
+    /// radius r) and scale `scale`, or `None` if it lies outside (or an
+    /// operand is invalid).
     fn circle_cost(
         dx: Self::Length,
         dy: Self::Length,
-        radius: Self::Length,
+        reach: Self::Length,
         scale: Self::CircleScale,
     ) -> Option<u16>;
 
@@ -92,6 +116,37 @@ pub(super) fn quantise_unit<S: Scalar>(v: S) -> u16 {
     truncate_to_u32(scaled).min(MAX_COST as u32) as u16
 }
 
+/// 1/v if it is a valid number > 0.
+fn positive_inverse<S: Scalar>(v: S) -> Option<S> {
+    let inverse = S::ONE / v;
+    (inverse.is_valid() && inverse > S::ZERO).then_some(inverse)
+}
+
+/// A number at least √v for a valid v > 0, `None` otherwise: for a normal
+/// `f32` or `f64`, half its bits plus half the exponent bias and one unit
+/// in the last place (the tangent of √ at the power of four below v, which
+/// lies above it: within 6.1 % of √v, no square root); else `S::sqrt`.
+fn square_root_bound<S: Scalar>(v: S) -> Option<S> {
+    if !(v.is_valid() && v > S::ZERO) {
+        return None;
+    }
+    let mut bound = v;
+    let any: &mut dyn core::any::Any = &mut bound;
+    if let Some(single) = any.downcast_mut::<f32>() {
+        if single.is_normal() {
+            *single = f32::from_bits((single.to_bits() >> 1).wrapping_add(0x1fc0_0001));
+            return Some(bound);
+        }
+    } else if let Some(double) = any.downcast_mut::<f64>() {
+        if double.is_normal() {
+            *double = f64::from_bits((double.to_bits() >> 1).wrapping_add(0x1ff8_0000_0000_0001));
+            return Some(bound);
+        }
+    }
+    let root = v.sqrt();
+    root.is_valid().then_some(root)
+}
+
 /// A number ≥ 0 truncated to an integer: `f32` directly (one instruction
 /// with an FPU), the others through `f64`; saturating, NaN to 0.
 fn truncate_to_u32<S: Scalar>(v: S) -> u32 {
@@ -125,21 +180,50 @@ impl<S: Scalar> TrackNumeric for S {
         truncate_to_u32((v - min) * scale)
     }
 
+    /// 1/r² for a float, 1/r for Q32.32 (module docs).
     fn circle_scale(radius: S) -> Option<S> {
-        let inverse = S::ONE / radius;
-        (inverse.is_valid() && inverse > S::ZERO).then_some(inverse)
+        let square = if S::RELATIVE_PRECISION {
+            radius * radius
+        } else {
+            radius
+        };
+        positive_inverse(square)
     }
 
-    fn circle_cost(dx: S, dy: S, radius: S, inverse_radius: S) -> Option<u16> {
+    /// r² = σ²·F and 1/r² for a float, the reach bounded from r²'s bits
+    /// ([`square_root_bound`]); Q32.32 by the default.
+    fn scaled_circle(sigma: S, factor: S) -> Option<(S, S)> {
+        if !S::RELATIVE_PRECISION {
+            let radius = factor.sqrt() * sigma;
+            return Some((radius, Self::circle_scale(radius)?));
+        }
+        let square = sigma * sigma * factor;
+        Some((square_root_bound(square)?, positive_inverse(square)?))
+    }
+
+    /// A float's reach is its radius when the scale is 1/reach² (a circle
+    /// formed from its radius), else the radius is √(1/scale).
+    fn circle_radius(reach: S, scale: S) -> S {
+        if S::RELATIVE_PRECISION && S::ONE / (reach * reach) != scale {
+            (S::ONE / scale).sqrt()
+        } else {
+            reach
+        }
+    }
+
+    fn circle_cost(dx: S, dy: S, reach: S, scale: S) -> Option<u16> {
         // `!(a <= b)` is also true for NaN. Each offset is compared with the
-        // radius first, so the squares are of numbers ≤ 1 and cannot
-        // saturate in fixed point.
-        if !(dx.abs() <= radius && dy.abs() <= radius) {
+        // reach first, so Q32.32's squares are of numbers ≤ 1 and cannot
+        // saturate.
+        if !(dx.abs() <= reach && dy.abs() <= reach) {
             return None;
         }
-        let nx = dx * inverse_radius;
-        let ny = dy * inverse_radius;
-        let d2 = nx * nx + ny * ny;
+        let d2 = if S::RELATIVE_PRECISION {
+            (dx * dx + dy * dy) * scale
+        } else {
+            let (nx, ny) = (dx * scale, dy * scale);
+            nx * nx + ny * ny
+        };
         if !(d2.is_valid() && d2 <= S::ONE) {
             return None;
         }
