@@ -254,24 +254,19 @@ impl<S: TrackNumeric> GateRegion<S> {
 
     /// The circle of radius σ·√`factor` around `center` (σ = `sigma`), its
     /// test formed from the squared radius σ²·`factor` (no square root in
-    /// floats); `None` if σ or `factor` is not a valid number > 0 or the
-    /// number system cannot prepare the test.
+    /// floats); `None` if σ is not > 0, the centre is not valid, or the
+    /// number system cannot form the circle (the radius or its square is
+    /// not a valid number > 0).
     pub fn scaled_circle(
         center: [S::Length; 2],
         sigma: S::Length,
         factor: S::Ratio,
     ) -> Option<Self> {
-        if !(sigma.is_valid()
-            && sigma > S::Length::ZERO
-            && factor.is_valid()
-            && factor > S::Ratio::ZERO
-            && center[0].is_valid()
-            && center[1].is_valid())
-        {
+        if !(sigma > S::Length::ZERO && center[0].is_valid() && center[1].is_valid()) {
             return None;
         }
         let (reach, scale) = S::scaled_circle(sigma, factor)?;
-        (reach.is_valid() && reach > S::Length::ZERO).then_some(GateRegion::Circle {
+        Some(GateRegion::Circle {
             center,
             reach,
             scale,

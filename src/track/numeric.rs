@@ -86,10 +86,15 @@ pub trait TrackNumeric: Numeric {
     /// equal widths); everything in cell 0 if it cannot be formed.
     fn grid_scale(min: Self::Length, max: Self::Length, cells: u16) -> Self::GridScale;
 
-    /// The cell of `v` in `min ..= max` (the caller clamps `v` to that
-    /// range and the result to the last cell): non-decreasing in `v`,
+    /// The cell of a valid `v` over `min ..= max` (below `min`, cell 0;
+    /// the caller caps the result at the last cell): non-decreasing in `v`,
     /// rounding included, so that a box's cells hold every point inside it.
-    fn grid_cell(v: Self::Length, min: Self::Length, scale: Self::GridScale) -> u32;
+    fn grid_cell(
+        v: Self::Length,
+        min: Self::Length,
+        max: Self::Length,
+        scale: Self::GridScale,
+    ) -> u32;
 
     /// A length in the polar scalar (exact).
     fn length_to_polar(v: Self::Length) -> Self::Polar;
@@ -133,12 +138,12 @@ fn square_root_bound<S: Scalar>(v: S) -> Option<S> {
     let mut bound = v;
     let any: &mut dyn core::any::Any = &mut bound;
     if let Some(single) = any.downcast_mut::<f32>() {
-        if single.is_normal() {
+        if *single >= f32::MIN_POSITIVE {
             *single = f32::from_bits((single.to_bits() >> 1).wrapping_add(0x1fc0_0001));
             return Some(bound);
         }
     } else if let Some(double) = any.downcast_mut::<f64>() {
-        if double.is_normal() {
+        if *double >= f64::MIN_POSITIVE {
             *double = f64::from_bits((double.to_bits() >> 1).wrapping_add(0x1ff8_0000_0000_0001));
             return Some(bound);
         }
@@ -176,7 +181,10 @@ impl<S: Scalar> TrackNumeric for S {
         }
     }
 
-    fn grid_cell(v: S, min: S, scale: S) -> u32 {
+    /// Not clamped: a coordinate below `min` maps to a number < 0 and one
+    /// above `max` to one ≥ the cell of `max`, which the saturating
+    /// truncation takes to 0 and to a cell the caller caps.
+    fn grid_cell(v: S, min: S, _max: S, scale: S) -> u32 {
         truncate_to_u32((v - min) * scale)
     }
 
@@ -393,8 +401,13 @@ impl TrackNumeric for Fixed32 {
         }
     }
 
-    fn grid_cell(v: Length, min: Length, scale: FixedGridScale) -> u32 {
-        let offset = v.to_bits().wrapping_sub(min.to_bits()) as u32;
+    /// `v` clamped to `min ..= max` first (a word's difference beyond
+    /// them would wrap).
+    fn grid_cell(v: Length, min: Length, max: Length, scale: FixedGridScale) -> u32 {
+        let v = v
+            .to_bits()
+            .clamp(min.to_bits(), max.to_bits().max(min.to_bits()));
+        let offset = v.wrapping_sub(min.to_bits()) as u32;
         let reduced = offset >> scale.shift.min(31);
         // reduced ≤ extent' for v ≤ max: the product is below cells·2¹⁶.
         reduced.wrapping_mul(scale.multiplier) >> 16
