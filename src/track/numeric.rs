@@ -404,9 +404,8 @@ impl TrackNumeric for Fixed32 {
     /// `v` clamped to `min ..= max` first (a word's difference beyond
     /// them would wrap).
     fn grid_cell(v: Length, min: Length, max: Length, scale: FixedGridScale) -> u32 {
-        let v = v
-            .to_bits()
-            .clamp(min.to_bits(), max.to_bits().max(min.to_bits()));
+        // Not `clamp`, which panics should min exceed max.
+        let v = v.to_bits().min(max.to_bits()).max(min.to_bits());
         let offset = v.wrapping_sub(min.to_bits()) as u32;
         let reduced = offset >> scale.shift.min(31);
         // reduced ≤ extent' for v ≤ max: the product is below cells·2¹⁶.
