@@ -37,7 +37,7 @@
 
 use super::gate::{hypot, Gate, GateRegion};
 use super::model::{
-    uncertainty_radius, wave_radius, Measurement, Observation, PredictedState, ScanInterval,
+    uncertainty_region, wave_radius, Measurement, Observation, PredictedState, ScanInterval,
     TrackFilter, Uncertainty,
 };
 use super::numeric::TrackNumeric;
@@ -328,7 +328,14 @@ impl<S: TrackNumeric, G: GainSchedule<S, 2>> TrackFilter<S> for ScheduledTrack<S
                     Some([px, py]) => (px.max_of(py), S::Acceleration::ZERO),
                     None => (self.uncertainty_variance_ratio(step)?, max_acceleration),
                 };
-                uncertainty_radius(measurement_sigma, threshold, allowance, p, step)
+                return uncertainty_region(
+                    predicted.position,
+                    measurement_sigma,
+                    threshold,
+                    allowance,
+                    p,
+                    step,
+                );
             }
             Gate::Wave {
                 range_sigma,

@@ -3,7 +3,7 @@
 
 use super::gate::{Gate, GateRegion};
 use super::model::{
-    uncertainty_radius, wave_radius, Observation, PredictedState, ScanInterval, TrackFilter,
+    uncertainty_region, wave_radius, Observation, PredictedState, ScanInterval, TrackFilter,
 };
 use super::numeric::TrackNumeric;
 use crate::filter::auto::{AutoFilter, AutoUpdate};
@@ -102,13 +102,16 @@ impl<S: TrackNumeric> TrackFilter<S> for AutoFilter<S, 2> {
                 measurement_sigma,
                 threshold,
                 ..
-            } => uncertainty_radius(
-                measurement_sigma,
-                threshold,
-                <S as Numeric>::Acceleration::ZERO,
-                p,
-                step,
-            ),
+            } => {
+                return uncertainty_region(
+                    predicted.position,
+                    measurement_sigma,
+                    threshold,
+                    <S as Numeric>::Acceleration::ZERO,
+                    p,
+                    step,
+                )
+            }
             Gate::Wave {
                 range_sigma,
                 bearing_sigma,

@@ -197,14 +197,17 @@ impl<S: TrackNumeric> BoundingBox<S> {
 /// One track's validation region for one scan.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub enum GateRegion<S: TrackNumeric> {
-    /// Points within `radius` of `center` (Cartesian, metres).
+    /// Points within the radius of `center` (Cartesian, metres).
     Circle {
         /// The predicted position (m).
         center: [S::Length; 2],
-        /// The gate radius (m).
-        radius: S::Length,
+        /// A half-width at least the radius (m): the radius itself, or,
+        /// for a circle formed from its squared radius
+        /// ([`GateRegion::scaled_circle`]), a bound the number system forms
+        /// without a square root ([`TrackNumeric::scaled_circle`]).
+        reach: S::Length,
         /// What the number system keeps to test a point without a division
-        /// (the reciprocal of the radius for floats and Q32.32).
+        /// (1/r² for floats, 1/r for Q32.32).
         scale: S::CircleScale,
     },
     /// A window in range and azimuth ([`GateRegion::polar`]), in the
@@ -244,8 +247,29 @@ impl<S: TrackNumeric> GateRegion<S> {
         }
         Some(GateRegion::Circle {
             center,
-            radius,
+            reach: radius,
             scale: S::circle_scale(radius)?,
+        })
+    }
+
+    /// The circle of radius σ·√`factor` around `center` (σ = `sigma`), its
+    /// test formed from the squared radius σ²·`factor` (no square root in
+    /// floats); `None` if σ is not > 0, the centre is not valid, or the
+    /// number system cannot form the circle (the radius or its square is
+    /// not a valid number > 0).
+    pub fn scaled_circle(
+        center: [S::Length; 2],
+        sigma: S::Length,
+        factor: S::Ratio,
+    ) -> Option<Self> {
+        if !(sigma > S::Length::ZERO && center[0].is_valid() && center[1].is_valid()) {
+            return None;
+        }
+        let (reach, scale) = S::scaled_circle(sigma, factor)?;
+        Some(GateRegion::Circle {
+            center,
+            reach,
+            scale,
         })
     }
 
@@ -287,10 +311,11 @@ impl<S: TrackNumeric> GateRegion<S> {
     /// accepts: the spatial pre-gate looks up the measurements inside it and
     /// tests only those exactly.
     ///
-    /// * Circle: the centre ± r·(1 + 2⁻⁴). The exact test accepts z when the
-    ///   rounded z − c is ≤ r; one rounding errs by less than 2⁻²³ of the
-    ///   result in f32 (fixed point subtracts exactly), so z − c < r·(1 + 2⁻⁴)
-    ///   and, rounding being monotone, z lies inside the rounded bounds.
+    /// * Circle: the centre ± ρ·(1 + 2⁻⁴), ρ its reach (≥ r). The exact
+    ///   test accepts z when the rounded z − c is ≤ ρ; one rounding errs by
+    ///   less than 2⁻²³ of the result in f32 (fixed point subtracts
+    ///   exactly), so z − c < ρ·(1 + 2⁻⁴) and, rounding being monotone, z
+    ///   lies inside the rounded bounds.
     /// * Range/azimuth window: a point at range R and angle ΔB ≤ h_C/R_p
     ///   from the prediction (half-widths h_R along and h_C across range,
     ///   predicted range R_p) lies within √(h_R² + R·R_p·ΔB²) ≤
@@ -299,8 +324,8 @@ impl<S: TrackNumeric> GateRegion<S> {
     ///   square roots and the arctangent (in the polar scalar, converted).
     pub fn bounds(&self) -> BoundingBox<S> {
         match *self {
-            GateRegion::Circle { center, radius, .. } => {
-                let half = radius + radius.half().half().half().half();
+            GateRegion::Circle { center, reach, .. } => {
+                let half = reach + reach.half().half().half().half();
                 BoundingBox {
                     min: [center[0] - half, center[1] - half],
                     max: [center[0] + half, center[1] + half],
@@ -321,7 +346,7 @@ impl<S: TrackNumeric> GateRegion<S> {
     /// half-width.
     pub fn radius(&self) -> S::Length {
         match *self {
-            GateRegion::Circle { radius, .. } => radius,
+            GateRegion::Circle { reach, scale, .. } => S::circle_radius(reach, scale),
             GateRegion::Polar(window) => S::length_from_polar(window.half_range),
         }
     }
@@ -334,11 +359,11 @@ impl<S: TrackNumeric> GateRegion<S> {
         match *self {
             GateRegion::Circle {
                 center,
-                radius,
+                reach,
                 scale,
             } => {
                 let z = observation.xy();
-                S::circle_cost(z[0] - center[0], z[1] - center[1], radius, scale)
+                S::circle_cost(z[0] - center[0], z[1] - center[1], reach, scale)
             }
             GateRegion::Polar(window) => {
                 let z = observation.xy().map(S::length_to_polar);

@@ -234,7 +234,14 @@ pub trait TrackFilter<S: TrackNumeric>: Copy {
             } => {
                 let p = self.predicted_variance_ratio(params, step)?;
                 let interval = Self::interval_of(step);
-                uncertainty_radius(measurement_sigma, threshold, max_acceleration, p, interval)
+                return uncertainty_region(
+                    predicted.position,
+                    measurement_sigma,
+                    threshold,
+                    max_acceleration,
+                    p,
+                    interval,
+                );
             }
             Gate::Wave {
                 range_sigma,
@@ -252,17 +259,25 @@ pub trait TrackFilter<S: TrackNumeric>: Copy {
     }
 }
 
-/// The gate radius of [`Gate::Uncertainty`] for predicted variance ratio `p`
-/// (the rule documented on [`Gate`]): σ·√(G·(p + 1)) + ½·a_max·T².
-pub(super) fn uncertainty_radius<S: TrackNumeric>(
+/// The region of [`Gate::Uncertainty`] around `center` for predicted
+/// variance ratio `p` (the rule documented on [`Gate`]): radius
+/// σ·√(G·(p + 1)) + ½·a_max·T². Without a manoeuvre allowance it is formed
+/// from its square σ²·G·(p + 1) ([`GateRegion::scaled_circle`]: no square
+/// root in floats).
+pub(super) fn uncertainty_region<S: TrackNumeric>(
+    center: [S::Length; 2],
     measurement_sigma: S::Length,
     threshold: S::Ratio,
     max_acceleration: S::Acceleration,
     p: S::Ratio,
     interval: &ScanInterval<S>,
-) -> S::Length {
-    let scale = (threshold * (p + <S::Ratio as Real>::ONE)).sqrt();
-    scale * measurement_sigma + max_acceleration * interval.terms().half_squared()
+) -> Option<GateRegion<S>> {
+    let factor = threshold * (p + <S::Ratio as Real>::ONE);
+    let allowance = max_acceleration * interval.terms().half_squared();
+    if allowance == S::Length::ZERO {
+        return GateRegion::scaled_circle(center, measurement_sigma, factor);
+    }
+    GateRegion::circle(center, factor.sqrt() * measurement_sigma + allowance)
 }
 
 /// Li et al. eqs. (11)–(12): the wave gate's radius κ·λ·√(Δρ² + ρ²Δθ²),

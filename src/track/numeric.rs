@@ -5,9 +5,13 @@
 //!
 //! * The gate test of a circle and its cost, the squared distance
 //!   normalised by the radius, quantised to `u16` (the solver's currency):
-//!   floats and Q32.32 multiply by the reciprocal of the radius, formed once
-//!   per track; [`Fixed32`] compares the squared offsets with the squared
-//!   radius exactly in 64-bit integers and divides once per gated pair.
+//!   floats multiply the squared distance by 1/r², Q32.32 the offsets by
+//!   1/r (its squares of metres would overflow), each formed once per
+//!   track; [`Fixed32`] compares the squared offsets with the squared
+//!   radius exactly in 64-bit integers and divides once per gated pair. A
+//!   gate given by its squared radius σ²·F ([`TrackNumeric::scaled_circle`])
+//!   needs no square root in floats: the box around it takes an upper bound
+//!   of √(σ²·F) from the float's bits (within 6.1 %).
 //! * Polar geometry (projecting range and azimuth; range/azimuth windows)
 //!   runs in a [`Scalar`]: the type itself, or `f32` for [`Fixed32`], which
 //!   has no sine or arctangent (in software on its cores, library calls
@@ -26,7 +30,7 @@ use core::fmt::Debug;
 use super::assign::MAX_COST;
 use super::model::VarianceNumber;
 use crate::num::fixed32::{Fixed32, Length, Ratio};
-use crate::num::{Numeric, Quantity, Scalar};
+use crate::num::{Numeric, Quantity, Real, Scalar};
 
 /// A [`Numeric`] the track table runs in (module docs).
 pub trait TrackNumeric: Numeric {
@@ -42,13 +46,33 @@ pub trait TrackNumeric: Numeric {
     /// formed.
     fn circle_scale(radius: Self::Length) -> Option<Self::CircleScale>;
 
+    /// The circle of radius σ·√`factor` (σ = `sigma` > 0, `factor` > 0):
+    /// a half-width at least the radius (its reach: the pre-gate's box and
+    /// the first test of each offset) and its scale, or `None` if it cannot
+    /// be formed. By default the radius itself and [`Self::circle_scale`];
+    /// floats form r² and bound √r² without a square root (module docs).
+    fn scaled_circle(
+        sigma: Self::Length,
+        factor: Self::Ratio,
+    ) -> Option<(Self::Length, Self::CircleScale)> {
+        let radius = factor.sqrt() * sigma;
+        Some((radius, Self::circle_scale(radius)?))
+    }
+
+    /// The radius of a circle of reach `reach` and scale `scale`: by
+    /// default the reach itself.
+    fn circle_radius(reach: Self::Length, _scale: Self::CircleScale) -> Self::Length {
+        reach
+    }
+
     /// The cost `round((dx² + dy²)/r²·MAX_COST)` of a measurement offset
-    /// (dx, dy) from the centre of a circle of radius `r`, or `None` if it
-    /// lies outside (or an operand is invalid).
+    /// (dx, dy) from the centre of a circle of reach `reach` (at least its
+    /// radius r) and scale `scale`, or `None` if it lies outside (or an
+    /// operand is invalid).
     fn circle_cost(
         dx: Self::Length,
         dy: Self::Length,
-        radius: Self::Length,
+        reach: Self::Length,
         scale: Self::CircleScale,
     ) -> Option<u16>;
 
@@ -62,10 +86,15 @@ pub trait TrackNumeric: Numeric {
     /// equal widths); everything in cell 0 if it cannot be formed.
     fn grid_scale(min: Self::Length, max: Self::Length, cells: u16) -> Self::GridScale;
 
-    /// The cell of `v` in `min ..= max` (the caller clamps `v` to that
-    /// range and the result to the last cell): non-decreasing in `v`,
+    /// The cell of a valid `v` over `min ..= max` (below `min`, cell 0;
+    /// the caller caps the result at the last cell): non-decreasing in `v`,
     /// rounding included, so that a box's cells hold every point inside it.
-    fn grid_cell(v: Self::Length, min: Self::Length, scale: Self::GridScale) -> u32;
+    fn grid_cell(
+        v: Self::Length,
+        min: Self::Length,
+        max: Self::Length,
+        scale: Self::GridScale,
+    ) -> u32;
 
     /// A length in the polar scalar (exact).
     fn length_to_polar(v: Self::Length) -> Self::Polar;
@@ -90,6 +119,37 @@ pub(super) fn quantise_unit<S: Scalar>(v: S) -> u16 {
     let scaled = v * S::from_f64_lossy(MAX_COST as f64) + S::from_f64_lossy(0.5);
     // The caller checked 0 ≤ v ≤ 1.
     truncate_to_u32(scaled).min(MAX_COST as u32) as u16
+}
+
+/// 1/v if it is a valid number > 0.
+fn positive_inverse<S: Scalar>(v: S) -> Option<S> {
+    let inverse = S::ONE / v;
+    (inverse.is_valid() && inverse > S::ZERO).then_some(inverse)
+}
+
+/// A number at least √v for a valid v > 0, `None` otherwise: for a normal
+/// `f32` or `f64`, half its bits plus half the exponent bias and one unit
+/// in the last place (the tangent of √ at the power of four below v, which
+/// lies above it: within 6.1 % of √v, no square root); else `S::sqrt`.
+fn square_root_bound<S: Scalar>(v: S) -> Option<S> {
+    if !(v.is_valid() && v > S::ZERO) {
+        return None;
+    }
+    let mut bound = v;
+    let any: &mut dyn core::any::Any = &mut bound;
+    if let Some(single) = any.downcast_mut::<f32>() {
+        if *single >= f32::MIN_POSITIVE {
+            *single = f32::from_bits((single.to_bits() >> 1).wrapping_add(0x1fc0_0001));
+            return Some(bound);
+        }
+    } else if let Some(double) = any.downcast_mut::<f64>() {
+        if *double >= f64::MIN_POSITIVE {
+            *double = f64::from_bits((double.to_bits() >> 1).wrapping_add(0x1ff8_0000_0000_0001));
+            return Some(bound);
+        }
+    }
+    let root = v.sqrt();
+    root.is_valid().then_some(root)
 }
 
 /// A number ≥ 0 truncated to an integer: `f32` directly (one instruction
@@ -121,25 +181,57 @@ impl<S: Scalar> TrackNumeric for S {
         }
     }
 
-    fn grid_cell(v: S, min: S, scale: S) -> u32 {
+    /// Not clamped: a coordinate below `min` maps to a number < 0 and one
+    /// above `max` to one ≥ the cell of `max`, which the saturating
+    /// truncation takes to 0 and to a cell the caller caps.
+    fn grid_cell(v: S, min: S, _max: S, scale: S) -> u32 {
         truncate_to_u32((v - min) * scale)
     }
 
+    /// 1/r² for a float, 1/r for Q32.32 (module docs).
     fn circle_scale(radius: S) -> Option<S> {
-        let inverse = S::ONE / radius;
-        (inverse.is_valid() && inverse > S::ZERO).then_some(inverse)
+        let square = if S::RELATIVE_PRECISION {
+            radius * radius
+        } else {
+            radius
+        };
+        positive_inverse(square)
     }
 
-    fn circle_cost(dx: S, dy: S, radius: S, inverse_radius: S) -> Option<u16> {
+    /// r² = σ²·F and 1/r² for a float, the reach bounded from r²'s bits
+    /// ([`square_root_bound`]); Q32.32 by the default.
+    fn scaled_circle(sigma: S, factor: S) -> Option<(S, S)> {
+        if !S::RELATIVE_PRECISION {
+            let radius = factor.sqrt() * sigma;
+            return Some((radius, Self::circle_scale(radius)?));
+        }
+        let square = sigma * sigma * factor;
+        Some((square_root_bound(square)?, positive_inverse(square)?))
+    }
+
+    /// A float's reach is its radius when the scale is 1/reach² (a circle
+    /// formed from its radius), else the radius is √(1/scale).
+    fn circle_radius(reach: S, scale: S) -> S {
+        if S::RELATIVE_PRECISION && S::ONE / (reach * reach) != scale {
+            (S::ONE / scale).sqrt()
+        } else {
+            reach
+        }
+    }
+
+    fn circle_cost(dx: S, dy: S, reach: S, scale: S) -> Option<u16> {
         // `!(a <= b)` is also true for NaN. Each offset is compared with the
-        // radius first, so the squares are of numbers ≤ 1 and cannot
-        // saturate in fixed point.
-        if !(dx.abs() <= radius && dy.abs() <= radius) {
+        // reach first, so Q32.32's squares are of numbers ≤ 1 and cannot
+        // saturate.
+        if !(dx.abs() <= reach && dy.abs() <= reach) {
             return None;
         }
-        let nx = dx * inverse_radius;
-        let ny = dy * inverse_radius;
-        let d2 = nx * nx + ny * ny;
+        let d2 = if S::RELATIVE_PRECISION {
+            (dx * dx + dy * dy) * scale
+        } else {
+            let (nx, ny) = (dx * scale, dy * scale);
+            nx * nx + ny * ny
+        };
         if !(d2.is_valid() && d2 <= S::ONE) {
             return None;
         }
@@ -309,8 +401,12 @@ impl TrackNumeric for Fixed32 {
         }
     }
 
-    fn grid_cell(v: Length, min: Length, scale: FixedGridScale) -> u32 {
-        let offset = v.to_bits().wrapping_sub(min.to_bits()) as u32;
+    /// `v` clamped to `min ..= max` first (a word's difference beyond
+    /// them would wrap).
+    fn grid_cell(v: Length, min: Length, max: Length, scale: FixedGridScale) -> u32 {
+        // Not `clamp`, which panics should min exceed max.
+        let v = v.to_bits().min(max.to_bits()).max(min.to_bits());
+        let offset = v.wrapping_sub(min.to_bits()) as u32;
         let reduced = offset >> scale.shift.min(31);
         // reduced ≤ extent' for v ≤ max: the product is below cells·2¹⁶.
         reduced.wrapping_mul(scale.multiplier) >> 16

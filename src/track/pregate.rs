@@ -15,8 +15,9 @@
 //! The box must contain every point the exact test accepts
 //! ([`GateRegion::bounds`](super::GateRegion::bounds)); any point inside the
 //! box lies in a cell of the box's range, because the map from a coordinate
-//! to its cell (clamp to the grid's bounds, subtract the minimum, scale,
-//! truncate) is monotone in every number type, rounding included, so the
+//! to its cell (subtract the minimum, scale, truncate saturating; the fast
+//! fixed point clamps to the grid's bounds first) is monotone in every
+//! number type, rounding included, so the
 //! candidates are every measurement in the box whatever the rounding.
 
 use super::gate::BoundingBox;
@@ -147,14 +148,14 @@ impl<S: TrackNumeric, const M: usize> MeasurementIndex<S, M> {
         }
     }
 
-    /// Calls `visit(k)` for every indexed measurement `k` inside `bounds`
-    /// (boundaries included), row of cells by row, in slot order within a
-    /// cell.
+    /// Calls `visit(k, observation)` for every indexed measurement `k`
+    /// inside `bounds` (boundaries included), row of cells by row, in slot
+    /// order within a cell.
     pub(super) fn for_each_in(
         &self,
         observations: &[Option<Observation<S>>; M],
         bounds: &BoundingBox<S>,
-        mut visit: impl FnMut(usize),
+        mut visit: impl FnMut(usize, &Observation<S>),
     ) {
         let (len, cells) = (usize::from(self.len), usize::from(self.cells));
         // Nothing indexed, or the box misses the measurements' bounds (or
@@ -192,20 +193,20 @@ impl<S: TrackNumeric, const M: usize> MeasurementIndex<S, M> {
             };
             for &k in run {
                 let k = k as usize;
-                let inside = observations
-                    .get(k)
-                    .and_then(|o| o.as_ref())
-                    .is_some_and(|o| bounds.contains(o.xy()));
-                if inside {
-                    visit(k);
+                if let Some(Some(o)) = observations.get(k) {
+                    if bounds.contains(o.xy()) {
+                        visit(k, o);
+                    }
                 }
             }
         }
     }
 }
 
-/// The cell along one axis of a coordinate: clamped to `min ..= max`,
-/// mapped ([`TrackNumeric::grid_cell`]), at most `last`; monotone in `v`.
+/// The cell along one axis of a coordinate: mapped
+/// ([`TrackNumeric::grid_cell`], which takes a coordinate outside
+/// `min ..= max` to the nearest end's cell or beyond it), at most `last`;
+/// monotone in `v`.
 fn axis_cell<S: TrackNumeric>(
     v: S::Length,
     min: S::Length,
@@ -213,12 +214,5 @@ fn axis_cell<S: TrackNumeric>(
     scale: S::GridScale,
     last: u32,
 ) -> u32 {
-    let clamped = if v < min {
-        min
-    } else if v > max {
-        max
-    } else {
-        v
-    };
-    S::grid_cell(clamped, min, scale).min(last)
+    S::grid_cell(v, min, max, scale).min(last)
 }

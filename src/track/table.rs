@@ -867,21 +867,19 @@ impl<S: TrackNumeric, F: TrackFilter<S>, const N: usize, const M: usize> TrackTa
             };
             let (observations, codes, clusters) =
                 (&self.observations, &mut self.codes, &mut self.clusters);
-            self.index.for_each_in(observations, &region.bounds(), |k| {
-                increment(&mut report.candidates);
-                let Some(Some(o)) = observations.get(k) else {
-                    return;
-                };
-                if !rule.may_update(track.id, k) {
-                    return;
-                }
-                let Some(cost) = region.cost(o) else { return };
-                increment(&mut report.gated_pairs);
-                clusters.add_pair(t, k, cost);
-                if let Some(code) = codes.get_mut(k) {
-                    *code = Association::NotAssigned;
-                }
-            });
+            self.index
+                .for_each_in(observations, &region.bounds(), |k, o| {
+                    increment(&mut report.candidates);
+                    if !rule.may_update(track.id, k) {
+                        return;
+                    }
+                    let Some(cost) = region.cost(o) else { return };
+                    increment(&mut report.gated_pairs);
+                    clusters.add_pair(t, k, cost);
+                    if let Some(code) = codes.get_mut(k) {
+                        *code = Association::NotAssigned;
+                    }
+                });
             if self.clusters.is_uncached(t) {
                 increment(&mut report.uncached_tracks);
             }
@@ -1123,22 +1121,20 @@ impl<S: TrackNumeric, F: TrackFilter<S>, const N: usize, const M: usize> TrackTa
     ) -> Option<usize> {
         let mut best: Option<(u16, usize)> = None;
         let (observations, codes) = (&self.observations, &self.codes);
-        self.index.for_each_in(observations, &region.bounds(), |k| {
-            if codes.get(k) != Some(&Association::OutsideGates) || !allowed(k) {
-                return;
-            }
-            let Some(Some(o)) = observations.get(k) else {
-                return;
-            };
-            if !config.in_volume(o.xy()) {
-                return;
-            }
-            if let Some(c) = region.cost(o) {
-                if best.is_none_or(|b| (c, k) < b) {
-                    best = Some((c, k));
+        self.index
+            .for_each_in(observations, &region.bounds(), |k, o| {
+                if codes.get(k) != Some(&Association::OutsideGates) || !allowed(k) {
+                    return;
                 }
-            }
-        });
+                if !config.in_volume(o.xy()) {
+                    return;
+                }
+                if let Some(c) = region.cost(o) {
+                    if best.is_none_or(|b| (c, k) < b) {
+                        best = Some((c, k));
+                    }
+                }
+            });
         best.map(|(_, k)| k)
     }
 
