@@ -309,6 +309,9 @@ pub struct Unused {
     /// Tracks restarted: last updated more than 20 s before a scan, ended
     /// there (their targets start again by two-point initiation).
     pub tracks_restarted: usize,
+    /// Tentative tracks ended to make room for a new track (the table
+    /// full; `abtrack::track::ScanReport::deleted_displaced`).
+    pub tracks_displaced: usize,
 }
 
 impl Unused {
@@ -426,6 +429,12 @@ impl std::fmt::Display for Unused {
              start again by two-point initiation)",
             self.tracks_restarted,
             abtrack::filter::MAX_INTERVAL_S
+        )?;
+        writeln!(
+            f,
+            "{p} tentative tracks displaced: {} (the table full, each ended for a new track; \
+             {} candidates refused, no tentative track to displace)",
+            self.tracks_displaced, self.table_full.count
         )
     }
 }
@@ -938,7 +947,7 @@ fn log_scan(log: &mut String, t_text: &str, codes: &[Association], report: &Scan
     let _ = writeln!(
         log,
         "t={t_text} measurements={} updated={} started={} not-assigned={} outside-gates={} \
-         rejected={} dropped={} | confirmed={} deleted={} restarted={} tracks={}",
+         rejected={} dropped={} | confirmed={} deleted={} displaced={} restarted={} tracks={}",
         codes.len(),
         count(|c| matches!(c, Association::Updated(_))),
         count(|c| matches!(c, Association::Started(_))),
@@ -948,6 +957,7 @@ fn log_scan(log: &mut String, t_text: &str, codes: &[Association], report: &Scan
         count(|c| matches!(c, Association::Dropped(_))),
         report.confirmed,
         report.deleted,
+        report.deleted_displaced,
         report.restarted,
         report.tracks,
     );
@@ -998,6 +1008,7 @@ fn run_scans<S: TableNumeric, F: TrackFilter<S>, const N: usize>(
             unused.record(code, line, outside);
         }
         unused.tracks_restarted += report.restarted as usize;
+        unused.tracks_displaced += report.deleted_displaced as usize;
         if table.stats().scans_skipped != skipped_before {
             // Skipped: the tracks are as at the previous scan.
             continue;

@@ -463,6 +463,7 @@ impl<S: Scalar, F: TrackFilter<S> + BearingTrack<S>, const N: usize, const M: us
         counts.coasted = sat_u16(report.coasted);
         counts.confirmed = sat_u16(report.confirmed);
         counts.deleted = sat_u16(report.deleted);
+        counts.displaced = sat_u16(report.deleted_displaced);
         counts.restarted = sat_u16(report.restarted);
         counts.tracks = sat_u16(report.tracks);
         counts.confirmed_tracks = sat_u16(confirmed_tracks);
@@ -477,6 +478,7 @@ impl<S: Scalar, F: TrackFilter<S> + BearingTrack<S>, const N: usize, const M: us
         c.refused_table_full = c
             .refused_table_full
             .saturating_add(report.refused_table_full);
+        c.tracks_displaced = c.tracks_displaced.saturating_add(report.deleted_displaced);
 
         let summary = ScanSummary {
             time_ms: self.scan_ms,

@@ -37,9 +37,17 @@
 //! 8. **Initiate** (two-point method, Al-Wagih & Abdulla eqs. 9–10): a
 //!    measurement outside every gate pairs with an unused measurement of the
 //!    previous scan at most `v_max·T` (+ margin) away and starts a tentative
-//!    track. When the table is full the candidate is refused and counted —
-//!    no track is evicted, confirmed or tentative. Unpaired measurements
-//!    outside every gate become the first points for the next scan.
+//!    track. When the table is full the candidate displaces the weakest
+//!    tentative track that missed the last scan (fewest hits in its M-of-N
+//!    window, then most consecutive misses, then most scans, then lowest
+//!    slot): that track's id ends, counted as a deletion
+//!    ([`ScanReport::deleted_displaced`]). A confirmed or coasting track,
+//!    and a tentative one updated in the last scan or started in this one,
+//!    is never displaced; with none other, the candidate is refused and
+//!    counted ([`DropReason::TableFull`]). Replacing the least promising
+//!    tentative track keeps a clutter-filled table open to new targets
+//!    (`docs/track-table.md`, "Full table"). Unpaired measurements outside
+//!    every gate become the first points for the next scan.
 //!
 //! # Time
 //!

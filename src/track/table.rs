@@ -361,7 +361,7 @@ pub struct ScanReport {
     pub outside_gates: u32,
     /// Tracks confirmed in this scan.
     pub confirmed: u32,
-    /// Tracks deleted in this scan (sum of the four reasons below).
+    /// Tracks deleted in this scan (sum of the five reasons below).
     pub deleted: u32,
     /// ... after too many consecutive misses.
     pub deleted_misses: u32,
@@ -371,6 +371,9 @@ pub struct ScanReport {
     pub deleted_left_volume: u32,
     /// ... whose filter could not advance (arithmetic saturated).
     pub deleted_numeric: u32,
+    /// ... tentative tracks displaced by a new track when the table was
+    /// full (the [module docs](super), step 8): their ids end.
+    pub deleted_displaced: u32,
     /// Tracks ended because their last update was more than
     /// [`MAX_INTERVAL_S`](crate::filter::MAX_INTERVAL_S) ago (not counted in
     /// `deleted`): beyond what the filters are specified for, the estimate
@@ -401,6 +404,9 @@ pub struct TableStats {
     pub tracks_deleted: u32,
     /// Candidate tracks refused because the table was full.
     pub refused_table_full: u32,
+    /// Tentative tracks displaced by a new track when the table was full
+    /// (also in `tracks_deleted`).
+    pub tracks_displaced: u32,
     /// Measurements beyond `M` in a scan.
     pub dropped_overflow: u32,
     /// Measurements rejected as bad input.
@@ -569,6 +575,7 @@ impl<S: TrackNumeric, F: TrackFilter<S>, const N: usize, const M: usize> TrackTa
                 tracks_confirmed: 0,
                 tracks_deleted: 0,
                 refused_table_full: 0,
+                tracks_displaced: 0,
                 dropped_overflow: 0,
                 rejected: 0,
                 tracks_restarted: 0,
@@ -1138,8 +1145,9 @@ impl<S: TrackNumeric, F: TrackFilter<S>, const N: usize, const M: usize> TrackTa
         best.map(|(_, k)| k)
     }
 
-    /// A tentative track from two points, in a free slot; the second point's
-    /// code.
+    /// A tentative track from two points, in a free slot or, the table
+    /// full, in the slot of the weakest displaceable tentative track
+    /// ([`Self::displaceable`]), which ends there; the second point's code.
     fn start_track(
         &mut self,
         config: &TrackerConfig<S, F::Params>,
@@ -1149,7 +1157,8 @@ impl<S: TrackNumeric, F: TrackFilter<S>, const N: usize, const M: usize> TrackTa
         second: &Observation<S>,
         report: &mut ScanReport,
     ) -> Association {
-        let Some(free) = self.slots.iter().position(|s| !s.is_live()) else {
+        let free = self.slots.iter().position(|s| !s.is_live());
+        let Some(slot) = free.or_else(|| self.displaceable(config)) else {
             increment(&mut report.refused_table_full);
             return Association::Dropped(DropReason::TableFull);
         };
@@ -1160,6 +1169,12 @@ impl<S: TrackNumeric, F: TrackFilter<S>, const N: usize, const M: usize> TrackTa
             .and_then(|()| filter.update(params, second, dt));
         if started.is_err() {
             return Association::Rejected(RejectReason::FilterRefused);
+        }
+        // The displaced track ends before the id is allocated: at most
+        // N − 1 ids are live then.
+        if self.slots.get_mut(slot).is_some_and(TrackSlot::clear) {
+            increment(&mut report.deleted);
+            increment(&mut report.deleted_displaced);
         }
         let id = self.allocate_id();
         let mut track = Track {
@@ -1180,10 +1195,34 @@ impl<S: TrackNumeric, F: TrackFilter<S>, const N: usize, const M: usize> TrackTa
             track.lifecycle = Lifecycle::Confirmed;
             increment(&mut report.confirmed);
         }
-        if let Some(slot) = self.slots.get_mut(free) {
+        if let Some(slot) = self.slots.get_mut(slot) {
             *slot = TrackSlot::Live(track);
         }
         Association::Started(id)
+    }
+
+    /// The slot of the tentative track a new track may displace when the
+    /// table is full: among the tentative tracks that missed the last scan
+    /// (never a confirmed or coasting track, nor one updated in the last
+    /// scan or started in this one), the weakest — the fewest hits in its
+    /// M-of-N window, then the most consecutive misses, then the most
+    /// scans, then the lowest slot. `None`: no track may be displaced.
+    fn displaceable(&self, config: &TrackerConfig<S, F::Params>) -> Option<usize> {
+        let window = config.confirmation().1;
+        self.slots
+            .iter()
+            .enumerate()
+            .filter_map(|(i, slot)| slot.track().map(|track| (i, track)))
+            .filter(|(_, track)| track.lifecycle == Lifecycle::Tentative && track.misses > 0)
+            .min_by_key(|&(i, track)| {
+                (
+                    hits_in_window(track.history, window),
+                    core::cmp::Reverse(track.misses),
+                    core::cmp::Reverse(track.scans),
+                    i,
+                )
+            })
+            .map(|(i, _)| i)
     }
 
     /// The measurements of this scan still unused become the next scan's
@@ -1240,6 +1279,7 @@ impl<S: TrackNumeric, F: TrackFilter<S>, const N: usize, const M: usize> TrackTa
         s.refused_table_full = s
             .refused_table_full
             .saturating_add(report.refused_table_full);
+        s.tracks_displaced = s.tracks_displaced.saturating_add(report.deleted_displaced);
         s.dropped_overflow = s.dropped_overflow.saturating_add(report.dropped_overflow);
         s.rejected = s.rejected.saturating_add(report.rejected);
         s.tracks_restarted = s.tracks_restarted.saturating_add(report.restarted);
@@ -1281,13 +1321,7 @@ fn lifecycle<S: TrackNumeric, F: TrackFilter<S>>(
     let (confirm_hits, confirm_window) = config.confirmation();
     let (delete_confirmed, delete_tentative) = config.deletion();
     if track.lifecycle == Lifecycle::Tentative {
-        // M-of-N over the first N scans (the starting scan is scan 1).
-        let mask = match confirm_window {
-            32.. => u32::MAX,
-            // w < 32.
-            w => (1u32 << w).wrapping_sub(1),
-        };
-        let hits_in_window = (track.history & mask).count_ones();
+        let hits_in_window = hits_in_window(track.history, confirm_window);
         let remaining = (confirm_window as u32).saturating_sub(track.scans as u32);
         if hits_in_window >= confirm_hits as u32 {
             track.lifecycle = Lifecycle::Confirmed;
@@ -1305,6 +1339,18 @@ fn lifecycle<S: TrackNumeric, F: TrackFilter<S>>(
     } else {
         None
     }
+}
+
+/// Scans with a measurement among the last `window` of `history`: for a
+/// tentative track (at most `window` scans old), the hits of M-of-N over
+/// its first N scans (the starting scan is scan 1).
+fn hits_in_window(history: u32, window: u8) -> u32 {
+    let mask = match window {
+        32.. => u32::MAX,
+        // w < 32.
+        w => (1u32 << w).wrapping_sub(1),
+    };
+    (history & mask).count_ones()
 }
 
 /// Counts one (saturating).

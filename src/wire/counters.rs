@@ -192,13 +192,16 @@ counter_list! {
         tracks_started => "tracks started",
         /// Tracks confirmed.
         tracks_confirmed => "tracks confirmed",
-        /// Tracks deleted.
+        /// Tracks deleted (the displaced ones included).
         tracks_deleted => "tracks deleted",
         /// Tracks restarted: last updated more than the filters' longest
         /// interval ago ([`crate::track::ScanReport::restarted`]).
         tracks_restarted => "tracks restarted",
         /// Candidate tracks refused because the table was full.
         refused_table_full => "refused, table full",
+        /// Tentative tracks displaced by a new track because the table was
+        /// full (also in `tracks_deleted`).
+        tracks_displaced => "tentative tracks displaced",
         /// Track report frames emitted.
         track_reports => "track reports",
         /// Confirmed tracks whose threat assessment failed (or the
@@ -218,7 +221,8 @@ counter_list! {
     /// The measurements taken for the scan: `used + late + out_of_window +
     /// over_capacity + invalid`; the used ones, by what the tracker did with
     /// them: `used = updated + started + not_assigned + outside_gates +
-    /// rejected + refused_table_full`.
+    /// rejected + refused_table_full` (a start that displaced a tentative
+    /// track is in `started`; the track it ended in `displaced`).
     pub struct ScanCounts: u16 {
         /// Entered the tracker scan.
         used => "used",
@@ -251,8 +255,11 @@ counter_list! {
         coasted => "coasted",
         /// Tracks confirmed in this scan.
         confirmed => "confirmed",
-        /// Tracks deleted in this scan.
+        /// Tracks deleted in this scan (the displaced ones included).
         deleted => "deleted",
+        /// Tentative tracks displaced in this scan by a new track because the
+        /// table was full (also in `deleted`).
+        displaced => "displaced",
         /// Tracks restarted in this scan (last updated more than the
         /// filters' longest interval ago; not in `deleted`).
         restarted => "restarted",

@@ -1,10 +1,11 @@
 //! The track table: assignment, clusters, gates, lifecycle, capacity,
-//! crossing targets and static construction.
+//! displacement in a full table, crossing targets and static construction.
 
 mod assign;
 mod capacity;
 mod clusters;
 mod crossing;
+mod displacement;
 mod gate;
 mod lifecycle;
 mod static_construction;
