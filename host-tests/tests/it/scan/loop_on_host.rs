@@ -28,8 +28,8 @@ use std::collections::{BTreeMap, BTreeSet};
 type Loop<S, const N: usize, const M: usize> = ScanLoop<S, FixedGainTrack<S>, N, M>;
 /// The demo's scan loop on the micro:bit (boards/qemu/src/main.rs).
 type MicrobitLoop = ScanLoop<
-    Fix,
-    abtrack::track::RangeAzimuthTrack<Fix>,
+    abtrack_firmware::number_types::without_fpu::TableScalar,
+    abtrack::track::RangeAzimuthTrack<abtrack_firmware::number_types::without_fpu::TableScalar>,
     { microbit::TRACKS },
     { microbit::MEASUREMENTS_PER_SCAN },
 >;
@@ -846,7 +846,7 @@ fn print_memory_sizes() {
             std::mem::size_of::<Loop<Fix, 8, 24>>(),
         ),
         (
-            "ScanLoop<Fix, RangeAzimuthTrack, micro:bit capacities>",
+            "ScanLoop<ScaledScalar, RangeAzimuthTrack, micro:bit capacities> (the micro:bit's)",
             std::mem::size_of::<MicrobitLoop>(),
         ),
         ("Intake<128>", std::mem::size_of::<Intake<128>>()),
