@@ -199,7 +199,7 @@ impl<S: Scalar> TrackNumeric for S {
     }
 
     /// r² = σ²·F and 1/r² for a float, the reach bounded from r²'s bits
-    /// ([`square_root_bound`]); Q32.32 by the default.
+    /// (`square_root_bound`, a private helper); Q32.32 by the default.
     fn scaled_circle(sigma: S, factor: S) -> Option<(S, S)> {
         if !S::RELATIVE_PRECISION {
             let radius = factor.sqrt() * sigma;
