@@ -20,7 +20,7 @@
 # `scripts/fuzz.sh --grow 600`.
 # A failing property or a panic stops that target: libFuzzer writes the input
 # to fuzz/artifacts/<target>/ and this script's exit status is 1. Reproduce
-# with `cd fuzz && cargo +nightly fuzz run <target> <artifact>`.
+# with `cd fuzz && cargo +nightly fuzz run --release --sanitizer none <target> <artifact>`.
 #
 # Needs a nightly toolchain and cargo-fuzz; installs them when missing
 # (rustup toolchain install nightly --profile minimal; cargo install
@@ -30,12 +30,19 @@ cd "$(dirname "$0")/.."
 # shellcheck source=scripts/setup.sh
 . scripts/setup.sh
 
+# No sanitizer: the fuzzed code (the library, which forbids unsafe code, the
+# CSV reader, the demo's configuration and the targets) has no unsafe code,
+# so AddressSanitizer would find nothing there that the overflow checks and
+# debug assertions (fuzz/Cargo.toml) do not; without it the build takes a
+# third less CPU time and the targets run faster.
+fuzz_options=(--release --sanitizer none)
+
 if [ "${1:-}" = --build ]; then
     ensure_host_linker
     ensure_cargo_fuzz
-    # The same build options as `cargo fuzz run --release` below, so that
-    # the runs reuse this build.
-    cd fuzz && exec cargo +nightly fuzz build --release
+    # The same build options as `cargo fuzz run` below, so that the runs
+    # reuse this build.
+    cd fuzz && exec cargo +nightly fuzz build "${fuzz_options[@]}"
 fi
 
 grow=
@@ -71,7 +78,7 @@ for target in "${targets[@]}"; do
     fi
     say "fuzz $target for ${seconds}s (corpus $corpus: $(find "$corpus" -type f | wc -l) inputs)"
     result=0
-    (cd fuzz && cargo +nightly fuzz run --release "$target" "${corpora[@]}" -- \
+    (cd fuzz && cargo +nightly fuzz run "${fuzz_options[@]}" "$target" "${corpora[@]}" -- \
         -max_total_time="$seconds" -print_final_stats=1 -timeout=10 -rss_limit_mb=2048) >"$log" 2>&1 || result=$?
     [ -z "$new_inputs" ] || rm -rf "$new_inputs"
     runs=$(sed -n 's/^stat::number_of_executed_units: *//p' "$log" | tail -n 1)
