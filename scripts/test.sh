@@ -16,10 +16,12 @@
 #      the firmware build does for the three targets),
 #   4. the firmware (every binary of boards/qemu, the benchmark with its
 #      feature bench-anchors, the example static_track_table) for the three
-#      targets; no call into core::panicking in any release ELF; the stack
-#      below the static data (flip-link); each demo image's .data under
-#      4 KiB; no double-precision soft-float routine in the M4F example;
-#   then the runs, in lanes side by side (a QEMU run mostly waits):
+#      targets;
+#   then the runs and checks, in lanes side by side (a QEMU run mostly
+#   waits): the ELF checks (no call into core::panicking in any release
+#      ELF; the stack below the static data (flip-link); each demo image's
+#      .data under 4 KiB; no double-precision soft-float routine in the M4F
+#      example),
 #   5. the firmware images under QEMU on the three boards
 #      (mps2-an386 / Cortex-M4F, mps2-an385 / Cortex-M3, microbit / Cortex-M0):
 #      a deliberate stack overflow ends in a clean HardFault report; stack
@@ -342,12 +344,15 @@ library_and_firmware_steps() {
 
 in_parallel host_tests_steps library_and_firmware_steps
 
-# The ELF checks (firmware-check is a host-tests binary, built by the host
-# tests' step).
-step "firmware: no call into core::panicking in any release ELF" check_no_panic_calls
-step "firmware: stack below the static data in every release ELF (flip-link)" check_stack_layout
-step "firmware: each demo image's .data under 4 KiB (three boards)" check_demo_data
-step "firmware: no double-precision soft-float routine in the M4F example image" check_example_soft_double
+# Lane 8 of the runs below: the ELF checks (firmware-check is a host-tests
+# binary, built by the host tests' step; llvm-objdump keeps a core busy
+# while the QEMU lanes wait).
+elf_checks() {
+    step "firmware: no call into core::panicking in any release ELF" check_no_panic_calls
+    step "firmware: stack below the static data in every release ELF (flip-link)" check_stack_layout
+    step "firmware: each demo image's .data under 4 KiB (three boards)" check_demo_data
+    step "firmware: no double-precision soft-float routine in the M4F example image" check_example_soft_double
+}
 
 # The benchmark image (its own feature: the minikalman anchor) must run to
 # its end and print a complete, well-formed report: bench_report --check
@@ -456,7 +461,7 @@ library_on_the_host() {
 }
 
 in_parallel emulated_images stack_marks fault_injection_mps2_an386 fault_injection_mps2_an385 \
-    fault_injection_microbit soak_fuzz_nrf library_on_the_host
+    fault_injection_microbit soak_fuzz_nrf library_on_the_host elf_checks
 
 echo
 echo "abtrack test summary:"
