@@ -131,6 +131,7 @@ impl<N: Numeric, const D: usize> AutoFilter<N, D> {
 
     /// [`Self::predicted_variance_ratio`], with the span of `dt` alone
     /// formed once for many filters ([`Self::span`]).
+    #[inline]
     pub(crate) fn predicted_variance_ratio_over(
         &self,
         dt: N::Interval,

@@ -309,7 +309,11 @@ pub(crate) type VarianceRatio<R> = Option<R>;
 /// `v`·`r` (`v` itself when `r` is 1).
 #[inline(always)]
 fn scaled_by<R: Real>(v: R, r: VarianceRatio<R>) -> R {
-    r.map_or(v, |r| v * r)
+    // A match, not `map_or`, which opt-level "s" leaves as a call.
+    match r {
+        Some(r) => v * r,
+        None => v,
+    }
 }
 
 /// One Kalman update of the normalised covariance `a` for measurement

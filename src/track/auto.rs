@@ -54,16 +54,13 @@ impl<S: TrackNumeric> TrackFilter<S> for AutoFilter<S, 2> {
         z: &Observation<S>,
         step: &AutoStep<S>,
     ) -> Result<(), FilterError> {
-        let mut filter = *self;
+        // In place: an `Err` and a skip change nothing.
         let noise = params.shared_noise();
-        match filter.update_over(&noise, z.xy(), step.interval.interval(), Some(&step.span))? {
+        match self.update_over(&noise, z.xy(), step.interval.interval(), Some(&step.span))? {
             // The table never offers a measurement that close (it skips the
             // whole scan): refused as an interval outside the filter's.
             AutoUpdate::Skipped => Err(FilterError::InvalidInterval),
-            _ => {
-                *self = filter;
-                Ok(())
-            }
+            _ => Ok(()),
         }
     }
 
