@@ -126,12 +126,33 @@ impl<N: Numeric, const D: usize> AutoFilter<N, D> {
     /// over σ²; the innovation variance over σ² is this plus 1); `None`
     /// before two measurements.
     pub fn predicted_variance_ratio(&self, dt: N::Interval) -> Option<N::Ratio> {
+        self.predicted_variance_ratio_over(dt, None)
+    }
+
+    /// [`Self::predicted_variance_ratio`], with the span of `dt` alone
+    /// formed once for many filters ([`Self::span`]).
+    #[inline]
+    pub(crate) fn predicted_variance_ratio_over(
+        &self,
+        dt: N::Interval,
+        uncoasted: Option<&Span<N::Ratio>>,
+    ) -> Option<N::Ratio> {
         if self.phase != Phase::Tracking {
             return None;
         }
-        let span = Span::new(N::Ratio::from(self.coasted), N::Ratio::from(dt));
-        let p = predicted(&self.covariance, &span).0;
+        let p = predicted(&self.covariance, &self.span(dt, uncoasted)).0;
         p.is_valid().then_some(p)
+    }
+
+    /// The span of an update `dt` from now: `uncoasted` (the span of `dt`
+    /// alone, `Span::new(0, dt)`, which a track table forms once per scan)
+    /// when nothing was coasted, else formed here.
+    #[inline(always)]
+    fn span(&self, dt: N::Interval, uncoasted: Option<&Span<N::Ratio>>) -> Span<N::Ratio> {
+        match uncoasted {
+            Some(span) if self.coasted == N::Interval::ZERO => *span,
+            _ => Span::new(N::Ratio::from(self.coasted), N::Ratio::from(dt)),
+        }
     }
 
     /// Incorporates measurement `z`, taken `dt` after the previous call,
@@ -142,6 +163,18 @@ impl<N: Numeric, const D: usize> AutoFilter<N, D> {
         noise: &SharedNoise<N>,
         z: [N::Length; D],
         dt: N::Interval,
+    ) -> Result<AutoUpdate, FilterError> {
+        self.update_over(noise, z, dt, None)
+    }
+
+    /// [`Self::update`], with the span of `dt` alone formed once for many
+    /// filters ([`Self::span`]).
+    pub(crate) fn update_over(
+        &mut self,
+        noise: &SharedNoise<N>,
+        z: [N::Length; D],
+        dt: N::Interval,
+        uncoasted: Option<&Span<N::Ratio>>,
     ) -> Result<AutoUpdate, FilterError> {
         let mut guard = N::Guard::default();
         for v in &z {
@@ -185,9 +218,9 @@ impl<N: Numeric, const D: usize> AutoFilter<N, D> {
         }
         // The gains depend on the covariance alone: formed first, so that
         // each axis is predicted, corrected and its ν²/S taken in one pass.
-        let span = Span::new(N::Ratio::from(self.coasted), N::Ratio::from(dt));
+        let span = self.span(dt, uncoasted);
         let bounds = noise.bounds();
-        let step = covariance_step_or_restart(&self.covariance, &span, N::Ratio::ONE, bounds);
+        let step = covariance_step_or_restart(&self.covariance, &span, None, bounds);
         let (alpha, rate) = (N::gain(step.gains.alpha), N::Rate::from(step.gains.rate));
         let mut position = self.position;
         let mut velocity = self.velocity;

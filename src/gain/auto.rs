@@ -227,7 +227,7 @@ pub struct AutoGains<N: Numeric, const D: usize> {
 /// The per-interval terms shared by the axes: τ (the next interval plus the
 /// time coasted), τ³, 1.5τ², 3τ, the fading weight min(τ/8 s, ½), and the
 /// update's own interval T.
-#[derive(Clone, Copy)]
+#[derive(Debug, Clone, Copy, PartialEq)]
 pub(crate) struct Span<R> {
     tau: R,
     cube: R,
@@ -302,6 +302,20 @@ pub(crate) struct CovarianceStep<N: Numeric> {
     pub(crate) matched: bool,
 }
 
+/// The measurement variance over σ² of a covariance step: `None` is 1
+/// (the fused filter's, whose σ is the sensor's), which takes no product.
+pub(crate) type VarianceRatio<R> = Option<R>;
+
+/// `v`·`r` (`v` itself when `r` is 1).
+#[inline(always)]
+fn scaled_by<R: Real>(v: R, r: VarianceRatio<R>) -> R {
+    // A match, not `map_or`, which opt-level "s" leaves as a call.
+    match r {
+        Some(r) => v * r,
+        None => v,
+    }
+}
+
 /// One Kalman update of the normalised covariance `a` for measurement
 /// variance ratio `r` (R/σ²): the gains, 1/S̃ and P⁺, or `None` when the
 /// covariance left the number format. One division (1/S̃); no libm.
@@ -309,11 +323,11 @@ pub(crate) struct CovarianceStep<N: Numeric> {
 pub(crate) fn covariance_step<N: Numeric>(
     a: &AutoAxis<N>,
     s: &Span<N::Ratio>,
-    r: N::Ratio,
+    r: VarianceRatio<N::Ratio>,
 ) -> Option<CovarianceStep<N>> {
     let one = N::Ratio::ONE;
     let (pxx, pxv, pvv) = predicted(a, s);
-    let inverse = one / (pxx + r);
+    let inverse = one / (pxx + r.unwrap_or(one));
     let alpha = pxx * inverse;
     let mut rate = pxv * inverse;
     // Inside the stability triangle (β < 2(2 − α)) whatever the rounding.
@@ -325,7 +339,7 @@ pub(crate) fn covariance_step<N: Numeric>(
         rate = limit / s.interval;
     }
     let mut velocity = pvv - rate * pxv;
-    let (position, cross) = (alpha * r, rate * r);
+    let (position, cross) = (scaled_by(alpha, r), scaled_by(rate, r));
     if velocity * position <= cross * cross {
         // Rounding left P⁺ not positive definite (its determinant is
         // det P⁻·r/S > 0 exactly): the smallest p̃_vv that keeps it so.
@@ -359,7 +373,7 @@ pub(crate) fn covariance_step<N: Numeric>(
 pub(crate) fn covariance_step_or_restart<N: Numeric>(
     a: &AutoAxis<N>,
     s: &Span<N::Ratio>,
-    r: N::Ratio,
+    r: VarianceRatio<N::Ratio>,
     bounds: (N::Ratio, N::Ratio),
 ) -> CovarianceStep<N> {
     if let Some(step) = covariance_step(a, s, r) {
@@ -367,9 +381,9 @@ pub(crate) fn covariance_step_or_restart<N: Numeric>(
     }
     let start = two_point::<N>(s.tau, bounds.1);
     let start = AutoAxis {
-        position: start.position * r,
-        cross: start.cross * r,
-        velocity: start.velocity * r,
+        position: scaled_by(start.position, r),
+        cross: scaled_by(start.cross, r),
+        velocity: scaled_by(start.velocity, r),
         ..start
     };
     covariance_step(&start, &Span::new(N::Ratio::ZERO, s.interval), r).unwrap_or_else(|| {
@@ -459,7 +473,7 @@ fn step_axis<N: Numeric>(
     bounds: (N::Ratio, N::Ratio),
     cap: N::Ratio,
 ) -> Result<Gains<N>, ScheduleError> {
-    let step = covariance_step_or_restart(a, s, r, bounds);
+    let step = covariance_step_or_restart(a, s, Some(r), bounds);
     *a = step.next;
     if step.matched {
         match_manoeuvre(a, capped_nis(nu, step.inverse, cap), s, bounds);

@@ -8,8 +8,19 @@ use super::model::{
 use super::numeric::TrackNumeric;
 use crate::filter::auto::{AutoFilter, AutoUpdate};
 use crate::filter::FilterError;
+use crate::gain::auto::Span;
 use crate::gain::AutoGains;
 use crate::num::{Numeric, Quantity, Real};
+
+/// A scan's interval as the default track uses it: the interval and
+/// `auto`'s per-interval terms of it alone (τ³, 1.5τ², 3τ, the fading
+/// weight), formed once per scan and used by every track that coasted
+/// nothing since its last update.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct AutoStep<S: TrackNumeric> {
+    interval: ScanInterval<S>,
+    span: Span<S::Ratio>,
+}
 
 /// `Params` is the `auto` schedule as configured ([`AutoGains`]; its σ
 /// and manoeuvre bounds, [`AutoGains::shared_noise`]). The gate is the
@@ -19,14 +30,18 @@ use crate::num::{Numeric, Quantity, Real};
 /// the other Cartesian tracks.
 impl<S: TrackNumeric> TrackFilter<S> for AutoFilter<S, 2> {
     type Params = AutoGains<S, 2>;
-    type Step = ScanInterval<S>;
+    type Step = AutoStep<S>;
 
-    fn step(_: &Self::Params, interval: &ScanInterval<S>) -> Result<ScanInterval<S>, FilterError> {
-        Ok(*interval)
+    fn step(_: &Self::Params, interval: &ScanInterval<S>) -> Result<AutoStep<S>, FilterError> {
+        let seconds = <S as Numeric>::Ratio::from(interval.interval());
+        Ok(AutoStep {
+            interval: *interval,
+            span: Span::new(<S as Numeric>::Ratio::ZERO, seconds),
+        })
     }
 
-    fn interval_of(step: &ScanInterval<S>) -> &ScanInterval<S> {
-        step
+    fn interval_of(step: &AutoStep<S>) -> &ScanInterval<S> {
+        &step.interval
     }
 
     fn empty(_: &Self::Params) -> Self {
@@ -37,31 +52,29 @@ impl<S: TrackNumeric> TrackFilter<S> for AutoFilter<S, 2> {
         &mut self,
         params: &Self::Params,
         z: &Observation<S>,
-        step: &ScanInterval<S>,
+        step: &AutoStep<S>,
     ) -> Result<(), FilterError> {
-        let mut filter = *self;
-        match filter.update(&params.shared_noise(), z.xy(), step.interval())? {
+        // In place: an `Err` and a skip change nothing.
+        let noise = params.shared_noise();
+        match self.update_over(&noise, z.xy(), step.interval.interval(), Some(&step.span))? {
             // The table never offers a measurement that close (it skips the
             // whole scan): refused as an interval outside the filter's.
             AutoUpdate::Skipped => Err(FilterError::InvalidInterval),
-            _ => {
-                *self = filter;
-                Ok(())
-            }
+            _ => Ok(()),
         }
     }
 
-    fn coast(&mut self, _: &Self::Params, step: &ScanInterval<S>) -> Result<(), FilterError> {
-        AutoFilter::coast(self, step.interval())
+    fn coast(&mut self, _: &Self::Params, step: &AutoStep<S>) -> Result<(), FilterError> {
+        AutoFilter::coast(self, step.interval.interval())
     }
 
     fn predict(
         &self,
         _: &Self::Params,
-        step: &ScanInterval<S>,
+        step: &AutoStep<S>,
     ) -> Result<PredictedState<S>, FilterError> {
         Ok(PredictedState {
-            position: AutoFilter::predict(self, step.interval())?,
+            position: AutoFilter::predict(self, step.interval.interval())?,
             velocity: AutoFilter::velocity(self),
         })
     }
@@ -74,12 +87,8 @@ impl<S: TrackNumeric> TrackFilter<S> for AutoFilter<S, 2> {
         AutoFilter::velocity(self)
     }
 
-    fn predicted_variance_ratio(
-        &self,
-        _: &Self::Params,
-        step: &ScanInterval<S>,
-    ) -> Option<S::Ratio> {
-        AutoFilter::predicted_variance_ratio(self, step.interval())
+    fn predicted_variance_ratio(&self, _: &Self::Params, step: &AutoStep<S>) -> Option<S::Ratio> {
+        self.predicted_variance_ratio_over(step.interval.interval(), Some(&step.span))
     }
 
     /// α for a scan 1 s ahead (this signature has no interval); the table
@@ -93,10 +102,10 @@ impl<S: TrackNumeric> TrackFilter<S> for AutoFilter<S, 2> {
         &self,
         _: &Self::Params,
         predicted: &PredictedState<S>,
-        step: &ScanInterval<S>,
+        step: &AutoStep<S>,
         gate: &Gate<S>,
     ) -> Option<GateRegion<S>> {
-        let p = AutoFilter::predicted_variance_ratio(self, step.interval())?;
+        let p = self.predicted_variance_ratio_over(step.interval.interval(), Some(&step.span))?;
         let radius = match *gate {
             Gate::Uncertainty {
                 measurement_sigma,
@@ -109,7 +118,7 @@ impl<S: TrackNumeric> TrackFilter<S> for AutoFilter<S, 2> {
                     threshold,
                     <S as Numeric>::Acceleration::ZERO,
                     p,
-                    step,
+                    &step.interval,
                 )
             }
             Gate::Wave {
@@ -120,7 +129,7 @@ impl<S: TrackNumeric> TrackFilter<S> for AutoFilter<S, 2> {
                 range_sigma,
                 bearing_sigma,
                 multiple,
-                self.next_alpha(step.interval()),
+                self.next_alpha(step.interval.interval()),
                 predicted.position,
             ),
         };

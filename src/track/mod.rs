@@ -122,6 +122,7 @@ mod pregate;
 mod table;
 
 pub use adapters::{RangeAzimuthTrack, ScheduledTrack};
+pub use auto::AutoStep;
 pub use cluster::PAIRS_PER_MEASUREMENT;
 pub use config::{TrackerConfig, Volume};
 pub use gate::{hypot, BoundingBox, ConfigError, Gate, GateRegion, PolarWindow};
