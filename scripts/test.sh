@@ -9,7 +9,8 @@
 #      builds it),
 #   3. (in a lane beside step 2) the library alone (no default features) for the three thumb targets
 #      in one clippy pass with its no-panic lints, on the minimum Rust
-#      version declared in Cargo.toml (cargo +MSRV check), its dependency
+#      version declared in Cargo.toml (cargo +MSRV check, with the
+#      firmware's binaries), its dependency
 #      tree (no firmware crates), and the package as crates.io gets it
 #      (`cargo publish --dry-run --no-verify`, then the unpacked package
 #      checked: the verification build without its code generation, which
@@ -436,14 +437,24 @@ soak_fuzz_nrf() {
     step "nRF52840-DK demo build (boards/nrf52840-dk: defmt-rtt, probe-rs runner, flip-link)" build_nrf52840_dk
 }
 
+# The library alone (no default features), then the firmware's binaries
+# and examples, on the minimum Rust version, for the M4F (one target
+# directory: the two share their dependencies' builds).
+check_on_msrv() {
+    cargo "+$(msrv)" check -p abtrack --lib --no-default-features \
+        --target thumbv7em-none-eabihf --target-dir target/msrv &&
+        cargo "+$(msrv)" check -p abtrack-firmware --bins --examples \
+            --target thumbv7em-none-eabihf --target-dir target/msrv
+}
+
 # Lane 7: the library's host-side checks, each in its own target directory
 # (under target/) so that no lane waits for another's build lock: its doc
 # examples run and examples/ built in one pass (one build of the library for
 # both; the test profile, with overflow checks, and no link-time
 # optimisation to wait for), then examples/tcas_cycle.rs run; the documentation docs.rs builds
 # (all features, the host target) with no rustdoc warning (broken intra-doc
-# links among them); the library on its minimum Rust version (Cargo.toml
-# `rust-version`).
+# links among them); the library and the firmware on their minimum Rust
+# version (Cargo.toml `rust-version`).
 library_on_the_host() {
     local host_triple
     host_triple=$(rustc -vV | sed -n 's/^host: //p')
@@ -455,9 +466,8 @@ library_on_the_host() {
     step "library: cargo doc, no warnings" in_host_tests env RUSTDOCFLAGS="-D warnings" \
         cargo doc --manifest-path ../Cargo.toml -p abtrack --lib --no-deps --all-features \
         --target-dir ../target/doc-check
-    step "library on its minimum Rust version $(msrv) (cargo +$(msrv) check)" \
-        cargo "+$(msrv)" check -p abtrack --lib --no-default-features \
-        --target thumbv7em-none-eabihf --target-dir target/msrv
+    step "library and firmware on their minimum Rust version $(msrv) (cargo +$(msrv) check)" \
+        check_on_msrv
 }
 
 in_parallel emulated_images stack_marks fault_injection_mps2_an386 fault_injection_mps2_an385 \
