@@ -1,15 +1,21 @@
 //! The host tools (replay, simulate, frames, bench_report, firmware-check,
-//! the Monte Carlo runner) as a user runs them and on their library side.
+//! the Monte Carlo runner) as a user runs them and on their library side
+//! (scenarios, noise, metrics, the reference Kalman filters, tables).
 
 mod bench_report;
 mod firmware_check;
 mod frames;
+mod kalman;
+mod metrics;
 mod monte_carlo;
+mod noise;
 mod replay;
 mod replay_filters;
 mod replay_tracker;
+mod scenario;
 mod shell;
 mod simulate;
+mod tables;
 
 use std::path::PathBuf;
 use std::process::Command as Process;
