@@ -1275,7 +1275,7 @@ pub fn replay_range_azimuth_in<S: CsvValue>(
         let residual = match outcome {
             RangeAzimuthOutcome::Filtered(innovation) if event.used() => {
                 // The same products the filter formed for its measurement.
-                let (sin_b, cos_b) = azimuth.sin_cos();
+                let (sin_b, cos_b) = S::sin_cos(azimuth);
                 let measured = [range * sin_b, range * cos_b];
                 Some([
                     measured[0] - innovation.predicted[0],

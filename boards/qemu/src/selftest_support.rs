@@ -97,7 +97,7 @@ pub trait TestScalar: Scalar + defmt::Format {
 impl TestScalar for f64 {
     const HUGE: f64 = 1.7e308;
     // libm's sincos is within 1 ulp (≤ 2⁻⁵³ for |v| < 1); two for margin.
-    const SIN_COS_ERROR: f64 = 2.0 * <f64 as Scalar>::UNIT_ROUNDOFF;
+    const SIN_COS_ERROR: f64 = 2.0 * <f64 as abtrack::Quantity>::UNIT_ROUNDOFF;
     fn bits(self) -> u64 {
         self.to_bits()
     }
@@ -108,7 +108,7 @@ impl TestScalar for f32 {
     // The table sine's bound for |θ| ≤ 2π, plus the rounding to f32 (half
     // an ulp, ≤ 2⁻²⁴ for |v| ≤ 1).
     const SIN_COS_ERROR: f64 =
-        abtrack::num::sine::SIN_COS_F32_MAX_ERROR + <f32 as Scalar>::UNIT_ROUNDOFF;
+        abtrack::num::sine::SIN_COS_F32_MAX_ERROR + <f32 as abtrack::Quantity>::UNIT_ROUNDOFF;
     fn bits(self) -> u64 {
         self.to_bits() as u64
     }
