@@ -438,16 +438,6 @@ impl std::fmt::Display for Unused {
     }
 }
 
-/// A number type the table runs in here: a [`abtrack::Numeric`] whose lengths
-/// and speeds print as decimals (f64, f32, Q32.32 and the fast fixed point
-/// each in its own shortest exact form).
-pub trait TableNumeric:
-    abtrack::Numeric<Length: std::fmt::Display, Speed: std::fmt::Display>
-{
-}
-
-impl<S: abtrack::Numeric<Length: std::fmt::Display, Speed: std::fmt::Display>> TableNumeric for S {}
-
 /// One scan in the table's number type.
 struct ScanInput<'a, S: abtrack::Numeric> {
     /// Line of the scan's first row (0 for an added empty scan).
@@ -875,7 +865,7 @@ fn run_fixed32(options: &TrackerOptions, data: &Recording) -> Result<TrackerRepl
 }
 
 /// The x/y table: the default filter, or `--schedule`'s.
-fn run_cartesian<S: TableNumeric>(
+fn run_cartesian<S: abtrack::Numeric<Length: std::fmt::Display, Speed: std::fmt::Display>>(
     options: &TrackerOptions,
     prepared: &Prepared<'_, S>,
     threat: Option<ThreatCells<'_, S>>,
@@ -923,7 +913,10 @@ pub fn with_lifecycle<S: abtrack::Numeric, P: Copy>(
     Ok(config)
 }
 
-fn by_capacity<S: TableNumeric, F: TrackFilter<S>>(
+fn by_capacity<
+    S: abtrack::Numeric<Length: std::fmt::Display, Speed: std::fmt::Display>,
+    F: TrackFilter<S>,
+>(
     options: &TrackerOptions,
     config: &TrackerConfig<S, F::Params>,
     prepared: &Prepared<'_, S>,
@@ -965,7 +958,11 @@ fn log_scan(log: &mut String, t_text: &str, codes: &[Association], report: &Scan
     );
 }
 
-fn run_scans<S: TableNumeric, F: TrackFilter<S>, const N: usize>(
+fn run_scans<
+    S: abtrack::Numeric<Length: std::fmt::Display, Speed: std::fmt::Display>,
+    F: TrackFilter<S>,
+    const N: usize,
+>(
     config: &TrackerConfig<S, F::Params>,
     prepared: &Prepared<'_, S>,
     threat: Option<ThreatCells<'_, S>>,
