@@ -18,7 +18,7 @@
 use abtrack::filter::altitude::{AltitudeQuantum, AltitudeTrackerConfig};
 use abtrack::filter::range_azimuth::{RangeAzimuthFilter, RangeAzimuthNoise};
 use abtrack::tcas::{Advisory, CollisionAvoidance, IntruderTrack, OwnAircraft, Reply};
-use abtrack::{Scalar, ScaledScalar};
+use abtrack::{Quantity, Real, ScaledScalar};
 
 /// The Cortex-M3's type for the TCAS logic (boards/qemu/src/number_types.rs,
 /// `without_fpu::TableScalar`); `f32` on the Cortex-M4F.

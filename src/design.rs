@@ -43,7 +43,7 @@
 //!
 //! ```
 //! use abtrack::design::{kalata_gains, tracking_index};
-//! use abtrack::{Fix, Scalar};
+//! use abtrack::{Fix, Quantity};
 //! // Radar σ = 25 m, targets manoeuvre with σ_a ≈ 3 m/s², one scan per 2 s:
 //! let lambda = tracking_index(3.0, 25.0, 2.0)?; // Λ = 3·2²/25 = 0.48
 //! assert!((lambda - 0.48).abs() < 1e-15);

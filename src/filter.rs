@@ -39,7 +39,7 @@
 //!   an update whose arithmetic saturates (fixed point) or overflows (floats):
 //!   it is counted in [`KinematicFilter::saturations`] and discarded.
 
-use crate::num::{AddProduct, Checked, Guard, Numeric, Quantity, SubGuarded};
+use crate::num::{AddProduct, Numeric, Quantity};
 
 pub use crate::gains::{GainError, Gains};
 
@@ -450,7 +450,7 @@ impl<N: Numeric, const ORDER: usize> KinematicFilter<N, ORDER> {
         let p = self.extrapolate(terms, &mut guard);
         p.position.check_output(&mut guard);
         p.velocity.check_output(&mut guard);
-        if guard.passed() {
+        if N::passed(&guard) {
             Ok(p)
         } else {
             Err(FilterError::Saturated)
@@ -602,7 +602,7 @@ pub(crate) fn outcome<N: Numeric>(
 }
 
 /// The update of `D` axes that share one phase, all or nothing: every
-/// axis is computed first, the results are checked once (one [`Guard`]),
+/// axis is computed first, the results are checked once (one [`Numeric::Guard`]),
 /// and only then written. A refusal leaves every axis bit-identical, except
 /// that a saturation is counted once, on the first axis.
 #[inline(always)]
@@ -632,7 +632,7 @@ fn update_axes_each<N: Numeric, const ORDER: usize, const D: usize>(
     macro_rules! unrolled {
         ($(($axis:ident, $z:ident, $step:ident, $f:ident)),+) => {{
             $(let $f = $axis.filtered(*$z, $step, &mut guard);)+
-            if !guard.passed() {
+            if !N::passed(&guard) {
                 return Err(refuse(axes, &z));
             }
             $($axis.commit(&$f);)+
@@ -649,7 +649,7 @@ fn update_axes_each<N: Numeric, const ORDER: usize, const D: usize>(
             for (((slot, axis), z), step) in next.iter_mut().zip(all.iter()).zip(z).zip(steps) {
                 *slot = axis.filtered(z, step, &mut guard);
             }
-            if !guard.passed() {
+            if !N::passed(&guard) {
                 return Err(refuse(axes, &z));
             }
             for (axis, f) in axes.iter_mut().zip(next.iter()) {
@@ -750,7 +750,7 @@ fn coast_axes<N: Numeric, const ORDER: usize, const D: usize>(
                 p.position.check_output(&mut guard);
                 p.velocity.check_output(&mut guard);
             }
-            if !guard.passed() {
+            if !N::passed(&guard) {
                 return Err(refuse(axes, &[N::Length::ZERO; D]));
             }
             for (axis, p) in axes.iter_mut().zip(next) {
@@ -950,7 +950,7 @@ impl<N: Numeric, const ORDER: usize, const D: usize> Cartesian<N, ORDER, D> {
             p.velocity.check_output(&mut guard);
             p
         });
-        (out, guard.passed())
+        (out, N::passed(&guard))
     }
 
     /// Coasts every axis (no measurement this scan), all or nothing.

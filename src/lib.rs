@@ -37,4 +37,4 @@ pub mod track;
 pub mod wire;
 
 pub use filter::{AlphaBeta, AlphaBetaGamma, Cartesian, FilterError, GainError, Gains};
-pub use num::{Fix, Fixed32, NumError, Numeric, Quantity, Scalar, ScaledScalar};
+pub use num::{AddProduct, Fix, Fixed32, NumError, Numeric, Quantity, Real, Scalar, ScaledScalar};

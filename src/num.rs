@@ -1,17 +1,24 @@
-//! The numeric representations. [`Numeric`] is a number system with one
-//! type per quantity ([`numeric`]); [`Scalar`] is a single type used for
-//! every quantity (`f64`, `f32` and the Q32.32 fixed point [`Fix`]), which
-//! implements [`Numeric`] through a blanket implementation; [`Fixed32`]
-//! ([`fixed32`]) is the fast fixed point, with a 32-bit format per quantity.
-//! This is the only module that knows how a number is stored; every filter,
-//! schedule and tracker is generic over it. The formats, the envelope and
-//! how to port code are in `docs/numerics-fixed-point.md`.
+//! The numeric representations, and the five number traits ([`numeric`]):
+//!
+//! | trait | its job |
+//! |---|---|
+//! | [`Quantity`] | one physical quantity's value: conversions, validity, its report to the hot path's guard |
+//! | [`Real`] | a dimensionless number: ×, ÷, √, ratios, hypot |
+//! | [`Numeric`] | a number system: a type per quantity, their algebra, the track table's few extra operations |
+//! | [`AddProduct`] | the hot path's operator, `q + a·b` rounded once |
+//! | [`Scalar`] | one type for every quantity (`f64`, `f32`, Q32.32 [`Fix`], [`ScaledScalar`]) |
+//!
+//! [`Fixed32`] ([`fixed32`]) is the fast fixed point, a [`Numeric`] with a
+//! 32-bit format per quantity. This is the only module that knows how a
+//! number is stored; every filter, schedule and tracker is generic over it.
+//! The formats, the envelope and how to port code are in
+//! `docs/numerics-fixed-point.md`.
 //!
 //! # Invalid values
 //!
 //! Every representation has values that mean "this computation left the
 //! representable range": NaN and ±∞ for the floats, the two saturation
-//! sentinels [`Fix::MAX`]/[`Fix::MIN`] for fixed point. [`Scalar::is_valid`]
+//! sentinels [`Fix::MAX`]/[`Fix::MIN`] for fixed point. [`Quantity::is_valid`]
 //! tells them apart from ordinary numbers, and both kinds are *sticky*: any
 //! arithmetic with an invalid operand gives an invalid result, so a filter
 //! checks its outputs once instead of every intermediate product. Filters refuse
@@ -58,7 +65,7 @@ pub mod scaled_scalar;
 pub mod sine;
 
 pub use fixed32::Fixed32;
-pub use numeric::{AddProduct, Checked, Guard, Numeric, Quantity, Real, SubGuarded};
+pub use numeric::{AddProduct, Numeric, Quantity, Real};
 pub use scaled_scalar::ScaledScalar;
 
 /// Why a value from outside could not be converted into a [`Scalar`].
@@ -82,105 +89,38 @@ impl fmt::Display for NumError {
 
 impl core::error::Error for NumError {}
 
-/// A number type the filters can run in: `f64`, `f32` or [`Fix`].
+/// One type for every quantity (`f64`, `f32`, [`Fix`], [`ScaledScalar`]):
+/// a [`Real`] that is its own [`Numeric`] (every quantity, the polar
+/// scalar, the covariance number: the type itself), so that code whose
+/// quantities span decades in one variable (the TCAS logic, the scan loop)
+/// names one type. Holds only what the other traits do not: the
+/// arctangent, the hot path guard's running check, and two conversions.
 ///
 /// The arithmetic operators never panic. Results that leave the representable
 /// range are invalid values (see the module docs) that propagate through later
-/// operations and are detected with [`Scalar::is_valid`].
+/// operations and are detected with [`Quantity::is_valid`].
 pub trait Scalar:
-    Copy
-    + Default
-    + PartialEq
-    + PartialOrd
-    + fmt::Debug
-    + Add<Output = Self>
-    + Sub<Output = Self>
-    + Mul<Output = Self>
-    + Div<Output = Self>
-    + Neg<Output = Self>
-    + Send
-    + Sync
-    + 'static
-    + numeric::MaybeFormat
+    Real<Guard = numeric::ScalarGuard<Self>>
+    + Numeric<
+        Length = Self,
+        Speed = Self,
+        Acceleration = Self,
+        Interval = Self,
+        IntervalSquared = Self,
+        Ratio = Self,
+        Gain = Self,
+        Rate = Self,
+        RateSquared = Self,
+        Angle = Self,
+        Guard = numeric::ScalarGuard<Self>,
+        Polar = Self,
+        CircleScale = Self,
+        Variance = Self,
+        GridScale = Self,
+    >
 {
-    /// Short name for reports: "f64", "f32", "q32".
-    const NAME: &'static str;
-    /// Zero.
-    const ZERO: Self;
-    /// One.
-    const ONE: Self;
-
-    /// Rounding model, used by the error budget ([`crate::budget`]): a rounded
-    /// `+` or `−` errs by at most `UNIT_ROUNDOFF·|exact result|`; a rounded `×`
-    /// or `÷` by at most `UNIT_ROUNDOFF·|exact result| + ABS_RESOLUTION`; a
-    /// conversion from `f64` by at most `UNIT_ROUNDOFF·|v| + ABS_RESOLUTION/2`.
-    /// Floats: unit roundoff 2⁻ᵖ (p = significand bits) and the smallest
-    /// subnormal (underflow). Fixed point: exact `+ −`, 2⁻³² per `× ÷`.
-    const UNIT_ROUNDOFF: f64;
-    /// See [`Scalar::UNIT_ROUNDOFF`].
-    const ABS_RESOLUTION: f64;
-
-    /// Converts an outside value, refusing NaN, infinities and values beyond
-    /// the representable range. Use this at the edges (wire, CSV, constructors).
-    fn try_from_f64(v: f64) -> Result<Self, NumError>;
-
-    /// Converts a constant: rounds to nearest, out-of-range values become
-    /// invalid values. Meant for literals such as 0.5 in generic code.
-    fn from_f64_lossy(v: f64) -> Self;
-
-    /// The value as `f64` (exact for every format; a sentinel gives ±∞).
-    fn to_f64(self) -> f64;
-
-    /// False for NaN, ±∞ and the fixed-point saturation sentinels.
-    fn is_valid(self) -> bool;
-
-    /// Absolute value (sticky for invalid values).
-    fn abs(self) -> Self;
-
-    /// Square root; invalid for a negative argument.
-    fn sqrt(self) -> Self;
-
-    /// (sin θ, cos θ) for θ in radians.
-    fn sin_cos(self) -> (Self, Self);
-
     /// Four-quadrant arctangent of `self / x`, in (−π, π].
     fn atan2(self, x: Self) -> Self;
-
-    /// The smaller of two valid values.
-    #[inline]
-    fn min_of(self, other: Self) -> Self {
-        if other < self {
-            other
-        } else {
-            self
-        }
-    }
-
-    /// The larger of two valid values.
-    #[inline]
-    fn max_of(self, other: Self) -> Self {
-        if other > self {
-            other
-        } else {
-            self
-        }
-    }
-
-    /// √(a² + b²) without forming a² (positions up to 4·10⁵ m would
-    /// overflow Q32.32 when squared): the larger magnitude times
-    /// √(1 + k²), k ≤ 1. An invalid argument gives an invalid result (the
-    /// comparisons are arranged so NaN and the saturation sentinels
-    /// propagate). [`ScaledScalar`] overrides it with one root of the
-    /// squared mantissas. Called through [`hypot`].
-    fn hypot_pair(self, other: Self) -> Self {
-        let (a, b) = (self.abs(), other.abs());
-        let (large, small) = if a >= b { (a, b) } else { (b, a) };
-        if large == Self::ZERO {
-            return small; // zero, or an invalid value that propagates
-        }
-        let k = small / large;
-        large * (Self::ONE + k * k).sqrt()
-    }
 
     /// Each of `values` divided by `divisor`. A format with
     /// [`Quantity::RELATIVE_PRECISION`] forms one reciprocal and a product
@@ -196,30 +136,6 @@ pub trait Scalar:
         } else {
             values.map(|v| v / divisor)
         }
-    }
-
-    /// √(a² + b² + c²) with one square root (two hypots would take two):
-    /// the largest magnitude times √(1 + k₁² + k₂²), k₁, k₂ ≤ 1, so nothing
-    /// is squared beyond 3. Invalid arguments give an invalid result, as in
-    /// [`Scalar::hypot_pair`]; [`ScaledScalar`] overrides it with one root
-    /// of the squared mantissas. Called through [`Real::hypot3`].
-    fn hypot_triple(self, b: Self, c: Self) -> Self {
-        let (a, b, c) = (self.abs(), b.abs(), c.abs());
-        if !(a.is_valid() && b.is_valid() && c.is_valid()) {
-            return a + b + c;
-        }
-        let (large, m1, m2) = if a >= b && a >= c {
-            (a, b, c)
-        } else if b >= c {
-            (b, a, c)
-        } else {
-            (c, a, b)
-        };
-        if large == Self::ZERO {
-            return large;
-        }
-        let (k1, k2) = (m1 / large, m2 / large);
-        large * (Self::ONE + k1 * k1 + k2 * k2).sqrt()
     }
 
     /// Folds `value` into the running check of the hot path's guard
@@ -243,34 +159,6 @@ pub trait Scalar:
     #[allow(clippy::eq_op)] // the subtraction of equal operands is the test
     fn check_passed(check: Self) -> bool {
         check - check == Self::ZERO
-    }
-
-    /// [`Scalar::is_valid`] and > 0: the filters' test of an interval
-    /// (`f32` overrides it with one integer compare).
-    #[inline]
-    fn is_valid_and_positive(self) -> bool {
-        self.is_valid() && self > Self::ZERO
-    }
-
-    /// [`Quantity::seconds_from_ms`] (whose implementation for a `Scalar`
-    /// is this): `ms / 1000` rounded to nearest, through `f64` by default;
-    /// `f32` divides in `f32` and [`ScaledScalar`] its integers.
-    #[inline]
-    fn seconds_from_ms(ms: u32) -> Self {
-        Self::from_f64_lossy(f64::from(ms) / 1000.0)
-    }
-
-    /// `numerator / denominator` rounded once ([`numeric::Real::from_ratio`],
-    /// whose implementation for a `Scalar` is this; invalid for a zero
-    /// denominator): through `f64` by default; `f32` divides in `f32` when
-    /// both are exact there (≤ 2²⁴), the same value, since `f64` rounding
-    /// first is innocuous for a quotient (53 ≥ 2·24 + 2 bits).
-    #[inline]
-    fn from_ratio(numerator: u64, denominator: u64) -> Self {
-        if denominator == 0 {
-            return Self::from_f64_lossy(f64::NAN);
-        }
-        Self::from_f64_lossy(numerator as f64 / denominator as f64)
     }
 
     /// `self·scale` rounded half away from zero to an integer, saturated to
@@ -336,12 +224,11 @@ fn round_scaled_f32(v: f32, scale: u32) -> i32 {
     }
 }
 
-impl Scalar for f64 {
-    const NAME: &'static str = "f64";
+impl Quantity for f64 {
     const ZERO: Self = 0.0;
-    const ONE: Self = 1.0;
     const UNIT_ROUNDOFF: f64 = f64::EPSILON / 2.0; // 2⁻⁵³
     const ABS_RESOLUTION: f64 = f64::from_bits(1); // 2⁻¹⁰⁷⁴
+    numeric::scalar_quantity_items!();
 
     fn try_from_f64(v: f64) -> Result<Self, NumError> {
         if v.is_finite() {
@@ -366,26 +253,30 @@ impl Scalar for f64 {
     fn abs(self) -> Self {
         libm::fabs(self)
     }
+}
+
+impl Real for f64 {
+    const ONE: Self = 1.0;
+    numeric::scalar_real_items!();
+
     #[inline]
     fn sqrt(self) -> Self {
         libm::sqrt(self)
     }
-    #[inline]
-    fn sin_cos(self) -> (Self, Self) {
-        libm::sincos(self)
-    }
+}
+
+impl Scalar for f64 {
     #[inline]
     fn atan2(self, x: Self) -> Self {
         libm::atan2(self, x)
     }
 }
 
-impl Scalar for f32 {
-    const NAME: &'static str = "f32";
+impl Quantity for f32 {
     const ZERO: Self = 0.0;
-    const ONE: Self = 1.0;
     const UNIT_ROUNDOFF: f64 = f32::EPSILON as f64 / 2.0; // 2⁻²⁴
     const ABS_RESOLUTION: f64 = f32::from_bits(1) as f64; // 2⁻¹⁴⁹
+    numeric::scalar_quantity_items!();
 
     fn try_from_f64(v: f64) -> Result<Self, NumError> {
         if !v.is_finite() {
@@ -407,21 +298,6 @@ impl Scalar for f32 {
         ms as f32 / 1000.0
     }
     #[inline]
-    fn from_ratio(numerator: u64, denominator: u64) -> Self {
-        // Integers up to 2²⁴ are exact in f32; u32 (not u64) converts in
-        // one instruction on an FPU.
-        const EXACT: u32 = 1 << 24;
-        match (u32::try_from(numerator), u32::try_from(denominator)) {
-            _ if denominator == 0 => f32::NAN,
-            (Ok(n @ ..=EXACT), Ok(d @ ..=EXACT)) => n as f32 / d as f32,
-            _ => (numerator as f64 / denominator as f64) as f32,
-        }
-    }
-    #[inline]
-    fn round_scaled_i32(self, scale: u32) -> i32 {
-        round_scaled_f32(self, scale)
-    }
-    #[inline]
     fn to_f64(self) -> f64 {
         self as f64
     }
@@ -433,15 +309,41 @@ impl Scalar for f32 {
     fn abs(self) -> Self {
         libm::fabsf(self)
     }
+
+    /// Finite and > 0 exactly when the IEEE 754 word is in
+    /// `1..=0x7F7F_FFFF` (sign clear, not zero, exponent field not all
+    /// ones): one integer compare instead of a soft-float comparison.
+    #[inline]
+    fn is_valid_and_positive(self) -> bool {
+        self.to_bits().wrapping_sub(1) < 0x7F7F_FFFF
+    }
+}
+
+impl Real for f32 {
+    const ONE: Self = 1.0;
+    numeric::scalar_real_items!();
+
+    #[inline]
+    fn from_ratio(numerator: u64, denominator: u64) -> Self {
+        // Integers up to 2²⁴ are exact in f32; u32 (not u64) converts in
+        // one instruction on an FPU.
+        const EXACT: u32 = 1 << 24;
+        match (u32::try_from(numerator), u32::try_from(denominator)) {
+            _ if denominator == 0 => f32::NAN,
+            (Ok(n @ ..=EXACT), Ok(d @ ..=EXACT)) => n as f32 / d as f32,
+            _ => (numerator as f64 / denominator as f64) as f32,
+        }
+    }
     #[inline]
     fn sqrt(self) -> Self {
         libm::sqrtf(self)
     }
-    /// The table sine of the exact binary angle ([`sine::sin_cos_f32`]):
-    /// no double-precision arithmetic, which libm's `sincosf` uses.
+}
+
+impl Scalar for f32 {
     #[inline]
-    fn sin_cos(self) -> (Self, Self) {
-        sine::sin_cos_f32(self)
+    fn round_scaled_i32(self, scale: u32) -> i32 {
+        round_scaled_f32(self, scale)
     }
     #[inline]
     fn atan2(self, x: Self) -> Self {
@@ -467,14 +369,6 @@ impl Scalar for f32 {
         } else {
             f32_check::passed_bits(check)
         }
-    }
-
-    /// Finite and > 0 exactly when the IEEE 754 word is in
-    /// `1..=0x7F7F_FFFF` (sign clear, not zero, exponent field not all
-    /// ones): one integer compare instead of a soft-float comparison.
-    #[inline]
-    fn is_valid_and_positive(self) -> bool {
-        self.to_bits().wrapping_sub(1) < 0x7F7F_FFFF
     }
 }
 
@@ -526,10 +420,10 @@ pub mod f32_check {
     }
 }
 
-/// √(a² + b²) without overflow on the way ([`Scalar::hypot_pair`]).
+/// √(a² + b²) without overflow on the way ([`Real::hypot`]).
 #[inline]
 pub fn hypot<S: Scalar>(a: S, b: S) -> S {
-    a.hypot_pair(b)
+    Real::hypot(a, b)
 }
 
 /// Azimuth of (x, y), clockwise from the y axis, in [0, 2π).
@@ -703,15 +597,27 @@ impl Neg for Fix {
     }
 }
 
-impl Scalar for Fix {
-    const NAME: &'static str = "q32";
+impl Fix {
+    /// (sin θ, cos θ) by CORDIC in integer arithmetic ([`cordic`]): any
+    /// angle, error at most [`cordic::SIN_COS_MAX_ERROR`] (2⁻³²). A
+    /// sentinel gives sentinels. [`Numeric::sin_cos`] of `Fix`.
+    pub(crate) fn sin_cos_cordic(self) -> (Self, Self) {
+        if self.is_sentinel() {
+            return (Fix::MAX, Fix::MAX);
+        }
+        let (s, c) = cordic::sin_cos_bits(self.to_bits());
+        (Fix::from_bits(s), Fix::from_bits(c))
+    }
+}
+
+impl Quantity for Fix {
     const ZERO: Self = Fix(I32F32::ZERO);
-    const ONE: Self = Fix(I32F32::ONE);
     // `fixed` multiplies with an arithmetic shift (rounds toward −∞) and
     // divides with truncation: either way the error is below one step 2⁻³².
     // Conversions from f64 round to nearest (half a step).
     const UNIT_ROUNDOFF: f64 = 0.0;
     const ABS_RESOLUTION: f64 = 1.0 / 4_294_967_296.0; // 2⁻³²
+    numeric::scalar_quantity_items!();
 
     fn try_from_f64(v: f64) -> Result<Self, NumError> {
         if !v.is_finite() {
@@ -759,6 +665,11 @@ impl Scalar for Fix {
             Fix(self.0.abs())
         }
     }
+}
+
+impl Real for Fix {
+    const ONE: Self = Fix(I32F32::ONE);
+    numeric::scalar_real_items!();
 
     fn sqrt(self) -> Self {
         if self.is_sentinel() {
@@ -769,24 +680,16 @@ impl Scalar for Fix {
             None => Fix::MAX,
         }
     }
+}
 
+impl Scalar for Fix {
     #[inline]
     fn accumulate_check(check: Self, value: Self) -> Self {
         if !check.is_sentinel() && !value.is_sentinel() {
-            <Fix as Scalar>::ZERO
+            <Fix as Quantity>::ZERO
         } else {
             Fix::MAX
         }
-    }
-
-    /// CORDIC in integer arithmetic ([`cordic`]): any angle, error at most
-    /// [`cordic::SIN_COS_MAX_ERROR`] (2⁻³²). A sentinel gives sentinels.
-    fn sin_cos(self) -> (Self, Self) {
-        if self.is_sentinel() {
-            return (Fix::MAX, Fix::MAX);
-        }
-        let (s, c) = cordic::sin_cos_bits(self.to_bits());
-        (Fix::from_bits(s), Fix::from_bits(c))
     }
 
     /// CORDIC in integer arithmetic ([`cordic`]): result in (−π, π],

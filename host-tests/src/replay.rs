@@ -551,33 +551,13 @@ pub struct Replayed {
 }
 
 /// A [`Scalar`] that can be written to the output CSV.
-pub trait CsvValue: Scalar {
-    fn write_csv(self, out: &mut String);
-}
-
-impl CsvValue for f64 {
+pub trait CsvValue: Scalar + std::fmt::Display {
     fn write_csv(self, out: &mut String) {
         let _ = write!(out, "{self}");
     }
 }
 
-impl CsvValue for f32 {
-    fn write_csv(self, out: &mut String) {
-        let _ = write!(out, "{self}");
-    }
-}
-
-impl CsvValue for Fix {
-    fn write_csv(self, out: &mut String) {
-        let _ = write!(out, "{self}");
-    }
-}
-
-impl CsvValue for ScaledScalar {
-    fn write_csv(self, out: &mut String) {
-        let _ = write!(out, "{self}");
-    }
-}
+impl<S: Scalar + std::fmt::Display> CsvValue for S {}
 
 /// Any finite value (estimates with no envelope of their own).
 pub const FINITE: Limit = Limit::symmetric(f64::MAX);
@@ -1275,7 +1255,7 @@ pub fn replay_range_azimuth_in<S: CsvValue>(
         let residual = match outcome {
             RangeAzimuthOutcome::Filtered(innovation) if event.used() => {
                 // The same products the filter formed for its measurement.
-                let (sin_b, cos_b) = azimuth.sin_cos();
+                let (sin_b, cos_b) = S::sin_cos(azimuth);
                 let measured = [range * sin_b, range * cos_b];
                 Some([
                     measured[0] - innovation.predicted[0],

@@ -65,7 +65,6 @@ use abtrack::track::defaults::{
     Coverage, DefaultCartesianTrack, DefaultPolarTrack, DerivedParameters, SensorAccuracy,
     TrackerDesign,
 };
-use abtrack::track::TrackNumeric;
 use abtrack::track::{
     Association, DropReason, Measurement, Observation, RejectReason, ScanReport, ScheduledTrack,
     TrackFilter, TrackTable, TrackerConfig,
@@ -439,15 +438,8 @@ impl std::fmt::Display for Unused {
     }
 }
 
-/// A number type the table runs in here: a [`TrackNumeric`] whose lengths
-/// and speeds print as decimals (f64, f32, Q32.32 and the fast fixed point
-/// each in its own shortest exact form).
-pub trait TableNumeric: TrackNumeric<Length: std::fmt::Display, Speed: std::fmt::Display> {}
-
-impl<S: TrackNumeric<Length: std::fmt::Display, Speed: std::fmt::Display>> TableNumeric for S {}
-
 /// One scan in the table's number type.
-struct ScanInput<'a, S: TrackNumeric> {
+struct ScanInput<'a, S: abtrack::Numeric> {
     /// Line of the scan's first row (0 for an added empty scan).
     line: usize,
     /// The time as written (or, for an added empty scan, from the clock).
@@ -712,7 +704,7 @@ pub fn with_large_stack<T: Send>(f: impl FnOnce() -> T + Send) -> T {
 
 /// The file's scans on the table's clock, with empty scans added for gaps
 /// (module docs), in `S`.
-fn clocked_scans<'a, S: TrackNumeric>(
+fn clocked_scans<'a, S: abtrack::Numeric>(
     scans: &'a [FileScan<'a>],
     period_s: f64,
 ) -> Result<(Vec<ScanInput<'a, S>>, usize), ReplayError> {
@@ -779,14 +771,14 @@ fn clock_text(first_t: f64, ms: u32) -> String {
 }
 
 /// A file's scans, ready for the table: the design and the clocked scans.
-struct Prepared<'a, S: TrackNumeric> {
+struct Prepared<'a, S: abtrack::Numeric> {
     design: DesignUsed,
     inputs: Vec<ScanInput<'a, S>>,
     added: usize,
     polar: bool,
 }
 
-fn prepare<'a, S: TrackNumeric>(
+fn prepare<'a, S: abtrack::Numeric>(
     options: &TrackerOptions,
     data: &'a Recording,
     scans: &'a [FileScan<'a>],
@@ -873,7 +865,7 @@ fn run_fixed32(options: &TrackerOptions, data: &Recording) -> Result<TrackerRepl
 }
 
 /// The x/y table: the default filter, or `--schedule`'s.
-fn run_cartesian<S: TableNumeric>(
+fn run_cartesian<S: abtrack::Numeric<Length: std::fmt::Display, Speed: std::fmt::Display>>(
     options: &TrackerOptions,
     prepared: &Prepared<'_, S>,
     threat: Option<ThreatCells<'_, S>>,
@@ -900,7 +892,7 @@ fn run_cartesian<S: TableNumeric>(
 }
 
 /// `--confirm` and `--delete` applied to `config`.
-pub fn with_lifecycle<S: TrackNumeric, P: Copy>(
+pub fn with_lifecycle<S: abtrack::Numeric, P: Copy>(
     config: TrackerConfig<S, P>,
     options: &TrackerOptions,
 ) -> Result<TrackerConfig<S, P>, ReplayError> {
@@ -921,7 +913,10 @@ pub fn with_lifecycle<S: TrackNumeric, P: Copy>(
     Ok(config)
 }
 
-fn by_capacity<S: TableNumeric, F: TrackFilter<S>>(
+fn by_capacity<
+    S: abtrack::Numeric<Length: std::fmt::Display, Speed: std::fmt::Display>,
+    F: TrackFilter<S>,
+>(
     options: &TrackerOptions,
     config: &TrackerConfig<S, F::Params>,
     prepared: &Prepared<'_, S>,
@@ -963,7 +958,11 @@ fn log_scan(log: &mut String, t_text: &str, codes: &[Association], report: &Scan
     );
 }
 
-fn run_scans<S: TableNumeric, F: TrackFilter<S>, const N: usize>(
+fn run_scans<
+    S: abtrack::Numeric<Length: std::fmt::Display, Speed: std::fmt::Display>,
+    F: TrackFilter<S>,
+    const N: usize,
+>(
     config: &TrackerConfig<S, F::Params>,
     prepared: &Prepared<'_, S>,
     threat: Option<ThreatCells<'_, S>>,

@@ -19,7 +19,7 @@ use crate::gain::auto::{
     capped_nis, covariance_step_or_restart, match_manoeuvre, mean_over_axes, predicted, two_point,
     AutoAxis, SharedNoise, Span,
 };
-use crate::num::{AddProduct, Checked, Guard, Numeric, Quantity, Real, SubGuarded};
+use crate::num::{AddProduct, Numeric, Quantity, Real};
 
 /// What [`AutoFilter::update`] did.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -115,7 +115,7 @@ impl<N: Numeric, const D: usize> AutoFilter<N, D> {
             *x = x.add_product(*v, dt, &mut guard);
             x.check_output(&mut guard);
         }
-        if guard.passed() {
+        if N::passed(&guard) {
             Ok(out)
         } else {
             Err(FilterError::Saturated)
@@ -180,7 +180,7 @@ impl<N: Numeric, const D: usize> AutoFilter<N, D> {
         for v in &z {
             v.check_input(&mut guard);
         }
-        if !guard.passed() {
+        if !N::passed(&guard) {
             return Err(FilterError::InvalidMeasurement);
         }
         if self.phase == Phase::Empty {
@@ -206,7 +206,7 @@ impl<N: Numeric, const D: usize> AutoFilter<N, D> {
                 *v = difference / tau;
                 v.check_output(&mut guard);
             }
-            if !guard.passed() {
+            if !N::passed(&guard) {
                 return Err(FilterError::Saturated);
             }
             self.position = z;
@@ -244,7 +244,7 @@ impl<N: Numeric, const D: usize> AutoFilter<N, D> {
             x.check_output(&mut guard);
             v.check_output(&mut guard);
         }
-        if !guard.passed() {
+        if !N::passed(&guard) {
             return Err(FilterError::Saturated);
         }
         let mut covariance = step.next;

@@ -19,7 +19,7 @@
 //! A fixed-format word equal to `i32::MIN` or `i32::MAX` is a saturation
 //! sentinel (invalid), as for Q32.32. The operators are sticky: an invalid
 //! operand or a result out of range gives a sentinel. The guarded operations
-//! of the filters' hot path ([`AddProduct`], [`SubGuarded`]) instead form
+//! of the filters' hot path ([`AddProduct`], [`Quantity::sub_guarded`]) instead form
 //! the whole `q + a·b` in 64 bits, round the product once (to nearest) and
 //! raise the [`Fixed32Guard`]'s flag if the result does not fit.
 
@@ -28,9 +28,11 @@ use core::ops::{Add, Div, Mul, Neg, Sub};
 
 use fixed::types::{I14F18, I20F12, I4F28, I8F24};
 
-use super::numeric::{AddProduct, Checked, Guard, Numeric, Quantity, SubGuarded};
+use super::numeric::{AddProduct, Numeric, Quantity};
 use super::scaled::{isqrt_u64, unit, Scaled};
 use super::NumError;
+use crate::track::numeric::fixed as fixed_track;
+use crate::track::numeric::{FixedGridScale, FixedVariance};
 
 /// Dimensionless gains and ratios.
 pub type Ratio = Scaled<unit::One>;
@@ -79,9 +81,9 @@ pub struct Fixed32Guard {
 impl Fixed32Guard {
     /// `wide` as a word; marks the guard when it does not fit an `i32`
     /// (the high word is not the low word's sign extension). A result that
-    /// fits but is a sentinel is caught by [`Checked::check_output`].
+    /// fits but is a sentinel is caught by [`Quantity::check_output`].
     #[inline(always)]
-    fn narrow(&mut self, wide: i64) -> i32 {
+    pub(crate) fn narrow(&mut self, wide: i64) -> i32 {
         let low = wide as i32;
         let high = (wide >> 32) as i32;
         self.bad |= (high ^ (low >> 31)) as u32;
@@ -92,8 +94,14 @@ impl Fixed32Guard {
     /// `i32::MAX` exactly for the two sentinels, and adding one then sets
     /// the sign bit.
     #[inline(always)]
-    fn reject_sentinel(&mut self, bits: i32) {
+    pub(crate) fn reject_sentinel(&mut self, bits: i32) {
         self.bad |= ((bits ^ (bits >> 31)).wrapping_add(1) as u32) >> 31;
+    }
+
+    /// Marks the guard if `invalid`.
+    #[inline(always)]
+    pub(crate) fn reject_if(&mut self, invalid: bool) {
+        self.bad |= u32::from(invalid);
     }
 
     /// `wide / 2^shift` rounded to nearest for the hot path's products by a
@@ -110,9 +118,11 @@ impl Fixed32Guard {
     }
 }
 
-impl Guard for Fixed32Guard {
+impl Fixed32Guard {
+    /// True when every value reported to the guard is valid and every
+    /// result fitted its word ([`Numeric::passed`] of [`Fixed32`]).
     #[inline]
-    fn passed(&self) -> bool {
+    pub fn passed(&self) -> bool {
         self.bad == 0
     }
 }
@@ -310,6 +320,7 @@ macro_rules! fixed_quantity {
             const ZERO: Self = $name(0);
             const UNIT_ROUNDOFF: f64 = 0.0;
             const ABS_RESOLUTION: f64 = 1.0 / (1u64 << $frac) as f64;
+            type Guard = Fixed32Guard;
 
             fn try_from_f64(v: f64) -> Result<Self, NumError> {
                 if !v.is_finite() {
@@ -362,9 +373,7 @@ macro_rules! fixed_quantity {
                     $name(shift_round(i64::from(self.0), 1) as i32)
                 }
             }
-        }
 
-        impl Checked<Fixed32Guard> for $name {
             #[inline(always)]
             fn check_input(self, guard: &mut Fixed32Guard) {
                 guard.reject_sentinel(self.0);
@@ -373,9 +382,6 @@ macro_rules! fixed_quantity {
             fn check_output(self, guard: &mut Fixed32Guard) {
                 guard.reject_sentinel(self.0);
             }
-        }
-
-        impl SubGuarded<Fixed32Guard> for $name {
             #[inline(always)]
             fn sub_guarded(self, b: Self, guard: &mut Fixed32Guard) -> Self {
                 $name(guard.narrow(i64::from(self.0).wrapping_sub(i64::from(b.0))))
@@ -407,7 +413,7 @@ macro_rules! fixed_times_fixed {
             }
         }
 
-        impl AddProduct<$a, $b, Fixed32Guard> for $out {
+        impl AddProduct<$a, $b> for $out {
             #[inline(always)]
             fn add_product(self, a: $a, b: $b, guard: &mut Fixed32Guard) -> $out {
                 let product = wide_mul(a.0, b.0);
@@ -444,7 +450,7 @@ macro_rules! fixed_times_scaled {
             }
         }
 
-        impl AddProduct<$a, $b, Fixed32Guard> for $out {
+        impl AddProduct<$a, $b> for $out {
             #[inline(always)]
             fn add_product(self, a: $a, b: $b, guard: &mut Fixed32Guard) -> $out {
                 let product = wide_mul(a.mantissa(), b.0);
@@ -482,7 +488,7 @@ impl Mul<IntervalSquared> for Acceleration {
     }
 }
 
-impl AddProduct<Acceleration, IntervalSquared, Fixed32Guard> for Length {
+impl AddProduct<Acceleration, IntervalSquared> for Length {
     #[inline(always)]
     fn add_product(self, a: Acceleration, b: IntervalSquared, guard: &mut Fixed32Guard) -> Length {
         let product = wide_mul(b.mantissa(), a.0);
@@ -651,6 +657,16 @@ impl Numeric for Fixed32 {
     type RateSquared = RateSquared;
     type Angle = Angle;
     type Guard = Fixed32Guard;
+    type Polar = f32;
+    type CircleScale = ();
+    type Variance = FixedVariance;
+    type GridScale = FixedGridScale;
+    const GRID_SCALE_ZERO: FixedGridScale = FixedGridScale::ZERO;
+
+    #[inline]
+    fn passed(guard: &Fixed32Guard) -> bool {
+        guard.passed()
+    }
 
     /// Table and Taylor correction on the binary angle ([`super::sine`]):
     /// within [`super::sine::SIN_COS_MAX_ERROR_Q31`]·2⁻³¹ of the sine and
@@ -693,5 +709,45 @@ impl Numeric for Fixed32 {
         let square = |v: i32| u64::from(v.unsigned_abs()).wrapping_mul(u64::from(v.unsigned_abs()));
         let sum = square(a.0).wrapping_add(square(b.0));
         Length(saturate(isqrt_u64(sum) as i64))
+    }
+
+    fn circle_scale(radius: Length) -> Option<()> {
+        fixed_track::circle_scale(radius)
+    }
+
+    fn circle_cost(dx: Length, dy: Length, radius: Length, scale: ()) -> Option<u16> {
+        fixed_track::circle_cost(dx, dy, radius, scale)
+    }
+
+    fn grid_scale(min: Length, max: Length, cells: u16) -> FixedGridScale {
+        fixed_track::grid_scale(min, max, cells)
+    }
+
+    fn grid_cell(v: Length, min: Length, max: Length, scale: FixedGridScale) -> u32 {
+        fixed_track::grid_cell(v, min, max, scale)
+    }
+
+    fn length_to_polar(v: Length) -> f32 {
+        fixed_track::length_to_polar(v)
+    }
+
+    fn length_from_polar(v: f32) -> Length {
+        fixed_track::length_from_polar(v)
+    }
+
+    fn ratio_to_polar(v: Ratio) -> f32 {
+        fixed_track::ratio_to_polar(v)
+    }
+
+    fn ratio_from_polar(v: f32) -> Ratio {
+        fixed_track::ratio_from_polar(v)
+    }
+
+    fn to_variance(r: Ratio) -> FixedVariance {
+        FixedVariance::from_fixed_ratio(r)
+    }
+
+    fn from_variance(v: FixedVariance) -> Ratio {
+        v.to_fixed_ratio()
     }
 }

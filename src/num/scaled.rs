@@ -705,9 +705,11 @@ scaled_unit_ops! {
 
 impl<U: fmt::Debug + Copy + Default + PartialEq + Send + Sync + 'static> Quantity for Scaled<U>
 where
-    Scaled<U>: super::numeric::MaybeFormat,
+    Scaled<U>: super::numeric::sealed::MaybeFormat,
 {
     const ZERO: Self = Self::ZERO_VALUE;
+    /// The fast fixed point's: these are its wide quantities.
+    type Guard = super::fixed32::Fixed32Guard;
     /// One unit of the last place of a 31-bit mantissa (module docs).
     const UNIT_ROUNDOFF: f64 = 1.0 / (1u64 << 30) as f64;
     /// Flush to zero below 2^(EXPONENT_MIN + 30) (2⁻¹⁷⁰).
@@ -773,6 +775,26 @@ where
         } else {
             self
         }
+    }
+
+    /// Flags the invalid value.
+    #[inline(always)]
+    fn check_input(self, guard: &mut Self::Guard) {
+        guard.reject_if(self.is_invalid());
+    }
+
+    /// Flags the invalid value.
+    #[inline(always)]
+    fn check_output(self, guard: &mut Self::Guard) {
+        guard.reject_if(self.is_invalid());
+    }
+
+    /// The rounded difference; flags an invalid result.
+    #[inline(always)]
+    fn sub_guarded(self, b: Self, guard: &mut Self::Guard) -> Self {
+        let difference = self - b;
+        guard.reject_if(difference.is_invalid());
+        difference
     }
 
     #[inline]

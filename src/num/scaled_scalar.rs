@@ -13,7 +13,7 @@ use super::fixed32::{self, Fixed32, Ratio};
 use super::numeric::{Numeric, Quantity, Real};
 use super::{NumError, Scalar};
 
-/// Largest error of [`Scalar::sin_cos`] of a [`ScaledScalar`] angle with
+/// Largest error of [`Numeric::sin_cos`] of a [`ScaledScalar`] angle with
 /// |θ| ≤ 2π, each component: the table sine's
 /// [`super::sine::SIN_COS_MAX_ERROR_Q31`] units of 2⁻³¹, one more for the
 /// rounding to a 31-bit mantissa, and the conversion to a binary angle
@@ -110,15 +110,23 @@ impl Neg for ScaledScalar {
     }
 }
 
-impl Scalar for ScaledScalar {
-    const NAME: &'static str = "scaled";
+impl ScaledScalar {
+    /// [`Fixed32`]'s table sine of the angle's binary-angle form
+    /// ([`super::sine`]): [`Numeric::sin_cos`] of `ScaledScalar`.
+    pub(crate) fn sin_cos_table(self) -> (Self, Self) {
+        let (s, c) = <Fixed32 as Numeric>::sin_cos(self.0.cast());
+        (ScaledScalar(s), ScaledScalar(c))
+    }
+}
+
+impl Quantity for ScaledScalar {
     const ZERO: Self = ScaledScalar(<Ratio as Quantity>::ZERO);
-    const ONE: Self = ScaledScalar(<Ratio as Real>::ONE);
     /// One unit of the last place of a 31-bit mantissa for sums (products,
     /// quotients and roots are within half of it).
     const UNIT_ROUNDOFF: f64 = <Ratio as Quantity>::UNIT_ROUNDOFF;
     /// Results below 2⁻¹⁷⁰ flush to zero.
     const ABS_RESOLUTION: f64 = <Ratio as Quantity>::ABS_RESOLUTION;
+    super::numeric::scalar_quantity_items!();
 
     fn try_from_f64(v: f64) -> Result<Self, NumError> {
         Ratio::try_from_f64(v).map(ScaledScalar)
@@ -129,8 +137,7 @@ impl Scalar for ScaledScalar {
         ScaledScalar(Ratio::from_f64_lossy(v))
     }
 
-    /// [`Quantity::seconds_from_ms`] of the wide format: an integer
-    /// division, no `f64`.
+    /// The wide format's: an integer division, no `f64`.
     #[inline]
     fn seconds_from_ms(ms: u32) -> Self {
         ScaledScalar(<Ratio as Quantity>::seconds_from_ms(ms))
@@ -150,19 +157,33 @@ impl Scalar for ScaledScalar {
     fn abs(self) -> Self {
         ScaledScalar(self.0.abs())
     }
+}
+
+impl Real for ScaledScalar {
+    const ONE: Self = ScaledScalar(<Ratio as Real>::ONE);
+    super::numeric::scalar_real_items!();
 
     #[inline]
     fn sqrt(self) -> Self {
         ScaledScalar(Real::sqrt(self.0))
     }
 
-    /// [`Fixed32`]'s table sine of the angle's binary-angle form
-    /// ([`super::sine`]).
-    fn sin_cos(self) -> (Self, Self) {
-        let (s, c) = <Fixed32 as Numeric>::sin_cos(self.0.cast());
-        (ScaledScalar(s), ScaledScalar(c))
+    /// One square root of the sum of the squared mantissas
+    /// ([`Real::hypot`] of [`Scaled`](super::scaled::Scaled)).
+    #[inline]
+    fn hypot(self, other: Self) -> Self {
+        ScaledScalar(Real::hypot(self.0, other.0))
     }
 
+    /// One square root of the three squared mantissas ([`Real::hypot3`] of
+    /// [`Scaled`](super::scaled::Scaled)).
+    #[inline]
+    fn hypot3(self, b: Self, c: Self) -> Self {
+        ScaledScalar(Real::hypot3(self.0, b.0, c.0))
+    }
+}
+
+impl Scalar for ScaledScalar {
     /// CORDIC in vectoring mode ([`super::cordic`]) on the two mantissas
     /// aligned to the larger exponent: within 2⁻³² rad plus the rounding to
     /// a 31-bit mantissa.
@@ -182,19 +203,5 @@ impl Scalar for ScaledScalar {
         };
         let angle = super::cordic::atan2_bits(word(y), word(x));
         ScaledScalar(Ratio::from_wide(angle, -32))
-    }
-
-    /// One square root of the sum of the squared mantissas
-    /// ([`Real::hypot`] of [`Scaled`](super::scaled::Scaled)).
-    #[inline]
-    fn hypot_pair(self, other: Self) -> Self {
-        ScaledScalar(Real::hypot(self.0, other.0))
-    }
-
-    /// One square root of the three squared mantissas ([`Real::hypot3`] of
-    /// [`Scaled`](super::scaled::Scaled)).
-    #[inline]
-    fn hypot_triple(self, b: Self, c: Self) -> Self {
-        ScaledScalar(Real::hypot3(self.0, b.0, c.0))
     }
 }

@@ -40,7 +40,6 @@ use super::model::{
     uncertainty_region, wave_radius, Measurement, Observation, PredictedState, ScanInterval,
     TrackFilter, Uncertainty,
 };
-use super::numeric::TrackNumeric;
 use crate::filter::range_azimuth::{
     azimuth_of, CovarianceFactor, RangeAzimuthFilter, RangeAzimuthNoise,
 };
@@ -62,7 +61,7 @@ fn kind_of<N: Numeric>(outcome: &UpdateOutcome<N>) -> Option<UpdateKind> {
 
 /// One second: the interval [`TrackFilter::gate_alpha`] assumes (its
 /// signature has none).
-fn one_second<S: TrackNumeric>() -> Option<ScanInterval<S>> {
+fn one_second<S: Numeric>() -> Option<ScanInterval<S>> {
     ScanInterval::from_ms(1000)
 }
 
@@ -113,12 +112,12 @@ fn filter_error(e: ScheduledError) -> FilterError {
 /// coasts until the table deletes it for its misses.
 #[derive(Debug, Clone, Copy, PartialEq)]
 #[cfg_attr(feature = "defmt", derive(defmt::Format))]
-pub struct ScheduledTrack<S: TrackNumeric, G> {
+pub struct ScheduledTrack<S: Numeric, G> {
     filter: ScheduledFilter<S, G, 2, 2>,
     uncertainty: [Uncertainty<S::Variance>; 2],
 }
 
-impl<S: TrackNumeric, G: GainSchedule<S, 2>> ScheduledTrack<S, G> {
+impl<S: Numeric, G: GainSchedule<S, 2>> ScheduledTrack<S, G> {
     /// The filter with its schedule.
     pub fn filter(&self) -> &ScheduledFilter<S, G, 2, 2> {
         &self.filter
@@ -174,7 +173,7 @@ impl<S: TrackNumeric, G: GainSchedule<S, 2>> ScheduledTrack<S, G> {
     }
 }
 
-impl<S: TrackNumeric, G: GainSchedule<S, 2>> TrackFilter<S> for ScheduledTrack<S, G> {
+impl<S: Numeric, G: GainSchedule<S, 2>> TrackFilter<S> for ScheduledTrack<S, G> {
     type Params = G;
     type Step = ScanInterval<S>;
 

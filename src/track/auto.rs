@@ -5,7 +5,6 @@ use super::gate::{Gate, GateRegion};
 use super::model::{
     uncertainty_region, wave_radius, Observation, PredictedState, ScanInterval, TrackFilter,
 };
-use super::numeric::TrackNumeric;
 use crate::filter::auto::{AutoFilter, AutoUpdate};
 use crate::filter::FilterError;
 use crate::gain::auto::Span;
@@ -28,7 +27,7 @@ pub struct AutoStep<S: TrackNumeric> {
 /// allowance on top (the manoeuvre is in p̃⁻ already), [`Gate::Wave`] with
 /// the α the update would use. A track with one point has no gate, as
 /// the other Cartesian tracks.
-impl<S: TrackNumeric> TrackFilter<S> for AutoFilter<S, 2> {
+impl<S: Numeric> TrackFilter<S> for AutoFilter<S, 2> {
     type Params = AutoGains<S, 2>;
     type Step = AutoStep<S>;
 

@@ -2,19 +2,18 @@
 //! deletion and surveillance volume.
 
 use super::gate::{non_negative, ConfigError, Gate};
-use super::numeric::TrackNumeric;
-use crate::num::Quantity;
+use crate::num::{Numeric, Quantity};
 
 /// Axis-aligned surveillance region (m). Tracks whose position leaves it are
 /// deleted; measurements outside it do not start tracks.
 #[derive(Debug, Clone, Copy, PartialEq)]
 #[cfg_attr(feature = "defmt", derive(defmt::Format))]
-pub struct Volume<S: TrackNumeric> {
+pub struct Volume<S: Numeric> {
     min: [S::Length; 2],
     max: [S::Length; 2],
 }
 
-impl<S: TrackNumeric> Volume<S> {
+impl<S: Numeric> Volume<S> {
     /// The box `min ..= max` on each axis; needs min < max.
     pub fn new(min: [S::Length; 2], max: [S::Length; 2]) -> Result<Self, ConfigError> {
         for (lo, hi) in min.iter().zip(max.iter()) {
@@ -61,7 +60,7 @@ impl<S: TrackNumeric> Volume<S> {
 /// can be built by a `const fn` in a `static` (the checked constructors here
 /// cannot be `const`).
 #[derive(Debug, Clone, Copy, PartialEq)]
-pub struct TrackerConfig<S: TrackNumeric, P> {
+pub struct TrackerConfig<S: Numeric, P> {
     params: P,
     gate: Gate<S>,
     max_speed: S::Speed,
@@ -73,7 +72,7 @@ pub struct TrackerConfig<S: TrackNumeric, P> {
     volume: Option<Volume<S>>,
 }
 
-impl<S: TrackNumeric, P: Copy> TrackerConfig<S, P> {
+impl<S: Numeric, P: Copy> TrackerConfig<S, P> {
     /// `params` for the filters, the gate rule, and the largest target speed
     /// (m/s) for two-point initiation: a measurement pairs with one of the
     /// previous scan only if they are at most `max_speed·T` apart.

@@ -109,8 +109,7 @@ use crate::filter::auto::AutoFilter;
 use crate::filter::range_azimuth::RangeAzimuthNoise;
 use crate::gain::al_wagih::{least_squares_alpha, LeastSquaresConfig};
 use crate::gain::{AutoConfig, AutoGains};
-use crate::num::{Quantity, Scalar};
-use crate::track::TrackNumeric;
+use crate::num::{Numeric, Quantity, Scalar};
 
 /// Fraction of a missed detection's probability allowed for a true
 /// measurement falling outside its gate (rule 1).
@@ -484,7 +483,7 @@ impl TrackerDesign {
 
     /// The lifecycle part shared by every filter: gate, initiation,
     /// confirmation, deletion, volume.
-    fn config_with<S: TrackNumeric, P: Copy>(
+    fn config_with<S: Numeric, P: Copy>(
         &self,
         params: P,
         measurement_sigma: f64,
@@ -512,7 +511,7 @@ impl TrackerDesign {
     /// parameters of the caller's choice (e.g. fixed gains or another
     /// schedule): the uncertainty gate for σ_max (rule 3), so a Cartesian
     /// filter of either sensor.
-    pub fn tracker_config<S: TrackNumeric, P: Copy>(
+    pub fn tracker_config<S: Numeric, P: Copy>(
         &self,
         params: P,
     ) -> Result<TrackerConfig<S, P>, ConfigError> {
@@ -527,7 +526,7 @@ impl TrackerDesign {
     /// the sensor's σ (for a polar sensor, σ_max: the conversion to x, y is
     /// then covered everywhere, at the cost of gates as wide across range as
     /// at the edge of the region), and the lifecycle of the module docs.
-    pub fn cartesian_config<S: TrackNumeric>(
+    pub fn cartesian_config<S: Numeric>(
         &self,
     ) -> Result<TrackerConfig<S, AutoGains<S, 2>>, ConfigError> {
         let d = self.derive()?;
@@ -571,8 +570,7 @@ impl TrackerDesign {
 
 /// [`TrackerDesign::NOMINAL_RADAR`]'s Cartesian tracker (see the module
 /// docs): the configuration `replay --tracker` uses for `t,x,y` input.
-pub fn default_cartesian<S: TrackNumeric>() -> Result<TrackerConfig<S, AutoGains<S, 2>>, ConfigError>
-{
+pub fn default_cartesian<S: Numeric>() -> Result<TrackerConfig<S, AutoGains<S, 2>>, ConfigError> {
     TrackerDesign::NOMINAL_RADAR.cartesian_config()
 }
 

@@ -16,14 +16,14 @@
 //! al., whose uncertainty differs along and across range). A filter chooses
 //! its region in [`TrackFilter::gate_region`](super::TrackFilter::gate_region).
 
-use super::numeric::{quantise_unit, TrackNumeric};
+use super::numeric::quantise_unit;
 use super::{Measurement, Observation};
-use crate::num::{Quantity, Scalar};
+use crate::num::{Numeric, Quantity, Scalar};
 
 /// The rule that sizes each track's gate.
 #[derive(Debug, Clone, Copy, PartialEq)]
 #[cfg_attr(feature = "defmt", derive(defmt::Format))]
-pub enum Gate<S: TrackNumeric> {
+pub enum Gate<S: Numeric> {
     /// A circle around the predicted position whose radius follows the
     /// filter's predicted uncertainty:
     ///
@@ -126,7 +126,7 @@ pub(super) fn non_negative<Q: Quantity>(v: Q) -> Result<Q, ConfigError> {
     }
 }
 
-impl<S: TrackNumeric> Gate<S> {
+impl<S: Numeric> Gate<S> {
     /// [`Gate::Uncertainty`], checked: σ > 0, G > 0, a_max ≥ 0.
     pub fn uncertainty(
         measurement_sigma: S::Length,
@@ -180,14 +180,14 @@ pub use crate::num::hypot;
 /// An axis-aligned box in x, y (m), boundaries included.
 #[derive(Debug, Clone, Copy, PartialEq)]
 #[cfg_attr(feature = "defmt", derive(defmt::Format))]
-pub struct BoundingBox<S: TrackNumeric> {
+pub struct BoundingBox<S: Numeric> {
     /// Lower corner (x, y) (m).
     pub min: [S::Length; 2],
     /// Upper corner (x, y) (m).
     pub max: [S::Length; 2],
 }
 
-impl<S: TrackNumeric> BoundingBox<S> {
+impl<S: Numeric> BoundingBox<S> {
     /// Inside or on the boundary.
     pub fn contains(&self, p: [S::Length; 2]) -> bool {
         p[0] >= self.min[0] && p[0] <= self.max[0] && p[1] >= self.min[1] && p[1] <= self.max[1]
@@ -196,7 +196,7 @@ impl<S: TrackNumeric> BoundingBox<S> {
 
 /// One track's validation region for one scan.
 #[derive(Debug, Clone, Copy, PartialEq)]
-pub enum GateRegion<S: TrackNumeric> {
+pub enum GateRegion<S: Numeric> {
     /// Points within the radius of `center` (Cartesian, metres).
     Circle {
         /// The predicted position (m).
@@ -204,7 +204,7 @@ pub enum GateRegion<S: TrackNumeric> {
         /// A half-width at least the radius (m): the radius itself, or,
         /// for a circle formed from its squared radius
         /// ([`GateRegion::scaled_circle`]), a bound the number system forms
-        /// without a square root ([`TrackNumeric::scaled_circle`]).
+        /// without a square root ([`Numeric::scaled_circle`]).
         reach: S::Length,
         /// What the number system keeps to test a point without a division
         /// (1/r² for floats, 1/r for Q32.32).
@@ -234,7 +234,7 @@ pub struct PolarWindow<S> {
     pub inverse_half_azimuth: S,
 }
 
-impl<S: TrackNumeric> GateRegion<S> {
+impl<S: Numeric> GateRegion<S> {
     /// A circle; `None` if the radius is not a valid number > 0 or the
     /// number system cannot prepare its test.
     pub fn circle(center: [S::Length; 2], radius: S::Length) -> Option<Self> {

@@ -85,7 +85,7 @@
 //!
 //! # Number systems
 //!
-//! The table runs in any [`TrackNumeric`]: `f64`, `f32`, Q32.32
+//! The table runs in any [`Numeric`](crate::Numeric): `f64`, `f32`, Q32.32
 //! ([`crate::Fix`]) and the fast fixed point
 //! ([`Fixed32`](crate::num::fixed32::Fixed32)), whose gate test and cost are
 //! exact integer arithmetic and whose covariance bookkeeping is
@@ -117,7 +117,7 @@ mod config;
 pub mod defaults;
 mod gate;
 mod model;
-mod numeric;
+pub(crate) mod numeric;
 mod pregate;
 mod table;
 
@@ -128,9 +128,9 @@ pub use config::{TrackerConfig, Volume};
 pub use gate::{hypot, BoundingBox, ConfigError, Gate, GateRegion, PolarWindow};
 pub use model::{
     ErrorVariance, FixedGainStep, FixedGainTrack, Measurement, Observation, PredictedState,
-    RejectReason, ScanInterval, TrackFilter, Uncertainty, VarianceNumber,
+    RejectReason, ScanInterval, TrackFilter, Uncertainty,
 };
-pub use numeric::{FixedGridScale, FixedVariance, TrackNumeric};
+pub use numeric::{FixedGridScale, FixedVariance};
 pub use table::{
     AnyPair, Association, DropReason, PairRule, ScanError, ScanReport, ScanStage, TableStats,
     Track, TrackId, TrackSlot, TrackStatus, TrackTable,

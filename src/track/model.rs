@@ -3,11 +3,10 @@
 //! implementation for the fixed-gain Cartesian αβ filter ([`FixedGainTrack`]).
 
 use super::gate::{Gate, GateRegion};
-use super::numeric::TrackNumeric;
 use crate::filter::{
     FilterError, Gains, IntervalTerms, KinematicFilter, Phase, StepGains, UpdateKind,
 };
-use crate::num::{Numeric, Quantity, Real, Scalar};
+use crate::num::{Numeric, Quantity, Real};
 
 /// One detection of one scan, as the sensor reports it. (The tags start at
 /// 1 so that an absent measurement, `None`, is zero bytes: a table's
@@ -16,7 +15,7 @@ use crate::num::{Numeric, Quantity, Real, Scalar};
 #[derive(Debug, Clone, Copy, PartialEq)]
 #[cfg_attr(feature = "defmt", derive(defmt::Format))]
 #[repr(u32)]
-pub enum Measurement<S: TrackNumeric> {
+pub enum Measurement<S: Numeric> {
     /// Position in the tracking plane (m).
     Cartesian {
         /// x (m).
@@ -55,14 +54,14 @@ pub enum RejectReason {
 /// A validated measurement with its Cartesian projection, computed once.
 #[derive(Debug, Clone, Copy, PartialEq)]
 #[cfg_attr(feature = "defmt", derive(defmt::Format))]
-pub struct Observation<S: TrackNumeric> {
+pub struct Observation<S: Numeric> {
     measurement: Measurement<S>,
     xy: [S::Length; 2],
 }
 
-impl<S: TrackNumeric> Observation<S> {
+impl<S: Numeric> Observation<S> {
     /// Checks the measurement and projects it to x, y (a polar one in the
-    /// number system's polar scalar, [`TrackNumeric::Polar`]).
+    /// number system's polar scalar, [`Numeric::Polar`]).
     pub fn new(measurement: Measurement<S>) -> Result<Self, RejectReason> {
         let xy = match measurement {
             Measurement::Cartesian { x, y } => [x, y],
@@ -74,7 +73,7 @@ impl<S: TrackNumeric> Observation<S> {
                     return Err(RejectReason::NegativeRange);
                 }
                 let r = S::length_to_polar(range);
-                let (sin_b, cos_b) = S::ratio_to_polar(azimuth).sin_cos();
+                let (sin_b, cos_b) = <S::Polar as Numeric>::sin_cos(S::ratio_to_polar(azimuth));
                 [
                     S::length_from_polar(r * sin_b),
                     S::length_from_polar(r * cos_b),
@@ -113,12 +112,12 @@ pub struct PredictedState<S: Numeric> {
 /// covariance bookkeeping's number of seconds, and T²/2 (the gate's
 /// manoeuvre allowance).
 #[derive(Debug, Clone, Copy, PartialEq)]
-pub struct ScanInterval<S: TrackNumeric> {
+pub struct ScanInterval<S: Numeric> {
     terms: IntervalTerms<S>,
     seconds: S::Variance,
 }
 
-impl<S: TrackNumeric> ScanInterval<S> {
+impl<S: Numeric> ScanInterval<S> {
     /// The interval of `ms` milliseconds (> 0); `None` if it is 0 or not
     /// representable.
     pub fn from_ms(ms: u32) -> Option<Self> {
@@ -159,7 +158,7 @@ impl<S: TrackNumeric> ScanInterval<S> {
 ///
 /// Contract (as for [`crate::filter`]): the step is for the time since the
 /// previous `update` or `coast`. An `Err` leaves the state untouched.
-pub trait TrackFilter<S: TrackNumeric>: Copy {
+pub trait TrackFilter<S: Numeric>: Copy {
     /// Configuration shared by every track.
     type Params: Copy;
     /// What every track's update needs of one scan's interval.
@@ -264,7 +263,7 @@ pub trait TrackFilter<S: TrackNumeric>: Copy {
 /// σ·√(G·(p + 1)) + ½·a_max·T². Without a manoeuvre allowance it is formed
 /// from its square σ²·G·(p + 1) ([`GateRegion::scaled_circle`]: no square
 /// root in floats).
-pub(super) fn uncertainty_region<S: TrackNumeric>(
+pub(super) fn uncertainty_region<S: Numeric>(
     center: [S::Length; 2],
     measurement_sigma: S::Length,
     threshold: S::Ratio,
@@ -282,7 +281,7 @@ pub(super) fn uncertainty_region<S: TrackNumeric>(
 
 /// Li et al. eqs. (11)–(12): the wave gate's radius κ·λ·√(Δρ² + ρ²Δθ²),
 /// λ = √α, ρ the range of the predicted `position`.
-pub(super) fn wave_radius<S: TrackNumeric>(
+pub(super) fn wave_radius<S: Numeric>(
     range_sigma: S::Length,
     bearing_sigma: S::Ratio,
     multiple: S::Ratio,
@@ -315,36 +314,7 @@ pub struct ErrorVariance<R> {
     pub p22: R,
 }
 
-/// The arithmetic the covariance bookkeeping needs: every [`Real`] (the
-/// ratios of every number system), and the fast fixed point's own
-/// [`FixedVariance`](super::FixedVariance).
-pub trait VarianceNumber:
-    Copy
-    + PartialEq
-    + core::fmt::Debug
-    + core::ops::Add<Output = Self>
-    + core::ops::Sub<Output = Self>
-    + core::ops::Mul<Output = Self>
-    + core::ops::Div<Output = Self>
-{
-    /// 0.
-    const ZERO: Self;
-    /// 1.
-    const ONE: Self;
-    /// False for NaN, ±∞ and saturated values.
-    fn is_valid(self) -> bool;
-}
-
-impl<R: Real> VarianceNumber for R {
-    const ZERO: Self = <R as Quantity>::ZERO;
-    const ONE: Self = <R as Real>::ONE;
-    #[inline]
-    fn is_valid(self) -> bool {
-        Quantity::is_valid(self)
-    }
-}
-
-impl<R: VarianceNumber> ErrorVariance<R> {
+impl<R: Real> ErrorVariance<R> {
     /// After two-point initialisation over interval T (Al-Wagih eq. 9):
     /// x = z₂ (variance 1), v = (z₂ − z₁)/T (variance 2/T²), and
     /// cov(z₂, (z₂ − z₁)/T) = 1/T. `interval` in seconds.
@@ -410,7 +380,7 @@ pub enum Uncertainty<R> {
     Tracking(ErrorVariance<R>),
 }
 
-impl<R: VarianceNumber> Uncertainty<R> {
+impl<R: Real> Uncertainty<R> {
     /// The bookkeeping after an update of kind `kind` with gains α and
     /// k₂ = β/T over `dt` seconds; `None` if it left the representable
     /// range.
@@ -480,7 +450,7 @@ impl<R: VarianceNumber> Uncertainty<R> {
 /// Gains<S>`, the per-interval gains β/T formed once per scan), plus the
 /// error covariance that sizes its gate, in as few bytes as the state
 /// allows: position and velocity in the number system's own formats, the
-/// covariance (three [`TrackNumeric::Variance`] numbers) shared by both
+/// covariance (three [`Numeric::Variance`] numbers) shared by both
 /// axes (the same gains and intervals give both axes the same covariance),
 /// nothing else (no innovation, no per-axis phase or counter: a refusal is
 /// counted by the table, [`Track::refusals`](super::Track::refusals)).
@@ -490,13 +460,13 @@ impl<R: VarianceNumber> Uncertainty<R> {
 /// Al-Wagih & Abdulla eqs. 3–10, and the per-interval update), run on the
 /// two axes of this state.
 #[derive(Debug, Clone, Copy, PartialEq)]
-pub struct FixedGainTrack<S: TrackNumeric> {
+pub struct FixedGainTrack<S: Numeric> {
     state: FixedGainState<S>,
 }
 
 /// [`FixedGainTrack`]'s state by phase of two-point initialisation.
 #[derive(Debug, Clone, Copy, PartialEq)]
-enum FixedGainState<S: TrackNumeric> {
+enum FixedGainState<S: Numeric> {
     Empty,
     /// One measurement; the time since (coasts add to it), as the filter's
     /// interval and as seconds for the covariance.
@@ -515,14 +485,14 @@ enum FixedGainState<S: TrackNumeric> {
 /// [`FixedGainTrack`]'s per-scan step: the interval, the step gains of both
 /// axes, and α and β/T for the covariance.
 #[derive(Debug, Clone, Copy, PartialEq)]
-pub struct FixedGainStep<S: TrackNumeric> {
+pub struct FixedGainStep<S: Numeric> {
     interval: ScanInterval<S>,
     gains: StepGains<S>,
     alpha: S::Variance,
     velocity_gain: S::Variance,
 }
 
-impl<S: TrackNumeric> FixedGainStep<S> {
+impl<S: Numeric> FixedGainStep<S> {
     /// The covariance bookkeeping after an update of kind `kind` with this
     /// step's gains (Al-Wagih eqs. 6, 8).
     fn after(
@@ -539,7 +509,7 @@ impl<S: TrackNumeric> FixedGainStep<S> {
     }
 }
 
-impl<S: TrackNumeric> FixedGainTrack<S> {
+impl<S: Numeric> FixedGainTrack<S> {
     /// The phase of two-point initialisation.
     pub fn phase(&self) -> Phase {
         match self.state {
@@ -618,7 +588,7 @@ impl<S: TrackNumeric> FixedGainTrack<S> {
     }
 }
 
-impl<S: TrackNumeric> TrackFilter<S> for FixedGainTrack<S> {
+impl<S: Numeric> TrackFilter<S> for FixedGainTrack<S> {
     type Params = Gains<S>;
     type Step = FixedGainStep<S>;
 
@@ -761,7 +731,7 @@ impl<S: TrackNumeric> TrackFilter<S> for FixedGainTrack<S> {
     }
 }
 
-impl<S: TrackNumeric> FixedGainTrack<S> {
+impl<S: Numeric> FixedGainTrack<S> {
     /// Tenne & Singh eqs. (1)–(2) per axis, through the filter's own
     /// prediction; the position holds before two points.
     fn predict_with(&self, step: &FixedGainStep<S>) -> Result<PredictedState<S>, FilterError> {

@@ -1,115 +1,12 @@
-//! The number systems a track table runs in ([`TrackNumeric`]): a
-//! [`Numeric`] with the few operations the table needs beyond the filters'
-//! algebra, for `f64`, `f32`, Q32.32 (every [`Scalar`]) and the fast fixed
-//! point ([`Fixed32`]).
-//!
-//! * The gate test of a circle and its cost, the squared distance
-//!   normalised by the radius, quantised to `u16` (the solver's currency):
-//!   floats multiply the squared distance by 1/r², Q32.32 the offsets by
-//!   1/r (its squares of metres would overflow), each formed once per
-//!   track; [`Fixed32`] compares the squared offsets with the squared
-//!   radius exactly in 64-bit integers and divides once per gated pair. A
-//!   gate given by its squared radius σ²·F ([`TrackNumeric::scaled_circle`])
-//!   needs no square root in floats: the box around it takes an upper bound
-//!   of √(σ²·F) from the float's bits (within 6.1 %).
-//! * Polar geometry (projecting range and azimuth; range/azimuth windows)
-//!   runs in a [`Scalar`]: the type itself, or `f32` for [`Fixed32`], which
-//!   has no sine or arctangent (in software on its cores, library calls
-//!   rather than Q32.32's inlined 128-bit arithmetic, 13 KB less flash on the
-//!   micro:bit; 24 significant bits: 6 mm at 100 km). Only polar
-//!   measurements and He et al.'s range/azimuth windows take this path.
-//! * The covariance that sizes a gate ([`super::ErrorVariance`], in units
-//!   of σ²) is kept and propagated in the ratio type, except in [`Fixed32`],
-//!   whose ratios ([`Ratio`], a mantissa and an exponent in software) cost
-//!   about 100 instructions an operation on the Cortex-M3: there it is
-//!   [`FixedVariance`], a 32-bit I16F16 word (its envelope: intervals of at
-//!   least 8 ms, `docs/track-table.md`).
-
-use core::fmt::Debug;
+//! The track table's operations of each number system ([`Numeric`](crate::num::Numeric)'s
+//! circle, grid, polar and covariance items, whose docs say what each
+//! does): their generic forms for every [`Scalar`] and the fast fixed
+//! point's ([`Fixed32`](crate::num::Fixed32)) integer forms, and the fast fixed point's two
+//! track-table numbers, [`FixedVariance`] and [`FixedGridScale`].
 
 use super::assign::MAX_COST;
-use super::model::VarianceNumber;
-use crate::num::fixed32::{Fixed32, Length, Ratio};
-use crate::num::{Numeric, Quantity, Real, Scalar};
-
-/// A [`Numeric`] the track table runs in (module docs).
-pub trait TrackNumeric: Numeric {
-    /// The scalar type of the polar geometry.
-    type Polar: Scalar;
-    /// What a circular gate keeps to test measurements (the reciprocal of
-    /// its radius, for floats and Q32.32).
-    type CircleScale: Copy + Debug + PartialEq;
-    /// The number type of the gate's covariance bookkeeping.
-    type Variance: VarianceNumber;
-
-    /// The circle's scale for `radius` (> 0), or `None` if it cannot be
-    /// formed.
-    fn circle_scale(radius: Self::Length) -> Option<Self::CircleScale>;
-
-    /// The circle of radius σ·√`factor` (σ = `sigma` > 0, `factor` > 0):
-    /// a half-width at least the radius (its reach: the pre-gate's box and
-    /// the first test of each offset) and its scale, or `None` if it cannot
-    /// be formed. By default the radius itself and [`Self::circle_scale`];
-    /// floats form r² and bound √r² without a square root (module docs).
-    fn scaled_circle(
-        sigma: Self::Length,
-        factor: Self::Ratio,
-    ) -> Option<(Self::Length, Self::CircleScale)> {
-        let radius = factor.sqrt() * sigma;
-        Some((radius, Self::circle_scale(radius)?))
-    }
-
-    /// The radius of a circle of reach `reach` and scale `scale`: by
-    /// default the reach itself.
-    fn circle_radius(reach: Self::Length, _scale: Self::CircleScale) -> Self::Length {
-        reach
-    }
-
-    /// The cost `round((dx² + dy²)/r²·MAX_COST)` of a measurement offset
-    /// (dx, dy) from the centre of a circle of reach `reach` (at least its
-    /// radius r) and scale `scale`, or `None` if it lies outside (or an
-    /// operand is invalid).
-    fn circle_cost(
-        dx: Self::Length,
-        dy: Self::Length,
-        reach: Self::Length,
-        scale: Self::CircleScale,
-    ) -> Option<u16>;
-
-    /// What the pre-gate's grid keeps per axis to map a coordinate's offset
-    /// from the measurements' minimum to its cell.
-    type GridScale: Copy + Debug;
-    /// A scale that puts every offset in cell 0.
-    const GRID_SCALE_ZERO: Self::GridScale;
-
-    /// The scale that spreads `min ..= max` over `cells` cells (about
-    /// equal widths); everything in cell 0 if it cannot be formed.
-    fn grid_scale(min: Self::Length, max: Self::Length, cells: u16) -> Self::GridScale;
-
-    /// The cell of a valid `v` over `min ..= max` (below `min`, cell 0;
-    /// the caller caps the result at the last cell): non-decreasing in `v`,
-    /// rounding included, so that a box's cells hold every point inside it.
-    fn grid_cell(
-        v: Self::Length,
-        min: Self::Length,
-        max: Self::Length,
-        scale: Self::GridScale,
-    ) -> u32;
-
-    /// A length in the polar scalar (exact).
-    fn length_to_polar(v: Self::Length) -> Self::Polar;
-    /// Back, rounded to the length's resolution (invalid if out of range).
-    fn length_from_polar(v: Self::Polar) -> Self::Length;
-    /// A ratio (an angle in radians) in the polar scalar.
-    fn ratio_to_polar(v: Self::Ratio) -> Self::Polar;
-    /// Back (invalid if out of range).
-    fn ratio_from_polar(v: Self::Polar) -> Self::Ratio;
-
-    /// A ratio as a covariance number (saturating).
-    fn to_variance(r: Self::Ratio) -> Self::Variance;
-    /// Back.
-    fn from_variance(v: Self::Variance) -> Self::Ratio;
-}
+use crate::num::fixed32::{Fixed32Guard, Ratio};
+use crate::num::{NumError, Quantity, Real, Scalar};
 
 /// A value in [0, 1] to `0 ..= MAX_COST`, rounded to nearest: scaled in
 /// `S` (one product and one sum), then to an integer, `f32` directly (one
@@ -162,17 +59,15 @@ fn truncate_to_u32<S: Scalar>(v: S) -> u32 {
     }
 }
 
-impl<S: Scalar> TrackNumeric for S {
-    type Polar = S;
-    type CircleScale = S;
-    type Variance = S;
-    type GridScale = S;
-    const GRID_SCALE_ZERO: S = S::ZERO;
+/// The track table's operations of a [`Scalar`] (its [`Numeric`](crate::num::Numeric) items).
+pub(crate) mod scalar {
+    use super::{positive_inverse, quantise_unit, square_root_bound, truncate_to_u32};
+    use crate::num::Scalar;
 
     /// cells / (max − min), formed once per scan; the cell is
     /// ⌊(v − min)·scale⌋ (a difference, a product and a truncation, each
     /// monotone).
-    fn grid_scale(min: S, max: S, cells: u16) -> S {
+    pub(crate) fn grid_scale<S: Scalar>(min: S, max: S, cells: u16) -> S {
         let scale = S::from_f64_lossy(f64::from(cells)) / (max - min);
         if scale.is_valid() && scale > S::ZERO {
             scale
@@ -184,12 +79,12 @@ impl<S: Scalar> TrackNumeric for S {
     /// Not clamped: a coordinate below `min` maps to a number < 0 and one
     /// above `max` to one ≥ the cell of `max`, which the saturating
     /// truncation takes to 0 and to a cell the caller caps.
-    fn grid_cell(v: S, min: S, _max: S, scale: S) -> u32 {
+    pub(crate) fn grid_cell<S: Scalar>(v: S, min: S, _max: S, scale: S) -> u32 {
         truncate_to_u32((v - min) * scale)
     }
 
     /// 1/r² for a float, 1/r for Q32.32 (module docs).
-    fn circle_scale(radius: S) -> Option<S> {
+    pub(crate) fn circle_scale<S: Scalar>(radius: S) -> Option<S> {
         let square = if S::RELATIVE_PRECISION {
             radius * radius
         } else {
@@ -199,11 +94,11 @@ impl<S: Scalar> TrackNumeric for S {
     }
 
     /// r² = σ²·F and 1/r² for a float, the reach bounded from r²'s bits
-    /// (`square_root_bound`, a private helper); Q32.32 by the default.
-    fn scaled_circle(sigma: S, factor: S) -> Option<(S, S)> {
+    /// (`square_root_bound`, a private helper); Q32.32 the radius itself.
+    pub(crate) fn scaled_circle<S: Scalar>(sigma: S, factor: S) -> Option<(S, S)> {
         if !S::RELATIVE_PRECISION {
             let radius = factor.sqrt() * sigma;
-            return Some((radius, Self::circle_scale(radius)?));
+            return Some((radius, circle_scale(radius)?));
         }
         let square = sigma * sigma * factor;
         Some((square_root_bound(square)?, positive_inverse(square)?))
@@ -211,7 +106,7 @@ impl<S: Scalar> TrackNumeric for S {
 
     /// A float's reach is its radius when the scale is 1/reach² (a circle
     /// formed from its radius), else the radius is √(1/scale).
-    fn circle_radius(reach: S, scale: S) -> S {
+    pub(crate) fn circle_radius<S: Scalar>(reach: S, scale: S) -> S {
         if S::RELATIVE_PRECISION && S::ONE / (reach * reach) != scale {
             (S::ONE / scale).sqrt()
         } else {
@@ -219,7 +114,7 @@ impl<S: Scalar> TrackNumeric for S {
         }
     }
 
-    fn circle_cost(dx: S, dy: S, reach: S, scale: S) -> Option<u16> {
+    pub(crate) fn circle_cost<S: Scalar>(dx: S, dy: S, reach: S, scale: S) -> Option<u16> {
         // `!(a <= b)` is also true for NaN. Each offset is compared with the
         // reach first, so Q32.32's squares are of numbers ≤ 1 and cannot
         // saturate.
@@ -237,32 +132,13 @@ impl<S: Scalar> TrackNumeric for S {
         }
         Some(quantise_unit(d2))
     }
-
-    fn length_to_polar(v: S) -> S {
-        v
-    }
-    fn length_from_polar(v: S) -> S {
-        v
-    }
-    fn ratio_to_polar(v: S) -> S {
-        v
-    }
-    fn ratio_from_polar(v: S) -> S {
-        v
-    }
-    fn to_variance(r: S) -> S {
-        r
-    }
-    fn from_variance(v: S) -> S {
-        v
-    }
 }
 
 /// A covariance number of the fast fixed point: I16F16 in an `i32` word
-/// (±32 768, steps of 2⁻¹⁶), saturating like the [`Fixed32`] quantities
+/// (±32 768, steps of 2⁻¹⁶), saturating like the [`Fixed32`](crate::num::Fixed32) quantities
 /// (`i32::MIN`/`MAX` are sentinels, sticky). Products and quotients are
 /// formed in 64 bits and rounded to nearest once.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, PartialOrd, Ord)]
+#[derive(Debug, Clone, Copy, Default, PartialEq, Eq, PartialOrd, Ord)]
 #[cfg_attr(feature = "defmt", derive(defmt::Format))]
 pub struct FixedVariance(i32);
 
@@ -355,15 +231,91 @@ impl core::ops::Mul for FixedVariance {
 impl core::ops::Div for FixedVariance {
     type Output = Self;
     fn div(self, rhs: Self) -> Self {
-        Fixed32::to_variance(Fixed32::from_variance(self) / Fixed32::from_variance(rhs))
+        Self::from_fixed_ratio(self.to_fixed_ratio() / rhs.to_fixed_ratio())
     }
 }
 
-impl VarianceNumber for FixedVariance {
+impl Quantity for FixedVariance {
     const ZERO: Self = FixedVariance(0);
-    const ONE: Self = FixedVariance(1 << Self::FRAC_BITS);
+    const UNIT_ROUNDOFF: f64 = 0.0;
+    const ABS_RESOLUTION: f64 = 1.0 / (1u32 << Self::FRAC_BITS) as f64;
+    /// The fast fixed point's: this is its covariance number.
+    type Guard = Fixed32Guard;
+
+    fn try_from_f64(v: f64) -> Result<Self, NumError> {
+        if !v.is_finite() {
+            return Err(NumError::NotFinite);
+        }
+        let converted = Self::from_f64_lossy(v);
+        if converted.is_sentinel() {
+            Err(NumError::OutOfRange)
+        } else {
+            Ok(converted)
+        }
+    }
+
+    fn from_f64_lossy(v: f64) -> Self {
+        if v.is_nan() {
+            return Self::MAX;
+        }
+        let steps = libm::round(v * f64::from(1u32 << Self::FRAC_BITS));
+        if steps >= f64::from(i32::MAX) {
+            Self::MAX
+        } else if steps <= f64::from(i32::MIN) {
+            Self::MIN
+        } else {
+            FixedVariance(steps as i32)
+        }
+    }
+
+    fn to_f64(self) -> f64 {
+        match self {
+            Self::MAX => f64::INFINITY,
+            Self::MIN => f64::NEG_INFINITY,
+            FixedVariance(v) => f64::from(v) / f64::from(1u32 << Self::FRAC_BITS),
+        }
+    }
+
     fn is_valid(self) -> bool {
         !self.is_sentinel()
+    }
+
+    fn abs(self) -> Self {
+        if self.is_sentinel() {
+            Self::MAX
+        } else {
+            FixedVariance(self.0.wrapping_abs())
+        }
+    }
+
+    /// Rounded half up.
+    fn half(self) -> Self {
+        if self.is_sentinel() {
+            self
+        } else {
+            FixedVariance(self.0.wrapping_add(1) >> 1)
+        }
+    }
+
+    fn check_input(self, guard: &mut Fixed32Guard) {
+        guard.reject_sentinel(self.0);
+    }
+
+    fn check_output(self, guard: &mut Fixed32Guard) {
+        guard.reject_sentinel(self.0);
+    }
+
+    fn sub_guarded(self, b: Self, guard: &mut Fixed32Guard) -> Self {
+        FixedVariance(guard.narrow(i64::from(self.0).wrapping_sub(i64::from(b.0))))
+    }
+}
+
+impl Real for FixedVariance {
+    const ONE: Self = FixedVariance(1 << Self::FRAC_BITS);
+
+    /// Through the fast fixed point's ratios, as the quotients.
+    fn sqrt(self) -> Self {
+        Self::from_fixed_ratio(self.to_fixed_ratio().sqrt())
     }
 }
 
@@ -377,19 +329,24 @@ pub struct FixedGridScale {
     multiplier: u32,
 }
 
-impl TrackNumeric for Fixed32 {
-    type Polar = f32;
-    type CircleScale = ();
-    type Variance = FixedVariance;
-    type GridScale = FixedGridScale;
-    const GRID_SCALE_ZERO: FixedGridScale = FixedGridScale {
+impl FixedGridScale {
+    /// Every offset in cell 0.
+    pub(crate) const ZERO: Self = FixedGridScale {
         shift: 0,
         multiplier: 0,
     };
+}
+
+/// The track table's operations of the fast fixed point ([`Fixed32`](crate::num::Fixed32)'s
+/// [`Numeric`](crate::num::Numeric) items).
+pub(crate) mod fixed {
+    use super::{FixedGridScale, MAX_COST};
+    use crate::num::fixed32::{Length, Ratio};
+    use crate::num::Quantity;
 
     /// The offsets are the words' differences, exact in 32 bits for
     /// min ≤ v ≤ max.
-    fn grid_scale(min: Length, max: Length, cells: u16) -> FixedGridScale {
+    pub(crate) fn grid_scale(min: Length, max: Length, cells: u16) -> FixedGridScale {
         let extent = max.to_bits().wrapping_sub(min.to_bits()) as u32;
         let shift = u32::BITS
             .saturating_sub(extent.leading_zeros())
@@ -403,7 +360,7 @@ impl TrackNumeric for Fixed32 {
 
     /// `v` clamped to `min ..= max` first (a word's difference beyond
     /// them would wrap).
-    fn grid_cell(v: Length, min: Length, max: Length, scale: FixedGridScale) -> u32 {
+    pub(crate) fn grid_cell(v: Length, min: Length, max: Length, scale: FixedGridScale) -> u32 {
         // Not `clamp`, which panics should min exceed max.
         let v = v.to_bits().min(max.to_bits()).max(min.to_bits());
         let offset = v.wrapping_sub(min.to_bits()) as u32;
@@ -412,7 +369,7 @@ impl TrackNumeric for Fixed32 {
         reduced.wrapping_mul(scale.multiplier) >> 16
     }
 
-    fn circle_scale(radius: Length) -> Option<()> {
+    pub(crate) fn circle_scale(radius: Length) -> Option<()> {
         (radius.is_valid() && radius > Length::ZERO).then_some(())
     }
 
@@ -420,7 +377,7 @@ impl TrackNumeric for Fixed32 {
     /// format, so (dx² + dy²) ≤ r² is decided exactly in 64 bits (each
     /// square < 2⁶²), and the ratio is formed by one division of the two,
     /// shifted so that the divisor fits 32 bits (2⁻³¹ relative).
-    fn circle_cost(dx: Length, dy: Length, radius: Length, _: ()) -> Option<u16> {
+    pub(crate) fn circle_cost(dx: Length, dy: Length, radius: Length, _: ()) -> Option<u16> {
         if !(dx.is_valid() && dy.is_valid() && radius.is_valid()) {
             return None;
         }
@@ -448,7 +405,7 @@ impl TrackNumeric for Fixed32 {
         u16::try_from(cost).ok().map(|c| c.min(MAX_COST))
     }
 
-    fn length_to_polar(v: Length) -> f32 {
+    pub(crate) fn length_to_polar(v: Length) -> f32 {
         match v {
             Length::MAX => f32::INFINITY,
             Length::MIN => f32::NEG_INFINITY,
@@ -457,7 +414,7 @@ impl TrackNumeric for Fixed32 {
         }
     }
 
-    fn length_from_polar(v: f32) -> Length {
+    pub(crate) fn length_from_polar(v: f32) -> Length {
         let steps = libm::roundf(v * (1u32 << Length::FRAC_BITS) as f32);
         // NaN fails both tests; the sentinels are out of range.
         if steps > i32::MIN as f32 && steps < i32::MAX as f32 {
@@ -469,14 +426,14 @@ impl TrackNumeric for Fixed32 {
         }
     }
 
-    fn ratio_to_polar(v: Ratio) -> f32 {
+    pub(crate) fn ratio_to_polar(v: Ratio) -> f32 {
         if v.is_invalid() {
             return f32::NAN;
         }
         libm::ldexpf(v.mantissa() as f32, v.exponent())
     }
 
-    fn ratio_from_polar(v: f32) -> Ratio {
+    pub(crate) fn ratio_from_polar(v: f32) -> Ratio {
         if !v.is_finite() {
             return Ratio::INVALID;
         }
@@ -484,8 +441,12 @@ impl TrackNumeric for Fixed32 {
         let (f, e) = libm::frexpf(v);
         Ratio::from_wide((f * (1u32 << 24) as f32) as i64, e.saturating_sub(24))
     }
+}
 
-    fn to_variance(r: Ratio) -> FixedVariance {
+impl FixedVariance {
+    /// A ratio as a covariance number (saturating): [`Numeric::to_variance`](crate::num::Numeric::to_variance)
+    /// of [`Fixed32`](crate::num::Fixed32).
+    pub(crate) fn from_fixed_ratio(r: Ratio) -> FixedVariance {
         if r.is_invalid() {
             return FixedVariance::MAX;
         }
@@ -507,10 +468,11 @@ impl TrackNumeric for Fixed32 {
         }
     }
 
-    fn from_variance(v: FixedVariance) -> Ratio {
-        if !v.is_valid() {
+    /// Back: [`Numeric::from_variance`](crate::num::Numeric::from_variance) of [`Fixed32`](crate::num::Fixed32).
+    pub(crate) fn to_fixed_ratio(self) -> Ratio {
+        if !self.is_valid() {
             return Ratio::INVALID;
         }
-        Ratio::from_wide(i64::from(v.0), FixedVariance::EXPONENT)
+        Ratio::from_wide(i64::from(self.0), FixedVariance::EXPONENT)
     }
 }

@@ -6,7 +6,7 @@
 //! two passes over the measurements and one over the cells, no comparison
 //! sort, no search). A gate's bounding box maps to a range of cells in each
 //! axis by the same monotone map as the measurements
-//! ([`TrackNumeric::grid_cell`]); in each row of cells the range is one run
+//! ([`Numeric::grid_cell`]); in each row of cells the range is one run
 //! of the bucketed measurements, and each measurement of the run is tested
 //! against the box. Building costs O(L) whatever the order the measurements
 //! come in, a query O(rows crossed + k) for k measurements in the cells
@@ -22,8 +22,7 @@
 
 use super::gate::BoundingBox;
 use super::model::Observation;
-use super::numeric::TrackNumeric;
-use crate::num::Quantity;
+use crate::num::{Numeric, Quantity};
 
 /// "No cell": an invalid measurement's slot in `cell_of`.
 const NO_CELL: u16 = u16::MAX;
@@ -31,7 +30,7 @@ const NO_CELL: u16 = u16::MAX;
 /// The scan's measurements in a grid of cells (module docs). Slots are
 /// measurement indices (< M < 65535); there are at most L ≤ M cells.
 #[derive(Debug, Clone)]
-pub(super) struct MeasurementIndex<S: TrackNumeric, const M: usize> {
+pub(super) struct MeasurementIndex<S: Numeric, const M: usize> {
     /// The valid measurements' slots, by cell (row by row), in slot order
     /// within a cell.
     slots: [u16; M],
@@ -51,7 +50,7 @@ pub(super) struct MeasurementIndex<S: TrackNumeric, const M: usize> {
     cells: u16,
 }
 
-impl<S: TrackNumeric, const M: usize> MeasurementIndex<S, M> {
+impl<S: Numeric, const M: usize> MeasurementIndex<S, M> {
     /// No measurement indexed; zero bytes (the entries beyond `len` are
     /// never read).
     pub(super) const fn new() -> Self {
@@ -204,10 +203,10 @@ impl<S: TrackNumeric, const M: usize> MeasurementIndex<S, M> {
 }
 
 /// The cell along one axis of a coordinate: mapped
-/// ([`TrackNumeric::grid_cell`], which takes a coordinate outside
+/// ([`Numeric::grid_cell`], which takes a coordinate outside
 /// `min ..= max` to the nearest end's cell or beyond it), at most `last`;
 /// monotone in `v`.
-fn axis_cell<S: TrackNumeric>(
+fn axis_cell<S: Numeric>(
     v: S::Length,
     min: S::Length,
     max: S::Length,

@@ -7,9 +7,9 @@ use super::cluster::{CachedCost, Clusters, NONE};
 use super::config::TrackerConfig;
 use super::gate::GateRegion;
 use super::model::{Measurement, Observation, RejectReason, ScanInterval, TrackFilter};
-use super::numeric::TrackNumeric;
 use super::pregate::MeasurementIndex;
 use crate::filter::{MAX_INTERVAL_MS, MIN_INTERVAL_MS};
+use crate::num::Numeric;
 
 /// A track's identity, unique over the lifetime of its table: ids are issued
 /// in increasing order and, after 2³² of them, wrap around skipping any id
@@ -74,14 +74,14 @@ enum Lifecycle {
 /// per track (`docs/track-table.md`).
 #[derive(Debug, Clone, Copy, PartialEq)]
 #[repr(u8)]
-pub enum TrackSlot<S: TrackNumeric, F> {
+pub enum TrackSlot<S: Numeric, F> {
     /// No track.
     Empty = 0,
     /// A live track.
     Live(Track<S, F>) = 1,
 }
 
-impl<S: TrackNumeric, F> TrackSlot<S, F> {
+impl<S: Numeric, F> TrackSlot<S, F> {
     /// The track, if the slot holds one.
     pub fn track(&self) -> Option<&Track<S, F>> {
         match self {
@@ -113,7 +113,7 @@ impl<S: TrackNumeric, F> TrackSlot<S, F> {
 /// be derived (the status from the confirmation and the last scan's hit;
 /// bytes per track in `docs/track-table.md`).
 #[derive(Debug, Clone, Copy, PartialEq)]
-pub struct Track<S: TrackNumeric, F> {
+pub struct Track<S: Numeric, F> {
     filter: F,
     id: TrackId,
     created_ms: u32,
@@ -136,7 +136,7 @@ pub struct Track<S: TrackNumeric, F> {
     _scalar: PhantomData<S>,
 }
 
-impl<S: TrackNumeric, F: TrackFilter<S>> Track<S, F> {
+impl<S: Numeric, F: TrackFilter<S>> Track<S, F> {
     /// The track's id, unique among live tracks.
     pub fn id(&self) -> TrackId {
         self.id
@@ -517,7 +517,7 @@ fn is_stale(last_update_ms: u32, now_ms: u32) -> bool {
 /// # Ok::<(), Box<dyn core::error::Error>>(())
 /// ```
 #[derive(Debug)]
-pub struct TrackTable<S: TrackNumeric, F, const N: usize, const M: usize> {
+pub struct TrackTable<S: Numeric, F, const N: usize, const M: usize> {
     slots: [TrackSlot<S, F>; N],
     /// The id the next track gets, minus 1 (wrapping): 0 for a new table,
     /// whose first id is 1.
@@ -539,7 +539,7 @@ pub struct TrackTable<S: TrackNumeric, F, const N: usize, const M: usize> {
     solver: AssignmentSolver<N, M>,
 }
 
-impl<S: TrackNumeric, F: TrackFilter<S>, const N: usize, const M: usize> Default
+impl<S: Numeric, F: TrackFilter<S>, const N: usize, const M: usize> Default
     for TrackTable<S, F, N, M>
 {
     fn default() -> Self {
@@ -547,7 +547,7 @@ impl<S: TrackNumeric, F: TrackFilter<S>, const N: usize, const M: usize> Default
     }
 }
 
-impl<S: TrackNumeric, F: TrackFilter<S>, const N: usize, const M: usize> TrackTable<S, F, N, M> {
+impl<S: Numeric, F: TrackFilter<S>, const N: usize, const M: usize> TrackTable<S, F, N, M> {
     const CAPACITY_OK: () = assert!(
         N < NONE as usize && M < NONE as usize && N + M < NONE as usize,
         "track table capacities must be below 65535 together"
@@ -1288,7 +1288,7 @@ impl<S: TrackNumeric, F: TrackFilter<S>, const N: usize, const M: usize> TrackTa
 
 /// The gate cost of `o` for `track` (predict, region, exact test), as the
 /// gate stage computes it; [`FORBIDDEN`] outside the gate.
-fn gate_cost<S: TrackNumeric, F: TrackFilter<S>>(
+fn gate_cost<S: Numeric, F: TrackFilter<S>>(
     track: &Track<S, F>,
     config: &TrackerConfig<S, F::Params>,
     dt: &F::Step,
@@ -1313,7 +1313,7 @@ enum Deletion {
 }
 
 /// Confirmation and miss-count deletion after a track's scan was recorded.
-fn lifecycle<S: TrackNumeric, F: TrackFilter<S>>(
+fn lifecycle<S: Numeric, F: TrackFilter<S>>(
     track: &mut Track<S, F>,
     config: &TrackerConfig<S, F::Params>,
     report: &mut ScanReport,

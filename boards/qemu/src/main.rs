@@ -62,7 +62,8 @@ use abtrack::wire::{
     DecoderStats, Encoder, EndOfInput, Health, IntakeCounters, MeasurementReport, Message,
     ScanSummary, TrackReport, MAX_FRAMES_PER_BYTE, MAX_FRAME_LEN,
 };
-use abtrack::Scalar;
+
+use abtrack::Numeric;
 use board::TableScalar as Native;
 use cortex_m::interrupt::{free, Mutex};
 use cortex_m::peripheral::syst::SystClkSource;

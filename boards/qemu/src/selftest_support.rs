@@ -83,21 +83,22 @@ pub fn run(title: &str, tests: &[Test]) -> ! {
 /// What the tests need to know about a representation beyond [`Scalar`]
 /// (whose rounding model, `UNIT_ROUNDOFF` and `ABS_RESOLUTION`, the error
 /// budget uses).
-pub trait TestScalar: Scalar + defmt::Format {
+pub trait TestScalar: Scalar + Bits + defmt::Format {
     /// A representable measurement large enough that the αβ velocity
     /// correction β·e/T (β = 0.25, T = 0.05 s) overflows.
     const HUGE: f64;
     /// Largest absolute error of `sin_cos` (each component) on a
     /// representable angle.
     const SIN_COS_ERROR: f64;
-    /// The stored bit pattern, for "bit-identical" checks.
-    fn bits(self) -> u64;
 }
 
 impl TestScalar for f64 {
     const HUGE: f64 = 1.7e308;
     // libm's sincos is within 1 ulp (≤ 2⁻⁵³ for |v| < 1); two for margin.
-    const SIN_COS_ERROR: f64 = 2.0 * <f64 as Scalar>::UNIT_ROUNDOFF;
+    const SIN_COS_ERROR: f64 = 2.0 * <f64 as abtrack::Quantity>::UNIT_ROUNDOFF;
+}
+
+impl Bits for f64 {
     fn bits(self) -> u64 {
         self.to_bits()
     }
@@ -108,7 +109,10 @@ impl TestScalar for f32 {
     // The table sine's bound for |θ| ≤ 2π, plus the rounding to f32 (half
     // an ulp, ≤ 2⁻²⁴ for |v| ≤ 1).
     const SIN_COS_ERROR: f64 =
-        abtrack::num::sine::SIN_COS_F32_MAX_ERROR + <f32 as Scalar>::UNIT_ROUNDOFF;
+        abtrack::num::sine::SIN_COS_F32_MAX_ERROR + <f32 as abtrack::Quantity>::UNIT_ROUNDOFF;
+}
+
+impl Bits for f32 {
     fn bits(self) -> u64 {
         self.to_bits() as u64
     }
@@ -118,6 +122,9 @@ impl TestScalar for Fix {
     // Representable (< 2³¹), but 0.25·1e9/0.05 = 5e9 is not.
     const HUGE: f64 = 1.0e9;
     const SIN_COS_ERROR: f64 = abtrack::num::cordic::SIN_COS_MAX_ERROR;
+}
+
+impl Bits for Fix {
     fn bits(self) -> u64 {
         self.to_bits() as u64
     }
@@ -127,6 +134,9 @@ impl TestScalar for abtrack::ScaledScalar {
     // Representable (< 2¹³¹ ≈ 2.7·10³⁹), but 0.25·1e39/0.05 = 5·10³⁹ is not.
     const HUGE: f64 = 1.0e39;
     const SIN_COS_ERROR: f64 = abtrack::num::scaled_scalar::SIN_COS_MAX_ERROR;
+}
+
+impl Bits for abtrack::ScaledScalar {
     fn bits(self) -> u64 {
         let r = self.to_ratio();
         (u64::from(r.mantissa() as u32) << 16) | u64::from(r.exponent() as u16)
@@ -136,12 +146,6 @@ impl TestScalar for abtrack::ScaledScalar {
 /// A quantity's stored bit pattern, for "bit-identical" checks.
 pub trait Bits: Copy {
     fn bits(self) -> u64;
-}
-
-impl<S: TestScalar> Bits for S {
-    fn bits(self) -> u64 {
-        TestScalar::bits(self)
-    }
 }
 
 macro_rules! fixed_bits {
@@ -179,17 +183,11 @@ pub trait TestNumeric:
     const RESIDUAL_LIMIT: f64 = f64::INFINITY;
 }
 
-impl TestNumeric for f64 {
-    const HUGE: f64 = <f64 as TestScalar>::HUGE;
-    const OVERFLOWING_COAST: [f64; 3] = [0.0, <f64 as TestScalar>::HUGE, 100.0];
-}
-impl TestNumeric for f32 {
-    const HUGE: f64 = <f32 as TestScalar>::HUGE;
-    const OVERFLOWING_COAST: [f64; 3] = [0.0, <f32 as TestScalar>::HUGE, 100.0];
-}
-impl TestNumeric for Fix {
-    const HUGE: f64 = <Fix as TestScalar>::HUGE;
-    const OVERFLOWING_COAST: [f64; 3] = [0.0, <Fix as TestScalar>::HUGE, 100.0];
+/// A scalar's figures are its [`TestScalar`] ones (its formats hold every
+/// estimate the tests reach).
+impl<S: TestScalar> TestNumeric for S {
+    const HUGE: f64 = <S as TestScalar>::HUGE;
+    const OVERFLOWING_COAST: [f64; 3] = [0.0, <S as TestScalar>::HUGE, 100.0];
 }
 impl TestNumeric for abtrack::Fixed32 {
     // Representable (< 524 288 m), but 0.25·5e5/0.05 = 2.5·10⁶ m/s is not.

@@ -86,7 +86,7 @@ impl TurningTarget {
                 velocity: self.velocity,
             };
         }
-        let (s, c) = <f64 as abtrack::Scalar>::sin_cos(self.turn_rate * turning);
+        let (s, c) = <f64 as abtrack::Numeric>::sin_cos(self.turn_rate * turning);
         // ∫₀^τ R(ωu)·v du = (1/ω)·[[sin ωτ, −(1−cos ωτ)], [1−cos ωτ, sin ωτ]]·v
         let w = self.turn_rate;
         position[0] += (s * vx - (1.0 - c) * vy) / w;
@@ -147,7 +147,7 @@ impl Orbit {
     /// The true state at time `t` (s).
     pub fn at(&self, t: f64) -> PlaneState {
         let omega = self.direction * self.speed / self.radius;
-        let (s, c) = <f64 as abtrack::Scalar>::sin_cos(self.phase + omega * t);
+        let (s, c) = <f64 as abtrack::Numeric>::sin_cos(self.phase + omega * t);
         PlaneState {
             position: [
                 self.centre[0] + self.radius * c,

@@ -1407,7 +1407,7 @@ pub fn cost_per_update_ns<S: Scalar>(reps: usize) -> Result<(f64, f64), String> 
         let mut f: ScheduledFilter<S, LeastSquaresGains, 2, 2> =
             ScheduledFilter::new(LeastSquaresGains::default());
         for &(r, b) in &meas {
-            let (sin_b, cos_b) = std::hint::black_box(b).sin_cos();
+            let (sin_b, cos_b) = S::sin_cos(std::hint::black_box(b));
             let _ = std::hint::black_box(f.update([r * sin_b, r * cos_b], dt));
         }
         std::hint::black_box(f.filter().position());

@@ -3,8 +3,8 @@
 
 use super::{BearingTrack, ScanConfig, ScanLoop};
 
-use crate::num::{hypot, Scalar};
-use crate::track::{GateRegion, Observation, ScanInterval, TrackFilter, TrackNumeric};
+use crate::num::{hypot, Numeric, Scalar};
+use crate::track::{GateRegion, Observation, ScanInterval, TrackFilter};
 
 /// A batch entry's claim on a slot; smaller is more important ([`crate::scan`],
 /// "Capacity").
@@ -31,7 +31,7 @@ impl<S: Scalar> Priority<S> {
 /// A confirmed track's gate for the next scan, and its best measurement so
 /// far.
 #[derive(Debug, Clone, Copy)]
-pub(super) struct TrackGate<S: TrackNumeric> {
+pub(super) struct TrackGate<S: Numeric> {
     region: GateRegion<S>,
     /// (batch index, gate cost) of the nearest measurement in the gate.
     champion: Option<(usize, u16)>,

@@ -51,12 +51,12 @@ use abtrack::tcas::{
     RaStrength, Reply, SensitivityLevel, ThreatAssessment, ThreatGeometry,
     METRES_PER_NAUTICAL_MILE, METRES_PER_SECOND_PER_KNOT,
 };
-use abtrack::track::TrackNumeric;
 use abtrack::track::{
     Association, DropReason, FixedGainTrack, Gate, Measurement, RejectReason, ScanError,
     ScanReport, TrackId, TrackSlot, TrackStatus, TrackTable, TrackerConfig,
 };
-use abtrack::Scalar;
+use abtrack::Numeric;
+use abtrack::{Quantity, Scalar};
 use board::TableScalar as Native;
 use propagation::{ErrorPropagation, Lag, Matrix};
 use support::{never, value, Failure, Test, TestResult, TestScalar};
@@ -1307,7 +1307,7 @@ type Config<S> = TrackerConfig<S, Gains<S>>;
 /// α = 0.5, β = 0.2; uncertainty gate σ = 5 m, G = 13.8 (99.9 %),
 /// a_max = 5 m/s²; v_max = 300 m/s; confirmation 2 of 3, deletion after
 /// 3 / 2 misses.
-fn track_config<S: TrackNumeric>() -> Result<Config<S>, Failure> {
+fn track_config<S: Numeric>() -> Result<Config<S>, Failure> {
     let gains = Gains::<S>::alpha_beta_f64(0.5, 0.2);
     let gate = Gate::uncertainty(quantity(5.0)?, quantity(13.8)?, quantity(5.0)?);
     match (gains, gate) {
@@ -1425,7 +1425,7 @@ fn quantity<Q: abtrack::num::Quantity>(v: f64) -> Result<Q, Failure> {
     })
 }
 
-fn cartesian<S: TrackNumeric>(x: f64, y: f64) -> Result<Measurement<S>, Failure> {
+fn cartesian<S: Numeric>(x: f64, y: f64) -> Result<Measurement<S>, Failure> {
     Ok(Measurement::Cartesian {
         x: quantity(x)?,
         y: quantity(y)?,
@@ -1433,7 +1433,7 @@ fn cartesian<S: TrackNumeric>(x: f64, y: f64) -> Result<Measurement<S>, Failure>
 }
 
 /// Runs one scan of f64 measurements through the table in `S`.
-fn scan_table<S: TrackNumeric>(
+fn scan_table<S: Numeric>(
     table: &mut Table<S>,
     config: &Config<S>,
     now_ms: u32,
@@ -1468,10 +1468,7 @@ fn track_crossing_targets_keep_ids() -> TestResult {
 /// lie in both gates (4 gated pairs) and the optimal assignment decides; at
 /// the end both are confirmed and head their own way. The native table's
 /// codes and per-stage counts equal the f64 table's at every scan.
-fn crossing_keeps_ids<N: TrackNumeric>(
-    native: &mut Table<N>,
-    reference: &mut Table<f64>,
-) -> TestResult {
+fn crossing_keeps_ids<N: Numeric>(native: &mut Table<N>, reference: &mut Table<f64>) -> TestResult {
     let (cn, cf) = (track_config::<N>()?, track_config::<f64>()?);
     let mut rng = Lcg::new(2024);
     let mut ids = None;
@@ -1559,7 +1556,7 @@ fn track_cluttered_scans_same_codes_as_f64() -> TestResult {
 /// tracks, most are deleted, the table fills at times. The association code
 /// of every measurement and the per-stage counts (solver steps included)
 /// must equal f64's at every scan.
-fn cluttered_same_codes<N: TrackNumeric>(
+fn cluttered_same_codes<N: Numeric>(
     native: &mut Table<N>,
     reference: &mut Table<f64>,
 ) -> TestResult {

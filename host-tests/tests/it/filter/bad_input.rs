@@ -4,6 +4,7 @@
 //! or 3-D update applies to every axis or to none.
 
 use abtrack::filter::{Cartesian, Gains, KinematicFilter, Phase};
+use abtrack::num::Quantity;
 use abtrack::{FilterError, Fix, Scalar};
 
 /// Every field that defines the filter except the saturation counter, as raw

@@ -14,8 +14,8 @@
 use abtrack::filter::{Cartesian, Gains, KinematicFilter, Phase, StepGains, UpdateKind};
 use abtrack::num::f32_check;
 use abtrack::num::numeric::ScalarGuard;
-use abtrack::num::{Checked, Guard, Quantity};
-use abtrack::{FilterError, Scalar};
+use abtrack::num::Quantity;
+use abtrack::FilterError;
 use proptest::prelude::*;
 
 /// Values of every IEEE 754 class and at every boundary: zeros, the
@@ -118,7 +118,7 @@ fn interval_test_is_finite_and_positive() {
     for v in values {
         let want = v.is_finite() && v > 0.0;
         assert_eq!(Quantity::is_valid_and_positive(v), want, "{v:e}");
-        assert_eq!(Scalar::is_valid_and_positive(v), want, "{v:e}");
+        assert_eq!(abtrack::Quantity::is_valid_and_positive(v), want, "{v:e}");
         let w = f64::from(v);
         assert_eq!(Quantity::is_valid_and_positive(w), w.is_finite() && w > 0.0);
     }

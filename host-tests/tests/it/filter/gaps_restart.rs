@@ -15,8 +15,7 @@ use abtrack::num::{Numeric, Quantity};
 use abtrack::scan::{ClockConfig, MeasurementQueue, ScanConfig, ScanLoop};
 use abtrack::tcas::OwnAircraft;
 use abtrack::track::{
-    Association, FixedGainTrack, Gate, Measurement, RejectReason, TrackNumeric, TrackTable,
-    TrackerConfig,
+    Association, FixedGainTrack, Gate, Measurement, RejectReason, TrackTable, TrackerConfig,
 };
 use abtrack::wire::{MeasurementReport, Message};
 use abtrack::{Fix, Gains};
@@ -160,7 +159,7 @@ type Table<S> = TrackTable<S, FixedGainTrack<S>, 8, 8>;
 
 /// σ 5 m, G 13.8, a_max 5 m/s², v_max 300 m/s; confirmed tracks deleted
 /// only after 255 misses, so a coasting track outlives the filters' range.
-fn long_coast_config<S: TrackNumeric>() -> TrackerConfig<S, Gains<S>> {
+fn long_coast_config<S: Numeric>() -> TrackerConfig<S, Gains<S>> {
     let gains = Gains::alpha_beta_f64(0.5, 0.2).unwrap();
     let gate = Gate::uncertainty(q(5.0), q(13.8), q(5.0)).unwrap();
     TrackerConfig::new(gains, gate, q(300.0))
@@ -169,7 +168,7 @@ fn long_coast_config<S: TrackNumeric>() -> TrackerConfig<S, Gains<S>> {
         .unwrap()
 }
 
-fn cart<S: TrackNumeric>(x: f64, y: f64) -> Measurement<S> {
+fn cart<S: Numeric>(x: f64, y: f64) -> Measurement<S> {
     Measurement::Cartesian { x: q(x), y: q(y) }
 }
 
@@ -177,7 +176,7 @@ fn cart<S: TrackNumeric>(x: f64, y: f64) -> Measurement<S> {
 /// time since its last update grows by 4 s a scan); at the first scan more
 /// than 20 s after its last update it restarts (ended, counted, not among
 /// the deleted), and the target's next reports start a new track.
-fn coasting_track_restarts<S: TrackNumeric>() {
+fn coasting_track_restarts<S: Numeric>() {
     let config = long_coast_config::<S>();
     let mut table = Box::new(Table::<S>::new());
     let mut codes = [Association::NotAssigned; 1];
@@ -264,7 +263,7 @@ fn a_scan_after_a_long_silence_restarts_every_track() {
 /// A scan less than 0.05 s after the previous one is skipped: every
 /// measurement is coded and counted, the tracks and the scan time are
 /// unchanged; the next scan's interval is from the last accepted one.
-fn close_scan_is_skipped<S: TrackNumeric>() {
+fn close_scan_is_skipped<S: Numeric>() {
     let config = long_coast_config::<S>();
     let mut table = Box::new(Table::<S>::new());
     let mut codes = [Association::NotAssigned; 2];

@@ -8,6 +8,7 @@ use abtrack::filter::range_azimuth::{
     PAPER_BEARING_VARIANCE,
 };
 use abtrack::filter::Phase;
+use abtrack::num::{Quantity, Real};
 use abtrack::{FilterError, Fix, Scalar};
 use abtrack_host_tests::reference_ra::ReferenceRangeAzimuth;
 use std::f64::consts::{PI, TAU};

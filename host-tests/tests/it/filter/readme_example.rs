@@ -4,7 +4,7 @@
 
 use abtrack::filter::UpdateOutcome;
 use abtrack::gain::{AnySchedule, ScheduleSpec, ScheduledFilter};
-use abtrack::{Cartesian, FilterError, Fix, GainError, Gains, Scalar};
+use abtrack::{Cartesian, FilterError, Fix, GainError, Gains, Quantity};
 
 #[test]
 fn readme_example() -> Result<(), Box<dyn std::error::Error>> {

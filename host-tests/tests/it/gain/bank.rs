@@ -2,6 +2,7 @@
 //! every measurement and takes the prediction with the lowest |innovation|.
 
 use super::support;
+use abtrack::num::{Quantity, Real};
 
 use abtrack::bank::{BankConfig, BankOutcome, CartesianBank, ParallelBank};
 use abtrack::filter::{AlphaBeta, FilterError, Phase, UpdateOutcome};

@@ -3,6 +3,7 @@
 //! scheduled filters never panic on any measurement sequence.
 
 use super::support;
+use abtrack::num::Quantity;
 
 use abtrack::filter::{FilterError, Phase};
 use abtrack::gain::spec::ScheduleSpec;

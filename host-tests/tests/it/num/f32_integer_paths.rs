@@ -7,7 +7,7 @@ use abtrack::Scalar;
 
 /// The default method's route, through `f64` (which keeps the defaults).
 fn seconds_via_f64(ms: u32) -> f32 {
-    <f64 as Scalar>::seconds_from_ms(ms) as f32
+    <f64 as abtrack::Quantity>::seconds_from_ms(ms) as f32
 }
 
 fn round_via_f64(v: f32, scale: u32) -> i32 {
@@ -18,7 +18,7 @@ fn round_via_f64(v: f32, scale: u32) -> i32 {
 fn seconds_from_ms_matches_f64_for_every_ms_to_2_pow_24() {
     for ms in 0..=(1u32 << 24) {
         assert_eq!(
-            <f32 as Scalar>::seconds_from_ms(ms).to_bits(),
+            <f32 as abtrack::Quantity>::seconds_from_ms(ms).to_bits(),
             seconds_via_f64(ms).to_bits(),
             "{ms} ms"
         );

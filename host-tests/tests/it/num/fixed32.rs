@@ -6,7 +6,7 @@
 
 use abtrack::filter::{Cartesian, FilterError, Gains, KinematicFilter, StepGains};
 use abtrack::num::fixed32::{Acceleration, Gain, Interval, Length, Ratio, Speed};
-use abtrack::num::{AddProduct, Guard, Numeric, Quantity, Real, SubGuarded};
+use abtrack::num::{AddProduct, Numeric, Quantity, Real};
 use abtrack::Fixed32;
 use proptest::prelude::*;
 

@@ -1,5 +1,5 @@
-//! `Real::hypot3` of the `Scalar` types (one square root:
-//! `Scalar::hypot_triple`) against f64's √(a² + b² + c²): within a few
+//! `Real::hypot3` of the `Scalar` types (one square root) against
+//! f64's √(a² + b² + c²): within a few
 //! roundings for the floats and Q32.32, within ScaledScalar's documented
 //! half ulp; invalid arguments give an invalid result.
 
@@ -19,15 +19,15 @@ fn exact(a: f64, b: f64, c: f64) -> f64 {
 
 /// |hypot3 − exact| ≤ relative·exact + absolute, in `S`.
 fn check<S: Scalar + Real>(a: f64, b: f64, c: f64, relative: f64, absolute: f64) {
-    let f = |v: S| Scalar::to_f64(v);
-    let zero = <S as Scalar>::ZERO;
-    let [sa, sb, sc] = [a, b, c].map(<S as Scalar>::from_f64_lossy);
+    let f = |v: S| abtrack::Quantity::to_f64(v);
+    let zero = <S as abtrack::Quantity>::ZERO;
+    let [sa, sb, sc] = [a, b, c].map(<S as abtrack::Quantity>::from_f64_lossy);
     let want = exact(f(sa), f(sb), f(sc));
     let got = f(Real::hypot3(sa, sb, sc));
     assert!(
         (got - want).abs() <= relative * want + absolute,
         "{}: hypot3({a}, {b}, {c}) = {got}, exact {want}",
-        <S as Scalar>::NAME
+        <S as abtrack::Numeric>::NAME
     );
     // The order of the arguments does not matter beyond rounding, and a
     // zero third argument gives hypot.
@@ -60,7 +60,10 @@ proptest! {
 }
 
 fn invalid_propagates<S: Scalar + Real>(invalid: S) {
-    let (zero, one) = (<S as Scalar>::ZERO, <S as Scalar>::ONE);
+    let (zero, one) = (
+        <S as abtrack::Quantity>::ZERO,
+        <S as abtrack::num::Real>::ONE,
+    );
     for args in [
         (invalid, one, one),
         (one, invalid, one),
@@ -68,12 +71,15 @@ fn invalid_propagates<S: Scalar + Real>(invalid: S) {
         (invalid, zero, zero),
     ] {
         assert!(
-            !Scalar::is_valid(Real::hypot3(args.0, args.1, args.2)),
+            !abtrack::Quantity::is_valid(Real::hypot3(args.0, args.1, args.2)),
             "{}: an invalid argument gave a valid hypot3",
-            <S as Scalar>::NAME
+            <S as abtrack::Numeric>::NAME
         );
     }
-    assert_eq!(Scalar::to_f64(Real::hypot3(zero, zero, zero)), 0.0);
+    assert_eq!(
+        abtrack::Quantity::to_f64(Real::hypot3(zero, zero, zero)),
+        0.0
+    );
 }
 
 #[test]
@@ -82,6 +88,8 @@ fn an_invalid_argument_gives_an_invalid_result() {
     invalid_propagates(f64::INFINITY);
     invalid_propagates(f32::NAN);
     invalid_propagates(f32::NEG_INFINITY);
-    invalid_propagates(<Fix as Scalar>::from_f64_lossy(f64::NAN));
-    invalid_propagates(<ScaledScalar as Scalar>::from_f64_lossy(f64::NAN));
+    invalid_propagates(<Fix as abtrack::Quantity>::from_f64_lossy(f64::NAN));
+    invalid_propagates(<ScaledScalar as abtrack::Quantity>::from_f64_lossy(
+        f64::NAN,
+    ));
 }

@@ -10,7 +10,6 @@ use abtrack::num::sine::{
 };
 use abtrack::num::{Numeric, Quantity};
 use abtrack::Fixed32;
-use abtrack::Scalar;
 use proptest::prelude::*;
 
 const Q31: f64 = 2147483648.0;
@@ -88,7 +87,7 @@ proptest! {
     fn f32_sin_cos_within_its_bound(theta in -std::f64::consts::TAU..std::f64::consts::TAU) {
         let t = theta as f32;
         let exact = f64::from(t);
-        let (s, c) = <f32 as Scalar>::sin_cos(t);
+        let (s, c) = <f32 as abtrack::Numeric>::sin_cos(t);
         let half_ulp = |v: f32| f64::from(f32::EPSILON) / 2.0 * f64::from(v.abs());
         prop_assert!(
             (f64::from(s) - exact.sin()).abs() <= SIN_COS_F32_MAX_ERROR + half_ulp(s),

@@ -6,7 +6,7 @@
 
 use abtrack::scan::{Intake, ScanLoop};
 use abtrack::track::RangeAzimuthTrack;
-use abtrack::{Fix, Quantity, Scalar, ScaledScalar};
+use abtrack::{Fix, Quantity, ScaledScalar};
 use abtrack_firmware::capacity::{microbit, mps2};
 use abtrack_firmware::number_types::{with_fpu, without_fpu};
 use std::mem::size_of;
@@ -96,12 +96,12 @@ fn demo_scan_loop_starts_all_zero_on_every_board() {
 /// fast fixed point's formats among them.
 #[test]
 fn every_number_types_zero_is_zero_bytes() {
-    static SCALED_ZERO: ScaledScalar = <ScaledScalar as Scalar>::ZERO;
+    static SCALED_ZERO: ScaledScalar = <ScaledScalar as abtrack::Quantity>::ZERO;
     static RATIO_ZERO: abtrack::num::fixed32::Ratio =
         <abtrack::num::fixed32::Ratio as Quantity>::ZERO;
     static LENGTH_ZERO: abtrack::num::fixed32::Length =
         <abtrack::num::fixed32::Length as Quantity>::ZERO;
-    static FIX_ZERO: Fix = <Fix as Scalar>::ZERO;
+    static FIX_ZERO: Fix = <Fix as abtrack::Quantity>::ZERO;
     static F32_ZERO: f32 = 0.0;
     assert_zero("ScaledScalar::ZERO", &SCALED_ZERO);
     assert_zero("fixed32::Ratio::ZERO", &RATIO_ZERO);
@@ -115,7 +115,7 @@ fn every_number_types_zero_is_zero_bytes() {
     );
     // The zero still behaves as the smallest exponent: a product with it
     // is zero, a sum with it the other operand.
-    let x = <ScaledScalar as Scalar>::from_f64_lossy(3.5);
+    let x = <ScaledScalar as abtrack::Quantity>::from_f64_lossy(3.5);
     assert_eq!(x * SCALED_ZERO, SCALED_ZERO);
     assert_eq!(x + SCALED_ZERO, x);
     assert_eq!(

@@ -1,5 +1,6 @@
 //! Sensitivity level selection and the TCAS II v7.1 table.
 
+use abtrack::num::Quantity;
 use abtrack::tcas::{sensitivity, OwnAircraft, SensitivityLevel, TcasError, SENSITIVITY_TABLE};
 use abtrack::{Fix, Scalar, ScaledScalar};
 

@@ -2,6 +2,7 @@
 //! modified tau, closest point of approach and vertical tau, with golden
 //! values computed by hand, in f64, f32 and Q32.32.
 
+use abtrack::num::{Quantity, Real};
 use abtrack::tcas::{
     closest_approach, modified_tau, range_tau, vertical_tau, TcasError, CLOSURE_RATE_FLOOR_M_PER_S,
     METRES_PER_NAUTICAL_MILE, METRES_PER_SECOND_PER_KNOT,

@@ -597,7 +597,7 @@ fn expected_range_azimuth<S: Scalar + Display>(
         out.push_str(&row.t_text);
         let residual = match outcome {
             RangeAzimuthOutcome::Filtered(i) => {
-                let (s, c) = b.sin_cos();
+                let (s, c) = S::sin_cos(b);
                 Some([r * s - i.predicted[0], r * c - i.predicted[1]])
             }
             _ => None,

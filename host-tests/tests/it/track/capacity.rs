@@ -1,6 +1,7 @@
 //! Capacity is a hard fact; ids are unique; bad input touches nothing.
 
 use super::support;
+use abtrack::num::Quantity;
 
 use std::collections::HashSet;
 

@@ -18,12 +18,13 @@ use super::support;
 
 use abtrack::num::fixed32::Fixed32;
 use abtrack::track::assign::{AssignmentSolver, FORBIDDEN, MAX_COST};
+use abtrack::track::ScanInterval;
 use abtrack::track::{
     Association, FixedGainTrack, GateRegion, Measurement, Observation, ScanReport, TrackFilter,
     TrackId, TrackTable, TrackerConfig,
 };
-use abtrack::track::{ScanInterval, TrackNumeric};
 use abtrack::Fix;
+use abtrack::Numeric;
 use proptest::prelude::*;
 use support::{cart, default_config, parked_config, q, Lcg, Parked, ParkedParams};
 
@@ -146,7 +147,7 @@ fn all_equal_costs_tie_the_same_way() {
 // 2. The pre-gate's boxes hold every gated observation.
 // ---------------------------------------------------------------------------
 
-fn region_holds_gated<S: TrackNumeric>(
+fn region_holds_gated<S: Numeric>(
     region: &GateRegion<S>,
     points: &[(f64, f64)],
 ) -> Result<usize, String> {
@@ -189,7 +190,7 @@ fn points_around(center: (f64, f64), size: f64, rng: &mut Lcg, scale: f64) -> Ve
         .collect()
 }
 
-fn pregate_case<S: TrackNumeric>(seed: u64) {
+fn pregate_case<S: Numeric>(seed: u64) {
     let mut rng = Lcg(seed);
     let mut gated = 0;
     for _ in 0..40 {
@@ -301,7 +302,7 @@ fn measurements(
 
 /// Cost matrix of the table's tracks (slot order) × the measurements, as the
 /// scan's gate stage defines it, computed through the public API.
-fn gated_costs<S: TrackNumeric, F: TrackFilter<S>, const N: usize, const M: usize>(
+fn gated_costs<S: Numeric, F: TrackFilter<S>, const N: usize, const M: usize>(
     table: &TrackTable<S, F, N, M>,
     config: &TrackerConfig<S, F::Params>,
     interval_ms: u32,
@@ -369,7 +370,7 @@ struct Checked {
 /// Runs `scans` scans of a random scene through the table; from the third
 /// on, checks the table's assignment against the whole-table solve and, for
 /// small problems, a brute force.
-fn run_scene<S: TrackNumeric, const N: usize, const M: usize>(
+fn run_scene<S: Numeric, const N: usize, const M: usize>(
     seed: u64,
     targets: usize,
     crowded: bool,

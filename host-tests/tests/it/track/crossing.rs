@@ -7,10 +7,10 @@
 use super::support;
 
 use abtrack::num::fixed32::Fixed32;
-use abtrack::track::TrackNumeric;
 use abtrack::track::{Association, Measurement, ScanReport, TrackId, TrackStatus};
 use abtrack::track::{Gate, TrackerConfig};
 use abtrack::Gains;
+use abtrack::Numeric;
 use abtrack::{Fix, Scalar};
 use support::{cart, default_config, s, Config, Lcg, Table};
 
@@ -48,14 +48,14 @@ fn crossing(times: &[u32]) -> Vec<Vec<(f64, f64)>> {
 }
 
 /// Runs a scenario; returns per-scan codes, reports and the final table.
-fn run<S: TrackNumeric>(
+fn run<S: Numeric>(
     scans: &[Vec<(f64, f64)>],
     times: &[u32],
 ) -> (Vec<Vec<Association>>, Vec<ScanReport>, Table<S, 16, 16>) {
     run_with(&default_config::<S>(), scans, times)
 }
 
-fn run_with<S: TrackNumeric>(
+fn run_with<S: Numeric>(
     config: &Config<S>,
     scans: &[Vec<(f64, f64)>],
     times: &[u32],

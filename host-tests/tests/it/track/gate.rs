@@ -2,14 +2,15 @@
 //! Tenne & Singh's noise ratio.
 
 use super::support;
+use abtrack::num::Quantity;
 
 use abtrack::num::fixed32::Fixed32;
 use abtrack::track::assign::MAX_COST;
 use abtrack::track::{
     hypot, ErrorVariance, FixedGainStep, FixedGainTrack, Gate, GateRegion, Measurement,
-    Observation, ScanInterval, TrackFilter, TrackNumeric,
+    Observation, ScanInterval, TrackFilter,
 };
-use abtrack::{Fix, Gains, Scalar};
+use abtrack::{Fix, Gains, Numeric};
 use support::{cart, q, s};
 
 fn close(a: f64, b: f64, tol: f64) -> bool {
@@ -69,13 +70,13 @@ fn steady_state_matches_tenne_singh_eq13() {
 }
 
 /// The fixed-gain tracks' step for an interval of `ms`.
-fn step<S: TrackNumeric>(gains: &Gains<S>, ms: u32) -> FixedGainStep<S> {
+fn step<S: Numeric>(gains: &Gains<S>, ms: u32) -> FixedGainStep<S> {
     FixedGainTrack::step(gains, &ScanInterval::from_ms(ms).unwrap()).unwrap()
 }
 
 /// A stationary fixed-gain track at (3000, 4000) started from two points 1 s
 /// apart, plus its prediction 1 s ahead.
-fn stationary<S: TrackNumeric>(
+fn stationary<S: Numeric>(
     gains: &Gains<S>,
 ) -> (FixedGainTrack<S>, abtrack::track::PredictedState<S>) {
     let z = Observation::new(cart::<S>(3000.0, 4000.0)).unwrap();
@@ -133,7 +134,7 @@ fn wave_gate_radius_by_hand() {
         .radius();
     assert!(close(r, expected, 1e-9), "{r}");
     // The same in Q32.32, f32 and the fast fixed point.
-    fn wave<S: TrackNumeric>(tolerance: f64) {
+    fn wave<S: Numeric>(tolerance: f64) {
         let expected = 2.0 * 0.5f64.sqrt() * 50.0;
         let gains = Gains::<S>::alpha_beta_f64(0.5, 0.2).unwrap();
         let (f, p) = stationary(&gains);

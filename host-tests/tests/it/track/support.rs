@@ -1,9 +1,9 @@
 //! Shared helpers of the track tests.
 
-use abtrack::num::Quantity;
+use abtrack::num::{Numeric, Quantity};
 use abtrack::track::{
     FixedGainTrack, Gate, GateRegion, Measurement, Observation, PredictedState, ScanInterval,
-    TrackFilter, TrackNumeric, TrackerConfig,
+    TrackFilter, TrackerConfig,
 };
 use abtrack::{FilterError, Gains, Scalar};
 
@@ -20,14 +20,14 @@ pub fn q<Q: Quantity>(v: f64) -> Q {
     Q::try_from_f64(v).unwrap()
 }
 
-pub fn cart<S: TrackNumeric>(x: f64, y: f64) -> Measurement<S> {
+pub fn cart<S: Numeric>(x: f64, y: f64) -> Measurement<S> {
     Measurement::Cartesian { x: q(x), y: q(y) }
 }
 
 /// α = 0.5, β = 0.2 (inside Al-Wagih's triangle: 2α + β = 1.2 < 4);
 /// uncertainty gate σ = 5 m, G = 13.8 (99.9 %), a_max = 5 m/s²;
 /// v_max = 300 m/s; defaults otherwise (2 of 3, delete after 3 / 2 misses).
-pub fn default_config<S: TrackNumeric>() -> Config<S> {
+pub fn default_config<S: Numeric>() -> Config<S> {
     let gains = Gains::alpha_beta_f64(0.5, 0.2).unwrap();
     let gate = Gate::uncertainty(q(5.0), q(13.8), q(5.0)).unwrap();
     TrackerConfig::new(gains, gate, q(300.0)).unwrap()

@@ -2,6 +2,7 @@
 //! conversions, and the streaming decoder (resynchronisation, counters, no
 //! panic on any input).
 
+use abtrack::num::Quantity;
 use abtrack::tcas::{Advisory, RaSense, RaStrength, SensitivityLevel};
 use abtrack::track::{Measurement, TrackStatus};
 use abtrack::wire::*;
@@ -426,8 +427,6 @@ fn cartesian_conversion_checks_the_envelope() {
         })
     );
 }
-
-use abtrack::Scalar;
 
 #[test]
 fn altitude_conversion_checks_the_mode_c_range() {

@@ -6,12 +6,12 @@
 use core::hint::black_box;
 
 use abtrack::filter::StepGains;
-use abtrack::num::{AddProduct, Quantity, SubGuarded};
+use abtrack::num::{AddProduct, Quantity};
 use abtrack::Scalar;
 
 use crate::counter::Bench;
 use crate::data::{at, PlaneRing};
-use crate::numeric::Numeric;
+use crate::numeric::BenchNumber;
 
 /// Position error, m, beyond which an anchor counts as diverged: the inputs
 /// have σ = 25 m of noise and a filter that follows them ends within a few σ
@@ -85,7 +85,7 @@ fn floor_axis<N: abtrack::Numeric>(
     z: N::Length,
     g: &FloorGains<N>,
 ) {
-    let mut unchecked = N::Guard::default();
+    let mut unchecked = <N as abtrack::Numeric>::Guard::default();
     let guard = &mut unchecked;
     let predicted = position.add_product(*velocity, g.interval, guard);
     let residual = z.sub_guarded(predicted, guard);
@@ -109,7 +109,7 @@ fn floor_update<N: abtrack::Numeric>(
 
 /// `floor_ab2d_update`: the floor on the `ab2d_update` row's data and gains.
 #[inline(never)]
-pub fn floor<N: Numeric>(bench: &mut Bench) {
+pub fn floor<N: BenchNumber>(bench: &mut Bench) {
     const OPERATION: &str = "floor_ab2d_update";
     let numeric = N::LABEL;
     let interval = N::Interval::from_f64_lossy(1.0);
@@ -214,11 +214,11 @@ fn axis_kalman_update<S: Scalar>(
 #[inline(never)]
 pub fn axis_kalman<S>(bench: &mut Bench)
 where
-    S: Scalar + crate::numeric::Numeric + abtrack::Numeric<Length = S>,
+    S: Scalar + crate::numeric::BenchNumber,
 {
     const OPERATION: &str = "axis_kalman_cv2d_update";
     let numeric = S::LABEL;
-    let c = |v: f64| <S as Scalar>::from_f64_lossy(v);
+    let c = |v: f64| <S as abtrack::Quantity>::from_f64_lossy(v);
     let (t, q) = (1.0, 1.0);
     let model = black_box(AxisKalmanModel {
         interval: c(t),
@@ -231,9 +231,9 @@ where
     let target = target::<S>();
     let start = |z: S| AxisKalman {
         position: z,
-        velocity: <S as Scalar>::ZERO,
+        velocity: <S as abtrack::Quantity>::ZERO,
         p_xx: c(625.0),
-        p_xv: <S as Scalar>::ZERO,
+        p_xv: <S as abtrack::Quantity>::ZERO,
         p_vv: c(10_000.0),
     };
     let mut filter = [start(target.xs[0]), start(target.ys[0])];

@@ -26,13 +26,13 @@ use abtrack::Scalar;
 
 use crate::counter::Bench;
 use crate::data::{at, PlaneRing, RING};
-use crate::numeric::Numeric;
+use crate::numeric::BenchNumber;
 use crate::synth::Lcg;
 
 /// Every operation of this module that runs in any number system
 /// ([`abtrack::Numeric`]).
 #[inline(never)]
-pub fn run<N: Numeric>(bench: &mut Bench) {
+pub fn run<N: BenchNumber>(bench: &mut Bench) {
     kinematic::<N>(bench);
     scheduled::<N>(bench);
     range_azimuth::<N>(bench);
@@ -43,7 +43,7 @@ pub fn run<N: Numeric>(bench: &mut Bench) {
 /// altitude tracker and the TCAS assessment (not yet ported to
 /// [`abtrack::Numeric`]).
 #[inline(never)]
-pub fn run_scalar<S: Numeric + Scalar>(bench: &mut Bench) {
+pub fn run_scalar<S: BenchNumber + Scalar>(bench: &mut Bench) {
     altitude::<S>(bench);
     tcas::<S>(bench);
 }
@@ -145,7 +145,7 @@ fn form_cycle<S: Scalar>(own: &OwnAircraft<S>) -> Option<Cycle<S>> {
 /// target (σ = 25 m), through the per-interval path: the step gains of the
 /// interval formed once, outside the timed calls.
 #[inline(never)]
-fn kinematic<N: Numeric>(bench: &mut Bench) {
+fn kinematic<N: BenchNumber>(bench: &mut Bench) {
     let numeric = N::LABEL;
     let dt = N::Interval::from_f64_lossy(1.0);
     let steps = ab_gains::<N>()
@@ -203,7 +203,7 @@ fn kinematic<N: Numeric>(bench: &mut Bench) {
 /// switch, on Liu, Wang & Yang's σ = 5 m (so that the adaptive schedules see
 /// both steady stretches and the turnarounds of the out-and-back track).
 #[inline(never)]
-fn scheduled<N: Numeric>(bench: &mut Bench) {
+fn scheduled<N: BenchNumber>(bench: &mut Bench) {
     let numeric = N::LABEL;
     let dt = black_box(N::Interval::from_f64_lossy(1.0));
     let target = PlaneRing::<N>::new(5.0);
@@ -234,7 +234,7 @@ fn scheduled<N: Numeric>(bench: &mut Bench) {
 /// covariance for both axes, docs/auto.md), configured with the data's σ,
 /// on the same target as the scheduled rows.
 #[inline(never)]
-fn auto<N: Numeric>(bench: &mut Bench) {
+fn auto<N: BenchNumber>(bench: &mut Bench) {
     let numeric = N::LABEL;
     let dt = black_box(N::Interval::from_f64_lossy(1.0));
     let target = PlaneRing::<N>::new(5.0);
@@ -256,7 +256,7 @@ fn auto<N: Numeric>(bench: &mut Bench) {
 /// 150 m/s along the line of sight while the azimuth drifts, 15 m and
 /// 0.01 rad of noise.
 #[inline(never)]
-fn range_azimuth<N: Numeric>(bench: &mut Bench) {
+fn range_azimuth<N: BenchNumber>(bench: &mut Bench) {
     let numeric = N::LABEL;
     let dt = black_box(N::Interval::from_f64_lossy(1.0));
     let mut rng = Lcg::new(3);
@@ -292,14 +292,14 @@ fn range_azimuth<N: Numeric>(bench: &mut Bench) {
 /// The altitude tracker with Mode C reports (100 ft steps) of an intruder
 /// climbing and descending at 20 ft/s around 8000 ft, one per second.
 #[inline(never)]
-fn altitude<S: Numeric + Scalar>(bench: &mut Bench) {
+fn altitude<S: BenchNumber + Scalar>(bench: &mut Bench) {
     let numeric = S::LABEL;
-    let dt = black_box(<S as Scalar>::from_f64_lossy(1.0));
+    let dt = black_box(<S as abtrack::Quantity>::from_f64_lossy(1.0));
     let mut rng = Lcg::new(6);
     let reports: [S; RING] = core::array::from_fn(|k| {
         let leg = if k < RING / 2 { k } else { RING - k } as f64;
         let true_ft = 8_000.0 + 20.0 * leg + rng.noise(10.0);
-        <S as Scalar>::from_f64_lossy(libm::round(true_ft / 100.0) * 100.0)
+        <S as abtrack::Quantity>::from_f64_lossy(libm::round(true_ft / 100.0) * 100.0)
     });
     let Ok(config) = AltitudeTrackerConfig::<S>::default_for(AltitudeQuantum::ModeC) else {
         bench.fail(numeric, "altitude_update", "configuration refused");
@@ -320,14 +320,14 @@ fn altitude<S: Numeric + Scalar>(bench: &mut Bench) {
 /// ±300 m/s, ±1000 ft and ±30 ft/s of the own aircraft, level at 8000 ft
 /// (SL 5), a mix of none, proximate, TA and RA.
 #[inline(never)]
-fn tcas<S: Numeric + Scalar>(bench: &mut Bench) {
+fn tcas<S: BenchNumber + Scalar>(bench: &mut Bench) {
     let numeric = S::LABEL;
     let own = black_box(OwnAircraft::over_sea_level(
-        <S as Scalar>::from_f64_lossy(8000.0),
-        <S as Scalar>::ZERO,
+        <S as abtrack::Quantity>::from_f64_lossy(8000.0),
+        <S as abtrack::Quantity>::ZERO,
     ));
     let mut rng = Lcg::new(4);
-    let c = |v: f64| <S as Scalar>::from_f64_lossy(v);
+    let c = |v: f64| <S as abtrack::Quantity>::from_f64_lossy(v);
     let intruders: [Intruder<S>; RING] = core::array::from_fn(|_| Intruder {
         relative_position_m: [
             c(rng.uniform(-11_112.0, 11_112.0)),

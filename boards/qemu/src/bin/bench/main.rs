@@ -43,7 +43,7 @@ use core::any::TypeId;
 
 use abtrack::{Fix, Fixed32, Scalar, ScaledScalar};
 use counter::Bench;
-use numeric::Numeric;
+use numeric::BenchNumber;
 
 /// Calls averaged per per-call figure.
 pub const CALLS: u32 = 4096;
@@ -68,7 +68,7 @@ fn main() -> ! {
 }
 
 fn run(bench: &mut Bench) {
-    // One line per number system. A new one: implement `Numeric` for it
+    // One line per number system. A new one: implement `BenchNumber` for it
     // (boards/qemu/src/bin/bench/numeric.rs) and add its line here.
     bench_numeric::<f32>(bench);
     bench_numeric::<Fixed32>(bench);
@@ -130,7 +130,7 @@ use counter::Omission;
 
 /// Every operation that runs in any number system, in `N`.
 #[inline(never)]
-fn bench_numeric<N: Numeric + abtrack::track::TrackNumeric>(bench: &mut Bench) {
+fn bench_numeric<N: BenchNumber>(bench: &mut Bench) {
     if let Some(why) = omitted::<N>(Group::Filters) {
         bench.omitted_group(N::LABEL, Group::Filters.operations(), why);
         return;
@@ -145,7 +145,7 @@ fn bench_numeric<N: Numeric + abtrack::track::TrackNumeric>(bench: &mut Bench) {
 
 /// The operations written for [`Scalar`] only, in `S`.
 #[inline(never)]
-fn bench_scalar<S: Numeric + Scalar>(bench: &mut Bench) {
+fn bench_scalar<S: BenchNumber + Scalar>(bench: &mut Bench) {
     match omitted::<S>(Group::Tcas) {
         Some(why) => bench.omitted_group(S::LABEL, Group::Tcas.operations(), why),
         None => filters::run_scalar::<S>(bench),
@@ -159,7 +159,7 @@ fn bench_scalar<S: Numeric + Scalar>(bench: &mut Bench) {
 /// the image past 256 KiB), the TCAS rows in the type its firmware runs
 /// them in ([`board::TableScalar`]), and the scans in the fast fixed point
 /// only. Decided at compile time, so the code left out is not linked.
-fn omitted<N: Numeric>(group: Group) -> Option<Omission> {
+fn omitted<N: BenchNumber>(group: Group) -> Option<Omission> {
     if !cfg!(abtrack_board = "microbit") {
         return None;
     }

@@ -23,7 +23,7 @@ const OPERATION: &str = "kalman_cv2d_update";
 /// as for abtrack's own rows.
 #[inline(never)]
 pub fn run(bench: &mut Bench) {
-    cv2d::<f32>(bench, <f32 as crate::numeric::Numeric>::LABEL);
+    cv2d::<f32>(bench, <f32 as crate::numeric::BenchNumber>::LABEL);
     cv2d::<I16F16>(bench, "i16f16");
 }
 

@@ -6,13 +6,13 @@ use abtrack::{Fix, Fixed32, ScaledScalar};
 /// A number system the abtrack operations run in ([`abtrack::Numeric`]),
 /// with its label in the benchmark's output (the `numeric` column of
 /// bench/results.csv).
-pub trait Numeric: abtrack::Numeric {
+pub trait BenchNumber: abtrack::Numeric {
     const LABEL: &'static str;
 }
 
 /// Hardware single precision where the core has an FPU (the hard-float ABI:
 /// Cortex-M4F), software single precision elsewhere.
-impl Numeric for f32 {
+impl BenchNumber for f32 {
     #[cfg(target_abi = "eabihf")]
     const LABEL: &'static str = "f32";
     #[cfg(not(target_abi = "eabihf"))]
@@ -21,7 +21,7 @@ impl Numeric for f32 {
 
 /// The fast fixed point ([`Fixed32`]): 32-bit words with a format per
 /// quantity.
-impl Numeric for Fixed32 {
+impl BenchNumber for Fixed32 {
     const LABEL: &'static str = "fixed";
 }
 
@@ -29,16 +29,16 @@ impl Numeric for Fixed32 {
 /// ([`ScaledScalar`]): the type the code written for `Scalar` (the altitude
 /// tracker, TCAS) runs in on cores without an FPU, so its rows are the fast
 /// fixed point's (`fixed`); Fixed32 itself has no implementation of them.
-impl Numeric for ScaledScalar {
+impl BenchNumber for ScaledScalar {
     const LABEL: &'static str = "fixed";
 }
 
 /// Q32.32 ([`Fix`]).
-impl Numeric for Fix {
+impl BenchNumber for Fix {
     const LABEL: &'static str = "q32";
 }
 
 /// Software double precision on every core here.
-impl Numeric for f64 {
+impl BenchNumber for f64 {
     const LABEL: &'static str = "f64";
 }

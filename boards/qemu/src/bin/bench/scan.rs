@@ -11,15 +11,16 @@ use core::hint::black_box;
 use abtrack::filter::Gains;
 use abtrack::gain::{AutoConfig, AutoGains};
 use abtrack::num::Quantity;
+use abtrack::track::ScanInterval;
 use abtrack::track::{
     defaults::DefaultCartesianTrack, Association, FixedGainTrack, Gate, Measurement, Observation,
     ScanReport, ScanStage, TrackFilter, TrackTable, TrackerConfig,
 };
-use abtrack::track::{ScanInterval, TrackNumeric};
+use abtrack::Numeric;
 use cortex_m::peripheral::SYST;
 
 use crate::counter::{Bench, Size};
-use crate::numeric::Numeric;
+use crate::numeric::BenchNumber;
 
 /// The scan rows in `S`, one line per size (each a table type of its own,
 /// with its own code). The micro:bit's 16 KiB of RAM hold the table (on
@@ -29,7 +30,7 @@ use crate::numeric::Numeric;
 /// gives the formulas). The default filter's rows stop at 64 × 64 (the
 /// sizes the cost targets are set for).
 #[inline(never)]
-pub fn sizes<S: Numeric + TrackNumeric>(bench: &mut Bench) {
+pub fn sizes<S: BenchNumber>(bench: &mut Bench) {
     run::<S, FixedGainTrack<S>, 8, 8>(bench);
     run::<S, FixedGainTrack<S>, 16, 16>(bench);
     run::<S, FixedGainTrack<S>, 32, 32>(bench);
@@ -49,7 +50,7 @@ pub fn sizes<S: Numeric + TrackNumeric>(bench: &mut Bench) {
 }
 
 /// A filter of the scan rows: its configuration and its rows' names.
-pub trait BenchFilter<S: TrackNumeric>: TrackFilter<S> {
+pub trait BenchFilter<S: Numeric>: TrackFilter<S> {
     /// The rows of the separated and the crowded scene.
     const ROWS: [Rows; 2];
     /// The filter's parameters in the scenes.
@@ -83,7 +84,7 @@ macro_rules! rows {
 }
 
 /// Fixed gains α = 0.5, β = 0.2.
-impl<S: TrackNumeric> BenchFilter<S> for FixedGainTrack<S> {
+impl<S: Numeric> BenchFilter<S> for FixedGainTrack<S> {
     const ROWS: [Rows; 2] = [rows!("scan_separated"), rows!("scan_crowded")];
     fn params() -> Option<Gains<S>> {
         Gains::<S>::alpha_beta_f64(0.5, 0.2).ok()
@@ -92,7 +93,7 @@ impl<S: TrackNumeric> BenchFilter<S> for FixedGainTrack<S> {
 
 /// The default filter (`auto`, the per-axis Kalman gains) for σ = 5 m, the
 /// σ of the scenes' gate.
-impl<S: TrackNumeric> BenchFilter<S> for DefaultCartesianTrack<S> {
+impl<S: Numeric> BenchFilter<S> for DefaultCartesianTrack<S> {
     const ROWS: [Rows; 2] = [
         rows!("scan_default_separated"),
         rows!("scan_default_crowded"),
@@ -179,7 +180,7 @@ enum Scene {
 
 impl Scene {
     /// The scene's rows for filter `F`.
-    fn rows<S: TrackNumeric, F: BenchFilter<S>>(self) -> &'static Rows {
+    fn rows<S: Numeric, F: BenchFilter<S>>(self) -> &'static Rows {
         match self {
             Scene::Separated => &F::ROWS[0],
             Scene::Crowded => &F::ROWS[1],
@@ -214,7 +215,7 @@ impl Scene {
     /// the target's own (12 m across, 100 m along), well inside the noise.
     /// With exact points every track starts on its own target; the scans
     /// measured come later.
-    fn measurements<S: TrackNumeric, const M: usize>(
+    fn measurements<S: Numeric, const M: usize>(
         self,
         k: u32,
         rng: &mut Lcg,
@@ -261,7 +262,7 @@ fn crowded_cluster(i: usize, targets: usize) -> (usize, usize, usize) {
 
 /// One scan; `marks[i]` gets SysTick's value as stage `STAGES[i]` ends.
 #[inline(never)]
-fn run_scan<S: TrackNumeric, F: TrackFilter<S>, const N: usize, const M: usize>(
+fn run_scan<S: Numeric, F: TrackFilter<S>, const N: usize, const M: usize>(
     table: &mut TrackTable<S, F, N, M>,
     config: &TrackerConfig<S, F::Params>,
     now_ms: u32,
@@ -280,9 +281,7 @@ fn run_scan<S: TrackNumeric, F: TrackFilter<S>, const N: usize, const M: usize>(
 
 /// Both scenes at N tracks, M measurements per scan.
 #[inline(never)]
-fn run<S: Numeric + TrackNumeric, F: BenchFilter<S>, const N: usize, const M: usize>(
-    bench: &mut Bench,
-) {
+fn run<S: BenchNumber, F: BenchFilter<S>, const N: usize, const M: usize>(bench: &mut Bench) {
     scene::<S, F, N, M>(bench, Scene::Separated);
     scene::<S, F, N, M>(bench, Scene::Crowded);
 }
@@ -292,7 +291,7 @@ fn run<S: Numeric + TrackNumeric, F: BenchFilter<S>, const N: usize, const M: us
 /// SysTick read where the scan reports the stage's end); the counts of the
 /// last scan; the sizes of the clusters of the gated pairs.
 #[inline(never)]
-fn scene<S: Numeric + TrackNumeric, F: BenchFilter<S>, const N: usize, const M: usize>(
+fn scene<S: BenchNumber, F: BenchFilter<S>, const N: usize, const M: usize>(
     bench: &mut Bench,
     scene: Scene,
 ) {
@@ -427,7 +426,7 @@ struct ClusterSizes<const N: usize> {
 }
 
 impl<const N: usize> ClusterSizes<N> {
-    fn of<S: TrackNumeric, F: TrackFilter<S>, const M: usize>(
+    fn of<S: Numeric, F: TrackFilter<S>, const M: usize>(
         table: &TrackTable<S, F, N, M>,
         config: &TrackerConfig<S, F::Params>,
         measurements: &[Measurement<S>; M],

@@ -8,7 +8,7 @@ use crate::synth::{Orbit, SOAK_MAX_PER_SCAN, SOAK_TARGETS};
 use abtrack::scan::{Intake, ScanLoop};
 use abtrack::track::FixedGainTrack;
 use abtrack::wire::{Encoder, MeasurementReport, Message, TrackReport, MAX_FRAME_LEN};
-use abtrack::Scalar;
+use abtrack::Numeric;
 
 /// Scans of the day (86,400 = 24 h at 1 Hz), or `ABTRACK_SOAK_SCANS`.
 const SCANS: u32 = match option_env!("ABTRACK_SOAK_SCANS") {
