@@ -16,7 +16,7 @@ use crate::num::{Numeric, Quantity, Real};
 /// weight), formed once per scan and used by every track that coasted
 /// nothing since its last update.
 #[derive(Debug, Clone, Copy, PartialEq)]
-pub struct AutoStep<S: TrackNumeric> {
+pub struct AutoStep<S: Numeric> {
     interval: ScanInterval<S>,
     span: Span<S::Ratio>,
 }
