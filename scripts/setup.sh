@@ -200,8 +200,15 @@ ensure_llvm_tools() {
 }
 
 # Builds host-tests' firmware-check (the panic and stack-layout checks on
-# the firmware ELFs) and prints its path.
+# the firmware ELFs) and prints its path; once it is in
+# $ABTRACK_FIRMWARE_CHECK (the test command sets it after its builds), that
+# path without a cargo call, so checks running beside other cargo commands
+# never wait for a build lock.
 firmware_check_tool() {
+    if [ -n "${ABTRACK_FIRMWARE_CHECK:-}" ]; then
+        echo "$ABTRACK_FIRMWARE_CHECK"
+        return 0
+    fi
     local root
     root=$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)
     (cd "$root/host-tests" && cargo build --release --quiet --bin firmware-check) >&2 || return

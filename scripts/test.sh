@@ -324,6 +324,16 @@ build_firmware() {
         cargo build --release --target thumbv7em-none-eabihf -p abtrack-firmware --example static_track_table
 }
 
+# The library alone (no default features), then the firmware's binaries
+# and examples, on the minimum Rust version, for the M4F (one target
+# directory: the two share their dependencies' builds).
+check_on_msrv() {
+    cargo "+$(msrv)" check -p abtrack --lib --no-default-features \
+        --target thumbv7em-none-eabihf --target-dir target/msrv &&
+        cargo "+$(msrv)" check -p abtrack-firmware --bins --examples \
+            --target thumbv7em-none-eabihf --target-dir target/msrv
+}
+
 # The library alone (no default features) for the three targets, in one
 # clippy pass with its no-panic lints (Cargo.toml [lints.clippy],
 # .clippy.toml): indexing, unwrap/expect, panic! and integer arithmetic are
@@ -336,6 +346,8 @@ library_and_firmware_steps() {
     step "cargo fmt --check" cargo fmt --check
     step "library alone for the three targets: clippy, no panic paths (indexing, unwrap, arithmetic)" \
         cargo clippy -p abtrack --lib --no-default-features "${target_args[@]}" -- -D warnings
+    step "library and firmware on their minimum Rust version $(msrv) (cargo +$(msrv) check)" \
+        check_on_msrv
     step "library: no firmware crates among its dependencies" library_has_no_firmware_dependencies
     step "library: the crates.io package (cargo publish --dry-run --no-verify; every file the build reads packaged)" check_package
     step "firmware build for the three targets (and the example static_track_table)" build_firmware
@@ -345,9 +357,13 @@ library_and_firmware_steps() {
 
 in_parallel host_tests_steps library_and_firmware_steps
 
-# Lane 8 of the runs below: the ELF checks (firmware-check is a host-tests
-# binary, built by the host tests' step; llvm-objdump keeps a core busy
-# while the QEMU lanes wait).
+# firmware-check, built by the host tests' step: its path, found once, for
+# the checks in the lanes below.
+ABTRACK_FIRMWARE_CHECK=$(firmware_check_tool) || ABTRACK_FIRMWARE_CHECK=
+
+# Lane 8 of the runs below: the ELF checks (firmware-check at the path
+# found above: no cargo call, so no wait for a build lock held by another
+# lane).
 elf_checks() {
     step "firmware: no call into core::panicking in any release ELF" check_no_panic_calls
     step "firmware: stack below the static data in every release ELF (flip-link)" check_stack_layout
@@ -426,25 +442,18 @@ fault_injection_mps2_an385() { fault_injection_on mps2-an385; }
 fault_injection_microbit() { fault_injection_on microbit; }
 
 # Lane 6: the soak shortened to one hour of scans (scripts/soak.sh runs the
-# day; its image is built above), the fuzz targets (their build started
-# first) and the nRF52840-DK build (their own workspaces and target
-# directories).
-soak_fuzz_nrf() {
+# day; its image is built above), then the fuzz targets (their build
+# started first; their own workspace and target directory).
+soak_and_fuzz() {
     step "soak, one hour, on mps2-an385" in_host_tests env ABTRACK_SOAK_SCANS=3600 \
         cargo test --release --test it -- --ignored firmware::soak::soak_mps2_an385
     step "fuzz: each target's committed corpus replayed, then 5 s of fuzzing (scripts/fuzz.sh 5)" \
         fuzz_after_build
-    step "nRF52840-DK demo build (boards/nrf52840-dk: defmt-rtt, probe-rs runner, flip-link)" build_nrf52840_dk
 }
 
-# The library alone (no default features), then the firmware's binaries
-# and examples, on the minimum Rust version, for the M4F (one target
-# directory: the two share their dependencies' builds).
-check_on_msrv() {
-    cargo "+$(msrv)" check -p abtrack --lib --no-default-features \
-        --target thumbv7em-none-eabihf --target-dir target/msrv &&
-        cargo "+$(msrv)" check -p abtrack-firmware --bins --examples \
-            --target thumbv7em-none-eabihf --target-dir target/msrv
+# Lane 9: the nRF52840-DK build (its own workspace and target directory).
+nrf52840_dk() {
+    step "nRF52840-DK demo build (boards/nrf52840-dk: defmt-rtt, probe-rs runner, flip-link)" build_nrf52840_dk
 }
 
 # Lane 7: the library's host-side checks, each in its own target directory
@@ -453,8 +462,7 @@ check_on_msrv() {
 # both; the test profile, with overflow checks, and no link-time
 # optimisation to wait for), then examples/tcas_cycle.rs run; the documentation docs.rs builds
 # (all features, the host target) with no rustdoc warning (broken intra-doc
-# links among them); the library and the firmware on their minimum Rust
-# version (Cargo.toml `rust-version`).
+# links among them).
 library_on_the_host() {
     local host_triple
     host_triple=$(rustc -vV | sed -n 's/^host: //p')
@@ -466,12 +474,10 @@ library_on_the_host() {
     step "library: cargo doc, no warnings" in_host_tests env RUSTDOCFLAGS="-D warnings" \
         cargo doc --manifest-path ../Cargo.toml -p abtrack --lib --no-deps --all-features \
         --target-dir ../target/doc-check
-    step "library and firmware on their minimum Rust version $(msrv) (cargo +$(msrv) check)" \
-        check_on_msrv
 }
 
 in_parallel emulated_images stack_marks fault_injection_mps2_an386 fault_injection_mps2_an385 \
-    fault_injection_microbit soak_fuzz_nrf library_on_the_host elf_checks
+    fault_injection_microbit soak_and_fuzz library_on_the_host elf_checks nrf52840_dk
 
 echo
 echo "abtrack test summary:"
