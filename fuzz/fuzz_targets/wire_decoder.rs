@@ -95,6 +95,9 @@ fuzz_target!(|bytes: &[u8]| {
     assert_eq!(s.unknown_type, returned.unknown_type, "unknown type");
     assert_eq!(s.bad_length, returned.bad_length, "bad length");
     assert_eq!(s.bad_field, returned.bad_field, "bad field");
-    assert_eq!(s.out_of_envelope, returned.out_of_envelope, "out of envelope");
+    assert_eq!(
+        s.out_of_envelope, returned.out_of_envelope,
+        "out of envelope"
+    );
     assert_eq!(s.truncated, returned.truncated, "truncated");
 });
