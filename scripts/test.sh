@@ -346,8 +346,6 @@ library_and_firmware_steps() {
     step "cargo fmt --check" cargo fmt --check
     step "library alone for the three targets: clippy, no panic paths (indexing, unwrap, arithmetic)" \
         cargo clippy -p abtrack --lib --no-default-features "${target_args[@]}" -- -D warnings
-    step "library and firmware on their minimum Rust version $(msrv) (cargo +$(msrv) check)" \
-        check_on_msrv
     step "library: no firmware crates among its dependencies" library_has_no_firmware_dependencies
     step "library: the crates.io package (cargo publish --dry-run --no-verify; every file the build reads packaged)" check_package
     step "firmware build for the three targets (and the example static_track_table)" build_firmware
@@ -462,7 +460,8 @@ nrf52840_dk() {
 # both; the test profile, with overflow checks, and no link-time
 # optimisation to wait for), then examples/tcas_cycle.rs run; the documentation docs.rs builds
 # (all features, the host target) with no rustdoc warning (broken intra-doc
-# links among them).
+# links among them); the library and the firmware on their minimum Rust
+# version (Cargo.toml `rust-version`).
 library_on_the_host() {
     local host_triple
     host_triple=$(rustc -vV | sed -n 's/^host: //p')
@@ -474,6 +473,8 @@ library_on_the_host() {
     step "library: cargo doc, no warnings" in_host_tests env RUSTDOCFLAGS="-D warnings" \
         cargo doc --manifest-path ../Cargo.toml -p abtrack --lib --no-deps --all-features \
         --target-dir ../target/doc-check
+    step "library and firmware on their minimum Rust version $(msrv) (cargo +$(msrv) check)" \
+        check_on_msrv
 }
 
 in_parallel emulated_images stack_marks fault_injection_mps2_an386 fault_injection_mps2_an385 \
