@@ -99,12 +99,12 @@ impl<S: Numeric> TrackFilter<S> for AutoFilter<S, 2> {
 
     fn gate_region(
         &self,
-        _: &Self::Params,
+        params: &Self::Params,
         predicted: &PredictedState<S>,
         step: &AutoStep<S>,
         gate: &Gate<S>,
     ) -> Option<GateRegion<S>> {
-        let p = self.predicted_variance_ratio_over(step.interval.interval(), Some(&step.span))?;
+        let p = TrackFilter::predicted_variance_ratio(self, params, step)?;
         let radius = match *gate {
             Gate::Uncertainty {
                 measurement_sigma,
