@@ -305,8 +305,8 @@ pub struct Unused {
     /// Their scan came less than 0.05 s after the previous one (or in the
     /// same millisecond of the table's clock): the scan was skipped.
     pub too_close: Tally,
-    /// Tracks restarted: last updated more than 20 s before a scan, ended
-    /// there (their targets start again by two-point initiation).
+    /// Tracks restarted: ended by a scan more than 20 s after the previous
+    /// one (their targets start again by two-point initiation).
     pub tracks_restarted: usize,
     /// Tentative tracks ended to make room for a new track (the table
     /// full; `abtrack::track::ScanReport::deleted_displaced`).
@@ -424,8 +424,8 @@ impl std::fmt::Display for Unused {
         )?;
         writeln!(
             f,
-            "{p} tracks restarted: {} (last updated more than {} s before a scan; their targets \
-             start again by two-point initiation)",
+            "{p} tracks restarted: {} (by a scan more than {} s after the previous one; their \
+             targets start again by two-point initiation)",
             self.tracks_restarted,
             abtrack::filter::MAX_INTERVAL_S
         )?;

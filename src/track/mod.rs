@@ -63,15 +63,16 @@
 //! start time and last update time.
 //!
 //! The filters are specified for intervals of 0.05–20 s
-//! ([`crate::filter::IntervalSpan`]); outside, nothing is refused. A track
-//! last updated more than 20 s before a scan (a coasting track accumulates
-//! the scans' intervals) is ended there and counted
-//! ([`ScanReport::restarted`]): it gets no gate, and its target's next
-//! reports start it again by two-point initiation. A scan more than 20 s
-//! after the previous one restarts every track and drops the previous
-//! scan's first points. A scan less than 0.05 s after the previous one is
-//! skipped: nothing changes, its measurements are coded
-//! [`RejectReason::TooClose`] and counted ([`ScanReport::too_close`]).
+//! ([`crate::filter::IntervalSpan`]); outside, nothing is refused. Every
+//! track steps by the scan's interval, so a coasting track stays in range
+//! however long it coasts: its deletion rule (K consecutive misses) alone
+//! ends it, and its filter carries the coasted time (the default filter's
+//! covariance grows over it exactly, and so does its gate). A scan more
+//! than 20 s after the previous one restarts every track and drops the
+//! previous scan's first points ([`ScanReport::restarted`]). A scan less
+//! than 0.05 s after the previous one is skipped: nothing changes, its
+//! measurements are coded [`RejectReason::TooClose`] and counted
+//! ([`ScanReport::too_close`]).
 //!
 //! # Initiation pairing: why not optimal
 //!

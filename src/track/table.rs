@@ -374,11 +374,11 @@ pub struct ScanReport {
     /// ... tentative tracks displaced by a new track when the table was
     /// full (the [module docs](super), step 8): their ids end.
     pub deleted_displaced: u32,
-    /// Tracks ended because their last update was more than
-    /// [`MAX_INTERVAL_S`](crate::filter::MAX_INTERVAL_S) ago (not counted in
-    /// `deleted`): beyond what the filters are specified for, the estimate
-    /// restarts, and the target's next reports start a new track by
-    /// two-point initiation.
+    /// Tracks ended because this scan came more than
+    /// [`MAX_INTERVAL_S`](crate::filter::MAX_INTERVAL_S) after the previous
+    /// one (not counted in `deleted`): an interval beyond what the filters
+    /// are specified for restarts every estimate, and the targets' next
+    /// reports start new tracks by two-point initiation.
     pub restarted: u32,
     /// Measurements of a scan that came less than
     /// [`MIN_INTERVAL_S`](crate::filter::MIN_INTERVAL_S) after the previous
@@ -411,8 +411,8 @@ pub struct TableStats {
     pub dropped_overflow: u32,
     /// Measurements rejected as bad input.
     pub rejected: u32,
-    /// Tracks restarted (ended for an interval beyond the filters' range,
-    /// [`ScanReport::restarted`]).
+    /// Tracks restarted (ended by a scan interval beyond the filters'
+    /// range, [`ScanReport::restarted`]).
     pub tracks_restarted: u32,
     /// Scans skipped for coming too close to the previous one
     /// ([`ScanReport::too_close`]).
@@ -455,9 +455,6 @@ enum Outcome {
     Miss,
     /// Could not advance (arithmetic saturated): to be deleted.
     Failed,
-    /// Last updated more than the filters' longest interval ago: ended, to
-    /// be started again by initiation.
-    Restarted,
 }
 
 /// How a scan's time stands to the previous scan's.
@@ -472,12 +469,6 @@ enum ScanTiming<Step> {
     Gap,
     /// In range: every track's step for the interval.
     Step(Step),
-}
-
-/// Whether a track last updated at `last_update_ms` is past the filters'
-/// longest interval at `now_ms`.
-fn is_stale(last_update_ms: u32, now_ms: u32) -> bool {
-    now_ms.wrapping_sub(last_update_ms) > MAX_INTERVAL_MS
 }
 
 /// A fixed-capacity multi-target tracker: at most `N` tracks and `M`
@@ -734,7 +725,7 @@ impl<S: Numeric, F: TrackFilter<S>, const N: usize, const M: usize> TrackTable<S
         if let Some(dt) = &dt {
             self.index.build(&self.observations);
             probe(ScanStage::Index);
-            self.gate(config, dt, now_ms, rule, &mut report);
+            self.gate(config, dt, rule, &mut report);
             probe(ScanStage::Gate);
             self.clusters.link();
             probe(ScanStage::Cluster);
@@ -748,7 +739,7 @@ impl<S: Numeric, F: TrackFilter<S>, const N: usize, const M: usize> TrackTable<S
             self.restart_all(&mut report);
         }
         if let Some(dt) = &dt {
-            self.update(config, dt, now_ms, &mut report);
+            self.update(config, dt, &mut report);
             probe(ScanStage::Update);
             self.manage(config, now_ms, &mut report);
             probe(ScanStage::Manage);
@@ -851,17 +842,12 @@ impl<S: Numeric, F: TrackFilter<S>, const N: usize, const M: usize> TrackTable<S
         &mut self,
         config: &TrackerConfig<S, F::Params>,
         dt: &F::Step,
-        now_ms: u32,
         rule: &impl PairRule,
         report: &mut ScanReport,
     ) {
         let params = config.params();
         for (t, slot) in self.slots.iter().enumerate() {
             let Some(track) = slot.track() else { continue };
-            if is_stale(track.last_update_ms, now_ms) {
-                // Restarted in the update stage: offered nothing.
-                continue;
-            }
             let Ok(predicted) = track.filter.predict(params, dt) else {
                 continue;
             };
@@ -988,13 +974,11 @@ impl<S: Numeric, F: TrackFilter<S>, const N: usize, const M: usize> TrackTable<S
         Ok(())
     }
 
-    /// Update each assigned track; coast every other one; a track last
-    /// updated more than the filters' longest interval ago restarts.
+    /// Update each assigned track; coast every other one.
     fn update(
         &mut self,
         config: &TrackerConfig<S, F::Params>,
         dt: &F::Step,
-        now_ms: u32,
         report: &mut ScanReport,
     ) {
         let params = config.params();
@@ -1007,10 +991,6 @@ impl<S: Numeric, F: TrackFilter<S>, const N: usize, const M: usize> TrackTable<S
             let Some(track) = slot.track_mut() else {
                 continue;
             };
-            if is_stale(track.last_update_ms, now_ms) {
-                *outcome = Outcome::Restarted;
-                continue;
-            }
             *outcome = Outcome::Miss;
             if let Some(k) = self.clusters.assigned(t) {
                 if let (Some(Some(o)), Some(code)) =
@@ -1052,11 +1032,6 @@ impl<S: Numeric, F: TrackFilter<S>, const N: usize, const M: usize> TrackTable<S
             let Some(track) = slot.track_mut() else {
                 continue;
             };
-            if *outcome == Outcome::Restarted {
-                slot.clear();
-                increment(&mut report.restarted);
-                continue;
-            }
             let hit = *outcome == Outcome::Hit;
             track.record_scan(hit, now_ms);
             let delete = if *outcome == Outcome::Failed {

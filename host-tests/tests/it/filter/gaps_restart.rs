@@ -173,10 +173,11 @@ fn cart<S: Numeric>(x: f64, y: f64) -> Measurement<S> {
 }
 
 /// A target seen every 4 s, then unseen: the confirmed track coasts (the
-/// time since its last update grows by 4 s a scan); at the first scan more
-/// than 20 s after its last update it restarts (ended, counted, not among
-/// the deleted), and the target's next reports start a new track.
-fn coasting_track_restarts<S: Numeric>() {
+/// time since its last update grows by 4 s a scan, past the filters' 20 s,
+/// each step being one scan's 4 s) and keeps its id: the target's next
+/// report updates it. Under a deletion rule of K misses it is deleted at
+/// the K-th, never restarted.
+fn coasting_track_keeps_its_id<S: Numeric>() {
     let config = long_coast_config::<S>();
     let mut table = Box::new(Table::<S>::new());
     let mut codes = [Association::NotAssigned; 1];
@@ -198,27 +199,37 @@ fn coasting_track_restarts<S: Numeric>() {
     let r = table
         .scan(&config, 36_000, &[position(36.0)], &mut codes)
         .unwrap();
-    assert_eq!((r.restarted, r.deleted, r.tracks), (1, 0, 0), "{}", S::NAME);
-    assert_eq!(codes[0], Association::OutsideGates);
-    assert_eq!(table.stats().tracks_restarted, 1);
-    // Two-point initiation starts the target again, under a new id.
-    table
-        .scan(&config, 40_000, &[position(40.0)], &mut codes)
-        .unwrap();
-    let Association::Started(id) = codes[0] else {
-        panic!("{}: {:?}", S::NAME, codes[0]);
-    };
-    assert_ne!(id, first);
-    let [vx, _] = table.track(id).unwrap().velocity();
+    assert_eq!((r.restarted, r.updated, r.tracks), (0, 1, 1), "{}", S::NAME);
+    assert_eq!(codes[0], Association::Updated(first), "{}", S::NAME);
+    let [vx, _] = table.track(first).unwrap().velocity();
     assert!((vx.to_f64() - 50.0).abs() < 0.01, "{}", S::NAME);
+    // Deleted at its 8th miss (68 s, 32 s after its last update).
+    let config = long_coast_config::<S>().with_deletion(8, 2).unwrap();
+    for k in 10..17u32 {
+        let r = table.scan(&config, k * 4000, &[], &mut codes).unwrap();
+        assert_eq!(
+            (r.restarted, r.deleted, r.tracks),
+            (0, 0, 1),
+            "{} at {k}",
+            S::NAME
+        );
+    }
+    let r = table.scan(&config, 68_000, &[], &mut codes).unwrap();
+    assert_eq!(
+        (r.restarted, r.deleted_misses, r.tracks),
+        (0, 1, 0),
+        "{}",
+        S::NAME
+    );
+    assert_eq!(table.stats().tracks_restarted, 0);
 }
 
 #[test]
-fn a_coasting_track_restarts_past_the_longest_interval() {
-    coasting_track_restarts::<f64>();
-    coasting_track_restarts::<f32>();
-    coasting_track_restarts::<Fix>();
-    coasting_track_restarts::<Fixed32>();
+fn a_coasting_track_keeps_its_id_past_the_longest_interval() {
+    coasting_track_keeps_its_id::<f64>();
+    coasting_track_keeps_its_id::<f32>();
+    coasting_track_keeps_its_id::<Fix>();
+    coasting_track_keeps_its_id::<Fixed32>();
 }
 
 /// A scan interval beyond 20 s restarts every track and drops the previous
@@ -310,11 +321,11 @@ fn a_scan_too_close_to_the_previous_is_skipped() {
 
 // ------------------------------------------------------------- scan loop
 
-/// The scan loop runs one period per scan, so only a coasting track can
-/// pass the filters' range: its restart is counted in the scan summary and
-/// in the health report's lifetime counters.
+/// The scan loop runs one period per scan, so every step is in the
+/// filters' range: a track coasting 25 s keeps its id and the target's
+/// next report updates it; nothing restarts or is deleted.
 #[test]
-fn the_scan_loop_counts_restarts_in_its_health_report() {
+fn the_scan_loop_keeps_a_coasting_track_past_the_longest_interval() {
     let v = |x: f64| <f64 as Quantity>::try_from_f64(x).unwrap();
     let config = ScanConfig {
         tracker: long_coast_config::<f64>(),
@@ -334,7 +345,7 @@ fn the_scan_loop_counts_restarts_in_its_health_report() {
     let mut scan_loop: Box<ScanLoop<f64, FixedGainTrack<f64>, 4, 8>> = Box::new(ScanLoop::new());
     let mut summaries = Vec::new();
     let mut health = Vec::new();
-    for _ in 0..29 {
+    for _ in 0..30 {
         scan_loop
             .on_tick(&config, queue.as_mut(), |m| match m {
                 Message::Scan(s) => summaries.push(*s),
@@ -343,16 +354,25 @@ fn the_scan_loop_counts_restarts_in_its_health_report() {
             })
             .unwrap();
     }
-    // Last update at 3 s; the scan at 24 s is 21 s after it.
-    let restarted: Vec<u32> = summaries
+    // Last update at 3 s; the report at 28 s updates the same track.
+    let updated_late: Vec<u32> = summaries
         .iter()
-        .filter(|s| s.counts.restarted > 0)
+        .filter(|s| s.time_ms > 3000 && s.counts.updated > 0)
         .map(|s| s.time_ms)
         .collect();
-    assert_eq!(restarted, [24_000]);
-    assert_eq!(scan_loop.counters().tracks_restarted, 1);
-    assert_eq!(health.last().unwrap().scan.tracks_restarted, 1);
-    assert_eq!(scan_loop.counters().tracks_deleted, 0);
+    assert_eq!(updated_late.len(), 1, "{updated_late:?}");
+    assert!(updated_late[0] >= 28_000, "{updated_late:?}");
+    let counters = scan_loop.counters();
+    assert_eq!(
+        (
+            counters.tracks_started,
+            counters.tracks_restarted,
+            counters.tracks_deleted
+        ),
+        (1, 0, 0)
+    );
+    assert_eq!(health.last().unwrap().scan.tracks_restarted, 0);
+    assert_eq!(scan_loop.table().len(), 1);
 }
 
 // ------------------------------------------------------------------ replay
@@ -451,11 +471,12 @@ fn range_azimuth_replay_restarts_and_skips_too() {
     }
 }
 
-/// The tracker reads the same recording: the 60 s hole outlives the
-/// tracks (with deletion after 30 misses they coast past 20 s and
-/// restart), the repeated time is one scan, the 20 ms scan is skipped.
+/// The tracker reads the same recording: through the 26 s hole the track
+/// coasts past 20 s and keeps its id (deletion after 30 misses); the 60 s
+/// hole outlives it (deleted, never restarted) and the target starts a new
+/// track; the repeated time is one scan, the 20 ms scan is skipped.
 #[test]
-fn tracker_replay_restarts_and_skips() {
+fn tracker_replay_coasts_through_gaps_and_skips() {
     use abtrack_host_tests::cli::{Command, ReplayArgs};
     use clap::Parser;
     for numeric in ["f64", "f32", "q32.32"] {
@@ -479,10 +500,21 @@ fn tracker_replay_restarts_and_skips() {
         let run: TrackerReplay = replay_tracker_reader(&options, GAPPY.as_bytes()).unwrap();
         assert_eq!(run.unused.too_close.count, 1, "{numeric}");
         assert_eq!(run.unused.too_close.lines, [6]);
-        assert!(run.unused.tracks_restarted >= 1, "{numeric}");
+        assert_eq!(run.unused.tracks_restarted, 0, "{numeric}");
         let report = run.report();
-        assert!(report.contains("tracks restarted: "), "{report}");
-        // The target is tracked again after the hole.
-        assert!(run.csv.lines().any(|l| l.starts_with("96,")), "{numeric}");
+        assert!(report.contains("tracks restarted: 0"), "{report}");
+        let id_at = |t: &str| -> Vec<String> {
+            run.csv
+                .lines()
+                .filter(|l| l.split(',').next() == Some(t))
+                .map(|l| l.split(',').nth(1).unwrap().to_string())
+                .collect()
+        };
+        // One track before the 26 s hole and after it, under one id.
+        assert_eq!(id_at("4").len(), 1, "{numeric}");
+        assert_eq!(id_at("30"), id_at("4"), "{numeric}");
+        // The target is tracked again after the 60 s hole, under a new id.
+        assert_eq!(id_at("96").len(), 1, "{numeric}");
+        assert_ne!(id_at("96"), id_at("4"), "{numeric}");
     }
 }
