@@ -107,9 +107,11 @@ impl IntervalSpan {
     /// not timing.
     pub fn of<Q: Quantity>(dt: Q) -> Result<Self, FilterError> {
         check_interval(dt)?;
-        Ok(if dt < Q::from_f64_lossy(MIN_INTERVAL_S) {
+        // From milliseconds: a constant for every format (the fast fixed
+        // point's conversion from f64 is a library call).
+        Ok(if dt < Q::seconds_from_ms(MIN_INTERVAL_MS) {
             IntervalSpan::TooShort
-        } else if dt > Q::from_f64_lossy(MAX_INTERVAL_S) {
+        } else if dt > Q::seconds_from_ms(MAX_INTERVAL_MS) {
             IntervalSpan::TooLong
         } else {
             IntervalSpan::InRange

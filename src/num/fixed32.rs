@@ -342,6 +342,16 @@ macro_rules! fixed_quantity {
                 }
             }
 
+            /// ms·2^FRAC_BITS/1000 rounded to nearest in integers (no
+            /// double-precision library call; a constant `ms` folds to a
+            /// constant).
+            #[inline]
+            fn seconds_from_ms(ms: u32) -> Self {
+                // ms < 2³², so ms·2^FRAC_BITS < 2⁶⁴ for FRAC_BITS ≤ 32.
+                let scaled = (u64::from(ms) << $frac).saturating_add(500) / 1000;
+                $name(saturate(i64::try_from(scaled).unwrap_or(i64::MAX)))
+            }
+
             #[inline]
             fn to_f64(self) -> f64 {
                 match self.0 {

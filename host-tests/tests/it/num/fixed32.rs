@@ -387,3 +387,25 @@ fn step_gains_keep_relative_precision() {
         );
     }
 }
+
+/// `seconds_from_ms`'s integer route gives the `f64` route's word (the
+/// default method's, which it replaces) for every quantity's format, over
+/// the table clock's whole range of intervals and beyond each format's
+/// range (the sentinel).
+#[test]
+fn seconds_from_ms_matches_the_f64_route() {
+    fn check<Q: Quantity + core::fmt::Debug>() {
+        let via_f64 = |ms: u32| Q::from_f64_lossy(f64::from(ms) / 1000.0);
+        let mut ms_values: Vec<u32> = (0..=100_000).collect();
+        ms_values.extend((0..=32).map(|k| 1u32 << k).filter(|&m| m > 0));
+        ms_values.extend([u32::MAX, u32::MAX - 1, 3_600_000, 86_400_000]);
+        for ms in ms_values {
+            assert_eq!(Q::seconds_from_ms(ms), via_f64(ms), "{ms} ms");
+        }
+    }
+    check::<Interval>();
+    check::<Length>();
+    check::<Speed>();
+    check::<Acceleration>();
+    check::<Gain>();
+}
