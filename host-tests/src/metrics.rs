@@ -545,6 +545,38 @@ pub struct TrackMetrics {
     /// scans in which they were established (a superset of
     /// [`Self::false_tracks`]' ids), ascending.
     pub mostly_unassigned_tracks: Vec<u32>,
+    /// Every assigned (target, track) pair: its scan time, the target and
+    /// their distance (m), in scan order (what [`Self::assigned_rmse`] is
+    /// formed from).
+    pub pairs: Vec<PairedPoint>,
+}
+
+/// One assigned (target, track) pair of a scan.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct PairedPoint {
+    /// The scan's time (s).
+    pub t: f64,
+    /// The target's id.
+    pub target: u32,
+    /// The distance from the track to the target (m).
+    pub distance: f64,
+}
+
+/// The RMSE of each of two runs' pairs over the (scan, target) points both
+/// paired, and the number of those points: two trackers' accuracy on the
+/// same truth, apart from what each covers. `None` without a common point.
+pub fn common_rmse(a: &[PairedPoint], b: &[PairedPoint]) -> Option<(f64, f64, usize)> {
+    let key = |p: &PairedPoint| ((p.t * 1000.0).round() as i64, p.target);
+    let in_b: BTreeMap<(i64, u32), f64> = b.iter().map(|p| (key(p), p.distance)).collect();
+    let (mut sa, mut sb, mut n) = (0.0f64, 0.0f64, 0usize);
+    for p in a {
+        if let Some(d) = in_b.get(&key(p)) {
+            sa += p.distance * p.distance;
+            sb += d * d;
+            n += 1;
+        }
+    }
+    (n > 0).then(|| ((sa / n as f64).sqrt(), (sb / n as f64).sqrt(), n))
 }
 
 impl TrackMetrics {
@@ -617,7 +649,7 @@ pub fn track_metrics_with(scans: &[ScanReport], gate: f64, cost: PairingCost) ->
     let mut targets: BTreeMap<u32, TargetAcc> = BTreeMap::new();
     let mut tracks: BTreeMap<u32, TrackAcc> = BTreeMap::new();
     let mut unassigned_track_scans = 0usize;
-    let (mut squared_distances, mut pairs) = (0.0f64, 0usize);
+    let mut paired: Vec<PairedPoint> = Vec::new();
 
     for scan in scans {
         let est: Vec<&TrackPoint> = scan
@@ -654,8 +686,11 @@ pub fn track_metrics_with(scans: &[ScanReport], gate: f64, cost: PairingCost) ->
             let id = est[j].id;
             acc.tracked += 1;
             acc.present_since_first_tracked += 1;
-            squared_distances += distance[i][j] * distance[i][j];
-            pairs += 1;
+            paired.push(PairedPoint {
+                t: scan.t,
+                target: p.id,
+                distance: distance[i][j],
+            });
             acc.first_tracked_t.get_or_insert(scan.t);
             if acc.last_id.is_some_and(|last| last != id) {
                 acc.changes += 1;
@@ -728,12 +763,15 @@ pub fn track_metrics_with(scans: &[ScanReport], gate: f64, cost: PairingCost) ->
         unassigned_track_scans,
         established_tracks: tracks.len(),
         continuity: ratio(tracked, present_since_first),
-        assigned_rmse: (squared_distances / pairs as f64).sqrt(),
+        assigned_rmse: (paired.iter().map(|p| p.distance * p.distance).sum::<f64>()
+            / paired.len() as f64)
+            .sqrt(),
         mostly_unassigned_tracks: tracks
             .iter()
             .filter(|(_, a)| 2 * a.assigned < a.scans)
             .map(|(&id, _)| id)
             .collect(),
+        pairs: paired,
     }
 }
 

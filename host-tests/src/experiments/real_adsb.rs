@@ -38,7 +38,8 @@ use serde::Deserialize;
 use super::common::{plot, write_file, Context, PlotSpec, Series, Table};
 use crate::kalman::{isotropic, ConstantVelocityKf, ProcessNoise};
 use crate::metrics::{
-    mean_ospa, track_metrics_with, PairingCost, ScanReport, TrackPoint, TrackStatus, TruthPoint,
+    common_rmse, mean_ospa, track_metrics_with, PairedPoint, PairingCost, ScanReport, TrackPoint,
+    TrackStatus, TruthPoint,
 };
 use crate::noise::{derive_seed, rng_from_seed, standard_normal};
 use crate::replay::{self, FilterKind, Numeric, Order, ReplayConfig};
@@ -614,6 +615,8 @@ pub struct SceneRun {
     /// The design `replay --tracker` printed.
     pub design: String,
     pub scans: Vec<ScanReport>,
+    /// Every paired (scan, flight) point with its distance.
+    pub pairs: Vec<PairedPoint>,
 }
 
 /// `replay --tracker` with `options` on the scene, scored against `truth`.
@@ -696,6 +699,7 @@ pub fn score_tracks(
         seconds,
         design,
         scans,
+        pairs: m.pairs,
     })
 }
 
@@ -997,10 +1001,12 @@ pub fn run(ctx: &Context) -> Result<(), String> {
         "replay time (ms)",
     ]);
     let mut speed: Vec<String> = Vec::new();
+    let mut common: Vec<String> = Vec::new();
     for scene in &SCENES {
         let truth = read_scene_truth(&data, scene)?;
         let mut design = String::new();
         let mut f64_seconds = f64::NAN;
+        let mut f64_pairs = Vec::new();
         for (label, options) in scene_configurations(scene)? {
             let r = run_scene(&data, scene, &truth, &options, &label)?;
             if design.is_empty() {
@@ -1010,11 +1016,22 @@ pub fn run(ctx: &Context) -> Result<(), String> {
             if label == "f64" {
                 scene_plot(&dir, scene, &r)?;
                 f64_seconds = r.seconds;
+                f64_pairs = r.pairs.clone();
             }
         }
         if let Some((csv_text, seconds)) = stonesoup_output(&dir, scene) {
             let r = score_tracks(STONESOUP_LABEL, &csv_text, &truth, seconds, String::new())?;
             scene_table.push(scene_row(scene, &r));
+            if let Some((ours, theirs, n)) = common_rmse(&f64_pairs, &r.pairs) {
+                common.push(format!(
+                    "{}: {n} points (of {} and {} paired), abtrack (f64) {:.1} m, Stone Soup {:.1} m",
+                    scene.name,
+                    f64_pairs.len(),
+                    r.pairs.len(),
+                    ours,
+                    theirs
+                ));
+            }
             speed.push(format!(
                 "{}: Stone Soup {:.1} s, abtrack (f64) {:.3} s: {:.0}×",
                 scene.name,
@@ -1037,6 +1054,15 @@ pub fn run(ctx: &Context) -> Result<(), String> {
             "\nWhole-process time of Stone Soup (Python, imports included, one process per scene) \
              against abtrack's whole replay in f64: {}.",
             speed.join("; ")
+        );
+    }
+    if !common.is_empty() {
+        let _ = writeln!(
+            summary,
+            "\nRMSE over the (scan, flight) points both trackers paired, so that what one covers \
+             and the other does not (a coasting track kept, a track started sooner) does not \
+             weigh on the comparison: {}.",
+            common.join("; ")
         );
     }
     summary.push_str("\nTracks over truth: `scene_<name>.svg`; flights: `flight_<name>.svg`.\n");

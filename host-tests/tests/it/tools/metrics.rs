@@ -439,3 +439,23 @@ fn a_target_never_tracked_has_no_latency() {
     assert_eq!("coasting".parse::<TrackStatus>(), Ok(TrackStatus::Coasting));
     assert!("lost".parse::<TrackStatus>().is_err());
 }
+
+/// `common_rmse` pairs the two runs' points by scan and target and takes
+/// each run's RMSE over those alone.
+#[test]
+fn common_rmse_takes_the_points_both_runs_paired() {
+    use abtrack_host_tests::metrics::{common_rmse, PairedPoint};
+    let p = |t: f64, target: u32, distance: f64| PairedPoint {
+        t,
+        target,
+        distance,
+    };
+    // Common: (4 s, 1) and (8 s, 2); each run has one point of its own.
+    let a = [p(4.0, 1, 3.0), p(8.0, 2, 4.0), p(12.0, 1, 100.0)];
+    let b = [p(4.0, 1, 6.0), p(8.0, 2, 8.0), p(4.0, 3, 50.0)];
+    let (ra, rb, n) = common_rmse(&a, &b).unwrap();
+    assert_eq!(n, 2);
+    assert!((ra - (12.5f64).sqrt()).abs() < 1e-12, "{ra}");
+    assert!((rb - (50.0f64).sqrt()).abs() < 1e-12, "{rb}");
+    assert_eq!(common_rmse(&a[2..], &b[..2]), None);
+}
