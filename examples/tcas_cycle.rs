@@ -1,6 +1,6 @@
-//! One TCAS cycle per second against a head-on intruder, in the number type
-//! the Cortex-M3 firmware runs the TCAS logic in (`ScaledScalar`, the fast
-//! fixed point's wide format): the range tracker and the altitude tracker
+//! One TCAS cycle per second against a head-on intruder, in the Cortex-M3
+//! firmware's type `Fixed32` (the logic computes in its wide format,
+//! `<Fixed32 as Numeric>::Wide`): the range tracker and the altitude tracker
 //! (inside `IntruderTrack`), the bearing filter (`RangeAzimuthFilter`, a
 //! separate track whose miss distance the threat logic cross-checks), the
 //! threat assessment and the resolution advisory.
@@ -18,11 +18,13 @@
 use abtrack::filter::altitude::{AltitudeQuantum, AltitudeTrackerConfig};
 use abtrack::filter::range_azimuth::{RangeAzimuthFilter, RangeAzimuthNoise};
 use abtrack::tcas::{Advisory, CollisionAvoidance, IntruderTrack, OwnAircraft, Reply};
-use abtrack::{Quantity, Real, ScaledScalar};
+use abtrack::{Fixed32, Numeric, Quantity, Real};
 
-/// The Cortex-M3's type for the TCAS logic (boards/qemu/src/number_types.rs,
-/// `without_fpu::TableScalar`); `f32` on the Cortex-M4F.
-type S = ScaledScalar;
+/// The Cortex-M3's type (boards/qemu/src/number_types.rs,
+/// `without_fpu::Native`); `f32` on the Cortex-M4F.
+type N = Fixed32;
+/// Its one type for every quantity: the inputs and outputs of the logic.
+type S = <N as Numeric>::Wide;
 
 /// The sensor: range σ 15 m, bearing σ 5° (a TCAS directional antenna).
 const RANGE_SIGMA_M: f64 = 15.0;
@@ -50,11 +52,11 @@ fn main() {
 fn run() -> Result<(), String> {
     let s = S::from_f64_lossy;
     let dt = S::ONE;
-    let mut cas = CollisionAvoidance::<S>::new();
+    let mut cas = CollisionAvoidance::<N>::new();
     // 100 ft steps (Mode C); Mode S with the Q bit reports in 25 ft steps.
-    let altitude = AltitudeTrackerConfig::<S>::default_for(AltitudeQuantum::ModeC)
-        .map_err(|e| e.to_string())?;
-    let mut intruder = IntruderTrack::<S>::new(altitude);
+    let altitude =
+        AltitudeTrackerConfig::default_for(AltitudeQuantum::ModeC).map_err(|e| e.to_string())?;
+    let mut intruder = IntruderTrack::<N>::new(altitude);
     let noise = RangeAzimuthNoise::<S>::new_f64(
         RANGE_SIGMA_M * RANGE_SIGMA_M,
         BEARING_SIGMA_RAD * BEARING_SIGMA_RAD,
@@ -62,6 +64,7 @@ fn run() -> Result<(), String> {
     )
     .and_then(|n| n.with_speed_bound_f64(MAX_CLOSURE_M_PER_S))
     .map_err(|e| e.to_string())?;
+    // The bearing filter, a separate track, runs in the same wide type.
     let mut bearing_filter = RangeAzimuthFilter::<S>::new(noise);
     let own = OwnAircraft::over_sea_level(s(OWN_ALTITUDE_FT), S::ZERO);
 

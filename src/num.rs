@@ -113,6 +113,7 @@ pub trait Scalar:
         RateSquared = Self,
         Angle = Self,
         Guard = numeric::ScalarGuard<Self>,
+        Wide = Self,
         Polar = Self,
         CircleScale = Self,
         Variance = Self,

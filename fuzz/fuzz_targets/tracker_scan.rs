@@ -116,7 +116,7 @@ fn scans(u: &mut Unstructured) -> Result<Vec<Scan>> {
 }
 
 fn run<S: Scalar + core::fmt::Debug>(scans: &[Scan]) {
-    let config = demo_config::crossing_config::<S>()
+    let config = demo_config::crossing_config::<S, _>()
         .expect("the demo configuration is valid")
         .tracker;
     let mut table: Box<TrackTable<S, FixedGainTrack<S>, TRACKS, PER_SCAN>> =

@@ -108,7 +108,7 @@ pub fn trace<S: Scalar>(
     seconds: usize,
 ) -> RateTrace {
     let config = AltitudeTrackerConfig::<S>::default_for(quantum).expect("default configuration");
-    let mut tracker = AltitudeTracker::new(config);
+    let mut tracker = AltitudeTracker::<S>::new(config);
     let mut estimated = Vec::with_capacity(seconds);
     let mut truth = Vec::with_capacity(seconds);
     for k in 0..seconds {

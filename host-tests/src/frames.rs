@@ -21,7 +21,7 @@ use abtrack::wire::{
     Decoder, DecoderStats, Encoder, EndOfInput, Health, MeasurementReport, Message, ModeSAddress,
     ScanSummary, TrackReport, CRC_LEN, HEADER_LEN, MAX_FRAME_LEN,
 };
-use abtrack::Scalar;
+use abtrack::{Numeric, Scalar};
 use std::collections::BTreeMap;
 use std::fmt::Write as _;
 use std::io::Read;
@@ -454,6 +454,7 @@ pub fn message_line(m: &Message) -> String {
 /// end-of-input frame, so nothing depends on timing: the report frames are
 /// the firmware's, byte for byte.
 pub fn run_like_the_firmware<
+    T: Numeric<Wide = S>,
     S: Scalar,
     F: TrackFilter<S> + BearingTrack<S>,
     const N: usize,
@@ -461,16 +462,16 @@ pub fn run_like_the_firmware<
     const Q: usize,
 >(
     input: &[u8],
-    config: &ScanConfig<S, F::Params>,
+    config: &ScanConfig<T, F::Params>,
 ) -> FirmwareRun {
     /// `IDLE_SCANS` of boards/qemu/src/main.rs.
     const IDLE_SCANS: u32 = 3;
     let mut intake: Box<Intake<Q>> = Box::new(Intake::new());
-    let mut scan_loop: Box<ScanLoop<S, F, N, M>> = Box::new(ScanLoop::new());
+    let mut scan_loop: Box<ScanLoop<T, F, N, M>> = Box::new(ScanLoop::new());
     let mut run = FirmwareRun::default();
     let mut encoder = Encoder::new();
     let mut tick =
-        |scan_loop: &mut ScanLoop<S, F, N, M>, intake: &mut Intake<Q>, run: &mut FirmwareRun| {
+        |scan_loop: &mut ScanLoop<T, F, N, M>, intake: &mut Intake<Q>, run: &mut FirmwareRun| {
             let mut frame = [0u8; MAX_FRAME_LEN];
             let report = scan_loop
                 .on_tick(config, intake, |m| {
@@ -485,7 +486,7 @@ pub fn run_like_the_firmware<
     // the main loop has taken every queued measurement (running a scan when
     // one is due).
     let mut drain =
-        |scan_loop: &mut ScanLoop<S, F, N, M>, intake: &mut Intake<Q>, run: &mut FirmwareRun| {
+        |scan_loop: &mut ScanLoop<T, F, N, M>, intake: &mut Intake<Q>, run: &mut FirmwareRun| {
             while intake.queued() > 0 {
                 if scan_loop.collect(config, intake) == Collected::ScanDue {
                     tick(scan_loop, intake, run);

@@ -1030,7 +1030,7 @@ pub const RA_COLUMNS: &str = "ra_sense,ra_strength,clear_of_conflict";
 /// The collision-avoidance logic with memory behind [`RA_COLUMNS`]: the
 /// system's state and the one intruder's threat state.
 #[derive(Debug, Clone, Copy)]
-struct RaMemory<S> {
+struct RaMemory<S: Scalar> {
     cas: CollisionAvoidance<S>,
     threat: ThreatState<S>,
     in_force: Option<ResolutionAdvisory<S>>,
@@ -1191,7 +1191,7 @@ pub fn replay_range_azimuth_in<S: CsvValue>(
     let mut filter = RangeAzimuthFilter::new(noise);
     let altitude_config = AltitudeTrackerConfig::<S>::default_for(options.altitude_quantum)
         .map_err(ReplayError::AltitudeGains)?;
-    let mut altitude = AltitudeTracker::new(altitude_config);
+    let mut altitude = AltitudeTracker::<S>::new(altitude_config);
     let own = own_aircraft::<S>(options.own_altitude_ft)?;
     let mut out = range_azimuth_header(data.has_alt, own.is_some());
     out.push('\n');

@@ -19,7 +19,7 @@
 use core::cmp::Ordering;
 
 use crate::filter::{check_interval, FilterError};
-use crate::num::Scalar;
+use crate::num::{Numeric, Scalar};
 
 /// `a·b` and `a/b` out of line, for logic that runs once a second per
 /// intruder: Q32.32's 64×64-bit product and quotient, inlined at every use,
@@ -285,33 +285,34 @@ pub enum VerticalClass {
     Trend,
 }
 
-/// Quantisation-aware altitude tracker (see the module docs).
+/// Quantisation-aware altitude tracker (see the module docs), computing in
+/// `N::Wide` ([`Numeric::Wide`]).
 #[derive(Debug, Clone, Copy, PartialEq)]
 #[cfg_attr(feature = "defmt", derive(defmt::Format))]
-pub struct AltitudeTracker<S> {
-    config: AltitudeTrackerConfig<S>,
+pub struct AltitudeTracker<N: Numeric> {
+    config: AltitudeTrackerConfig<N::Wide>,
     /// Reports since the track (re)started, saturating at 2.
     reports: u8,
-    altitude_ft: S,
-    rate_ft_per_s: S,
+    altitude_ft: N::Wide,
+    rate_ft_per_s: N::Wide,
     /// The last report taken (DO-185B `ZSAVE`), ft.
-    report_ft: S,
+    report_ft: N::Wide,
     class: VerticalClass,
     /// −1, 0 or +1: the direction of the last transition.
     direction: i8,
-    since_start_s: S,
-    since_transition_s: S,
+    since_start_s: N::Wide,
+    since_transition_s: N::Wide,
     /// Time since the last report, s.
-    coasted_s: S,
+    coasted_s: N::Wide,
     /// Smoothed time per bin, s (`TBIN`).
-    bin_time_s: S,
+    bin_time_s: N::Wide,
     /// Bins averaged into the rate (`BINSTHISZD`).
     bins_in_rate: u8,
     /// Accumulated lateness of the transitions, s (`RESID`).
-    lateness_s: S,
+    lateness_s: N::Wide,
     alpha_beta: bool,
     firmness: u8,
-    bounds: RateBounds<S>,
+    bounds: RateBounds<N::Wide>,
     /// Saturating counts (u16: the tracker's bytes are per intruder,
     /// docs/tcas.md "RAM per intruder"; the getters widen them).
     incredible_reports: u16,
@@ -353,7 +354,7 @@ fn count<S: Scalar>(n: u8) -> S {
     }
 }
 
-impl<S: Scalar> AltitudeTracker<S> {
+impl<N: Numeric<Wide = S>, S: Scalar> AltitudeTracker<N> {
     /// A tracker with no altitude yet (status `NotReporting`).
     pub fn new(config: AltitudeTrackerConfig<S>) -> Self {
         AltitudeTracker {

@@ -667,6 +667,7 @@ impl Numeric for Fixed32 {
     type RateSquared = RateSquared;
     type Angle = Angle;
     type Guard = Fixed32Guard;
+    type Wide = super::ScaledScalar;
     type Polar = f32;
     type CircleScale = ();
     type Variance = FixedVariance;

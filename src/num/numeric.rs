@@ -346,6 +346,9 @@ pub trait Numeric:
     /// quantity above.
     type Guard: Default + fmt::Debug;
 
+    /// This number system's one type for every quantity: the type itself
+    /// for a [`Scalar`], the wide format [`super::ScaledScalar`] for `Fixed32`.
+    type Wide: Scalar;
     /// The scalar type of the track table's polar geometry.
     type Polar: Scalar;
     /// What a circular gate keeps to test measurements (the reciprocal of
@@ -535,6 +538,7 @@ macro_rules! scalar_numeric {
             type RateSquared = $t;
             type Angle = $t;
             type Guard = ScalarGuard<$t>;
+            type Wide = $t;
             type Polar = $t;
             type CircleScale = $t;
             type Variance = $t;

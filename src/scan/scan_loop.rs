@@ -11,7 +11,7 @@ use intruders::{IdentityRule, IntruderSlot, ReplyData};
 
 use crate::filter::altitude::{AltitudeEstimate, AltitudeTrackerConfig};
 use crate::filter::range_azimuth::RangeAzimuthFilter;
-use crate::num::Scalar;
+use crate::num::{Numeric, Scalar};
 use crate::tcas::{range_tau, Advisory, CollisionAvoidance, IntruderTrack, OwnAircraft};
 use crate::track::{
     Association, DropReason, FixedGainTrack, Measurement, Observation, RangeAzimuthTrack,
@@ -26,16 +26,16 @@ use crate::wire::{
 /// [`TrackerConfig`] is kept outside [`TrackTable`]) so that the loop can be
 /// built by a `const fn` in a `static`.
 #[derive(Debug, Clone, Copy, PartialEq)]
-pub struct ScanConfig<S: Scalar, P> {
+pub struct ScanConfig<T: Numeric, P> {
     /// The track table's configuration (gates, lifecycle, region).
-    pub tracker: TrackerConfig<S, P>,
+    pub tracker: TrackerConfig<T::Wide, P>,
     /// The own aircraft, for the threat assessment.
-    pub own: OwnAircraft<S>,
+    pub own: OwnAircraft<T::Wide>,
     /// The altitude tracker of an intruder reporting in 100 ft steps
     /// (Mode C) …
-    pub altitude: AltitudeTrackerConfig<S>,
+    pub altitude: AltitudeTrackerConfig<T::Wide>,
     /// … and of one reporting in 25 ft steps (Mode S with the Q bit).
-    pub altitude_25ft: AltitudeTrackerConfig<S>,
+    pub altitude_25ft: AltitudeTrackerConfig<T::Wide>,
     /// The scan period and the clock's windows.
     pub clock: ClockConfig,
 }
@@ -69,7 +69,7 @@ pub trait BearingTrack<S: Scalar> {
     fn bearing_track(&self) -> Option<&RangeAzimuthFilter<S>>;
 }
 
-impl<S: Scalar> BearingTrack<S> for RangeAzimuthTrack<S> {
+impl<N: Numeric<Wide = S>, S: Scalar> BearingTrack<S> for RangeAzimuthTrack<N> {
     fn bearing_track(&self) -> Option<&RangeAzimuthFilter<S>> {
         Some(self.filter())
     }
@@ -111,17 +111,18 @@ fn scaled_i32<S: Scalar>(v: S, scale: u32) -> i32 {
 
 /// The consumer half: sorts queued measurements into scans, turns each scan
 /// into a tracker scan, threat assessments and reports. At most `N` tracks,
-/// `M` measurements per scan.
+/// `M` measurements per scan. Named with the core's number type `T`, it
+/// computes in `T::Wide` ([`Numeric::Wide`]), as its table and `F` do.
 ///
 /// Memory: the [`TrackTable`] (see [`crate::track`] for its size), plus per
-/// measurement slot one `Measurement<S>`, one `Option<S>`, a priority and an
-/// [`Association`], plus per track slot a gate region and an `Option` of an
-/// [`AltitudeTracker<S>`](crate::filter::altitude::AltitudeTracker).
+/// measurement slot one `Measurement<T::Wide>`, one `Option<T::Wide>`, a
+/// priority and an [`Association`], plus per track slot a gate region and an
+/// `Option` of an [`AltitudeTracker`](crate::filter::altitude::AltitudeTracker).
 /// `host-tests/tests/it/scan/loop_on_host.rs` prints the sizes; the firmware prints
 /// its own at start-up.
 #[derive(Debug)]
-pub struct ScanLoop<S: Scalar, F, const N: usize, const M: usize> {
-    table: TrackTable<S, F, N, M>,
+pub struct ScanLoop<T: Numeric, F, const N: usize, const M: usize> {
+    table: TrackTable<T::Wide, F, N, M>,
     /// The tracker's time of the next scan (ms; +1 period per scan).
     tracker_ms: u32,
     /// The sensor's time of the scan being assembled.
@@ -132,39 +133,49 @@ pub struct ScanLoop<S: Scalar, F, const N: usize, const M: usize> {
     candidate: heapless::Vec<MeasurementReport, 1>,
     /// The next measurement confirmed the candidate: re-lock after this scan.
     relock: bool,
-    batch: heapless::Vec<Measurement<S>, M>,
+    batch: heapless::Vec<Measurement<T::Wide>, M>,
     /// Per batch entry: altitude and Mode S address.
-    batch_replies: heapless::Vec<ReplyData<S>, M>,
+    batch_replies: heapless::Vec<ReplyData<T::Wide>, M>,
     /// The previous scan's (the first points of new tracks).
-    previous_replies: heapless::Vec<ReplyData<S>, M>,
-    batch_priorities: heapless::Vec<Priority<S>, M>,
+    previous_replies: heapless::Vec<ReplyData<T::Wide>, M>,
+    batch_priorities: heapless::Vec<Priority<T::Wide>, M>,
     /// Per batch entry: of how many confirmed tracks it is the champion.
     batch_champions: heapless::Vec<u8, M>,
     /// The confirmed tracks' gates (vectors, here and below, so that the
     /// empty loop is all-zero bytes).
-    gates: heapless::Vec<TrackGate<S>, N>,
+    gates: heapless::Vec<TrackGate<T::Wide>, N>,
     /// The batch overflowed: `gates` and the priorities are computed.
     ranked: bool,
     /// Counts of the scan being assembled (the intake part).
     pending_counts: ScanCounts,
     /// Per batch entry, the tracker's code; filled to `M` at the first scan.
     codes: heapless::Vec<Association, M>,
-    intruders: heapless::Vec<IntruderSlot<S>, N>,
+    intruders: heapless::Vec<IntruderSlot<T::Wide>, N>,
     /// The system's TCAS state: sensitivity level, inhibits, the RA.
-    cas: CollisionAvoidance<S>,
+    cas: CollisionAvoidance<T::Wide>,
     counters: LoopCounters,
 }
 
-impl<S: Scalar, F: TrackFilter<S> + BearingTrack<S>, const N: usize, const M: usize> Default
-    for ScanLoop<S, F, N, M>
+impl<
+        T: Numeric<Wide = S>,
+        S: Scalar,
+        F: TrackFilter<S> + BearingTrack<S>,
+        const N: usize,
+        const M: usize,
+    > Default for ScanLoop<T, F, N, M>
 {
     fn default() -> Self {
         Self::new()
     }
 }
 
-impl<S: Scalar, F: TrackFilter<S> + BearingTrack<S>, const N: usize, const M: usize>
-    ScanLoop<S, F, N, M>
+impl<
+        T: Numeric<Wide = S>,
+        S: Scalar,
+        F: TrackFilter<S> + BearingTrack<S>,
+        const N: usize,
+        const M: usize,
+    > ScanLoop<T, F, N, M>
 {
     /// An empty loop: no tracks, no queued batch, zero counters (a `const fn`,
     /// for a `static`).
@@ -277,7 +288,7 @@ impl<S: Scalar, F: TrackFilter<S> + BearingTrack<S>, const N: usize, const M: us
     /// space early.
     pub fn collect(
         &mut self,
-        config: &ScanConfig<S, F::Params>,
+        config: &ScanConfig<T, F::Params>,
         source: &mut impl MeasurementSource,
     ) -> Collected {
         let clock = &config.clock;
@@ -330,7 +341,7 @@ impl<S: Scalar, F: TrackFilter<S> + BearingTrack<S>, const N: usize, const M: us
 
     /// Re-locks onto the held measurement's time; it joins the (empty)
     /// batch.
-    fn apply_relock(&mut self, config: &ScanConfig<S, F::Params>) {
+    fn apply_relock(&mut self, config: &ScanConfig<T, F::Params>) {
         self.relock = false;
         if let Some(c) = self.candidate.pop() {
             self.scan_ms = c.time_ms;
@@ -341,7 +352,7 @@ impl<S: Scalar, F: TrackFilter<S> + BearingTrack<S>, const N: usize, const M: us
 
     /// One measurement of this scan: converted, then into the batch; by
     /// priority once the batch is full.
-    fn take(&mut self, config: &ScanConfig<S, F::Params>, report: &MeasurementReport) {
+    fn take(&mut self, config: &ScanConfig<T, F::Params>, report: &MeasurementReport) {
         let converted = report
             .position::<S>()
             .and_then(|m| report.altitude::<S>().map(|a| (m, a)));
@@ -411,7 +422,7 @@ impl<S: Scalar, F: TrackFilter<S> + BearingTrack<S>, const N: usize, const M: us
     /// the batch is kept for the next call.
     pub fn on_tick(
         &mut self,
-        config: &ScanConfig<S, F::Params>,
+        config: &ScanConfig<T, F::Params>,
         source: &mut impl MeasurementSource,
         mut emit: impl FnMut(&Message),
     ) -> Result<TickReport, ScanError> {

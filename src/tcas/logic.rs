@@ -16,24 +16,25 @@ use super::TcasError;
 use crate::filter::altitude::{AltitudeTracker, AltitudeTrackerConfig, OutOfLine};
 use crate::filter::range_azimuth::RangeAzimuthFilter;
 use crate::filter::{FilterError, Phase};
-use crate::num::{hypot, Scalar};
+use crate::num::{hypot, Numeric, Scalar};
 
-/// The system-wide state of the collision-avoidance logic.
+/// The system-wide state of the collision-avoidance logic, named with a
+/// number system `N` and computing in `N::Wide` ([`Numeric::Wide`]).
 #[derive(Debug, Clone, Copy, PartialEq)]
 #[cfg_attr(feature = "defmt", derive(defmt::Format))]
-pub struct CollisionAvoidance<S> {
+pub struct CollisionAvoidance<N: Numeric> {
     selector: SensitivitySelector,
     inhibits: LowAltitudeInhibits,
-    resolution: ResolutionState<S>,
+    resolution: ResolutionState<N::Wide>,
 }
 
-impl<S: Scalar> Default for CollisionAvoidance<S> {
+impl<N: Numeric<Wide = S>, S: Scalar> Default for CollisionAvoidance<N> {
     fn default() -> Self {
         Self::new()
     }
 }
 
-impl<S: Scalar> CollisionAvoidance<S> {
+impl<N: Numeric<Wide = S>, S: Scalar> CollisionAvoidance<N> {
     /// No level selected, no inhibit, no active RA (a `const fn`, for a
     /// `static`).
     pub const fn new() -> Self {
@@ -85,16 +86,17 @@ pub struct Reply<S> {
     pub altitude_ft: Option<S>,
 }
 
-/// One intruder as the TCAS logic keeps it.
+/// One intruder as the TCAS logic keeps it (in `N::Wide`, as
+/// [`CollisionAvoidance`]).
 #[derive(Debug, Clone, Copy, PartialEq)]
 #[cfg_attr(feature = "defmt", derive(defmt::Format))]
-pub struct IntruderTrack<S> {
-    range: RangeTracker<S>,
-    altitude: AltitudeTracker<S>,
-    threat: ThreatState<S>,
+pub struct IntruderTrack<N: Numeric> {
+    range: RangeTracker<N>,
+    altitude: AltitudeTracker<N>,
+    threat: ThreatState<N::Wide>,
 }
 
-impl<S: Scalar> IntruderTrack<S> {
+impl<N: Numeric<Wide = S>, S: Scalar> IntruderTrack<N> {
     /// A new intruder: empty range tracker, the altitude tracker with this
     /// configuration (100 ft or 25 ft steps), no advisory.
     pub fn new(altitude: AltitudeTrackerConfig<S>) -> Self {
@@ -106,11 +108,11 @@ impl<S: Scalar> IntruderTrack<S> {
     }
 
     /// The intruder's range tracker (DO-185B, [`RangeTracker`]).
-    pub fn range_tracker(&self) -> &RangeTracker<S> {
+    pub fn range_tracker(&self) -> &RangeTracker<N> {
         &self.range
     }
     /// The intruder's altitude tracker ([`AltitudeTracker`]).
-    pub fn altitude_tracker(&self) -> &AltitudeTracker<S> {
+    pub fn altitude_tracker(&self) -> &AltitudeTracker<N> {
         &self.altitude
     }
     /// The intruder's threat-logic state (advisory ages and hysteresis).

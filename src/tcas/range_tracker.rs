@@ -28,7 +28,7 @@
 use crate::filter::altitude::OutOfLine;
 use crate::filter::{check_interval, FilterError, Phase};
 use crate::gain::tcas::{FIRMNESS_ALPHA, FIRMNESS_BETA, FIRMNESS_GAMMA, MAX_FIRMNESS};
-use crate::num::{hypot, Scalar};
+use crate::num::{hypot, Numeric, Scalar};
 
 use super::METRES_PER_FOOT;
 
@@ -104,20 +104,21 @@ impl<S: Scalar> RangeEstimate<S> {
     }
 }
 
-/// The range tracker of one intruder (see the module docs).
+/// The range tracker of one intruder (see the module docs), computing in
+/// `N::Wide` ([`Numeric::Wide`]).
 #[derive(Debug, Clone, Copy, PartialEq)]
 #[cfg_attr(feature = "defmt", derive(defmt::Format))]
-pub struct RangeTracker<S> {
+pub struct RangeTracker<N: Numeric> {
     phase: Phase,
-    range_m: S,
-    range_rate_m_per_s: S,
-    range_acceleration_m_per_s2: S,
+    range_m: N::Wide,
+    range_rate_m_per_s: N::Wide,
+    range_acceleration_m_per_s2: N::Wide,
     /// While `OnePoint`: time since the first reply (coasts add to it).
-    since_first_s: S,
+    since_first_s: N::Wide,
     firmness: u8,
     initialised: bool,
     /// Running mean of the squared range residual, m² (DO-185B `smoressq`).
-    residual_mean_square_m2: S,
+    residual_mean_square_m2: N::Wide,
     saturations: u32,
 }
 
@@ -129,7 +130,7 @@ struct Predicted<S> {
     acceleration: S,
 }
 
-impl<S: Scalar> Default for RangeTracker<S> {
+impl<N: Numeric<Wide = S>, S: Scalar> Default for RangeTracker<N> {
     fn default() -> Self {
         Self::new()
     }
@@ -140,7 +141,7 @@ fn nominal_residual_variance<S: Scalar>() -> S {
     S::from_f64_lossy(sigma * sigma)
 }
 
-impl<S: Scalar> RangeTracker<S> {
+impl<N: Numeric<Wide = S>, S: Scalar> RangeTracker<N> {
     /// A tracker waiting for its first reply.
     pub fn new() -> Self {
         RangeTracker {

@@ -382,7 +382,8 @@ fn position_gain<S: Scalar>(a: S, sigma: S) -> S {
 }
 
 /// He, Peng, Ling & Quan's range–azimuth filter ([`RangeAzimuthFilter`]) in
-/// a track table. `Params` is its [`RangeAzimuthNoise`].
+/// a track table. `Params` is its [`RangeAzimuthNoise`]. Named with a number
+/// system `N`, it runs the filter and its table in `N::Wide` ([`Numeric::Wide`]).
 ///
 /// Measurements: a polar measurement is used as (R, B); a Cartesian one is
 /// converted to R = √(x² + y²), B = atan2(x, y). A range of 0 is refused by
@@ -450,11 +451,11 @@ fn position_gain<S: Scalar>(a: S, sigma: S) -> S {
 /// by cross-range speed·T/R per scan).
 #[derive(Debug, Clone, Copy, PartialEq)]
 #[cfg_attr(feature = "defmt", derive(defmt::Format))]
-pub struct RangeAzimuthTrack<S: Scalar> {
-    filter: RangeAzimuthFilter<S>,
+pub struct RangeAzimuthTrack<N: Numeric> {
+    filter: RangeAzimuthFilter<N::Wide>,
 }
 
-impl<S: Scalar> RangeAzimuthTrack<S> {
+impl<N: Numeric<Wide = S>, S: Scalar> RangeAzimuthTrack<N> {
     /// The range–azimuth filter this track runs (He, Peng, Ling & Quan, eqs. 7–13).
     pub fn filter(&self) -> &RangeAzimuthFilter<S> {
         &self.filter
@@ -503,7 +504,7 @@ impl<S: Scalar> RangeAzimuthTrack<S> {
     }
 }
 
-impl<S: Scalar> TrackFilter<S> for RangeAzimuthTrack<S> {
+impl<N: Numeric<Wide = S>, S: Scalar> TrackFilter<S> for RangeAzimuthTrack<N> {
     type Params = RangeAzimuthNoise<S>;
     type Step = ScanInterval<S>;
 

@@ -44,19 +44,18 @@ use crate::number_types::with_fpu as core_types;
 #[cfg(not(target_abi = "eabihf"))]
 use crate::number_types::without_fpu as core_types;
 
-/// The core's natural number system for the filters, the gain schedules
-/// and the bank: `f32` where the core has a hardware FPU (the hard-float
-/// ABI, thumbv7em-none-eabihf: Cortex-M4F), the fast fixed point
-/// ([`abtrack::Fixed32`]) on cores without one (Cortex-M3, Cortex-M0),
-/// where every float operation would be a software library call
-/// ([`crate::number_types`]).
+/// The core's number type, for every component: `f32` where the core has a
+/// hardware FPU (the hard-float ABI, thumbv7em-none-eabihf: Cortex-M4F),
+/// the fast fixed point ([`abtrack::Fixed32`]) on cores without one
+/// (Cortex-M3, Cortex-M0), where every float operation would be a software
+/// library call ([`crate::number_types`]).
 pub type Native = core_types::Native;
 
-/// The type of the code written for `Scalar` (the scan loop and its track
-/// table, TCAS, the altitude tracker, the demo): `f32` with an FPU; without
-/// one the fast fixed point's wide format ([`abtrack::ScaledScalar`])
-/// ([`crate::number_types`]).
-pub type TableScalar = core_types::TableScalar;
+/// [`Native`]'s one type for every quantity ([`abtrack::Numeric::Wide`]):
+/// `f32` itself, or `Fixed32`'s wide format. Derived, not a second choice:
+/// what the scan loop, TCAS and the altitude tracker compute in, for the
+/// tests and reports that name it.
+pub type Wide = <Native as abtrack::Numeric>::Wide;
 
 // ---------------------------------------------------------------------------
 // Semihosting: the log on the emulated boards, and the exit status

@@ -20,7 +20,7 @@ use abtrack::scan::{ClockConfig, ScanConfig};
 use abtrack::tcas::OwnAircraft;
 use abtrack::track::defaults::default_polar;
 use abtrack::track::{Gate, TrackerConfig, Volume};
-use abtrack::{Gains, Scalar};
+use abtrack::{Gains, Numeric, Scalar};
 
 /// The scan period, ms: the sensor's (one scan per second). The scan
 /// clock's windows are `ClockConfig::new`'s: late up to one period after
@@ -52,7 +52,8 @@ pub const SURVEILLANCE_HALF_WIDTH_M: f64 = 5000.0;
 
 /// The firmware's configuration in the number type `S` (TCAS
 /// surveillance); `Err` names what was refused.
-pub fn demo_config<S: Scalar>() -> Result<ScanConfig<S, RangeAzimuthNoise<S>>, &'static str> {
+pub fn demo_config<N: Numeric<Wide = S>, S: Scalar>(
+) -> Result<ScanConfig<N, RangeAzimuthNoise<S>>, &'static str> {
     let s = |v: f64| S::try_from_f64(v).map_err(|_| "a constant is not representable");
     Ok(ScanConfig {
         tracker: default_polar().map_err(|_| "tracker configuration refused")?,
@@ -70,15 +71,16 @@ fn altitude_config<S: Scalar>(
 }
 
 /// The Cartesian configuration of the `two-crossing` scenario (±5 km).
-pub fn crossing_config<S: Scalar>() -> Result<ScanConfig<S, Gains<S>>, &'static str> {
+pub fn crossing_config<N: Numeric<Wide = S>, S: Scalar>(
+) -> Result<ScanConfig<N, Gains<S>>, &'static str> {
     config_for_square(SURVEILLANCE_HALF_WIDTH_M)
 }
 
 /// [`crossing_config`] with a surveillance square of ±`half_width_m`
 /// (the soak's sky is ±16 km).
-pub fn config_for_square<S: Scalar>(
+pub fn config_for_square<N: Numeric<Wide = S>, S: Scalar>(
     half_width_m: f64,
-) -> Result<ScanConfig<S, Gains<S>>, &'static str> {
+) -> Result<ScanConfig<N, Gains<S>>, &'static str> {
     let s = |v: f64| S::try_from_f64(v).map_err(|_| "a constant is not representable");
     let gains = Gains::alpha_beta_f64(ALPHA, BETA).map_err(|_| "gains refused")?;
     let gate = Gate::uncertainty(

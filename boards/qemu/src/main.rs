@@ -64,7 +64,7 @@ use abtrack::wire::{
 };
 
 use abtrack::Numeric;
-use board::TableScalar as Native;
+use board::{Native, Wide};
 use cortex_m::interrupt::{free, Mutex};
 use cortex_m::peripheral::syst::SystClkSource;
 use cortex_m::peripheral::NVIC;
@@ -78,7 +78,7 @@ use abtrack_firmware::capacity::mps2 as capacity;
 use capacity::{MEASUREMENTS_PER_SCAN, QUEUE_LEN, TRACKS};
 
 type DemoLoop = ScanLoop<Native, RangeAzimuthTrack<Native>, TRACKS, MEASUREMENTS_PER_SCAN>;
-type DemoConfig = ScanConfig<Native, abtrack::filter::range_azimuth::RangeAzimuthNoise<Native>>;
+type DemoConfig = ScanConfig<Native, abtrack::filter::range_azimuth::RangeAzimuthNoise<Wide>>;
 type DemoIntake = Intake<QUEUE_LEN>;
 
 /// SysTick period (QEMU's virtual clock, real time without `-icount`).
@@ -410,7 +410,7 @@ fn start() -> DemoConfig {
         "abtrack scan-loop demo on {=str} ({=str}), tracker in {=str}",
         board::BOARD,
         board::CORE,
-        Native::NAME
+        Wide::NAME
     );
     defmt::println!(
         "capacity: {=usize} tracks, {=usize} measurements per scan, queue of {=usize}; RAM: scan loop {=usize} B, receiver {=usize} B",
@@ -426,11 +426,11 @@ fn start() -> DemoConfig {
         use core::mem::size_of;
         defmt::println!(
             "RAM per track: table slot {=usize} B, TCAS intruder {=usize} B (range tracker {=usize}, altitude tracker {=usize}, threat state {=usize})",
-            size_of::<abtrack::track::TrackSlot<Native, RangeAzimuthTrack<Native>>>(),
+            size_of::<abtrack::track::TrackSlot<Wide, RangeAzimuthTrack<Native>>>(),
             size_of::<IntruderTrack<Native>>(),
             size_of::<RangeTracker<Native>>(),
             size_of::<AltitudeTracker<Native>>(),
-            size_of::<ThreatState<Native>>()
+            size_of::<ThreatState<Wide>>()
         );
     }
     defmt::println!(
@@ -441,7 +441,7 @@ fn start() -> DemoConfig {
         demo_config::SCAN_PERIOD_MS,
         io::PINS_NAME
     );
-    match demo_config::demo_config::<Native>() {
+    match demo_config::demo_config::<Native, _>() {
         Ok(c) => c,
         Err(e) => {
             defmt::error!("configuration: {=str}", e);

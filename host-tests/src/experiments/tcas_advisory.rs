@@ -233,7 +233,7 @@ fn estimated_timeline<S: Scalar>(
     let mut filter = RangeAzimuthFilter::<S>::new(noise);
     let config = AltitudeTrackerConfig::<S>::default_for(AltitudeQuantum::ModeC)
         .map_err(|e| format!("altitude tracker: {e}"))?;
-    let mut altitude = AltitudeTracker::new(config);
+    let mut altitude = AltitudeTracker::<S>::new(config);
     let own = own_aircraft::<S>(own_alt_ft);
     let mut out = Vec::with_capacity(scans.len());
     let mut refused = 0;
@@ -276,7 +276,7 @@ fn variant_timeline(
     );
     let config = AltitudeTrackerConfig::<f64>::default_for(AltitudeQuantum::ModeC)
         .map_err(|e| format!("altitude tracker: {e}"))?;
-    let mut altitude = AltitudeTracker::new(config);
+    let mut altitude = AltitudeTracker::<f64>::new(config);
     let own = own_aircraft::<f64>(own_alt_ft);
     let mut out = Vec::with_capacity(scans.len());
     let mut refused = 0;

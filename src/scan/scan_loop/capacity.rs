@@ -37,13 +37,18 @@ pub(super) struct TrackGate<S: Numeric> {
     champion: Option<(usize, u16)>,
 }
 
-impl<S: Scalar, F: TrackFilter<S> + BearingTrack<S>, const N: usize, const M: usize>
-    ScanLoop<S, F, N, M>
+impl<
+        T: Numeric<Wide = S>,
+        S: Scalar,
+        F: TrackFilter<S> + BearingTrack<S>,
+        const N: usize,
+        const M: usize,
+    > ScanLoop<T, F, N, M>
 {
     /// The batch has just overflowed: the gates of the confirmed tracks,
     /// and the priority and champion places of every entry (in arrival
     /// order). Only a scan with more than `M` measurements pays for this.
-    pub(super) fn rank_batch(&mut self, config: &ScanConfig<S, F::Params>) {
+    pub(super) fn rank_batch(&mut self, config: &ScanConfig<T, F::Params>) {
         self.prepare_gates(config);
         self.ranked = true;
         for i in 0..self.batch.len() {
@@ -176,7 +181,7 @@ impl<S: Scalar, F: TrackFilter<S> + BearingTrack<S>, const N: usize, const M: us
 
     /// The gates of the confirmed tracks for the scan being assembled (one
     /// period after the last).
-    fn prepare_gates(&mut self, config: &ScanConfig<S, F::Params>) {
+    fn prepare_gates(&mut self, config: &ScanConfig<T, F::Params>) {
         self.gates.clear();
         let params = config.tracker.params();
         let Some(step) = ScanInterval::from_ms(config.clock.period_ms)

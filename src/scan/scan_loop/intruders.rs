@@ -5,7 +5,7 @@ use super::super::bump;
 use super::{BearingTrack, ScanConfig, ScanLoop};
 
 use crate::filter::altitude::AltitudeQuantum;
-use crate::num::{hypot, Scalar};
+use crate::num::{hypot, Numeric, Scalar};
 use crate::tcas::detection::MAX_INTRUDER_RATE_FT_PER_S;
 use crate::tcas::{Advisory, IntruderTrack, Reply, SensitivityLevel, ThreatGeometry};
 use crate::track::{Association, Measurement, PairRule, ScanReport, TrackFilter, TrackId};
@@ -122,8 +122,13 @@ fn quantum_of<S>(reply: &ReplyData<S>) -> AltitudeQuantum {
     }
 }
 
-impl<S: Scalar, F: TrackFilter<S> + BearingTrack<S>, const N: usize, const M: usize>
-    ScanLoop<S, F, N, M>
+impl<
+        T: Numeric<Wide = S>,
+        S: Scalar,
+        F: TrackFilter<S> + BearingTrack<S>,
+        const N: usize,
+        const M: usize,
+    > ScanLoop<T, F, N, M>
 {
     /// Feeds each reply the tracker used to its track's range and altitude
     /// trackers (a started track gets its slot, its address and the
@@ -131,7 +136,7 @@ impl<S: Scalar, F: TrackFilter<S> + BearingTrack<S>, const N: usize, const M: us
     /// the slots of deleted tracks.
     pub(super) fn update_intruders(
         &mut self,
-        config: &ScanConfig<S, F::Params>,
+        config: &ScanConfig<T, F::Params>,
         report: &ScanReport,
     ) {
         let table = &self.table;
@@ -205,7 +210,7 @@ impl<S: Scalar, F: TrackFilter<S> + BearingTrack<S>, const N: usize, const M: us
     /// are counted (`assessment_errors`) and give no advisory.
     pub(super) fn assess_tracks(
         &mut self,
-        config: &ScanConfig<S, F::Params>,
+        config: &ScanConfig<T, F::Params>,
         report: &ScanReport,
     ) -> RaOutput {
         let none = RaOutput {

@@ -1,7 +1,7 @@
 //! On-target self-test, second image: the TCAS inputs and the multi-target
-//! tracker on the emulated core, in the core's type for the code written
-//! for `Scalar` (`board::TableScalar`: `f32` on the Cortex-M4F, the scaled
-//! format `ScaledScalar` on the Cortex-M3 and M0)
+//! tracker on the emulated core, in the wide format of the core's type
+//! (`board::Wide`: `f32` on the Cortex-M4F, `Fixed32`'s wide format
+//! `ScaledScalar` on the Cortex-M3 and M0, what its TCAS runs in)
 //! against `f64` on the same core, or against values computed by hand.
 //! Split from `selftest` (filters, gain schedules, M5 bank) because both
 //! together do not fit the micro:bit's 256 KiB of flash; same harness
@@ -57,7 +57,7 @@ use abtrack::track::{
 };
 use abtrack::Numeric;
 use abtrack::{Quantity, Scalar};
-use board::TableScalar as Native;
+use board::Wide;
 use propagation::{ErrorPropagation, Lag, Matrix};
 use support::{never, value, Failure, Test, TestResult, TestScalar};
 use synth::Lcg;
@@ -601,11 +601,11 @@ fn compare_range_azimuth<S: TestScalar>(
 }
 
 fn range_azimuth_he_scenario_vs_f64() -> TestResult {
-    compare_range_azimuth::<Native>("He 280 km", &RaScenario::he_short(), 100.0 * 100.0, 1.0)
+    compare_range_azimuth::<Wide>("He 280 km", &RaScenario::he_short(), 100.0 * 100.0, 1.0)
 }
 
 fn range_azimuth_tcas_encounter_vs_f64() -> TestResult {
-    compare_range_azimuth::<Native>(
+    compare_range_azimuth::<Wide>(
         "TCAS 14 NM",
         &RaScenario::tcas_encounter(),
         15.0 * 15.0,
@@ -616,7 +616,7 @@ fn range_azimuth_tcas_encounter_vs_f64() -> TestResult {
 /// A range ≤ 0, a non-finite range or azimuth, or a bad interval is refused
 /// and leaves the filter as it was, in every phase.
 fn range_azimuth_invalid_inputs_refused() -> TestResult {
-    ra_invalid::<Native>()?;
+    ra_invalid::<Wide>()?;
     ra_invalid::<f64>()
 }
 
@@ -701,7 +701,7 @@ fn climb_report(k: u32) -> f64 {
 }
 
 fn altitude_quantised_climb_vs_f64() -> TestResult {
-    altitude_climb::<Native>()
+    altitude_climb::<Wide>()
 }
 
 /// The tracker in `S` against f64 on the quantised climb, 80 reports: the
@@ -712,8 +712,8 @@ fn altitude_quantised_climb_vs_f64() -> TestResult {
 fn altitude_climb<S: TestScalar>() -> TestResult {
     let cs = altitude_config::<S>(AltitudeQuantum::ModeC)?;
     let cf = altitude_config::<f64>(AltitudeQuantum::ModeC)?;
-    let mut ts = AltitudeTracker::new(cs);
-    let mut tf = AltitudeTracker::new(cf);
+    let mut ts = AltitudeTracker::<S>::new(cs);
+    let mut tf = AltitudeTracker::<f64>::new(cf);
     let one = value::<S>(1.0)?;
     let mut worst = [0.0f64; 2];
     for k in 0..80 {
@@ -765,7 +765,7 @@ const ALTITUDE_TOLERANCE: f64 = 0.05;
 // ---------------------------------------------------------------------------
 
 fn tcas_cycle_demo_threat_vs_f64() -> TestResult {
-    tcas_cycle::<Native>()
+    tcas_cycle::<Wide>()
 }
 
 /// What one scan of [`tcas_cycle`] decided.
@@ -895,7 +895,7 @@ fn tcas_cycle<S: TestScalar>() -> TestResult {
 const RANGE_TRACK_TOLERANCE: [f64; 2] = [0.5, 0.05];
 
 fn altitude_missing_reports_and_bad_input() -> TestResult {
-    altitude_gaps::<Native>()?;
+    altitude_gaps::<Wide>()?;
     altitude_gaps::<f64>()
 }
 
@@ -903,7 +903,7 @@ fn altitude_missing_reports_and_bad_input() -> TestResult {
 /// and becomes non-reporting after that; a new report starts it again.
 /// Bad input changes nothing.
 fn altitude_gaps<S: TestScalar>() -> TestResult {
-    let mut t = AltitudeTracker::new(altitude_config::<S>(AltitudeQuantum::ModeS25)?);
+    let mut t = AltitudeTracker::<S>::new(altitude_config::<S>(AltitudeQuantum::ModeS25)?);
     let one = value::<S>(1.0)?;
     let n = |v: f64| S::from_f64_lossy(v);
     ensure!(
@@ -1046,7 +1046,7 @@ fn head_on<S: TestScalar>(r: f64) -> Result<ThreatAssessment<S>, Failure> {
 }
 
 fn tcas_head_on_golden() -> TestResult {
-    head_on_golden::<Native>()?;
+    head_on_golden::<Wide>()?;
     head_on_golden::<f64>()
 }
 
@@ -1133,18 +1133,18 @@ fn head_on_golden<S: TestScalar>() -> TestResult {
 }
 
 fn tcas_head_on_through_the_filters() -> TestResult {
-    let native = head_on_through_filters::<Native>()?;
+    let native = head_on_through_filters::<Wide>()?;
     let reference = head_on_through_filters::<f64>()?;
     ensure!(
         native == reference,
         "{=str}: first TA / RA at scans {} but f64 at {}",
-        Native::NAME,
+        Wide::NAME,
         native,
         reference
     );
     defmt::println!(
         "       {=str} and f64: first TA at scan {=u32} (r = {=f64} NM), first RA at scan {=u32} (r = {=f64} NM)",
-        Native::NAME,
+        Wide::NAME,
         native.0,
         (10.0 * NM - HEAD_ON_CLOSURE * native.0 as f64) / NM,
         native.1,
@@ -1167,7 +1167,7 @@ fn head_on_through_filters<S: TestScalar>() -> Result<(u32, u32), Failure> {
         return Err(Failure);
     };
     let mut track = RangeAzimuthFilter::new(noise);
-    let mut altitude = AltitudeTracker::new(config);
+    let mut altitude = AltitudeTracker::<S>::new(config);
     let own = OwnAircraft::over_sea_level(c(8000.0), S::ZERO);
     let mut first_ta = None;
     for k in 0..200u32 {
@@ -1220,7 +1220,7 @@ fn head_on_through_filters<S: TestScalar>() -> Result<(u32, u32), Failure> {
 }
 
 fn tcas_diverging_intruder_never_alerts() -> TestResult {
-    diverging::<Native>()?;
+    diverging::<Wide>()?;
     diverging::<f64>()
 }
 
@@ -1258,7 +1258,7 @@ fn diverging<S: TestScalar>() -> TestResult {
 }
 
 fn tcas_non_reporting_intruder_at_most_ta() -> TestResult {
-    non_reporting::<Native>()?;
+    non_reporting::<Wide>()?;
     non_reporting::<f64>()
 }
 
@@ -1341,8 +1341,8 @@ fn track_table_sizes_match_documentation() -> TestResult {
     let sizes = [
         (
             "TrackTable<native, FixedGainTrack, 8, 8>",
-            size_of::<Table<Native>>(),
-            documented_table_bytes::<Native>(8, 8),
+            size_of::<Table<Wide>>(),
+            documented_table_bytes::<Wide>(8, 8),
         ),
         (
             "TrackTable<f64, FixedGainTrack, 8, 8>",
@@ -1351,8 +1351,8 @@ fn track_table_sizes_match_documentation() -> TestResult {
         ),
         (
             "TrackTable<native, FixedGainTrack, 16, 16>",
-            size_of::<TrackTable<Native, FixedGainTrack<Native>, 16, 16>>(),
-            documented_table_bytes::<Native>(16, 16),
+            size_of::<TrackTable<Wide, FixedGainTrack<Wide>, 16, 16>>(),
+            documented_table_bytes::<Wide>(16, 16),
         ),
         (
             "TrackTable<f64, FixedGainTrack, 16, 16>",
@@ -1375,8 +1375,8 @@ fn track_table_sizes_match_documentation() -> TestResult {
             documented
         );
     }
-    let slot = size_of::<TrackSlot<Native, FixedGainTrack<Native>>>();
-    let documented_slot = match Native::NAME {
+    let slot = size_of::<TrackSlot<Wide, FixedGainTrack<Wide>>>();
+    let documented_slot = match Wide::NAME {
         "f32" => 60,
         "scaled" => 88,
         _ => 96,
@@ -1390,10 +1390,10 @@ fn track_table_sizes_match_documentation() -> TestResult {
     defmt::println!(
         "       size_of per track slot TrackSlot<native, FixedGainTrack> = {=usize}, TrackerConfig<native> = {=usize}, RangeAzimuthFilter<native> = {=usize}, AltitudeTracker<native> = {=usize}, ThreatAssessment<native> = {=usize} bytes",
         slot,
-        size_of::<Config<Native>>(),
-        size_of::<RangeAzimuthFilter<Native>>(),
-        size_of::<AltitudeTracker<Native>>(),
-        size_of::<ThreatAssessment<Native>>()
+        size_of::<Config<Wide>>(),
+        size_of::<RangeAzimuthFilter<Wide>>(),
+        size_of::<AltitudeTracker<Wide>>(),
+        size_of::<ThreatAssessment<Wide>>()
     );
     Ok(())
 }
@@ -1458,7 +1458,7 @@ fn scan_table<S: Numeric>(
 }
 
 fn track_crossing_targets_keep_ids() -> TestResult {
-    let mut native = const { Table::<Native>::new() };
+    let mut native = const { Table::<Wide>::new() };
     let mut reference = const { Table::<f64>::new() };
     crossing_keeps_ids(&mut native, &mut reference)
 }
@@ -1545,7 +1545,7 @@ fn track_fast_fixed_point_same_codes_as_f64() -> TestResult {
 }
 
 fn track_cluttered_scans_same_codes_as_f64() -> TestResult {
-    let mut native = const { Table::<Native>::new() };
+    let mut native = const { Table::<Wide>::new() };
     let mut reference = const { Table::<f64>::new() };
     cluttered_same_codes(&mut native, &mut reference)
 }
@@ -1637,7 +1637,7 @@ fn cluttered_same_codes<N: Numeric>(
 }
 
 fn track_full_table_refuses_and_counts() -> TestResult {
-    let mut table = const { SmallTable::<Native>::new() };
+    let mut table = const { SmallTable::<Wide>::new() };
     full_table(&mut table)
 }
 
@@ -1652,17 +1652,17 @@ type SmallTable<S> = TrackTable<S, FixedGainTrack<S>, 4, PER_SCAN>;
 /// point), pairs the scan after and is refused again, so from scan 2 on the
 /// two extra targets alternate between `OutsideGates` and `Dropped`. The 4
 /// tracks keep their ids, are confirmed, and are never evicted.
-fn full_table(table: &mut SmallTable<Native>) -> TestResult {
-    let config = track_config::<Native>()?;
+fn full_table(table: &mut SmallTable<Wide>) -> TestResult {
+    let config = track_config::<Wide>()?;
     let mut ids = [TrackId::new(0); 4];
     for k in 0..9u32 {
         let t = scan_time(k) as f64 / 1000.0;
         let mut m = [Measurement::Cartesian {
-            x: Native::ZERO,
-            y: Native::ZERO,
+            x: Wide::ZERO,
+            y: Wide::ZERO,
         }; 6];
         for (i, slot) in m.iter_mut().enumerate() {
-            *slot = cartesian::<Native>(2000.0 * i as f64, 50.0 * t)?;
+            *slot = cartesian::<Wide>(2000.0 * i as f64, 50.0 * t)?;
         }
         let mut codes = [Association::OutsideGates; 6];
         let report = match table.scan(&config, scan_time(k), &m, &mut codes) {
@@ -1710,22 +1710,22 @@ fn full_table(table: &mut SmallTable<Native>) -> TestResult {
     );
     defmt::println!(
         "       {=str}: 4-track table, 6 targets: {=u32} candidates refused and counted over 9 scans, no track evicted",
-        Native::NAME,
+        Wide::NAME,
         table.stats().refused_table_full
     );
     Ok(())
 }
 
 fn track_bad_measurements_rejected() -> TestResult {
-    let mut table = const { Table::<Native>::new() };
+    let mut table = const { Table::<Wide>::new() };
     bad_measurements(&mut table)
 }
 
 /// Bad numbers are rejected with a reason and touch no track; a scan that
 /// is not after the previous one is refused and changes nothing.
-fn bad_measurements(table: &mut Table<Native>) -> TestResult {
-    let config = track_config::<Native>()?;
-    let n = |v: f64| Native::from_f64_lossy(v);
+fn bad_measurements(table: &mut Table<Wide>) -> TestResult {
+    let config = track_config::<Wide>()?;
+    let n = |v: f64| Wide::from_f64_lossy(v);
     // Two scans of one target: a tentative track.
     for k in 0..2u32 {
         let t = scan_time(k) as f64 / 1000.0;
@@ -1825,7 +1825,7 @@ fn bad_measurements(table: &mut Table<Native>) -> TestResult {
         y: n(0.0),
     }; PER_SCAN + 1];
     for (i, slot) in many.iter_mut().enumerate() {
-        *slot = cartesian::<Native>(-30_000.0 + 1000.0 * i as f64, 20_000.0)?;
+        *slot = cartesian::<Wide>(-30_000.0 + 1000.0 * i as f64, 20_000.0)?;
     }
     let mut codes = [Association::OutsideGates; PER_SCAN + 1];
     let report = match table.scan(&config, scan_time(3), &many, &mut codes) {

@@ -263,7 +263,7 @@ fn second() -> ScanInterval<f64> {
 #[test]
 fn range_azimuth_window_from_its_covariances() {
     let noise = RangeAzimuthNoise::<f64>::new_f64(15.0 * 15.0, 0.05 * 0.05, 4.0).unwrap();
-    let mut track = RangeAzimuthTrack::empty(&noise);
+    let mut track = RangeAzimuthTrack::<f64>::empty(&noise);
     // A target at ~8 km, moving across the line of sight.
     for (k, (x, y)) in [
         (0.0, 8000.0),

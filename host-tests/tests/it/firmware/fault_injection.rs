@@ -131,39 +131,42 @@ fn run_firmware(board: &Board, elf: &Path, input: &[u8], name: &str) -> Run {
 }
 
 /// The same input through the scan-loop core on the host, in the
-/// firmware's table type for the board's core
+/// firmware's type for the board's core
 /// (boards/qemu/src/number_types.rs).
 fn model(board: &Board, input: &[u8]) -> FirmwareRun {
     match board.machine {
         "mps2-an386" => frames::run_like_the_firmware::<
-            with_fpu::TableScalar,
-            RangeAzimuthTrack<with_fpu::TableScalar>,
+            with_fpu::Native,
+            _,
+            RangeAzimuthTrack<with_fpu::Native>,
             { mps2::TRACKS },
             { mps2::MEASUREMENTS_PER_SCAN },
             { mps2::QUEUE_LEN },
         >(
             input,
-            &demo_config::demo_config::<with_fpu::TableScalar>().unwrap(),
+            &demo_config::demo_config::<with_fpu::Native, _>().unwrap(),
         ),
         "mps2-an385" => frames::run_like_the_firmware::<
-            without_fpu::TableScalar,
-            RangeAzimuthTrack<without_fpu::TableScalar>,
+            without_fpu::Native,
+            _,
+            RangeAzimuthTrack<without_fpu::Native>,
             { mps2::TRACKS },
             { mps2::MEASUREMENTS_PER_SCAN },
             { mps2::QUEUE_LEN },
         >(
             input,
-            &demo_config::demo_config::<without_fpu::TableScalar>().unwrap(),
+            &demo_config::demo_config::<without_fpu::Native, _>().unwrap(),
         ),
         _ => frames::run_like_the_firmware::<
-            without_fpu::TableScalar,
-            RangeAzimuthTrack<without_fpu::TableScalar>,
+            without_fpu::Native,
+            _,
+            RangeAzimuthTrack<without_fpu::Native>,
             { microbit::TRACKS },
             { microbit::MEASUREMENTS_PER_SCAN },
             { microbit::QUEUE_LEN },
         >(
             input,
-            &demo_config::demo_config::<without_fpu::TableScalar>().unwrap(),
+            &demo_config::demo_config::<without_fpu::Native, _>().unwrap(),
         ),
     }
 }

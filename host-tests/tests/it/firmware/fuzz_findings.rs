@@ -27,7 +27,7 @@ fn scan(
     now_ms: u32,
     measurements: &[Measurement<f32>],
 ) -> (u32, Vec<Association>) {
-    let config = demo_config::crossing_config::<f32>()
+    let config = demo_config::crossing_config::<f32, _>()
         .expect("the demo configuration is valid")
         .tracker;
     let mut codes = vec![Association::NotAssigned; measurements.len()];

@@ -38,7 +38,7 @@ fn at(t: u32, x: f64, y: f64) -> MeasurementReport {
 /// measurements reports 8)".
 #[test]
 fn empty_scan_counts_nothing_outside_the_gates() {
-    let config = demo_config::crossing_config::<f64>().unwrap();
+    let config = demo_config::crossing_config::<f64, _>().unwrap();
     let mut table: Box<TrackTable<f64, FixedGainTrack<f64>, 4, 8>> = Box::new(TrackTable::new());
     let mut codes = [Association::OutsideGates; 8];
     let report = table.scan(&config.tracker, 0, &[], &mut codes).unwrap();
@@ -81,7 +81,7 @@ fn truncated_frame_mid_stream_is_counted_as_truncated() {
 /// first measurement.
 #[test]
 fn sensor_clock_far_from_zero_is_used_by_the_first_scan() {
-    let config = demo_config::crossing_config::<f64>().unwrap();
+    let config = demo_config::crossing_config::<f64, _>().unwrap();
     let mut q = MeasurementQueue::<16>::new();
     q.push(at(43_200_000, 100.0, 0.0)).unwrap();
     let mut scan_loop: Box<Loop<f64, 4, 8>> = Box::new(Loop::new());
@@ -93,7 +93,7 @@ fn sensor_clock_far_from_zero_is_used_by_the_first_scan() {
 /// "a +40-day jump wraps past 2³¹ ms and every later measurement is late".
 #[test]
 fn jump_past_2_31_ms_does_not_make_later_frames_late() {
-    let config = demo_config::crossing_config::<f64>().unwrap();
+    let config = demo_config::crossing_config::<f64, _>().unwrap();
     let mut q = MeasurementQueue::<16>::new();
     let mut scan_loop: Box<Loop<f64, 4, 8>> = Box::new(Loop::new());
     const FORTY_DAYS_MS: u32 = 40 * 86_400_000;
@@ -135,8 +135,8 @@ fn flood_beyond_capacity_is_counted_as_over_capacity() {
     reports.push(at(1000, 0.0, 0.0));
     let bytes = frames_of(&reports);
     fn flood<S: Scalar, const N: usize, const M: usize, const Q: usize>(bytes: &[u8]) -> [u32; 3] {
-        let config = demo_config::crossing_config::<S>().unwrap();
-        let run = frames::run_like_the_firmware::<S, FixedGainTrack<S>, N, M, Q>(bytes, &config);
+        let config = demo_config::crossing_config::<S, _>().unwrap();
+        let run = frames::run_like_the_firmware::<S, _, FixedGainTrack<S>, N, M, Q>(bytes, &config);
         let s = run.health.scan;
         [s.late, s.over_capacity, s.used]
     }
@@ -167,7 +167,7 @@ fn flood_beyond_capacity_is_counted_as_over_capacity() {
 /// confirmed tracks at once.
 pub fn clutter_storm<S: Scalar, const N: usize, const M: usize, const Q: usize>(
 ) -> ([usize; 2], u16) {
-    let config = demo_config::crossing_config::<S>().unwrap();
+    let config = demo_config::crossing_config::<S, _>().unwrap();
     let mut rng = Lcg(0xC1u64 << 32 | 0x77E4);
     let mut reports = Vec::new();
     for k in 0..60u32 {
@@ -184,7 +184,7 @@ pub fn clutter_storm<S: Scalar, const N: usize, const M: usize, const Q: usize>(
         }
         reports.extend(points.iter().map(|p| at(k * 1000, p[0], p[1])));
     }
-    let run = frames::run_like_the_firmware::<S, FixedGainTrack<S>, N, M, Q>(
+    let run = frames::run_like_the_firmware::<S, _, FixedGainTrack<S>, N, M, Q>(
         &frames_of(&reports),
         &config,
     );

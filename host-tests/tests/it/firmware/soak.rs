@@ -46,7 +46,7 @@ type EndState = BTreeMap<u32, [f64; 2]>;
 /// The day in f64 on the host: the same sky, the same receive path and
 /// scan loop, the capacities of boards/qemu/src/bin/soak/; the end state.
 fn f64_day(scans: u32) -> EndState {
-    let config = demo_config::config_for_square::<f64>(synth::SOAK_HALF_WIDTH_M).unwrap();
+    let config = demo_config::config_for_square::<f64, _>(synth::SOAK_HALF_WIDTH_M).unwrap();
     let mut intake: Box<Intake<128>> = Box::new(Intake::new());
     let mut scan_loop: Box<ScanLoop<f64, FixedGainTrack<f64>, 64, 96>> = Box::new(ScanLoop::new());
     let mut encoder = Encoder::new();

@@ -77,9 +77,11 @@ struct DemoRun {
 }
 
 fn run<S: Scalar, const N: usize, const M: usize, const Q: usize>() -> DemoRun {
-    let config = demo_config::demo_config::<S>().unwrap();
-    let fw =
-        frames::run_like_the_firmware::<S, RangeAzimuthTrack<S>, N, M, Q>(&demo_input(), &config);
+    let config = demo_config::demo_config::<S, _>().unwrap();
+    let fw = frames::run_like_the_firmware::<S, _, RangeAzimuthTrack<S>, N, M, Q>(
+        &demo_input(),
+        &config,
+    );
     let verdict = fw.verdict.unwrap();
     assert!(verdict.is_clean(), "{}: {verdict:?}", S::NAME);
     let (messages, stats) = frames::decode_all(&fw.output);
@@ -238,7 +240,7 @@ fn dropout_scan<S: Scalar>(
 ) -> abtrack::wire::ScanCounts {
     use abtrack::scan::{MeasurementQueue, ScanLoop};
     use abtrack::wire::{MeasurementReport, ModeSAddress};
-    let config = demo_config::demo_config::<S>().unwrap();
+    let config = demo_config::demo_config::<S, _>().unwrap();
     let mut scan_loop: Box<ScanLoop<S, RangeAzimuthTrack<S>, 8, 12>> = Box::new(ScanLoop::new());
     let mut queue = Box::new(MeasurementQueue::<16>::new());
     let reply = |k: u32, extra_m: f64, (address, altitude): (Option<u32>, Option<f64>)| {

@@ -28,8 +28,8 @@ use std::collections::{BTreeMap, BTreeSet};
 type Loop<S, const N: usize, const M: usize> = ScanLoop<S, FixedGainTrack<S>, N, M>;
 /// The demo's scan loop on the micro:bit (boards/qemu/src/main.rs).
 type MicrobitLoop = ScanLoop<
-    abtrack_firmware::number_types::without_fpu::TableScalar,
-    abtrack::track::RangeAzimuthTrack<abtrack_firmware::number_types::without_fpu::TableScalar>,
+    abtrack_firmware::number_types::without_fpu::Native,
+    abtrack::track::RangeAzimuthTrack<abtrack_firmware::number_types::without_fpu::Native>,
     { microbit::TRACKS },
     { microbit::MEASUREMENTS_PER_SCAN },
 >;
@@ -125,7 +125,7 @@ impl<S: Scalar, const N: usize, const M: usize> Rig<S, N, M> {
 /// Runs the crossing through the loop in `S`; returns the rig's output and
 /// the number of garbage bytes inserted.
 fn run_crossing<S: Scalar>() -> (Output, Vec<TickReport>, DecoderStats, usize) {
-    let mut rig: Rig<S, 8, 16> = Rig::new(demo_config::crossing_config::<S>().unwrap());
+    let mut rig: Rig<S, 8, 16> = Rig::new(demo_config::crossing_config::<S, _>().unwrap());
     let mut sensor = Sensor::default();
     let mut rng = Lcg(0x5CA1_AB1E);
     let mut garbage = 0;
@@ -316,7 +316,7 @@ fn queue_overflow_is_counted() {
 
     // The four queued ones reach the scan, in order.
     let mut scan_loop: Box<Loop<f64, 4, 8>> = Box::new(Loop::new());
-    let config = demo_config::crossing_config::<f64>().unwrap();
+    let config = demo_config::crossing_config::<f64, _>().unwrap();
     let mut out = Output::default();
     let tick = scan_loop.on_tick(&config, &mut intake, out.sink()).unwrap();
     assert_eq!(tick.summary.counts.used, 4);
@@ -341,7 +341,7 @@ fn at(t: u32, x: f64) -> MeasurementReport {
 /// ones are counted, every measurement ends in exactly one scan or count.
 #[test]
 fn the_scan_clock_sorts_measurements_by_the_sensor_time() {
-    let config = demo_config::crossing_config::<f32>().unwrap();
+    let config = demo_config::crossing_config::<f32, _>().unwrap();
     let mut scan_loop: Box<Loop<f32, 4, 8>> = Box::new(Loop::new());
     let mut out = Output::default();
     let mut q = direct(&[
@@ -388,7 +388,7 @@ fn the_scan_clock_sorts_measurements_by_the_sensor_time() {
 /// period, on schedule; the tracks coast and are deleted.
 #[test]
 fn a_gap_runs_empty_scans_on_schedule() {
-    let config = demo_config::crossing_config::<f64>().unwrap();
+    let config = demo_config::crossing_config::<f64, _>().unwrap();
     let mut scan_loop: Box<Loop<f64, 4, 8>> = Box::new(Loop::new());
     let mut out = Output::default();
     let mut q = direct(&[
@@ -435,7 +435,7 @@ fn the_scan_clock_relocks_on_a_jump_and_keeps_the_track() {
         ("+31 s", 31_000),
         ("-1 h", (-3_600_000i32) as u32),
     ] {
-        let config = demo_config::crossing_config::<Fix>().unwrap();
+        let config = demo_config::crossing_config::<Fix, _>().unwrap();
         let mut scan_loop: Box<Loop<Fix, 4, 8>> = Box::new(Loop::new());
         let mut out = Output::default();
         let start = 43_200_000u32; // noon
@@ -549,7 +549,7 @@ fn out_of_range_measurements_are_refused_and_counted() {
     // ... and if they reach the loop another way, by the conversion.
     let mut q = direct(&reports);
     let mut scan_loop: Box<Loop<Fix, 4, 8>> = Box::new(Loop::new());
-    let config = demo_config::crossing_config::<Fix>().unwrap();
+    let config = demo_config::crossing_config::<Fix, _>().unwrap();
     let mut out = Output::default();
     let t = scan_loop.on_tick(&config, q.as_mut(), out.sink()).unwrap();
     assert_eq!((t.summary.counts.used, t.summary.counts.invalid), (1, 3));
@@ -561,7 +561,7 @@ fn out_of_range_measurements_are_refused_and_counted() {
 fn scan_overflow_is_counted() {
     let mut q = direct(&(0..7).map(|k| at(0, 100.0 * k as f64)).collect::<Vec<_>>());
     let mut scan_loop: Box<Loop<f64, 4, 5>> = Box::new(Loop::new());
-    let config = demo_config::crossing_config::<f64>().unwrap();
+    let config = demo_config::crossing_config::<f64, _>().unwrap();
     let mut out = Output::default();
     let t = scan_loop.on_tick(&config, q.as_mut(), out.sink()).unwrap();
     assert_eq!(
@@ -595,9 +595,9 @@ fn demo_input_is_tracked<S: Scalar, const N: usize, const M: usize, const Q: usi
     assert!(encoded.corrupted > 0 && encoded.garbage_bytes > 0);
     let run = scenario::generate("two-crossing", SEED).unwrap();
 
-    let config = demo_config::crossing_config::<S>().unwrap();
+    let config = demo_config::crossing_config::<S, _>().unwrap();
     let fw =
-        frames::run_like_the_firmware::<S, FixedGainTrack<S>, N, M, Q>(&encoded.bytes, &config);
+        frames::run_like_the_firmware::<S, _, FixedGainTrack<S>, N, M, Q>(&encoded.bytes, &config);
     let h = fw.health;
     assert_eq!(
         h.decoder.accepted as usize,
@@ -846,7 +846,7 @@ fn print_memory_sizes() {
             std::mem::size_of::<Loop<Fix, 8, 24>>(),
         ),
         (
-            "ScanLoop<ScaledScalar, RangeAzimuthTrack, micro:bit capacities> (the micro:bit's)",
+            "ScanLoop<Fixed32, RangeAzimuthTrack, micro:bit capacities> (the micro:bit's)",
             std::mem::size_of::<MicrobitLoop>(),
         ),
         ("Intake<128>", std::mem::size_of::<Intake<128>>()),
@@ -874,7 +874,7 @@ fn print_memory_sizes() {
 #[test]
 fn confirmed_tracks_are_never_starved() {
     fn run<S: Scalar>() {
-        let config = demo_config::crossing_config::<S>().unwrap();
+        let config = demo_config::crossing_config::<S, _>().unwrap();
         let mut scan_loop: Box<Loop<S, 8, 8>> = Box::new(Loop::new());
         let mut out = Output::default();
         let truth = |k: u32, n: usize| -> [f64; 2] {

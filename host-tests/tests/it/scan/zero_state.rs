@@ -12,8 +12,8 @@ use abtrack_firmware::number_types::{with_fpu, without_fpu};
 use std::mem::size_of;
 
 type M4fLoop = ScanLoop<
-    with_fpu::TableScalar,
-    RangeAzimuthTrack<with_fpu::TableScalar>,
+    with_fpu::Native,
+    RangeAzimuthTrack<with_fpu::Native>,
     { mps2::TRACKS },
     { mps2::MEASUREMENTS_PER_SCAN },
 >;
@@ -26,16 +26,16 @@ static MICROBIT_INTAKE: Intake<{ microbit::QUEUE_LEN }> = Intake::new();
 static M4F_SCAN_LOOP: M4fLoop = ScanLoop::new();
 
 /// The Cortex-M3's (mps2-an385) and Cortex-M0's (micro:bit) demo loops:
-/// the fast fixed point's wide format.
+/// the fast fixed point (computing in its wide format).
 type M3Loop = ScanLoop<
-    without_fpu::TableScalar,
-    RangeAzimuthTrack<without_fpu::TableScalar>,
+    without_fpu::Native,
+    RangeAzimuthTrack<without_fpu::Native>,
     { mps2::TRACKS },
     { mps2::MEASUREMENTS_PER_SCAN },
 >;
 type M0Loop = ScanLoop<
-    without_fpu::TableScalar,
-    RangeAzimuthTrack<without_fpu::TableScalar>,
+    without_fpu::Native,
+    RangeAzimuthTrack<without_fpu::Native>,
     { microbit::TRACKS },
     { microbit::MEASUREMENTS_PER_SCAN },
 >;

@@ -157,7 +157,7 @@ fn stays_in_the_bin<S: Scalar>() {
                 ];
                 for profile in &profiles {
                     let config = AltitudeTrackerConfig::<S>::default_for(q).unwrap();
-                    let mut t = AltitudeTracker::new(config);
+                    let mut t = AltitudeTracker::<S>::new(config);
                     for k in 0..90 {
                         let z = report(profile.altitude_ft(k as f64), q);
                         t.scan(Some(S::from_f64_lossy(z)), S::ONE).unwrap();
@@ -222,7 +222,7 @@ fn narrow_types_follow_f64() {
 #[test]
 fn firmness_and_classes() {
     let config = AltitudeTrackerConfig::<f64>::default_for(AltitudeQuantum::ModeC).unwrap();
-    let mut t = AltitudeTracker::new(config);
+    let mut t = AltitudeTracker::<f64>::new(config);
     t.scan(Some(8000.0), 1.0).unwrap();
     assert_eq!((t.class(), t.firmness()), (VerticalClass::New, 0));
     // Level for 15 s: firmness grows with the bin occupancy (4.5, 9.5,
@@ -268,7 +268,7 @@ fn firmness_and_classes() {
 #[test]
 fn incredible_jump_is_refused_and_counted() {
     let config = AltitudeTrackerConfig::<f64>::default_for(AltitudeQuantum::ModeS25).unwrap();
-    let mut t = AltitudeTracker::new(config);
+    let mut t = AltitudeTracker::<f64>::new(config);
     for _ in 0..20 {
         t.scan(Some(10_000.0), 1.0).unwrap();
     }
@@ -301,7 +301,7 @@ fn kalata_gains_satisfy_the_tracking_index_identity() {
 fn missing_altitude<S: Scalar>() {
     let one = S::ONE;
     let config = AltitudeTrackerConfig::<S>::default_for(AltitudeQuantum::ModeS25).unwrap();
-    let mut t = AltitudeTracker::new(config);
+    let mut t = AltitudeTracker::<S>::new(config);
     // A non-reporting intruder is a valid, lasting state.
     for _ in 0..10 {
         assert_eq!(t.scan(None, one), Ok(AltitudeStatus::NotReporting));

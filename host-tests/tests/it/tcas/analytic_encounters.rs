@@ -338,7 +338,7 @@ fn through_the_filters<S: Scalar>() -> f64 {
     let c = |x: f64| S::from_f64_lossy(x);
     let noise = RangeAzimuthNoise::<S>::paper_bearing_f64(225.0, 1.0).unwrap();
     let mut track = RangeAzimuthFilter::new(noise);
-    let mut alt = AltitudeTracker::new(
+    let mut alt = AltitudeTracker::<S>::new(
         AltitudeTrackerConfig::<S>::default_for(AltitudeQuantum::ModeC).unwrap(),
     );
     let own = OwnAircraft::over_sea_level(c(8000.0), S::ZERO);

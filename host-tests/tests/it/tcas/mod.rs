@@ -5,6 +5,7 @@ mod altitude;
 mod analytic_encounters;
 mod encounter_suite;
 mod logic;
+mod one_type;
 mod sensitivity;
 mod state_size;
 mod threat;

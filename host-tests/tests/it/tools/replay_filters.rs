@@ -568,7 +568,7 @@ fn expected_range_azimuth<S: Scalar + Display>(
         RangeAzimuthNoise::<S>::new_f64(range_variance, bearing_variance, process_noise).unwrap();
     let mut filter = RangeAzimuthFilter::new(noise);
     let mut altitude =
-        AltitudeTracker::new(AltitudeTrackerConfig::<S>::default_for(quantum).unwrap());
+        AltitudeTracker::<S>::new(AltitudeTrackerConfig::<S>::default_for(quantum).unwrap());
     let own = own_alt.map(|a| OwnAircraft::over_sea_level(S::try_from_f64(a).unwrap(), S::ZERO));
     let mut out = String::from("t,x,vx,res_x,y,vy,res_y,range,azimuth");
     if data.has_alt {

@@ -305,7 +305,7 @@ fn altitude<S: BenchNumber + Scalar>(bench: &mut Bench) {
         bench.fail(numeric, "altitude_update", "configuration refused");
         return;
     };
-    let mut tracker = AltitudeTracker::new(config);
+    let mut tracker = AltitudeTracker::<S>::new(config);
     bench.per_accepted_call(
         numeric,
         "altitude_update",

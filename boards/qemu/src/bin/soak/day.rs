@@ -1,6 +1,6 @@
 //! The soak's day (not built for the micro:bit).
 
-use crate::board::{self, TableScalar as Native};
+use crate::board::{self, Native, Wide};
 use crate::demo_config;
 use crate::icount::InstructionCounter;
 use crate::synth;
@@ -37,7 +37,7 @@ const fn parse_u32(s: &str) -> u32 {
     value
 }
 
-type SoakLoop = ScanLoop<Native, FixedGainTrack<Native>, TRACKS, PER_SCAN>;
+type SoakLoop = ScanLoop<Native, FixedGainTrack<Wide>, TRACKS, PER_SCAN>;
 
 /// Figures over one hour (or the day).
 #[derive(Clone, Copy, Default)]
@@ -134,7 +134,7 @@ fn main() -> ! {
     let scan_loop: &mut SoakLoop = SCAN_LOOP;
     let intake: &mut Intake<QUEUE> = INTAKE;
     let reports: &mut Reports = REPORTS;
-    let config = match demo_config::config_for_square::<Native>(synth::SOAK_HALF_WIDTH_M) {
+    let config = match demo_config::config_for_square::<Native, _>(synth::SOAK_HALF_WIDTH_M) {
         Ok(c) => c,
         Err(e) => {
             defmt::error!("configuration: {=str}", e);
@@ -153,7 +153,7 @@ fn main() -> ! {
         "abtrack soak on {=str} ({=str}), tracker in {=str}: {=u32} scans at 1 Hz, {=usize} intruders, Pd {=f32}, {=usize} clutter per scan over +-{=f32} km; capacity {=usize} tracks, {=usize} per scan; {=f32} instructions per SysTick tick (-icount shift=0)",
         board::BOARD,
         board::CORE,
-        Native::NAME,
+        Wide::NAME,
         SCANS,
         SOAK_TARGETS,
         synth::SOAK_DETECTION_PROBABILITY as f32,
