@@ -1,6 +1,7 @@
 //! Group `tcas-random`: the randomized encounter suite
 //! ([`crate::random_encounters`]) exact and under a TCAS receiver's noise,
-//! in f64, f32 and the firmware's scaled format, against the f64 reference
+//! in f64, f32 and `Fixed32` (the Cortex-M3's and M0's type, whose TCAS logic
+//! runs in its wide format, `Numeric::Wide`), against the f64 reference
 //! of the rules on the true states. Writes `results/tcas-random/`: the
 //! table by level (`by_level.md`/`.csv`), false vs missed RAs by level
 //! (`false_vs_missed.svg`), the distribution of RA onset delays
@@ -11,7 +12,7 @@ use std::fmt::Write as _;
 use rayon::prelude::*;
 
 use abtrack::tcas::detection::MISS_DISTANCE_CONFIDENCE;
-use abtrack::{Scalar, ScaledScalar};
+use abtrack::{Fixed32, Numeric, Scalar};
 
 use super::common::{plot, write_file, Context, PlotSpec, Series, Table};
 use crate::random_encounters::{
@@ -23,12 +24,12 @@ use crate::random_encounters::{
 pub const NAME: &str = "tcas-random";
 /// One line for `experiments --list`.
 pub const ABOUT: &str =
-    "TCAS: randomized encounters (SL 3-7) exact and noisy vs the v7.1 reference, f64/f32/scaled";
+    "TCAS: randomized encounters (SL 3-7) exact and noisy vs the v7.1 reference, f64/f32/Fixed32";
 /// Documented noisy runs (seeds) per encounter and condition.
 pub const RUNS: usize = 5;
 
 /// The number types, in table order.
-pub const TYPES: [&str; 3] = ["f64", "f32", "scaled"];
+pub const TYPES: [&str; 3] = ["f64", "f32", "Fixed32"];
 
 /// Every run of one encounter under one condition in one type.
 fn runs_in<S: Scalar>(
@@ -59,7 +60,7 @@ pub fn simulate(seeds: usize) -> (Vec<RandomEncounter>, SuiteResults) {
                     vec![
                         runs_in::<f64>(e, c, seeds, &reference),
                         runs_in::<f32>(e, c, seeds, &reference),
-                        runs_in::<ScaledScalar>(e, c, seeds, &reference),
+                        runs_in::<<Fixed32 as Numeric>::Wide>(e, c, seeds, &reference),
                     ]
                 })
                 .collect()
@@ -277,7 +278,7 @@ pub fn run(ctx: &Context) -> Result<(), String> {
         s,
         "{} encounters ({PER_LEVEL} at each of SL 3-7; `host-tests/src/random_encounters.rs`), \
          exact and with {seeds} noise seeds per encounter and condition (range σ 15 m), through \
-         the library in f64, f32 and the scaled format, against the f64 reference of the rules \
+         the library in f64, f32 and `Fixed32` (its TCAS logic in its wide format), against the f64 reference of the rules \
          on the true states. Definitions in the module docs. Table by level: `by_level.md`; \
          plots: `false_vs_missed.svg`, `onset_delay.svg`; the HMD filter's confidence factor \
          k swept in `trade_off.md` and `trade_off.svg`.\n",

@@ -69,7 +69,7 @@ fn the_suite_spans_the_specified_ranges() {
 }
 
 /// Under a TCAS receiver's noise (range σ 15 m, bearing σ 5° or 10°) no
-/// run is refused, in f64, f32 and the firmware's scaled format; missed
+/// run is refused, in f64, f32 and the firmware's `Fixed32`; missed
 /// RAs ≤ 1 %, RA onset delay median ≤ 1 s and 95th percentile ≤ 5 s, one
 /// RA per encounter (no run's RA comes in pieces: the RA is held while the
 /// threat's range test holds, and the continuing HMD filter ends it only
