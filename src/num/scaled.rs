@@ -63,14 +63,14 @@ pub mod unit {
 pub struct Scaled<U> {
     mantissa: i32,
     /// exponent − [`EXPONENT_MIN`], in 0..=300.
-    biased_exponent: u16,
+    biased_exponent: u32,
     unit: PhantomData<U>,
 }
 
 /// The stored form of an exponent in [`EXPONENT_MIN`, `EXPONENT_MAX`].
 #[inline(always)]
-const fn biased(exponent: i32) -> u16 {
-    exponent.wrapping_sub(EXPONENT_MIN) as u16
+const fn biased(exponent: i32) -> u32 {
+    exponent.wrapping_sub(EXPONENT_MIN) as u32
 }
 
 impl<U> Clone for Scaled<U> {
