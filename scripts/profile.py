@@ -14,6 +14,7 @@ import bisect
 import collections
 import os
 import subprocess
+import time
 
 import gdb
 
@@ -27,7 +28,15 @@ LIMIT = 5_000_000
 
 gdb.execute("set pagination off")
 gdb.execute("set confirm off")
-gdb.execute("target remote :" + port)
+# QEMU was just started in the background: wait for its gdb server.
+for attempt in range(50):
+    try:
+        gdb.execute("target remote :" + port)
+        break
+    except gdb.error:
+        if attempt == 49:
+            raise
+        time.sleep(0.2)
 gdb.execute("break *0x%x" % entry)
 for _ in range(skip + 1):
     gdb.execute("continue", to_string=True)

@@ -59,6 +59,10 @@ if ! command -v gdb-multiarch >/dev/null; then
     install_packages_or_die "gdb-multiarch (a gdb for Arm)" gdb-multiarch
 fi
 tool() { if [ -n "${LLVM_TOOLS_DIR:-}" ]; then echo "$LLVM_TOOLS_DIR/$1"; else echo "$1"; fi; }
+for t in llvm-nm llvm-symbolizer llvm-dwarfdump llvm-cxxfilt; do
+    command -v "$(tool "$t")" >/dev/null ||
+        die "$t not found: install Debian's llvm package (apt-get install llvm), then re-run"
+done
 
 features=()
 [ "$bin" = bench ] && features=(--features bench-anchors)
@@ -109,12 +113,19 @@ else
     address=$(cut -d' ' -f1 <<<"$matches")
 fi
 
+gdb_log=$(mktemp "${TMPDIR:-/tmp}/abtrack-profile-gdb.XXXXXX")
 port=$((20000 + RANDOM % 20000))
 qemu-system-arm -machine "$board" -display none -monitor none \
     -semihosting-config enable=on,target=native -serial none \
     -kernel "$elf" -gdb "tcp::$port" -S >/dev/null 2>&1 &
 qemu_pid=$!
-trap 'kill "$qemu_pid" 2>/dev/null || true; rm -f "${dwarf:-}"' EXIT
+trap 'kill "$qemu_pid" 2>/dev/null || true; rm -f "${dwarf:-}" "$gdb_log"' EXIT
 PROFILE_ELF=$elf PROFILE_ADDRESS=$address PROFILE_SKIP=$skip PROFILE_TOP=$top PROFILE_PORT=$port \
-    gdb-multiarch -q -batch -nx -ex "file $elf" -x scripts/profile.py 2>/dev/null |
-    sed -n '/^=== profile$/,$p' | sed 1d
+    gdb-multiarch -q -batch -nx -ex "file $elf" -x scripts/profile.py >"$gdb_log" 2>&1 || true
+if grep -q '^=== profile$' "$gdb_log"; then
+    sed -n '/^=== profile$/,$p' "$gdb_log" | sed 1d
+else
+    echo "profile: no profile (gdb's last lines follow; is --skip more than the calls made?)" >&2
+    tail -n 15 "$gdb_log" >&2
+    exit 1
+fi

@@ -34,8 +34,8 @@
 //!   initialisation, [`UpdateOutcome::Restarted`]), a report closer than the
 //!   shortest is skipped with the state untouched ([`UpdateOutcome::Skipped`]):
 //!   [`crate::gain::ScheduledFilter`] (any schedule), the M5 bank
-//!   ([`crate::bank`]) and the track table (per track, on the time since its
-//!   last update). So is
+//!   ([`crate::bank`]) and the track table (on the interval between scans; a
+//!   coasting track steps by each scan's interval). So is
 //!   an update whose arithmetic saturates (fixed point) or overflows (floats):
 //!   it is counted in [`KinematicFilter::saturations`] and discarded.
 

@@ -4,7 +4,8 @@
 //! ±3000 ft/min, the own aircraft level over sea-level terrain. Each is run
 //! through the library ([`crate::encounters::run_library_for`]: range
 //! tracker, altitude tracker, bearing tracker, threat logic, resolution) on
-//! exact or noisy measurements, in f64, f32 or the firmware's scaled format,
+//! exact or noisy measurements, in f64, f32 or the firmware's `Fixed32` (its
+//! TCAS logic in its wide format),
 //! and compared with the independent f64 reference of the rules
 //! ([`crate::reference_tcas`]) on the true states.
 //!

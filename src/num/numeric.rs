@@ -111,9 +111,10 @@ pub trait Quantity:
 
     /// A time in milliseconds as seconds, `ms / 1000` rounded to nearest:
     /// by default through `f64`; `f32` divides in `f32` (the same value for
-    /// every `ms` ≤ 2²⁴) and the [`super::scaled::Scaled`] formats divide
-    /// their integers, so no double-precision library call on a core
-    /// without a double-precision FPU.
+    /// every `ms` ≤ 2²⁴), the [`super::scaled::Scaled`] formats divide
+    /// their integers and the `Fixed32` quantities scale and divide theirs,
+    /// so no double-precision library call on a core without a
+    /// double-precision FPU.
     #[inline]
     fn seconds_from_ms(ms: u32) -> Self {
         Self::from_f64_lossy(f64::from(ms) / 1000.0)

@@ -67,7 +67,8 @@
 //! track steps by the scan's interval, so a coasting track stays in range
 //! however long it coasts: its deletion rule (K consecutive misses) alone
 //! ends it, and its filter carries the coasted time (the default filter's
-//! covariance grows over it exactly, and so does its gate). A scan more
+//! covariance grows over it exactly, and so does its gate; in `Fixed32` up
+//! to 128 s, docs/auto.md, "Limits"). A scan more
 //! than 20 s after the previous one restarts every track and drops the
 //! previous scan's first points ([`ScanReport::restarted`]). A scan less
 //! than 0.05 s after the previous one is skipped: nothing changes, its

@@ -194,8 +194,9 @@ counter_list! {
         tracks_confirmed => "tracks confirmed",
         /// Tracks deleted (the displaced ones included).
         tracks_deleted => "tracks deleted",
-        /// Tracks restarted: last updated more than the filters' longest
-        /// interval ago ([`crate::track::ScanReport::restarted`]).
+        /// Tracks restarted: ended by a scan more than the filters' longest
+        /// interval after the previous one
+        /// ([`crate::track::ScanReport::restarted`]).
         tracks_restarted => "tracks restarted",
         /// Candidate tracks refused because the table was full.
         refused_table_full => "refused, table full",
@@ -260,8 +261,8 @@ counter_list! {
         /// Tentative tracks displaced in this scan by a new track because the
         /// table was full (also in `deleted`).
         displaced => "displaced",
-        /// Tracks restarted in this scan (last updated more than the
-        /// filters' longest interval ago; not in `deleted`).
+        /// Tracks restarted in this scan (it came more than the filters'
+        /// longest interval after the previous one; not in `deleted`).
         restarted => "restarted",
         /// Live tracks after the scan.
         tracks => "tracks",
