@@ -378,7 +378,8 @@ pub(crate) mod fixed {
     /// Exact in integers: the offsets and the radius are words of the same
     /// format, so (dx² + dy²) ≤ r² is decided exactly in 64 bits (each
     /// square < 2⁶²), and the ratio is formed by one division of the two,
-    /// shifted so that the divisor fits 32 bits (2⁻³¹ relative).
+    /// shifted so that the divisor fits 32 bits (2⁻³¹ relative), on 32-bit
+    /// words (no 64-bit division routine).
     pub(crate) fn circle_cost(dx: Length, dy: Length, radius: Length, _: ()) -> Option<u16> {
         if !(dx.is_valid() && dy.is_valid() && radius.is_valid()) {
             return None;
