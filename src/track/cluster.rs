@@ -143,7 +143,12 @@ impl<const N: usize, const M: usize> Clusters<N, M> {
             m.owner_then_column = t as u16;
         } else {
             let owner = m.owner_then_column as usize;
-            self.union(t, owner);
+            // Tracks under one parent are one cluster already (in a crowded
+            // cluster, most pairs after a track's first): no union needed.
+            let parent_of = |x: usize| self.tracks.get(x).map(|l| l.parent);
+            if parent_of(t) != parent_of(owner) {
+                self.union(t, owner);
+            }
         }
     }
 
