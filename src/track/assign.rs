@@ -24,7 +24,10 @@
 //! row k the partial assignment is optimal for rows 0..=k.
 //!
 //! A forbidden pair is no edge at all (Crouse's infinite cost: the search
-//! never crosses it). Each row also has a column of its own, "unassigned",
+//! never crosses it). The solver reads a row's allowed pairs only
+//! ([`PairCosts`], in any order): a track table lists each track's gated
+//! pairs, and the solver is generic over the list, so reading a cost is an
+//! inlined step, not a call. Each row also has a column of its own, "unassigned",
 //! of cost `BIG = (min(n, m) + 1)·65536`, larger than the total of any set of
 //! allowed pairs, so every row can be placed and leaving one more row
 //! unassigned always costs more than any combination of allowed costs: the
@@ -60,7 +63,8 @@
 //! two rows share it, that assignment is the unique optimum: every row is
 //! assigned (the most pairs there can be), each at its least cost, and any
 //! other assignment costs more in some row and less in none. The search would
-//! return the same pairs, so they are taken without it (`n·m` lookups). A
+//! return the same pairs, so they are taken without it (one step per allowed
+//! pair). A
 //! crowded cluster, where each gate holds its neighbours' measurements but
 //! each track's own measurement is the nearest, takes this path; anything
 //! else falls through to the search.
@@ -70,9 +74,9 @@
 //! With `n` rows and `m` columns: the search for row k visits at most k + 1
 //! rows before it reaches a free column, and each visit scans the `m + n`
 //! columns once, so the inner step (one reduced cost, two comparisons) runs
-//! at most `(m + n)·n(n+1)/2` times, after at most `n·m` lookups of the
-//! distinct minima. [`Solution::steps`] reports the count actually taken
-//! (both); the property tests check it against the bound
+//! at most `(m + n)·n(n+1)/2` times, after at most `n·m` allowed pairs read
+//! by the distinct minima. [`Solution::steps`] reports the count actually
+//! taken (both); the property tests check it against the bound
 //! `(m + n)·n(n+1)/2 + n·m`.
 //!
 //! Memory: 16 bytes per row and 24 per column of capacity, plus 24 per row
@@ -110,6 +114,32 @@ pub struct Solution {
     pub total_cost: u64,
     /// Inner steps taken (see the module docs for the bound).
     pub steps: u32,
+}
+
+/// A problem's allowed pairs, row by row: what the solver reads of its
+/// costs.
+pub trait PairCosts {
+    /// Calls `pair(column, cost)` for each allowed pair of `row`, each
+    /// column once at most. A pair at [`FORBIDDEN`] or beyond the problem's
+    /// columns is ignored.
+    fn for_each_pair(&self, row: usize, pair: impl FnMut(usize, u16));
+}
+
+/// Every column of a row from a cost function, [`FORBIDDEN`] left out.
+struct DenseCosts<'c, F> {
+    n_cols: usize,
+    cost: &'c F,
+}
+
+impl<F: Fn(usize, usize) -> u16> PairCosts for DenseCosts<'_, F> {
+    fn for_each_pair(&self, row: usize, mut pair: impl FnMut(usize, u16)) {
+        for col in 0..self.n_cols {
+            match (self.cost)(row, col) {
+                FORBIDDEN => {}
+                c => pair(col, c),
+            }
+        }
+    }
 }
 
 /// Per-row workspace entry.
@@ -214,13 +244,32 @@ impl<const R: usize, const C: usize> AssignmentSolver<R, C> {
     /// Solves the `n_rows × n_cols` problem whose pair costs `cost(row, col)`
     /// returns ([`FORBIDDEN`] for a pair that must not be assigned).
     ///
-    /// `cost` is called O(n²(n + m)) times at most (see the module docs); it
-    /// should be a table lookup.
+    /// `cost` is called for every pair of a row each time the solver reads
+    /// the row (see the module docs); it should be a table lookup. A sparse
+    /// problem is cheaper as [`Self::solve_pairs`].
     pub fn solve(
         &mut self,
         n_rows: usize,
         n_cols: usize,
         cost: impl Fn(usize, usize) -> u16,
+    ) -> Result<Solution, AssignError> {
+        self.solve_pairs(
+            n_rows,
+            n_cols,
+            &DenseCosts {
+                n_cols,
+                cost: &cost,
+            },
+        )
+    }
+
+    /// Solves the `n_rows × n_cols` problem whose allowed pairs `costs`
+    /// lists row by row (every other pair is forbidden).
+    pub fn solve_pairs(
+        &mut self,
+        n_rows: usize,
+        n_cols: usize,
+        costs: &impl PairCosts,
     ) -> Result<Solution, AssignError> {
         if n_rows > R || n_cols > C {
             return Err(AssignError::TooLarge);
@@ -236,7 +285,7 @@ impl<const R: usize, const C: usize> AssignmentSolver<R, C> {
                 .get_mut(..n_rows)
                 .ok_or(AssignError::Internal)?,
         };
-        let result = problem.solve(&cost);
+        let result = problem.solve(costs);
         if result.is_err() {
             // Leave no half-built assignment behind.
             self.n_rows = 0;
@@ -290,30 +339,38 @@ impl Problem<'_> {
 
     /// Crouse 2016, Alg. 4, with forbidden pairs as missing edges and one
     /// "unassigned" column per row (module docs).
-    fn solve(mut self, cost: &dyn Fn(usize, usize) -> u16) -> Result<Solution, AssignError> {
+    fn solve(mut self, costs: &impl PairCosts) -> Result<Solution, AssignError> {
         let n = self.rows.len();
         let m = self.cols.len();
         self.rows.fill(RowNode::EMPTY);
         self.cols.fill(ColumnNode::EMPTY);
         self.unassigned.fill(ColumnNode::EMPTY);
         let mut solution = Solution::default();
-        if !self.distinct_minima(cost, &mut solution.steps)? {
-            self.rows.fill(RowNode::EMPTY);
-            self.cols.fill(ColumnNode::EMPTY);
-            // BIG = (min(n, m) + 1)·65536 > min(n, m)·MAX_COST, the largest
-            // total of allowed pairs (n, m < 65535: no overflow in i64).
-            let big = (n.min(m) as i64).saturating_add(1).saturating_mul(1 << 16);
-            for cur in 0..n {
-                let (sink, min_val) = self.search(cur, big, cost, &mut solution.steps)?;
-                self.update_duals(cur, min_val)?;
-                self.augment(cur, sink)?;
-            }
+        if self.distinct_minima(costs, &mut solution)? {
+            return Ok(solution);
+        }
+        self.rows.fill(RowNode::EMPTY);
+        self.cols.fill(ColumnNode::EMPTY);
+        // BIG = (min(n, m) + 1)·65536 > min(n, m)·MAX_COST, the largest
+        // total of allowed pairs (n, m < 65535: no overflow in i64).
+        let big = (n.min(m) as i64).saturating_add(1).saturating_mul(1 << 16);
+        for cur in 0..n {
+            let (sink, min_val) = self.search(cur, big, costs, &mut solution.steps)?;
+            self.update_duals(cur, min_val)?;
+            self.augment(cur, sink)?;
         }
         for i in 0..n {
             let j = self.row(i)?.mate as usize;
             if j < m {
                 solution.assigned = solution.assigned.saturating_add(1);
-                solution.total_cost = solution.total_cost.saturating_add(cost(i, j) as u64);
+                // A measurement column is reached by an allowed pair only.
+                let mut cost = 0u64;
+                costs.for_each_pair(i, |col, c| {
+                    if col == j && c != FORBIDDEN {
+                        cost = u64::from(c);
+                    }
+                });
+                solution.total_cost = solution.total_cost.saturating_add(cost);
             }
         }
         Ok(solution)
@@ -321,27 +378,33 @@ impl Problem<'_> {
 
     /// Assigns every row its cheapest allowed column when each row has one
     /// strictly cheaper than its other allowed columns and no two rows
-    /// share it (module docs, "Distinct minima"): true if it did; false as
-    /// soon as a row has no allowed pair, a tied minimum or another row's
-    /// column (a partial assignment left for the caller to clear). One
-    /// cost lookup per pair scanned, counted in `steps`.
+    /// share it (module docs, "Distinct minima"), with the solution's pairs
+    /// and total: true if it did; false as soon as a row has no allowed
+    /// pair, a tied minimum or another row's column (a partial assignment
+    /// left for the caller to clear). One step per allowed pair scanned.
     fn distinct_minima(
         &mut self,
-        cost: &dyn Fn(usize, usize) -> u16,
-        steps: &mut u32,
+        costs: &impl PairCosts,
+        solution: &mut Solution,
     ) -> Result<bool, AssignError> {
         let m = self.cols.len();
+        let mut total = 0u64;
         for i in 0..self.rows.len() {
             let (mut least, mut at, mut unique) = (FORBIDDEN, NONE, false);
-            for j in 0..m {
-                *steps = steps.saturating_add(1);
-                let c = cost(i, j);
+            let mut scanned = 0u32;
+            costs.for_each_pair(i, |j, c| {
+                if j >= m {
+                    return;
+                }
+                scanned = scanned.saturating_add(1);
                 if c < least {
+                    // j < m < 65535.
                     (least, at, unique) = (c, j as u16, true);
                 } else if c == least && c != FORBIDDEN {
                     unique = false;
                 }
-            }
+            });
+            solution.steps = solution.steps.saturating_add(scanned);
             if !unique {
                 return Ok(false);
             }
@@ -354,7 +417,10 @@ impl Problem<'_> {
             }
             column.mate = i as u16;
             self.row(i)?.mate = at;
+            total = total.saturating_add(u64::from(least));
         }
+        solution.assigned = self.rows.len() as u32;
+        solution.total_cost = total;
         Ok(true)
     }
 
@@ -364,10 +430,9 @@ impl Problem<'_> {
         &mut self,
         cur: usize,
         big: i64,
-        cost: &dyn Fn(usize, usize) -> u16,
+        costs: &impl PairCosts,
         steps: &mut u32,
     ) -> Result<(usize, i64), AssignError> {
-        let m = self.cols.len();
         for c in self.cols.iter_mut().chain(self.unassigned.iter_mut()) {
             c.shortest = INF;
             c.path = NONE;
@@ -384,33 +449,39 @@ impl Problem<'_> {
                 r.visited = true;
                 r.dual
             };
+            // The columns row i reaches: its allowed pairs and its own
+            // "unassigned" column; no other edge leaves it.
+            let relax = |cj: &mut ColumnNode, c_ij: i64| {
+                if cj.visited {
+                    return;
+                }
+                let reduced = min_val
+                    .saturating_add(c_ij)
+                    .saturating_sub(u_i)
+                    .saturating_sub(cj.dual);
+                if reduced < cj.shortest {
+                    // i < n < 65535.
+                    cj.path = i as u16;
+                    cj.shortest = reduced;
+                }
+            };
+            let cols = &mut *self.cols;
+            costs.for_each_pair(i, |j, c| {
+                if let (Some(cj), false) = (cols.get_mut(j), c == FORBIDDEN) {
+                    relax(cj, i64::from(c));
+                }
+            });
+            if let Some(cj) = self.unassigned.get_mut(i) {
+                relax(cj, big);
+            }
             // Least tentative distance; a free column first; lowest index.
             let mut best: Option<(i64, bool, usize)> = None;
-            let columns = self.cols.iter_mut().chain(self.unassigned.iter_mut());
+            let columns = self.cols.iter().chain(self.unassigned.iter());
             for (j, cj) in columns.enumerate() {
                 if cj.visited {
                     continue;
                 }
                 *steps = steps.saturating_add(1);
-                let c_ij = if j < m {
-                    match cost(i, j) {
-                        FORBIDDEN => None,
-                        c => Some(c as i64),
-                    }
-                } else {
-                    (j.checked_sub(m) == Some(i)).then_some(big)
-                };
-                if let Some(c_ij) = c_ij {
-                    let reduced = min_val
-                        .saturating_add(c_ij)
-                        .saturating_sub(u_i)
-                        .saturating_sub(cj.dual);
-                    if reduced < cj.shortest {
-                        // i < n < 65535.
-                        cj.path = i as u16;
-                        cj.shortest = reduced;
-                    }
-                }
                 if cj.shortest == INF {
                     continue;
                 }

@@ -6,8 +6,11 @@
 //! each group its root, path halving), and its cost goes into a cache of
 //! [`PAIRS_PER_MEASUREMENT`]·M pairs, each track's pairs contiguous. Then
 //! [`Clusters::link`] threads each group's tracks (in slot order) and
-//! measurements (in index order) into lists starting at its root. All of it
-//! is O(N + M + pairs), in arrays of the table's capacities.
+//! measurements (in index order) into lists starting at its root. Before a
+//! cluster is solved, its measurements are numbered as the solver's columns
+//! ([`Clusters::list_measurements`]), so each cached pair gives the solver
+//! its column by one index. All of it is O(N + M + pairs), in arrays of the
+//! table's capacities.
 //!
 //! A track whose pairs do not fit the cache is marked uncached: the table
 //! then recomputes its costs from the gate when the solver asks for them
@@ -61,25 +64,21 @@ impl TrackLinks {
 /// A measurement's place in the scan's clusters.
 #[derive(Debug, Clone, Copy)]
 struct MeasurementLinks {
-    /// The first track (lowest slot) that gated it, or `NONE`.
-    owner: u16,
+    /// Until [`Clusters::link`] has threaded it: the first track (lowest
+    /// slot) that gated it, or `NONE`. Once [`Clusters::list_measurements`]
+    /// has numbered its cluster: its column in the cluster's assignment
+    /// problem (its place in the cluster's list). One field, as no step
+    /// needs both.
+    owner_then_column: u16,
     /// Next measurement of its cluster, in index order.
     next: u16,
 }
 
 impl MeasurementLinks {
     const EMPTY: MeasurementLinks = MeasurementLinks {
-        owner: NONE,
+        owner_then_column: NONE,
         next: NONE,
     };
-}
-
-/// A cached pair cost: the cost, "outside the gate", or "not cached".
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
-pub(super) enum CachedCost {
-    Gated(u16),
-    NotGated,
-    Uncached,
 }
 
 /// The clusters of one scan (module docs). `N` tracks, `M` measurements.
@@ -107,7 +106,7 @@ impl<const N: usize, const M: usize> Clusters<N, M> {
                 assigned: ZERO,
             }; N],
             measurements: [MeasurementLinks {
-                owner: ZERO,
+                owner_then_column: ZERO,
                 next: ZERO,
             }; M],
             pairs: [[GatedPair {
@@ -140,11 +139,16 @@ impl<const N: usize, const M: usize> Clusters<N, M> {
         let Some(m) = self.measurements.get_mut(k) else {
             return;
         };
-        if m.owner == NONE {
-            m.owner = t as u16;
+        if m.owner_then_column == NONE {
+            m.owner_then_column = t as u16;
         } else {
-            let owner = m.owner as usize;
-            self.union(t, owner);
+            let owner = m.owner_then_column as usize;
+            // Tracks under one parent are one cluster already (in a crowded
+            // cluster, most pairs after a track's first): no union needed.
+            let parent_of = |x: usize| self.tracks.get(x).map(|l| l.parent);
+            if parent_of(t) != parent_of(owner) {
+                self.union(t, owner);
+            }
         }
     }
 
@@ -240,7 +244,10 @@ impl<const N: usize, const M: usize> Clusters<N, M> {
             }
         }
         for k in (0..M).rev() {
-            let owner = self.measurements.get(k).map_or(NONE, |m| m.owner);
+            let owner = self
+                .measurements
+                .get(k)
+                .map_or(NONE, |m| m.owner_then_column);
             let Some(root) = self.root_of(owner as usize) else {
                 continue;
             };
@@ -286,28 +293,45 @@ impl<const N: usize, const M: usize> Clusters<N, M> {
         walk(first, |t| self.tracks.get(t).map(|l| l.next))
     }
 
-    /// The measurements of the cluster rooted at `root`, in index order.
-    pub(super) fn measurements_of(&self, root: usize) -> impl Iterator<Item = usize> + '_ {
-        let first = self.tracks.get(root).map_or(NONE, |l| l.first_measurement);
-        walk(first, |k| self.measurements.get(k).map(|m| m.next))
+    /// Lists the measurements of the cluster rooted at `root` in index
+    /// order into `columns` and numbers each as its column there; returns
+    /// how many it listed.
+    pub(super) fn list_measurements(&mut self, root: usize, columns: &mut [u16]) -> usize {
+        let mut k = self.tracks.get(root).map_or(NONE, |l| l.first_measurement);
+        let mut column = 0u16;
+        let mut slots = columns.iter_mut();
+        while let (Some(m), Some(slot)) = (self.measurements.get_mut(usize::from(k)), slots.next())
+        {
+            *slot = k;
+            m.owner_then_column = column;
+            // Fewer than M < 65535 measurements.
+            column = column.saturating_add(1);
+            k = m.next;
+        }
+        usize::from(column)
     }
 
-    /// The cost of pair (`t`, `k`) from the cache.
-    pub(super) fn cost(&self, t: usize, k: usize) -> CachedCost {
+    /// Calls `pair(column, cost)` for each cached gated pair of track `t`
+    /// (columns as [`Self::list_measurements`] numbered its cluster's);
+    /// false, with no call, if its pairs did not fit the cache.
+    pub(super) fn for_each_pair(&self, t: usize, mut pair: impl FnMut(usize, u16)) -> bool {
         let Some(links) = self.tracks.get(t) else {
-            return CachedCost::NotGated;
+            return true;
         };
         if links.pairs == UNCACHED {
-            return CachedCost::Uncached;
+            return false;
         }
-        let first = links.first_pair as usize;
+        let first = usize::from(links.first_pair);
         let pairs = self
             .pairs
             .as_flattened()
-            .get(first..first.saturating_add(links.pairs as usize));
-        pairs
-            .and_then(|p| p.iter().find(|p| p.measurement as usize == k))
-            .map_or(CachedCost::NotGated, |p| CachedCost::Gated(p.cost))
+            .get(first..first.saturating_add(usize::from(links.pairs)));
+        for p in pairs.unwrap_or_default() {
+            if let Some(m) = self.measurements.get(usize::from(p.measurement)) {
+                pair(usize::from(m.owner_then_column), p.cost);
+            }
+        }
+        true
     }
 
     /// Whether track `t`'s pairs did not fit the cache.

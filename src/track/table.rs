@@ -2,8 +2,8 @@
 
 use core::marker::PhantomData;
 
-use super::assign::{AssignError, AssignmentSolver, FORBIDDEN};
-use super::cluster::{CachedCost, Clusters, NONE};
+use super::assign::{AssignError, AssignmentSolver, PairCosts};
+use super::cluster::{Clusters, NONE};
 use super::config::TrackerConfig;
 use super::gate::GateRegion;
 use super::model::{Measurement, Observation, RejectReason, ScanInterval, TrackFilter};
@@ -915,7 +915,8 @@ impl<S: Numeric, F: TrackFilter<S>, const N: usize, const M: usize> TrackTable<S
     }
 
     /// Copies the cluster rooted at `root` into `row_slot` and
-    /// `col_measurement`; returns its numbers of tracks and measurements.
+    /// `col_measurement` (and numbers its measurements as its columns in
+    /// `clusters`); returns its numbers of tracks and measurements.
     fn list_cluster(&mut self, root: usize) -> (usize, usize) {
         let mut rows = 0usize;
         for (t, r) in self.clusters.tracks_of(root).zip(self.row_slot.iter_mut()) {
@@ -923,16 +924,9 @@ impl<S: Numeric, F: TrackFilter<S>, const N: usize, const M: usize> TrackTable<S
             *r = t as u16;
             rows = rows.saturating_add(1);
         }
-        let mut cols = 0usize;
-        for (k, c) in self
+        let cols = self
             .clusters
-            .measurements_of(root)
-            .zip(self.col_measurement.iter_mut())
-        {
-            // k < M < 65535.
-            *c = k as u16;
-            cols = cols.saturating_add(1);
-        }
+            .list_measurements(root, &mut self.col_measurement);
         (rows, cols)
     }
 
@@ -945,27 +939,18 @@ impl<S: Numeric, F: TrackFilter<S>, const N: usize, const M: usize> TrackTable<S
         cols: usize,
         report: &mut ScanReport,
     ) -> Result<(), ScanError> {
-        let (slots, observations, clusters) = (&self.slots, &self.observations, &self.clusters);
-        let (row_slot, col_measurement) = (&self.row_slot, &self.col_measurement);
-        let lookup = |r: usize, c: usize| -> u16 {
-            let t = row_slot.get(r).copied().unwrap_or(NONE) as usize;
-            let k = col_measurement.get(c).copied().unwrap_or(NONE) as usize;
-            match clusters.cost(t, k) {
-                CachedCost::Gated(cost) => cost,
-                CachedCost::NotGated => FORBIDDEN,
-                CachedCost::Uncached => {
-                    let track = slots.get(t).and_then(TrackSlot::track);
-                    let obs = observations.get(k).and_then(|o| o.as_ref());
-                    match (track, obs) {
-                        (Some(track), Some(o)) => gate_cost(track, config, dt, o),
-                        _ => FORBIDDEN,
-                    }
-                }
-            }
+        let costs = ClusterCosts {
+            slots: &self.slots,
+            observations: &self.observations,
+            clusters: &self.clusters,
+            row_slot: &self.row_slot,
+            col_measurement: self.col_measurement.get(..cols).unwrap_or_default(),
+            config,
+            dt,
         };
         let solution = self
             .solver
-            .solve(rows, cols, lookup)
+            .solve_pairs(rows, cols, &costs)
             .map_err(ScanError::Assignment)?;
         report.assigned = report.assigned.saturating_add(solution.assigned);
         report.solver_steps = report.solver_steps.saturating_add(solution.steps);
@@ -1267,22 +1252,50 @@ impl<S: Numeric, F: TrackFilter<S>, const N: usize, const M: usize> TrackTable<S
     }
 }
 
-/// The gate cost of `o` for `track` (predict, region, exact test), as the
-/// gate stage computes it; [`FORBIDDEN`] outside the gate.
-fn gate_cost<S: Numeric, F: TrackFilter<S>>(
-    track: &Track<S, F>,
-    config: &TrackerConfig<S, F::Params>,
-    dt: &F::Step,
-    o: &Observation<S>,
-) -> u16 {
-    let params = config.params();
-    track
-        .filter
-        .predict(params, dt)
-        .ok()
-        .and_then(|p| track.filter.gate_region(params, &p, dt, config.gate()))
-        .and_then(|region| region.cost(o))
-        .unwrap_or(FORBIDDEN)
+/// The gated pairs of the cluster being solved, row by row, for the
+/// solver: a track's cached pairs, or for a track whose pairs did not fit
+/// the cache, its gate (predict, region, exact test) recomputed against each
+/// measurement of the cluster, as the gate stage computed it.
+struct ClusterCosts<'a, S: Numeric, F: TrackFilter<S>, const N: usize, const M: usize> {
+    slots: &'a [TrackSlot<S, F>; N],
+    observations: &'a [Option<Observation<S>>; M],
+    clusters: &'a Clusters<N, M>,
+    row_slot: &'a [u16; N],
+    /// The cluster's measurements, column by column.
+    col_measurement: &'a [u16],
+    config: &'a TrackerConfig<S, F::Params>,
+    dt: &'a F::Step,
+}
+
+impl<S: Numeric, F: TrackFilter<S>, const N: usize, const M: usize> PairCosts
+    for ClusterCosts<'_, S, F, N, M>
+{
+    fn for_each_pair(&self, row: usize, mut pair: impl FnMut(usize, u16)) {
+        let t = self.row_slot.get(row).copied().unwrap_or(NONE) as usize;
+        if self.clusters.for_each_pair(t, &mut pair) {
+            return;
+        }
+        let params = self.config.params();
+        let Some(track) = self.slots.get(t).and_then(TrackSlot::track) else {
+            return;
+        };
+        let region = track.filter.predict(params, self.dt).ok().and_then(|p| {
+            track
+                .filter
+                .gate_region(params, &p, self.dt, self.config.gate())
+        });
+        let Some(region) = region else { return };
+        for (column, &k) in self.col_measurement.iter().enumerate() {
+            let cost = self
+                .observations
+                .get(usize::from(k))
+                .and_then(Option::as_ref)
+                .and_then(|o| region.cost(o));
+            if let Some(cost) = cost {
+                pair(column, cost);
+            }
+        }
+    }
 }
 
 #[derive(Clone, Copy)]
