@@ -729,7 +729,7 @@ impl<S: Numeric, F: TrackFilter<S>, const N: usize, const M: usize> TrackTable<S
             probe(ScanStage::Gate);
             self.clusters.link();
             probe(ScanStage::Cluster);
-            self.assign(config, dt, &mut report)?;
+            self.assign(config, dt, rule, &mut report)?;
             probe(ScanStage::Assign);
         }
         // From here on the table changes: the scan is accepted.
@@ -893,6 +893,7 @@ impl<S: Numeric, F: TrackFilter<S>, const N: usize, const M: usize> TrackTable<S
         &mut self,
         config: &TrackerConfig<S, F::Params>,
         dt: &F::Step,
+        rule: &impl PairRule,
         report: &mut ScanReport,
     ) -> Result<(), ScanError> {
         for root in 0..N {
@@ -909,7 +910,7 @@ impl<S: Numeric, F: TrackFilter<S>, const N: usize, const M: usize> TrackTable<S
             }
             let (rows, cols) = self.list_cluster(root);
             report.largest_cluster = report.largest_cluster.max(sat_u32(rows));
-            self.solve_cluster(config, dt, rows, cols, report)?;
+            self.solve_cluster(config, dt, rule, rows, cols, report)?;
         }
         Ok(())
     }
@@ -935,6 +936,7 @@ impl<S: Numeric, F: TrackFilter<S>, const N: usize, const M: usize> TrackTable<S
         &mut self,
         config: &TrackerConfig<S, F::Params>,
         dt: &F::Step,
+        rule: &impl PairRule,
         rows: usize,
         cols: usize,
         report: &mut ScanReport,
@@ -947,6 +949,7 @@ impl<S: Numeric, F: TrackFilter<S>, const N: usize, const M: usize> TrackTable<S
             col_measurement: self.col_measurement.get(..cols).unwrap_or_default(),
             config,
             dt,
+            rule,
         };
         let solution = self
             .solver
@@ -1254,9 +1257,11 @@ impl<S: Numeric, F: TrackFilter<S>, const N: usize, const M: usize> TrackTable<S
 
 /// The gated pairs of the cluster being solved, row by row, for the
 /// solver: a track's cached pairs, or for a track whose pairs did not fit
-/// the cache, its gate (predict, region, exact test) recomputed against each
-/// measurement of the cluster, as the gate stage computed it.
-struct ClusterCosts<'a, S: Numeric, F: TrackFilter<S>, const N: usize, const M: usize> {
+/// the cache, its gate (the scan's pair rule, predict, region, exact test)
+/// recomputed against each measurement of the cluster, as the gate stage
+/// computed it.
+struct ClusterCosts<'a, S: Numeric, F: TrackFilter<S>, R: PairRule, const N: usize, const M: usize>
+{
     slots: &'a [TrackSlot<S, F>; N],
     observations: &'a [Option<Observation<S>>; M],
     clusters: &'a Clusters<N, M>,
@@ -1265,10 +1270,11 @@ struct ClusterCosts<'a, S: Numeric, F: TrackFilter<S>, const N: usize, const M: 
     col_measurement: &'a [u16],
     config: &'a TrackerConfig<S, F::Params>,
     dt: &'a F::Step,
+    rule: &'a R,
 }
 
-impl<S: Numeric, F: TrackFilter<S>, const N: usize, const M: usize> PairCosts
-    for ClusterCosts<'_, S, F, N, M>
+impl<S: Numeric, F: TrackFilter<S>, R: PairRule, const N: usize, const M: usize> PairCosts
+    for ClusterCosts<'_, S, F, R, N, M>
 {
     fn for_each_pair(&self, row: usize, mut pair: impl FnMut(usize, u16)) {
         let t = self.row_slot.get(row).copied().unwrap_or(NONE) as usize;
@@ -1286,6 +1292,9 @@ impl<S: Numeric, F: TrackFilter<S>, const N: usize, const M: usize> PairCosts
         });
         let Some(region) = region else { return };
         for (column, &k) in self.col_measurement.iter().enumerate() {
+            if !self.rule.may_update(track.id, usize::from(k)) {
+                continue;
+            }
             let cost = self
                 .observations
                 .get(usize::from(k))

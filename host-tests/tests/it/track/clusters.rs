@@ -20,8 +20,8 @@ use abtrack::num::fixed32::Fixed32;
 use abtrack::track::assign::{AssignmentSolver, FORBIDDEN, MAX_COST};
 use abtrack::track::ScanInterval;
 use abtrack::track::{
-    Association, FixedGainTrack, GateRegion, Measurement, Observation, ScanReport, TrackFilter,
-    TrackId, TrackTable, TrackerConfig,
+    Association, FixedGainTrack, GateRegion, Measurement, Observation, PairRule, ScanReport,
+    TrackFilter, TrackId, TrackTable, TrackerConfig,
 };
 use abtrack::Fix;
 use abtrack::Numeric;
@@ -553,6 +553,83 @@ fn overflowing_pair_cache_gives_the_same_assignment() {
         overflowed += u32::from(report.uncached_tracks > 0);
     }
     assert_eq!(overflowed, 40);
+}
+
+/// A scan's pair rule holds for the tracks whose pairs did not fit the
+/// cache too: their costs are recomputed for the solver, and a pair the rule
+/// refuses must stay refused there as it is in the gate stage.
+#[test]
+fn pair_rule_holds_for_tracks_outside_the_pair_cache() {
+    /// The tracks started last (ids 17 to 24, the last in the gate stage's
+    /// order, so outside the cache) may take only measurement 0.
+    struct LastTracksFirstMeasurement;
+    impl PairRule for LastTracksFirstMeasurement {
+        fn may_update(&self, track: TrackId, k: usize) -> bool {
+            track.get() <= 16 || k == 0
+        }
+        fn may_start(&self, _: usize, _: usize) -> bool {
+            true
+        }
+    }
+    let config = |on: bool| {
+        parked_config(ParkedParams {
+            gate_radius: on.then_some(60.0),
+            refuse: false,
+        })
+    };
+    let mut overflowed = 0;
+    let mut updated = 0;
+    for seed in 0..40 {
+        let mut rng = Lcg(seed);
+        let mut table: Box<TrackTable<f64, Parked, 24, 4>> = Box::new(TrackTable::new());
+        let mut now = 0;
+        for _ in 0..6 {
+            let group: Vec<Measurement<f64>> = (0..4)
+                .map(|_| Measurement::Cartesian {
+                    x: 10.0 * rng.next_signed(),
+                    y: 10.0 * rng.next_signed(),
+                })
+                .collect();
+            for _ in 0..2 {
+                let mut codes = vec![Association::OutsideGates; 4];
+                table.scan(&config(false), now, &group, &mut codes).unwrap();
+                now += 1000;
+            }
+        }
+        assert_eq!(table.len(), 24);
+        let m: Vec<Measurement<f64>> = (0..4)
+            .map(|_| Measurement::Cartesian {
+                x: 10.0 * rng.next_signed(),
+                y: 10.0 * rng.next_signed(),
+            })
+            .collect();
+        let mut codes = vec![Association::OutsideGates; m.len()];
+        let report = table
+            .scan_with_rule(
+                &config(true),
+                now,
+                &m,
+                &mut codes,
+                &LastTracksFirstMeasurement,
+                |_| {},
+            )
+            .unwrap();
+        // 16 tracks with 4 pairs and 8 with one: more than 4 slots' cache.
+        assert_eq!(report.gated_pairs, 72);
+        overflowed += u32::from(report.uncached_tracks > 0);
+        for (k, code) in codes.iter().enumerate() {
+            if let Association::Updated(id) = code {
+                updated += 1;
+                assert!(
+                    LastTracksFirstMeasurement.may_update(*id, k),
+                    "seed {seed}: measurement {k} updated track {} against the rule",
+                    id.get()
+                );
+            }
+        }
+    }
+    assert_eq!(overflowed, 40);
+    assert_eq!(updated, 160);
 }
 
 /// The pre-gate's point: in a separated scene the exact gate runs on about
