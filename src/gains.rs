@@ -80,7 +80,7 @@ impl<N: Numeric> Gains<N> {
         if gamma <= N::Ratio::ZERO {
             return Err(GainError::GammaNotPositive);
         }
-        let two = N::Ratio::ONE + N::Ratio::ONE;
+        let two = N::Ratio::TWO;
         // γ(2 − α) < 4αβ, multiplied out to avoid a division (2 − α > 0).
         if gamma * (two - alpha) >= two * two * alpha * beta {
             return Err(GainError::GammaTooLarge);
@@ -134,7 +134,7 @@ fn check_alpha_beta<R: Real>(alpha: R, beta: R) -> Result<(), GainError> {
     if !alpha.is_valid() || !beta.is_valid() {
         return Err(GainError::NotFinite);
     }
-    let two = R::ONE + R::ONE;
+    let two = R::TWO;
     if alpha <= R::ZERO || alpha >= two {
         return Err(GainError::AlphaOutOfRange);
     }
@@ -149,7 +149,7 @@ fn check_alpha_beta<R: Real>(alpha: R, beta: R) -> Result<(), GainError> {
 
 /// β = α²/(2 − α) (Al-Wagih & Abdulla eq. 23b; Liu, Wang & Yang eqs. 10–11).
 pub fn beta_from_alpha<R: Real>(alpha: R) -> R {
-    let two = R::ONE + R::ONE;
+    let two = R::TWO;
     alpha * alpha / (two - alpha)
 }
 
@@ -176,7 +176,7 @@ pub fn least_squares_beta<R: Real>(n: u32) -> R {
 /// 1 − √(1 − α) when α is small (which costs f32 four digits at α = 0.004).
 /// For α = α(k) of eq. (4) this is eq. (8).
 pub fn li_beta<R: Real>(alpha: R) -> R {
-    let two = R::ONE + R::ONE;
+    let two = R::TWO;
     let q = alpha / (R::ONE + (R::ONE - alpha).sqrt());
     two * q * q
 }

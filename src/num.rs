@@ -258,6 +258,7 @@ impl Quantity for f64 {
 
 impl Real for f64 {
     const ONE: Self = 1.0;
+    const TWO: Self = 2.0;
     numeric::scalar_real_items!();
 
     #[inline]
@@ -322,6 +323,7 @@ impl Quantity for f32 {
 
 impl Real for f32 {
     const ONE: Self = 1.0;
+    const TWO: Self = 2.0;
     numeric::scalar_real_items!();
 
     #[inline]
@@ -670,6 +672,7 @@ impl Quantity for Fix {
 
 impl Real for Fix {
     const ONE: Self = Fix(I32F32::ONE);
+    const TWO: Self = Fix(I32F32::from_bits(2 << Self::FRAC_BITS));
     numeric::scalar_real_items!();
 
     fn sqrt(self) -> Self {

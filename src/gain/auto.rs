@@ -256,7 +256,7 @@ impl<R: Real> Span<R> {
 /// [`NIS_CAP`] in `R`, built by additions (exact in every format; formed
 /// once per configuration).
 fn nis_cap<R: Real>() -> R {
-    let two = R::ONE + R::ONE;
+    let two = R::TWO;
     let ten = (two + two) + (two + two) + two;
     ten * ten
 }
@@ -331,7 +331,7 @@ pub(crate) fn covariance_step<N: Numeric>(
     let alpha = pxx * inverse;
     let mut rate = pxv * inverse;
     // Inside the stability triangle (β < 2(2 − α)) whatever the rounding.
-    let two = one + one;
+    let two = N::Ratio::TWO;
     let limit = (two - alpha) + (two - alpha).half();
     let mut beta = rate * s.interval;
     if beta > limit {

@@ -667,7 +667,7 @@ pub fn robust_gains<N: Numeric, const D: usize>(
         *g = if gamma == N::Ratio::ZERO {
             Gains::alpha_beta(alpha, bounded)?
         } else {
-            let two = one + one;
+            let two = N::Ratio::TWO;
             let limit = two * alpha * bounded / (two - alpha);
             let scaled = (gamma * (bounded / beta) * shorter).min_of(limit);
             let scaled = if scaled > N::Ratio::ZERO {

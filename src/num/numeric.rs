@@ -180,6 +180,10 @@ pub trait Real: Quantity + Mul<Output = Self> + Div<Output = Self> {
     /// One.
     const ONE: Self;
 
+    /// Two: `ONE + ONE`, exact in every format, without the sum (a call
+    /// in the software formats).
+    const TWO: Self;
+
     /// `numerator / denominator`, rounded once (invalid for a zero
     /// denominator). Used for the gain formulas of integer counts. By
     /// default through `f64`; `f32` divides in `f32` when both are exact

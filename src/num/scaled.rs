@@ -822,6 +822,11 @@ impl Real for Scaled<One> {
         biased_exponent: biased(-(TOP_BIT as i32)),
         unit: PhantomData,
     };
+    const TWO: Self = Scaled {
+        mantissa: 1 << TOP_BIT,
+        biased_exponent: biased(1 - TOP_BIT as i32),
+        unit: PhantomData,
+    };
 
     fn from_ratio(numerator: u64, denominator: u64) -> Self {
         // Halve both until they fit an i64 (exact while both are even; the

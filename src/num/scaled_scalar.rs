@@ -161,6 +161,7 @@ impl Quantity for ScaledScalar {
 
 impl Real for ScaledScalar {
     const ONE: Self = ScaledScalar(<Ratio as Real>::ONE);
+    const TWO: Self = ScaledScalar(<Ratio as Real>::TWO);
     super::numeric::scalar_real_items!();
 
     #[inline]

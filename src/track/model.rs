@@ -272,7 +272,13 @@ pub(super) fn uncertainty_region<S: Numeric>(
     interval: &ScanInterval<S>,
 ) -> Option<GateRegion<S>> {
     let factor = threshold * (p + <S::Ratio as Real>::ONE);
-    let allowance = max_acceleration * interval.terms().half_squared();
+    // No allowance (the default filter's gate, a constant there): no
+    // product formed.
+    let allowance = if max_acceleration == S::Acceleration::ZERO {
+        S::Length::ZERO
+    } else {
+        max_acceleration * interval.terms().half_squared()
+    };
     if allowance == S::Length::ZERO {
         return GateRegion::scaled_circle(center, measurement_sigma, factor);
     }
@@ -323,13 +329,13 @@ impl<R: Real> ErrorVariance<R> {
         ErrorVariance {
             p11: R::ONE,
             p12: inv,
-            p22: (R::ONE + R::ONE) * inv * inv,
+            p22: R::TWO * inv * inv,
         }
     }
 
     /// Propagated over `dt` seconds by Φ = [[1, T], [0, 1]]: P⁻ = Φ·P·Φᵀ.
     pub fn predicted(&self, dt: R) -> Self {
-        let two = R::ONE + R::ONE;
+        let two = R::TWO;
         ErrorVariance {
             p11: self.p11 + dt * (two * self.p12 + dt * self.p22),
             p12: self.p12 + dt * self.p22,
@@ -350,7 +356,7 @@ impl<R: Real> ErrorVariance<R> {
         let k1 = alpha;
         let k2 = velocity_gain;
         let one_minus = R::ONE - k1;
-        let two = R::ONE + R::ONE;
+        let two = R::TWO;
         ErrorVariance {
             p11: one_minus * one_minus * self.p11 + k1 * k1,
             p12: one_minus * (self.p12 - k2 * self.p11) + k1 * k2,

@@ -312,6 +312,7 @@ impl Quantity for FixedVariance {
 
 impl Real for FixedVariance {
     const ONE: Self = FixedVariance(1 << Self::FRAC_BITS);
+    const TWO: Self = FixedVariance(2 << Self::FRAC_BITS);
 
     /// Through the fast fixed point's ratios, as the quotients.
     fn sqrt(self) -> Self {
@@ -342,6 +343,7 @@ impl FixedGridScale {
 pub(crate) mod fixed {
     use super::{FixedGridScale, MAX_COST};
     use crate::num::fixed32::{Length, Ratio};
+    use crate::num::scaled::div_wide;
     use crate::num::Quantity;
 
     /// The offsets are the words' differences, exact in 32 bits for
@@ -376,7 +378,8 @@ pub(crate) mod fixed {
     /// Exact in integers: the offsets and the radius are words of the same
     /// format, so (dx² + dy²) ≤ r² is decided exactly in 64 bits (each
     /// square < 2⁶²), and the ratio is formed by one division of the two,
-    /// shifted so that the divisor fits 32 bits (2⁻³¹ relative).
+    /// shifted so that the divisor fits 32 bits (2⁻³¹ relative), on 32-bit
+    /// words (no 64-bit division routine).
     pub(crate) fn circle_cost(dx: Length, dy: Length, radius: Length, _: ()) -> Option<u16> {
         if !(dx.is_valid() && dy.is_valid() && radius.is_valid()) {
             return None;
@@ -398,10 +401,15 @@ pub(crate) mod fixed {
             .saturating_sub(32);
         let (n, d) = (offset >> shift, limit >> shift);
         // n ≤ d < 2³², so n·MAX_COST < 2⁴⁸; d ≥ 1.
-        let cost = n
-            .wrapping_mul(u64::from(MAX_COST))
-            .wrapping_add(d / 2)
-            .checked_div(d)?;
+        let numerator = n.wrapping_mul(u64::from(MAX_COST)).wrapping_add(d / 2);
+        // The floor of numerator/d without a 64-bit division: both scaled
+        // by 2^s so that d's top bit is set ([`div_wide`]'s divisor); the
+        // quotient (≤ MAX_COST + ½) is unchanged, and numerator·2^s <
+        // d·2^s·2¹⁶ < 2⁴⁸, its high word below the divisor.
+        let d = u32::try_from(d).ok().filter(|&d| d != 0)?;
+        let s = d.leading_zeros();
+        let numerator = numerator << s;
+        let (cost, _) = div_wide((numerator >> 32) as u32, numerator as u32, d << s);
         u16::try_from(cost).ok().map(|c| c.min(MAX_COST))
     }
 

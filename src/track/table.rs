@@ -846,12 +846,15 @@ impl<S: Numeric, F: TrackFilter<S>, const N: usize, const M: usize> TrackTable<S
         report: &mut ScanReport,
     ) {
         let params = config.params();
+        // Counted in registers, added to the report once: at most N
+        // predictions and N·M < 2³² pairs, so no count wraps.
+        let (mut predictions, mut candidates, mut gated_pairs) = (0u32, 0u32, 0u32);
         for (t, slot) in self.slots.iter().enumerate() {
             let Some(track) = slot.track() else { continue };
             let Ok(predicted) = track.filter.predict(params, dt) else {
                 continue;
             };
-            increment(&mut report.predicted);
+            predictions = predictions.wrapping_add(1);
             let Some(region) = track
                 .filter
                 .gate_region(params, &predicted, dt, config.gate())
@@ -862,12 +865,12 @@ impl<S: Numeric, F: TrackFilter<S>, const N: usize, const M: usize> TrackTable<S
                 (&self.observations, &mut self.codes, &mut self.clusters);
             self.index
                 .for_each_in(observations, &region.bounds(), |k, o| {
-                    increment(&mut report.candidates);
+                    candidates = candidates.wrapping_add(1);
                     if !rule.may_update(track.id, k) {
                         return;
                     }
                     let Some(cost) = region.cost(o) else { return };
-                    increment(&mut report.gated_pairs);
+                    gated_pairs = gated_pairs.wrapping_add(1);
                     clusters.add_pair(t, k, cost);
                     if let Some(code) = codes.get_mut(k) {
                         *code = Association::NotAssigned;
@@ -877,6 +880,9 @@ impl<S: Numeric, F: TrackFilter<S>, const N: usize, const M: usize> TrackTable<S
                 increment(&mut report.uncached_tracks);
             }
         }
+        report.predicted = report.predicted.saturating_add(predictions);
+        report.candidates = report.candidates.saturating_add(candidates);
+        report.gated_pairs = report.gated_pairs.saturating_add(gated_pairs);
     }
 
     /// Associate: the optimal global-nearest-neighbour assignment of each

@@ -9,3 +9,4 @@ mod fixed32;
 mod hypot3;
 mod scaled_scalar;
 mod sine;
+mod two;
