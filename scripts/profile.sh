@@ -11,7 +11,8 @@
 #
 #   CORE       m4f, m3 or m0 (or a target triple or board name)
 #   BIN        a binary of boards/qemu, built first with
-#              `cargo build --release --target <triple> --bin BIN`
+#              `cargo build --profile profiling --target <triple> --bin BIN`
+#              (the release image's code with the full debug information)
 #              (the benchmark: add `--features bench-anchors`, which this
 #              script does for BIN = bench)
 #   FUNCTION   0xADDRESS, or text of the function's demangled name that
@@ -66,8 +67,8 @@ done
 
 features=()
 [ "$bin" = bench ] && features=(--features bench-anchors)
-cargo build --release --target "$target" --bin "$bin" "${features[@]}" >&2
-elf=target/$target/release/$bin
+cargo build --profile profiling --target "$target" --bin "$bin" "${features[@]}" >&2
+elf=target/$target/profiling/$bin
 board=$(board_for_target "$target")
 
 # The function's address.

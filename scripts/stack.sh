@@ -121,7 +121,8 @@ run() {
 # silence), and its figures depend only on its input.
 printf '%-22s %-11s %-34s %10s %12s %11s\n' target board "run (input)" "used (B)" "stack (B)" margin
 for t in "${targets[@]}"; do
-    cargo build --quiet --release --target "$t"
+    cargo build --quiet --release --target "$t" --bin abtrack-firmware --bin stack-overflow
+    [ -z "$all" ] || cargo build --quiet --release --target "$t" --bin selftest --bin selftest-tracking
     [ -z "$all" ] || cargo build --quiet --release --target "$t" --features bench-anchors --bin bench
     for i in "${!inputs[@]}"; do
         run "$log_dir/$t-demo-$i" "$t" abtrack-firmware \

@@ -2,16 +2,16 @@
 # Runs every test of the project:
 #   1. formatting (cargo fmt --check, root crate and host-tests),
 #   2. host tests (cd host-tests && cargo test --release; the integration
-#      tests are one binary, host-tests/tests/it/), the library's doc
-#      examples and examples/ built (cargo test -p abtrack, run from
-#      host-tests for the host target; examples/tcas_cycle.rs is then run)
-#      and its documentation with no rustdoc warning (cargo doc, as docs.rs
-#      builds it),
-#   3. (in a lane beside step 2) the library alone (no default features) for the three thumb targets
-#      in one clippy pass with its no-panic lints, on the minimum Rust
-#      version declared in Cargo.toml (cargo +MSRV check, with the
-#      firmware's binaries), its dependency
-#      tree (no firmware crates), and the package as crates.io gets it
+#      tests are one binary, host-tests/tests/it/), and in lanes beside it:
+#      the library's doc examples and examples/ built (cargo test -p
+#      abtrack, run from host-tests for the host target;
+#      examples/tcas_cycle.rs is then run), its documentation with no
+#      rustdoc warning (cargo doc, as docs.rs builds it), the library and
+#      the firmware on the minimum Rust version, and the nRF52840-DK build
+#      of the demo,
+#   3. (in a lane beside step 2) the library alone (no default features)
+#      for the three thumb targets in one clippy pass with its no-panic
+#      lints, its dependency tree (no firmware crates), and the package as crates.io gets it
 #      (`cargo publish --dry-run --no-verify`, then the unpacked package
 #      checked: the verification build without its code generation, which
 #      the firmware build does for the three targets),
@@ -35,14 +35,15 @@
 #      each), a one-hour soak on the Cortex-M3 (docs/firmware-and-boards.md),
 #      each fuzz target's committed corpus replayed plus 5 s of fuzzing
 #      (scripts/fuzz.sh 5; its build starts first, in the background; the
-#      longer run is scripts/fuzz.sh) and the nRF52840-DK build of the demo.
+#      longer run is scripts/fuzz.sh).
 #
 #   scripts/test.sh
 #
 # Installs what is missing (Rust targets, rustfmt, the minimum-version
 # toolchain, qemu-system-arm, a C compiler and llvm when root, defmt-print,
 # flip-link, nightly and cargo-fuzz). Every step runs even if an earlier one
-# failed; the summary lists them with their times and the exit status is
+# failed; the summary lists them with their times (and when each started)
+# and the exit status is
 # non-zero if any failed. `.ci/run` calls this.
 set -euo pipefail
 cd "$(dirname "$0")/.."
@@ -86,8 +87,10 @@ fuzz_after_build() {
     bash scripts/fuzz.sh 5
 }
 
-# step <name> <command...>: runs one step, records PASS/FAIL and its wall
-# time (in $step_results inside a parallel lane, else in the summary).
+# step <name> <command...>: runs one step, records PASS/FAIL, its wall
+# time and when it started (seconds since the script started; the lanes
+# share the clock), in $step_results inside a parallel lane, else in the
+# summary.
 step() {
     local name=$1
     shift
@@ -96,9 +99,9 @@ step() {
     "$@" || status=$?
     local took=$((SECONDS - start))
     if [ "$status" -eq 0 ]; then
-        echo "PASS  $name (${took} s)" >>"${step_results:-$results_file}"
+        echo "PASS  $name (${took} s, from +${start} s)" >>"${step_results:-$results_file}"
     else
-        echo "FAIL  $name (exit status $status, ${took} s)" >>"${step_results:-$results_file}"
+        echo "FAIL  $name (exit status $status, ${took} s, from +${start} s)" >>"${step_results:-$results_file}"
     fi
 }
 
@@ -268,10 +271,9 @@ build_nrf52840_dk() {
     bash scripts/sizes.sh --nrf52840-dk
 }
 
-# The builds and host checks in two lanes side by side, beside the fuzz
-# targets' build in the background: the host tests' build is mostly one
-# crate after another (its library, then the test binary) and leaves a core
-# idle that the firmware build takes.
+# The host tests (their build is mostly one crate after another, its
+# library, then the test binary, and leaves a core idle that the other
+# lanes' builds take).
 host_tests_steps() {
     step "cargo fmt --check (host-tests)" in_host_tests cargo fmt --check
     step "host tests (cargo test --release)" in_host_tests cargo test --release
@@ -314,12 +316,14 @@ check_package() {
     [ "$missing" -eq 0 ] && echo "the package ($(wc -l <<<"$listed") files) holds every file the library's build reads"
 }
 
-# Every image as the runs below use it: the binaries without features, the
-# benchmark with its own (bench-anchors), so each is built once; the three
-# targets in one cargo invocation (it keeps both cores busy through the
-# single-threaded link-time optimisation of each image).
+# Every image as the runs below use it: the binaries without features (the
+# soak image shortened to one hour of scans, ABTRACK_SOAK_SCANS, read at
+# build time: scripts/soak.sh runs the day), the benchmark with its own
+# (bench-anchors), so each is built once; the three targets in one cargo
+# invocation (it keeps both cores busy through the single-threaded link-time
+# optimisation of each image).
 build_firmware() {
-    cargo build --release "${target_args[@]}" &&
+    env ABTRACK_SOAK_SCANS=3600 cargo build --release "${target_args[@]}" &&
         cargo build --release "${target_args[@]}" --features bench-anchors --bin bench &&
         cargo build --release --target thumbv7em-none-eabihf -p abtrack-firmware --example static_track_table
 }
@@ -338,10 +342,9 @@ check_on_msrv() {
 # clippy pass with its no-panic lints (Cargo.toml [lints.clippy],
 # .clippy.toml): indexing, unwrap/expect, panic! and integer arithmetic are
 # errors, and so is every other clippy warning (docs/safety.md). Its code
-# generation for the three targets is the firmware build's. The soak image
-# is shortened to one hour of scans (ABTRACK_SOAK_SCANS, read at build
-# time) and built here so that no later lane holds the build directory's
-# lock for a link while the others run.
+# generation for the three targets is the firmware build's. Every image is
+# built here, so that no later lane holds the build directory's lock for a
+# link while the others run.
 library_and_firmware_steps() {
     step "cargo fmt --check" cargo fmt --check
     step "library alone for the three targets: clippy, no panic paths (indexing, unwrap, arithmetic)" \
@@ -349,17 +352,46 @@ library_and_firmware_steps() {
     step "library: no firmware crates among its dependencies" library_has_no_firmware_dependencies
     step "library: the crates.io package (cargo publish --dry-run --no-verify; every file the build reads packaged)" check_package
     step "firmware build for the three targets (and the example static_track_table)" build_firmware
-    step "soak image, one hour of scans, for mps2-an385" env ABTRACK_SOAK_SCANS=3600 \
-        cargo build --release --target thumbv7m-none-eabi --bin soak
 }
 
-in_parallel host_tests_steps library_and_firmware_steps
+# The library's host-side checks, each in its own target directory (under
+# target/) so that no lane waits for another's build lock: its doc
+# examples run and examples/ built in one pass (one build of the library for
+# both; the test profile, with overflow checks, and no link-time
+# optimisation to wait for), then examples/tcas_cycle.rs run; the documentation docs.rs builds
+# (all features, the host target) with no rustdoc warning (broken intra-doc
+# links among them); the library and the firmware on their minimum Rust
+# version (Cargo.toml `rust-version`).
+library_on_the_host() {
+    local host_triple
+    host_triple=$(rustc -vV | sed -n 's/^host: //p')
+    step "library doc examples and examples/ (cargo test -p abtrack)" \
+        in_host_tests cargo test --manifest-path ../Cargo.toml -p abtrack \
+        --target-dir ../target/host-examples
+    step "example tcas_cycle (examples/tcas_cycle.rs) on the host" \
+        "target/host-examples/$host_triple/debug/examples/tcas_cycle"
+    step "library: cargo doc, no warnings" in_host_tests env RUSTDOCFLAGS="-D warnings" \
+        cargo doc --manifest-path ../Cargo.toml -p abtrack --lib --no-deps --all-features \
+        --target-dir ../target/doc-check
+    step "library and firmware on their minimum Rust version $(msrv) (cargo +$(msrv) check)" \
+        check_on_msrv
+}
+
+# The nRF52840-DK build (its own workspace and target directory).
+nrf52840_dk() {
+    step "nRF52840-DK demo build (boards/nrf52840-dk: defmt-rtt, probe-rs runner, flip-link)" build_nrf52840_dk
+}
+
+# The builds, and the checks that need no firmware image and no host tool,
+# from the start: four lanes, beside the fuzz targets' build (the machine's
+# cores stay busy while one lane waits for a single-threaded link).
+in_parallel host_tests_steps library_and_firmware_steps library_on_the_host nrf52840_dk
 
 # firmware-check, built by the host tests' step: its path, found once, for
 # the checks in the lanes below.
 ABTRACK_FIRMWARE_CHECK=$(firmware_check_tool) || ABTRACK_FIRMWARE_CHECK=
 
-# Lane 8 of the runs below: the ELF checks (firmware-check at the path
+# Lane 7 of the runs below: the ELF checks (firmware-check at the path
 # found above: no cargo call, so no wait for a build lock held by another
 # lane).
 elf_checks() {
@@ -449,36 +481,8 @@ soak_and_fuzz() {
         fuzz_after_build
 }
 
-# Lane 9: the nRF52840-DK build (its own workspace and target directory).
-nrf52840_dk() {
-    step "nRF52840-DK demo build (boards/nrf52840-dk: defmt-rtt, probe-rs runner, flip-link)" build_nrf52840_dk
-}
-
-# Lane 7: the library's host-side checks, each in its own target directory
-# (under target/) so that no lane waits for another's build lock: its doc
-# examples run and examples/ built in one pass (one build of the library for
-# both; the test profile, with overflow checks, and no link-time
-# optimisation to wait for), then examples/tcas_cycle.rs run; the documentation docs.rs builds
-# (all features, the host target) with no rustdoc warning (broken intra-doc
-# links among them); the library and the firmware on their minimum Rust
-# version (Cargo.toml `rust-version`).
-library_on_the_host() {
-    local host_triple
-    host_triple=$(rustc -vV | sed -n 's/^host: //p')
-    step "library doc examples and examples/ (cargo test -p abtrack)" \
-        in_host_tests cargo test --manifest-path ../Cargo.toml -p abtrack \
-        --target-dir ../target/host-examples
-    step "example tcas_cycle (examples/tcas_cycle.rs) on the host" \
-        "target/host-examples/$host_triple/debug/examples/tcas_cycle"
-    step "library: cargo doc, no warnings" in_host_tests env RUSTDOCFLAGS="-D warnings" \
-        cargo doc --manifest-path ../Cargo.toml -p abtrack --lib --no-deps --all-features \
-        --target-dir ../target/doc-check
-    step "library and firmware on their minimum Rust version $(msrv) (cargo +$(msrv) check)" \
-        check_on_msrv
-}
-
 in_parallel emulated_images stack_marks fault_injection_mps2_an386 fault_injection_mps2_an385 \
-    fault_injection_microbit soak_and_fuzz library_on_the_host elf_checks nrf52840_dk
+    fault_injection_microbit soak_and_fuzz elf_checks
 
 echo
 echo "abtrack test summary:"
