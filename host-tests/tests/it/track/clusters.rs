@@ -503,48 +503,57 @@ fn scenes_cover_ties_and_clusters() {
     assert!(checked.largest_cluster >= 6, "{checked:?}");
 }
 
-/// 24 tracks within 20 m of each other, then 4 measurements among them: up
-/// to 96 gated pairs, more than the cache holds for 4 measurement slots (8
-/// each): the costs of the tracks that do not fit are recomputed, with the
-/// same result.
+/// Tracks gating a 60 m circle only when the gates are on: so that they
+/// can be started close together without gating each other's points.
+fn parked_gates(on: bool) -> TrackerConfig<f64, ParkedParams> {
+    parked_config(ParkedParams {
+        gate_radius: on.then_some(60.0),
+        refuse: false,
+    })
+}
+
+/// 24 parked tracks within 20 m of each other (four stationary targets per
+/// two scans, first and second point, gates off), the time of the next
+/// scan, and 4 measurements among them: every pair inside every gate.
+fn crowded_parked_scene(
+    seed: u64,
+) -> (
+    Box<TrackTable<f64, Parked, 24, 4>>,
+    u32,
+    Vec<Measurement<f64>>,
+) {
+    let mut rng = Lcg(seed);
+    let mut point = || Measurement::Cartesian {
+        x: 10.0 * rng.next_signed(),
+        y: 10.0 * rng.next_signed(),
+    };
+    let mut table: Box<TrackTable<f64, Parked, 24, 4>> = Box::new(TrackTable::new());
+    let mut now = 0;
+    for _ in 0..6 {
+        let group: Vec<Measurement<f64>> = (0..4).map(|_| point()).collect();
+        for _ in 0..2 {
+            let mut codes = vec![Association::OutsideGates; 4];
+            table
+                .scan(&parked_gates(false), now, &group, &mut codes)
+                .unwrap();
+            now += 1000;
+        }
+    }
+    assert_eq!(table.len(), 24);
+    let m = (0..4).map(|_| point()).collect();
+    (table, now, m)
+}
+
+/// The crowded parked scene: up to 96 gated pairs, more than the cache holds
+/// for 4 measurement slots (8 each): the costs of the tracks that do not fit
+/// are recomputed, with the same result.
 #[test]
 fn overflowing_pair_cache_gives_the_same_assignment() {
     let mut checked = Checked::default();
     let mut overflowed = 0;
-    // Tracks gating a 60 m circle only when the gates are on: so that they
-    // can be started close together without gating each other's points.
-    let config = |on: bool| {
-        parked_config(ParkedParams {
-            gate_radius: on.then_some(60.0),
-            refuse: false,
-        })
-    };
     for seed in 0..40 {
-        let mut rng = Lcg(seed);
-        let mut table: Box<TrackTable<f64, Parked, 24, 4>> = Box::new(TrackTable::new());
-        // Four stationary targets per two scans (first and second point).
-        let mut now = 0;
-        for _ in 0..6 {
-            let group: Vec<Measurement<f64>> = (0..4)
-                .map(|_| Measurement::Cartesian {
-                    x: 10.0 * rng.next_signed(),
-                    y: 10.0 * rng.next_signed(),
-                })
-                .collect();
-            for _ in 0..2 {
-                let mut codes = vec![Association::OutsideGates; 4];
-                table.scan(&config(false), now, &group, &mut codes).unwrap();
-                now += 1000;
-            }
-        }
-        assert_eq!(table.len(), 24);
-        let m: Vec<Measurement<f64>> = (0..4)
-            .map(|_| Measurement::Cartesian {
-                x: 10.0 * rng.next_signed(),
-                y: 10.0 * rng.next_signed(),
-            })
-            .collect();
-        let on = config(true);
+        let (mut table, now, m) = crowded_parked_scene(seed);
+        let on = parked_gates(true);
         let (ids, cost) = gated_costs(&table, &on, 1000, &m);
         let mut codes = vec![Association::OutsideGates; m.len()];
         let report = table.scan(&on, now, &m, &mut codes).unwrap();
@@ -571,42 +580,14 @@ fn pair_rule_holds_for_tracks_outside_the_pair_cache() {
             true
         }
     }
-    let config = |on: bool| {
-        parked_config(ParkedParams {
-            gate_radius: on.then_some(60.0),
-            refuse: false,
-        })
-    };
     let mut overflowed = 0;
     let mut updated = 0;
     for seed in 0..40 {
-        let mut rng = Lcg(seed);
-        let mut table: Box<TrackTable<f64, Parked, 24, 4>> = Box::new(TrackTable::new());
-        let mut now = 0;
-        for _ in 0..6 {
-            let group: Vec<Measurement<f64>> = (0..4)
-                .map(|_| Measurement::Cartesian {
-                    x: 10.0 * rng.next_signed(),
-                    y: 10.0 * rng.next_signed(),
-                })
-                .collect();
-            for _ in 0..2 {
-                let mut codes = vec![Association::OutsideGates; 4];
-                table.scan(&config(false), now, &group, &mut codes).unwrap();
-                now += 1000;
-            }
-        }
-        assert_eq!(table.len(), 24);
-        let m: Vec<Measurement<f64>> = (0..4)
-            .map(|_| Measurement::Cartesian {
-                x: 10.0 * rng.next_signed(),
-                y: 10.0 * rng.next_signed(),
-            })
-            .collect();
+        let (mut table, now, m) = crowded_parked_scene(seed);
         let mut codes = vec![Association::OutsideGates; m.len()];
         let report = table
             .scan_with_rule(
-                &config(true),
+                &parked_gates(true),
                 now,
                 &m,
                 &mut codes,
