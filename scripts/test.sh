@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
 # Runs every test of the project:
 #   1. formatting (cargo fmt --check, root crate and host-tests),
-#   2. host tests (cd host-tests && cargo test --release; the integration
+#   2. host tests (cd host-tests && cargo test --profile checks, the
+#      release profile at opt-level 1; the integration
 #      tests are one binary, host-tests/tests/it/), and in lanes beside it:
 #      the library's doc examples and examples/ built (cargo test -p
 #      abtrack, run from host-tests for the host target;
@@ -57,6 +58,11 @@ ensure_qemu
 ensure_defmt_print
 ensure_llvm_tools
 ensure_msrv_toolchain
+
+# The host tests and tools build with host-tests' `checks` profile (the
+# release profile at opt-level 1: host-tests/Cargo.toml); every script
+# below builds them through host_profile (scripts/setup.sh).
+export ABTRACK_HOST_PROFILE=checks
 
 log_dir=$(mktemp -d "${TMPDIR:-/tmp}/abtrack-test.XXXXXX")
 results_file=$log_dir/results
@@ -276,7 +282,7 @@ build_nrf52840_dk() {
 # lanes' builds take).
 host_tests_steps() {
     step "cargo fmt --check (host-tests)" in_host_tests cargo fmt --check
-    step "host tests (cargo test --release)" in_host_tests cargo test --release
+    step "host tests (cargo test --profile checks)" in_host_tests cargo test --profile "$(host_profile)"
 }
 
 target_args=()
@@ -411,7 +417,7 @@ run_bench_smoke() {
         tail -n 20 "$log" >&2
         return 1
     }
-    in_host_tests cargo run --quiet --release --bin bench_report -- --check "$log"
+    in_host_tests cargo run --quiet --profile "$(host_profile)" --bin bench_report -- --check "$log"
 }
 
 # The runs, in lanes side by side once the builds above are made (QEMU
@@ -463,7 +469,7 @@ stack_marks() {
 fault_injection_on() {
     local b=$1
     step "fault injection and repeated runs on $b" in_host_tests \
-        cargo test --release --test it -- --ignored --test-threads=2 \
+        cargo test --profile "$(host_profile)" --test it -- --ignored --test-threads=2 \
         "firmware::fault_injection::fault_injection_${b//-/_}" \
         "firmware::fault_injection::demo_runs_are_identical_${b//-/_}"
 }
@@ -476,7 +482,7 @@ fault_injection_microbit() { fault_injection_on microbit; }
 # started first; their own workspace and target directory).
 soak_and_fuzz() {
     step "soak, one hour, on mps2-an385" in_host_tests env ABTRACK_SOAK_SCANS=3600 \
-        cargo test --release --test it -- --ignored firmware::soak::soak_mps2_an385
+        cargo test --profile "$(host_profile)" --test it -- --ignored firmware::soak::soak_mps2_an385
     step "fuzz: each target's committed corpus replayed, then 5 s of fuzzing (scripts/fuzz.sh 5)" \
         fuzz_after_build
 }
