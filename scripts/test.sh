@@ -2,14 +2,13 @@
 # Runs every test of the project:
 #   1. formatting (cargo fmt --check, root crate and host-tests),
 #   2. host tests (cd host-tests && cargo test --profile checks, the
-#      release profile at opt-level 1; the integration
-#      tests are one binary, host-tests/tests/it/), and in lanes beside it:
-#      the library's doc examples and examples/ built (cargo test -p
-#      abtrack, run from host-tests for the host target;
-#      examples/tcas_cycle.rs is then run), its documentation with no
-#      rustdoc warning (cargo doc, as docs.rs builds it), the library and
-#      the firmware on the minimum Rust version, and the nRF52840-DK build
-#      of the demo,
+#      release profile at opt-level 1; the integration tests are one
+#      binary, host-tests/tests/it/), then, with the same build, the
+#      library's doc examples (cargo test -p abtrack --doc) and its
+#      examples/ (built; examples/tcas_cycle.rs run); in lanes beside it:
+#      the library's documentation with no rustdoc warning (cargo doc, as
+#      docs.rs builds it), the library and the firmware on the minimum Rust
+#      version, and the nRF52840-DK build of the demo,
 #   3. (in a lane beside step 2) the library alone (no default features)
 #      for the three thumb targets in one clippy pass with its no-panic
 #      lints, its dependency tree (no firmware crates), and the package as crates.io gets it
@@ -279,10 +278,24 @@ build_nrf52840_dk() {
 
 # The host tests (their build is mostly one crate after another, its
 # library, then the test binary, and leaves a core idle that the other
-# lanes' builds take).
+# lanes' builds take); then, with that build of the library and its
+# dependencies, the library's doc examples and its examples/ (built, and
+# examples/tcas_cycle.rs run).
 host_tests_steps() {
     step "cargo fmt --check (host-tests)" in_host_tests cargo fmt --check
     step "host tests (cargo test --profile checks)" in_host_tests cargo test --profile "$(host_profile)"
+    step "library doc examples (cargo test -p abtrack --doc)" \
+        in_host_tests cargo test --profile "$(host_profile)" -p abtrack --doc
+    step "library examples/ built, and examples/tcas_cycle.rs run on the host" run_library_examples
+}
+
+# The library's examples/, built in host-tests' workspace (the library is
+# one of its dependencies), and examples/tcas_cycle.rs run.
+run_library_examples() {
+    local host_triple
+    host_triple=$(rustc -vV | sed -n 's/^host: //p')
+    in_host_tests cargo build --profile "$(host_profile)" -p abtrack --examples &&
+        "host-tests/target/$host_triple/$(host_profile)/examples/tcas_cycle"
 }
 
 target_args=()
@@ -361,21 +374,11 @@ library_and_firmware_steps() {
 }
 
 # The library's host-side checks, each in its own target directory (under
-# target/) so that no lane waits for another's build lock: its doc
-# examples run and examples/ built in one pass (one build of the library for
-# both; the test profile, with overflow checks, and no link-time
-# optimisation to wait for), then examples/tcas_cycle.rs run; the documentation docs.rs builds
-# (all features, the host target) with no rustdoc warning (broken intra-doc
-# links among them); the library and the firmware on their minimum Rust
-# version (Cargo.toml `rust-version`).
+# target/) so that no lane waits for another's build lock: the
+# documentation docs.rs builds (all features, the host target) with no
+# rustdoc warning (broken intra-doc links among them); the library and the
+# firmware on their minimum Rust version (Cargo.toml `rust-version`).
 library_on_the_host() {
-    local host_triple
-    host_triple=$(rustc -vV | sed -n 's/^host: //p')
-    step "library doc examples and examples/ (cargo test -p abtrack)" \
-        in_host_tests cargo test --manifest-path ../Cargo.toml -p abtrack \
-        --target-dir ../target/host-examples
-    step "example tcas_cycle (examples/tcas_cycle.rs) on the host" \
-        "target/host-examples/$host_triple/debug/examples/tcas_cycle"
     step "library: cargo doc, no warnings" in_host_tests env RUSTDOCFLAGS="-D warnings" \
         cargo doc --manifest-path ../Cargo.toml -p abtrack --lib --no-deps --all-features \
         --target-dir ../target/doc-check
