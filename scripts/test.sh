@@ -42,9 +42,9 @@
 # Installs what is missing (Rust targets, rustfmt, the minimum-version
 # toolchain, qemu-system-arm, a C compiler and llvm when root, defmt-print,
 # flip-link, nightly and cargo-fuzz). Every step runs even if an earlier one
-# failed; the summary lists them with their times (and when each started)
-# and the exit status is
-# non-zero if any failed. `.ci/run` calls this.
+# failed; the summary lists them with their wall and CPU times (and when
+# each started), and the whole command's; the exit status is non-zero if
+# any failed. `.ci/run` calls this.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 # shellcheck source=scripts/setup.sh
@@ -67,12 +67,33 @@ log_dir=$(mktemp -d "${TMPDIR:-/tmp}/abtrack-test.XXXXXX")
 results_file=$log_dir/results
 : >"$results_file"
 
+# children_cpu_s: the CPU time (user + system, whole seconds) of this
+# shell's finished child processes and theirs, from bash's `times` (run in
+# this shell: a command substitution would report its own subshell's), in
+# $children_cpu_s.
+children_cpu_s() {
+    local f="$log_dir/times.$BASHPID" user sys total=0 t seconds
+    times >"$f"
+    # Two lines, "<user> <system>" each as "<m>m<s.sss>s": the shell's own,
+    # then its children's.
+    { read -r _ _ && read -r user sys; } <"$f"
+    for t in "$user" "$sys"; do
+        t=${t%s}
+        seconds=${t#*m}
+        total=$((total + ${t%%m*} * 60 + 10#${seconds%.*}))
+    done
+    children_cpu_s=$total
+}
+
 # The fuzz targets' build (nightly, its own workspace and target directory)
 # starts now, beside the builds below; the fuzz step waits for it.
 fuzz_build_log=$log_dir/fuzz-build.log
 (
-    status=0
+    status=0 start=$SECONDS
     bash scripts/fuzz.sh --build >"$fuzz_build_log" 2>&1 || status=$?
+    children_cpu_s
+    echo "the fuzz targets' build, in the background: exit status $status, $((SECONDS - start)) s, $children_cpu_s CPU-s" \
+        >"$log_dir/fuzz-build.summary"
     echo "$status" >"$log_dir/fuzz-build.status"
 ) &
 fuzz_build_pid=$!
@@ -93,20 +114,24 @@ fuzz_after_build() {
 }
 
 # step <name> <command...>: runs one step, records PASS/FAIL, its wall
-# time and when it started (seconds since the script started; the lanes
-# share the clock), in $step_results inside a parallel lane, else in the
-# summary.
+# time, when it started (seconds since the script started; the lanes share
+# the clock) and the CPU time its processes used, in $step_results inside a
+# parallel lane, else in the summary.
 step() {
     local name=$1
     shift
     say "== $name"
-    local status=0 start=$SECONDS
+    local status=0 start=$SECONDS cpu_before
+    children_cpu_s
+    cpu_before=$children_cpu_s
     "$@" || status=$?
     local took=$((SECONDS - start))
+    children_cpu_s
+    local times="${took} s, from +${start} s, $((children_cpu_s - cpu_before)) CPU-s"
     if [ "$status" -eq 0 ]; then
-        echo "PASS  $name (${took} s, from +${start} s)" >>"${step_results:-$results_file}"
+        echo "PASS  $name ($times)" >>"${step_results:-$results_file}"
     else
-        echo "FAIL  $name (exit status $status, ${took} s, from +${start} s)" >>"${step_results:-$results_file}"
+        echo "FAIL  $name (exit status $status, $times)" >>"${step_results:-$results_file}"
     fi
 }
 
@@ -493,9 +518,16 @@ soak_and_fuzz() {
 in_parallel emulated_images stack_marks fault_injection_mps2_an386 fault_injection_mps2_an385 \
     fault_injection_microbit soak_and_fuzz elf_checks
 
+# The whole command's CPU time: every lane's and the fuzz build's (waited
+# for here, so that its processes count).
+wait "$fuzz_build_pid" 2>/dev/null || true
+children_cpu_s
+
 echo
 echo "abtrack test summary:"
 sed 's/^/  /' "$results_file"
+[ ! -s "$log_dir/fuzz-build.summary" ] || sed 's/^/  /' "$log_dir/fuzz-build.summary"
+echo "  all steps: $SECONDS s, $children_cpu_s CPU-s (user + system; the lanes side by side)"
 failures=$(grep -c '^FAIL' "$results_file" || true)
 steps=$(wc -l <"$results_file")
 if [ "$failures" -ne 0 ]; then
