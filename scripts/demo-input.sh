@@ -27,6 +27,7 @@ case "$out" in
 esac
 cd "$(dirname "$0")/../host-tests"
 PATH="$PATH:${CARGO_HOME:-$HOME/.cargo}/bin"
-cargo run --release --quiet --bin frames -- encode \
+# The host-tests profile the calling script uses (scripts/setup.sh, host_profile).
+cargo run --profile "${ABTRACK_HOST_PROFILE:-release}" --quiet --bin frames -- encode \
     --scenario "$scenario" --seed 1 --corrupt-every 97 --garbage-every 41 \
     --out "$out" >&2

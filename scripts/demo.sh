@@ -40,7 +40,7 @@ status=0
 cargo run --release --target "$target" --bin abtrack-firmware || status=$?
 if [ -s "$ABTRACK_UART_OUTPUT" ]; then
     say "the firmware's UART output ($ABTRACK_UART_OUTPUT), decoded on the host:"
-    if ! (cd host-tests && cargo run --release --quiet --bin frames -- decode --check "$ABTRACK_UART_OUTPUT") &&
+    if ! (cd host-tests && cargo run --profile "$(host_profile)" --quiet --bin frames -- decode --check "$ABTRACK_UART_OUTPUT") &&
         [ "$status" -eq 0 ]; then
         status=1
     fi

@@ -28,7 +28,7 @@ for t in "${targets[@]}"; do
     (
         cd host-tests
         ABTRACK_FAULT_RESULTS="$PWD/../results" \
-            cargo test --release --test it -- --ignored --test-threads=1 \
+            cargo test --profile "$(host_profile)" --test it -- --ignored --test-threads=1 \
                 "firmware::fault_injection::fault_injection_${b//-/_}" \
                 "firmware::fault_injection::demo_runs_are_identical_${b//-/_}"
     )

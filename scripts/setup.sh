@@ -199,6 +199,11 @@ ensure_llvm_tools() {
     install_packages_or_die "llvm-objdump, llvm-symbolizer and llvm-nm" llvm
 }
 
+# The cargo profile of the scripts' host-tests builds (tools and tests):
+# `release`, or the one ABTRACK_HOST_PROFILE names (the test command's
+# `checks`, host-tests/Cargo.toml). Its output directory has its name.
+host_profile() { echo "${ABTRACK_HOST_PROFILE:-release}"; }
+
 # Builds host-tests' firmware-check (the panic and stack-layout checks on
 # the firmware ELFs) and prints its path; once it is in
 # $ABTRACK_FIRMWARE_CHECK (the test command sets it after its builds), that
@@ -211,11 +216,11 @@ firmware_check_tool() {
     fi
     local root
     root=$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)
-    (cd "$root/host-tests" && cargo build --release --quiet --bin firmware-check) >&2 || return
+    (cd "$root/host-tests" && cargo build --profile "$(host_profile)" --quiet --bin firmware-check) >&2 || return
     (cd "$root/host-tests" && cargo metadata --format-version 1 --no-deps >/dev/null) || return
     local host
     host=$(rustc -vV | sed -n 's/^host: //p')
-    echo "$root/host-tests/target/$host/release/firmware-check"
+    echo "$root/host-tests/target/$host/$(host_profile)/firmware-check"
 }
 
 # A nightly toolchain and cargo-fuzz, for the fuzz targets (fuzz/,

@@ -36,5 +36,5 @@ say "soak on $board ($target): $scans scans -> $results"
 (
     cd host-tests
     ABTRACK_SOAK_SCANS=$scans ABTRACK_SOAK_RESULTS="$results" \
-        cargo test --release --test it -- --ignored --nocapture "firmware::soak::soak_${board//-/_}"
+        cargo test --profile "$(host_profile)" --test it -- --ignored --nocapture "firmware::soak::soak_${board//-/_}"
 )

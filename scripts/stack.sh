@@ -47,7 +47,7 @@ MIN_MARGIN_PERCENT=25
 inputs_dir="$PWD/target/stack-inputs"
 mkdir -p "$inputs_dir"
 
-frames() { (cd host-tests && cargo run --release --quiet --bin frames -- "$@"); }
+frames() { (cd host-tests && cargo run --profile "$(host_profile)" --quiet --bin frames -- "$@"); }
 
 # The fault inputs (rewritten each run: they are cheap).
 scripts/demo-input.sh "$inputs_dir/tcas-demo.bin" >/dev/null 2>&1

@@ -1,14 +1,14 @@
 #!/usr/bin/env bash
 # Runs every test of the project:
 #   1. formatting (cargo fmt --check, root crate and host-tests),
-#   2. host tests (cd host-tests && cargo test --release; the integration
-#      tests are one binary, host-tests/tests/it/), and in lanes beside it:
-#      the library's doc examples and examples/ built (cargo test -p
-#      abtrack, run from host-tests for the host target;
-#      examples/tcas_cycle.rs is then run), its documentation with no
-#      rustdoc warning (cargo doc, as docs.rs builds it), the library and
-#      the firmware on the minimum Rust version, and the nRF52840-DK build
-#      of the demo,
+#   2. host tests (cd host-tests && cargo test --profile checks, the
+#      release profile at opt-level 1; the integration tests are one
+#      binary, host-tests/tests/it/), then, with the same build, the
+#      library's doc examples (cargo test -p abtrack --doc) and its
+#      examples/ (built; examples/tcas_cycle.rs run); in lanes beside it:
+#      the library's documentation with no rustdoc warning (cargo doc, as
+#      docs.rs builds it), the library and the firmware on the minimum Rust
+#      version, and the nRF52840-DK build of the demo,
 #   3. (in a lane beside step 2) the library alone (no default features)
 #      for the three thumb targets in one clippy pass with its no-panic
 #      lints, its dependency tree (no firmware crates), and the package as crates.io gets it
@@ -42,9 +42,9 @@
 # Installs what is missing (Rust targets, rustfmt, the minimum-version
 # toolchain, qemu-system-arm, a C compiler and llvm when root, defmt-print,
 # flip-link, nightly and cargo-fuzz). Every step runs even if an earlier one
-# failed; the summary lists them with their times (and when each started)
-# and the exit status is
-# non-zero if any failed. `.ci/run` calls this.
+# failed; the summary lists them with their wall and CPU times (and when
+# each started), and the whole command's; the exit status is non-zero if
+# any failed. `.ci/run` calls this.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 # shellcheck source=scripts/setup.sh
@@ -58,16 +58,42 @@ ensure_defmt_print
 ensure_llvm_tools
 ensure_msrv_toolchain
 
+# The host tests and tools build with host-tests' `checks` profile (the
+# release profile at opt-level 1: host-tests/Cargo.toml); every script
+# below builds them through host_profile (scripts/setup.sh).
+export ABTRACK_HOST_PROFILE=checks
+
 log_dir=$(mktemp -d "${TMPDIR:-/tmp}/abtrack-test.XXXXXX")
 results_file=$log_dir/results
 : >"$results_file"
+
+# children_cpu_s: the CPU time (user + system, whole seconds) of this
+# shell's finished child processes and theirs, from bash's `times` (run in
+# this shell: a command substitution would report its own subshell's), in
+# $children_cpu_s.
+children_cpu_s() {
+    local f="$log_dir/times.$BASHPID" user sys total=0 t seconds
+    times >"$f"
+    # Two lines, "<user> <system>" each as "<m>m<s.sss>s": the shell's own,
+    # then its children's.
+    { read -r _ _ && read -r user sys; } <"$f"
+    for t in "$user" "$sys"; do
+        t=${t%s}
+        seconds=${t#*m}
+        total=$((total + ${t%%m*} * 60 + 10#${seconds%.*}))
+    done
+    children_cpu_s=$total
+}
 
 # The fuzz targets' build (nightly, its own workspace and target directory)
 # starts now, beside the builds below; the fuzz step waits for it.
 fuzz_build_log=$log_dir/fuzz-build.log
 (
-    status=0
+    status=0 start=$SECONDS
     bash scripts/fuzz.sh --build >"$fuzz_build_log" 2>&1 || status=$?
+    children_cpu_s
+    echo "the fuzz targets' build, in the background: exit status $status, $((SECONDS - start)) s, $children_cpu_s CPU-s" \
+        >"$log_dir/fuzz-build.summary"
     echo "$status" >"$log_dir/fuzz-build.status"
 ) &
 fuzz_build_pid=$!
@@ -88,20 +114,24 @@ fuzz_after_build() {
 }
 
 # step <name> <command...>: runs one step, records PASS/FAIL, its wall
-# time and when it started (seconds since the script started; the lanes
-# share the clock), in $step_results inside a parallel lane, else in the
-# summary.
+# time, when it started (seconds since the script started; the lanes share
+# the clock) and the CPU time its processes used, in $step_results inside a
+# parallel lane, else in the summary.
 step() {
     local name=$1
     shift
     say "== $name"
-    local status=0 start=$SECONDS
+    local status=0 start=$SECONDS cpu_before
+    children_cpu_s
+    cpu_before=$children_cpu_s
     "$@" || status=$?
     local took=$((SECONDS - start))
+    children_cpu_s
+    local times="${took} s, from +${start} s, $((children_cpu_s - cpu_before)) CPU-s"
     if [ "$status" -eq 0 ]; then
-        echo "PASS  $name (${took} s, from +${start} s)" >>"${step_results:-$results_file}"
+        echo "PASS  $name ($times)" >>"${step_results:-$results_file}"
     else
-        echo "FAIL  $name (exit status $status, ${took} s, from +${start} s)" >>"${step_results:-$results_file}"
+        echo "FAIL  $name (exit status $status, $times)" >>"${step_results:-$results_file}"
     fi
 }
 
@@ -273,10 +303,24 @@ build_nrf52840_dk() {
 
 # The host tests (their build is mostly one crate after another, its
 # library, then the test binary, and leaves a core idle that the other
-# lanes' builds take).
+# lanes' builds take); then, with that build of the library and its
+# dependencies, the library's doc examples and its examples/ (built, and
+# examples/tcas_cycle.rs run).
 host_tests_steps() {
     step "cargo fmt --check (host-tests)" in_host_tests cargo fmt --check
-    step "host tests (cargo test --release)" in_host_tests cargo test --release
+    step "host tests (cargo test --profile checks)" in_host_tests cargo test --profile "$(host_profile)"
+    step "library doc examples (cargo test -p abtrack --doc)" \
+        in_host_tests cargo test --profile "$(host_profile)" -p abtrack --doc
+    step "library examples/ built, and examples/tcas_cycle.rs run on the host" run_library_examples
+}
+
+# The library's examples/, built in host-tests' workspace (the library is
+# one of its dependencies), and examples/tcas_cycle.rs run.
+run_library_examples() {
+    local host_triple
+    host_triple=$(rustc -vV | sed -n 's/^host: //p')
+    in_host_tests cargo build --profile "$(host_profile)" -p abtrack --examples &&
+        "host-tests/target/$host_triple/$(host_profile)/examples/tcas_cycle"
 }
 
 target_args=()
@@ -355,21 +399,11 @@ library_and_firmware_steps() {
 }
 
 # The library's host-side checks, each in its own target directory (under
-# target/) so that no lane waits for another's build lock: its doc
-# examples run and examples/ built in one pass (one build of the library for
-# both; the test profile, with overflow checks, and no link-time
-# optimisation to wait for), then examples/tcas_cycle.rs run; the documentation docs.rs builds
-# (all features, the host target) with no rustdoc warning (broken intra-doc
-# links among them); the library and the firmware on their minimum Rust
-# version (Cargo.toml `rust-version`).
+# target/) so that no lane waits for another's build lock: the
+# documentation docs.rs builds (all features, the host target) with no
+# rustdoc warning (broken intra-doc links among them); the library and the
+# firmware on their minimum Rust version (Cargo.toml `rust-version`).
 library_on_the_host() {
-    local host_triple
-    host_triple=$(rustc -vV | sed -n 's/^host: //p')
-    step "library doc examples and examples/ (cargo test -p abtrack)" \
-        in_host_tests cargo test --manifest-path ../Cargo.toml -p abtrack \
-        --target-dir ../target/host-examples
-    step "example tcas_cycle (examples/tcas_cycle.rs) on the host" \
-        "target/host-examples/$host_triple/debug/examples/tcas_cycle"
     step "library: cargo doc, no warnings" in_host_tests env RUSTDOCFLAGS="-D warnings" \
         cargo doc --manifest-path ../Cargo.toml -p abtrack --lib --no-deps --all-features \
         --target-dir ../target/doc-check
@@ -411,7 +445,7 @@ run_bench_smoke() {
         tail -n 20 "$log" >&2
         return 1
     }
-    in_host_tests cargo run --quiet --release --bin bench_report -- --check "$log"
+    in_host_tests cargo run --quiet --profile "$(host_profile)" --bin bench_report -- --check "$log"
 }
 
 # The runs, in lanes side by side once the builds above are made (QEMU
@@ -463,7 +497,7 @@ stack_marks() {
 fault_injection_on() {
     local b=$1
     step "fault injection and repeated runs on $b" in_host_tests \
-        cargo test --release --test it -- --ignored --test-threads=2 \
+        cargo test --profile "$(host_profile)" --test it -- --ignored --test-threads=2 \
         "firmware::fault_injection::fault_injection_${b//-/_}" \
         "firmware::fault_injection::demo_runs_are_identical_${b//-/_}"
 }
@@ -476,7 +510,7 @@ fault_injection_microbit() { fault_injection_on microbit; }
 # started first; their own workspace and target directory).
 soak_and_fuzz() {
     step "soak, one hour, on mps2-an385" in_host_tests env ABTRACK_SOAK_SCANS=3600 \
-        cargo test --release --test it -- --ignored firmware::soak::soak_mps2_an385
+        cargo test --profile "$(host_profile)" --test it -- --ignored firmware::soak::soak_mps2_an385
     step "fuzz: each target's committed corpus replayed, then 5 s of fuzzing (scripts/fuzz.sh 5)" \
         fuzz_after_build
 }
@@ -484,9 +518,16 @@ soak_and_fuzz() {
 in_parallel emulated_images stack_marks fault_injection_mps2_an386 fault_injection_mps2_an385 \
     fault_injection_microbit soak_and_fuzz elf_checks
 
+# The whole command's CPU time: every lane's and the fuzz build's (waited
+# for here, so that its processes count).
+wait "$fuzz_build_pid" 2>/dev/null || true
+children_cpu_s
+
 echo
 echo "abtrack test summary:"
 sed 's/^/  /' "$results_file"
+[ ! -s "$log_dir/fuzz-build.summary" ] || sed 's/^/  /' "$log_dir/fuzz-build.summary"
+echo "  all steps: $SECONDS s, $children_cpu_s CPU-s (user + system; the lanes side by side)"
 failures=$(grep -c '^FAIL' "$results_file" || true)
 steps=$(wc -l <"$results_file")
 if [ "$failures" -ne 0 ]; then
