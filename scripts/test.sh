@@ -74,13 +74,13 @@ results_file=$log_dir/results
 children_cpu_s() {
     local f="$log_dir/times.$BASHPID" user sys total=0 t seconds
     times >"$f"
-    # Two lines, "<user> <system>" each as "<m>m<s.sss>s": the shell's own,
-    # then its children's.
+    # Two lines, "<user> <system>" each as "<m>m<s.sss>s" (the locale's
+    # decimal separator): the shell's own, then its children's.
     { read -r _ _ && read -r user sys; } <"$f"
     for t in "$user" "$sys"; do
         t=${t%s}
         seconds=${t#*m}
-        total=$((total + ${t%%m*} * 60 + 10#${seconds%.*}))
+        total=$((total + ${t%%m*} * 60 + 10#${seconds%%[.,]*}))
     done
     children_cpu_s=$total
 }
@@ -305,7 +305,10 @@ build_nrf52840_dk() {
 # library, then the test binary, and leaves a core idle that the other
 # lanes' builds take); then, with that build of the library and its
 # dependencies, the library's doc examples and its examples/ (built, and
-# examples/tcas_cycle.rs run).
+# examples/tcas_cycle.rs run). They run without overflow checks, as the
+# host tests do: the library has no unchecked integer arithmetic to check
+# (clippy's arithmetic_side_effects, in the clippy step) and no debug
+# assertion; the fuzz targets run it with both on.
 host_tests_steps() {
     step "cargo fmt --check (host-tests)" in_host_tests cargo fmt --check
     step "host tests (cargo test --profile checks)" in_host_tests cargo test --profile "$(host_profile)"
@@ -527,7 +530,7 @@ echo
 echo "abtrack test summary:"
 sed 's/^/  /' "$results_file"
 [ ! -s "$log_dir/fuzz-build.summary" ] || sed 's/^/  /' "$log_dir/fuzz-build.summary"
-echo "  all steps: $SECONDS s, $children_cpu_s CPU-s (user + system; the lanes side by side)"
+echo "  whole command: $SECONDS s, $children_cpu_s CPU-s (user + system; the lanes side by side; installs included)"
 failures=$(grep -c '^FAIL' "$results_file" || true)
 steps=$(wc -l <"$results_file")
 if [ "$failures" -ne 0 ]; then
