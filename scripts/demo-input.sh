@@ -25,9 +25,9 @@ case "$out" in
     /*) ;;
     *) out="$PWD/$out" ;;
 esac
+# shellcheck source=scripts/setup.sh
+. "$(dirname "$0")/setup.sh"
 cd "$(dirname "$0")/../host-tests"
-PATH="$PATH:${CARGO_HOME:-$HOME/.cargo}/bin"
-# The host-tests profile the calling script uses (scripts/setup.sh, host_profile).
-cargo run --profile "${ABTRACK_HOST_PROFILE:-release}" --quiet --bin frames -- encode \
+cargo run --profile "$(host_profile)" --quiet --bin frames -- encode \
     --scenario "$scenario" --seed 1 --corrupt-every 97 --garbage-every 41 \
     --out "$out" >&2
