@@ -6,7 +6,10 @@
 # Builds and runs the benchmark firmware (boards/qemu/src/bin/bench/, feature
 # bench-anchors) on each board, keeps each board's output in
 # target/bench/<core>.log, and turns them into the report files with the
-# host tool bench_report (host-tests/src/bench_report.rs).
+# host tool bench_report (host-tests/src/bench_report.rs). Before the
+# runs, the images pass the test command's ELF checks (firmware-check: no
+# call into core::panicking but minikalman's, the stack below the statics):
+# the test command builds only the smoke image (feature bench-smoke).
 #
 #   scripts/bench.sh                  all three cores; writes bench/results.csv
 #                                     and bench/BENCHMARKS.md (generated files:
@@ -54,7 +57,24 @@ ensure_qemu
 ensure_host_linker
 ensure_defmt_print
 
+# The whole images, built first and checked as the test command checks
+# its smoke images; the checks' reports in target/bench/elf-checks.log.
 mkdir -p target/bench "$out_dir"
+elves=()
+for t in "${targets[@]}"; do
+    cargo build --quiet --release --target "$t" --bin bench --features bench-anchors
+    elves+=("target/$t/release/bench")
+done
+check_tool=$(firmware_check_tool) || die "firmware-check (host-tests) did not build"
+checks_log=target/bench/elf-checks.log
+if "$check_tool" panics "$(panic_allowances_for bench)" "${elves[@]}" >"$checks_log" 2>&1 &&
+    "$check_tool" layout --ram-origin 0x20000000 "${elves[@]}" >>"$checks_log" 2>&1; then
+    say "benchmark images: no call into core::panicking but minikalman's, the stack below the statics ($checks_log)"
+else
+    tail -n 20 "$checks_log" >&2
+    die "a benchmark image failed the ELF checks; the report is in $checks_log"
+fi
+
 logs=()
 for t in "${targets[@]}"; do
     core=$(core_for_target "$t")

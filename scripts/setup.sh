@@ -223,6 +223,20 @@ firmware_check_tool() {
     echo "$root/host-tests/target/$host/$(host_profile)/firmware-check"
 }
 
+# Third-party crates allowed to keep panic calls, per image, each with its
+# reason (firmware-check prints it with the calls; docs/safety.md). Our own
+# code (the library and the firmware) can never be allowed, and an
+# allowance no call uses fails the check. (scripts/test.sh checks every
+# image; scripts/bench.sh the whole benchmark image it builds.)
+#   bench: minikalman, the benchmark's Kalman anchor (feature bench-anchors,
+#   only in this image): its Matrix::mult indexes; it is the third-party code
+#   measured as published, not shipped in any other image.
+panic_allowances_for() {
+    case $1 in
+    bench) echo "--allow-crate=minikalman=the benchmark's Kalman anchor (feature bench-anchors, only in the bench image), third-party code measured as published" ;;
+    esac
+}
+
 # A nightly toolchain and cargo-fuzz, for the fuzz targets (fuzz/,
 # scripts/fuzz.sh): cargo-fuzz needs nightly's sanitizer flags; everything
 # else builds with the stable toolchain.
@@ -241,9 +255,9 @@ ensure_cargo_fuzz() {
         die "installing cargo-fuzz failed; install it with 'cargo install cargo-fuzz --locked', then re-run"
 }
 
-# The minimum Rust version of the library and the firmware: `rust-version`
-# of the root workspace's [workspace.package] (Cargo.toml), the one place it
-# is declared.
+# The minimum Rust version of the library: `rust-version` of the root
+# workspace's [workspace.package] (Cargo.toml), the one place it is
+# declared.
 msrv() {
     awk '/^\[workspace\.package\]/ { p = 1; next } /^\[/ { p = 0 }
          p && $1 == "rust-version" { gsub(/"/, "", $3); print $3; exit }' \
@@ -260,7 +274,7 @@ ensure_msrv_toolchain() {
     if ! rustup run "$version" rustc --version >/dev/null 2>&1; then
         command -v rustup >/dev/null ||
             die "the minimum Rust version $version is missing and rustup is not installed: install that toolchain, then re-run"
-        say "rustup toolchain install $version --profile minimal (the minimum Rust version of the library and the firmware)"
+        say "rustup toolchain install $version --profile minimal (the minimum Rust version of the library)"
         rustup toolchain install "$version" --profile minimal
     fi
     if ! ls "$(rustup run "$version" rustc --print target-libdir --target thumbv7em-none-eabihf 2>/dev/null)"/libcore-*.rlib >/dev/null 2>&1; then

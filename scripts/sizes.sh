@@ -50,15 +50,16 @@ size_row() {
         $1 == ".vector_table" || $1 == ".text" || $1 == ".rodata" || $1 == ".gnu.sgstubs" { flash += $2 }
         $1 == ".data" { flash += $2; ram += $2 }
         $1 == ".bss" || $1 == ".uninit" { ram += $2 }
-        END { printf "%-22s %-11s %-17s %10d %10d\n", t, board, b, flash, ram }'
+        END { printf "%-22s %-11s %-19s %10d %10d\n", t, board, b, flash, ram }'
 }
 
-printf '%-22s %-11s %-17s %10s %10s\n' target board binary "flash (B)" "RAM (B)"
+printf '%-22s %-11s %-19s %10s %10s\n' target board binary "flash (B)" "RAM (B)"
 if [ "${1:-}" = --nrf52840-dk ]; then
-    # The real board's demo, built by its own package (boards/nrf52840-dk).
+    # The real board's demo, built by its own package (boards/nrf52840-dk)
+    # into the repository's target directory.
     (cd boards/nrf52840-dk && cargo build --quiet --release)
-    size_row thumbv7em-none-eabihf nrf52840-dk abtrack-firmware \
-        boards/nrf52840-dk/target/thumbv7em-none-eabihf/release/abtrack-firmware
+    size_row thumbv7em-none-eabihf nrf52840-dk abtrack-nrf52840-dk \
+        target/thumbv7em-none-eabihf/release/abtrack-nrf52840-dk
     exit
 fi
 mapfile -t bins < <(firmware_bins)

@@ -7,17 +7,20 @@
 #      library's doc examples (cargo test -p abtrack --doc) and its
 #      examples/ (built; examples/tcas_cycle.rs run); in lanes beside it:
 #      the library's documentation with no rustdoc warning (cargo doc, as
-#      docs.rs builds it), the library and the firmware on the minimum Rust
-#      version, and the nRF52840-DK build of the demo,
+#      docs.rs builds it) and the library on its minimum Rust version,
 #   3. (in a lane beside step 2) the library alone (no default features)
-#      for the three thumb targets in one clippy pass with its no-panic
+#      for the M4F and the M0 (with and without 32-bit atomics, the only
+#      target property its code depends on) in one clippy pass with its no-panic
 #      lints, its dependency tree (no firmware crates), and the package as crates.io gets it
 #      (`cargo publish --dry-run --no-verify`, then the unpacked package
 #      checked: the verification build without its code generation, which
 #      the firmware build does for the three targets),
-#   4. the firmware (every binary of boards/qemu, the benchmark with its
-#      feature bench-anchors, the example static_track_table) for the three
-#      targets;
+#   4. the firmware (every binary of boards/qemu, the benchmark's smoke
+#      image: feature bench-smoke, the anchors and each filter's scan rows
+#      at its smallest and largest table size; the example
+#      static_track_table) for the three
+#      targets, then the nRF52840-DK build of the demo (in the same target
+#      directory: it reuses the M4F's dependencies);
 #   then the runs and checks, in lanes side by side (a QEMU run mostly
 #   waits): the ELF checks (no call into core::panicking in any release
 #      ELF; the stack below the static data (flip-link); each demo image's
@@ -28,8 +31,9 @@
 #      a deliberate stack overflow ends in a clean HardFault report; stack
 #      high-water marks with 25 % margin (scripts/stack.sh); the demo; the
 #      on-target self-tests (selftest, selftest-tracking); a smoke run of the
-#      benchmark image, which must run to its end and print a well-formed
-#      report (nothing about speed is checked; scripts/bench.sh measures);
+#      benchmark's smoke image, which must run to its end and print a
+#      well-formed report (nothing about speed is checked; scripts/bench.sh
+#      builds, checks and runs the whole image, and measures);
 #      the static track table example on the mps2-an386,
 #   6. fault injection and repeated demo runs on the three boards (one lane
 #      each), a one-hour soak on the Cortex-M3 (docs/firmware-and-boards.md),
@@ -201,19 +205,6 @@ firmware_elves() {
     done
 }
 
-# Third-party crates allowed to keep panic calls, per image, each with its
-# reason (firmware-check prints it with the calls; docs/safety.md). Our own
-# code (the library and the firmware) can never be allowed, and an
-# allowance no call uses fails the check.
-#   bench: minikalman, the benchmark's Kalman anchor (feature bench-anchors,
-#   only in this image): its Matrix::mult indexes; it is the third-party code
-#   measured as published, not shipped in any other image.
-panic_allowances_for() {
-    case $1 in
-    bench) echo "--allow-crate=minikalman=the benchmark's Kalman anchor (feature bench-anchors, only in the bench image), third-party code measured as published" ;;
-    esac
-}
-
 # Each image with its own allowances (none but the benchmark's); the images
 # side by side (each check is one llvm-objdump at a time), their reports in
 # order.
@@ -292,10 +283,12 @@ run_stack_overflow() {
 }
 
 # The real board's build (nothing can run it here): its own workspace and
-# .cargo/config.toml; prints its sizes and checks its stack layout.
+# .cargo/config.toml, the repository's target directory (after the M4F
+# firmware's build, whose dependencies it reuses); prints its sizes and
+# checks its stack layout.
 build_nrf52840_dk() {
     (cd boards/nrf52840-dk && cargo build --release) || return
-    local elf=boards/nrf52840-dk/target/thumbv7em-none-eabihf/release/abtrack-firmware tool
+    local elf=target/thumbv7em-none-eabihf/release/abtrack-nrf52840-dk tool
     tool=$(firmware_check_tool) || return
     "$tool" layout --ram-origin 0x20000000 "$elf" || return
     bash scripts/sizes.sh --nrf52840-dk
@@ -330,18 +323,28 @@ target_args=()
 for t in "${ABTRACK_TARGETS[@]}"; do
     target_args+=(--target "$t")
 done
+# The library's targets for clippy and the package check: one with 32-bit
+# atomics and one without, the only target property its code depends on
+# (`cfg(target_has_atomic = "32")`, src/num/fixed32.rs); the Cortex-M3's
+# sources are the M4F's (the firmware build compiles the library for all
+# three).
+library_targets=(thumbv7em-none-eabihf thumbv6m-none-eabi)
+library_target_args=()
+for t in "${library_targets[@]}"; do
+    library_target_args+=(--target "$t")
+done
 
 # The package as crates.io gets it: `cargo publish --dry-run --no-verify`
 # makes it without its verification build (a build of the packaged
 # sources); instead, every file the library's compilation read (its
 # dep-info from the clippy pass: sources, include_str! files) must be in the
-# package. The packaged sources are then the ones clippy checked for the
-# three targets and the firmware build compiles.
+# package. The packaged sources are then the ones clippy checked and the
+# firmware build compiles for the three targets.
 check_package() {
     cargo publish --quiet --dry-run --no-verify -p abtrack --allow-dirty || return
     local listed dep_info missing=0 f t root=$PWD
     listed=$(cargo package --quiet --list -p abtrack --allow-dirty) || return
-    for t in "${ABTRACK_TARGETS[@]}"; do
+    for t in "${library_targets[@]}"; do
         dep_info=$(ls -t target/"$t"/debug/deps/abtrack-*.d 2>/dev/null | head -n 1)
         [ -n "$dep_info" ] || {
             echo "no dep-info of the library for $t (the clippy step makes it)" >&2
@@ -365,64 +368,61 @@ check_package() {
 
 # Every image as the runs below use it: the binaries without features (the
 # soak image shortened to one hour of scans, ABTRACK_SOAK_SCANS, read at
-# build time: scripts/soak.sh runs the day), the benchmark with its own
-# (bench-anchors), so each is built once; the three targets in one cargo
+# build time: scripts/soak.sh runs the day), the benchmark with its anchors
+# and its scan rows at each filter's smallest and largest size (feature
+# bench-smoke: scripts/bench.sh builds, checks and runs the whole image), so
+# each is built once; the three targets in one cargo
 # invocation (it keeps both cores busy through the single-threaded link-time
 # optimisation of each image).
 build_firmware() {
     env ABTRACK_SOAK_SCANS=3600 cargo build --release "${target_args[@]}" &&
-        cargo build --release "${target_args[@]}" --features bench-anchors --bin bench &&
+        cargo build --release "${target_args[@]}" --features bench-smoke --bin bench &&
         cargo build --release --target thumbv7em-none-eabihf -p abtrack-firmware --example static_track_table
 }
 
-# The library alone (no default features), then the firmware's binaries
-# and examples, on the minimum Rust version, for the M4F (one target
-# directory: the two share their dependencies' builds).
+# The library alone (no default features) on its minimum Rust version, for
+# the M4F. (The firmware, an application, declares the toolchain it is
+# built with: boards/qemu/Cargo.toml.)
 check_on_msrv() {
     cargo "+$(msrv)" check -p abtrack --lib --no-default-features \
-        --target thumbv7em-none-eabihf --target-dir target/msrv &&
-        cargo "+$(msrv)" check -p abtrack-firmware --bins --examples \
-            --target thumbv7em-none-eabihf --target-dir target/msrv
+        --target thumbv7em-none-eabihf --target-dir target/msrv
 }
 
-# The library alone (no default features) for the three targets, in one
-# clippy pass with its no-panic lints (Cargo.toml [lints.clippy],
-# .clippy.toml): indexing, unwrap/expect, panic! and integer arithmetic are
-# errors, and so is every other clippy warning (docs/safety.md). Its code
-# generation for the three targets is the firmware build's. Every image is
-# built here, so that no later lane holds the build directory's lock for a
-# link while the others run.
+# The library alone (no default features) for the M4F and the M0
+# (library_targets), in one clippy pass with its no-panic lints (Cargo.toml
+# [lints.clippy], .clippy.toml): indexing, unwrap/expect, panic! and integer
+# arithmetic are errors, and so is every other clippy warning
+# (docs/safety.md). Its code generation for the three targets is the
+# firmware build's. Every image is built here, the nRF52840-DK's last (it
+# reuses the M4F build's dependencies), so that no later lane holds the
+# build directory's lock for a link while the others run.
 library_and_firmware_steps() {
     step "cargo fmt --check" cargo fmt --check
-    step "library alone for the three targets: clippy, no panic paths (indexing, unwrap, arithmetic)" \
-        cargo clippy -p abtrack --lib --no-default-features "${target_args[@]}" -- -D warnings
+    step "library alone for the M4F and the M0: clippy, no panic paths (indexing, unwrap, arithmetic)" \
+        cargo clippy -p abtrack --lib --no-default-features "${library_target_args[@]}" -- -D warnings
     step "library: no firmware crates among its dependencies" library_has_no_firmware_dependencies
     step "library: the crates.io package (cargo publish --dry-run --no-verify; every file the build reads packaged)" check_package
     step "firmware build for the three targets (and the example static_track_table)" build_firmware
+    step "nRF52840-DK demo build (boards/nrf52840-dk: defmt-rtt, probe-rs runner, flip-link)" build_nrf52840_dk
 }
 
 # The library's host-side checks, each in its own target directory (under
 # target/) so that no lane waits for another's build lock: the
 # documentation docs.rs builds (all features, the host target) with no
-# rustdoc warning (broken intra-doc links among them); the library and the
-# firmware on their minimum Rust version (Cargo.toml `rust-version`).
+# rustdoc warning (broken intra-doc links among them); the library on its
+# minimum Rust version (Cargo.toml `rust-version`).
 library_on_the_host() {
     step "library: cargo doc, no warnings" in_host_tests env RUSTDOCFLAGS="-D warnings" \
         cargo doc --manifest-path ../Cargo.toml -p abtrack --lib --no-deps --all-features \
         --target-dir ../target/doc-check
-    step "library and firmware on their minimum Rust version $(msrv) (cargo +$(msrv) check)" \
+    step "library on its minimum Rust version $(msrv) (cargo +$(msrv) check)" \
         check_on_msrv
 }
 
-# The nRF52840-DK build (its own workspace and target directory).
-nrf52840_dk() {
-    step "nRF52840-DK demo build (boards/nrf52840-dk: defmt-rtt, probe-rs runner, flip-link)" build_nrf52840_dk
-}
-
 # The builds, and the checks that need no firmware image and no host tool,
-# from the start: four lanes, beside the fuzz targets' build (the machine's
+# from the start: three lanes, beside the fuzz targets' build (the machine's
 # cores stay busy while one lane waits for a single-threaded link).
-in_parallel host_tests_steps library_and_firmware_steps library_on_the_host nrf52840_dk
+in_parallel host_tests_steps library_and_firmware_steps library_on_the_host
 
 # firmware-check, built by the host tests' step: its path, found once, for
 # the checks in the lanes below.
@@ -438,13 +438,14 @@ elf_checks() {
     step "firmware: no double-precision soft-float routine in the M4F example image" check_example_soft_double
 }
 
-# The benchmark image (its own feature: the minikalman anchor) must run to
+# The benchmark image (feature bench-smoke: the minikalman anchor, each
+# filter's scan rows at its smallest and largest table size) must run to
 # its end and print a complete, well-formed report: bench_report --check
 # refuses a malformed line, a missing end line or a line count that differs
 # from the end line's. The figures themselves are not checked.
 run_bench_smoke() {
     local target=$1 log="$log_dir/bench-$1.log"
-    cargo run --release --target "$target" --bin bench --features bench-anchors >"$log" || {
+    cargo run --release --target "$target" --bin bench --features bench-smoke >"$log" || {
         tail -n 20 "$log" >&2
         return 1
     }
