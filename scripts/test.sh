@@ -2,7 +2,7 @@
 # Runs every test of the project:
 #   1. formatting (cargo fmt --check, root crate and host-tests),
 #   2. host tests (cd host-tests && cargo test --profile checks, the
-#      release profile at opt-level 1; the integration tests are one
+#      release profile at opt-level 1 without LTO; the integration tests are one
 #      binary, host-tests/tests/it/), then, with the same build, the
 #      library's doc examples (cargo test -p abtrack --doc) and its
 #      examples/ (built; examples/tcas_cycle.rs run); in lanes beside it:
@@ -63,7 +63,7 @@ ensure_llvm_tools
 ensure_msrv_toolchain
 
 # The host tests and tools build with host-tests' `checks` profile (the
-# release profile at opt-level 1: host-tests/Cargo.toml); every script
+# release profile at opt-level 1 without LTO: host-tests/Cargo.toml); every script
 # below builds them through host_profile (scripts/setup.sh).
 export ABTRACK_HOST_PROFILE=checks
 
