@@ -2,16 +2,17 @@
 # Runs every test of the project:
 #   1. formatting (cargo fmt --check, root crate and host-tests),
 #   2. host tests (cd host-tests && cargo test --profile checks, the
-#      release profile at opt-level 1 without LTO; the integration tests are one
-#      binary, host-tests/tests/it/), then, with the same build, the
+#      release profile at opt-level 1 without LTO; the integration tests
+#      are one binary, host-tests/tests/it/), then, with the same build, the
 #      library's doc examples (cargo test -p abtrack --doc) and its
 #      examples/ (built; examples/tcas_cycle.rs run); in lanes beside it:
 #      the library's documentation with no rustdoc warning (cargo doc, as
 #      docs.rs builds it) and the library on its minimum Rust version,
 #   3. (in a lane beside step 2) the library alone (no default features)
 #      for the M4F and the M0 (with and without 32-bit atomics, the only
-#      target property its code depends on) in one clippy pass with its no-panic
-#      lints, its dependency tree (no firmware crates), and the package as crates.io gets it
+#      target property that changes which of its code compiles) in one
+#      clippy pass with its no-panic lints, its dependency tree (no
+#      firmware crates), and the package as crates.io gets it
 #      (`cargo publish --dry-run --no-verify`, then the unpacked package
 #      checked: the verification build without its code generation, which
 #      the firmware build does for the three targets),
@@ -20,7 +21,7 @@
 #      at its smallest and largest table size; the example
 #      static_track_table) for the three
 #      targets, then the nRF52840-DK build of the demo (in the same target
-#      directory: it reuses the M4F's dependencies);
+#      directory: it reuses the M4F's crates.io dependencies);
 #   then the runs and checks, in lanes side by side (a QEMU run mostly
 #   waits): the ELF checks (no call into core::panicking in any release
 #      ELF; the stack below the static data (flip-link); each demo image's
@@ -63,8 +64,8 @@ ensure_llvm_tools
 ensure_msrv_toolchain
 
 # The host tests and tools build with host-tests' `checks` profile (the
-# release profile at opt-level 1 without LTO: host-tests/Cargo.toml); every script
-# below builds them through host_profile (scripts/setup.sh).
+# release profile at opt-level 1 without LTO: host-tests/Cargo.toml); every
+# script below builds them through host_profile (scripts/setup.sh).
 export ABTRACK_HOST_PROFILE=checks
 
 log_dir=$(mktemp -d "${TMPDIR:-/tmp}/abtrack-test.XXXXXX")
@@ -229,12 +230,13 @@ check_no_panic_calls() {
     return "$status"
 }
 
+# Every release ELF of the three emulated boards and the nRF52840-DK's.
 check_stack_layout() {
     local tool
     tool=$(firmware_check_tool) || return
-    # RAM starts at 0x2000_0000 on the three boards (boards/*/memory.x).
+    # RAM starts at 0x2000_0000 on the four boards (boards/*/memory.x).
     # shellcheck disable=SC2046
-    "$tool" layout --ram-origin 0x20000000 $(firmware_elves)
+    "$tool" layout --ram-origin 0x20000000 $(firmware_elves) "$nrf52840_dk_elf"
 }
 
 # Each demo image's initialised statics (.data, copied from flash at reset)
@@ -284,13 +286,11 @@ run_stack_overflow() {
 
 # The real board's build (nothing can run it here): its own workspace and
 # .cargo/config.toml, the repository's target directory (after the M4F
-# firmware's build, whose dependencies it reuses); prints its sizes and
-# checks its stack layout.
+# firmware's build, whose crates.io dependencies it reuses); prints its
+# sizes. Its stack layout is checked with the other images' (elf_checks).
+nrf52840_dk_elf=target/thumbv7em-none-eabihf/release/abtrack-nrf52840-dk
 build_nrf52840_dk() {
     (cd boards/nrf52840-dk && cargo build --release) || return
-    local elf=target/thumbv7em-none-eabihf/release/abtrack-nrf52840-dk tool
-    tool=$(firmware_check_tool) || return
-    "$tool" layout --ram-origin 0x20000000 "$elf" || return
     bash scripts/sizes.sh --nrf52840-dk
 }
 
@@ -324,10 +324,10 @@ for t in "${ABTRACK_TARGETS[@]}"; do
     target_args+=(--target "$t")
 done
 # The library's targets for clippy and the package check: one with 32-bit
-# atomics and one without, the only target property its code depends on
-# (`cfg(target_has_atomic = "32")`, src/num/fixed32.rs); the Cortex-M3's
-# sources are the M4F's (the firmware build compiles the library for all
-# three).
+# atomics and one without, the only target property that changes which of
+# its code compiles (`cfg(target_has_atomic = "32")`, src/num/fixed32.rs);
+# the Cortex-M3 compiles the M4F's sources (the firmware build compiles the
+# library for all three).
 library_targets=(thumbv7em-none-eabihf thumbv6m-none-eabi)
 library_target_args=()
 for t in "${library_targets[@]}"; do
@@ -394,8 +394,8 @@ check_on_msrv() {
 # arithmetic are errors, and so is every other clippy warning
 # (docs/safety.md). Its code generation for the three targets is the
 # firmware build's. Every image is built here, the nRF52840-DK's last (it
-# reuses the M4F build's dependencies), so that no later lane holds the
-# build directory's lock for a link while the others run.
+# reuses the M4F build's crates.io dependencies), so that no later lane
+# holds the build directory's lock for a link while the others run.
 library_and_firmware_steps() {
     step "cargo fmt --check" cargo fmt --check
     step "library alone for the M4F and the M0: clippy, no panic paths (indexing, unwrap, arithmetic)" \
@@ -403,7 +403,7 @@ library_and_firmware_steps() {
     step "library: no firmware crates among its dependencies" library_has_no_firmware_dependencies
     step "library: the crates.io package (cargo publish --dry-run --no-verify; every file the build reads packaged)" check_package
     step "firmware build for the three targets (and the example static_track_table)" build_firmware
-    step "nRF52840-DK demo build (boards/nrf52840-dk: defmt-rtt, probe-rs runner, flip-link)" build_nrf52840_dk
+    step "nRF52840-DK demo build (boards/nrf52840-dk: defmt-rtt, probe-rs runner, flip-link) and its sizes" build_nrf52840_dk
 }
 
 # The library's host-side checks, each in its own target directory (under
@@ -433,7 +433,7 @@ ABTRACK_FIRMWARE_CHECK=$(firmware_check_tool) || ABTRACK_FIRMWARE_CHECK=
 # lane).
 elf_checks() {
     step "firmware: no call into core::panicking in any release ELF" check_no_panic_calls
-    step "firmware: stack below the static data in every release ELF (flip-link)" check_stack_layout
+    step "firmware: stack below the static data in every release ELF, the nRF52840-DK's too (flip-link)" check_stack_layout
     step "firmware: each demo image's .data under 4 KiB (three boards)" check_demo_data
     step "firmware: no double-precision soft-float routine in the M4F example image" check_example_soft_double
 }
