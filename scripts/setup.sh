@@ -96,14 +96,18 @@ ensure_targets() {
     rustup target add "${missing[@]}"
 }
 
-# rustfmt, for `cargo fmt --check`.
-ensure_rustfmt() {
+# rustfmt and clippy, for `cargo fmt --check` and the library's clippy pass
+# (rustup's minimal profile has neither).
+ensure_rustfmt_and_clippy() {
     ensure_cargo
-    cargo fmt --version >/dev/null 2>&1 && return 0
+    local missing=()
+    cargo fmt --version >/dev/null 2>&1 || missing+=(rustfmt)
+    cargo clippy --version >/dev/null 2>&1 || missing+=(clippy)
+    [ ${#missing[@]} -eq 0 ] && return 0
     command -v rustup >/dev/null ||
-        die "rustfmt is missing and rustup is not installed: install rustfmt for your toolchain, then re-run"
-    say "rustup component add rustfmt"
-    rustup component add rustfmt
+        die "${missing[*]} missing and rustup is not installed: install them for your toolchain, then re-run"
+    say "rustup component add ${missing[*]}"
+    rustup component add "${missing[@]}"
 }
 
 # A C compiler/linker: Rust links host programs (host-tests, defmt-print)

@@ -44,7 +44,7 @@
 #
 #   scripts/test.sh
 #
-# Installs what is missing (Rust targets, rustfmt, the minimum-version
+# Installs what is missing (Rust targets, rustfmt and clippy, the minimum-version
 # toolchain, qemu-system-arm, a C compiler and llvm when root, defmt-print,
 # flip-link, nightly and cargo-fuzz). Every step runs even if an earlier one
 # failed; the summary lists them with their wall and CPU times (and when
@@ -56,7 +56,7 @@ cd "$(dirname "$0")/.."
 . scripts/setup.sh
 
 ensure_targets "${ABTRACK_TARGETS[@]}"
-ensure_rustfmt
+ensure_rustfmt_and_clippy
 ensure_host_linker
 ensure_qemu
 ensure_defmt_print
