@@ -259,9 +259,9 @@ ensure_cargo_fuzz() {
         die "installing cargo-fuzz failed; install it with 'cargo install cargo-fuzz --locked', then re-run"
 }
 
-# The minimum Rust version of the library: `rust-version` of the root
-# workspace's [workspace.package] (Cargo.toml), the one place it is
-# declared.
+# The minimum Rust version of the library and the firmware: `rust-version`
+# of the root workspace's [workspace.package] (Cargo.toml), the one place it
+# is declared.
 msrv() {
     awk '/^\[workspace\.package\]/ { p = 1; next } /^\[/ { p = 0 }
          p && $1 == "rust-version" { gsub(/"/, "", $3); print $3; exit }' \
@@ -278,7 +278,7 @@ ensure_msrv_toolchain() {
     if ! rustup run "$version" rustc --version >/dev/null 2>&1; then
         command -v rustup >/dev/null ||
             die "the minimum Rust version $version is missing and rustup is not installed: install that toolchain, then re-run"
-        say "rustup toolchain install $version --profile minimal (the minimum Rust version of the library)"
+        say "rustup toolchain install $version --profile minimal (the minimum Rust version of the library and the firmware)"
         rustup toolchain install "$version" --profile minimal
     fi
     if ! ls "$(rustup run "$version" rustc --print target-libdir --target thumbv7em-none-eabihf 2>/dev/null)"/libcore-*.rlib >/dev/null 2>&1; then

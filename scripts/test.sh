@@ -7,7 +7,8 @@
 #      library's doc examples (cargo test -p abtrack --doc) and its
 #      examples/ (built; examples/tcas_cycle.rs run); in lanes beside it:
 #      the library's documentation with no rustdoc warning (cargo doc, as
-#      docs.rs builds it) and the library on its minimum Rust version,
+#      docs.rs builds it) and the library and the firmware on their minimum
+#      Rust version,
 #   3. (in a lane beside step 2) the library alone (no default features)
 #      for the M4F and the M0 (with and without 32-bit atomics, the only
 #      target property that changes which of its code compiles) in one
@@ -380,12 +381,14 @@ build_firmware() {
         cargo build --release --target thumbv7em-none-eabihf -p abtrack-firmware --example static_track_table
 }
 
-# The library alone (no default features) on its minimum Rust version, for
-# the M4F. (The firmware, an application, declares the toolchain it is
-# built with: boards/qemu/Cargo.toml.)
+# The library alone (no default features), then the firmware's binaries
+# and examples, on the minimum Rust version, for the M4F (one target
+# directory: the two share their dependencies' builds).
 check_on_msrv() {
     cargo "+$(msrv)" check -p abtrack --lib --no-default-features \
-        --target thumbv7em-none-eabihf --target-dir target/msrv
+        --target thumbv7em-none-eabihf --target-dir target/msrv &&
+        cargo "+$(msrv)" check -p abtrack-firmware --bins --examples \
+            --target thumbv7em-none-eabihf --target-dir target/msrv
 }
 
 # The library alone (no default features) for the M4F and the M0
@@ -409,13 +412,13 @@ library_and_firmware_steps() {
 # The library's host-side checks, each in its own target directory (under
 # target/) so that no lane waits for another's build lock: the
 # documentation docs.rs builds (all features, the host target) with no
-# rustdoc warning (broken intra-doc links among them); the library on its
-# minimum Rust version (Cargo.toml `rust-version`).
+# rustdoc warning (broken intra-doc links among them); the library and the
+# firmware on their minimum Rust version (Cargo.toml `rust-version`).
 library_on_the_host() {
     step "library: cargo doc, no warnings" in_host_tests env RUSTDOCFLAGS="-D warnings" \
         cargo doc --manifest-path ../Cargo.toml -p abtrack --lib --no-deps --all-features \
         --target-dir ../target/doc-check
-    step "library on its minimum Rust version $(msrv) (cargo +$(msrv) check)" \
+    step "library and firmware on their minimum Rust version $(msrv) (cargo +$(msrv) check)" \
         check_on_msrv
 }
 
