@@ -69,11 +69,9 @@ for t in "${targets[@]}"; do
     elves+=("target/$t/release/bench")
 done
 cargo build --quiet --release "${target_args[@]}" --bin bench --features bench-anchors
-check_tool=$(firmware_check_tool) || die "firmware-check (host-tests) did not build"
 checks_log=target/bench/elf-checks.log
-allow=$(panic_allowances_for bench)
-if "$check_tool" panics ${allow:+"$allow"} "${elves[@]}" >"$checks_log" 2>&1 &&
-    "$check_tool" layout --ram-origin 0x20000000 "${elves[@]}" >>"$checks_log" 2>&1; then
+if check_panic_calls bench "${elves[@]}" >"$checks_log" 2>&1 &&
+    check_stack_layout_of "${elves[@]}" >>"$checks_log" 2>&1; then
     say "benchmark images: no call into core::panicking but minikalman's, the stack below the statics ($checks_log)"
 else
     tail -n 20 "$checks_log" >&2

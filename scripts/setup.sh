@@ -241,6 +241,25 @@ panic_allowances_for() {
     esac
 }
 
+# check_panic_calls <binary> <elf>...: no call into core::panicking in the
+# ELFs of one binary (its targets), but those its allowances cover.
+check_panic_calls() {
+    local bin=$1 tool allow
+    shift
+    tool=$(firmware_check_tool) || return
+    allow=$(panic_allowances_for "$bin")
+    "$tool" panics ${allow:+"$allow"} "$@"
+}
+
+# check_stack_layout_of <elf>...: the stack below the static data
+# (flip-link) in each ELF; RAM starts at 0x2000_0000 on every board
+# (boards/*/memory.x).
+check_stack_layout_of() {
+    local tool
+    tool=$(firmware_check_tool) || return
+    "$tool" layout --ram-origin 0x20000000 "$@"
+}
+
 # A nightly toolchain and cargo-fuzz, for the fuzz targets (fuzz/,
 # scripts/fuzz.sh): cargo-fuzz needs nightly's sanitizer flags; everything
 # else builds with the stable toolchain.

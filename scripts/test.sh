@@ -211,15 +211,13 @@ firmware_elves() {
 # side by side (each check is one llvm-objdump at a time), their reports in
 # order.
 check_no_panic_calls() {
-    local tool status=0 b t allow pids=() bins=()
-    tool=$(firmware_check_tool) || return
+    local status=0 b t pids=() bins=()
     for b in $(firmware_bins); do
-        allow=$(panic_allowances_for "$b")
         local elves=()
         for t in "${ABTRACK_TARGETS[@]}"; do
             elves+=("target/$t/release/$b")
         done
-        "$tool" panics ${allow:+"$allow"} "${elves[@]}" >"$log_dir/panics-$b.log" 2>&1 &
+        check_panic_calls "$b" "${elves[@]}" >"$log_dir/panics-$b.log" 2>&1 &
         pids+=("$!")
         bins+=("$b")
     done
@@ -233,11 +231,8 @@ check_no_panic_calls() {
 
 # Every release ELF of the three emulated boards and the nRF52840-DK's.
 check_stack_layout() {
-    local tool
-    tool=$(firmware_check_tool) || return
-    # RAM starts at 0x2000_0000 on the four boards (boards/*/memory.x).
     # shellcheck disable=SC2046
-    "$tool" layout --ram-origin 0x20000000 $(firmware_elves) "$nrf52840_dk_elf"
+    check_stack_layout_of $(firmware_elves) "$nrf52840_dk_elf"
 }
 
 # Each demo image's initialised statics (.data, copied from flash at reset)
