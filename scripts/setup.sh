@@ -194,7 +194,7 @@ ensure_llvm_tools() {
         say "rustup component add llvm-tools"
         rustup component add llvm-tools
         local dir
-        dir="$(rustc --print sysroot)/lib/rustlib/$(rustc -vV | sed -n 's/^host: //p')/bin"
+        dir="$(rustc --print sysroot)/lib/rustlib/$(host_triple)/bin"
         [ -x "$dir/llvm-objdump" ] && {
             export LLVM_TOOLS_DIR=$dir
             return 0
@@ -207,6 +207,15 @@ ensure_llvm_tools() {
 # `release`, or the one ABTRACK_HOST_PROFILE names (the test command's
 # `checks`, host-tests/Cargo.toml). Its output directory has its name.
 host_profile() { echo "${ABTRACK_HOST_PROFILE:-release}"; }
+
+# The host's target triple (host-tests/.cargo/config.toml builds for it
+# explicitly, so its outputs are under target/<triple>/).
+host_triple() { rustc -vV | sed -n 's/^host: //p'; }
+
+# Where host-tests' build with host_profile puts its binaries and examples.
+host_tests_out_dir() {
+    echo "$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)/host-tests/target/$(host_triple)/$(host_profile)"
+}
 
 # Builds host-tests' firmware-check (the panic and stack-layout checks on
 # the firmware ELFs) and prints its path; once it is in
@@ -222,9 +231,7 @@ firmware_check_tool() {
     root=$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)
     (cd "$root/host-tests" && cargo build --profile "$(host_profile)" --quiet --bin firmware-check) >&2 || return
     (cd "$root/host-tests" && cargo metadata --format-version 1 --no-deps >/dev/null) || return
-    local host
-    host=$(rustc -vV | sed -n 's/^host: //p')
-    echo "$root/host-tests/target/$host/$(host_profile)/firmware-check"
+    echo "$(host_tests_out_dir)/firmware-check"
 }
 
 # Third-party crates allowed to keep panic calls, per image, each with its

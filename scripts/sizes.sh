@@ -18,7 +18,7 @@ cd "$(dirname "$0")/.."
 find_size_tool() {
     local sysroot host
     sysroot=$(rustc --print sysroot)
-    host=$(rustc -vV | sed -n 's/^host: //p')
+    host=$(host_triple)
     local candidates=("$sysroot/lib/rustlib/$host/bin/llvm-size")
     local c
     for c in "${candidates[@]}"; do

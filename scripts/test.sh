@@ -309,10 +309,8 @@ host_tests_steps() {
 # The library's examples/, built in host-tests' workspace (the library is
 # one of its dependencies), and examples/tcas_cycle.rs run.
 run_library_examples() {
-    local host_triple
-    host_triple=$(rustc -vV | sed -n 's/^host: //p')
     in_host_tests cargo build --profile "$(host_profile)" -p abtrack --examples &&
-        "host-tests/target/$host_triple/$(host_profile)/examples/tcas_cycle"
+        "$(host_tests_out_dir)/examples/tcas_cycle"
 }
 
 target_args=()
