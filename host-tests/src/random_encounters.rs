@@ -17,7 +17,8 @@
 //!   reference has one, the run none; the same for TAs (an RA counts as a
 //!   TA); agreement: the run has a TA (RA) exactly when the reference has;
 //! * onset delay: the run's first RA scan minus the reference's, s;
-//! * wrong sense: both have an RA and the senses at onset differ;
+//! * wrong sense: both have an RA and the senses at onset differ (the
+//!   tables also give the largest |VMD| of those runs' encounters);
 //! * RA in pieces: the run's RA starts more than once;
 //! * RA reversed: the run's RA changes sense while in force (a sense
 //!   reversal; the reference has none: the own aircraft does not follow
@@ -319,13 +320,17 @@ pub struct Tally {
     pub ta_agree: usize,
     pub ra_agree: usize,
     pub wrong_sense: usize,
+    /// The largest |VMD| (the encounter's, at closest approach) of the
+    /// wrong-sense runs, ft: how near a tie the two senses were.
+    pub wrong_sense_largest_vmd_ft: Option<f64>,
     pub in_pieces: usize,
     pub reversed: usize,
     pub onset_delays_s: Vec<f64>,
 }
 
 impl Tally {
-    pub fn add(&mut self, r: &RunResult) {
+    /// Adds run `r` of encounter `e`.
+    pub fn add(&mut self, e: &RandomEncounter, r: &RunResult) {
         self.runs += 1;
         self.reference_ra += usize::from(r.reference_ra);
         if r.refused {
@@ -339,6 +344,11 @@ impl Tally {
         self.ta_agree += usize::from(r.ta == r.reference_ta);
         self.ra_agree += usize::from(r.ra == r.reference_ra);
         self.wrong_sense += usize::from(r.wrong_sense);
+        if r.wrong_sense {
+            let vmd = e.vmd_ft.abs();
+            self.wrong_sense_largest_vmd_ft =
+                Some(self.wrong_sense_largest_vmd_ft.map_or(vmd, |v| v.max(vmd)));
+        }
         self.in_pieces += usize::from(r.ra_pieces > 1);
         self.reversed += usize::from(r.reversed);
         self.onset_delays_s.extend(r.onset_delay_s);

@@ -83,7 +83,7 @@ pub fn tally(encounters: &[RandomEncounter], runs: &[Vec<RunResult>], level: Opt
     let mut t = Tally::default();
     for (e, rs) in encounters.iter().zip(runs) {
         if level.is_none_or(|l| l == e.level) {
-            rs.iter().for_each(|r| t.add(r));
+            rs.iter().for_each(|r| t.add(e, r));
         }
     }
     t
@@ -117,6 +117,7 @@ pub fn by_level_table(encounters: &[RandomEncounter], results: &SuiteResults) ->
         "onset delay median (s)",
         "onset delay p95 (s)",
         "wrong sense",
+        "wrong sense: largest |VMD| (ft)",
         "RA in pieces",
         "RA reversed",
     ]);
@@ -140,6 +141,8 @@ pub fn by_level_table(encounters: &[RandomEncounter], results: &SuiteResults) ->
                     seconds(s.delay_quantile(0.5)),
                     seconds(s.delay_quantile(0.95)),
                     s.wrong_sense.to_string(),
+                    s.wrong_sense_largest_vmd_ft
+                        .map_or("–".into(), |v| format!("{v:.0}")),
                     s.in_pieces.to_string(),
                     s.reversed.to_string(),
                 ]);
