@@ -152,13 +152,16 @@ ensure_defmt_print() {
         die "defmt-print was installed in $CARGO_BIN_DIR but does not run from there; put that directory first on PATH, then re-run"
 }
 
+# The repository's root (this file's directory's parent), absolute.
+repo_root() { (cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd); }
+
 # The firmware binaries, as declared in boards/qemu/Cargo.toml (the
 # `name = ...` of each [[bin]]): one list, read where it is declared.
 firmware_bins() {
     awk '/^\[\[bin\]\]/ { in_bin = 1; next }
          /^\[/ { in_bin = 0 }
          in_bin && $1 == "name" { gsub(/"/, "", $3); print $3 }' \
-        "$(dirname "${BASH_SOURCE[0]}")/../boards/qemu/Cargo.toml"
+        "$(repo_root)/boards/qemu/Cargo.toml"
 }
 
 # flip-link, the firmware's linker (.cargo/config.toml): places the stack
@@ -214,7 +217,7 @@ host_triple() { rustc -vV | sed -n 's/^host: //p'; }
 
 # Where host-tests' build with host_profile puts its binaries and examples.
 host_tests_out_dir() {
-    echo "$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)/host-tests/target/$(host_triple)/$(host_profile)"
+    echo "$(repo_root)/host-tests/target/$(host_triple)/$(host_profile)"
 }
 
 # Builds host-tests' firmware-check (the panic and stack-layout checks on
@@ -228,7 +231,7 @@ firmware_check_tool() {
         return 0
     fi
     local root
-    root=$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)
+    root=$(repo_root)
     (cd "$root/host-tests" && cargo build --profile "$(host_profile)" --quiet --bin firmware-check) >&2 || return
     (cd "$root/host-tests" && cargo metadata --format-version 1 --no-deps >/dev/null) || return
     echo "$(host_tests_out_dir)/firmware-check"
@@ -291,7 +294,7 @@ ensure_cargo_fuzz() {
 msrv() {
     awk '/^\[workspace\.package\]/ { p = 1; next } /^\[/ { p = 0 }
          p && $1 == "rust-version" { gsub(/"/, "", $3); print $3; exit }' \
-        "$(dirname "${BASH_SOURCE[0]}")/../Cargo.toml"
+        "$(repo_root)/Cargo.toml"
 }
 
 # That toolchain with the M4F's target, for the test command's check of

@@ -313,20 +313,14 @@ run_library_examples() {
         "$(host_tests_out_dir)/examples/tcas_cycle"
 }
 
-target_args=()
-for t in "${ABTRACK_TARGETS[@]}"; do
-    target_args+=(--target "$t")
-done
+target_args=("${ABTRACK_TARGETS[@]/#/--target=}")
 # The library's targets for clippy and the package check: one with 32-bit
 # atomics and one without, the only target property that changes which of
 # its code compiles (`cfg(target_has_atomic = "32")`, src/num/fixed32.rs);
 # the Cortex-M3 compiles the M4F's sources (the firmware build compiles the
 # library for all three).
 library_targets=(thumbv7em-none-eabihf thumbv6m-none-eabi)
-library_target_args=()
-for t in "${library_targets[@]}"; do
-    library_target_args+=(--target "$t")
-done
+library_target_args=("${library_targets[@]/#/--target=}")
 
 # The package as crates.io gets it: `cargo publish --dry-run --no-verify`
 # makes it without its verification build (a build of the packaged
