@@ -59,12 +59,18 @@ pub const MANOEUVRE_SHUTDOWN_CYCLES: u8 = 10;
 /// The bearing cross-check: a range-based HMD more than this times the
 /// bearing tracker's is a manoeuvre (DO-185B `rbratio`).
 pub const BEARING_CROSS_CHECK_RATIO: f64 = 2.0;
+/// The bearing tracker's HMD in the cross-check is its upper bound
+/// b + k_c·σ_b with this k_c: a manoeuvre, which turns the filter off for
+/// [`MANOEUVRE_SHUTDOWN_CYCLES`], is declared only when the disagreement
+/// is beyond the bearing's noise (a one-sided 97.7 % bound, ours; DO-185B
+/// compares b alone, from a bearing far better than a 5° σ).
+pub const CROSS_CHECK_CONFIDENCE: f64 = 2.0;
 /// The HMD filter's confidence factor k for a new threat: its RA needs
-/// the combined miss distance's upper bound m + kσ at or under the level's
-/// HMD threshold (US patent 5,566,074: each miss-distance estimate is used
+/// the combined miss distance's bound m + kσ at or under the level's HMD
+/// threshold (US patent 5,566,074: each miss-distance estimate is used
 /// with its uncertainty; the bound is ours, k read off the trade-off of
-/// docs/tcas.md).
-pub const MISS_DISTANCE_CONFIDENCE: f64 = 0.35;
+/// docs/tcas.md: 0, the combined estimate itself).
+pub const MISS_DISTANCE_CONFIDENCE: f64 = 0.0;
 /// The factor for a continuing threat: its RA ends only when the lower
 /// bound m − kσ exceeds 1.05·DMOD (booklet, v7.0 changes: the filter ends
 /// an RA when confident the miss will be large; a one-sided 97.7 % bound,
@@ -145,6 +151,7 @@ struct Constants<S> {
     miss_distance_tau_limit_s: S,
     continuing_hmd_dmod_factor: S,
     bearing_cross_check_ratio: S,
+    cross_check_confidence: S,
     miss_distance_confidence: S,
     continuing_miss_distance_confidence: S,
     acceleration_sigma_per_residual_sigma: S,
@@ -199,6 +206,7 @@ impl<S: Scalar> CycleThresholds<S> {
                 miss_distance_tau_limit_s: c(MISS_DISTANCE_TAU_LIMIT_S),
                 continuing_hmd_dmod_factor: c(CONTINUING_HMD_DMOD_FACTOR),
                 bearing_cross_check_ratio: c(BEARING_CROSS_CHECK_RATIO),
+                cross_check_confidence: c(CROSS_CHECK_CONFIDENCE),
                 miss_distance_confidence: c(MISS_DISTANCE_CONFIDENCE),
                 continuing_miss_distance_confidence: c(CONTINUING_MISS_DISTANCE_CONFIDENCE),
                 acceleration_sigma_per_residual_sigma: c(ACCELERATION_SIGMA_PER_RESIDUAL_SIGMA),
@@ -495,7 +503,8 @@ impl MissDistanceFilter {
     /// without an estimate, at SL 2, and for
     /// [`MANOEUVRE_SHUTDOWN_CYCLES`] after a manoeuvre (DO-185B
     /// `detect_maneuvers`: r̈ below minus its threshold, or the thresholded
-    /// range HMD more than twice b + kσ_b).
+    /// range HMD more than twice b + k_c·σ_b, k_c =
+    /// [`CROSS_CHECK_CONFIDENCE`]).
     fn miss_distance<S: Scalar>(
         &mut self,
         range: &RangeEstimate<S>,
@@ -506,7 +515,7 @@ impl MissDistanceFilter {
         let k = &thresholds.constants;
         let confidence = k.miss_distance_confidence;
         let bearing_upper = bearing.map(|(b, sigma)| match sigma {
-            Some(sigma) => b + confidence.times(sigma),
+            Some(sigma) => b + k.cross_check_confidence.times(sigma),
             None => b,
         });
         let bearing_disagrees = match (range.miss_distance_m(), bearing_upper) {

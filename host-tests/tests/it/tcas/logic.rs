@@ -282,8 +282,8 @@ fn advisories_only_from_firm_tracks() {
 }
 
 /// The HMD filter (SL 5: HMD 3342 ft = 1018.6 m; continuing threats 1.05·
-/// DMOD = 1069.5 m for more than 4 cycles; k = 0.35 for a new threat, 2 for
-/// a continuing one). r = 3000 m,
+/// DMOD = 1069.5 m for more than 4 cycles; k = 0 for a new threat, 2 for
+/// a continuing one; the bearing cross-check takes b + 2σ_b). r = 3000 m,
 /// ṙ = −200 m/s and r̈ = 4.4444 m/s² project d² = 9·10⁶·13 333/53 333 =
 /// 2.25·10⁶ m² (d = 1500 m); linearised at t = 1018.6 m, d²/(2t) + t/2 =
 /// 1613.7 m, with σ r³ṙ²σ(r̈)/((x + ṙ²)²·2t) = 186.4·σ(r̈), σ(r̈) =
@@ -310,20 +310,28 @@ fn miss_distance_filter_new_and_continuing_threats() {
     assert!((a.miss_distance_m.unwrap() - 1613.7).abs() < 0.5, "{a:?}");
     assert_eq!(a.advisory, Advisory::Traffic);
     assert!(a.miss_distance_filtered);
-    // Range 1613.7 ± 200, bearing 800 ± 200: equal weights, m = 1206.9,
-    // σ = 141.4, m + 0.35σ = 1256.4 m: filtered.
+    // Range 1613.7 ± 200, bearing 800 ± 200: equal weights, m = 1206.9 m:
+    // filtered.
     let sigma = RESIDUAL_FOR_200_M;
     let a = s
         .assess(&cycle, &with_hmd(800.0, 200.0, sigma), 1.0)
         .unwrap();
-    assert!((a.miss_distance_m.unwrap() - 1256.4).abs() < 0.5, "{a:?}");
+    assert!((a.miss_distance_m.unwrap() - 1206.9).abs() < 0.5, "{a:?}");
+    assert!(a.miss_distance_filtered);
+    // Bearing 500 ± 300: the range HMD (1500 m) is more than twice b, but
+    // not twice b + 2σ_b = 1100 m: within the bearing's noise, no
+    // manoeuvre; m = 1271.0 m (weights 1/200², 1/300²): filtered.
+    let a = s
+        .assess(&cycle, &with_hmd(500.0, 300.0, sigma), 1.0)
+        .unwrap();
+    assert!((a.miss_distance_m.unwrap() - 1271.0).abs() < 0.5, "{a:?}");
     assert!(a.miss_distance_filtered);
     // Bearing 800 ± 50: weight of the range 50²/(200² + 50²) = 0.0588,
-    // m = 847.9, σ = 48.5, m + 0.35σ = 864.9 m: an RA.
+    // m = 847.9 m: an RA.
     let a = s
         .assess(&cycle, &with_hmd(800.0, 50.0, sigma), 1.0)
         .unwrap();
-    assert!((a.miss_distance_m.unwrap() - 864.9).abs() < 0.5, "{a:?}");
+    assert!((a.miss_distance_m.unwrap() - 847.9).abs() < 0.5, "{a:?}");
     assert_eq!(a.advisory, Advisory::Resolution);
     // Continuing, at t = 1069.5 m (range statistic 1586.7 ± 190.5): with
     // b = 800 ± 50 the lower bound m − 2σ = 754.0 m keeps the RA; with
@@ -348,7 +356,7 @@ fn miss_distance_filter_new_and_continuing_threats() {
     assert_eq!(levels[..4], [Advisory::Resolution; 4]);
     assert_eq!(levels[4], Advisory::Traffic);
     // A range HMD (1500 m, r̈ over its threshold 0.457·σ_resid/10.67 m)
-    // more than twice b + 0.35σ_b = 317.5 m is a manoeuvre: the filter is off
+    // more than twice b + 2σ_b = 400 m is a manoeuvre: the filter is off
     // (10 cycles) and a new threat gets its RA.
     let mut s = ThreatState::new();
     let a = s
