@@ -63,7 +63,7 @@ pub const BEARING_CROSS_CHECK_RATIO: f64 = 2.0;
 /// b + k_c·σ_b with this k_c: a manoeuvre, which turns the filter off for
 /// [`MANOEUVRE_SHUTDOWN_CYCLES`], is declared only when the disagreement
 /// is beyond the bearing's noise (a one-sided 97.7 % bound, ours; DO-185B
-/// compares b alone, from a bearing far better than a 5° σ).
+/// compares b alone).
 pub const CROSS_CHECK_CONFIDENCE: f64 = 2.0;
 /// The HMD filter's confidence factor k for a new threat: its RA needs
 /// the combined miss distance's bound m + kσ at or under the level's HMD
