@@ -610,6 +610,10 @@ pub struct SceneRun {
     /// Reported tracks never paired.
     pub never_paired: usize,
     pub reported_tracks: usize,
+    /// Truth points not paired before their flight's first pairing (the
+    /// track's start and confirmation) and after it (losses).
+    pub unpaired_before_first: usize,
+    pub unpaired_after_first: usize,
     /// The least whole-replay time of [`TIMING_REPEATS`], s.
     pub seconds: f64,
     /// The design `replay --tracker` printed.
@@ -686,6 +690,13 @@ pub fn score_tracks(
         })
         .collect();
     let m = track_metrics_with(&scans, PAIR_LIMIT_M, PairingCost::Distance);
+    let (unpaired_before_first, unpaired_after_first) =
+        m.targets.iter().fold((0, 0), |(before, after), t| {
+            (
+                before + t.scans_present - t.scans_present_since_first_assignment,
+                after + t.scans_present_since_first_assignment - t.scans_tracked,
+            )
+        });
     Ok(SceneRun {
         label: label.to_string(),
         coverage: m.completeness,
@@ -696,6 +707,8 @@ pub fn score_tracks(
         false_tracks: m.mostly_unassigned_tracks.len(),
         never_paired: m.false_tracks.len(),
         reported_tracks: m.established_tracks,
+        unpaired_before_first,
+        unpaired_after_first,
         seconds,
         design,
         scans,
@@ -981,7 +994,9 @@ pub fn run(ctx: &Context) -> Result<(), String> {
          first pairing; id changes: changes of the paired track id between consecutive paired \
          scans of a flight; false tracks: paired in under half of their reported scans (never \
          paired in brackets); OSPA c = {OSPA_CUTOFF_M} m, p = 2, averaged over the scans; RMSE \
-         over the paired points. Time: the whole replay (read the file, track, write the CSV) \
+         over the paired points; the truth points not paired, split at the flight's first \
+         pairing (before it: the track's start and its M-of-N confirmation; after it: losses). \
+         Time: the whole replay (read the file, track, write the CSV) \
          in-process on this host, the least of {TIMING_REPEATS} runs; it varies between runs and \
          hosts. The Stone Soup rows, when present, score the tracks `scripts/stonesoup_scene.py` \
          wrote into `{STONESOUP_DIR}/` (Stone Soup 1.9.1's GNN tracker configured from the same \
@@ -998,6 +1013,8 @@ pub fn run(ctx: &Context) -> Result<(), String> {
         "false tracks",
         "never paired",
         "reported tracks",
+        "truth unpaired before its first pairing",
+        "truth unpaired after it",
         "replay time (ms)",
     ]);
     let mut speed: Vec<String> = Vec::new();
@@ -1082,6 +1099,8 @@ fn scene_row(scene: &Scene, r: &SceneRun) -> Vec<String> {
         r.false_tracks.to_string(),
         r.never_paired.to_string(),
         r.reported_tracks.to_string(),
+        r.unpaired_before_first.to_string(),
+        r.unpaired_after_first.to_string(),
         format!("{:.0}", r.seconds * 1000.0),
     ]
 }
