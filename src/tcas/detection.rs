@@ -9,6 +9,7 @@
 use super::measures::{all_valid, valid_result};
 use super::range_tracker::{
     RangeEstimate, ACCELERATION_SIGMA_PER_RESIDUAL_SIGMA, MIN_ALERT_FIRMNESS,
+    RATE_ACCELERATION_ERROR_CORRELATION, RATE_SIGMA_PER_RESIDUAL_SIGMA,
 };
 use super::sensitivity::{AlertThresholds, OwnAircraft, SensitivityParameters};
 use super::{
@@ -155,6 +156,10 @@ struct Constants<S> {
     miss_distance_confidence: S,
     continuing_miss_distance_confidence: S,
     acceleration_sigma_per_residual_sigma: S,
+    rate_sigma_per_residual_sigma: S,
+    /// ρ of the ṙ and r̈ errors, and √(1 − ρ²).
+    rate_acceleration_correlation: S,
+    rate_acceleration_decorrelation: S,
     tau_cap_limit_s: S,
     proximate_range_m: S,
     proximate_altitude_ft: S,
@@ -210,6 +215,11 @@ impl<S: Scalar> CycleThresholds<S> {
                 miss_distance_confidence: c(MISS_DISTANCE_CONFIDENCE),
                 continuing_miss_distance_confidence: c(CONTINUING_MISS_DISTANCE_CONFIDENCE),
                 acceleration_sigma_per_residual_sigma: c(ACCELERATION_SIGMA_PER_RESIDUAL_SIGMA),
+                rate_sigma_per_residual_sigma: c(RATE_SIGMA_PER_RESIDUAL_SIGMA),
+                rate_acceleration_correlation: c(RATE_ACCELERATION_ERROR_CORRELATION),
+                rate_acceleration_decorrelation: c(libm::sqrt(
+                    1.0 - RATE_ACCELERATION_ERROR_CORRELATION * RATE_ACCELERATION_ERROR_CORRELATION,
+                )),
                 tau_cap_limit_s: c(TAU_CAP_LIMIT_S),
                 proximate_range_m: c(PROXIMATE_RANGE_NM * METRES_PER_NAUTICAL_MILE),
                 proximate_altitude_ft: c(PROXIMATE_ALTITUDE_FT),
@@ -490,9 +500,10 @@ impl MissDistanceFilter {
     /// The HMDs the filter uses this cycle, m (US patent 5,566,074: the
     /// range- and bearing-based miss distances each with its uncertainty).
     /// The range track's d² = r²·x/(x + ṙ²), x = r·r̈ (DO-185B
-    /// `project_hmd`), has σ r³ṙ²·σ(r̈)/(x + ṙ²)², σ(r̈) from the track's
-    /// residual RMS ([`ACCELERATION_SIGMA_PER_RESIDUAL_SIGMA`]/T²); the
-    /// bearing track's b has σ_b. Each is linearised at the threshold t it
+    /// `project_hmd`), has its σ from those of r̈ and ṙ and their
+    /// correlation ([`linearised_range_miss`]), each from the track's
+    /// residual RMS ([`ACCELERATION_SIGMA_PER_RESIDUAL_SIGMA`]/T²,
+    /// [`RATE_SIGMA_PER_RESIDUAL_SIGMA`]/T); the bearing track's b has σ_b. Each is linearised at the threshold t it
     /// is compared with (d²/(2t) + t/2 is d at d = t: the decision d > t
     /// is kept exactly; [`linearised_range_miss`]) and the two are combined
     /// with inverse-variance weights into m ± σ. A new threat's HMD is
@@ -540,9 +551,13 @@ impl MissDistanceFilter {
             .acceleration_sigma_per_residual_sigma
             .times(range.residual_sigma_m)
             .over(dt.times(dt));
+        let rate_sigma = k
+            .rate_sigma_per_residual_sigma
+            .times(range.residual_sigma_m)
+            .over(dt);
         let combined_at = |threshold: S| {
             let from_range = if range.initialised {
-                linearised_range_miss(range, acceleration_sigma, threshold)
+                linearised_range_miss(range, (rate_sigma, acceleration_sigma), k, threshold)
             } else {
                 None
             };
@@ -601,17 +616,21 @@ impl MissDistanceFilter {
 }
 
 /// The range track's miss distance linearised at the threshold `t` (m):
-/// d²/(2t) + t/2 with d² = r²·x/(x + ṙ²), x = r·r̈, and its σ
-/// r³ṙ²·σ(r̈)/((x + ṙ²)²·2t) (σ of ṙ neglected: its share is
-/// 2r̈σ(ṙ)/(|ṙ|σ(r̈)), a few per cent), formed without a square of a range.
-/// `None` when x + ṙ² ≤ 0 (no straight path fits) or a step saturates.
+/// d²/(2t) + t/2 with d² = r²·x/(x + ṙ²), x = r·r̈, and its σ: that of d²
+/// over 2t, from the ṙ and r̈ errors (`sigmas`, their correlation ρ in `k`)
+/// through ∂d²/∂r̈ = r³ṙ²/D² and ∂d²/∂ṙ = −2r²xṙ/D², D = x + ṙ²: near
+/// closest approach, where r̈ is large and ṙ small, the ṙ term dominates.
+/// Formed without a square of a range. `None` when D ≤ 0 (no straight
+/// path fits) or a step saturates.
 fn linearised_range_miss<S: Scalar>(
     range: &RangeEstimate<S>,
-    acceleration_sigma: S,
+    (rate_sigma, acceleration_sigma): (S, S),
+    k: &Constants<S>,
     t: S,
 ) -> Option<(S, S)> {
     let r = range.range_m;
-    let rate_squared = range.range_rate_m_per_s.times(range.range_rate_m_per_s);
+    let rate = range.range_rate_m_per_s;
+    let rate_squared = rate.times(rate);
     let x = r.times(range.range_acceleration_m_per_s2);
     let denominator = x + rate_squared;
     if !(denominator > S::ZERO && t > S::ZERO) {
@@ -620,11 +639,17 @@ fn linearised_range_miss<S: Scalar>(
     let r_over_2t = r.over(t + t);
     let half = S::from_f64_lossy(0.5);
     let m = r_over_2t.times(r.times(x.over(denominator))) + half.times(t);
-    let per = r
+    // The two terms of σ(d²)·D/r² (m²/s²), and their correlated sum
+    // √(a² + b² + 2ρab) = hypot(a + ρb, b·√(1 − ρ²)).
+    let from_acceleration = r
         .times(acceleration_sigma)
-        .over(denominator)
         .times(rate_squared.over(denominator));
-    let sigma = r_over_2t.times(r.times(per));
+    let from_rate = -(x.over(denominator).times(rate + rate).times(rate_sigma));
+    let both = hypot(
+        from_acceleration + k.rate_acceleration_correlation.times(from_rate),
+        k.rate_acceleration_decorrelation.times(from_rate),
+    );
+    let sigma = r_over_2t.times(r.times(both.over(denominator)));
     (m.is_valid() && sigma.is_valid()).then_some((m, sigma))
 }
 

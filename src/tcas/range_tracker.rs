@@ -51,6 +51,12 @@ pub const RESIDUAL_SMOOTHING: f64 = 0.1;
 /// error; `tests/it/tcas/logic.rs` solves it again). Ours: DO-185B gives
 /// r̈ no σ.
 pub const ACCELERATION_SIGMA_PER_RESIDUAL_SIGMA: f64 = 0.011_586;
+/// σ of the firm track's ṙ per σ of its range residual, at T = 1 s
+/// (scales as 1/T): the same steady state, ṙ σ 0.140 57·σ_R. Ours.
+pub const RATE_SIGMA_PER_RESIDUAL_SIGMA: f64 = 0.114_692;
+/// The correlation of the firm track's ṙ and r̈ errors in that steady
+/// state (both follow the same residuals). Ours.
+pub const RATE_ACCELERATION_ERROR_CORRELATION: f64 = 0.959_645;
 /// Residuals are clipped to this magnitude before squaring, m (a reply
 /// far off the track is a gate's business, and the square stays within
 /// Q32.32's range).

@@ -286,8 +286,10 @@ fn advisories_only_from_firm_tracks() {
 /// a continuing one; the bearing cross-check takes b + 2σ_b). r = 3000 m,
 /// ṙ = −200 m/s and r̈ = 4.4444 m/s² project d² = 9·10⁶·13 333/53 333 =
 /// 2.25·10⁶ m² (d = 1500 m); linearised at t = 1018.6 m, d²/(2t) + t/2 =
-/// 1613.7 m, with σ r³ṙ²σ(r̈)/((x + ṙ²)²·2t) = 186.4·σ(r̈), σ(r̈) =
-/// 0.011 586·σ_resid (T = 1 s).
+/// 1613.7 m, with σ = r²/(2tD)·√(a² + b² + 2ρab), D = x + ṙ²: a =
+/// rṙ²σ(r̈)/D = 2250·σ(r̈) from r̈, b = −2xṙσ(ṙ)/D = 100·σ(ṙ) from ṙ,
+/// σ(r̈) = 0.011 586·σ_resid, σ(ṙ) = 0.114 692·σ_resid, ρ = 0.959 645
+/// (T = 1 s): σ = 3.0825·σ_resid (2.1593·σ_resid from r̈ alone).
 fn with_hmd(bearing_hmd: f64, bearing_sigma: f64, residual_sigma: f64) -> IntruderObservation<f64> {
     let mut o = observation::<f64>(3000.0, -200.0, Some((8100.0, 0.0)));
     o.range.range_acceleration_m_per_s2 = 13_333.33 / 3000.0;
@@ -298,7 +300,7 @@ fn with_hmd(bearing_hmd: f64, bearing_sigma: f64, residual_sigma: f64) -> Intrud
 }
 
 /// σ_resid giving the range statistic σ 200 m at the new-threat threshold.
-const RESIDUAL_FOR_200_M: f64 = 200.0 / 186.4 / 0.011_586;
+const RESIDUAL_FOR_200_M: f64 = 200.0 / 3.082_54;
 
 #[test]
 fn miss_distance_filter_new_and_continuing_threats() {
@@ -366,15 +368,19 @@ fn miss_distance_filter_new_and_continuing_threats() {
     assert_eq!(a.advisory, Advisory::Resolution);
 }
 
-/// The σ of the firm range track's r̈ per σ of its residual
-/// (`ACCELERATION_SIGMA_PER_RESIDUAL_SIGMA`) is the steady state of the
-/// firmness-8 gains on white range noise: the error covariance P of
-/// x⁺ = (I − KH)F x + Kv solved by iteration, residual variance
-/// HFPFᵀHᵀ + 1.
+/// The σ of the firm range track's r̈ and ṙ per σ of its residual
+/// (`ACCELERATION_SIGMA_PER_RESIDUAL_SIGMA`, `RATE_SIGMA_PER_RESIDUAL_SIGMA`)
+/// and the correlation of their errors (`RATE_ACCELERATION_ERROR_CORRELATION`)
+/// are the steady state of the firmness-8 gains on white range noise: the
+/// error covariance P of x⁺ = (I − KH)F x + Kv solved by iteration,
+/// residual variance HFPFᵀHᵀ + 1.
 #[test]
-fn acceleration_sigma_is_the_steady_state_of_the_firm_gains() {
+fn rate_and_acceleration_sigmas_are_the_steady_state_of_the_firm_gains() {
     use abtrack::gain::tcas::{FIRMNESS_ALPHA, FIRMNESS_BETA, FIRMNESS_GAMMA, MAX_FIRMNESS};
-    use abtrack::tcas::range_tracker::ACCELERATION_SIGMA_PER_RESIDUAL_SIGMA;
+    use abtrack::tcas::range_tracker::{
+        ACCELERATION_SIGMA_PER_RESIDUAL_SIGMA, RATE_ACCELERATION_ERROR_CORRELATION,
+        RATE_SIGMA_PER_RESIDUAL_SIGMA,
+    };
     let i = usize::from(MAX_FIRMNESS);
     let (a, b, g) = (FIRMNESS_ALPHA[i], FIRMNESS_BETA[i], FIRMNESS_GAMMA[i]);
     let f = [[1.0, 1.0, 0.5], [0.0, 1.0, 1.0], [0.0, 0.0, 1.0]];
@@ -412,6 +418,16 @@ fn acceleration_sigma_is_the_steady_state_of_the_firm_gains() {
     assert!(
         (ratio - ACCELERATION_SIGMA_PER_RESIDUAL_SIGMA).abs() < 1e-5,
         "{ratio}"
+    );
+    let rate = (p[1][1] / (predicted + 1.0)).sqrt();
+    assert!(
+        (rate - RATE_SIGMA_PER_RESIDUAL_SIGMA).abs() < 1e-5,
+        "{rate}"
+    );
+    let correlation = p[1][2] / (p[1][1] * p[2][2]).sqrt();
+    assert!(
+        (correlation - RATE_ACCELERATION_ERROR_CORRELATION).abs() < 1e-5,
+        "{correlation}"
     );
 }
 
