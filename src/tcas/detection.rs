@@ -655,7 +655,11 @@ fn linearised_range_miss<S: Scalar>(
 
 /// Two independent estimates (value, σ) combined with inverse-variance
 /// weights: m_b + (m_a − m_b)·σ_b²/(σ_a² + σ_b²), σ = σ_a·σ_b/√(σ_a² + σ_b²)
-/// (no square of a σ is formed). Both σ zero: the first.
+/// (no square of a σ is formed), the σ scaled by S = |m_a − m_b|/√(σ_a² +
+/// σ_b²) when S > 1: estimates further apart than their σ say have a σ
+/// that is too small (the Particle Data Group's scale factor for
+/// inconsistent measurements, Review of Particle Physics, "Averaging
+/// procedures"). Both σ zero: the first.
 fn inverse_variance<S: Scalar>((a, sigma_a): (S, S), (b, sigma_b): (S, S)) -> (S, S) {
     let h = hypot(sigma_a, sigma_b);
     if !(h.is_valid() && h > S::ZERO) {
@@ -663,7 +667,16 @@ fn inverse_variance<S: Scalar>((a, sigma_a): (S, S), (b, sigma_b): (S, S)) -> (S
     }
     let share_b = sigma_b.over(h);
     let weight_a = share_b.times(share_b);
-    let combined = (b + (a - b).times(weight_a), sigma_a.times(share_b));
+    let spread = (a - b).abs().over(h);
+    let sigma = sigma_a.times(share_b);
+    let combined = (
+        b + (a - b).times(weight_a),
+        if spread > S::ONE {
+            sigma.times(spread)
+        } else {
+            sigma
+        },
+    );
     if combined.0.is_valid() && combined.1.is_valid() {
         combined
     } else {

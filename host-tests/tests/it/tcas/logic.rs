@@ -336,15 +336,17 @@ fn miss_distance_filter_new_and_continuing_threats() {
     assert!((a.miss_distance_m.unwrap() - 847.9).abs() < 0.5, "{a:?}");
     assert_eq!(a.advisory, Advisory::Resolution);
     // Continuing, at t = 1069.5 m (range statistic 1586.7 ± 190.5): with
-    // b = 800 ± 50 the lower bound m − 2σ = 754.0 m keeps the RA; with
-    // b = 1400 ± 50 it is 1315.3 m, over 1.05·DMOD, and the RA is dropped
-    // on the fifth cycle.
+    // b = 800 ± 50 the two are 786.7/197.0 = 3.99 σ apart, so the combined
+    // σ (48.4 m) is scaled by 3.99 to 193.2 m and the lower bound
+    // m − 2σ = 850.7 − 386.4 = 464.4 m keeps the RA; with b = 1400 ± 50
+    // (0.95 σ apart: no scaling) it is 1412.0 − 96.7 = 1315.3 m, over
+    // 1.05·DMOD, and the RA is dropped on the fifth cycle.
     for _ in 0..8 {
         let a = s
             .assess(&cycle, &with_hmd(800.0, 50.0, sigma), 1.0)
             .unwrap();
         assert_eq!(a.advisory, Advisory::Resolution);
-        assert!((a.miss_distance_m.unwrap() - 754.0).abs() < 0.5, "{a:?}");
+        assert!((a.miss_distance_m.unwrap() - 464.4).abs() < 0.5, "{a:?}");
     }
     let levels: Vec<_> = (0..5)
         .map(|_| {
