@@ -5,7 +5,10 @@
 //! of the rules on the true states. Writes `results/tcas-random/`: the
 //! table by level (`by_level.md`/`.csv`), false vs missed RAs by level
 //! (`false_vs_missed.svg`), the distribution of RA onset delays
-//! (`onset_delay.svg`) and `summary.md`.
+//! (`onset_delay.svg`), the encounters with false RAs (`false_ras.md`) and
+//! with the other sense at onset (`wrong_senses.md`) at σB 5° and 25 ft,
+//! the HMD filter's trade-off (`trade_off.md`, `trade_off.svg`) and
+//! `summary.md`.
 
 use std::fmt::Write as _;
 
@@ -222,6 +225,7 @@ pub fn run(ctx: &Context) -> Result<(), String> {
     )?;
 
     false_ra_table(&encounters, &results[1][0]).write(&dir, "false_ras")?;
+    wrong_sense_table(&encounters, &results[0][0], &results[1][0]).write(&dir, "wrong_senses")?;
     let trade_off = trade_off_table(&encounters, seeds);
     trade_off.write(&dir, "trade_off")?;
     let point = |row: &Vec<String>, col: usize| row[col].trim_end_matches(" %").parse::<f64>();
@@ -284,7 +288,9 @@ pub fn run(ctx: &Context) -> Result<(), String> {
          the library in f64, f32 and `Fixed32` (its TCAS logic in its wide format), against the f64 reference of the rules \
          on the true states. Definitions in the module docs. Table by level: `by_level.md`; \
          plots: `false_vs_missed.svg`, `onset_delay.svg`; the HMD filter's confidence factor \
-         k swept in `trade_off.md` and `trade_off.svg`.\n",
+         k swept in `trade_off.md` and `trade_off.svg`; at σB 5° and 25 ft, the encounters \
+         with false RAs in `false_ras.md` and those with the other sense at onset, beside \
+         their vertical miss against the 25 ft quantum, in `wrong_senses.md`.\n",
         encounters.len()
     );
     let overall: Vec<&Vec<String>> = table.rows.iter().filter(|r| r[2] == "all").collect();
@@ -378,6 +384,50 @@ pub fn false_ra_table(encounters: &[RandomEncounter], runs: &[Vec<RunResult>]) -
             format!("{:+.0}", e.vmd_ft),
             format!("{:.0}", e.closure_kt),
             format!("{:+.0}", e.intruder_rate_ft_per_min),
+        ]);
+    }
+    table
+}
+
+/// The encounters whose RA takes the other sense at onset under `noisy`
+/// (one condition and type), beside the same encounter on exact inputs
+/// (`exact`): how many runs, and the encounter's vertical miss against the
+/// 25 ft altitude quantum.
+pub fn wrong_sense_table(
+    encounters: &[RandomEncounter],
+    exact: &[Vec<RunResult>],
+    noisy: &[Vec<RunResult>],
+) -> Table {
+    let mut table = Table::new([
+        "encounter",
+        "level",
+        "wrong-sense runs",
+        "wrong sense on exact inputs",
+        "VMD (ft)",
+        "VMD in 25 ft quanta",
+        "intruder rate (ft/min)",
+        "onset delays (s)",
+    ]);
+    for ((e, rs), exact_runs) in encounters.iter().zip(noisy).zip(exact) {
+        let wrong: Vec<&RunResult> = rs.iter().filter(|r| r.wrong_sense).collect();
+        if wrong.is_empty() {
+            continue;
+        }
+        let delays: Vec<String> = wrong.iter().map(|r| seconds(r.onset_delay_s)).collect();
+        table.push([
+            e.index.to_string(),
+            format!("SL{}", e.level),
+            format!("{} of {}", wrong.len(), rs.len()),
+            if exact_runs.iter().any(|r| r.wrong_sense) {
+                "yes"
+            } else {
+                "no"
+            }
+            .to_string(),
+            format!("{:+.0}", e.vmd_ft),
+            format!("{:+.2}", e.vmd_ft / 25.0),
+            format!("{:+.0}", e.intruder_rate_ft_per_min),
+            delays.join(" "),
         ]);
     }
     table
