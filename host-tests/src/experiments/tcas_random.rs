@@ -120,7 +120,7 @@ pub fn by_level_table(encounters: &[RandomEncounter], results: &SuiteResults) ->
         "onset delay median (s)",
         "onset delay p95 (s)",
         "wrong sense",
-        "wrong sense: largest |VMD| (ft)",
+        "wrong sense: largest VMD magnitude (ft)",
         "RA in pieces",
         "RA reversed",
     ]);

@@ -984,7 +984,7 @@ pub fn run(ctx: &Context) -> Result<(), String> {
         "optimiser alpha",
         "optimiser beta",
         "cost",
-        "max |closed − optimiser|",
+        "max difference, closed form − optimiser",
     ]);
     for p in &out.figure2 {
         t.push([
