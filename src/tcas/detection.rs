@@ -9,7 +9,8 @@
 use super::measures::{all_valid, valid_result};
 use super::range_tracker::{
     RangeEstimate, ACCELERATION_SIGMA_PER_RESIDUAL_SIGMA, MIN_ALERT_FIRMNESS,
-    RATE_ACCELERATION_ERROR_CORRELATION, RATE_SIGMA_PER_RESIDUAL_SIGMA,
+    RATE_ACCELERATION_ERROR_CORRELATION, RATE_ERROR_UNCORRELATED_SHARE,
+    RATE_SIGMA_PER_RESIDUAL_SIGMA,
 };
 use super::sensitivity::{AlertThresholds, OwnAircraft, SensitivityParameters};
 use super::{
@@ -159,7 +160,7 @@ struct Constants<S> {
     rate_sigma_per_residual_sigma: S,
     /// ρ of the ṙ and r̈ errors, and √(1 − ρ²).
     rate_acceleration_correlation: S,
-    rate_acceleration_decorrelation: S,
+    rate_error_uncorrelated_share: S,
     tau_cap_limit_s: S,
     proximate_range_m: S,
     proximate_altitude_ft: S,
@@ -217,9 +218,7 @@ impl<S: Scalar> CycleThresholds<S> {
                 acceleration_sigma_per_residual_sigma: c(ACCELERATION_SIGMA_PER_RESIDUAL_SIGMA),
                 rate_sigma_per_residual_sigma: c(RATE_SIGMA_PER_RESIDUAL_SIGMA),
                 rate_acceleration_correlation: c(RATE_ACCELERATION_ERROR_CORRELATION),
-                rate_acceleration_decorrelation: c(libm::sqrt(
-                    1.0 - RATE_ACCELERATION_ERROR_CORRELATION * RATE_ACCELERATION_ERROR_CORRELATION,
-                )),
+                rate_error_uncorrelated_share: c(RATE_ERROR_UNCORRELATED_SHARE),
                 tau_cap_limit_s: c(TAU_CAP_LIMIT_S),
                 proximate_range_m: c(PROXIMATE_RANGE_NM * METRES_PER_NAUTICAL_MILE),
                 proximate_altitude_ft: c(PROXIMATE_ALTITUDE_FT),
@@ -647,7 +646,7 @@ fn linearised_range_miss<S: Scalar>(
     let from_rate = -(x.over(denominator).times(rate + rate).times(rate_sigma));
     let both = hypot(
         from_acceleration + k.rate_acceleration_correlation.times(from_rate),
-        k.rate_acceleration_decorrelation.times(from_rate),
+        k.rate_error_uncorrelated_share.times(from_rate),
     );
     let sigma = r_over_2t.times(r.times(both.over(denominator)));
     (m.is_valid() && sigma.is_valid()).then_some((m, sigma))

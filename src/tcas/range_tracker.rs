@@ -57,6 +57,10 @@ pub const RATE_SIGMA_PER_RESIDUAL_SIGMA: f64 = 0.114_692;
 /// The correlation of the firm track's ṙ and r̈ errors in that steady
 /// state (both follow the same residuals). Ours.
 pub const RATE_ACCELERATION_ERROR_CORRELATION: f64 = 0.959_645;
+/// √(1 − ρ²) of [`RATE_ACCELERATION_ERROR_CORRELATION`]: the share of the ṙ
+/// error's σ that r̈'s does not explain (a constant, so that no cycle takes
+/// a square root).
+pub const RATE_ERROR_UNCORRELATED_SHARE: f64 = 0.281_214;
 /// Residuals are clipped to this magnitude before squaring, m (a reply
 /// far off the track is a gate's business, and the square stays within
 /// Q32.32's range).

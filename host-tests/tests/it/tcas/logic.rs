@@ -372,7 +372,8 @@ fn miss_distance_filter_new_and_continuing_threats() {
 
 /// The σ of the firm range track's r̈ and ṙ per σ of its residual
 /// (`ACCELERATION_SIGMA_PER_RESIDUAL_SIGMA`, `RATE_SIGMA_PER_RESIDUAL_SIGMA`)
-/// and the correlation of their errors (`RATE_ACCELERATION_ERROR_CORRELATION`)
+/// and the correlation of their errors (`RATE_ACCELERATION_ERROR_CORRELATION`,
+/// with `RATE_ERROR_UNCORRELATED_SHARE` = √(1 − ρ²))
 /// are the steady state of the firmness-8 gains on white range noise: the
 /// error covariance P of x⁺ = (I − KH)F x + Kv solved by iteration,
 /// residual variance HFPFᵀHᵀ + 1.
@@ -381,7 +382,7 @@ fn rate_and_acceleration_sigmas_are_the_steady_state_of_the_firm_gains() {
     use abtrack::gain::tcas::{FIRMNESS_ALPHA, FIRMNESS_BETA, FIRMNESS_GAMMA, MAX_FIRMNESS};
     use abtrack::tcas::range_tracker::{
         ACCELERATION_SIGMA_PER_RESIDUAL_SIGMA, RATE_ACCELERATION_ERROR_CORRELATION,
-        RATE_SIGMA_PER_RESIDUAL_SIGMA,
+        RATE_ERROR_UNCORRELATED_SHARE, RATE_SIGMA_PER_RESIDUAL_SIGMA,
     };
     let i = usize::from(MAX_FIRMNESS);
     let (a, b, g) = (FIRMNESS_ALPHA[i], FIRMNESS_BETA[i], FIRMNESS_GAMMA[i]);
@@ -431,6 +432,8 @@ fn rate_and_acceleration_sigmas_are_the_steady_state_of_the_firm_gains() {
         (correlation - RATE_ACCELERATION_ERROR_CORRELATION).abs() < 1e-5,
         "{correlation}"
     );
+    let rho = RATE_ACCELERATION_ERROR_CORRELATION;
+    assert!((RATE_ERROR_UNCORRELATED_SHARE - (1.0 - rho * rho).sqrt()).abs() < 1e-6);
 }
 
 /// An intruder less than 360 ft above the ground gets no advisory: own at
