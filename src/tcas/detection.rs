@@ -500,12 +500,14 @@ impl MissDistanceFilter {
     /// range- and bearing-based miss distances each with its uncertainty).
     /// The range track's d² = r²·x/(x + ṙ²), x = r·r̈ (DO-185B
     /// `project_hmd`), has its σ from those of r̈ and ṙ and their
-    /// correlation ([`linearised_range_miss`]), each from the track's
-    /// residual RMS ([`ACCELERATION_SIGMA_PER_RESIDUAL_SIGMA`]/T²,
-    /// [`RATE_SIGMA_PER_RESIDUAL_SIGMA`]/T); the bearing track's b has σ_b. Each is linearised at the threshold t it
-    /// is compared with (d²/(2t) + t/2 is d at d = t: the decision d > t
-    /// is kept exactly; [`linearised_range_miss`]) and the two are combined
-    /// with inverse-variance weights into m ± σ. A new threat's HMD is
+    /// correlation, each from the track's residual RMS
+    /// ([`ACCELERATION_SIGMA_PER_RESIDUAL_SIGMA`]/T²,
+    /// [`RATE_SIGMA_PER_RESIDUAL_SIGMA`]/T); the bearing track's b has σ_b.
+    /// Each is linearised at the threshold t it is compared with
+    /// (d²/(2t) + t/2 is d at d = t: the decision d > t is kept exactly;
+    /// [`linearised_range_miss`]) and the two are combined with
+    /// inverse-variance weights into m ± σ, σ scaled up when they disagree
+    /// beyond it ([`inverse_variance`]). A new threat's HMD is
     /// m + kσ against the level's HMD threshold (k =
     /// [`MISS_DISTANCE_CONFIDENCE`], or the cycle's), a continuing one's
     /// m − k'σ against 1.05·DMOD (k' =
@@ -616,9 +618,10 @@ impl MissDistanceFilter {
 
 /// The range track's miss distance linearised at the threshold `t` (m):
 /// d²/(2t) + t/2 with d² = r²·x/(x + ṙ²), x = r·r̈, and its σ: that of d²
-/// over 2t, from the ṙ and r̈ errors (`sigmas`, their correlation ρ in `k`)
-/// through ∂d²/∂r̈ = r³ṙ²/D² and ∂d²/∂ṙ = −2r²xṙ/D², D = x + ṙ²: near
-/// closest approach, where r̈ is large and ṙ small, the ṙ term dominates.
+/// over 2t, from the σ of ṙ and of r̈ (the second argument) and their
+/// correlation ρ (in `k`) through ∂d²/∂r̈ = r³ṙ²/D² and
+/// ∂d²/∂ṙ = −2r²xṙ/D², D = x + ṙ²: near closest approach, where r̈ is
+/// large and ṙ small, the ṙ term dominates.
 /// Formed without a square of a range. `None` when D ≤ 0 (no straight
 /// path fits) or a step saturates.
 fn linearised_range_miss<S: Scalar>(
