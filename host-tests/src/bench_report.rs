@@ -603,6 +603,10 @@ pub const OPERATIONS: &[(&str, &str)] = &[
         "TCAS threat assessment of one intruder in a cycle formed once per scan (`tcas::assess_in`)",
     ),
     (
+        "tcas_intruder_scan",
+        "TCAS, one tracked intruder's reply in a formed cycle: its bearing (range–azimuth) track, range and altitude trackers and its assessment with the miss-distance filter (`IntruderTrack::scan`, `assess`)",
+    ),
+    (
         "parse_byte",
         "wire decoder, one received byte (`wire::Decoder::push`)",
     ),

@@ -120,6 +120,7 @@ impl Group {
                 "tcas_assess",
                 "tcas_cycle",
                 "tcas_assess_in_cycle",
+                "tcas_intruder_scan",
             ],
             Group::Scans => &["scan_separated", "scan_crowded"],
         }
