@@ -47,8 +47,9 @@
 #
 # Installs what is missing (Rust targets, rustfmt and clippy, the
 # minimum-version toolchain, qemu-system-arm, a C compiler and llvm when
-# root, defmt-print, flip-link, nightly and cargo-fuzz). Every step runs even if an earlier one
-# failed; the summary lists them with their wall and CPU times (and when
+# root, defmt-print, flip-link, nightly and cargo-fuzz). Every step runs
+# even if an earlier one failed; the summary lists them with their wall
+# and CPU times (and when
 # each started), and the whole command's; the exit status is non-zero if
 # any failed. `.ci/run` calls this.
 set -euo pipefail

@@ -505,7 +505,7 @@ impl MissDistanceFilter {
     /// [`RATE_SIGMA_PER_RESIDUAL_SIGMA`]/T); the bearing track's b has σ_b.
     /// Each is linearised at the threshold t it is compared with
     /// (d²/(2t) + t/2 is d at d = t: the decision d > t is kept exactly;
-    /// [`linearised_range_miss`]) and the two are combined with
+    /// [`RangeProjection`]) and the two are combined with
     /// inverse-variance weights into m ± σ, σ scaled up when they disagree
     /// beyond it ([`inverse_variance`]). A new threat's HMD is
     /// m + kσ against the level's HMD threshold (k =
@@ -556,12 +556,14 @@ impl MissDistanceFilter {
             .rate_sigma_per_residual_sigma
             .times(range.residual_sigma_m)
             .over(dt);
+        // Formed once, linearised at each threshold.
+        let projection = if range.initialised {
+            RangeProjection::of(range, (rate_sigma, acceleration_sigma), k)
+        } else {
+            None
+        };
         let combined_at = |threshold: S| {
-            let from_range = if range.initialised {
-                linearised_range_miss(range, (rate_sigma, acceleration_sigma), k, threshold)
-            } else {
-                None
-            };
+            let from_range = projection.and_then(|p| p.linearised_at(threshold));
             let from_bearing = bearing.and_then(|(b, sigma)| sigma.map(|s| (b, s)));
             let (m, sigma) = match (from_range, from_bearing) {
                 (Some(r), Some(b)) => inverse_variance(r, b),
@@ -616,43 +618,61 @@ impl MissDistanceFilter {
     }
 }
 
-/// The range track's miss distance linearised at the threshold `t` (m):
-/// d²/(2t) + t/2 with d² = r²·x/(x + ṙ²), x = r·r̈, and its σ: that of d²
-/// over 2t, from the σ of ṙ and of r̈ (the second argument) and their
-/// correlation ρ (in `k`) through ∂d²/∂r̈ = r³ṙ²/D² and
-/// ∂d²/∂ṙ = −2r²xṙ/D², D = x + ṙ²: near closest approach, where r̈ is
-/// large and ṙ small, the ṙ term dominates.
-/// Formed without a square of a range. `None` when D ≤ 0 (no straight
-/// path fits) or a step saturates.
-fn linearised_range_miss<S: Scalar>(
-    range: &RangeEstimate<S>,
-    (rate_sigma, acceleration_sigma): (S, S),
-    k: &Constants<S>,
-    t: S,
-) -> Option<(S, S)> {
-    let r = range.range_m;
-    let rate = range.range_rate_m_per_s;
-    let rate_squared = rate.times(rate);
-    let x = r.times(range.range_acceleration_m_per_s2);
-    let denominator = x + rate_squared;
-    if !(denominator > S::ZERO && t > S::ZERO) {
-        return None;
+/// The range track's squared miss distance d² = r²·x/(x + ṙ²), x = r·r̈,
+/// and its σ, from the σ of ṙ and of r̈ and their correlation ρ through
+/// ∂d²/∂r̈ = r³ṙ²/D² and ∂d²/∂ṙ = −2r²xṙ/D², D = x + ṙ² (near closest
+/// approach, where r̈ is large and ṙ small, the ṙ term dominates), kept as
+/// r and the shares d²/r² and σ(d²)/r²: no square of a range is formed.
+#[derive(Debug, Clone, Copy)]
+struct RangeProjection<S> {
+    range_m: S,
+    /// x/D = d²/r².
+    share: S,
+    /// σ(d²)/r².
+    sigma_share: S,
+}
+
+impl<S: Scalar> RangeProjection<S> {
+    /// `None` when D ≤ 0 (no straight path fits) or a step saturates.
+    fn of(
+        range: &RangeEstimate<S>,
+        (rate_sigma, acceleration_sigma): (S, S),
+        k: &Constants<S>,
+    ) -> Option<Self> {
+        let r = range.range_m;
+        let rate = range.range_rate_m_per_s;
+        let rate_squared = rate.times(rate);
+        let x = r.times(range.range_acceleration_m_per_s2);
+        let denominator = x + rate_squared;
+        let share = (denominator > S::ZERO).then(|| x.over(denominator))?;
+        // The two terms of σ(d²)·D/r² (m²/s²), and their correlated sum
+        // √(a² + b² + 2ρab) = hypot(a + ρb, b·√(1 − ρ²)).
+        let from_acceleration = r
+            .times(acceleration_sigma)
+            .times(rate_squared.over(denominator));
+        let from_rate = -(share.times(rate + rate).times(rate_sigma));
+        let both = hypot(
+            from_acceleration + k.rate_acceleration_correlation.times(from_rate),
+            k.rate_error_uncorrelated_share.times(from_rate),
+        );
+        Some(RangeProjection {
+            range_m: r,
+            share,
+            sigma_share: both.over(denominator),
+        })
     }
-    let r_over_2t = r.over(t + t);
-    let half = S::from_f64_lossy(0.5);
-    let m = r_over_2t.times(r.times(x.over(denominator))) + half.times(t);
-    // The two terms of σ(d²)·D/r² (m²/s²), and their correlated sum
-    // √(a² + b² + 2ρab) = hypot(a + ρb, b·√(1 − ρ²)).
-    let from_acceleration = r
-        .times(acceleration_sigma)
-        .times(rate_squared.over(denominator));
-    let from_rate = -(x.over(denominator).times(rate + rate).times(rate_sigma));
-    let both = hypot(
-        from_acceleration + k.rate_acceleration_correlation.times(from_rate),
-        k.rate_error_uncorrelated_share.times(from_rate),
-    );
-    let sigma = r_over_2t.times(r.times(both.over(denominator)));
-    (m.is_valid() && sigma.is_valid()).then_some((m, sigma))
+
+    /// The miss distance linearised at the threshold `t` (m), d²/(2t) + t/2
+    /// (d itself at d = t: the decision d > t is kept), and its σ, σ(d²)/(2t).
+    /// `None` when t ≤ 0 or a step saturates.
+    fn linearised_at(&self, t: S) -> Option<(S, S)> {
+        let r = self.range_m;
+        let r_over_2t = (t > S::ZERO).then(|| r.over(t + t))?;
+        let half = S::from_f64_lossy(0.5);
+        let m = r_over_2t.times(r.times(self.share)) + half.times(t);
+        let sigma = r_over_2t.times(r.times(self.sigma_share));
+        (m.is_valid() && sigma.is_valid()).then_some((m, sigma))
+    }
 }
 
 /// Two independent estimates (value, σ) combined with inverse-variance
@@ -669,10 +689,11 @@ fn inverse_variance<S: Scalar>((a, sigma_a): (S, S), (b, sigma_b): (S, S)) -> (S
     }
     let share_b = sigma_b.over(h);
     let weight_a = share_b.times(share_b);
-    let spread = (a - b).abs().over(h);
+    let difference = a - b;
+    let spread = difference.abs().over(h);
     let sigma = sigma_a.times(share_b);
     let combined = (
-        b + (a - b).times(weight_a),
+        b + difference.times(weight_a),
         if spread > S::ONE {
             sigma.times(spread)
         } else {
