@@ -49,9 +49,8 @@
 # minimum-version toolchain, qemu-system-arm, a C compiler and llvm when
 # root, defmt-print, flip-link, nightly and cargo-fuzz). Every step runs
 # even if an earlier one failed; the summary lists them with their wall
-# and CPU times (and when
-# each started), and the whole command's; the exit status is non-zero if
-# any failed. `.ci/run` calls this.
+# and CPU times (and when each started), and the whole command's; the exit
+# status is non-zero if any failed. `.ci/run` calls this.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 # shellcheck source=scripts/setup.sh
