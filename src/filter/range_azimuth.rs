@@ -566,16 +566,65 @@ pub struct PlanarPrediction<N: Numeric> {
     /// (x, y), m.
     pub position: [N::Length; 2],
     /// (ẋ, ẏ), m/s, as [`Numeric::Ratio`] numbers
-    /// ([`RangeAzimuthFilter::velocity`]).
+    /// ([`RangeAzimuthState::velocity`]).
     pub velocity: [N::Ratio; 2],
 }
 
-/// The range–azimuth projection filter (He, Peng, Ling & Quan, eqs. 7–13).
-/// See the module docs for the readings implemented.
+/// The range–azimuth projection filter (He, Peng, Ling & Quan, eqs. 7–13):
+/// its noise figures and its [`RangeAzimuthState`], which it dereferences to
+/// for reading. See the module docs for the readings implemented.
 #[derive(Debug, Clone, Copy, PartialEq)]
 #[cfg_attr(feature = "defmt", derive(defmt::Format))]
 pub struct RangeAzimuthFilter<N: Numeric> {
     noise: RangeAzimuthNoise<N>,
+    state: RangeAzimuthState<N>,
+}
+
+impl<N: Numeric> RangeAzimuthFilter<N> {
+    /// An empty filter, waiting for its first measurement.
+    pub fn new(noise: RangeAzimuthNoise<N>) -> Self {
+        RangeAzimuthFilter {
+            noise,
+            state: RangeAzimuthState::EMPTY,
+        }
+    }
+
+    /// The measurement and process noise the gains are computed from.
+    pub fn noise(&self) -> &RangeAzimuthNoise<N> {
+        &self.noise
+    }
+
+    /// [`RangeAzimuthState::update`] with this filter's noise.
+    pub fn update(
+        &mut self,
+        range: N::Length,
+        azimuth: N::Angle,
+        dt: N::Interval,
+    ) -> Result<RangeAzimuthOutcome<N>, FilterError> {
+        self.state.update(&self.noise, range, azimuth, dt)
+    }
+
+    /// [`RangeAzimuthState::coast`] with this filter's noise.
+    pub fn coast(&mut self, dt: N::Interval) -> Result<(), FilterError> {
+        self.state.coast(&self.noise, dt)
+    }
+}
+
+impl<N: Numeric> core::ops::Deref for RangeAzimuthFilter<N> {
+    type Target = RangeAzimuthState<N>;
+
+    fn deref(&self) -> &RangeAzimuthState<N> {
+        &self.state
+    }
+}
+
+/// The state of a [`RangeAzimuthFilter`] without its noise figures: what a
+/// track table keeps per track, the noise being the table's configuration
+/// ([`crate::track::RangeAzimuthTrack`]). Every call that needs the noise
+/// takes it.
+#[derive(Debug, Clone, Copy, PartialEq)]
+#[cfg_attr(feature = "defmt", derive(defmt::Format))]
+pub struct RangeAzimuthState<N: Numeric> {
     phase: Phase,
     position: [N::Length; 2],
     /// m/s, as [`Numeric::Ratio`] numbers: a two-point velocity from
@@ -588,31 +637,22 @@ pub struct RangeAzimuthFilter<N: Numeric> {
     first_cross_sigma: N::Ratio,
     range_factor: CovarianceFactor<N>,
     cross_factor: CovarianceFactor<N>,
-    last: Option<RangeAzimuthInnovation<N>>,
     saturations: u32,
 }
 
-impl<N: Numeric> RangeAzimuthFilter<N> {
-    /// An empty filter, waiting for its first measurement.
-    pub fn new(noise: RangeAzimuthNoise<N>) -> Self {
-        RangeAzimuthFilter {
-            noise,
-            phase: Phase::Empty,
-            position: [N::Length::ZERO; 2],
-            velocity: [N::Ratio::ZERO; 2],
-            since_first: N::Interval::ZERO,
-            first_cross_sigma: N::Ratio::ZERO,
-            range_factor: CovarianceFactor::ZERO,
-            cross_factor: CovarianceFactor::ZERO,
-            last: None,
-            saturations: 0,
-        }
-    }
+impl<N: Numeric> RangeAzimuthState<N> {
+    /// Waiting for the first measurement.
+    pub const EMPTY: Self = RangeAzimuthState {
+        phase: Phase::Empty,
+        position: [N::Length::ZERO; 2],
+        velocity: [N::Ratio::ZERO; 2],
+        since_first: N::Interval::ZERO,
+        first_cross_sigma: N::Ratio::ZERO,
+        range_factor: CovarianceFactor::ZERO,
+        cross_factor: CovarianceFactor::ZERO,
+        saturations: 0,
+    };
 
-    /// The measurement and process noise the gains are computed from.
-    pub fn noise(&self) -> &RangeAzimuthNoise<N> {
-        &self.noise
-    }
     /// Which stage of two-point initialisation the filter is in.
     pub fn phase(&self) -> Phase {
         self.phase
@@ -657,10 +697,6 @@ impl<N: Numeric> RangeAzimuthFilter<N> {
     pub fn cross_range_covariance(&self) -> CovarianceFactor<N> {
         self.cross_factor
     }
-    /// Prediction, residuals and gains of the last filtered update.
-    pub fn last_innovation(&self) -> Option<RangeAzimuthInnovation<N>> {
-        self.last
-    }
     /// How many updates or coasts were discarded because they saturated.
     pub fn saturations(&self) -> u32 {
         self.saturations
@@ -699,6 +735,7 @@ impl<N: Numeric> RangeAzimuthFilter<N> {
     /// refused and leaves the filter unchanged (the last is counted).
     pub fn update(
         &mut self,
+        noise: &RangeAzimuthNoise<N>,
         range: N::Length,
         azimuth: N::Angle,
         dt: N::Interval,
@@ -708,29 +745,29 @@ impl<N: Numeric> RangeAzimuthFilter<N> {
         }
         check_interval(dt)?;
         let (sin_b, cos_b) = N::sin_cos(azimuth);
-        let cross_sigma = self.noise.cross_range_sigma(range);
+        let cross_sigma = noise.cross_range_sigma(range);
         if !cross_sigma.is_valid() {
             return Err(self.saturated());
         }
         match self.phase {
             // The filter projects on sin B and cos B itself: the measured
             // point (R sin B, R cos B) is formed for initialisation only.
-            Phase::Tracking => self.filter(range, sin_b, cos_b, cross_sigma, dt),
+            Phase::Tracking => self.filter(noise, range, sin_b, cos_b, cross_sigma, dt),
             Phase::Empty => {
                 let measured = self.measured_point(range, sin_b, cos_b)?;
                 self.position = measured;
                 self.velocity = [N::Ratio::ZERO; 2];
                 self.since_first = N::Interval::ZERO;
                 self.first_cross_sigma = cross_sigma;
-                if let Some((_, prior)) = self.noise.speed_bound {
+                if let Some((_, prior)) = noise.speed_bound {
                     self.range_factor =
-                        CovarianceFactor::position_with_prior(self.noise.range_sigma, prior);
+                        CovarianceFactor::position_with_prior(noise.range_sigma, prior);
                     self.cross_factor = CovarianceFactor::position_with_prior(cross_sigma, prior);
                 }
                 self.phase = Phase::OnePoint;
                 Ok(RangeAzimuthOutcome::FirstPoint)
             }
-            Phase::OnePoint if self.noise.speed_bound.is_some() => {
+            Phase::OnePoint if noise.speed_bound.is_some() => {
                 // The first point and the velocity prior are a state with
                 // its covariance: the second measurement is a filtered
                 // update over the time since the first.
@@ -738,7 +775,7 @@ impl<N: Numeric> RangeAzimuthFilter<N> {
                 if !elapsed.is_valid() {
                     return Err(self.saturated());
                 }
-                let outcome = self.filter(range, sin_b, cos_b, cross_sigma, elapsed)?;
+                let outcome = self.filter(noise, range, sin_b, cos_b, cross_sigma, elapsed)?;
                 self.phase = Phase::Tracking;
                 Ok(outcome)
             }
@@ -751,7 +788,7 @@ impl<N: Numeric> RangeAzimuthFilter<N> {
                     N::Ratio::from(measured[0] - x) / t,
                     N::Ratio::from(measured[1] - y) / t,
                 ];
-                let sigma_r = self.noise.range_sigma;
+                let sigma_r = noise.range_sigma;
                 let range_factor = CovarianceFactor::two_point(sigma_r, sigma_r, t);
                 let cross_factor =
                     CovarianceFactor::two_point(cross_sigma, self.first_cross_sigma, t);
@@ -789,6 +826,7 @@ impl<N: Numeric> RangeAzimuthFilter<N> {
 
     fn filter(
         &mut self,
+        noise: &RangeAzimuthNoise<N>,
         range: N::Length,
         sin_b: N::Ratio,
         cos_b: N::Ratio,
@@ -802,11 +840,11 @@ impl<N: Numeric> RangeAzimuthFilter<N> {
         let (xp, yp) = (x + N::Length::from(vx * t), y + N::Length::from(vy * t));
         // Eqs. (7)–(8), then eq. (9) with σ_R (reading 3) and eq. (10) with
         // √VAR, and the covariance update (reading 4).
-        let noise = ProcessNoiseColumn::new(t, self.noise.process_sigma);
+        let process = ProcessNoiseColumn::new(t, noise.process_sigma);
         let (alpha, range_velocity_gain, range_factor) =
             self.range_factor
-                .predict_update(t, &noise, self.noise.range_sigma);
-        let (w1, w2, cross_factor) = self.cross_factor.predict_update(t, &noise, cross_sigma);
+                .predict_update(t, &process, noise.range_sigma);
+        let (w1, w2, cross_factor) = self.cross_factor.predict_update(t, &process, cross_sigma);
         // Eq. (11) with the predicted position (reading 1).
         let range_residual = range - (sin_b * xp + cos_b * yp);
         let cross_residual = cos_b * xp - sin_b * yp;
@@ -820,10 +858,13 @@ impl<N: Numeric> RangeAzimuthFilter<N> {
             yp + alpha * along_y + w1 * across_y,
         ];
         let metres = |l: N::Length| N::Ratio::from(l);
-        let velocity = self.within_speed_bound([
-            vx + range_velocity_gain * metres(along_x) - w2 * metres(across_x),
-            vy + range_velocity_gain * metres(along_y) + w2 * metres(across_y),
-        ]);
+        let velocity = Self::within_speed_bound(
+            noise,
+            [
+                vx + range_velocity_gain * metres(along_x) - w2 * metres(across_x),
+                vy + range_velocity_gain * metres(along_y) + w2 * metres(across_y),
+            ],
+        );
         let innovation = RangeAzimuthInnovation::<N> {
             predicted: [xp, yp],
             range_residual,
@@ -849,15 +890,14 @@ impl<N: Numeric> RangeAzimuthFilter<N> {
         self.velocity = velocity;
         self.range_factor = range_factor;
         self.cross_factor = cross_factor;
-        self.last = Some(innovation);
         Ok(RangeAzimuthOutcome::Filtered(innovation))
     }
 
     /// `velocity` scaled onto the speed bound when it is faster (the
     /// projection onto the speeds real targets fly); unchanged without a
     /// bound or when invalid (the caller refuses that).
-    fn within_speed_bound(&self, velocity: [N::Ratio; 2]) -> [N::Ratio; 2] {
-        let Some((max_speed, _)) = self.noise.speed_bound else {
+    fn within_speed_bound(noise: &RangeAzimuthNoise<N>, velocity: [N::Ratio; 2]) -> [N::Ratio; 2] {
+        let Some((max_speed, _)) = noise.speed_bound else {
             return velocity;
         };
         let [vx, vy] = velocity;
@@ -873,7 +913,11 @@ impl<N: Numeric> RangeAzimuthFilter<N> {
     /// No measurement this scan: advance the state and both covariances by
     /// `dt` (eqs. 4 and 8). Before the second measurement the position holds
     /// and the interval is remembered for the velocity difference.
-    pub fn coast(&mut self, dt: N::Interval) -> Result<(), FilterError> {
+    pub fn coast(
+        &mut self,
+        noise: &RangeAzimuthNoise<N>,
+        dt: N::Interval,
+    ) -> Result<(), FilterError> {
         check_interval(dt)?;
         match self.phase {
             Phase::Empty => Ok(()),
@@ -887,9 +931,9 @@ impl<N: Numeric> RangeAzimuthFilter<N> {
             }
             Phase::Tracking => {
                 let t = N::Ratio::from(dt);
-                let noise = ProcessNoiseColumn::new(t, self.noise.process_sigma);
-                let range_factor = self.range_factor.predict(t, &noise);
-                let cross_factor = self.cross_factor.predict(t, &noise);
+                let process = ProcessNoiseColumn::new(t, noise.process_sigma);
+                let range_factor = self.range_factor.predict(t, &process);
+                let cross_factor = self.cross_factor.predict(t, &process);
                 let position = self.predict(dt).map(|p| p.position);
                 match position {
                     Ok(position) if range_factor.is_valid() && cross_factor.is_valid() => {

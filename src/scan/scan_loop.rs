@@ -10,7 +10,7 @@ pub use intruders::MAX_RA_THREATS;
 use intruders::{IdentityRule, IntruderSlot, ReplyData};
 
 use crate::filter::altitude::{AltitudeEstimate, AltitudeTrackerConfig};
-use crate::filter::range_azimuth::RangeAzimuthFilter;
+use crate::filter::range_azimuth::RangeAzimuthState;
 use crate::num::{Numeric, Scalar};
 use crate::tcas::{range_tau, Advisory, CollisionAvoidance, IntruderTrack, OwnAircraft};
 use crate::track::{
@@ -65,18 +65,18 @@ pub struct TickReport {
 /// miss-distance cross-check (He et al.'s range–azimuth filter; none for a
 /// Cartesian track).
 pub trait BearingTrack<S: Scalar> {
-    /// The range–azimuth filter of this track, if it has one.
-    fn bearing_track(&self) -> Option<&RangeAzimuthFilter<S>>;
+    /// The state of this track's range–azimuth filter, if it has one.
+    fn bearing_track(&self) -> Option<&RangeAzimuthState<S>>;
 }
 
 impl<N: Numeric<Wide = S>, S: Scalar> BearingTrack<S> for RangeAzimuthTrack<N> {
-    fn bearing_track(&self) -> Option<&RangeAzimuthFilter<S>> {
-        Some(self.filter())
+    fn bearing_track(&self) -> Option<&RangeAzimuthState<S>> {
+        Some(self.state())
     }
 }
 
 impl<S: Scalar> BearingTrack<S> for FixedGainTrack<S> {
-    fn bearing_track(&self) -> Option<&RangeAzimuthFilter<S>> {
+    fn bearing_track(&self) -> Option<&RangeAzimuthState<S>> {
         None
     }
 }

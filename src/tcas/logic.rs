@@ -14,7 +14,7 @@ use super::resolution::{LowAltitudeInhibits, ResolutionOutput, ResolutionState};
 use super::sensitivity::{OwnAircraft, SensitivitySelector};
 use super::TcasError;
 use crate::filter::altitude::{AltitudeTracker, AltitudeTrackerConfig, OutOfLine};
-use crate::filter::range_azimuth::RangeAzimuthFilter;
+use crate::filter::range_azimuth::RangeAzimuthState;
 use crate::filter::{FilterError, Phase};
 use crate::num::{hypot, Numeric, Scalar};
 
@@ -148,7 +148,7 @@ impl<N: Numeric<Wide = S>, S: Scalar> IntruderTrack<N> {
     /// miss-distance cross-check.
     pub fn observation(
         &self,
-        bearing_track: Option<&RangeAzimuthFilter<S>>,
+        bearing_track: Option<&RangeAzimuthState<S>>,
     ) -> Option<IntruderObservation<S>> {
         let range = self.range.estimate()?;
         let bearing_track = bearing_track.filter(|t| t.phase() == Phase::Tracking);
@@ -167,7 +167,7 @@ impl<N: Numeric<Wide = S>, S: Scalar> IntruderTrack<N> {
     pub fn assess(
         &mut self,
         cycle: &Cycle<S>,
-        bearing_track: Option<&RangeAzimuthFilter<S>>,
+        bearing_track: Option<&RangeAzimuthState<S>>,
         dt: S,
     ) -> Result<Option<ThreatStatus<S>>, TcasError> {
         match self.observation(bearing_track) {
@@ -182,7 +182,7 @@ impl<N: Numeric<Wide = S>, S: Scalar> IntruderTrack<N> {
 /// velocity σ carried over the time to go r/|v| (the miss distance is the
 /// cross-range offset at closest approach; US patent 5,566,074 uses a
 /// bearing-based miss distance with its uncertainty). `None` at zero speed.
-fn miss_distance_sigma<S: Scalar>(track: &RangeAzimuthFilter<S>) -> Option<S> {
+fn miss_distance_sigma<S: Scalar>(track: &RangeAzimuthState<S>) -> Option<S> {
     let [vx, vy] = track.velocity();
     let speed = hypot(vx, vy);
     if !(speed.is_valid() && speed > S::ZERO) {

@@ -35,7 +35,7 @@
 //! firmness, no hysteresis), for tools and the scan loop.
 
 use crate::filter::altitude::AltitudeEstimate;
-use crate::filter::range_azimuth::RangeAzimuthFilter;
+use crate::filter::range_azimuth::RangeAzimuthState;
 use crate::num::Scalar;
 use detection::RangeGeometry;
 use measures::RelativeRange;
@@ -129,10 +129,7 @@ pub struct Intruder<S> {
 impl<S: Scalar> Intruder<S> {
     /// From a range–azimuth track (its x/y state is already relative to the
     /// own aircraft) and the intruder's altitude track.
-    pub fn from_track(
-        track: &RangeAzimuthFilter<S>,
-        altitude: Option<AltitudeEstimate<S>>,
-    ) -> Self {
+    pub fn from_track(track: &RangeAzimuthState<S>, altitude: Option<AltitudeEstimate<S>>) -> Self {
         Intruder {
             relative_position_m: track.position(),
             relative_velocity_m_per_s: track.velocity(),

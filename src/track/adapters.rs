@@ -30,10 +30,8 @@
 //! track's copy of it (a [`ScheduledFilter`] owns its schedule by value), and
 //! `AnySchedule` is as large as its largest variant, so a table that only
 //! ever runs one schedule should name that schedule's type. A
-//! [`RangeAzimuthTrack`] is the [`RangeAzimuthFilter`] as it is, which keeps
-//! its noise figures and its last innovation in every track; a leaner record
-//! would need a filter that takes its noise as an argument, which this
-//! adapter does not change.
+//! [`RangeAzimuthTrack`] keeps the filter's [`RangeAzimuthState`] only: its
+//! noise figures are the table's configuration, not a copy in every track.
 
 use super::gate::{hypot, Gate, GateRegion};
 use super::model::{
@@ -41,7 +39,7 @@ use super::model::{
     TrackFilter, Uncertainty,
 };
 use crate::filter::range_azimuth::{
-    azimuth_of, CovarianceFactor, RangeAzimuthFilter, RangeAzimuthNoise,
+    azimuth_of, CovarianceFactor, RangeAzimuthNoise, RangeAzimuthState,
 };
 use crate::filter::{FilterError, Gains, Phase, Prediction, UpdateKind, UpdateOutcome};
 use crate::gain::{GainContext, GainSchedule, ScheduledError, ScheduledFilter};
@@ -381,8 +379,10 @@ fn position_gain<S: Scalar>(a: S, sigma: S) -> S {
     }
 }
 
-/// He, Peng, Ling & Quan's range–azimuth filter ([`RangeAzimuthFilter`]) in
-/// a track table. `Params` is its [`RangeAzimuthNoise`]. Named with a number
+/// He, Peng, Ling & Quan's range–azimuth filter
+/// ([`crate::filter::range_azimuth::RangeAzimuthFilter`]) in a track table:
+/// the track holds its [`RangeAzimuthState`], `Params` is its
+/// [`RangeAzimuthNoise`]. Named with a number
 /// system `N`, it runs the filter and its table in `N::Wide` ([`Numeric::Wide`]).
 ///
 /// Measurements: a polar measurement is used as (R, B); a Cartesian one is
@@ -452,26 +452,26 @@ fn position_gain<S: Scalar>(a: S, sigma: S) -> S {
 #[derive(Debug, Clone, Copy, PartialEq)]
 #[cfg_attr(feature = "defmt", derive(defmt::Format))]
 pub struct RangeAzimuthTrack<N: Numeric> {
-    filter: RangeAzimuthFilter<N::Wide>,
+    state: RangeAzimuthState<N::Wide>,
 }
 
 impl<N: Numeric<Wide = S>, S: Scalar> RangeAzimuthTrack<N> {
-    /// The range–azimuth filter this track runs (He, Peng, Ling & Quan, eqs. 7–13).
-    pub fn filter(&self) -> &RangeAzimuthFilter<S> {
-        &self.filter
+    /// The state of the range–azimuth filter this track runs (He, Peng,
+    /// Ling & Quan, eqs. 7–13); its noise is the table's configuration.
+    pub fn state(&self) -> &RangeAzimuthState<S> {
+        &self.state
     }
 
     /// (√P_R⁻₁₁, √P_C⁻₁₁, σ_R, R_p·σ_B) for a prediction `dt` ahead at
     /// predicted range `range`: the predicted position standard deviations
     /// along and across range and the measurement's.
-    fn predicted_sigmas(&self, dt: S, range: S) -> Option<[S; 4]> {
-        if self.filter.phase() != Phase::Tracking {
+    fn predicted_sigmas(&self, noise: &RangeAzimuthNoise<S>, dt: S, range: S) -> Option<[S; 4]> {
+        if self.state.phase() != Phase::Tracking {
             return None;
         }
-        let noise = self.filter.noise();
         let q = noise.process_noise().sqrt();
-        let along = predicted_position_sigma(&self.filter.range_covariance(), dt, q);
-        let across = predicted_position_sigma(&self.filter.cross_range_covariance(), dt, q);
+        let along = predicted_position_sigma(&self.state.range_covariance(), dt, q);
+        let across = predicted_position_sigma(&self.state.cross_range_covariance(), dt, q);
         let sigmas = [
             along,
             across,
@@ -487,8 +487,7 @@ impl<N: Numeric<Wide = S>, S: Scalar> RangeAzimuthTrack<N> {
     /// k = √(σ_R² + P_C⁻₁₁·σ_B² + ¾·R_p²·σ_B⁴)/σ_R: how much larger the
     /// noise in the filter's range channel is than the σ_R it assumes (see
     /// "Range coupling" on [`RangeAzimuthTrack`]). `across` is √P_C⁻₁₁.
-    fn range_coupling_scale(&self, across: S, range: S) -> S {
-        let noise = self.filter.noise();
+    fn range_coupling_scale(noise: &RangeAzimuthNoise<S>, across: S, range: S) -> S {
         let sigma_b = noise.bearing_variance().sqrt();
         let sigma_r = noise.range_variance().sqrt();
         // √(3/4) = 0.866…
@@ -519,30 +518,30 @@ impl<N: Numeric<Wide = S>, S: Scalar> TrackFilter<S> for RangeAzimuthTrack<N> {
         step
     }
 
-    fn empty(noise: &RangeAzimuthNoise<S>) -> Self {
+    fn empty(_: &RangeAzimuthNoise<S>) -> Self {
         RangeAzimuthTrack {
-            filter: RangeAzimuthFilter::new(*noise),
+            state: RangeAzimuthState::EMPTY,
         }
     }
 
     fn update(
         &mut self,
-        _: &RangeAzimuthNoise<S>,
+        noise: &RangeAzimuthNoise<S>,
         z: &Observation<S>,
         step: &ScanInterval<S>,
     ) -> Result<(), FilterError> {
         let dt = step.interval();
         let (range, azimuth) = Self::polar(z);
         // The filter leaves its state untouched on an error.
-        self.filter.update(range, azimuth, dt).map(|_| ())
+        self.state.update(noise, range, azimuth, dt).map(|_| ())
     }
 
     fn coast(
         &mut self,
-        _: &RangeAzimuthNoise<S>,
+        noise: &RangeAzimuthNoise<S>,
         step: &ScanInterval<S>,
     ) -> Result<(), FilterError> {
-        self.filter.coast(step.interval())
+        self.state.coast(noise, step.interval())
     }
 
     fn predict(
@@ -550,7 +549,7 @@ impl<N: Numeric<Wide = S>, S: Scalar> TrackFilter<S> for RangeAzimuthTrack<N> {
         _: &RangeAzimuthNoise<S>,
         step: &ScanInterval<S>,
     ) -> Result<PredictedState<S>, FilterError> {
-        let p = self.filter.predict(step.interval())?;
+        let p = self.state.predict(step.interval())?;
         Ok(PredictedState {
             position: p.position,
             velocity: p.velocity,
@@ -558,11 +557,11 @@ impl<N: Numeric<Wide = S>, S: Scalar> TrackFilter<S> for RangeAzimuthTrack<N> {
     }
 
     fn position(&self) -> [S; 2] {
-        self.filter.position()
+        self.state.position()
     }
 
     fn velocity(&self) -> [S; 2] {
-        self.filter.velocity()
+        self.state.velocity()
     }
 
     /// The larger of P_R⁻₁₁/σ_R² and P_C⁻₁₁/(R_p σ_B)², each direction's
@@ -576,7 +575,7 @@ impl<N: Numeric<Wide = S>, S: Scalar> TrackFilter<S> for RangeAzimuthTrack<N> {
         let dt = step.interval();
         let p = self.predict(noise, step).ok()?;
         let range = hypot(p.position[0], p.position[1]);
-        let [along, across, sigma_r, sigma_c] = self.predicted_sigmas(dt, range)?;
+        let [along, across, sigma_r, sigma_c] = self.predicted_sigmas(noise, dt, range)?;
         let ratio = (along / sigma_r).max_of(across / sigma_c);
         let r2 = ratio * ratio;
         r2.is_valid().then_some(r2)
@@ -591,7 +590,7 @@ impl<N: Numeric<Wide = S>, S: Scalar> TrackFilter<S> for RangeAzimuthTrack<N> {
             return S::ONE;
         };
         let range = hypot(p.position[0], p.position[1]);
-        match self.predicted_sigmas(S::ONE, range) {
+        match self.predicted_sigmas(noise, S::ONE, range) {
             Some([along, across, sigma_r, sigma_c]) => {
                 position_gain(along, sigma_r).max_of(position_gain(across, sigma_c))
             }
@@ -601,14 +600,14 @@ impl<N: Numeric<Wide = S>, S: Scalar> TrackFilter<S> for RangeAzimuthTrack<N> {
 
     fn gate_region(
         &self,
-        _: &RangeAzimuthNoise<S>,
+        noise: &RangeAzimuthNoise<S>,
         predicted: &PredictedState<S>,
         step: &ScanInterval<S>,
         gate: &Gate<S>,
     ) -> Option<GateRegion<S>> {
         let dt = step.interval();
         let range = hypot(predicted.position[0], predicted.position[1]);
-        let [along, across, sigma_r, sigma_c] = self.predicted_sigmas(dt, range)?;
+        let [along, across, sigma_r, sigma_c] = self.predicted_sigmas(noise, dt, range)?;
         let (half_along, half_across) = match *gate {
             Gate::Uncertainty {
                 threshold,
@@ -617,7 +616,7 @@ impl<N: Numeric<Wide = S>, S: Scalar> TrackFilter<S> for RangeAzimuthTrack<N> {
             } => {
                 let k = threshold.sqrt();
                 let allowance = S::from_f64_lossy(0.5) * max_acceleration * dt * dt;
-                let scale = self.range_coupling_scale(across, range);
+                let scale = Self::range_coupling_scale(noise, across, range);
                 (
                     k * hypot(along * scale, sigma_r) + allowance,
                     k * hypot(across, sigma_c) + allowance,

@@ -302,8 +302,8 @@ fn range_azimuth_window_from_its_covariances() {
     let pred = |f: abtrack::filter::range_azimuth::CovarianceFactor<f64>| {
         (f.a + dt * f.b).powi(2) + (dt * f.c).powi(2) + (dt * dt * 2.0 / 2.0).powi(2)
     };
-    let pr = pred(track.filter().range_covariance());
-    let pc = pred(track.filter().cross_range_covariance());
+    let pr = pred(track.state().range_covariance());
+    let pc = pred(track.state().cross_range_covariance());
     let rp = p.position[0].hypot(p.position[1]);
     let sb2 = 0.05f64 * 0.05;
     let k2 = (225.0 + pc * sb2 + 0.75 * rp * rp * sb2 * sb2) / 225.0;

@@ -65,7 +65,7 @@ fn head_on<N: Numeric<Wide = S>, S: Scalar>() -> Vec<ScanOutputs<S>> {
             })
             .unwrap();
             bearing.update(&noise, &z, &step).unwrap();
-            let status = intruder.assess(&cycle, Some(bearing.filter()), dt).unwrap();
+            let status = intruder.assess(&cycle, Some(bearing.state()), dt).unwrap();
             let threats: Vec<_> = status.and_then(|st| st.geometry).into_iter().collect();
             let resolution = cas.resolve(&cycle, &threats, dt).unwrap();
             ScanOutputs {
