@@ -343,7 +343,7 @@ pub fn run_library_for<S: Scalar>(
     let one = S::ONE;
     let mut cas = CollisionAvoidance::<S>::new();
     let altitude = AltitudeTrackerConfig::<S>::default_for(e.quantum).map_err(|e| e.to_string())?;
-    let mut track = IntruderTrack::<S>::new(altitude);
+    let mut track = IntruderTrack::<S>::new();
     let noise = RangeAzimuthNoise::<S>::new_f64(
         sensor.range_sigma_m * sensor.range_sigma_m,
         sensor.bearing_sigma_rad * sensor.bearing_sigma_rad,
@@ -363,6 +363,7 @@ pub fn run_library_for<S: Scalar>(
         }
         track
             .scan(
+                &altitude,
                 Some(Reply {
                     range_m: c(m.range_m),
                     altitude_ft: m.altitude_ft.map(c),

@@ -286,11 +286,21 @@ pub enum VerticalClass {
 }
 
 /// Quantisation-aware altitude tracker (see the module docs), computing in
-/// `N::Wide` ([`Numeric::Wide`]).
+/// `N::Wide` ([`Numeric::Wide`]): its configuration and its
+/// [`AltitudeState`], which it dereferences to for reading.
 #[derive(Debug, Clone, Copy, PartialEq)]
 #[cfg_attr(feature = "defmt", derive(defmt::Format))]
 pub struct AltitudeTracker<N: Numeric> {
     config: AltitudeTrackerConfig<N::Wide>,
+    state: AltitudeState<N>,
+}
+
+/// The state of an [`AltitudeTracker`] without its configuration: what a
+/// scan loop keeps per intruder, the configuration being the system's
+/// ([`crate::tcas::IntruderTrack`]).
+#[derive(Debug, Clone, Copy, PartialEq)]
+#[cfg_attr(feature = "defmt", derive(defmt::Format))]
+pub struct AltitudeState<N: Numeric> {
     /// Reports since the track (re)started, saturating at 2.
     reports: u8,
     altitude_ft: N::Wide,
@@ -354,11 +364,16 @@ fn count<S: Scalar>(n: u8) -> S {
     }
 }
 
-impl<N: Numeric<Wide = S>, S: Scalar> AltitudeTracker<N> {
-    /// A tracker with no altitude yet (status `NotReporting`).
-    pub fn new(config: AltitudeTrackerConfig<S>) -> Self {
-        AltitudeTracker {
-            config,
+impl<N: Numeric<Wide = S>, S: Scalar> Default for AltitudeState<N> {
+    fn default() -> Self {
+        Self::new()
+    }
+}
+
+impl<N: Numeric<Wide = S>, S: Scalar> AltitudeState<N> {
+    /// No altitude yet (status `NotReporting`).
+    pub fn new() -> Self {
+        AltitudeState {
             reports: 0,
             altitude_ft: S::ZERO,
             rate_ft_per_s: S::ZERO,
@@ -380,11 +395,6 @@ impl<N: Numeric<Wide = S>, S: Scalar> AltitudeTracker<N> {
             incredible_reports: 0,
             saturations: 0,
         }
-    }
-
-    /// The configuration the tracker was built with.
-    pub fn config(&self) -> &AltitudeTrackerConfig<S> {
-        &self.config
     }
 
     /// Whether and how well the altitude is known (from the report count).
@@ -435,6 +445,29 @@ impl<N: Numeric<Wide = S>, S: Scalar> AltitudeTracker<N> {
     pub fn saturations(&self) -> u32 {
         u32::from(self.saturations)
     }
+}
+
+impl<N: Numeric<Wide = S>, S: Scalar> AltitudeTracker<N> {
+    /// A tracker with no altitude yet (status `NotReporting`).
+    pub fn new(config: AltitudeTrackerConfig<S>) -> Self {
+        Self::resume(config, AltitudeState::new())
+    }
+
+    /// A tracker that goes on from `state` (kept without its configuration)
+    /// under `config`, the configuration it was tracked with.
+    pub fn resume(config: AltitudeTrackerConfig<S>, state: AltitudeState<N>) -> Self {
+        AltitudeTracker { config, state }
+    }
+
+    /// The state, without the configuration.
+    pub fn state(&self) -> &AltitudeState<N> {
+        &self.state
+    }
+
+    /// The configuration the tracker was built with.
+    pub fn config(&self) -> &AltitudeTrackerConfig<S> {
+        &self.config
+    }
 
     /// One surveillance scan, `dt` seconds after the previous one:
     /// `Some(altitude_ft)` if the reply carried an altitude, `None` if it did
@@ -450,21 +483,21 @@ impl<N: Numeric<Wide = S>, S: Scalar> AltitudeTracker<N> {
         check_interval(dt)?;
         let mut next = *self;
         match altitude_ft {
-            Some(z) if self.reports == 0 => next.start(z),
+            Some(z) if self.state.reports == 0 => next.start(z),
             Some(z) => {
                 // The change of report, once for the test and the update.
-                let change = z - self.report_ft;
+                let change = z - self.state.report_ft;
                 if self.credible(change, dt) {
                     next.take(z, change, dt);
                 } else {
-                    next.incredible_reports = next.incredible_reports.saturating_add(1);
+                    next.state.incredible_reports = next.state.incredible_reports.saturating_add(1);
                     next.coast(dt);
                 }
             }
             None => next.coast(dt),
         }
         if !next.is_valid() {
-            self.saturations = self.saturations.saturating_add(1);
+            self.state.saturations = self.state.saturations.saturating_add(1);
             return Err(FilterError::Saturated);
         }
         *self = next;
@@ -473,15 +506,15 @@ impl<N: Numeric<Wide = S>, S: Scalar> AltitudeTracker<N> {
 
     fn is_valid(&self) -> bool {
         [
-            self.altitude_ft,
-            self.rate_ft_per_s,
-            self.since_start_s,
-            self.since_transition_s,
-            self.coasted_s,
-            self.bin_time_s,
-            self.lateness_s,
-            self.bounds.lowest_ft_per_s,
-            self.bounds.highest_ft_per_s,
+            self.state.altitude_ft,
+            self.state.rate_ft_per_s,
+            self.state.since_start_s,
+            self.state.since_transition_s,
+            self.state.coasted_s,
+            self.state.bin_time_s,
+            self.state.lateness_s,
+            self.state.bounds.lowest_ft_per_s,
+            self.state.bounds.highest_ft_per_s,
         ]
         .iter()
         .all(|v| v.is_valid())
@@ -535,13 +568,13 @@ impl<N: Numeric<Wide = S>, S: Scalar> AltitudeTracker<N> {
     }
 
     fn start(&mut self, z: S) {
-        let kept = (self.incredible_reports, self.saturations);
+        let kept = (self.state.incredible_reports, self.state.saturations);
         *self = Self::new(self.config);
-        (self.incredible_reports, self.saturations) = kept;
-        self.reports = 1;
-        self.altitude_ft = z;
-        self.report_ft = z;
-        self.bounds = RateBounds {
+        (self.state.incredible_reports, self.state.saturations) = kept;
+        self.state.reports = 1;
+        self.state.altitude_ft = z;
+        self.state.report_ft = z;
+        self.state.bounds = RateBounds {
             lowest_ft_per_s: -c::<S>(LARGE_RATE_FT_PER_S),
             highest_ft_per_s: c(LARGE_RATE_FT_PER_S),
         };
@@ -553,11 +586,11 @@ impl<N: Numeric<Wide = S>, S: Scalar> AltitudeTracker<N> {
         if change == S::ZERO {
             return true;
         }
-        let elapsed = self.coasted_s + dt;
-        if self.since_start_s + dt < c(RATE_SETTLING_S) {
+        let elapsed = self.state.coasted_s + dt;
+        if self.state.since_start_s + dt < c(RATE_SETTLING_S) {
             return change.abs() <= c::<S>(CREDIBLE_INITIAL_RATE_FT_PER_S).times(elapsed);
         }
-        let predicted_change = self.rate_ft_per_s.times(elapsed);
+        let predicted_change = self.state.rate_ft_per_s.times(elapsed);
         (change - predicted_change).abs()
             <= self.q()
                 + c::<S>(CREDIBLE_RATE_ERROR_FT_PER_S).times(elapsed)
@@ -567,31 +600,31 @@ impl<N: Numeric<Wide = S>, S: Scalar> AltitudeTracker<N> {
     }
 
     fn coast(&mut self, dt: S) {
-        if self.reports == 0 {
+        if self.state.reports == 0 {
             return;
         }
-        let coasted = self.coasted_s + dt;
+        let coasted = self.state.coasted_s + dt;
         if !coasted.is_valid() || coasted > self.config.max_coast {
-            let kept = (self.incredible_reports, self.saturations);
+            let kept = (self.state.incredible_reports, self.state.saturations);
             *self = Self::new(self.config);
-            (self.incredible_reports, self.saturations) = kept;
+            (self.state.incredible_reports, self.state.saturations) = kept;
             return;
         }
-        self.coasted_s = coasted;
-        self.since_start_s = self.since_start_s + dt;
-        self.since_transition_s = self.since_transition_s + dt;
-        self.altitude_ft = self.altitude_ft + self.rate_ft_per_s.times(dt);
-        self.firmness = self.firmness.saturating_sub(1);
+        self.state.coasted_s = coasted;
+        self.state.since_start_s = self.state.since_start_s + dt;
+        self.state.since_transition_s = self.state.since_transition_s + dt;
+        self.state.altitude_ft = self.state.altitude_ft + self.state.rate_ft_per_s.times(dt);
+        self.state.firmness = self.state.firmness.saturating_sub(1);
     }
 
     /// A credible report `z`, `change` from the last, `dt` after the
     /// previous scan.
     fn take(&mut self, z: S, change: S, dt: S) {
-        self.reports = 2;
-        self.since_start_s = self.since_start_s + dt;
-        self.since_transition_s = self.since_transition_s + dt;
-        let coasted = self.coasted_s;
-        self.coasted_s = S::ZERO;
+        self.state.reports = 2;
+        self.state.since_start_s = self.state.since_start_s + dt;
+        self.state.since_transition_s = self.state.since_transition_s + dt;
+        let coasted = self.state.coasted_s;
+        self.state.coasted_s = S::ZERO;
         // The reported bin, z ± q/2, once for the no-transition test and
         // the clamp.
         let half = self.half_q();
@@ -603,7 +636,7 @@ impl<N: Numeric<Wide = S>, S: Scalar> AltitudeTracker<N> {
             self.transition(z, change, dt, coasted + dt)
         };
         if keep_report {
-            self.report_ft = z;
+            self.state.report_ft = z;
         }
         self.clamp_to_bin(bin);
     }
@@ -611,11 +644,11 @@ impl<N: Numeric<Wide = S>, S: Scalar> AltitudeTracker<N> {
     /// The estimate stays inside the reported bin (its lower and upper
     /// edges).
     fn clamp_to_bin(&mut self, (low, high): (S, S)) {
-        self.altitude_ft = self.altitude_ft.max_of(low).min_of(high);
+        self.state.altitude_ft = self.state.altitude_ft.max_of(low).min_of(high);
     }
 
     fn signed(&self, v: S) -> S {
-        match self.direction {
+        match self.state.direction {
             d if d < 0 => -v,
             0 => S::ZERO,
             _ => v,
@@ -623,7 +656,7 @@ impl<N: Numeric<Wide = S>, S: Scalar> AltitudeTracker<N> {
     }
 
     fn set_bounds(&mut self, a: S, b: S) {
-        self.bounds = RateBounds {
+        self.state.bounds = RateBounds {
             lowest_ft_per_s: a.min_of(b),
             highest_ft_per_s: a.max_of(b),
         };
@@ -632,20 +665,20 @@ impl<N: Numeric<Wide = S>, S: Scalar> AltitudeTracker<N> {
     fn occupancy_firmness(&mut self) {
         let [t1, t2, t3] = OCCUPANCY_FIRMNESS_S;
         for (firmness, t) in [(1u8, c::<S>(t1)), (2, c(t2)), (3, c(t3))] {
-            if self.since_transition_s > t {
-                self.firmness = self.firmness.max(firmness);
+            if self.state.since_transition_s > t {
+                self.state.firmness = self.state.firmness.max(firmness);
             }
         }
     }
 
     fn go_level(&mut self, z: S) {
-        self.altitude_ft = z;
-        self.rate_ft_per_s = S::ZERO;
-        self.class = VerticalClass::Level;
-        self.firmness = MAX_VERTICAL_FIRMNESS;
+        self.state.altitude_ft = z;
+        self.state.rate_ft_per_s = S::ZERO;
+        self.state.class = VerticalClass::Level;
+        self.state.firmness = MAX_VERTICAL_FIRMNESS;
         let outer = self.signed(
             self.q()
-                .over(self.since_transition_s.max_of(self.config.interval)),
+                .over(self.state.since_transition_s.max_of(self.config.interval)),
         );
         self.set_bounds(S::ZERO, outer);
     }
@@ -655,8 +688,8 @@ impl<N: Numeric<Wide = S>, S: Scalar> AltitudeTracker<N> {
     fn no_transition(&mut self, z: S, dt: S, bin: (S, S)) {
         let q = self.q();
         let t = self.config.interval;
-        let since = self.since_transition_s;
-        match self.class {
+        let since = self.state.since_transition_s;
+        match self.state.class {
             VerticalClass::New | VerticalClass::Guess | VerticalClass::Oscillating
                 if since > c(GO_LEVEL_S) =>
             {
@@ -664,23 +697,24 @@ impl<N: Numeric<Wide = S>, S: Scalar> AltitudeTracker<N> {
             }
             VerticalClass::Level => self.go_level(z),
             VerticalClass::New => {
-                self.altitude_ft = z;
-                self.rate_ft_per_s = S::ZERO;
-                let bound = q.over(self.since_start_s);
+                self.state.altitude_ft = z;
+                self.state.rate_ft_per_s = S::ZERO;
+                let bound = q.over(self.state.since_start_s);
                 self.set_bounds(-bound, bound);
                 self.occupancy_firmness();
             }
             VerticalClass::Oscillating => {
-                self.rate_ft_per_s = S::ZERO;
+                self.state.rate_ft_per_s = S::ZERO;
                 self.set_bounds(S::ZERO, S::ZERO);
                 if since > c(OSCILLATION_FIRM_S) {
-                    self.firmness = MAX_VERTICAL_FIRMNESS;
+                    self.state.firmness = MAX_VERTICAL_FIRMNESS;
                 }
             }
             VerticalClass::Guess => {
-                self.rate_ft_per_s = self.rate_ft_per_s.times(c(GUESS_DECAY));
-                self.altitude_ft = self.altitude_ft + self.rate_ft_per_s.times(dt);
-                let outer = if self.since_start_s > c(RATE_SETTLING_S) {
+                self.state.rate_ft_per_s = self.state.rate_ft_per_s.times(c(GUESS_DECAY));
+                self.state.altitude_ft =
+                    self.state.altitude_ft + self.state.rate_ft_per_s.times(dt);
+                let outer = if self.state.since_start_s > c(RATE_SETTLING_S) {
                     q.over(since).min_of(c(LIKELY_RATE_FT_PER_S))
                 } else {
                     q.over(since)
@@ -690,7 +724,7 @@ impl<N: Numeric<Wide = S>, S: Scalar> AltitudeTracker<N> {
                 self.occupancy_firmness();
             }
             VerticalClass::Trend => {
-                let overdue = since - self.bin_time_s;
+                let overdue = since - self.state.bin_time_s;
                 let late_level = c::<S>(LATE_LEVEL_S);
                 if overdue > late_level {
                     self.go_level(z);
@@ -699,31 +733,31 @@ impl<N: Numeric<Wide = S>, S: Scalar> AltitudeTracker<N> {
                     // missed it, tapering to zero at LATELEVEL.
                     let half_t = t.times(c(0.5));
                     let taper = (late_level + half_t - overdue).over(late_level + half_t);
-                    self.rate_ft_per_s = self.signed(q.over(since + t).times(taper));
-                    self.bins_in_rate = self.bins_in_rate.saturating_sub(1).max(1);
-                    self.altitude_ft = z + self.signed(self.half_q());
+                    self.state.rate_ft_per_s = self.signed(q.over(since + t).times(taper));
+                    self.state.bins_in_rate = self.state.bins_in_rate.saturating_sub(1).max(1);
+                    self.state.altitude_ft = z + self.signed(self.half_q());
                     self.set_bounds(S::ZERO, self.signed(q.over(since)));
-                    self.firmness = if overdue > c(OVERDUE_S) {
-                        self.firmness.saturating_add(1).min(2)
+                    self.state.firmness = if overdue > c(OVERDUE_S) {
+                        self.state.firmness.saturating_add(1).min(2)
                     } else {
                         1
                     };
                 } else {
-                    let predicted = self.altitude_ft + self.rate_ft_per_s.times(dt);
+                    let predicted = self.state.altitude_ft + self.state.rate_ft_per_s.times(dt);
                     let (low, high) = bin;
                     if predicted > high || predicted < low {
                         // Ahead of the reports: hold the estimate at the bin
                         // edge and take the difference out of the rate.
-                        self.altitude_ft = z + self.signed(self.half_q());
-                        let error = self.altitude_ft - predicted;
-                        self.rate_ft_per_s =
-                            self.rate_ft_per_s + error.over(since.max_of(c(MIN_CORRECTION_TIME_S)));
-                        self.bins_in_rate = self.bins_in_rate.saturating_sub(1).max(1);
+                        self.state.altitude_ft = z + self.signed(self.half_q());
+                        let error = self.state.altitude_ft - predicted;
+                        self.state.rate_ft_per_s = self.state.rate_ft_per_s
+                            + error.over(since.max_of(c(MIN_CORRECTION_TIME_S)));
+                        self.state.bins_in_rate = self.state.bins_in_rate.saturating_sub(1).max(1);
                         if error.abs() > c(PREDICTION_ERROR_FT) {
-                            self.firmness = 1;
+                            self.state.firmness = 1;
                         }
                     } else {
-                        self.altitude_ft = predicted;
+                        self.state.altitude_ft = predicted;
                     }
                 }
             }
@@ -737,10 +771,10 @@ impl<N: Numeric<Wide = S>, S: Scalar> AltitudeTracker<N> {
         let sign: i8 = if change > S::ZERO { 1 } else { -1 };
         let bins = bins_of(change.abs().over(q));
         let bins_s = count::<S>(bins);
-        let time_per_bin = self.since_transition_s.over(bins_s);
-        let same_direction = self.direction == sign;
+        let time_per_bin = self.state.since_transition_s.over(bins_s);
+        let same_direction = self.state.direction == sign;
         let mut keep = true;
-        match self.class {
+        match self.state.class {
             VerticalClass::New | VerticalClass::Level => {
                 self.start_guess(z, change, sign, since_report)
             }
@@ -757,20 +791,21 @@ impl<N: Numeric<Wide = S>, S: Scalar> AltitudeTracker<N> {
                 } else {
                     -self.third_q()
                 };
-                self.altitude_ft = z - third;
-                self.firmness = MAX_VERTICAL_FIRMNESS;
+                self.state.altitude_ft = z - third;
+                self.state.firmness = MAX_VERTICAL_FIRMNESS;
             }
             VerticalClass::Trend if same_direction => {
                 self.continue_trend(z, change, bins, time_per_bin, dt)
             }
             VerticalClass::Trend if bins > 1 => self.start_guess(z, change, sign, since_report),
             VerticalClass::Trend => {
-                if self.bin_time_s > S::ZERO
-                    && time_per_bin <= c::<S>(REVERSAL_JITTER).times(self.bin_time_s)
+                if self.state.bin_time_s > S::ZERO
+                    && time_per_bin <= c::<S>(REVERSAL_JITTER).times(self.state.bin_time_s)
                 {
                     // Right after a transition: jitter at the boundary.
-                    self.altitude_ft = self.altitude_ft + self.rate_ft_per_s.times(dt);
-                    self.firmness = 0;
+                    self.state.altitude_ft =
+                        self.state.altitude_ft + self.state.rate_ft_per_s.times(dt);
+                    self.state.firmness = 0;
                     keep = false;
                 } else {
                     self.start_oscillation(z, sign);
@@ -778,8 +813,8 @@ impl<N: Numeric<Wide = S>, S: Scalar> AltitudeTracker<N> {
             }
         }
         if keep {
-            self.direction = sign;
-            self.since_transition_s = S::ZERO;
+            self.state.direction = sign;
+            self.state.since_transition_s = S::ZERO;
         }
         keep
     }
@@ -795,24 +830,24 @@ impl<N: Numeric<Wide = S>, S: Scalar> AltitudeTracker<N> {
         };
         let t = self.config.interval;
         // After a long gap over several bins the change itself is a rate.
-        self.rate_ft_per_s = if since_report > c(LONG_COAST_S) && change.abs() > q {
+        self.state.rate_ft_per_s = if since_report > c(LONG_COAST_S) && change.abs() > q {
             (change - qs).over(since_report)
         } else if sign > 0 {
             c(GUESS_RATE_FT_PER_S)
         } else {
             -c::<S>(GUESS_RATE_FT_PER_S)
         };
-        let outer = if self.since_start_s < c(RATE_SETTLING_S) {
-            (change + qs).over(self.since_start_s)
+        let outer = if self.state.since_start_s < c(RATE_SETTLING_S) {
+            (change + qs).over(self.state.since_start_s)
         } else if sign > 0 {
             c(LIKELY_RATE_FT_PER_S)
         } else {
             -c::<S>(LIKELY_RATE_FT_PER_S)
         };
         self.set_bounds(S::ZERO, outer);
-        self.altitude_ft = z - half_qs + self.rate_ft_per_s.times(t).times(c(0.5));
-        self.firmness = 0;
-        self.class = VerticalClass::Guess;
+        self.state.altitude_ft = z - half_qs + self.state.rate_ft_per_s.times(t).times(c(0.5));
+        self.state.firmness = 0;
+        self.state.class = VerticalClass::Guess;
     }
 
     /// DO-185B `oscil_track_init`.
@@ -822,11 +857,11 @@ impl<N: Numeric<Wide = S>, S: Scalar> AltitudeTracker<N> {
         } else {
             -self.third_q()
         };
-        self.altitude_ft = z - third;
-        self.rate_ft_per_s = S::ZERO;
-        self.firmness = 2;
+        self.state.altitude_ft = z - third;
+        self.state.rate_ft_per_s = S::ZERO;
+        self.state.firmness = 2;
         self.set_bounds(S::ZERO, S::ZERO);
-        self.class = VerticalClass::Oscillating;
+        self.state.class = VerticalClass::Oscillating;
     }
 
     /// DO-185B `trend_track_init`: the second transition in one direction.
@@ -839,36 +874,36 @@ impl<N: Numeric<Wide = S>, S: Scalar> AltitudeTracker<N> {
             -self.half_q()
         };
         let t = self.config.interval;
-        let since = self.since_transition_s;
-        self.alpha_beta = false;
-        self.bin_time_s = if self.since_start_s < c(RATE_SETTLING_S) {
+        let since = self.state.since_transition_s;
+        self.state.alpha_beta = false;
+        self.state.bin_time_s = if self.state.since_start_s < c(RATE_SETTLING_S) {
             time_per_bin
         } else {
             time_per_bin.max_of(c(MIN_FIRST_BIN_S))
         };
-        self.rate_ft_per_s = qs.over(self.bin_time_s);
-        self.altitude_ft = if self.bin_time_s > S::ONE {
-            z - half_qs + self.rate_ft_per_s.times(t).times(c(0.5))
+        self.state.rate_ft_per_s = qs.over(self.state.bin_time_s);
+        self.state.altitude_ft = if self.state.bin_time_s > S::ONE {
+            z - half_qs + self.state.rate_ft_per_s.times(t).times(c(0.5))
         } else {
             z
         };
-        self.lateness_s = S::ZERO;
-        self.bins_in_rate = 1;
+        self.state.lateness_s = S::ZERO;
+        self.state.bins_in_rate = 1;
         if since > c(MIN_TREND_S) {
-            self.firmness = 2;
+            self.state.firmness = 2;
             let outer_time = (since - t).max_of(t);
             self.set_bounds(
                 change.over(since + t),
                 c::<S>(RATE_BOUND_MARGIN).times(change).over(outer_time),
             );
         } else {
-            self.firmness = 1;
+            self.state.firmness = 1;
             self.set_bounds(
                 change.over(c::<S>(MIN_TREND_S) + t),
                 (change + qs).over(since),
             );
         }
-        self.class = VerticalClass::Trend;
+        self.state.class = VerticalClass::Trend;
     }
 
     /// DO-185B `smoothing_method_selection`, `expected_transition`,
@@ -878,44 +913,53 @@ impl<N: Numeric<Wide = S>, S: Scalar> AltitudeTracker<N> {
         let q = self.q();
         let t = self.config.interval;
         let sign_q = self.signed(q);
-        let since = self.since_transition_s;
+        let since = self.state.since_transition_s;
         let bins_s = count::<S>(bins);
-        let previous_bin_time = self.bin_time_s;
-        if self.alpha_beta {
-            if self.bin_time_s > c(ALPHA_BETA_BELOW_S) && time_per_bin > c(BIN_OCCUPANCY_ABOVE_S) {
-                self.alpha_beta = false;
-                self.lateness_s = S::ZERO;
-                self.bins_in_rate = BINS_AFTER_ALPHA_BETA;
+        let previous_bin_time = self.state.bin_time_s;
+        if self.state.alpha_beta {
+            if self.state.bin_time_s > c(ALPHA_BETA_BELOW_S)
+                && time_per_bin > c(BIN_OCCUPANCY_ABOVE_S)
+            {
+                self.state.alpha_beta = false;
+                self.state.lateness_s = S::ZERO;
+                self.state.bins_in_rate = BINS_AFTER_ALPHA_BETA;
             }
-        } else if self.bin_time_s < c(BIN_OCCUPANCY_ABOVE_S) && time_per_bin < c(ALPHA_BETA_BELOW_S)
+        } else if self.state.bin_time_s < c(BIN_OCCUPANCY_ABOVE_S)
+            && time_per_bin < c(ALPHA_BETA_BELOW_S)
         {
-            self.alpha_beta = true;
-            self.firmness = self.firmness.min(1);
+            self.state.alpha_beta = true;
+            self.state.firmness = self.state.firmness.min(1);
         }
-        if self.alpha_beta {
+        if self.state.alpha_beta {
             let (alpha, beta) = ALPHA_BETA_GAINS;
-            let previous = self.altitude_ft;
-            let predicted = previous + self.rate_ft_per_s.times(dt);
+            let previous = self.state.altitude_ft;
+            let predicted = previous + self.state.rate_ft_per_s.times(dt);
             let residual = z - predicted;
-            self.altitude_ft = predicted + c::<S>(alpha).times(residual);
-            self.rate_ft_per_s = self.rate_ft_per_s + c::<S>(beta).times(residual).over(dt);
-            let after = z - (previous + self.rate_ft_per_s.times(dt));
+            self.state.altitude_ft = predicted + c::<S>(alpha).times(residual);
+            self.state.rate_ft_per_s =
+                self.state.rate_ft_per_s + c::<S>(beta).times(residual).over(dt);
+            let after = z - (previous + self.state.rate_ft_per_s.times(dt));
             if after.abs() >= self.residual_threshold() {
-                self.firmness = self.firmness.saturating_sub(2);
-                self.bins_in_rate = self.bins_in_rate.saturating_sub(1).max(3);
+                self.state.firmness = self.state.firmness.saturating_sub(2);
+                self.state.bins_in_rate = self.state.bins_in_rate.saturating_sub(1).max(3);
             } else {
-                self.firmness = self.firmness.saturating_add(1).min(MAX_VERTICAL_FIRMNESS);
-                self.bins_in_rate = self.bins_in_rate.saturating_add(bins).min(MAX_BINS);
+                self.state.firmness = self
+                    .state
+                    .firmness
+                    .saturating_add(1)
+                    .min(MAX_VERTICAL_FIRMNESS);
+                self.state.bins_in_rate =
+                    self.state.bins_in_rate.saturating_add(bins).min(MAX_BINS);
             }
-            if self.rate_ft_per_s != S::ZERO {
-                self.bin_time_s = q.over(self.rate_ft_per_s).abs();
+            if self.state.rate_ft_per_s != S::ZERO {
+                self.state.bin_time_s = q.over(self.state.rate_ft_per_s).abs();
             }
             // Bounds: the measured rate ± half a bin per averaged bin.
-            let n = count::<S>(self.bins_in_rate.max(1));
+            let n = count::<S>(self.state.bins_in_rate.max(1));
             let half = c::<S>(0.5);
             self.set_bounds(
-                self.rate_ft_per_s.times(n - half).over(n),
-                self.rate_ft_per_s.times(n + half).over(n),
+                self.state.rate_ft_per_s.times(n - half).over(n),
+                self.state.rate_ft_per_s.times(n + half).over(n),
             );
             return;
         }
@@ -927,15 +971,15 @@ impl<N: Numeric<Wide = S>, S: Scalar> AltitudeTracker<N> {
             bins.saturating_add(1)
         };
         if late.abs() > c(EARLY_LATE_S) {
-            self.bins_in_rate = restart_bins;
-            self.lateness_s = S::ZERO;
+            self.state.bins_in_rate = restart_bins;
+            self.state.lateness_s = S::ZERO;
         } else {
-            self.lateness_s = c::<S>(LATENESS_MEMORY).times(self.lateness_s) + late;
-            if self.lateness_s.abs() <= c(SLIGHTLY_OFF_S) {
+            self.state.lateness_s = c::<S>(LATENESS_MEMORY).times(self.state.lateness_s) + late;
+            if self.state.lateness_s.abs() <= c(SLIGHTLY_OFF_S) {
                 let max_time = c::<S>(MAX_RATE_TIME_S);
                 // 2·t ≥ MAXZDTIME, as t ≥ MAXZDTIME/2: doubling is exact.
                 if time_per_bin >= c(MAX_RATE_TIME_S / 2.0) {
-                    self.bins_in_rate = 1;
+                    self.state.bins_in_rate = 1;
                 } else {
                     // The most bins whose time fits in MAXZDTIME.
                     let mut most = 1u8;
@@ -953,20 +997,21 @@ impl<N: Numeric<Wide = S>, S: Scalar> AltitudeTracker<N> {
                             most = n;
                         }
                     }
-                    self.bins_in_rate = self.bins_in_rate.saturating_add(bins).min(most);
+                    self.state.bins_in_rate =
+                        self.state.bins_in_rate.saturating_add(bins).min(most);
                 }
             } else {
-                self.bins_in_rate = restart_bins;
-                self.lateness_s = self.lateness_s.times(c(LATENESS_DECAY));
+                self.state.bins_in_rate = restart_bins;
+                self.state.lateness_s = self.state.lateness_s.times(c(LATENESS_DECAY));
             }
         }
-        let weight = bins_s.over(count::<S>(self.bins_in_rate.max(1)));
-        self.bin_time_s = previous_bin_time
+        let weight = bins_s.over(count::<S>(self.state.bins_in_rate.max(1)));
+        self.state.bin_time_s = previous_bin_time
             + weight
                 .min_of(S::ONE)
                 .times(time_per_bin - previous_bin_time);
-        self.rate_ft_per_s = sign_q.over(self.bin_time_s);
-        self.altitude_ft = self.altitude_ft + self.rate_ft_per_s.times(dt);
+        self.state.rate_ft_per_s = sign_q.over(self.state.bin_time_s);
+        self.state.altitude_ft = self.state.altitude_ft + self.state.rate_ft_per_s.times(dt);
         // Firmness from how regular the bin crossings are.
         let ratio = time_per_bin.over(previous_bin_time);
         let [(lo3, hi3), (lo2, hi2), (lo1, hi1)] = BIN_RATIO_FIRMNESS;
@@ -975,32 +1020,32 @@ impl<N: Numeric<Wide = S>, S: Scalar> AltitudeTracker<N> {
             (2, c(lo2), c(hi2)),
             (1, c(lo1), c(hi1)),
         ];
-        self.firmness = ranges
+        self.state.firmness = ranges
             .iter()
             .find(|&&(_, lo, hi)| ratio >= lo && ratio <= hi)
             .map_or(0, |&(firmness, _, _)| firmness);
         let (out3, out2) = LATENESS_FIRMNESS_S;
         if late.abs() < c(out3) {
-            self.firmness = MAX_VERTICAL_FIRMNESS;
+            self.state.firmness = MAX_VERTICAL_FIRMNESS;
         } else if late.abs() < c(out2) {
-            self.firmness = self.firmness.max(2);
+            self.state.firmness = self.state.firmness.max(2);
         }
         let (slow1, slow2) = SLOW_BIN_FIRMNESS_S;
         if time_per_bin > c(slow2) {
-            self.firmness = self.firmness.max(2);
+            self.state.firmness = self.state.firmness.max(2);
         } else if time_per_bin > c(slow1) {
-            self.firmness = self.firmness.max(1);
+            self.state.firmness = self.state.firmness.max(1);
         }
-        if self.since_start_s < c(RATE_SETTLING_S) {
-            self.firmness = 1;
+        if self.state.since_start_s < c(RATE_SETTLING_S) {
+            self.state.firmness = 1;
         }
         // Rate bounds: ± one scan of timing over the averaged bins when the
         // crossings are regular; wider otherwise.
-        if self.firmness == MAX_VERTICAL_FIRMNESS || late.abs() < c(out2) {
-            let span = count::<S>(self.bins_in_rate).times(since);
+        if self.state.firmness == MAX_VERTICAL_FIRMNESS || late.abs() < c(out2) {
+            let span = count::<S>(self.state.bins_in_rate).times(since);
             self.set_bounds(
-                self.rate_ft_per_s.times(span - t).over(span),
-                self.rate_ft_per_s.times(span + t).over(span),
+                self.state.rate_ft_per_s.times(span - t).over(span),
+                self.state.rate_ft_per_s.times(span + t).over(span),
             );
         } else if ratio < S::ONE {
             self.set_bounds(
@@ -1012,9 +1057,17 @@ impl<N: Numeric<Wide = S>, S: Scalar> AltitudeTracker<N> {
         } else {
             let outer = q
                 .over(time_per_bin)
-                .max_of(self.bounds.highest_ft_per_s.abs());
+                .max_of(self.state.bounds.highest_ft_per_s.abs());
             self.set_bounds(S::ZERO, self.signed(outer));
         }
+    }
+}
+
+impl<N: Numeric> core::ops::Deref for AltitudeTracker<N> {
+    type Target = AltitudeState<N>;
+
+    fn deref(&self) -> &AltitudeState<N> {
+        &self.state
     }
 }
 

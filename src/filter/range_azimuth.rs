@@ -637,7 +637,8 @@ pub struct RangeAzimuthState<N: Numeric> {
     first_cross_sigma: N::Ratio,
     range_factor: CovarianceFactor<N>,
     cross_factor: CovarianceFactor<N>,
-    saturations: u32,
+    /// Saturating (u16: the state's bytes are per track; the getter widens).
+    saturations: u16,
 }
 
 impl<N: Numeric> RangeAzimuthState<N> {
@@ -697,9 +698,10 @@ impl<N: Numeric> RangeAzimuthState<N> {
     pub fn cross_range_covariance(&self) -> CovarianceFactor<N> {
         self.cross_factor
     }
-    /// How many updates or coasts were discarded because they saturated.
+    /// How many updates or coasts were discarded because they saturated
+    /// (saturating at 65,535).
     pub fn saturations(&self) -> u32 {
-        self.saturations
+        u32::from(self.saturations)
     }
 
     fn saturated(&mut self) -> FilterError {

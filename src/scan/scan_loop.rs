@@ -9,7 +9,7 @@ use capacity::{Priority, TrackGate, CLASS_OTHER};
 pub use intruders::MAX_RA_THREATS;
 use intruders::{IdentityRule, IntruderSlot, ReplyData};
 
-use crate::filter::altitude::{AltitudeEstimate, AltitudeTrackerConfig};
+use crate::filter::altitude::{AltitudeEstimate, AltitudeQuantum, AltitudeTrackerConfig};
 use crate::filter::range_azimuth::RangeAzimuthState;
 use crate::num::{Numeric, Scalar};
 use crate::tcas::{range_tau, Advisory, CollisionAvoidance, IntruderTrack, OwnAircraft};
@@ -38,6 +38,16 @@ pub struct ScanConfig<T: Numeric, P> {
     pub altitude_25ft: AltitudeTrackerConfig<T::Wide>,
     /// The scan period and the clock's windows.
     pub clock: ClockConfig,
+}
+
+impl<T: Numeric, P> ScanConfig<T, P> {
+    /// The altitude tracker's configuration for reports in `quantum`'s steps.
+    pub fn altitude_of(&self, quantum: AltitudeQuantum) -> &AltitudeTrackerConfig<T::Wide> {
+        match quantum {
+            AltitudeQuantum::ModeC => &self.altitude,
+            AltitudeQuantum::ModeS25 => &self.altitude_25ft,
+        }
+    }
 }
 
 /// What [`ScanLoop::collect`] found.

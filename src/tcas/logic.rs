@@ -13,7 +13,7 @@ use super::range_tracker::RangeTracker;
 use super::resolution::{LowAltitudeInhibits, ResolutionOutput, ResolutionState};
 use super::sensitivity::{OwnAircraft, SensitivitySelector};
 use super::TcasError;
-use crate::filter::altitude::{AltitudeTracker, AltitudeTrackerConfig, OutOfLine};
+use crate::filter::altitude::{AltitudeState, AltitudeTracker, AltitudeTrackerConfig, OutOfLine};
 use crate::filter::range_azimuth::RangeAzimuthState;
 use crate::filter::{FilterError, Phase};
 use crate::num::{hypot, Numeric, Scalar};
@@ -87,22 +87,28 @@ pub struct Reply<S> {
 }
 
 /// One intruder as the TCAS logic keeps it (in `N::Wide`, as
-/// [`CollisionAvoidance`]).
+/// [`CollisionAvoidance`]). Its altitude tracker's configuration (the
+/// system's, per altitude quantum) is not kept: [`Self::scan`] takes it.
 #[derive(Debug, Clone, Copy, PartialEq)]
 #[cfg_attr(feature = "defmt", derive(defmt::Format))]
 pub struct IntruderTrack<N: Numeric> {
     range: RangeTracker<N>,
-    altitude: AltitudeTracker<N>,
+    altitude: AltitudeState<N>,
     threat: ThreatState<N::Wide>,
 }
 
+impl<N: Numeric<Wide = S>, S: Scalar> Default for IntruderTrack<N> {
+    fn default() -> Self {
+        Self::new()
+    }
+}
+
 impl<N: Numeric<Wide = S>, S: Scalar> IntruderTrack<N> {
-    /// A new intruder: empty range tracker, the altitude tracker with this
-    /// configuration (100 ft or 25 ft steps), no advisory.
-    pub fn new(altitude: AltitudeTrackerConfig<S>) -> Self {
+    /// A new intruder: empty range and altitude trackers, no advisory.
+    pub fn new() -> Self {
         IntruderTrack {
             range: RangeTracker::new(),
-            altitude: AltitudeTracker::new(altitude),
+            altitude: AltitudeState::new(),
             threat: ThreatState::new(),
         }
     }
@@ -111,8 +117,8 @@ impl<N: Numeric<Wide = S>, S: Scalar> IntruderTrack<N> {
     pub fn range_tracker(&self) -> &RangeTracker<N> {
         &self.range
     }
-    /// The intruder's altitude tracker ([`AltitudeTracker`]).
-    pub fn altitude_tracker(&self) -> &AltitudeTracker<N> {
+    /// The state of the intruder's altitude tracker ([`AltitudeTracker`]).
+    pub fn altitude_tracker(&self) -> &AltitudeState<N> {
         &self.altitude
     }
     /// The intruder's threat-logic state (advisory ages and hysteresis).
@@ -121,25 +127,33 @@ impl<N: Numeric<Wide = S>, S: Scalar> IntruderTrack<N> {
     }
 
     /// One scan `dt` s after the previous: the reply, or `None` when the
-    /// intruder did not answer. Invalid input is refused; the range and
-    /// altitude trackers are each all-or-nothing, and the range is checked
-    /// before either changes.
-    pub fn scan(&mut self, reply: Option<Reply<S>>, dt: S) -> Result<(), FilterError> {
+    /// intruder did not answer; `altitude` is the altitude tracker's
+    /// configuration for the intruder's quantum, the same at every scan.
+    /// Invalid input is refused; the range and altitude trackers are each
+    /// all-or-nothing, and the range is checked before either changes.
+    pub fn scan(
+        &mut self,
+        altitude: &AltitudeTrackerConfig<S>,
+        reply: Option<Reply<S>>,
+        dt: S,
+    ) -> Result<(), FilterError> {
+        let mut altitude_tracker = AltitudeTracker::resume(*altitude, self.altitude);
         match reply {
             Some(r) => {
                 if r.altitude_ft.is_some_and(|z| !z.is_valid()) {
                     return Err(FilterError::InvalidMeasurement);
                 }
                 self.range.update(r.range_m, dt)?;
-                self.altitude.scan(r.altitude_ft, dt)?;
+                altitude_tracker.scan(r.altitude_ft, dt)?;
             }
             None => {
                 if self.range.phase() != Phase::Empty {
                     self.range.coast(dt)?;
                 }
-                self.altitude.scan(None, dt)?;
+                altitude_tracker.scan(None, dt)?;
             }
         }
+        self.altitude = *altitude_tracker.state();
         Ok(())
     }
 

@@ -42,24 +42,39 @@ pub struct MeasurementReport {
 }
 
 /// A 24-bit Mode S (ICAO) aircraft address (ICAO Annex 10 Vol. III; DO-185B
-/// associates Mode S replies by it).
-#[derive(Debug, Clone, Copy, PartialEq, Eq, PartialOrd, Ord, Hash)]
-#[cfg_attr(feature = "defmt", derive(defmt::Format))]
-pub struct ModeSAddress(u32);
+/// associates Mode S replies by it). Kept as its three bytes, most
+/// significant first (the order is the address's): an `Option` of it is 4
+/// bytes, not 8, in every per-track and per-reply record.
+#[derive(Clone, Copy, PartialEq, Eq, PartialOrd, Ord, Hash)]
+pub struct ModeSAddress([u8; 3]);
+
+/// The address in hexadecimal, as it is written: `ModeSAddress(4CA123)`.
+impl core::fmt::Debug for ModeSAddress {
+    fn fmt(&self, f: &mut core::fmt::Formatter<'_>) -> core::fmt::Result {
+        write!(f, "ModeSAddress({:06X})", self.get())
+    }
+}
+
+#[cfg(feature = "defmt")]
+impl defmt::Format for ModeSAddress {
+    fn format(&self, f: defmt::Formatter) {
+        defmt::write!(f, "ModeSAddress({=u32:06X})", self.get())
+    }
+}
 
 impl ModeSAddress {
     /// The address, if it fits 24 bits.
     pub const fn new(address: u32) -> Option<Self> {
-        if address <= 0x00FF_FFFF {
-            Some(ModeSAddress(address))
-        } else {
-            None
+        match address.to_be_bytes() {
+            [0, a, b, c] => Some(ModeSAddress([a, b, c])),
+            _ => None,
         }
     }
 
     /// The 24-bit address.
     pub const fn get(self) -> u32 {
-        self.0
+        let [a, b, c] = self.0;
+        u32::from_be_bytes([0, a, b, c])
     }
 }
 

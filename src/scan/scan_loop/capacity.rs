@@ -33,8 +33,40 @@ impl<S: Scalar> Priority<S> {
 #[derive(Debug, Clone, Copy)]
 pub(super) struct TrackGate<S: Numeric> {
     region: GateRegion<S>,
+    /// The batch index of the nearest measurement in the gate,
+    /// [`NO_CHAMPION`] for none, and its gate cost: 4 bytes, where an
+    /// `Option<(usize, u16)>` takes 8 to 16, in a record kept per track.
+    champion_index: u16,
+    champion_cost: u16,
+}
+
+/// No measurement in the gate yet: not a batch index (a batch holds fewer
+/// than 65,535 measurements, the track table's capacity check).
+const NO_CHAMPION: u16 = u16::MAX;
+
+impl<S: Numeric> TrackGate<S> {
+    fn new(region: GateRegion<S>) -> Self {
+        TrackGate {
+            region,
+            champion_index: NO_CHAMPION,
+            champion_cost: 0,
+        }
+    }
+
     /// (batch index, gate cost) of the nearest measurement in the gate.
-    champion: Option<(usize, u16)>,
+    fn champion(&self) -> Option<(usize, u16)> {
+        (self.champion_index != NO_CHAMPION)
+            .then_some((usize::from(self.champion_index), self.champion_cost))
+    }
+
+    fn set_champion(&mut self, index: usize, cost: u16) {
+        self.champion_index = u16::try_from(index).unwrap_or(NO_CHAMPION);
+        self.champion_cost = cost;
+    }
+
+    fn clear_champion(&mut self) {
+        self.champion_index = NO_CHAMPION;
+    }
 }
 
 impl<
@@ -108,7 +140,7 @@ impl<
                 let Some(cost) = gate.region.cost(o) else {
                     continue;
                 };
-                match gate.champion {
+                match gate.champion() {
                     Some((i, c)) if cost < c => {
                         crowned = true;
                         if let Some(d) = dethroned.get_mut(i) {
@@ -147,8 +179,8 @@ impl<
     /// Clears a batch entry's champion places (it is being replaced).
     pub(super) fn release(&mut self, index: usize) {
         for gate in self.gates.iter_mut() {
-            if gate.champion.is_some_and(|(i, _)| i == index) {
-                gate.champion = None;
+            if gate.champion().is_some_and(|(i, _)| i == index) {
+                gate.clear_champion();
             }
         }
         if let Some(c) = self.batch_champions.get_mut(index) {
@@ -163,7 +195,7 @@ impl<
             let Some(cost) = gate.region.cost(observation) else {
                 continue;
             };
-            let previous = match gate.champion {
+            let previous = match gate.champion() {
                 Some((_, c)) if cost >= c => continue,
                 previous => previous,
             };
@@ -172,7 +204,7 @@ impl<
                     *count = count.saturating_sub(1);
                 }
             }
-            gate.champion = Some((index, cost));
+            gate.set_champion(index, cost);
             if let Some(count) = self.batch_champions.get_mut(index) {
                 *count = count.saturating_add(1);
             }
@@ -197,11 +229,7 @@ impl<
                     .gate_region(params, &p, &step, config.tracker.gate())
             });
             if let Some(region) = region {
-                let gate = TrackGate {
-                    region,
-                    champion: None,
-                };
-                if self.gates.push(gate).is_err() {
+                if self.gates.push(TrackGate::new(region)).is_err() {
                     break;
                 }
             }

@@ -164,16 +164,11 @@ impl<
                 None => {
                     // A track per slot at most, and a slot per track: there
                     // is room for every live track.
-                    let quantum = quantum_of(reply);
-                    let altitude = match quantum {
-                        AltitudeQuantum::ModeC => config.altitude,
-                        AltitudeQuantum::ModeS25 => config.altitude_25ft,
-                    };
                     let slot = IntruderSlot {
                         track: id,
                         address: reply.address,
-                        quantum,
-                        tcas: IntruderTrack::new(altitude),
+                        quantum: quantum_of(reply),
+                        tcas: IntruderTrack::new(),
                         updated: false,
                         assessed: None,
                     };
@@ -190,14 +185,21 @@ impl<
                     range_m,
                     altitude_ft: reply.altitude_ft,
                 };
-                if s.tcas.scan(Some(reply), dt).is_err() {
+                if s.tcas
+                    .scan(config.altitude_of(s.quantum), Some(reply), dt)
+                    .is_err()
+                {
                     bump(&mut self.counters.intruder_tracker_errors);
                 }
                 s.updated = true;
             }
         }
         for s in self.intruders.iter_mut() {
-            if !s.updated && s.tcas.scan(None, dt).is_err() {
+            if !s.updated
+                && s.tcas
+                    .scan(config.altitude_of(s.quantum), None, dt)
+                    .is_err()
+            {
                 bump(&mut self.counters.intruder_tracker_errors);
             }
         }

@@ -783,7 +783,8 @@ fn tcas_cycle_run<S: TestScalar>(
     let one = value::<S>(1.0)?;
     let own = OwnAircraft::over_sea_level(value::<S>(8000.0)?, S::ZERO);
     let mut cas = CollisionAvoidance::<S>::new();
-    let mut track = IntruderTrack::<S>::new(altitude_config::<S>(AltitudeQuantum::ModeS25)?);
+    let altitude = altitude_config::<S>(AltitudeQuantum::ModeS25)?;
+    let mut track = IntruderTrack::<S>::new();
     let closure = 500.0 * KT;
     for k in 0..110u32 {
         let along = 14.0 * NM - closure * k as f64;
@@ -792,8 +793,10 @@ fn tcas_cycle_run<S: TestScalar>(
             range_m: value::<S>(range)?,
             altitude_ft: Some(value::<S>(8300.0)?),
         };
-        let (Ok(cycle), Ok(())) = (cas.begin_cycle(&own, false), track.scan(Some(reply), one))
-        else {
+        let (Ok(cycle), Ok(())) = (
+            cas.begin_cycle(&own, false),
+            track.scan(&altitude, Some(reply), one),
+        ) else {
             defmt::error!("{=str}: scan {=u32} refused", S::NAME, k);
             return Err(Failure);
         };

@@ -37,7 +37,7 @@ fn head_on<N: Numeric<Wide = S>, S: Scalar>() -> Vec<ScanOutputs<S>> {
     let dt = S::ONE;
     let mut cas = CollisionAvoidance::<N>::new();
     let altitude_config = AltitudeTrackerConfig::default_for(AltitudeQuantum::ModeC).unwrap();
-    let mut intruder = IntruderTrack::<N>::new(altitude_config);
+    let mut intruder = IntruderTrack::<N>::new();
     let mut range_tracker = RangeTracker::<N>::new();
     let mut altitude_tracker = AltitudeTracker::<N>::new(altitude_config);
     let noise = RangeAzimuthNoise::new_f64(15.0 * 15.0, 0.087 * 0.087, 1.0)
@@ -56,7 +56,7 @@ fn head_on<N: Numeric<Wide = S>, S: Scalar>() -> Vec<ScanOutputs<S>> {
                 range_m: s(range_m),
                 altitude_ft,
             };
-            intruder.scan(Some(reply), dt).unwrap();
+            intruder.scan(&altitude_config, Some(reply), dt).unwrap();
             range_tracker.update(s(range_m), dt).unwrap();
             altitude_tracker.scan(altitude_ft, dt).unwrap();
             let z = Observation::new(Measurement::Polar {

@@ -293,7 +293,7 @@ fn bytes_per_track_of_every_filter() {
                 120,
                 92
             ),
-            ("RangeAzimuthTrack", 136, 84, 136, 132),
+            ("RangeAzimuthTrack", 136, 80, 136, 128),
         ]
     );
 }

@@ -150,7 +150,7 @@ fn form_cycle<S: Scalar>(own: &OwnAircraft<S>) -> Option<Cycle<S>> {
 fn scan_intruder<S: Scalar>(
     cycle: &Cycle<S>,
     bearing: &mut RangeAzimuthFilter<S>,
-    track: &mut IntruderTrack<S>,
+    (track, altitude): (&mut IntruderTrack<S>, &AltitudeTrackerConfig<S>),
     (range_m, bearing_rad, altitude_ft): (S, S, S),
     dt: S,
 ) -> Option<Advisory> {
@@ -159,7 +159,7 @@ fn scan_intruder<S: Scalar>(
         range_m,
         altitude_ft: Some(altitude_ft),
     };
-    track.scan(Some(reply), dt).ok()?;
+    track.scan(altitude, Some(reply), dt).ok()?;
     let status = track.assess(cycle, Some(bearing), dt).ok()??;
     Some(status.advisory)
 }
@@ -457,10 +457,16 @@ fn tracked_intruder<S: BenchNumber + Scalar>(bench: &mut Bench, cycle: &Cycle<S>
         return;
     };
     let mut bearing = RangeAzimuthFilter::<S>::new(noise);
-    let mut track = IntruderTrack::<S>::new(altitude);
+    let mut track = IntruderTrack::<S>::new();
     // Two laps first: firm tracks, as in a scan loop that has run a while.
     for k in 0..2 * RING as u32 {
-        scan_intruder(cycle, &mut bearing, &mut track, replies[at(k)], dt);
+        scan_intruder(
+            cycle,
+            &mut bearing,
+            (&mut track, &altitude),
+            replies[at(k)],
+            dt,
+        );
     }
     let mut tally = AdvisoryTally::default();
     bench.per_call(
@@ -470,7 +476,7 @@ fn tracked_intruder<S: BenchNumber + Scalar>(bench: &mut Bench, cycle: &Cycle<S>
             tally.count(scan_intruder(
                 cycle,
                 &mut bearing,
-                &mut track,
+                (&mut track, &altitude),
                 black_box(replies[at(k)]),
                 dt,
             ))
