@@ -16,7 +16,7 @@
 #   two-crossing   its second input (scripts/demo-input.sh FILE two-crossing)
 #   empty          no input at all
 #   corrupt        every frame with a CRC error, 1-16 garbage bytes before each
-#   flood          2,000 measurements in one scan (capacity: 64, 24 on the micro:bit)
+#   flood          2,000 measurements in one scan (capacity: 256, 12 on the micro:bit)
 #   replayed       the default input twice in a row: time goes back at the join
 #   truncated      the first half of the default input, cut inside a frame
 #

@@ -237,11 +237,11 @@ struct TrackSeen {
 /// [`Encoder`]), defmt lines, and a record of the confirmed tracks for the
 /// summary.
 ///
-/// On the wire a scan's track reports come first and its summary closes it;
-/// the log prints the summary line first, so the track lines wait here.
+/// The log keeps the wire's order: a scan's track lines, each with the
+/// scan's time, then its summary line (no buffer of a scan's track reports:
+/// on the micro:bit that was 44 bytes a track).
 struct Reporter {
     encoder: Encoder,
-    tracks_of_scan: heapless::Vec<TrackReport, TRACKS>,
     seen: heapless::Vec<TrackSeen, MAX_TRACKS_SEEN>,
     not_remembered: u32,
     frames_sent: u32,
@@ -263,7 +263,6 @@ impl Reporter {
     const fn new() -> Self {
         Reporter {
             encoder: Encoder::new(),
-            tracks_of_scan: heapless::Vec::new(),
             seen: heapless::Vec::new(),
             not_remembered: 0,
             frames_sent: 0,
@@ -281,17 +280,9 @@ impl Reporter {
         match message {
             Message::Track(t) => {
                 self.remember(t);
-                if self.tracks_of_scan.push(*t).is_err() {
-                    log_track(t);
-                }
+                log_track(t);
             }
-            Message::Scan(s) => {
-                log_scan(s);
-                for t in self.tracks_of_scan.iter() {
-                    log_track(t);
-                }
-                self.tracks_of_scan.clear();
-            }
+            Message::Scan(s) => log_scan(s),
             Message::Health(h) => self.health = *h,
             Message::Measurement(_) | Message::End(_) => {}
         }
@@ -366,22 +357,23 @@ fn log_track(t: &TrackReport) {
     };
     let alt = t.altitude;
     let tau = t.range_tau_ds.map(|d| f32::from(d) / 10.0);
+    let (sec, ms) = secs(t.time_ms);
     match (alt, tau) {
         (Some((alt, rate)), Some(tau)) => defmt::println!(
-            "    track {=u32} {=str} {=str} {=u32:06x} ({=f32}, {=f32}) m ({=f32}, {=f32}) m/s {=i32} ft {=i16} ft/min | {=str} {=str} | tau {=f32} s",
-            id, status, mode, address, x, y, vx, vy, alt, rate, advisory, ra, tau
+            "t={=u32}.{=u32:03} s   track {=u32} {=str} {=str} {=u32:06x} ({=f32}, {=f32}) m ({=f32}, {=f32}) m/s {=i32} ft {=i16} ft/min | {=str} {=str} | tau {=f32} s",
+            sec, ms, id, status, mode, address, x, y, vx, vy, alt, rate, advisory, ra, tau
         ),
         (Some((alt, rate)), None) => defmt::println!(
-            "    track {=u32} {=str} {=str} {=u32:06x} ({=f32}, {=f32}) m ({=f32}, {=f32}) m/s {=i32} ft {=i16} ft/min | {=str} {=str} | diverging",
-            id, status, mode, address, x, y, vx, vy, alt, rate, advisory, ra
+            "t={=u32}.{=u32:03} s   track {=u32} {=str} {=str} {=u32:06x} ({=f32}, {=f32}) m ({=f32}, {=f32}) m/s {=i32} ft {=i16} ft/min | {=str} {=str} | diverging",
+            sec, ms, id, status, mode, address, x, y, vx, vy, alt, rate, advisory, ra
         ),
         (None, Some(tau)) => defmt::println!(
-            "    track {=u32} {=str} {=str} {=u32:06x} ({=f32}, {=f32}) m ({=f32}, {=f32}) m/s no altitude | {=str} {=str} | tau {=f32} s",
-            id, status, mode, address, x, y, vx, vy, advisory, ra, tau
+            "t={=u32}.{=u32:03} s   track {=u32} {=str} {=str} {=u32:06x} ({=f32}, {=f32}) m ({=f32}, {=f32}) m/s no altitude | {=str} {=str} | tau {=f32} s",
+            sec, ms, id, status, mode, address, x, y, vx, vy, advisory, ra, tau
         ),
         (None, None) => defmt::println!(
-            "    track {=u32} {=str} {=str} {=u32:06x} ({=f32}, {=f32}) m ({=f32}, {=f32}) m/s no altitude | {=str} {=str} | diverging",
-            id, status, mode, address, x, y, vx, vy, advisory, ra
+            "t={=u32}.{=u32:03} s   track {=u32} {=str} {=str} {=u32:06x} ({=f32}, {=f32}) m ({=f32}, {=f32}) m/s no altitude | {=str} {=str} | diverging",
+            sec, ms, id, status, mode, address, x, y, vx, vy, advisory, ra
         ),
     }
 }
@@ -421,15 +413,19 @@ fn start() -> DemoConfig {
         core::mem::size_of::<DemoIntake>()
     );
     {
-        use abtrack::filter::altitude::AltitudeTracker;
+        use abtrack::filter::altitude::AltitudeState;
         use abtrack::tcas::{IntruderTrack, RangeTracker, ThreatState};
         use core::mem::size_of;
+        // One track more, for the loop's bytes per track.
+        type LoopWithOneMore =
+            ScanLoop<Native, RangeAzimuthTrack<Native>, { TRACKS + 1 }, MEASUREMENTS_PER_SCAN>;
         defmt::println!(
-            "RAM per track: table slot {=usize} B, TCAS intruder {=usize} B (range tracker {=usize}, altitude tracker {=usize}, threat state {=usize})",
+            "RAM per track: {=usize} B in the scan loop, of which table slot {=usize} B, TCAS intruder {=usize} B (range tracker {=usize}, altitude tracker {=usize}, threat state {=usize})",
+            size_of::<LoopWithOneMore>() - size_of::<DemoLoop>(),
             size_of::<abtrack::track::TrackSlot<Wide, RangeAzimuthTrack<Native>>>(),
             size_of::<IntruderTrack<Native>>(),
             size_of::<RangeTracker<Native>>(),
-            size_of::<AltitudeTracker<Native>>(),
+            size_of::<AltitudeState<Native>>(),
             size_of::<ThreatState<Wide>>()
         );
     }
