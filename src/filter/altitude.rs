@@ -567,10 +567,17 @@ impl<N: Numeric<Wide = S>, S: Scalar> AltitudeTracker<N> {
         }
     }
 
+    /// Forgets the track (status `NotReporting`); the counts stay.
+    fn forget(&mut self) {
+        self.state = AltitudeState {
+            incredible_reports: self.state.incredible_reports,
+            saturations: self.state.saturations,
+            ..AltitudeState::new()
+        };
+    }
+
     fn start(&mut self, z: S) {
-        let kept = (self.state.incredible_reports, self.state.saturations);
-        *self = Self::new(self.config);
-        (self.state.incredible_reports, self.state.saturations) = kept;
+        self.forget();
         self.state.reports = 1;
         self.state.altitude_ft = z;
         self.state.report_ft = z;
@@ -605,9 +612,7 @@ impl<N: Numeric<Wide = S>, S: Scalar> AltitudeTracker<N> {
         }
         let coasted = self.state.coasted_s + dt;
         if !coasted.is_valid() || coasted > self.config.max_coast {
-            let kept = (self.state.incredible_reports, self.state.saturations);
-            *self = Self::new(self.config);
-            (self.state.incredible_reports, self.state.saturations) = kept;
+            self.forget();
             return;
         }
         self.state.coasted_s = coasted;

@@ -138,23 +138,24 @@ impl<N: Numeric<Wide = S>, S: Scalar> IntruderTrack<N> {
         dt: S,
     ) -> Result<(), FilterError> {
         let mut altitude_tracker = AltitudeTracker::resume(*altitude, self.altitude);
-        match reply {
+        let scanned = match reply {
             Some(r) => {
                 if r.altitude_ft.is_some_and(|z| !z.is_valid()) {
                     return Err(FilterError::InvalidMeasurement);
                 }
                 self.range.update(r.range_m, dt)?;
-                altitude_tracker.scan(r.altitude_ft, dt)?;
+                altitude_tracker.scan(r.altitude_ft, dt)
             }
             None => {
                 if self.range.phase() != Phase::Empty {
                     self.range.coast(dt)?;
                 }
-                altitude_tracker.scan(None, dt)?;
+                altitude_tracker.scan(None, dt)
             }
-        }
+        };
+        // Also when the altitude tracker refused the scan: it counted it.
         self.altitude = *altitude_tracker.state();
-        Ok(())
+        scanned.map(|_| ())
     }
 
     /// What the threat logic sees; `None` before the range rate is known.
