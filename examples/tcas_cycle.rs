@@ -1,7 +1,8 @@
 //! One TCAS cycle per second against a head-on intruder, in the Cortex-M3
 //! firmware's type `Fixed32` (the logic computes in its wide format,
 //! `<Fixed32 as Numeric>::Wide`): the range tracker and the altitude tracker
-//! (inside `IntruderTrack`), the bearing filter (`RangeAzimuthFilter`, a
+//! (inside `IntruderTrack`, which takes the altitude tracker's configuration
+//! at each scan), the bearing filter (`RangeAzimuthFilter`, a
 //! separate track whose miss distance the threat logic cross-checks), the
 //! threat assessment and the resolution advisory.
 //!
@@ -56,7 +57,7 @@ fn run() -> Result<(), String> {
     // 100 ft steps (Mode C); Mode S with the Q bit reports in 25 ft steps.
     let altitude =
         AltitudeTrackerConfig::default_for(AltitudeQuantum::ModeC).map_err(|e| e.to_string())?;
-    let mut intruder = IntruderTrack::<N>::new(altitude);
+    let mut intruder = IntruderTrack::<N>::new();
     let noise = RangeAzimuthNoise::<S>::new_f64(
         RANGE_SIGMA_M * RANGE_SIGMA_M,
         BEARING_SIGMA_RAD * BEARING_SIGMA_RAD,
@@ -80,7 +81,9 @@ fn run() -> Result<(), String> {
             range_m: s(range_m),
             altitude_ft: Some(s(INTRUDER_ALTITUDE_FT)),
         };
-        intruder.scan(Some(reply), dt).map_err(|e| e.to_string())?;
+        intruder
+            .scan(&altitude, Some(reply), dt)
+            .map_err(|e| e.to_string())?;
         // 3. The bearing track, from the same reply's range and azimuth.
         bearing_filter
             .update(s(range_m), s(BEARING_RAD), dt)

@@ -459,9 +459,9 @@ impl<N: Numeric<Wide = S>, S: Scalar> AltitudeTracker<N> {
         AltitudeTracker { config, state }
     }
 
-    /// The state, without the configuration.
-    pub fn state(&self) -> &AltitudeState<N> {
-        &self.state
+    /// The state, without the configuration (to keep until the next scan).
+    pub fn into_state(self) -> AltitudeState<N> {
+        self.state
     }
 
     /// The configuration the tracker was built with.

@@ -126,8 +126,8 @@ fn scaled_i32<S: Scalar>(v: S, scale: u32) -> i32 {
 ///
 /// Memory: the [`TrackTable`] (see [`crate::track`] for its size), plus per
 /// measurement slot one `Measurement<T::Wide>`, one `Option<T::Wide>`, a
-/// priority and an [`Association`], plus per track slot a gate region and an
-/// `Option` of an [`AltitudeTracker`](crate::filter::altitude::AltitudeTracker).
+/// priority and an [`Association`], plus per track slot a gate region and
+/// its TCAS state (an [`IntruderTrack`], its Mode S address and quantum).
 /// `host-tests/tests/it/scan/loop_on_host.rs` prints the sizes; the firmware prints
 /// its own at start-up.
 #[derive(Debug)]
@@ -247,7 +247,7 @@ impl<
     /// The altitude estimate of a track, if it reported altitude.
     pub fn altitude(&self, track: TrackId) -> Option<AltitudeEstimate<S>> {
         self.intruder(track)
-            .and_then(|t| t.altitude_tracker().estimate())
+            .and_then(|t| t.altitude_state().estimate())
     }
 
     /// The TCAS surveillance of a track: range and altitude trackers,
@@ -561,7 +561,7 @@ impl<
             let assessed = slot.and_then(|s| s.assessed);
             let advisory = assessed.map_or(Advisory::None, |a| a.advisory);
             highest = highest.max(advisory);
-            let altitude = slot.and_then(|s| s.tcas.altitude_tracker().estimate());
+            let altitude = slot.and_then(|s| s.tcas.altitude_state().estimate());
             let [x, y] = track.position();
             let [vx, vy] = track.velocity();
             // The range tau of this scan's assessment (the range tracker has

@@ -118,7 +118,7 @@ impl<N: Numeric<Wide = S>, S: Scalar> IntruderTrack<N> {
         &self.range
     }
     /// The state of the intruder's altitude tracker ([`AltitudeTracker`]).
-    pub fn altitude_tracker(&self) -> &AltitudeState<N> {
+    pub fn altitude_state(&self) -> &AltitudeState<N> {
         &self.altitude
     }
     /// The intruder's threat-logic state (advisory ages and hysteresis).
@@ -154,7 +154,7 @@ impl<N: Numeric<Wide = S>, S: Scalar> IntruderTrack<N> {
             }
         };
         // Also when the altitude tracker refused the scan: it counted it.
-        self.altitude = *altitude_tracker.state();
+        self.altitude = altitude_tracker.into_state();
         scanned.map(|_| ())
     }
 

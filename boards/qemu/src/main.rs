@@ -420,7 +420,7 @@ fn start() -> DemoConfig {
         type LoopWithOneMore =
             ScanLoop<Native, RangeAzimuthTrack<Native>, { TRACKS + 1 }, MEASUREMENTS_PER_SCAN>;
         defmt::println!(
-            "RAM per track: {=usize} B in the scan loop, of which table slot {=usize} B, TCAS intruder {=usize} B (range tracker {=usize}, altitude tracker {=usize}, threat state {=usize})",
+            "RAM per track: {=usize} B in the scan loop, of which table slot {=usize} B, TCAS intruder {=usize} B (range tracker {=usize}, altitude state {=usize}, threat state {=usize})",
             size_of::<LoopWithOneMore>() - size_of::<DemoLoop>(),
             size_of::<abtrack::track::TrackSlot<Wide, RangeAzimuthTrack<Native>>>(),
             size_of::<IntruderTrack<Native>>(),

@@ -35,7 +35,9 @@ pub(super) struct TrackGate<S: Numeric> {
     region: GateRegion<S>,
     /// The batch index of the nearest measurement in the gate,
     /// [`NO_CHAMPION`] for none, and its gate cost: 4 bytes, where an
-    /// `Option<(usize, u16)>` takes 8 to 16, in a record kept per track.
+    /// `Option<(usize, u16)>` takes 12 (32-bit cores) or 16, in a record kept
+    /// per track. A batch index is below the track table's measurement
+    /// capacity, which its capacity check keeps under `NO_CHAMPION`.
     champion_index: u16,
     champion_cost: u16,
 }

@@ -84,7 +84,7 @@ impl<S: Scalar> PairRule for IdentityRule<'_, S> {
             (Some(a), Some(b)) => a == b,
             (None, None) => {
                 let predicted = slot
-                    .and_then(|s| s.tcas.altitude_tracker().estimate())
+                    .and_then(|s| s.tcas.altitude_state().estimate())
                     .map(|e| e.altitude_ft + e.vertical_rate_ft_per_s * self.dt);
                 match (reply.altitude_ft, predicted, slot) {
                     (Some(z), Some(p), Some(s)) => self.altitudes_correlate(z, p, s.quantum),
