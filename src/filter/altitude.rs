@@ -297,7 +297,8 @@ pub struct AltitudeTracker<N: Numeric> {
 
 /// The state of an [`AltitudeTracker`] without its configuration: what a
 /// scan loop keeps per intruder, the configuration being the system's
-/// ([`crate::tcas::IntruderTrack`]).
+/// ([`crate::tcas::IntruderTrack`]). Its [`Self::scan`] takes the
+/// configuration.
 #[derive(Debug, Clone, Copy, PartialEq)]
 #[cfg_attr(feature = "defmt", derive(defmt::Format))]
 pub struct AltitudeState<N: Numeric> {
@@ -450,18 +451,10 @@ impl<N: Numeric<Wide = S>, S: Scalar> AltitudeState<N> {
 impl<N: Numeric<Wide = S>, S: Scalar> AltitudeTracker<N> {
     /// A tracker with no altitude yet (status `NotReporting`).
     pub fn new(config: AltitudeTrackerConfig<S>) -> Self {
-        Self::resume(config, AltitudeState::new())
-    }
-
-    /// A tracker that goes on from `state` (kept without its configuration)
-    /// under `config`, the configuration it was tracked with.
-    pub fn resume(config: AltitudeTrackerConfig<S>, state: AltitudeState<N>) -> Self {
-        AltitudeTracker { config, state }
-    }
-
-    /// The state, without the configuration (to keep until the next scan).
-    pub fn into_state(self) -> AltitudeState<N> {
-        self.state
+        AltitudeTracker {
+            config,
+            state: AltitudeState::new(),
+        }
     }
 
     /// The configuration the tracker was built with.
@@ -469,35 +462,48 @@ impl<N: Numeric<Wide = S>, S: Scalar> AltitudeTracker<N> {
         &self.config
     }
 
+    /// [`AltitudeState::scan`] with this tracker's configuration.
+    pub fn scan(&mut self, altitude_ft: Option<S>, dt: S) -> Result<AltitudeStatus, FilterError> {
+        self.state.scan(&self.config, altitude_ft, dt)
+    }
+}
+
+impl<N: Numeric<Wide = S>, S: Scalar> AltitudeState<N> {
     /// One surveillance scan, `dt` seconds after the previous one:
     /// `Some(altitude_ft)` if the reply carried an altitude, `None` if it did
     /// not. A missing or incredible altitude coasts the track; after more
     /// than `max_coast` seconds without one the tracker forgets the altitude
     /// and becomes `NotReporting`. Invalid input is refused with the
     /// filter's error and changes nothing; so is a scan whose arithmetic
-    /// saturates (counted).
-    pub fn scan(&mut self, altitude_ft: Option<S>, dt: S) -> Result<AltitudeStatus, FilterError> {
+    /// saturates (counted). `config` is the tracker's configuration, the
+    /// same at every scan of a track.
+    pub fn scan(
+        &mut self,
+        config: &AltitudeTrackerConfig<S>,
+        altitude_ft: Option<S>,
+        dt: S,
+    ) -> Result<AltitudeStatus, FilterError> {
         if altitude_ft.is_some_and(|z| !z.is_valid()) {
             return Err(FilterError::InvalidMeasurement);
         }
         check_interval(dt)?;
         let mut next = *self;
         match altitude_ft {
-            Some(z) if self.state.reports == 0 => next.start(z),
+            Some(z) if self.reports == 0 => next.start(z),
             Some(z) => {
                 // The change of report, once for the test and the update.
-                let change = z - self.state.report_ft;
-                if self.credible(change, dt) {
-                    next.take(z, change, dt);
+                let change = z - self.report_ft;
+                if self.credible(config, change, dt) {
+                    next.take(config, z, change, dt);
                 } else {
-                    next.state.incredible_reports = next.state.incredible_reports.saturating_add(1);
-                    next.coast(dt);
+                    next.incredible_reports = next.incredible_reports.saturating_add(1);
+                    next.coast(config, dt);
                 }
             }
-            None => next.coast(dt),
+            None => next.coast(config, dt),
         }
         if !next.is_valid() {
-            self.state.saturations = self.state.saturations.saturating_add(1);
+            self.saturations = self.saturations.saturating_add(1);
             return Err(FilterError::Saturated);
         }
         *self = next;
@@ -506,15 +512,15 @@ impl<N: Numeric<Wide = S>, S: Scalar> AltitudeTracker<N> {
 
     fn is_valid(&self) -> bool {
         [
-            self.state.altitude_ft,
-            self.state.rate_ft_per_s,
-            self.state.since_start_s,
-            self.state.since_transition_s,
-            self.state.coasted_s,
-            self.state.bin_time_s,
-            self.state.lateness_s,
-            self.state.bounds.lowest_ft_per_s,
-            self.state.bounds.highest_ft_per_s,
+            self.altitude_ft,
+            self.rate_ft_per_s,
+            self.since_start_s,
+            self.since_transition_s,
+            self.coasted_s,
+            self.bin_time_s,
+            self.lateness_s,
+            self.bounds.lowest_ft_per_s,
+            self.bounds.highest_ft_per_s,
         ]
         .iter()
         .all(|v| v.is_valid())
@@ -522,23 +528,23 @@ impl<N: Numeric<Wide = S>, S: Scalar> AltitudeTracker<N> {
 
     /// The quantum q, ft.
     #[inline(always)]
-    fn q(&self) -> S {
-        self.of_quantum(|q| q)
+    fn q(&self, config: &AltitudeTrackerConfig<S>) -> S {
+        self.of_quantum(config, |q| q)
     }
 
     /// q/2, ft: half a bin (a report stands for report ± q/2, DO-185B);
     /// exact in every format, so the same as `q·0.5`.
     #[inline(always)]
-    fn half_q(&self) -> S {
-        self.of_quantum(|q| q / 2.0)
+    fn half_q(&self, config: &AltitudeTrackerConfig<S>) -> S {
+        self.of_quantum(config, |q| q / 2.0)
     }
 
     /// q/3, ft (the estimate after an oscillation: `oscil_track_init`),
     /// rounded once in f64 and once to S: for q = 100 and 25 ft the same
     /// value as `q ÷ 3` in S in every format (no tie near either rounding).
     #[inline(always)]
-    fn third_q(&self) -> S {
-        self.of_quantum(|q| q / 3.0)
+    fn third_q(&self, config: &AltitudeTrackerConfig<S>) -> S {
+        self.of_quantum(config, |q| q / 3.0)
     }
 
     /// `f(q)` as S: both quanta's constants, folded at compile time, then
@@ -546,22 +552,26 @@ impl<N: Numeric<Wide = S>, S: Scalar> AltitudeTracker<N> {
     /// into one conversion at run time of the chosen f64; in Q32.32, whose
     /// conversion does not fold, this converts both).
     #[inline(always)]
-    fn of_quantum(&self, f: impl Fn(f64) -> f64) -> S {
-        self.per_quantum(|quantum| f(quantum.feet()))
+    fn of_quantum(&self, config: &AltitudeTrackerConfig<S>, f: impl Fn(f64) -> f64) -> S {
+        self.per_quantum(config, |quantum| f(quantum.feet()))
     }
 
     /// Residual of the αβ smoothing that costs firmness, ft, as S.
     #[inline(always)]
-    fn residual_threshold(&self) -> S {
-        self.per_quantum(AltitudeQuantum::residual_threshold_ft)
+    fn residual_threshold(&self, config: &AltitudeTrackerConfig<S>) -> S {
+        self.per_quantum(config, AltitudeQuantum::residual_threshold_ft)
     }
 
     /// `f(quantum)` as S for the tracker's quantum (see `of_quantum`).
     #[inline(always)]
-    fn per_quantum(&self, f: impl Fn(AltitudeQuantum) -> f64) -> S {
+    fn per_quantum(
+        &self,
+        config: &AltitudeTrackerConfig<S>,
+        f: impl Fn(AltitudeQuantum) -> f64,
+    ) -> S {
         let mode_c = c::<S>(f(AltitudeQuantum::ModeC));
         let mode_s25 = c::<S>(f(AltitudeQuantum::ModeS25));
-        match self.config.quantum {
+        match config.quantum {
             AltitudeQuantum::ModeC => mode_c,
             AltitudeQuantum::ModeS25 => mode_s25,
         }
@@ -569,19 +579,19 @@ impl<N: Numeric<Wide = S>, S: Scalar> AltitudeTracker<N> {
 
     /// Forgets the track (status `NotReporting`); the counts stay.
     fn forget(&mut self) {
-        self.state = AltitudeState {
-            incredible_reports: self.state.incredible_reports,
-            saturations: self.state.saturations,
+        *self = AltitudeState {
+            incredible_reports: self.incredible_reports,
+            saturations: self.saturations,
             ..AltitudeState::new()
         };
     }
 
     fn start(&mut self, z: S) {
         self.forget();
-        self.state.reports = 1;
-        self.state.altitude_ft = z;
-        self.state.report_ft = z;
-        self.state.bounds = RateBounds {
+        self.reports = 1;
+        self.altitude_ft = z;
+        self.report_ft = z;
+        self.bounds = RateBounds {
             lowest_ft_per_s: -c::<S>(LARGE_RATE_FT_PER_S),
             highest_ft_per_s: c(LARGE_RATE_FT_PER_S),
         };
@@ -589,59 +599,59 @@ impl<N: Numeric<Wide = S>, S: Scalar> AltitudeTracker<N> {
 
     /// DO-185B `credible`: the report is within what the track could have
     /// done since the last report (`change`: the report minus the last).
-    fn credible(&self, change: S, dt: S) -> bool {
+    fn credible(&self, config: &AltitudeTrackerConfig<S>, change: S, dt: S) -> bool {
         if change == S::ZERO {
             return true;
         }
-        let elapsed = self.state.coasted_s + dt;
-        if self.state.since_start_s + dt < c(RATE_SETTLING_S) {
+        let elapsed = self.coasted_s + dt;
+        if self.since_start_s + dt < c(RATE_SETTLING_S) {
             return change.abs() <= c::<S>(CREDIBLE_INITIAL_RATE_FT_PER_S).times(elapsed);
         }
-        let predicted_change = self.state.rate_ft_per_s.times(elapsed);
+        let predicted_change = self.rate_ft_per_s.times(elapsed);
         (change - predicted_change).abs()
-            <= self.q()
+            <= self.q(config)
                 + c::<S>(CREDIBLE_RATE_ERROR_FT_PER_S).times(elapsed)
                 + c::<S>(CREDIBLE_HALF_ACCELERATION_FT_PER_S2)
                     .times(elapsed)
                     .times(elapsed)
     }
 
-    fn coast(&mut self, dt: S) {
-        if self.state.reports == 0 {
+    fn coast(&mut self, config: &AltitudeTrackerConfig<S>, dt: S) {
+        if self.reports == 0 {
             return;
         }
-        let coasted = self.state.coasted_s + dt;
-        if !coasted.is_valid() || coasted > self.config.max_coast {
+        let coasted = self.coasted_s + dt;
+        if !coasted.is_valid() || coasted > config.max_coast {
             self.forget();
             return;
         }
-        self.state.coasted_s = coasted;
-        self.state.since_start_s = self.state.since_start_s + dt;
-        self.state.since_transition_s = self.state.since_transition_s + dt;
-        self.state.altitude_ft = self.state.altitude_ft + self.state.rate_ft_per_s.times(dt);
-        self.state.firmness = self.state.firmness.saturating_sub(1);
+        self.coasted_s = coasted;
+        self.since_start_s = self.since_start_s + dt;
+        self.since_transition_s = self.since_transition_s + dt;
+        self.altitude_ft = self.altitude_ft + self.rate_ft_per_s.times(dt);
+        self.firmness = self.firmness.saturating_sub(1);
     }
 
     /// A credible report `z`, `change` from the last, `dt` after the
     /// previous scan.
-    fn take(&mut self, z: S, change: S, dt: S) {
-        self.state.reports = 2;
-        self.state.since_start_s = self.state.since_start_s + dt;
-        self.state.since_transition_s = self.state.since_transition_s + dt;
-        let coasted = self.state.coasted_s;
-        self.state.coasted_s = S::ZERO;
+    fn take(&mut self, config: &AltitudeTrackerConfig<S>, z: S, change: S, dt: S) {
+        self.reports = 2;
+        self.since_start_s = self.since_start_s + dt;
+        self.since_transition_s = self.since_transition_s + dt;
+        let coasted = self.coasted_s;
+        self.coasted_s = S::ZERO;
         // The reported bin, z ± q/2, once for the no-transition test and
         // the clamp.
-        let half = self.half_q();
+        let half = self.half_q(config);
         let bin = (z - half, z + half);
         let keep_report = if change == S::ZERO {
-            self.no_transition(z, dt, bin);
+            self.no_transition(config, z, dt, bin);
             true
         } else {
-            self.transition(z, change, dt, coasted + dt)
+            self.transition(config, z, change, dt, coasted + dt)
         };
         if keep_report {
-            self.state.report_ft = z;
+            self.report_ft = z;
         }
         self.clamp_to_bin(bin);
     }
@@ -649,11 +659,11 @@ impl<N: Numeric<Wide = S>, S: Scalar> AltitudeTracker<N> {
     /// The estimate stays inside the reported bin (its lower and upper
     /// edges).
     fn clamp_to_bin(&mut self, (low, high): (S, S)) {
-        self.state.altitude_ft = self.state.altitude_ft.max_of(low).min_of(high);
+        self.altitude_ft = self.altitude_ft.max_of(low).min_of(high);
     }
 
     fn signed(&self, v: S) -> S {
-        match self.state.direction {
+        match self.direction {
             d if d < 0 => -v,
             0 => S::ZERO,
             _ => v,
@@ -661,7 +671,7 @@ impl<N: Numeric<Wide = S>, S: Scalar> AltitudeTracker<N> {
     }
 
     fn set_bounds(&mut self, a: S, b: S) {
-        self.state.bounds = RateBounds {
+        self.bounds = RateBounds {
             lowest_ft_per_s: a.min_of(b),
             highest_ft_per_s: a.max_of(b),
         };
@@ -670,56 +680,55 @@ impl<N: Numeric<Wide = S>, S: Scalar> AltitudeTracker<N> {
     fn occupancy_firmness(&mut self) {
         let [t1, t2, t3] = OCCUPANCY_FIRMNESS_S;
         for (firmness, t) in [(1u8, c::<S>(t1)), (2, c(t2)), (3, c(t3))] {
-            if self.state.since_transition_s > t {
-                self.state.firmness = self.state.firmness.max(firmness);
+            if self.since_transition_s > t {
+                self.firmness = self.firmness.max(firmness);
             }
         }
     }
 
-    fn go_level(&mut self, z: S) {
-        self.state.altitude_ft = z;
-        self.state.rate_ft_per_s = S::ZERO;
-        self.state.class = VerticalClass::Level;
-        self.state.firmness = MAX_VERTICAL_FIRMNESS;
+    fn go_level(&mut self, config: &AltitudeTrackerConfig<S>, z: S) {
+        self.altitude_ft = z;
+        self.rate_ft_per_s = S::ZERO;
+        self.class = VerticalClass::Level;
+        self.firmness = MAX_VERTICAL_FIRMNESS;
         let outer = self.signed(
-            self.q()
-                .over(self.state.since_transition_s.max_of(self.config.interval)),
+            self.q(config)
+                .over(self.since_transition_s.max_of(config.interval)),
         );
         self.set_bounds(S::ZERO, outer);
     }
 
     /// DO-185B `no_transition_update` and `no_transition_firmness`.
     /// `bin`: the reported bin's lower and upper edges, z ∓ q/2.
-    fn no_transition(&mut self, z: S, dt: S, bin: (S, S)) {
-        let q = self.q();
-        let t = self.config.interval;
-        let since = self.state.since_transition_s;
-        match self.state.class {
+    fn no_transition(&mut self, config: &AltitudeTrackerConfig<S>, z: S, dt: S, bin: (S, S)) {
+        let q = self.q(config);
+        let t = config.interval;
+        let since = self.since_transition_s;
+        match self.class {
             VerticalClass::New | VerticalClass::Guess | VerticalClass::Oscillating
                 if since > c(GO_LEVEL_S) =>
             {
-                self.go_level(z)
+                self.go_level(config, z)
             }
-            VerticalClass::Level => self.go_level(z),
+            VerticalClass::Level => self.go_level(config, z),
             VerticalClass::New => {
-                self.state.altitude_ft = z;
-                self.state.rate_ft_per_s = S::ZERO;
-                let bound = q.over(self.state.since_start_s);
+                self.altitude_ft = z;
+                self.rate_ft_per_s = S::ZERO;
+                let bound = q.over(self.since_start_s);
                 self.set_bounds(-bound, bound);
                 self.occupancy_firmness();
             }
             VerticalClass::Oscillating => {
-                self.state.rate_ft_per_s = S::ZERO;
+                self.rate_ft_per_s = S::ZERO;
                 self.set_bounds(S::ZERO, S::ZERO);
                 if since > c(OSCILLATION_FIRM_S) {
-                    self.state.firmness = MAX_VERTICAL_FIRMNESS;
+                    self.firmness = MAX_VERTICAL_FIRMNESS;
                 }
             }
             VerticalClass::Guess => {
-                self.state.rate_ft_per_s = self.state.rate_ft_per_s.times(c(GUESS_DECAY));
-                self.state.altitude_ft =
-                    self.state.altitude_ft + self.state.rate_ft_per_s.times(dt);
-                let outer = if self.state.since_start_s > c(RATE_SETTLING_S) {
+                self.rate_ft_per_s = self.rate_ft_per_s.times(c(GUESS_DECAY));
+                self.altitude_ft = self.altitude_ft + self.rate_ft_per_s.times(dt);
+                let outer = if self.since_start_s > c(RATE_SETTLING_S) {
                     q.over(since).min_of(c(LIKELY_RATE_FT_PER_S))
                 } else {
                     q.over(since)
@@ -729,40 +738,40 @@ impl<N: Numeric<Wide = S>, S: Scalar> AltitudeTracker<N> {
                 self.occupancy_firmness();
             }
             VerticalClass::Trend => {
-                let overdue = since - self.state.bin_time_s;
+                let overdue = since - self.bin_time_s;
                 let late_level = c::<S>(LATE_LEVEL_S);
                 if overdue > late_level {
-                    self.go_level(z);
+                    self.go_level(config, z);
                 } else if overdue > c(LATE_SLACK_S) {
                     // No transition when due: the rate that would just have
                     // missed it, tapering to zero at LATELEVEL.
                     let half_t = t.times(c(0.5));
                     let taper = (late_level + half_t - overdue).over(late_level + half_t);
-                    self.state.rate_ft_per_s = self.signed(q.over(since + t).times(taper));
-                    self.state.bins_in_rate = self.state.bins_in_rate.saturating_sub(1).max(1);
-                    self.state.altitude_ft = z + self.signed(self.half_q());
+                    self.rate_ft_per_s = self.signed(q.over(since + t).times(taper));
+                    self.bins_in_rate = self.bins_in_rate.saturating_sub(1).max(1);
+                    self.altitude_ft = z + self.signed(self.half_q(config));
                     self.set_bounds(S::ZERO, self.signed(q.over(since)));
-                    self.state.firmness = if overdue > c(OVERDUE_S) {
-                        self.state.firmness.saturating_add(1).min(2)
+                    self.firmness = if overdue > c(OVERDUE_S) {
+                        self.firmness.saturating_add(1).min(2)
                     } else {
                         1
                     };
                 } else {
-                    let predicted = self.state.altitude_ft + self.state.rate_ft_per_s.times(dt);
+                    let predicted = self.altitude_ft + self.rate_ft_per_s.times(dt);
                     let (low, high) = bin;
                     if predicted > high || predicted < low {
                         // Ahead of the reports: hold the estimate at the bin
                         // edge and take the difference out of the rate.
-                        self.state.altitude_ft = z + self.signed(self.half_q());
-                        let error = self.state.altitude_ft - predicted;
-                        self.state.rate_ft_per_s = self.state.rate_ft_per_s
-                            + error.over(since.max_of(c(MIN_CORRECTION_TIME_S)));
-                        self.state.bins_in_rate = self.state.bins_in_rate.saturating_sub(1).max(1);
+                        self.altitude_ft = z + self.signed(self.half_q(config));
+                        let error = self.altitude_ft - predicted;
+                        self.rate_ft_per_s =
+                            self.rate_ft_per_s + error.over(since.max_of(c(MIN_CORRECTION_TIME_S)));
+                        self.bins_in_rate = self.bins_in_rate.saturating_sub(1).max(1);
                         if error.abs() > c(PREDICTION_ERROR_FT) {
-                            self.state.firmness = 1;
+                            self.firmness = 1;
                         }
                     } else {
-                        self.state.altitude_ft = predicted;
+                        self.altitude_ft = predicted;
                     }
                 }
             }
@@ -771,200 +780,221 @@ impl<N: Numeric<Wide = S>, S: Scalar> AltitudeTracker<N> {
 
     /// A change of report by `change`; false when the transition is taken
     /// as jitter and the previous report stays the reference.
-    fn transition(&mut self, z: S, change: S, dt: S, since_report: S) -> bool {
-        let q = self.q();
+    fn transition(
+        &mut self,
+        config: &AltitudeTrackerConfig<S>,
+        z: S,
+        change: S,
+        dt: S,
+        since_report: S,
+    ) -> bool {
+        let q = self.q(config);
         let sign: i8 = if change > S::ZERO { 1 } else { -1 };
         let bins = bins_of(change.abs().over(q));
         let bins_s = count::<S>(bins);
-        let time_per_bin = self.state.since_transition_s.over(bins_s);
-        let same_direction = self.state.direction == sign;
+        let time_per_bin = self.since_transition_s.over(bins_s);
+        let same_direction = self.direction == sign;
         let mut keep = true;
-        match self.state.class {
+        match self.class {
             VerticalClass::New | VerticalClass::Level => {
-                self.start_guess(z, change, sign, since_report)
+                self.start_guess(config, z, change, sign, since_report)
             }
             VerticalClass::Guess if same_direction => {
-                self.start_trend(z, change, sign, time_per_bin)
+                self.start_trend(config, z, change, sign, time_per_bin)
             }
-            VerticalClass::Guess => self.start_oscillation(z, sign),
+            VerticalClass::Guess => self.start_oscillation(config, z, sign),
             VerticalClass::Oscillating if same_direction => {
-                self.start_trend(z, change, sign, time_per_bin)
+                self.start_trend(config, z, change, sign, time_per_bin)
             }
             VerticalClass::Oscillating => {
                 let third = if sign > 0 {
-                    self.third_q()
+                    self.third_q(config)
                 } else {
-                    -self.third_q()
+                    -self.third_q(config)
                 };
-                self.state.altitude_ft = z - third;
-                self.state.firmness = MAX_VERTICAL_FIRMNESS;
+                self.altitude_ft = z - third;
+                self.firmness = MAX_VERTICAL_FIRMNESS;
             }
             VerticalClass::Trend if same_direction => {
-                self.continue_trend(z, change, bins, time_per_bin, dt)
+                self.continue_trend(config, z, change, bins, time_per_bin, dt)
             }
-            VerticalClass::Trend if bins > 1 => self.start_guess(z, change, sign, since_report),
+            VerticalClass::Trend if bins > 1 => {
+                self.start_guess(config, z, change, sign, since_report)
+            }
             VerticalClass::Trend => {
-                if self.state.bin_time_s > S::ZERO
-                    && time_per_bin <= c::<S>(REVERSAL_JITTER).times(self.state.bin_time_s)
+                if self.bin_time_s > S::ZERO
+                    && time_per_bin <= c::<S>(REVERSAL_JITTER).times(self.bin_time_s)
                 {
                     // Right after a transition: jitter at the boundary.
-                    self.state.altitude_ft =
-                        self.state.altitude_ft + self.state.rate_ft_per_s.times(dt);
-                    self.state.firmness = 0;
+                    self.altitude_ft = self.altitude_ft + self.rate_ft_per_s.times(dt);
+                    self.firmness = 0;
                     keep = false;
                 } else {
-                    self.start_oscillation(z, sign);
+                    self.start_oscillation(config, z, sign);
                 }
             }
         }
         if keep {
-            self.state.direction = sign;
-            self.state.since_transition_s = S::ZERO;
+            self.direction = sign;
+            self.since_transition_s = S::ZERO;
         }
         keep
     }
 
     /// DO-185B `guess_track_init`.
-    fn start_guess(&mut self, z: S, change: S, sign: i8, since_report: S) {
-        let q = self.q();
+    fn start_guess(
+        &mut self,
+        config: &AltitudeTrackerConfig<S>,
+        z: S,
+        change: S,
+        sign: i8,
+        since_report: S,
+    ) {
+        let q = self.q(config);
         let qs = if sign > 0 { q } else { -q };
         let half_qs = if sign > 0 {
-            self.half_q()
+            self.half_q(config)
         } else {
-            -self.half_q()
+            -self.half_q(config)
         };
-        let t = self.config.interval;
+        let t = config.interval;
         // After a long gap over several bins the change itself is a rate.
-        self.state.rate_ft_per_s = if since_report > c(LONG_COAST_S) && change.abs() > q {
+        self.rate_ft_per_s = if since_report > c(LONG_COAST_S) && change.abs() > q {
             (change - qs).over(since_report)
         } else if sign > 0 {
             c(GUESS_RATE_FT_PER_S)
         } else {
             -c::<S>(GUESS_RATE_FT_PER_S)
         };
-        let outer = if self.state.since_start_s < c(RATE_SETTLING_S) {
-            (change + qs).over(self.state.since_start_s)
+        let outer = if self.since_start_s < c(RATE_SETTLING_S) {
+            (change + qs).over(self.since_start_s)
         } else if sign > 0 {
             c(LIKELY_RATE_FT_PER_S)
         } else {
             -c::<S>(LIKELY_RATE_FT_PER_S)
         };
         self.set_bounds(S::ZERO, outer);
-        self.state.altitude_ft = z - half_qs + self.state.rate_ft_per_s.times(t).times(c(0.5));
-        self.state.firmness = 0;
-        self.state.class = VerticalClass::Guess;
+        self.altitude_ft = z - half_qs + self.rate_ft_per_s.times(t).times(c(0.5));
+        self.firmness = 0;
+        self.class = VerticalClass::Guess;
     }
 
     /// DO-185B `oscil_track_init`.
-    fn start_oscillation(&mut self, z: S, sign: i8) {
+    fn start_oscillation(&mut self, config: &AltitudeTrackerConfig<S>, z: S, sign: i8) {
         let third = if sign > 0 {
-            self.third_q()
+            self.third_q(config)
         } else {
-            -self.third_q()
+            -self.third_q(config)
         };
-        self.state.altitude_ft = z - third;
-        self.state.rate_ft_per_s = S::ZERO;
-        self.state.firmness = 2;
+        self.altitude_ft = z - third;
+        self.rate_ft_per_s = S::ZERO;
+        self.firmness = 2;
         self.set_bounds(S::ZERO, S::ZERO);
-        self.state.class = VerticalClass::Oscillating;
+        self.class = VerticalClass::Oscillating;
     }
 
     /// DO-185B `trend_track_init`: the second transition in one direction.
-    fn start_trend(&mut self, z: S, change: S, sign: i8, time_per_bin: S) {
-        let q = self.q();
+    fn start_trend(
+        &mut self,
+        config: &AltitudeTrackerConfig<S>,
+        z: S,
+        change: S,
+        sign: i8,
+        time_per_bin: S,
+    ) {
+        let q = self.q(config);
         let qs = if sign > 0 { q } else { -q };
         let half_qs = if sign > 0 {
-            self.half_q()
+            self.half_q(config)
         } else {
-            -self.half_q()
+            -self.half_q(config)
         };
-        let t = self.config.interval;
-        let since = self.state.since_transition_s;
-        self.state.alpha_beta = false;
-        self.state.bin_time_s = if self.state.since_start_s < c(RATE_SETTLING_S) {
+        let t = config.interval;
+        let since = self.since_transition_s;
+        self.alpha_beta = false;
+        self.bin_time_s = if self.since_start_s < c(RATE_SETTLING_S) {
             time_per_bin
         } else {
             time_per_bin.max_of(c(MIN_FIRST_BIN_S))
         };
-        self.state.rate_ft_per_s = qs.over(self.state.bin_time_s);
-        self.state.altitude_ft = if self.state.bin_time_s > S::ONE {
-            z - half_qs + self.state.rate_ft_per_s.times(t).times(c(0.5))
+        self.rate_ft_per_s = qs.over(self.bin_time_s);
+        self.altitude_ft = if self.bin_time_s > S::ONE {
+            z - half_qs + self.rate_ft_per_s.times(t).times(c(0.5))
         } else {
             z
         };
-        self.state.lateness_s = S::ZERO;
-        self.state.bins_in_rate = 1;
+        self.lateness_s = S::ZERO;
+        self.bins_in_rate = 1;
         if since > c(MIN_TREND_S) {
-            self.state.firmness = 2;
+            self.firmness = 2;
             let outer_time = (since - t).max_of(t);
             self.set_bounds(
                 change.over(since + t),
                 c::<S>(RATE_BOUND_MARGIN).times(change).over(outer_time),
             );
         } else {
-            self.state.firmness = 1;
+            self.firmness = 1;
             self.set_bounds(
                 change.over(c::<S>(MIN_TREND_S) + t),
                 (change + qs).over(since),
             );
         }
-        self.state.class = VerticalClass::Trend;
+        self.class = VerticalClass::Trend;
     }
 
     /// DO-185B `smoothing_method_selection`, `expected_transition`,
     /// `alpha_beta_smoothing`, `transition_set_casfirm`,
     /// `transition_set_rate_limits`: another transition along the trend.
-    fn continue_trend(&mut self, z: S, change: S, bins: u8, time_per_bin: S, dt: S) {
-        let q = self.q();
-        let t = self.config.interval;
+    fn continue_trend(
+        &mut self,
+        config: &AltitudeTrackerConfig<S>,
+        z: S,
+        change: S,
+        bins: u8,
+        time_per_bin: S,
+        dt: S,
+    ) {
+        let q = self.q(config);
+        let t = config.interval;
         let sign_q = self.signed(q);
-        let since = self.state.since_transition_s;
+        let since = self.since_transition_s;
         let bins_s = count::<S>(bins);
-        let previous_bin_time = self.state.bin_time_s;
-        if self.state.alpha_beta {
-            if self.state.bin_time_s > c(ALPHA_BETA_BELOW_S)
-                && time_per_bin > c(BIN_OCCUPANCY_ABOVE_S)
-            {
-                self.state.alpha_beta = false;
-                self.state.lateness_s = S::ZERO;
-                self.state.bins_in_rate = BINS_AFTER_ALPHA_BETA;
+        let previous_bin_time = self.bin_time_s;
+        if self.alpha_beta {
+            if self.bin_time_s > c(ALPHA_BETA_BELOW_S) && time_per_bin > c(BIN_OCCUPANCY_ABOVE_S) {
+                self.alpha_beta = false;
+                self.lateness_s = S::ZERO;
+                self.bins_in_rate = BINS_AFTER_ALPHA_BETA;
             }
-        } else if self.state.bin_time_s < c(BIN_OCCUPANCY_ABOVE_S)
-            && time_per_bin < c(ALPHA_BETA_BELOW_S)
+        } else if self.bin_time_s < c(BIN_OCCUPANCY_ABOVE_S) && time_per_bin < c(ALPHA_BETA_BELOW_S)
         {
-            self.state.alpha_beta = true;
-            self.state.firmness = self.state.firmness.min(1);
+            self.alpha_beta = true;
+            self.firmness = self.firmness.min(1);
         }
-        if self.state.alpha_beta {
+        if self.alpha_beta {
             let (alpha, beta) = ALPHA_BETA_GAINS;
-            let previous = self.state.altitude_ft;
-            let predicted = previous + self.state.rate_ft_per_s.times(dt);
+            let previous = self.altitude_ft;
+            let predicted = previous + self.rate_ft_per_s.times(dt);
             let residual = z - predicted;
-            self.state.altitude_ft = predicted + c::<S>(alpha).times(residual);
-            self.state.rate_ft_per_s =
-                self.state.rate_ft_per_s + c::<S>(beta).times(residual).over(dt);
-            let after = z - (previous + self.state.rate_ft_per_s.times(dt));
-            if after.abs() >= self.residual_threshold() {
-                self.state.firmness = self.state.firmness.saturating_sub(2);
-                self.state.bins_in_rate = self.state.bins_in_rate.saturating_sub(1).max(3);
+            self.altitude_ft = predicted + c::<S>(alpha).times(residual);
+            self.rate_ft_per_s = self.rate_ft_per_s + c::<S>(beta).times(residual).over(dt);
+            let after = z - (previous + self.rate_ft_per_s.times(dt));
+            if after.abs() >= self.residual_threshold(config) {
+                self.firmness = self.firmness.saturating_sub(2);
+                self.bins_in_rate = self.bins_in_rate.saturating_sub(1).max(3);
             } else {
-                self.state.firmness = self
-                    .state
-                    .firmness
-                    .saturating_add(1)
-                    .min(MAX_VERTICAL_FIRMNESS);
-                self.state.bins_in_rate =
-                    self.state.bins_in_rate.saturating_add(bins).min(MAX_BINS);
+                self.firmness = self.firmness.saturating_add(1).min(MAX_VERTICAL_FIRMNESS);
+                self.bins_in_rate = self.bins_in_rate.saturating_add(bins).min(MAX_BINS);
             }
-            if self.state.rate_ft_per_s != S::ZERO {
-                self.state.bin_time_s = q.over(self.state.rate_ft_per_s).abs();
+            if self.rate_ft_per_s != S::ZERO {
+                self.bin_time_s = q.over(self.rate_ft_per_s).abs();
             }
             // Bounds: the measured rate ± half a bin per averaged bin.
-            let n = count::<S>(self.state.bins_in_rate.max(1));
+            let n = count::<S>(self.bins_in_rate.max(1));
             let half = c::<S>(0.5);
             self.set_bounds(
-                self.state.rate_ft_per_s.times(n - half).over(n),
-                self.state.rate_ft_per_s.times(n + half).over(n),
+                self.rate_ft_per_s.times(n - half).over(n),
+                self.rate_ft_per_s.times(n + half).over(n),
             );
             return;
         }
@@ -976,15 +1006,15 @@ impl<N: Numeric<Wide = S>, S: Scalar> AltitudeTracker<N> {
             bins.saturating_add(1)
         };
         if late.abs() > c(EARLY_LATE_S) {
-            self.state.bins_in_rate = restart_bins;
-            self.state.lateness_s = S::ZERO;
+            self.bins_in_rate = restart_bins;
+            self.lateness_s = S::ZERO;
         } else {
-            self.state.lateness_s = c::<S>(LATENESS_MEMORY).times(self.state.lateness_s) + late;
-            if self.state.lateness_s.abs() <= c(SLIGHTLY_OFF_S) {
+            self.lateness_s = c::<S>(LATENESS_MEMORY).times(self.lateness_s) + late;
+            if self.lateness_s.abs() <= c(SLIGHTLY_OFF_S) {
                 let max_time = c::<S>(MAX_RATE_TIME_S);
                 // 2·t ≥ MAXZDTIME, as t ≥ MAXZDTIME/2: doubling is exact.
                 if time_per_bin >= c(MAX_RATE_TIME_S / 2.0) {
-                    self.state.bins_in_rate = 1;
+                    self.bins_in_rate = 1;
                 } else {
                     // The most bins whose time fits in MAXZDTIME.
                     let mut most = 1u8;
@@ -1002,21 +1032,20 @@ impl<N: Numeric<Wide = S>, S: Scalar> AltitudeTracker<N> {
                             most = n;
                         }
                     }
-                    self.state.bins_in_rate =
-                        self.state.bins_in_rate.saturating_add(bins).min(most);
+                    self.bins_in_rate = self.bins_in_rate.saturating_add(bins).min(most);
                 }
             } else {
-                self.state.bins_in_rate = restart_bins;
-                self.state.lateness_s = self.state.lateness_s.times(c(LATENESS_DECAY));
+                self.bins_in_rate = restart_bins;
+                self.lateness_s = self.lateness_s.times(c(LATENESS_DECAY));
             }
         }
-        let weight = bins_s.over(count::<S>(self.state.bins_in_rate.max(1)));
-        self.state.bin_time_s = previous_bin_time
+        let weight = bins_s.over(count::<S>(self.bins_in_rate.max(1)));
+        self.bin_time_s = previous_bin_time
             + weight
                 .min_of(S::ONE)
                 .times(time_per_bin - previous_bin_time);
-        self.state.rate_ft_per_s = sign_q.over(self.state.bin_time_s);
-        self.state.altitude_ft = self.state.altitude_ft + self.state.rate_ft_per_s.times(dt);
+        self.rate_ft_per_s = sign_q.over(self.bin_time_s);
+        self.altitude_ft = self.altitude_ft + self.rate_ft_per_s.times(dt);
         // Firmness from how regular the bin crossings are.
         let ratio = time_per_bin.over(previous_bin_time);
         let [(lo3, hi3), (lo2, hi2), (lo1, hi1)] = BIN_RATIO_FIRMNESS;
@@ -1025,32 +1054,32 @@ impl<N: Numeric<Wide = S>, S: Scalar> AltitudeTracker<N> {
             (2, c(lo2), c(hi2)),
             (1, c(lo1), c(hi1)),
         ];
-        self.state.firmness = ranges
+        self.firmness = ranges
             .iter()
             .find(|&&(_, lo, hi)| ratio >= lo && ratio <= hi)
             .map_or(0, |&(firmness, _, _)| firmness);
         let (out3, out2) = LATENESS_FIRMNESS_S;
         if late.abs() < c(out3) {
-            self.state.firmness = MAX_VERTICAL_FIRMNESS;
+            self.firmness = MAX_VERTICAL_FIRMNESS;
         } else if late.abs() < c(out2) {
-            self.state.firmness = self.state.firmness.max(2);
+            self.firmness = self.firmness.max(2);
         }
         let (slow1, slow2) = SLOW_BIN_FIRMNESS_S;
         if time_per_bin > c(slow2) {
-            self.state.firmness = self.state.firmness.max(2);
+            self.firmness = self.firmness.max(2);
         } else if time_per_bin > c(slow1) {
-            self.state.firmness = self.state.firmness.max(1);
+            self.firmness = self.firmness.max(1);
         }
-        if self.state.since_start_s < c(RATE_SETTLING_S) {
-            self.state.firmness = 1;
+        if self.since_start_s < c(RATE_SETTLING_S) {
+            self.firmness = 1;
         }
         // Rate bounds: ± one scan of timing over the averaged bins when the
         // crossings are regular; wider otherwise.
-        if self.state.firmness == MAX_VERTICAL_FIRMNESS || late.abs() < c(out2) {
-            let span = count::<S>(self.state.bins_in_rate).times(since);
+        if self.firmness == MAX_VERTICAL_FIRMNESS || late.abs() < c(out2) {
+            let span = count::<S>(self.bins_in_rate).times(since);
             self.set_bounds(
-                self.state.rate_ft_per_s.times(span - t).over(span),
-                self.state.rate_ft_per_s.times(span + t).over(span),
+                self.rate_ft_per_s.times(span - t).over(span),
+                self.rate_ft_per_s.times(span + t).over(span),
             );
         } else if ratio < S::ONE {
             self.set_bounds(
@@ -1062,7 +1091,7 @@ impl<N: Numeric<Wide = S>, S: Scalar> AltitudeTracker<N> {
         } else {
             let outer = q
                 .over(time_per_bin)
-                .max_of(self.state.bounds.highest_ft_per_s.abs());
+                .max_of(self.bounds.highest_ft_per_s.abs());
             self.set_bounds(S::ZERO, self.signed(outer));
         }
     }

@@ -13,7 +13,7 @@ use super::range_tracker::RangeTracker;
 use super::resolution::{LowAltitudeInhibits, ResolutionOutput, ResolutionState};
 use super::sensitivity::{OwnAircraft, SensitivitySelector};
 use super::TcasError;
-use crate::filter::altitude::{AltitudeState, AltitudeTracker, AltitudeTrackerConfig, OutOfLine};
+use crate::filter::altitude::{AltitudeState, AltitudeTrackerConfig, OutOfLine};
 use crate::filter::range_azimuth::RangeAzimuthState;
 use crate::filter::{FilterError, Phase};
 use crate::num::{hypot, Numeric, Scalar};
@@ -117,7 +117,8 @@ impl<N: Numeric<Wide = S>, S: Scalar> IntruderTrack<N> {
     pub fn range_tracker(&self) -> &RangeTracker<N> {
         &self.range
     }
-    /// The state of the intruder's altitude tracker ([`AltitudeTracker`]).
+    /// The state of the intruder's altitude tracker
+    /// ([`AltitudeTracker`](crate::filter::altitude::AltitudeTracker)).
     pub fn altitude_state(&self) -> &AltitudeState<N> {
         &self.altitude
     }
@@ -137,25 +138,22 @@ impl<N: Numeric<Wide = S>, S: Scalar> IntruderTrack<N> {
         reply: Option<Reply<S>>,
         dt: S,
     ) -> Result<(), FilterError> {
-        let mut altitude_tracker = AltitudeTracker::resume(*altitude, self.altitude);
-        let scanned = match reply {
+        match reply {
             Some(r) => {
                 if r.altitude_ft.is_some_and(|z| !z.is_valid()) {
                     return Err(FilterError::InvalidMeasurement);
                 }
                 self.range.update(r.range_m, dt)?;
-                altitude_tracker.scan(r.altitude_ft, dt)
+                self.altitude.scan(altitude, r.altitude_ft, dt)?;
             }
             None => {
                 if self.range.phase() != Phase::Empty {
                     self.range.coast(dt)?;
                 }
-                altitude_tracker.scan(None, dt)
+                self.altitude.scan(altitude, None, dt)?;
             }
-        };
-        // Also when the altitude tracker refused the scan: it counted it.
-        self.altitude = altitude_tracker.into_state();
-        scanned.map(|_| ())
+        }
+        Ok(())
     }
 
     /// What the threat logic sees; `None` before the range rate is known.
