@@ -233,6 +233,53 @@ impl<S: Scalar> AltitudeTrackerConfig<S> {
     pub fn max_coast(&self) -> S {
         self.max_coast
     }
+
+    /// The quantum q, ft.
+    #[inline(always)]
+    fn q(&self) -> S {
+        self.of_quantum(|q| q)
+    }
+
+    /// q/2, ft: half a bin (a report stands for report ± q/2, DO-185B);
+    /// exact in every format, so the same as `q·0.5`.
+    #[inline(always)]
+    fn half_q(&self) -> S {
+        self.of_quantum(|q| q / 2.0)
+    }
+
+    /// q/3, ft (the estimate after an oscillation: `oscil_track_init`),
+    /// rounded once in f64 and once to S: for q = 100 and 25 ft the same
+    /// value as `q ÷ 3` in S in every format (no tie near either rounding).
+    #[inline(always)]
+    fn third_q(&self) -> S {
+        self.of_quantum(|q| q / 3.0)
+    }
+
+    /// `f(q)` as S: both quanta's constants, folded at compile time, then
+    /// the configuration's (a match over the two conversions is merged by LLVM
+    /// into one conversion at run time of the chosen f64; in Q32.32, whose
+    /// conversion does not fold, this converts both).
+    #[inline(always)]
+    fn of_quantum(&self, f: impl Fn(f64) -> f64) -> S {
+        self.per_quantum(|quantum| f(quantum.feet()))
+    }
+
+    /// Residual of the αβ smoothing that costs firmness, ft, as S.
+    #[inline(always)]
+    fn residual_threshold(&self) -> S {
+        self.per_quantum(AltitudeQuantum::residual_threshold_ft)
+    }
+
+    /// `f(quantum)` as S for the configured quantum (see `of_quantum`).
+    #[inline(always)]
+    fn per_quantum(&self, f: impl Fn(AltitudeQuantum) -> f64) -> S {
+        let mode_c = c::<S>(f(AltitudeQuantum::ModeC));
+        let mode_s25 = c::<S>(f(AltitudeQuantum::ModeS25));
+        match self.quantum {
+            AltitudeQuantum::ModeC => mode_c,
+            AltitudeQuantum::ModeS25 => mode_s25,
+        }
+    }
 }
 
 /// Altitude and vertical rate of an intruder.
@@ -526,57 +573,6 @@ impl<N: Numeric<Wide = S>, S: Scalar> AltitudeState<N> {
         .all(|v| v.is_valid())
     }
 
-    /// The quantum q, ft.
-    #[inline(always)]
-    fn q(&self, config: &AltitudeTrackerConfig<S>) -> S {
-        self.of_quantum(config, |q| q)
-    }
-
-    /// q/2, ft: half a bin (a report stands for report ± q/2, DO-185B);
-    /// exact in every format, so the same as `q·0.5`.
-    #[inline(always)]
-    fn half_q(&self, config: &AltitudeTrackerConfig<S>) -> S {
-        self.of_quantum(config, |q| q / 2.0)
-    }
-
-    /// q/3, ft (the estimate after an oscillation: `oscil_track_init`),
-    /// rounded once in f64 and once to S: for q = 100 and 25 ft the same
-    /// value as `q ÷ 3` in S in every format (no tie near either rounding).
-    #[inline(always)]
-    fn third_q(&self, config: &AltitudeTrackerConfig<S>) -> S {
-        self.of_quantum(config, |q| q / 3.0)
-    }
-
-    /// `f(q)` as S: both quanta's constants, folded at compile time, then
-    /// the tracker's (a match over the two conversions is merged by LLVM
-    /// into one conversion at run time of the chosen f64; in Q32.32, whose
-    /// conversion does not fold, this converts both).
-    #[inline(always)]
-    fn of_quantum(&self, config: &AltitudeTrackerConfig<S>, f: impl Fn(f64) -> f64) -> S {
-        self.per_quantum(config, |quantum| f(quantum.feet()))
-    }
-
-    /// Residual of the αβ smoothing that costs firmness, ft, as S.
-    #[inline(always)]
-    fn residual_threshold(&self, config: &AltitudeTrackerConfig<S>) -> S {
-        self.per_quantum(config, AltitudeQuantum::residual_threshold_ft)
-    }
-
-    /// `f(quantum)` as S for the tracker's quantum (see `of_quantum`).
-    #[inline(always)]
-    fn per_quantum(
-        &self,
-        config: &AltitudeTrackerConfig<S>,
-        f: impl Fn(AltitudeQuantum) -> f64,
-    ) -> S {
-        let mode_c = c::<S>(f(AltitudeQuantum::ModeC));
-        let mode_s25 = c::<S>(f(AltitudeQuantum::ModeS25));
-        match config.quantum {
-            AltitudeQuantum::ModeC => mode_c,
-            AltitudeQuantum::ModeS25 => mode_s25,
-        }
-    }
-
     /// Forgets the track (status `NotReporting`); the counts stay.
     fn forget(&mut self) {
         *self = AltitudeState {
@@ -609,7 +605,7 @@ impl<N: Numeric<Wide = S>, S: Scalar> AltitudeState<N> {
         }
         let predicted_change = self.rate_ft_per_s.times(elapsed);
         (change - predicted_change).abs()
-            <= self.q(config)
+            <= config.q()
                 + c::<S>(CREDIBLE_RATE_ERROR_FT_PER_S).times(elapsed)
                 + c::<S>(CREDIBLE_HALF_ACCELERATION_FT_PER_S2)
                     .times(elapsed)
@@ -642,7 +638,7 @@ impl<N: Numeric<Wide = S>, S: Scalar> AltitudeState<N> {
         self.coasted_s = S::ZERO;
         // The reported bin, z ± q/2, once for the no-transition test and
         // the clamp.
-        let half = self.half_q(config);
+        let half = config.half_q();
         let bin = (z - half, z + half);
         let keep_report = if change == S::ZERO {
             self.no_transition(config, z, dt, bin);
@@ -692,7 +688,8 @@ impl<N: Numeric<Wide = S>, S: Scalar> AltitudeState<N> {
         self.class = VerticalClass::Level;
         self.firmness = MAX_VERTICAL_FIRMNESS;
         let outer = self.signed(
-            self.q(config)
+            config
+                .q()
                 .over(self.since_transition_s.max_of(config.interval)),
         );
         self.set_bounds(S::ZERO, outer);
@@ -701,7 +698,7 @@ impl<N: Numeric<Wide = S>, S: Scalar> AltitudeState<N> {
     /// DO-185B `no_transition_update` and `no_transition_firmness`.
     /// `bin`: the reported bin's lower and upper edges, z ∓ q/2.
     fn no_transition(&mut self, config: &AltitudeTrackerConfig<S>, z: S, dt: S, bin: (S, S)) {
-        let q = self.q(config);
+        let q = config.q();
         let t = config.interval;
         let since = self.since_transition_s;
         match self.class {
@@ -749,7 +746,7 @@ impl<N: Numeric<Wide = S>, S: Scalar> AltitudeState<N> {
                     let taper = (late_level + half_t - overdue).over(late_level + half_t);
                     self.rate_ft_per_s = self.signed(q.over(since + t).times(taper));
                     self.bins_in_rate = self.bins_in_rate.saturating_sub(1).max(1);
-                    self.altitude_ft = z + self.signed(self.half_q(config));
+                    self.altitude_ft = z + self.signed(config.half_q());
                     self.set_bounds(S::ZERO, self.signed(q.over(since)));
                     self.firmness = if overdue > c(OVERDUE_S) {
                         self.firmness.saturating_add(1).min(2)
@@ -762,7 +759,7 @@ impl<N: Numeric<Wide = S>, S: Scalar> AltitudeState<N> {
                     if predicted > high || predicted < low {
                         // Ahead of the reports: hold the estimate at the bin
                         // edge and take the difference out of the rate.
-                        self.altitude_ft = z + self.signed(self.half_q(config));
+                        self.altitude_ft = z + self.signed(config.half_q());
                         let error = self.altitude_ft - predicted;
                         self.rate_ft_per_s =
                             self.rate_ft_per_s + error.over(since.max_of(c(MIN_CORRECTION_TIME_S)));
@@ -788,7 +785,7 @@ impl<N: Numeric<Wide = S>, S: Scalar> AltitudeState<N> {
         dt: S,
         since_report: S,
     ) -> bool {
-        let q = self.q(config);
+        let q = config.q();
         let sign: i8 = if change > S::ZERO { 1 } else { -1 };
         let bins = bins_of(change.abs().over(q));
         let bins_s = count::<S>(bins);
@@ -808,9 +805,9 @@ impl<N: Numeric<Wide = S>, S: Scalar> AltitudeState<N> {
             }
             VerticalClass::Oscillating => {
                 let third = if sign > 0 {
-                    self.third_q(config)
+                    config.third_q()
                 } else {
-                    -self.third_q(config)
+                    -config.third_q()
                 };
                 self.altitude_ft = z - third;
                 self.firmness = MAX_VERTICAL_FIRMNESS;
@@ -850,12 +847,12 @@ impl<N: Numeric<Wide = S>, S: Scalar> AltitudeState<N> {
         sign: i8,
         since_report: S,
     ) {
-        let q = self.q(config);
+        let q = config.q();
         let qs = if sign > 0 { q } else { -q };
         let half_qs = if sign > 0 {
-            self.half_q(config)
+            config.half_q()
         } else {
-            -self.half_q(config)
+            -config.half_q()
         };
         let t = config.interval;
         // After a long gap over several bins the change itself is a rate.
@@ -882,9 +879,9 @@ impl<N: Numeric<Wide = S>, S: Scalar> AltitudeState<N> {
     /// DO-185B `oscil_track_init`.
     fn start_oscillation(&mut self, config: &AltitudeTrackerConfig<S>, z: S, sign: i8) {
         let third = if sign > 0 {
-            self.third_q(config)
+            config.third_q()
         } else {
-            -self.third_q(config)
+            -config.third_q()
         };
         self.altitude_ft = z - third;
         self.rate_ft_per_s = S::ZERO;
@@ -902,12 +899,12 @@ impl<N: Numeric<Wide = S>, S: Scalar> AltitudeState<N> {
         sign: i8,
         time_per_bin: S,
     ) {
-        let q = self.q(config);
+        let q = config.q();
         let qs = if sign > 0 { q } else { -q };
         let half_qs = if sign > 0 {
-            self.half_q(config)
+            config.half_q()
         } else {
-            -self.half_q(config)
+            -config.half_q()
         };
         let t = config.interval;
         let since = self.since_transition_s;
@@ -954,7 +951,7 @@ impl<N: Numeric<Wide = S>, S: Scalar> AltitudeState<N> {
         time_per_bin: S,
         dt: S,
     ) {
-        let q = self.q(config);
+        let q = config.q();
         let t = config.interval;
         let sign_q = self.signed(q);
         let since = self.since_transition_s;
@@ -979,7 +976,7 @@ impl<N: Numeric<Wide = S>, S: Scalar> AltitudeState<N> {
             self.altitude_ft = predicted + c::<S>(alpha).times(residual);
             self.rate_ft_per_s = self.rate_ft_per_s + c::<S>(beta).times(residual).over(dt);
             let after = z - (previous + self.rate_ft_per_s.times(dt));
-            if after.abs() >= self.residual_threshold(config) {
+            if after.abs() >= config.residual_threshold() {
                 self.firmness = self.firmness.saturating_sub(2);
                 self.bins_in_rate = self.bins_in_rate.saturating_sub(1).max(3);
             } else {
