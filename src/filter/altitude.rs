@@ -387,6 +387,16 @@ fn c<S: Scalar>(v: f64) -> S {
     S::from_f64_lossy(v)
 }
 
+/// `v` in the direction of a transition (`sign` > 0: up, otherwise down).
+#[inline(always)]
+fn toward<S: Scalar>(sign: i8, v: S) -> S {
+    if sign > 0 {
+        v
+    } else {
+        -v
+    }
+}
+
 /// A value known only at run time as S, out of line (the conversion is
 /// soft-float or ~50 integer instructions: one copy, for flash).
 #[inline(never)]
@@ -804,12 +814,7 @@ impl<N: Numeric<Wide = S>, S: Scalar> AltitudeState<N> {
                 self.start_trend(config, z, change, sign, time_per_bin)
             }
             VerticalClass::Oscillating => {
-                let third = if sign > 0 {
-                    config.third_q()
-                } else {
-                    -config.third_q()
-                };
-                self.altitude_ft = z - third;
+                self.altitude_ft = z - toward(sign, config.third_q());
                 self.firmness = MAX_VERTICAL_FIRMNESS;
             }
             VerticalClass::Trend if same_direction => {
@@ -848,27 +853,19 @@ impl<N: Numeric<Wide = S>, S: Scalar> AltitudeState<N> {
         since_report: S,
     ) {
         let q = config.q();
-        let qs = if sign > 0 { q } else { -q };
-        let half_qs = if sign > 0 {
-            config.half_q()
-        } else {
-            -config.half_q()
-        };
+        let qs = toward(sign, q);
+        let half_qs = toward(sign, config.half_q());
         let t = config.interval;
         // After a long gap over several bins the change itself is a rate.
         self.rate_ft_per_s = if since_report > c(LONG_COAST_S) && change.abs() > q {
             (change - qs).over(since_report)
-        } else if sign > 0 {
-            c(GUESS_RATE_FT_PER_S)
         } else {
-            -c::<S>(GUESS_RATE_FT_PER_S)
+            toward(sign, c(GUESS_RATE_FT_PER_S))
         };
         let outer = if self.since_start_s < c(RATE_SETTLING_S) {
             (change + qs).over(self.since_start_s)
-        } else if sign > 0 {
-            c(LIKELY_RATE_FT_PER_S)
         } else {
-            -c::<S>(LIKELY_RATE_FT_PER_S)
+            toward(sign, c(LIKELY_RATE_FT_PER_S))
         };
         self.set_bounds(S::ZERO, outer);
         self.altitude_ft = z - half_qs + self.rate_ft_per_s.times(t).times(c(0.5));
@@ -878,12 +875,7 @@ impl<N: Numeric<Wide = S>, S: Scalar> AltitudeState<N> {
 
     /// DO-185B `oscil_track_init`.
     fn start_oscillation(&mut self, config: &AltitudeTrackerConfig<S>, z: S, sign: i8) {
-        let third = if sign > 0 {
-            config.third_q()
-        } else {
-            -config.third_q()
-        };
-        self.altitude_ft = z - third;
+        self.altitude_ft = z - toward(sign, config.third_q());
         self.rate_ft_per_s = S::ZERO;
         self.firmness = 2;
         self.set_bounds(S::ZERO, S::ZERO);
@@ -900,12 +892,8 @@ impl<N: Numeric<Wide = S>, S: Scalar> AltitudeState<N> {
         time_per_bin: S,
     ) {
         let q = config.q();
-        let qs = if sign > 0 { q } else { -q };
-        let half_qs = if sign > 0 {
-            config.half_q()
-        } else {
-            -config.half_q()
-        };
+        let qs = toward(sign, q);
+        let half_qs = toward(sign, config.half_q());
         let t = config.interval;
         let since = self.since_transition_s;
         self.alpha_beta = false;

@@ -299,6 +299,18 @@ impl<N: Numeric> RangeAzimuthNoise<N> {
     pub fn process_noise(&self) -> N::Ratio {
         self.process_noise
     }
+    /// σ_R = √(σ_R²), m (formed once, at construction).
+    pub fn range_sigma(&self) -> N::Ratio {
+        self.range_sigma
+    }
+    /// σ_B = √(σ_B²), rad (formed once, at construction).
+    pub fn bearing_sigma(&self) -> N::Ratio {
+        self.bearing_sigma
+    }
+    /// √Q, m/s² (formed once, at construction).
+    pub fn process_sigma(&self) -> N::Ratio {
+        self.process_sigma
+    }
 
     /// Cross-range standard deviation √VAR = R·σ_B at range R (m), floored
     /// at [`CROSS_RANGE_SIGMA_FLOOR`].

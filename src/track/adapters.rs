@@ -469,13 +469,13 @@ impl<N: Numeric<Wide = S>, S: Scalar> RangeAzimuthTrack<N> {
         if self.state.phase() != Phase::Tracking {
             return None;
         }
-        let q = noise.process_noise().sqrt();
+        let q = noise.process_sigma();
         let along = predicted_position_sigma(&self.state.range_covariance(), dt, q);
         let across = predicted_position_sigma(&self.state.cross_range_covariance(), dt, q);
         let sigmas = [
             along,
             across,
-            noise.range_variance().sqrt(),
+            noise.range_sigma(),
             noise.cross_range_sigma(range),
         ];
         sigmas
@@ -488,8 +488,8 @@ impl<N: Numeric<Wide = S>, S: Scalar> RangeAzimuthTrack<N> {
     /// noise in the filter's range channel is than the σ_R it assumes (see
     /// "Range coupling" on [`RangeAzimuthTrack`]). `across` is √P_C⁻₁₁.
     fn range_coupling_scale(noise: &RangeAzimuthNoise<S>, across: S, range: S) -> S {
-        let sigma_b = noise.bearing_variance().sqrt();
-        let sigma_r = noise.range_variance().sqrt();
+        let sigma_b = noise.bearing_sigma();
+        let sigma_r = noise.range_sigma();
         // √(3/4) = 0.866…
         let second_order = range * sigma_b * sigma_b * S::from_f64_lossy(0.866_025_403_784_438_6);
         hypot(sigma_r, hypot(across * sigma_b, second_order)) / sigma_r
