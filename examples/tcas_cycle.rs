@@ -22,7 +22,7 @@ use abtrack::tcas::{Advisory, CollisionAvoidance, IntruderTrack, OwnAircraft, Re
 use abtrack::{Fixed32, Numeric, Quantity, Real};
 
 /// The Cortex-M3's type (boards/qemu/src/number_types.rs,
-/// `without_fpu::Native`); `f32` on the Cortex-M4F.
+/// `cortex_m3::Native`); `f32` on the Cortex-M4F.
 type N = Fixed32;
 /// Its one type for every quantity: the inputs and outputs of the logic.
 type S = <N as Numeric>::Wide;

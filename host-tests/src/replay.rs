@@ -233,8 +233,8 @@ pub enum Numeric {
     F64,
     #[value(name = "f32")]
     F32,
-    /// The Cortex-M3's and M0's fast fixed point as their firmware runs it
-    /// (`abtrack_firmware::number_types::without_fpu`): [`abtrack::Fixed32`]
+    /// The Cortex-M3's fast fixed point as its firmware runs it
+    /// (`abtrack_firmware::number_types::cortex_m3`): [`abtrack::Fixed32`]
     /// for the x/y track table, its wide format [`abtrack::ScaledScalar`]
     /// for the code written for a `Scalar` (the range–azimuth filter and
     /// tracks, the altitude tracker, the TCAS columns). Not the single x/y

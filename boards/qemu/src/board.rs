@@ -40,22 +40,28 @@ pub const BOARD: &str = env!("ABTRACK_BOARD");
 pub const CORE: &str = env!("ABTRACK_CORE");
 
 #[cfg(target_abi = "eabihf")]
-use crate::number_types::with_fpu as core_types;
-#[cfg(not(target_abi = "eabihf"))]
-use crate::number_types::without_fpu as core_types;
+use crate::number_types::cortex_m4f as core_types;
 
-/// The core's number type, for every component: `f32` where the core has a
-/// hardware FPU (the hard-float ABI, thumbv7em-none-eabihf: Cortex-M4F),
-/// the fast fixed point ([`abtrack::Fixed32`]) on cores without one
-/// (Cortex-M3, Cortex-M0), where every float operation would be a software
-/// library call ([`crate::number_types`]).
+#[cfg(all(not(target_abi = "eabihf"), target_has_atomic = "32"))]
+use crate::number_types::cortex_m3 as core_types;
+
+// ARMv6-M (Cortex-M0), recognised on stable Rust by its lack of 32-bit
+// atomics.
+#[cfg(all(not(target_abi = "eabihf"), not(target_has_atomic = "32")))]
+use crate::number_types::cortex_m0 as core_types;
+
+/// The core's number type for the filters, schedules, bank and track
+/// tables: `f32` where the core has a hardware FPU (Cortex-M4F), the fast
+/// fixed point ([`abtrack::Fixed32`]) on cores without one (Cortex-M3,
+/// Cortex-M0), where every float operation would be a software library
+/// call ([`crate::number_types`]).
 pub type Native = core_types::Native;
 
-/// [`Native`]'s one type for every quantity ([`abtrack::Numeric::Wide`]):
-/// `f32` itself, or `Fixed32`'s wide format. Derived, not a second choice:
-/// what the scan loop, TCAS and the altitude tracker compute in, for the
-/// tests and reports that name it.
-pub type Wide = <Native as abtrack::Numeric>::Wide;
+/// The core's one type for every quantity, what the scan loop, TCAS and
+/// the altitude tracker compute in: `f32` on the Cortex-M4F, `Fixed32`'s
+/// wide format on the Cortex-M3, software `f32` on the Cortex-M0
+/// ([`crate::number_types`]).
+pub type Wide = core_types::Wide;
 
 // ---------------------------------------------------------------------------
 // Semihosting: the log on the emulated boards, and the exit status

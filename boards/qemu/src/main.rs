@@ -64,7 +64,7 @@ use abtrack::wire::{
 };
 
 use abtrack::Numeric;
-use board::{Native, Wide};
+use board::Wide;
 use cortex_m::interrupt::{free, Mutex};
 use cortex_m::peripheral::syst::SystClkSource;
 use cortex_m::peripheral::NVIC;
@@ -77,8 +77,8 @@ use abtrack_firmware::capacity::microbit as capacity;
 use abtrack_firmware::capacity::mps2 as capacity;
 use capacity::{MEASUREMENTS_PER_SCAN, QUEUE_LEN, TRACKS};
 
-type DemoLoop = ScanLoop<Native, RangeAzimuthTrack<Native>, TRACKS, MEASUREMENTS_PER_SCAN>;
-type DemoConfig = ScanConfig<Native, abtrack::filter::range_azimuth::RangeAzimuthNoise<Wide>>;
+type DemoLoop = ScanLoop<Wide, RangeAzimuthTrack<Wide>, TRACKS, MEASUREMENTS_PER_SCAN>;
+type DemoConfig = ScanConfig<Wide, abtrack::filter::range_azimuth::RangeAzimuthNoise<Wide>>;
 type DemoIntake = Intake<QUEUE_LEN>;
 
 /// SysTick period (QEMU's virtual clock, real time without `-icount`).
@@ -418,14 +418,14 @@ fn start() -> DemoConfig {
         use core::mem::size_of;
         // One track more, for the loop's bytes per track.
         type LoopWithOneMore =
-            ScanLoop<Native, RangeAzimuthTrack<Native>, { TRACKS + 1 }, MEASUREMENTS_PER_SCAN>;
+            ScanLoop<Wide, RangeAzimuthTrack<Wide>, { TRACKS + 1 }, MEASUREMENTS_PER_SCAN>;
         defmt::println!(
             "RAM per track: {=usize} B in the scan loop, of which table slot {=usize} B, TCAS intruder {=usize} B (range tracker {=usize}, altitude state {=usize}, threat state {=usize})",
             size_of::<LoopWithOneMore>() - size_of::<DemoLoop>(),
-            size_of::<abtrack::track::TrackSlot<Wide, RangeAzimuthTrack<Native>>>(),
-            size_of::<IntruderTrack<Native>>(),
-            size_of::<RangeTracker<Native>>(),
-            size_of::<AltitudeState<Native>>(),
+            size_of::<abtrack::track::TrackSlot<Wide, RangeAzimuthTrack<Wide>>>(),
+            size_of::<IntruderTrack<Wide>>(),
+            size_of::<RangeTracker<Wide>>(),
+            size_of::<AltitudeState<Wide>>(),
             size_of::<ThreatState<Wide>>()
         );
     }
@@ -437,7 +437,7 @@ fn start() -> DemoConfig {
         demo_config::SCAN_PERIOD_MS,
         io::PINS_NAME
     );
-    match demo_config::demo_config::<Native, _>() {
+    match demo_config::demo_config::<Wide, _>() {
         Ok(c) => c,
         Err(e) => {
             defmt::error!("configuration: {=str}", e);

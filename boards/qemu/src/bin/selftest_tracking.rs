@@ -1,7 +1,7 @@
 //! On-target self-test, second image: the TCAS inputs and the multi-target
-//! tracker on the emulated core, in the wide format of the core's type
+//! tracker on the emulated core, in the type its TCAS runs in
 //! (`board::Wide`: `f32` on the Cortex-M4F, `Fixed32`'s wide format
-//! `ScaledScalar` on the Cortex-M3 and M0, what its TCAS runs in)
+//! `ScaledScalar` on the Cortex-M3, software `f32` on the Cortex-M0)
 //! against `f64` on the same core, or against values computed by hand.
 //! Split from `selftest` (filters, gain schedules, M5 bank) because both
 //! together do not fit the micro:bit's 256 KiB of flash; same harness

@@ -24,7 +24,7 @@
 
 use abtrack_firmware::capacity::{microbit, mps2};
 use abtrack_firmware::demo_config;
-use abtrack_firmware::number_types::{with_fpu, without_fpu};
+use abtrack_firmware::number_types::{cortex_m0, cortex_m3, cortex_m4f};
 
 use abtrack::scan::RunVerdict;
 use abtrack::track::RangeAzimuthTrack;
@@ -130,43 +130,43 @@ fn run_firmware(board: &Board, elf: &Path, input: &[u8], name: &str) -> Run {
     }
 }
 
-/// The same input through the scan-loop core on the host, in the
-/// firmware's type for the board's core
-/// (boards/qemu/src/number_types.rs).
+/// The same input through the scan-loop core on the host, in the type the
+/// firmware's scan loop runs in on the board's core (`Wide`,
+/// boards/qemu/src/number_types.rs).
 fn model(board: &Board, input: &[u8]) -> FirmwareRun {
     match board.machine {
         "mps2-an386" => frames::run_like_the_firmware::<
-            with_fpu::Native,
+            cortex_m4f::Wide,
             _,
-            RangeAzimuthTrack<with_fpu::Native>,
+            RangeAzimuthTrack<cortex_m4f::Wide>,
             { mps2::TRACKS },
             { mps2::MEASUREMENTS_PER_SCAN },
             { mps2::QUEUE_LEN },
         >(
             input,
-            &demo_config::demo_config::<with_fpu::Native, _>().unwrap(),
+            &demo_config::demo_config::<cortex_m4f::Wide, _>().unwrap(),
         ),
         "mps2-an385" => frames::run_like_the_firmware::<
-            without_fpu::Native,
+            cortex_m3::Wide,
             _,
-            RangeAzimuthTrack<without_fpu::Native>,
+            RangeAzimuthTrack<cortex_m3::Wide>,
             { mps2::TRACKS },
             { mps2::MEASUREMENTS_PER_SCAN },
             { mps2::QUEUE_LEN },
         >(
             input,
-            &demo_config::demo_config::<without_fpu::Native, _>().unwrap(),
+            &demo_config::demo_config::<cortex_m3::Wide, _>().unwrap(),
         ),
         _ => frames::run_like_the_firmware::<
-            without_fpu::Native,
+            cortex_m0::Wide,
             _,
-            RangeAzimuthTrack<without_fpu::Native>,
+            RangeAzimuthTrack<cortex_m0::Wide>,
             { microbit::TRACKS },
             { microbit::MEASUREMENTS_PER_SCAN },
             { microbit::QUEUE_LEN },
         >(
             input,
-            &demo_config::demo_config::<without_fpu::Native, _>().unwrap(),
+            &demo_config::demo_config::<cortex_m0::Wide, _>().unwrap(),
         ),
     }
 }

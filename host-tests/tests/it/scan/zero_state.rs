@@ -8,12 +8,12 @@ use abtrack::scan::{Intake, ScanLoop};
 use abtrack::track::RangeAzimuthTrack;
 use abtrack::{Fix, Quantity, ScaledScalar};
 use abtrack_firmware::capacity::{microbit, mps2};
-use abtrack_firmware::number_types::{with_fpu, without_fpu};
+use abtrack_firmware::number_types::{cortex_m0, cortex_m3, cortex_m4f};
 use std::mem::size_of;
 
 type M4fLoop = ScanLoop<
-    with_fpu::Native,
-    RangeAzimuthTrack<with_fpu::Native>,
+    cortex_m4f::Wide,
+    RangeAzimuthTrack<cortex_m4f::Wide>,
     { mps2::TRACKS },
     { mps2::MEASUREMENTS_PER_SCAN },
 >;
@@ -25,17 +25,17 @@ static MPS2_INTAKE: Intake<{ mps2::QUEUE_LEN }> = Intake::new();
 static MICROBIT_INTAKE: Intake<{ microbit::QUEUE_LEN }> = Intake::new();
 static M4F_SCAN_LOOP: M4fLoop = ScanLoop::new();
 
-/// The Cortex-M3's (mps2-an385) and Cortex-M0's (micro:bit) demo loops:
-/// the fast fixed point (computing in its wide format).
+/// The Cortex-M3's (mps2-an385) demo loop, in the fast fixed point's wide
+/// format, and the Cortex-M0's (micro:bit), in software f32.
 type M3Loop = ScanLoop<
-    without_fpu::Native,
-    RangeAzimuthTrack<without_fpu::Native>,
+    cortex_m3::Wide,
+    RangeAzimuthTrack<cortex_m3::Wide>,
     { mps2::TRACKS },
     { mps2::MEASUREMENTS_PER_SCAN },
 >;
 type M0Loop = ScanLoop<
-    without_fpu::Native,
-    RangeAzimuthTrack<without_fpu::Native>,
+    cortex_m0::Wide,
+    RangeAzimuthTrack<cortex_m0::Wide>,
     { microbit::TRACKS },
     { microbit::MEASUREMENTS_PER_SCAN },
 >;
@@ -82,9 +82,9 @@ fn the_check_sees_a_non_zero_byte() {
     assert_eq!(nonzero_offsets(&NONE), vec![0]);
 }
 
-/// The demo's scan loop on each board: f32 on the M4F, the fast fixed
-/// point's wide format (`ScaledScalar`, whose zero stores its exponent
-/// biased) on the M3 and M0.
+/// The demo's scan loop on each board: f32 on the M4F and M0, the fast
+/// fixed point's wide format (`ScaledScalar`, whose zero stores its
+/// exponent biased) on the M3.
 #[test]
 fn demo_scan_loop_starts_all_zero_on_every_board() {
     assert_zero("ScanLoop on the mps2-an386 (M4F)", &M4F_SCAN_LOOP);

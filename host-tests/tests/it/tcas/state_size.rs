@@ -1,13 +1,14 @@
 //! The per-intruder TCAS state's bytes in the micro:bit's number type
-//! (`ScaledScalar`: every field 4-byte aligned or less and no `usize`, so
-//! the host's sizes are the Cortex-M0's; the demo prints its own at
-//! start-up). docs/tcas.md, "RAM per intruder", has the table.
+//! (`number_types::cortex_m0::Wide`, software `f32`: every field 4-byte
+//! aligned or less and no `usize`, so the host's sizes are the
+//! Cortex-M0's; the demo prints its own at start-up). docs/tcas.md, "RAM
+//! per intruder", has the table.
 
 use abtrack::filter::altitude::AltitudeState;
 use abtrack::scan::ScanLoop;
 use abtrack::tcas::{IntruderTrack, RangeTracker, ThreatState};
 use abtrack::track::{RangeAzimuthTrack, TrackSlot};
-use abtrack::ScaledScalar as S;
+use abtrack_firmware::number_types::cortex_m0::Wide as S;
 use std::mem::size_of;
 
 type Loop<const N: usize> = ScanLoop<S, RangeAzimuthTrack<S>, N, 12>;
@@ -15,14 +16,14 @@ type Loop<const N: usize> = ScanLoop<S, RangeAzimuthTrack<S>, N, 12>;
 #[test]
 fn per_intruder_state_fits_its_budget() {
     let parts = [
-        ("range tracker", size_of::<RangeTracker<S>>(), 48),
+        ("range tracker", size_of::<RangeTracker<S>>(), 28),
         (
             "altitude tracker's state",
             size_of::<AltitudeState<S>>(),
-            92,
+            52,
         ),
-        ("threat state", size_of::<ThreatState<S>>(), 24),
-        ("intruder track", size_of::<IntruderTrack<S>>(), 164),
+        ("threat state", size_of::<ThreatState<S>>(), 16),
+        ("intruder track", size_of::<IntruderTrack<S>>(), 96),
     ];
     for (name, size, budget) in parts {
         eprintln!("{name}: {size} B (budget {budget} B)");
@@ -41,7 +42,7 @@ fn per_intruder_state_fits_its_budget() {
     // What sets the micro:bit's track count (docs/tcas.md, "RAM per
     // intruder").
     assert!(
-        per_track <= 416,
-        "scan loop per track: {per_track} B > 416 B"
+        per_track <= 280,
+        "scan loop per track: {per_track} B > 280 B"
     );
 }

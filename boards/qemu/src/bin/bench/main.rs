@@ -158,8 +158,8 @@ fn bench_scalar<S: BenchNumber + Scalar>(bench: &mut Bench) {
 /// filter rows in soft f32, the fast fixed point (its firmware's type) and
 /// f64, but not in Q32.32 (whose inlined 64-bit products alone would take
 /// the image past 256 KiB), the TCAS rows in the type its firmware runs
-/// them in ([`board::Wide`], the wide format of its type), and the scans in the fast fixed point
-/// only. Decided at compile time, so the code left out is not linked.
+/// them in ([`board::Wide`]: software `f32`), and the scans in the fast
+/// fixed point only. Decided at compile time, so the code left out is not linked.
 fn omitted<N: BenchNumber>(group: Group) -> Option<Omission> {
     if !cfg!(abtrack_board = "microbit") {
         return None;
