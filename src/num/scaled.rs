@@ -73,6 +73,25 @@ const fn biased(exponent: i32) -> u32 {
     exponent.wrapping_sub(EXPONENT_MIN) as u32
 }
 
+/// The largest stored exponent.
+const BIASED_MAX: u32 = biased(EXPONENT_MAX);
+
+/// An exponent's stored form for [`Scaled::finish`], before its range
+/// check; an exponent far out of the range is first brought within 1000 of
+/// zero, where it stays out of it (and `finish` can add one without a
+/// wrap).
+#[inline(always)]
+fn stored(exponent: i32) -> i32 {
+    exponent.clamp(-1000, 1000).wrapping_sub(EXPONENT_MIN)
+}
+
+/// Whether a mantissa is zero's or the invalid value's: the two whose
+/// double is 0 as a word (one test for the operations' rare cases).
+#[inline(always)]
+const fn is_special(mantissa: i32) -> bool {
+    (mantissa as u32).wrapping_shl(1) == 0
+}
+
 impl<U> Clone for Scaled<U> {
     fn clone(&self) -> Self {
         *self
@@ -260,6 +279,9 @@ impl<U> Scaled<U> {
         if wide == 0 {
             return Self::ZERO_VALUE;
         }
+        if let Ok(word) = i32::try_from(wide) {
+            return Self::from_word(word, exponent);
+        }
         let negative = wide < 0;
         let magnitude = wide.unsigned_abs();
         // Bit index of the leading one, 0..=63.
@@ -277,7 +299,27 @@ impl<U> Scaled<U> {
                 exponent.saturating_sub(shift as i32),
             )
         };
-        Self::finish(negative, magnitude, exponent)
+        Self::finish(negative, magnitude, stored(exponent))
+    }
+
+    /// `word · 2^exponent` for a nonzero word, as [`Self::from_wide`] gives
+    /// it with 32-bit operations: a magnitude below 2³¹ is normalised
+    /// exactly by a left shift.
+    #[inline(always)]
+    fn from_word(word: i32, exponent: i32) -> Self {
+        let negative = word < 0;
+        let magnitude = word.unsigned_abs();
+        if magnitude >> 31 != 0 {
+            // i32::MIN: 2³¹, which `finish` takes as one bit more.
+            return Self::finish(negative, magnitude, stored(exponent));
+        }
+        // A nonzero magnitude below 2³¹ has 1..=31 leading zeros.
+        let shift = magnitude.leading_zeros().wrapping_sub(1); // 0..=30
+        Self::finish(
+            negative,
+            magnitude << shift,
+            stored(exponent.saturating_sub(shift as i32)),
+        )
     }
 
     /// The integer `v`.
@@ -289,45 +331,21 @@ impl<U> Scaled<U> {
         if self.is_invalid() || other.is_invalid() {
             return None;
         }
-        let (a, b) = (self.mantissa, other.mantissa);
-        let sign = |m: i32| m.signum();
-        if sign(a) != sign(b) {
-            return Some(sign(a).cmp(&sign(b)));
-        }
-        if a == 0 {
-            return Some(Ordering::Equal);
-        }
-        let magnitude_order = (self.biased_exponent, a.unsigned_abs())
-            .cmp(&(other.biased_exponent, b.unsigned_abs()));
-        Some(if a > 0 {
-            magnitude_order
-        } else {
-            magnitude_order.reverse()
-        })
+        Some(self.order_key().cmp(&other.order_key()))
     }
 
-    /// ±`magnitude`·2^`exponent` for a magnitude in [2³⁰, 2³¹] (2³¹ is
-    /// one more bit, exactly): the last step of the operations whose
-    /// result's leading bit is known.
+    /// A key whose order is the values' (valid values): ±(stored exponent ·
+    /// 2³¹ + |mantissa|), 0 for zero. A normalised magnitude's leading bit
+    /// makes a larger exponent the larger key.
     #[inline(always)]
-    fn finish(negative: bool, magnitude: u32, exponent: i32) -> Self {
-        let (m, exponent) = if magnitude >> 31 != 0 {
-            (magnitude >> 1, exponent.saturating_add(1))
+    fn order_key(self) -> i64 {
+        let key = (i64::from(self.biased_exponent) << 31) | i64::from(self.mantissa.unsigned_abs());
+        if self.mantissa > 0 {
+            key
+        } else if self.mantissa < 0 {
+            key.wrapping_neg()
         } else {
-            (magnitude, exponent)
-        };
-        if exponent > EXPONENT_MAX {
-            return Self::INVALID;
-        }
-        if exponent < EXPONENT_MIN {
-            return Self::ZERO_VALUE;
-        }
-        // m < 2³¹: the cast is exact and the negation cannot wrap.
-        let m = m as i32;
-        Scaled {
-            mantissa: if negative { m.wrapping_neg() } else { m },
-            biased_exponent: biased(exponent),
-            unit: PhantomData,
+            0
         }
     }
 
@@ -335,23 +353,55 @@ impl<U> Scaled<U> {
     /// normalised mantissas lies in [2⁶⁰, 2⁶²), so its leading bit is one of
     /// two and the rounding is a constant shift.
     fn multiply(self, other: Self) -> Self {
-        if self.is_invalid() || other.is_invalid() {
-            return Self::INVALID;
-        }
-        if self.is_zero() || other.is_zero() {
-            return Self::ZERO_VALUE;
+        if is_special(self.mantissa) || is_special(other.mantissa) {
+            return if self.is_invalid() || other.is_invalid() {
+                Self::INVALID
+            } else {
+                Self::ZERO_VALUE
+            };
         }
         let negative = (self.mantissa ^ other.mantissa) < 0;
         let product = u64::from(self.mantissa.unsigned_abs())
             .wrapping_mul(u64::from(other.mantissa.unsigned_abs()));
-        // Exponents lie in [−200, 100]: their sums cannot wrap.
-        let exponent = self.exponent().wrapping_add(other.exponent());
+        // The stored exponents lie in [0, 300]: their sum cannot wrap, and
+        // that sum plus EXPONENT_MIN is the stored form of e_a + e_b.
+        let stored = (self.biased_exponent.wrapping_add(other.biased_exponent) as i32)
+            .wrapping_add(EXPONENT_MIN);
         if product >> 61 != 0 {
             let m = ((product >> 30).wrapping_add(1) >> 1) as u32;
-            Self::finish(negative, m, exponent.wrapping_add(31))
+            Self::finish(negative, m, stored.wrapping_add(31))
         } else {
             let m = ((product >> 29).wrapping_add(1) >> 1) as u32;
-            Self::finish(negative, m, exponent.wrapping_add(30))
+            Self::finish(negative, m, stored.wrapping_add(30))
+        }
+    }
+
+    /// ±`magnitude`·2^e for a magnitude in [2³⁰, 2³¹] (2³¹ is one bit
+    /// more, exactly) and e in its stored form `stored` (e − [`EXPONENT_MIN`],
+    /// which may lie outside [0, 300] before the check, by at most about
+    /// a thousand): the last step of the operations whose result's leading
+    /// bit is known.
+    #[inline(always)]
+    fn finish(negative: bool, magnitude: u32, stored: i32) -> Self {
+        let (m, stored) = if magnitude >> 31 != 0 {
+            (magnitude >> 1, stored.wrapping_add(1))
+        } else {
+            (magnitude, stored)
+        };
+        // One unsigned test for both ends; the rare case tells them apart.
+        if stored as u32 > BIASED_MAX {
+            return if stored < 0 {
+                Self::ZERO_VALUE
+            } else {
+                Self::INVALID
+            };
+        }
+        // m < 2³¹: the cast is exact and the negation cannot wrap.
+        let m = m as i32;
+        Scaled {
+            mantissa: if negative { m.wrapping_neg() } else { m },
+            biased_exponent: stored as u32,
+            unit: PhantomData,
         }
     }
 
@@ -379,25 +429,25 @@ impl<U> Scaled<U> {
         let (q, _) = div_wide(high, 0, b << 1);
         // q/2, rounded half up on the exact quotient: its half bit is q's
         // last bit (the remainder only decides ties, which round up too).
-        Self::finish(negative, (q >> 1).wrapping_add(q & 1), exponent)
+        Self::finish(negative, (q >> 1).wrapping_add(q & 1), stored(exponent))
     }
 
     fn sum(self, other: Self) -> Self {
-        if self.is_invalid() || other.is_invalid() {
-            return Self::INVALID;
-        }
-        if self.is_zero() {
-            return other;
-        }
-        if other.is_zero() {
-            return self;
+        if is_special(self.mantissa) || is_special(other.mantissa) {
+            return if self.is_invalid() || other.is_invalid() {
+                Self::INVALID
+            } else if self.is_zero() {
+                other
+            } else {
+                self
+            };
         }
         let (high, low) = if self.biased_exponent >= other.biased_exponent {
             (self, other)
         } else {
             (other, self)
         };
-        let gap = high.exponent().wrapping_sub(low.exponent()) as u32; // ≥ 0
+        let gap = high.biased_exponent.wrapping_sub(low.biased_exponent); // ≥ 0
         if gap > 32 {
             // The smaller one is below 2⁻² of an ulp of the larger: the
             // sum rounds to the larger (also when it lowers its leading bit:
@@ -438,10 +488,14 @@ impl<U> Scaled<U> {
             Self::finish(
                 negative,
                 (word >> 1).wrapping_add(word & 1),
-                high.exponent().wrapping_add(1),
+                (high.biased_exponent as i32).wrapping_add(1),
             )
         } else {
-            Self::finish(negative, word.wrapping_add(fraction >> 31), high.exponent())
+            Self::finish(
+                negative,
+                word.wrapping_add(fraction >> 31),
+                high.biased_exponent as i32,
+            )
         }
     }
 
@@ -470,14 +524,18 @@ impl<U> Scaled<U> {
             .wrapping_sub(low_word)
             .wrapping_sub(u32::from(low_fraction != 0));
         if word >> 30 != 0 {
-            Self::finish(negative, word.wrapping_add(fraction >> 31), high.exponent())
+            Self::finish(
+                negative,
+                word.wrapping_add(fraction >> 31),
+                high.biased_exponent as i32,
+            )
         } else {
             // One bit up from the fraction, the next one rounds.
             let m = (word << 1) | (fraction >> 31);
             Self::finish(
                 negative,
                 m.wrapping_add((fraction >> 30) & 1),
-                high.exponent().wrapping_sub(1),
+                (high.biased_exponent as i32).wrapping_sub(1),
             )
         }
     }
@@ -522,7 +580,7 @@ impl<U> Scaled<U> {
         Self::finish(
             false,
             (r >> 1).wrapping_add(r & 1),
-            (exponent >> 1).wrapping_add(1),
+            stored((exponent >> 1).wrapping_add(1)),
         )
     }
 
@@ -605,7 +663,7 @@ impl<U> Scaled<U> {
         Self::finish(
             false,
             (r >> 1).wrapping_add(r & 1),
-            exponent.wrapping_add(1),
+            stored(exponent.wrapping_add(1)),
         )
     }
 }
@@ -799,18 +857,17 @@ where
 
     #[inline]
     fn half(self) -> Self {
-        if self.is_invalid() || self.is_zero() {
+        if is_special(self.mantissa) {
             return self;
         }
         // Exact: the same mantissa one exponent down (flushed to zero
         // below the range, as every result).
-        let exponent = self.exponent().wrapping_sub(1);
-        if exponent < EXPONENT_MIN {
+        if self.biased_exponent == 0 {
             return Self::ZERO_VALUE;
         }
         Scaled {
             mantissa: self.mantissa,
-            biased_exponent: biased(exponent),
+            biased_exponent: self.biased_exponent.wrapping_sub(1),
             unit: PhantomData,
         }
     }
