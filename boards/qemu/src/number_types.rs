@@ -26,8 +26,8 @@ pub mod cortex_m3 {
     /// [`abtrack::Fixed32`], a 32-bit format per quantity.
     pub type Native = abtrack::Fixed32;
     /// [`abtrack::Fixed32`]'s wide format ([`abtrack::Numeric::Wide`]),
-    /// [`abtrack::ScaledScalar`]: 8 bytes a number, the cheapest of the
-    /// core's types for this code.
+    /// [`abtrack::ScaledScalar`]: 8 bytes a number, and on this core the
+    /// cheapest of its types for an intruder's step.
     pub type Wide = abtrack::ScaledScalar;
 }
 

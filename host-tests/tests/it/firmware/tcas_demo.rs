@@ -9,7 +9,9 @@
 //!
 //! cargo test --release --test it firmware::tcas_demo -- --nocapture
 
+use abtrack_firmware::capacity::microbit;
 use abtrack_firmware::demo_config;
+use abtrack_firmware::number_types::cortex_m0;
 
 use abtrack::tcas::{Advisory, RaSense};
 use abtrack::track::RangeAzimuthTrack;
@@ -215,7 +217,7 @@ fn demo_in_q32_32_like_the_cortex_m3() {
 }
 
 #[test]
-fn demo_in_q32_32_like_the_micro_bit() {
+fn demo_in_q32_32_at_small_capacities() {
     check::<Fix, 8, 12, 32>();
 }
 
@@ -225,8 +227,20 @@ fn demo_in_the_scaled_format_like_the_cortex_m3() {
 }
 
 #[test]
-fn demo_in_the_scaled_format_like_the_micro_bit() {
+fn demo_in_the_scaled_format_at_small_capacities() {
     check::<ScaledScalar, 8, 12, 32>();
+}
+
+/// The micro:bit's scan-loop type (software f32) and capacities
+/// (boards/qemu/src/number_types.rs, capacity.rs).
+#[test]
+fn demo_like_the_micro_bit() {
+    check::<
+        cortex_m0::Wide,
+        { microbit::TRACKS },
+        { microbit::MEASUREMENTS_PER_SCAN },
+        { microbit::QUEUE_LEN },
+    >();
 }
 
 /// One intruder tracked for 10 scans (closing at 100 m/s from 10 NM on
