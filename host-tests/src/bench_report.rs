@@ -642,12 +642,19 @@ pub const OPERATIONS: &[(&str, &str)] = &[
 
 /// Why a row is not measured (the `reason` of a `bench-omitted` line), with
 /// what it means. An unknown reason is shown as not described.
-pub const OMISSIONS: &[(&str, &str)] = &[(
-    "flash",
-    "the image would not fit the board's flash with this numeric type's code for \
+pub const OMISSIONS: &[(&str, &str)] = &[
+    (
+        "flash",
+        "the image would not fit the board's flash with this numeric type's code for \
          these operations as well (the micro:bit has 256 KiB); the firmware's own types \
          are kept",
-)];
+    ),
+    (
+        "comparison",
+        "the micro:bit's comparison image (feature bench-microbit-scaled-tcas) holds only \
+         the TCAS rows in ScaledScalar",
+    ),
+];
 
 /// The 2-D updates compared with the anchors.
 const COMPARED: &[&str] = &[

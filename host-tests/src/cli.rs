@@ -144,7 +144,7 @@ pub struct ReplayArgs {
     /// The multi-target track table, configured from the sensor's figures.
     #[arg(long, help_heading = "Mode")]
     pub tracker: bool,
-    /// f64, f32, fixed32 (the Cortex-M3/M0 firmware's fast fixed point: Fixed32, and ScaledScalar where it runs one; --tracker and --filter range-azimuth) or q32.32 (Fix).
+    /// f64, f32, fixed32 (the Cortex-M3 firmware's fast fixed point: Fixed32, and ScaledScalar where it runs one; --tracker and --filter range-azimuth) or q32.32 (Fix).
     #[arg(long, value_enum, default_value = "f64")]
     pub numeric: Numeric,
 

@@ -403,7 +403,7 @@ impl fmt::Display for ReplayError {
             ReplayError::Design(e) => write!(f, "tracker design: {e}"),
             ReplayError::Fixed32SingleFilter => write!(
                 f,
-                "--numeric fixed32 runs --tracker and --filter range-azimuth (as the Cortex-M3/M0 \
+                "--numeric fixed32 runs --tracker and --filter range-azimuth (as the Cortex-M3 \
                  firmware does), not the single x/y filters --filter ab|abg"
             ),
         }

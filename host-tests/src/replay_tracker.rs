@@ -1,5 +1,5 @@
 //! `replay --tracker`: the library's multi-target [`TrackTable`] over a
-//! recording of scans, in f64, f32, Q32.32 or the Cortex-M3/M0 firmware's
+//! recording of scans, in f64, f32, Q32.32 or the Cortex-M3 firmware's
 //! fast fixed point ([`Fixed32`] for x/y input, its wide format
 //! [`ScaledScalar`] for range/azimuth input and the threat columns),
 //! configured from the sensor's figures by [`TrackerDesign`].
@@ -851,7 +851,7 @@ fn run_in<S: CsvValue + std::fmt::Display>(
     run_cartesian(options, &prepared, threat)
 }
 
-/// [`run_in`] as the Cortex-M3/M0 firmware runs it ([`Numeric::Fixed32`]):
+/// [`run_in`] as the Cortex-M3 firmware runs it ([`Numeric::Fixed32`]):
 /// x/y input without `--own-alt` in [`Fixed32`] (the scans' track table);
 /// range/azimuth input or the threat columns in its wide format
 /// [`ScaledScalar`] (the demo's range–azimuth tracks and TCAS logic).

@@ -282,29 +282,25 @@ impl<U> Scaled<U> {
         if let Ok(word) = i32::try_from(wide) {
             return Self::from_word(word, exponent);
         }
+        // Beyond a word: the leading one at bit 31..=63, above the
+        // mantissa's bit 30.
         let negative = wide < 0;
         let magnitude = wide.unsigned_abs();
-        // Bit index of the leading one, 0..=63.
         let top = 63u32.wrapping_sub(magnitude.leading_zeros());
-        let (magnitude, exponent) = if top > TOP_BIT {
-            let shift = top.wrapping_sub(TOP_BIT); // 1..=33
-                                                   // Round half away from zero: drop all but one extra bit, add it
-                                                   // (at most 2³¹, which `finish` takes as one bit more).
-            let rounded = (magnitude >> shift.wrapping_sub(1)).wrapping_add(1) >> 1;
-            (rounded as u32, exponent.saturating_add(shift as i32))
-        } else {
-            let shift = TOP_BIT.wrapping_sub(top); // 0..=30
-            (
-                (magnitude << shift) as u32,
-                exponent.saturating_sub(shift as i32),
-            )
-        };
-        Self::finish(negative, magnitude, stored(exponent))
+        // 1..=33 bits to drop. Round half away from zero: drop all but one
+        // extra bit, add it (at most 2³¹, which `finish` takes as one bit
+        // more).
+        let shift = top.wrapping_sub(TOP_BIT);
+        let rounded = (magnitude >> shift.wrapping_sub(1)).wrapping_add(1) >> 1;
+        Self::finish(
+            negative,
+            rounded as u32,
+            stored(exponent.saturating_add(shift as i32)),
+        )
     }
 
-    /// `word · 2^exponent` for a nonzero word, as [`Self::from_wide`] gives
-    /// it with 32-bit operations: a magnitude below 2³¹ is normalised
-    /// exactly by a left shift.
+    /// `word · 2^exponent` for a nonzero word, with 32-bit operations: a
+    /// magnitude below 2³¹ is normalised exactly by a left shift.
     #[inline(always)]
     fn from_word(word: i32, exponent: i32) -> Self {
         let negative = word < 0;
@@ -335,8 +331,9 @@ impl<U> Scaled<U> {
     }
 
     /// A key whose order is the values' (valid values): ±(stored exponent ·
-    /// 2³¹ + |mantissa|), 0 for zero. A normalised magnitude's leading bit
-    /// makes a larger exponent the larger key.
+    /// 2³¹ + |mantissa|), 0 for zero. |mantissa| < 2³¹ stays below the
+    /// exponent's bits, and normalised mantissas make a larger exponent a
+    /// larger magnitude.
     #[inline(always)]
     fn order_key(self) -> i64 {
         let key = (i64::from(self.biased_exponent) << 31) | i64::from(self.mantissa.unsigned_abs());
@@ -377,10 +374,9 @@ impl<U> Scaled<U> {
     }
 
     /// ±`magnitude`·2^e for a magnitude in [2³⁰, 2³¹] (2³¹ is one bit
-    /// more, exactly) and e in its stored form `stored` (e − [`EXPONENT_MIN`],
-    /// which may lie outside [0, 300] before the check, by at most about
-    /// a thousand): the last step of the operations whose result's leading
-    /// bit is known.
+    /// more) and `stored` = e − [`EXPONENT_MIN`], within about 1000 of the
+    /// range [0, 300] it is checked against: the last step of every
+    /// operation.
     #[inline(always)]
     fn finish(negative: bool, magnitude: u32, stored: i32) -> Self {
         let (m, stored) = if magnitude >> 31 != 0 {

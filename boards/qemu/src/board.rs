@@ -50,17 +50,17 @@ use crate::number_types::cortex_m3 as core_types;
 #[cfg(all(not(target_abi = "eabihf"), not(target_has_atomic = "32")))]
 use crate::number_types::cortex_m0 as core_types;
 
-/// The core's number type for the filters, schedules, bank and track
-/// tables: `f32` where the core has a hardware FPU (Cortex-M4F), the fast
-/// fixed point ([`abtrack::Fixed32`]) on cores without one (Cortex-M3,
+/// The core's number type for the filters, schedules, bank and stand-alone
+/// track tables: `f32` where the core has a hardware FPU (Cortex-M4F), the
+/// fast fixed point ([`abtrack::Fixed32`]) on cores without one (Cortex-M3,
 /// Cortex-M0), where every float operation would be a software library
 /// call ([`crate::number_types`]).
 pub type Native = core_types::Native;
 
-/// The core's one type for every quantity, what the scan loop, TCAS and
-/// the altitude tracker compute in: `f32` on the Cortex-M4F, `Fixed32`'s
-/// wide format on the Cortex-M3, software `f32` on the Cortex-M0
-/// ([`crate::number_types`]).
+/// The core's one type for every quantity, what the scan loop (its track
+/// table among them), TCAS and the altitude tracker compute in: `f32` on
+/// the Cortex-M4F, `Fixed32`'s wide format on the Cortex-M3, software
+/// `f32` on the Cortex-M0 ([`crate::number_types`]).
 pub type Wide = core_types::Wide;
 
 // ---------------------------------------------------------------------------

@@ -15,8 +15,8 @@ pub mod mps2 {
 /// The micro:bit (16 KiB of RAM): the TCAS scenario has at most 6 replies
 /// per scan (4 intruders, false replies), and a track there costs a
 /// range–azimuth filter and an intruder's TCAS state (range and altitude
-/// trackers, threat state) in software `f32` (`board::Wide`), 272 bytes:
-/// 32 tracks and 12 replies per scan leave the stack its 25 % margin
+/// trackers, threat state) in software `f32` (`board::Wide`): 32 tracks
+/// and 12 replies per scan leave the stack its 25 % margin
 /// (scripts/stack.sh m0; the RAM budget is in docs/tcas.md).
 pub mod microbit {
     pub const TRACKS: usize = 32;

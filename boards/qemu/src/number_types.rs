@@ -3,17 +3,17 @@
 //! the fault-injection tests (host-tests/tests/it/firmware/fault_injection.rs)
 //! the same, so the two cannot drift apart. Each core has two:
 //!
-//! * `Native`: the filters, schedules, bank and track tables (the self-tests
-//!   and the benchmark's filter and scan rows).
-//! * `Wide`: one type for every quantity, what the scan loop, TCAS and the
-//!   altitude tracker compute in (a [`abtrack::Numeric`] that is its own
-//!   wide format). The choice per core and its measured figures:
+//! * `Native`: the filters, schedules, bank and stand-alone track tables
+//!   (the self-test's filters, the benchmark's filter and scan rows).
+//! * `Wide`: one type for every quantity, what the scan loop (its track
+//!   table among them), TCAS and the altitude tracker compute in (a
+//!   [`abtrack::Numeric`] that is its own wide format). The choice per core:
 //!   docs/firmware-and-boards.md, "Number types".
 
 /// The Cortex-M4F (a hardware FPU; the hard-float ABI,
 /// thumbv7em-none-eabihf): `f32` throughout.
 pub mod cortex_m4f {
-    /// Filters, schedules, bank, track tables.
+    /// Filters, schedules, bank, stand-alone track tables.
     pub type Native = f32;
     /// Scan loop, TCAS, altitude tracker.
     pub type Wide = f32;
@@ -26,8 +26,7 @@ pub mod cortex_m3 {
     /// [`abtrack::Fixed32`], a 32-bit format per quantity.
     pub type Native = abtrack::Fixed32;
     /// [`abtrack::Fixed32`]'s wide format ([`abtrack::Numeric::Wide`]),
-    /// [`abtrack::ScaledScalar`]: 8 bytes a number, and on this core the
-    /// cheapest of its types for an intruder's step.
+    /// [`abtrack::ScaledScalar`].
     pub type Wide = abtrack::ScaledScalar;
 }
 
@@ -37,8 +36,7 @@ pub mod cortex_m3 {
 pub mod cortex_m0 {
     /// [`abtrack::Fixed32`], a 32-bit format per quantity.
     pub type Native = abtrack::Fixed32;
-    /// `f32` in software: 4 bytes a number where the scaled format takes 8
-    /// (RAM sets the micro:bit's intruder count), and on this core fewer
-    /// instructions for an intruder's step than the scaled format.
+    /// `f32` in software: half the scaled format's bytes, where RAM sets the
+    /// micro:bit's intruder count.
     pub type Wide = f32;
 }

@@ -1,7 +1,7 @@
 //! Group `tcas-random`: the randomized encounter suite
 //! ([`crate::random_encounters`]) exact and under a TCAS receiver's noise,
-//! in f64, f32 and `Fixed32` (the Cortex-M3's and M0's type, whose TCAS logic
-//! runs in its wide format, `Numeric::Wide`), against the f64 reference
+//! in f64, f32 and `Fixed32` (the Cortex-M3's type, whose TCAS logic runs
+//! in its wide format, `Numeric::Wide`), against the f64 reference
 //! of the rules on the true states. Writes `results/tcas-random/`: the
 //! table by level (`by_level.md`/`.csv`), false vs missed RAs by level
 //! (`false_vs_missed.svg`), the distribution of RA onset delays

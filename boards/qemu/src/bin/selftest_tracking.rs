@@ -1535,8 +1535,8 @@ fn crossing_keeps_ids<N: Numeric>(native: &mut Table<N>, reference: &mut Table<f
 }
 
 /// The crossing and the cluttered scenarios in the fast fixed point
-/// ([`Fixed32`], the table's format on cores without an FPU): the same
-/// codes and per-stage counts as f64 at every scan.
+/// ([`Fixed32`], the stand-alone table's format on cores without an FPU):
+/// the same codes and per-stage counts as f64 at every scan.
 #[cfg(not(abtrack_board = "microbit"))]
 fn track_fast_fixed_point_same_codes_as_f64() -> TestResult {
     let mut fixed = const { Table::<Fixed32>::new() };

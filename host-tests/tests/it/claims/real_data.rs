@@ -186,12 +186,12 @@ fn scene_metrics_of_known_configurations() {
     assert!((mean_ospa(&far, 1000.0, 2.0) - 600.0).abs() < 1e-9);
 }
 
-/// `--numeric fixed32` runs what the Cortex-M3/M0 firmware runs: the x/y
+/// `--numeric fixed32` runs what the Cortex-M3 firmware runs: the x/y
 /// track table in Fixed32, range/azimuth input and the threat columns in
 /// its wide format ScaledScalar (the demo's scan loop and TCAS logic), and
 /// refuses the single x/y filters.
 #[test]
-fn fixed32_runs_what_the_cortex_m3_and_m0_firmware_runs() {
+fn fixed32_runs_what_the_cortex_m3_firmware_runs() {
     use abtrack_host_tests::replay::{
         replay_reader, Failure, FilterKind, ReplayConfig, ReplayError,
     };

@@ -1,5 +1,5 @@
-//! Every TCAS component and the scan loop named with the Cortex-M3/M0
-//! firmware's one type, `Fixed32`: they compute in its wide format
+//! Every TCAS component and the scan loop named with `Fixed32` (the
+//! Cortex-M3 firmware's filter type): they compute in its wide format
 //! (`Numeric::Wide`, `ScaledScalar`), so each output equals the one of the
 //! same component named with `ScaledScalar` itself, bit for bit.
 

@@ -686,7 +686,7 @@ fn crossing_file() -> String {
 }
 
 /// [`expected_range_azimuth`] in the representation `--numeric` names
-/// (`fixed32`: the Cortex-M3/M0 firmware's range-azimuth filter runs in the
+/// (`fixed32`: the Cortex-M3 firmware's range-azimuth filter runs in the
 /// fast fixed point's wide format, ScaledScalar).
 fn expected_range_azimuth_in(
     numeric: Numeric,

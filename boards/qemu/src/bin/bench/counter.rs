@@ -34,12 +34,16 @@ const SYSTICK_MAX: u32 = 0x00ff_ffff;
 pub enum Omission {
     /// The image would not fit the board's flash with this row's code.
     Flash,
+    /// The comparison image (feature `bench-microbit-scaled-tcas`) holds
+    /// only the TCAS rows in `ScaledScalar`.
+    Comparison,
 }
 
 impl Omission {
     fn reason(self) -> &'static str {
         match self {
             Omission::Flash => "flash",
+            Omission::Comparison => "comparison",
         }
     }
 }

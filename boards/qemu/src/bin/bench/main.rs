@@ -159,19 +159,20 @@ fn bench_scalar<S: BenchNumber + Scalar>(bench: &mut Bench) {
 /// f64, but not in Q32.32 (whose inlined 64-bit products alone would take
 /// the image past 256 KiB), the TCAS rows in the type its firmware runs
 /// them in ([`board::Wide`]: software `f32`), and the scans in the fast
-/// fixed point only. With the feature `bench-microbit-scaled-tcas` it holds
-/// the TCAS rows in `ScaledScalar` alone, for the comparison of the two
-/// types. Decided at compile time, so the code left out is not linked.
+/// fixed point only. With the feature `bench-microbit-scaled-tcas` it holds,
+/// of abtrack's rows, only the TCAS rows in `ScaledScalar`, for the
+/// comparison of the two types (the anchors and `parse_byte` still run).
+/// Decided at compile time, so the code left out is not linked.
 fn omitted<N: BenchNumber>(group: Group) -> Option<Omission> {
     if !cfg!(abtrack_board = "microbit") {
         return None;
     }
     let is = |t: TypeId| TypeId::of::<N>() == t;
+    if cfg!(feature = "bench-microbit-scaled-tcas") {
+        let kept = group == Group::Tcas && is(TypeId::of::<ScaledScalar>());
+        return (!kept).then_some(Omission::Comparison);
+    }
     let kept = match group {
-        // The comparison image: the TCAS rows alone, in ScaledScalar.
-        _ if cfg!(feature = "bench-microbit-scaled-tcas") => {
-            group == Group::Tcas && is(TypeId::of::<ScaledScalar>())
-        }
         Group::Filters => !is(TypeId::of::<Fix>()),
         Group::Tcas => is(TypeId::of::<board::Wide>()),
         Group::Scans => is(TypeId::of::<Fixed32>()),

@@ -27,8 +27,9 @@ impl BenchNumber for Fixed32 {
 
 /// The fast fixed point's wide format as one type for every quantity
 /// ([`ScaledScalar`]): the type the code written for `Scalar` (the altitude
-/// tracker, TCAS) runs in on cores without an FPU, so its rows are the fast
-/// fixed point's (`fixed`); Fixed32 itself has no implementation of them.
+/// tracker, TCAS) runs in when named with `Fixed32` (the Cortex-M3's scan
+/// loop), so its rows are the fast fixed point's (`fixed`); Fixed32 itself
+/// has no implementation of them.
 impl BenchNumber for ScaledScalar {
     const LABEL: &'static str = "fixed";
 }
