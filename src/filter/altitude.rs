@@ -843,6 +843,13 @@ impl<N: Numeric<Wide = S>, S: Scalar> AltitudeState<N> {
         keep
     }
 
+    /// The altitude a new rate starts from: the report's bin edge half a
+    /// quantum back against `sign`, moved on by half a scan at the rate
+    /// (DO-185B `guess_track_init`, `trend_track_init`).
+    fn mid_bin_altitude(&self, config: &AltitudeTrackerConfig<S>, z: S, sign: i8) -> S {
+        z - toward(sign, config.half_q()) + self.rate_ft_per_s.times(config.interval).times(c(0.5))
+    }
+
     /// DO-185B `guess_track_init`.
     fn start_guess(
         &mut self,
@@ -854,8 +861,6 @@ impl<N: Numeric<Wide = S>, S: Scalar> AltitudeState<N> {
     ) {
         let q = config.q();
         let qs = toward(sign, q);
-        let half_qs = toward(sign, config.half_q());
-        let t = config.interval;
         // After a long gap over several bins the change itself is a rate.
         self.rate_ft_per_s = if since_report > c(LONG_COAST_S) && change.abs() > q {
             (change - qs).over(since_report)
@@ -868,7 +873,7 @@ impl<N: Numeric<Wide = S>, S: Scalar> AltitudeState<N> {
             toward(sign, c(LIKELY_RATE_FT_PER_S))
         };
         self.set_bounds(S::ZERO, outer);
-        self.altitude_ft = z - half_qs + self.rate_ft_per_s.times(t).times(c(0.5));
+        self.altitude_ft = self.mid_bin_altitude(config, z, sign);
         self.firmness = 0;
         self.class = VerticalClass::Guess;
     }
@@ -891,9 +896,7 @@ impl<N: Numeric<Wide = S>, S: Scalar> AltitudeState<N> {
         sign: i8,
         time_per_bin: S,
     ) {
-        let q = config.q();
-        let qs = toward(sign, q);
-        let half_qs = toward(sign, config.half_q());
+        let qs = toward(sign, config.q());
         let t = config.interval;
         let since = self.since_transition_s;
         self.alpha_beta = false;
@@ -904,7 +907,7 @@ impl<N: Numeric<Wide = S>, S: Scalar> AltitudeState<N> {
         };
         self.rate_ft_per_s = qs.over(self.bin_time_s);
         self.altitude_ft = if self.bin_time_s > S::ONE {
-            z - half_qs + self.rate_ft_per_s.times(t).times(c(0.5))
+            self.mid_bin_altitude(config, z, sign)
         } else {
             z
         };
