@@ -499,6 +499,10 @@ impl<
         c.refused_table_full = c
             .refused_table_full
             .saturating_add(report.refused_table_full);
+        c.rejected = c.rejected.saturating_add(u32::from(counts.rejected));
+        c.not_assigned = c
+            .not_assigned
+            .saturating_add(u32::from(counts.not_assigned));
         c.tracks_displaced = c.tracks_displaced.saturating_add(report.deleted_displaced);
 
         let summary = ScanSummary {

@@ -7,17 +7,17 @@ use crate::wire::Health;
 ///
 /// The sensor sent `sent = accepted frames + frames lost` (from the
 /// sequence numbers); of those, `lost = frames lost + measurements not used`
-/// (queue full, late, out of the window, over capacity, not representable).
-/// A run is **clean** when it used at least one measurement and lost at
-/// most one in [`MAX_LOST_FRACTION_INVERSE`] of what was sent, and no
-/// threat assessment failed.
+/// (queue full, late, out of the window, over capacity, not representable,
+/// rejected by the tracker). A run is **clean** when it used at least one
+/// measurement and lost at most one in [`MAX_LOST_FRACTION_INVERSE`] of what
+/// was sent, and no threat assessment failed.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 #[cfg_attr(feature = "defmt", derive(defmt::Format))]
 pub struct RunVerdict {
     /// Frames the sensor sent: accepted plus lost (from the sequence numbers).
     pub sent: u32,
     /// Frames lost plus measurements not used (queue full, late, out of the
-    /// window, over capacity, not representable).
+    /// window, over capacity, not representable, rejected by the tracker).
     pub lost: u32,
     /// Measurements used by the track table.
     pub used: u32,
@@ -39,6 +39,7 @@ impl RunVerdict {
             s.out_of_window,
             s.over_capacity,
             s.invalid,
+            s.rejected,
         ]
         .into_iter()
         .fold(0u32, |a, b| a.saturating_add(b));

@@ -130,30 +130,45 @@ impl<N: Numeric<Wide = S>, S: Scalar> IntruderTrack<N> {
     /// One scan `dt` s after the previous: the reply, or `None` when the
     /// intruder did not answer; `altitude` is the altitude tracker's
     /// configuration for the intruder's quantum, the same at every scan.
-    /// Invalid input is refused; the range and altitude trackers are each
-    /// all-or-nothing, and the range is checked before either changes.
+    /// A reply either tracker refuses (invalid input, or saturated
+    /// arithmetic) is taken as no reply by the trackers that did not take
+    /// it: they coast, so that the range and altitude trackers stay in step
+    /// (each is all-or-nothing, as the track table's refused updates fall
+    /// back to a coast); the first error is returned, to be counted.
     pub fn scan(
         &mut self,
         altitude: &AltitudeTrackerConfig<S>,
         reply: Option<Reply<S>>,
         dt: S,
     ) -> Result<(), FilterError> {
-        match reply {
-            Some(r) => {
-                if r.altitude_ft.is_some_and(|z| !z.is_valid()) {
-                    return Err(FilterError::InvalidMeasurement);
-                }
-                self.range.update(r.range_m, dt)?;
-                self.altitude.scan(altitude, r.altitude_ft, dt)?;
-            }
-            None => {
-                if self.range.phase() != Phase::Empty {
-                    self.range.coast(dt)?;
-                }
-                self.altitude.scan(altitude, None, dt)?;
+        let mut refused = None;
+        let mut reply = reply;
+        if reply.is_some_and(|r| r.altitude_ft.is_some_and(|z| !z.is_valid())) {
+            refused = Some(FilterError::InvalidMeasurement);
+            reply = None;
+        }
+        if let Some(r) = reply {
+            if let Err(e) = self.range.update(r.range_m, dt) {
+                refused = Some(e);
+                reply = None;
             }
         }
-        Ok(())
+        if reply.is_none() && self.range.phase() != Phase::Empty {
+            if let Err(e) = self.range.coast(dt) {
+                refused.get_or_insert(e);
+            }
+        }
+        let altitude_ft = reply.and_then(|r| r.altitude_ft);
+        if let Err(e) = self.altitude.scan(altitude, altitude_ft, dt) {
+            refused.get_or_insert(e);
+            if altitude_ft.is_some() {
+                // The report refused (a saturation, counted by the
+                // tracker): a coast, which may saturate too (counted the
+                // same way, the state unchanged).
+                let _ = self.altitude.scan(altitude, None, dt);
+            }
+        }
+        refused.map_or(Ok(()), Err)
     }
 
     /// What the threat logic sees; `None` before the range rate is known.

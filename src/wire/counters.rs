@@ -155,8 +155,8 @@ counter_list! {
         queue_full => "lost, queue full",
         /// Accepted frames of a type the receiver does not take as input.
         not_measurement => "not measurements",
-        /// Bytes the UART lost before the decoder saw them (hardware
-        /// overrun).
+        /// Overruns of the UART's receiver: each lost one byte or more
+        /// before the decoder saw them (the flag tells no more).
         rx_overruns => "UART overruns",
     }
 }
@@ -168,7 +168,9 @@ counter_list! {
     /// Every measurement taken from the queue ends in exactly one of `used`,
     /// `late`, `out_of_window`, `over_capacity`, `invalid` (or is still
     /// held for the next scan): `intake.measurements = intake.queue_full +
-    /// those + held` ([`crate::scan::ScanLoop::held`]).
+    /// those + held` ([`crate::scan::ScanLoop::held`]). Of the `used`, the
+    /// tracker refused `rejected` and gave `not_assigned` no track (the
+    /// scan summaries' counts of the same names, added up).
     pub struct LoopCounters: u32 {
         /// Scans run.
         scans => "scans",
@@ -188,6 +190,12 @@ counter_list! {
         over_capacity => "over capacity",
         /// Not representable in the tracker's number type.
         invalid => "not representable",
+        /// Used, and refused by the tracker (not finite, the filter refused
+        /// it, or the scan came too soon after the previous one).
+        rejected => "rejected by the tracker",
+        /// Used, inside a gate, and the assignment gave the track another
+        /// measurement.
+        not_assigned => "not assigned",
         /// Tentative tracks started.
         tracks_started => "tracks started",
         /// Tracks confirmed.
@@ -211,8 +219,12 @@ counter_list! {
         /// RA threats beyond the [`crate::scan::MAX_RA_THREATS`] resolved
         /// together (the latest by modified tau are left out).
         ra_threats_over_capacity => "RA threats over capacity",
-        /// Replies the intruder's range or altitude tracker refused.
+        /// Replies the intruder's range or altitude tracker refused (both
+        /// trackers coasted instead).
         intruder_tracker_errors => "intruder tracker errors",
+        /// Altitude reports the intruder's altitude tracker found not
+        /// credible (DO-185B) and coasted through.
+        altitude_not_credible => "altitude reports not credible",
     }
 }
 

@@ -185,12 +185,20 @@ impl<
                     range_m,
                     altitude_ft: reply.altitude_ft,
                 };
+                let incredible = s.tcas.altitude_state().incredible_reports();
                 if s.tcas
                     .scan(config.altitude_of(s.quantum), Some(reply), dt)
                     .is_err()
                 {
                     bump(&mut self.counters.intruder_tracker_errors);
                 }
+                let counted = &mut self.counters.altitude_not_credible;
+                *counted = counted.saturating_add(
+                    s.tcas
+                        .altitude_state()
+                        .incredible_reports()
+                        .saturating_sub(incredible),
+                );
                 s.updated = true;
             }
         }

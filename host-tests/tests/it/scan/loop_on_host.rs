@@ -945,3 +945,63 @@ fn confirmed_tracks_are_never_starved() {
     run::<f32>();
     run::<Fix>();
 }
+
+/// What the tracker turns away is counted over the run as well as scan by
+/// scan, and counts against the run's verdict: replies at range 0 pass the
+/// frame's envelope and reach the micro:bit's range–azimuth tracker, whose
+/// filter refuses them. The lifetime counts are the scan summaries' added
+/// up.
+#[test]
+fn measurements_the_tracker_rejects_are_counted_over_the_run() {
+    use abtrack_firmware::number_types::cortex_m0::Wide;
+    let demo = frames::scenario_reports(frames::TCAS_DEMO, 1, 1).unwrap();
+    let times: BTreeSet<u32> = demo.iter().map(|r| r.time_ms).collect();
+    let mut reports = Vec::new();
+    for t in times {
+        reports.extend(demo.iter().filter(|r| r.time_ms == t).copied());
+        reports.push(MeasurementReport {
+            time_ms: t,
+            sensor: 1,
+            position: MeasuredPosition::Polar {
+                range_cm: 0,
+                azimuth_bam: 0,
+            },
+            altitude_ft: None,
+            altitude_25ft: false,
+            address: None,
+        });
+    }
+    let encoded = frames::encode(&reports, Faults::default());
+    let fw = frames::run_like_the_firmware::<
+        Wide,
+        _,
+        abtrack::track::RangeAzimuthTrack<Wide>,
+        { microbit::TRACKS },
+        { microbit::MEASUREMENTS_PER_SCAN },
+        { microbit::QUEUE_LEN },
+    >(
+        &encoded.bytes,
+        &demo_config::demo_config::<Wide, _>().unwrap(),
+    );
+    let scans: Vec<ScanSummary> = frames::decode_all(&fw.output)
+        .0
+        .into_iter()
+        .filter_map(|m| match m {
+            Message::Scan(s) => Some(s),
+            _ => None,
+        })
+        .collect();
+    let added = |f: fn(&ScanSummary) -> u16| scans.iter().map(|s| u32::from(f(s))).sum::<u32>();
+    let c = fw.health.scan;
+    assert!(c.rejected > 0, "{c:?}");
+    assert_eq!(c.rejected, added(|s| s.counts.rejected));
+    assert_eq!(c.not_assigned, added(|s| s.counts.not_assigned));
+    let verdict = fw.verdict.unwrap();
+    let transport = fw.health.decoder.frames_lost
+        + fw.health.intake.queue_full
+        + c.late
+        + c.out_of_window
+        + c.over_capacity
+        + c.invalid;
+    assert_eq!(verdict.lost, transport + c.rejected);
+}

@@ -102,6 +102,49 @@ fn range_tracker_firmness() {
     assert_eq!(t, before);
 }
 
+/// A reply either tracker refuses is no reply for the trackers that did
+/// not take it: a negative range coasts the range and the altitude tracker
+/// alike (so neither lags the other by a scan), and the error is returned
+/// to be counted; a valid reply afterwards is taken as usual.
+#[test]
+fn a_refused_reply_coasts_both_trackers_in_step() {
+    use abtrack::filter::altitude::{AltitudeQuantum, AltitudeTrackerConfig};
+    use abtrack::tcas::{IntruderTrack, Reply};
+    let config = AltitudeTrackerConfig::default_for(AltitudeQuantum::ModeS25).unwrap();
+    let reply = |k: f64| Reply {
+        range_m: 20_000.0 - 200.0 * k,
+        altitude_ft: Some(10_000.0 + 25.0 * k),
+    };
+    let mut t = IntruderTrack::<f64>::new();
+    for k in 0..12 {
+        t.scan(&config, Some(reply(f64::from(k))), 1.0).unwrap();
+    }
+    let mut missed = t;
+    missed.scan(&config, None, 1.0).unwrap();
+    let bad = Reply {
+        range_m: -1.0,
+        ..reply(12.0)
+    };
+    assert_eq!(
+        t.scan(&config, Some(bad), 1.0),
+        Err(FilterError::InvalidMeasurement)
+    );
+    assert_eq!(t, missed);
+    let nan_altitude = Reply {
+        altitude_ft: Some(f64::NAN),
+        ..reply(13.0)
+    };
+    let mut missed_again = t;
+    missed_again.scan(&config, None, 1.0).unwrap();
+    assert_eq!(
+        t.scan(&config, Some(nan_altitude), 1.0),
+        Err(FilterError::InvalidMeasurement)
+    );
+    assert_eq!(t, missed_again);
+    t.scan(&config, Some(reply(14.0)), 1.0).unwrap();
+    assert_eq!(t.range_tracker().phase(), Phase::Tracking);
+}
+
 /// On exact ranges of a straight pass (1 NM abeam, 250 m/s) the
 /// straight-path prediction locks on: from 8 km in, the range rate is
 /// within 0.5 m/s, and from 7 km (r̈ = v²d²/r³ = 0.62 m/s², above the
