@@ -851,9 +851,30 @@ impl<S: Scalar> Default for ThreatState<S> {
 struct Inputs<S> {
     miss_distance: MissDistances<S>,
     altitude: Option<AltitudeEstimate<S>>,
+    /// `altitude` against the own aircraft ([`vertical_measures`]).
+    vertical: Option<VerticalMeasures<S>>,
     /// Track firmness allows a new TA / a new RA.
     firm_for_ta: bool,
     firm_for_ra: bool,
+}
+
+/// An intruder's altitude estimate against the own aircraft: relative
+/// altitude, rate and τ_v; refused when a number is invalid.
+fn vertical_measures<S: Scalar>(
+    own: &OwnAircraft<S>,
+    altitude: Option<AltitudeEstimate<S>>,
+) -> Result<Option<VerticalMeasures<S>>, TcasError> {
+    let Some(a) = altitude else {
+        return Ok(None);
+    };
+    all_valid(&[a.altitude_ft, a.vertical_rate_ft_per_s])?;
+    let h = valid_result(a.altitude_ft - own.pressure_altitude_ft)?;
+    let hdot = valid_result(a.vertical_rate_ft_per_s - own.vertical_rate_ft_per_s)?;
+    Ok(Some(VerticalMeasures {
+        relative_altitude_ft: h,
+        relative_rate_ft_per_s: hdot,
+        vertical_tau_s: super::vertical_tau(h, hdot)?,
+    }))
 }
 
 impl<S: Scalar> ThreatState<S> {
@@ -917,6 +938,9 @@ impl<S: Scalar> ThreatState<S> {
         if dt <= S::ZERO || range.range_m < S::ZERO {
             return Err(TcasError::InvalidInput);
         }
+        // Every refusal before the miss-distance filter moves: an `Err`
+        // changes nothing.
+        let vertical = vertical_measures(&cycle.own, observation.altitude)?;
         let miss_distance = self.miss_distance.miss_distance(
             range,
             observation
@@ -929,12 +953,13 @@ impl<S: Scalar> ThreatState<S> {
         let inputs = Inputs {
             miss_distance,
             altitude: observation.altitude,
+            vertical,
             firm_for_ta: firm,
             firm_for_ra: firm && observation.altitude_firmness >= MIN_RA_VERTICAL_FIRMNESS,
         };
         let mut geometry =
             RangeGeometry::new(range.range_m, range.range_rate_m_per_s, &cycle.thresholds);
-        self.evaluate(cycle, &mut geometry, &inputs, Some(dt))
+        Ok(self.evaluate(cycle, &mut geometry, &inputs, Some(dt)))
     }
 
     /// One cycle from a relative state vector (range `geometry`, the
@@ -952,38 +977,27 @@ impl<S: Scalar> ThreatState<S> {
         let inputs = Inputs {
             miss_distance: MissDistances::both(miss_distance_m),
             altitude,
+            vertical: vertical_measures(&cycle.own, altitude)?,
             firm_for_ta: true,
             firm_for_ra: true,
         };
-        self.evaluate(cycle, geometry, &inputs, dt)
+        Ok(self.evaluate(cycle, geometry, &inputs, dt))
     }
 
-    /// The tests of one cycle; `geometry.r` ≥ 0 and valid, as both callers
-    /// check.
+    /// The tests of one cycle; `geometry.r` ≥ 0 and valid and the vertical
+    /// measures formed, as both callers check: it cannot fail.
     fn evaluate(
         &mut self,
         cycle: &Cycle<S>,
         g: &mut RangeGeometry<S>,
         inputs: &Inputs<S>,
         dt: Option<S>,
-    ) -> Result<ThreatStatus<S>, TcasError> {
+    ) -> ThreatStatus<S> {
         let own = &cycle.own;
         let continuing_threat = self.ra_threat;
         let thresholds = &cycle.thresholds;
         let k = &thresholds.constants;
-        let vertical = match inputs.altitude {
-            None => None,
-            Some(a) => {
-                all_valid(&[a.altitude_ft, a.vertical_rate_ft_per_s])?;
-                let h = valid_result(a.altitude_ft - own.pressure_altitude_ft)?;
-                let hdot = valid_result(a.vertical_rate_ft_per_s - own.vertical_rate_ft_per_s)?;
-                Some(VerticalMeasures {
-                    relative_altitude_ft: h,
-                    relative_rate_ft_per_s: hdot,
-                    vertical_tau_s: super::vertical_tau(h, hdot)?,
-                })
-            }
-        };
+        let vertical = inputs.vertical;
         let on_ground = match (inputs.altitude, own.radio_altitude_ft) {
             (Some(a), Some(radio)) => {
                 let ground = own.pressure_altitude_ft - radio;
@@ -1142,7 +1156,7 @@ impl<S: Scalar> ThreatState<S> {
         } else {
             Advisory::None
         };
-        Ok(ThreatStatus {
+        ThreatStatus {
             advisory,
             new_traffic: ta_now && !had_ta,
             miss_distance_m: if continuing_threat {
@@ -1154,6 +1168,6 @@ impl<S: Scalar> ThreatState<S> {
             held_by_firmness,
             vertical,
             geometry,
-        })
+        }
     }
 }

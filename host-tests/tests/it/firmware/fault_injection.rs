@@ -223,7 +223,7 @@ fn expected(fault: Fault, fits: bool) -> (bool, Floor) {
 }
 
 /// [`Fault::ClutterStorm`]'s floor where the scan holds it (measured on
-/// mps2-an386: 89 to 107 scans of 110) …
+/// the mps2 boards: 101 to 106 scans of 110, results/fault-injection-*.md) …
 const CLUTTER_STORM_FLOOR: usize = 85;
 /// … and on the micro:bit (12 measurements per scan: the confirmed
 /// tracks' own keep their places, by priority).

@@ -224,6 +224,26 @@ fn observation<S: Scalar>(
     }
 }
 
+/// A refused assessment (an altitude estimate that is not a number)
+/// changes nothing, the miss-distance filter's memory included: the
+/// refused observation's range track would have shut the filter down (a
+/// manoeuvre, r̈ below minus its threshold).
+#[test]
+fn a_refused_assessment_changes_nothing() {
+    let cycle = cycle_at::<f64>(8000.0);
+    let mut s = ThreatState::<f64>::new();
+    for k in 0..6 {
+        let r = 9000.0 - 150.0 * f64::from(k);
+        s.assess(&cycle, &observation(r, -150.0, Some((8000.0, 0.0))), 1.0)
+            .unwrap();
+    }
+    let before = s;
+    let mut manoeuvring = observation::<f64>(8000.0, -150.0, Some((8000.0, f64::NAN)));
+    manoeuvring.range.range_acceleration_m_per_s2 = -2.0;
+    assert!(s.assess(&cycle, &manoeuvring, 1.0).is_err());
+    assert_eq!(s, before);
+}
+
 /// TA range hysteresis (DO-185B `TARHYST` 0.2 NM): SL 5's TA DMOD is
 /// 0.75 NM = 1389 m, H1 0.006 NM²/s = 20 579 m²/s. Opening at 5 m/s
 /// (> 10 ft/s, diverging), a fresh intruder at 1450 m is no TA; one that
