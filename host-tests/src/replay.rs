@@ -468,8 +468,9 @@ impl RowEvent {
     }
 }
 
-/// The rows the timing policy did not use as usual, by their `t` as
-/// written (stderr, when any).
+/// The rows the timing policy did not use as usual, and the altitude
+/// reports the altitude tracker did not take, by their `t` as written
+/// (stderr, when any).
 #[derive(Debug, Clone, PartialEq, Default)]
 pub struct TimingEvents {
     /// Rows where the estimate restarted.
@@ -478,6 +479,9 @@ pub struct TimingEvents {
     pub skipped: Vec<String>,
     /// Of the skipped, rows repeating the last used report's time.
     pub duplicates: usize,
+    /// Rows whose altitude report the altitude tracker found not credible
+    /// (DO-185B; it coasted instead): the range–azimuth replay's.
+    pub altitude_not_credible: Vec<String>,
 }
 
 impl TimingEvents {
@@ -493,9 +497,11 @@ impl TimingEvents {
         }
     }
 
-    /// No row restarted or skipped.
+    /// No row restarted or skipped, and every altitude report taken.
     pub fn is_empty(&self) -> bool {
-        self.restarted.is_empty() && self.skipped.is_empty()
+        self.restarted.is_empty()
+            && self.skipped.is_empty()
+            && self.altitude_not_credible.is_empty()
     }
 }
 
@@ -537,6 +543,15 @@ impl fmt::Display for TimingEvents {
                 abtrack::filter::MIN_INTERVAL_S,
                 self.duplicates,
                 times_text(&self.skipped)
+            )?;
+        }
+        if !self.altitude_not_credible.is_empty() {
+            writeln!(
+                f,
+                "replay: {} altitude reports not credible (DO-185B): the altitude coasted there \
+                 ({})",
+                self.altitude_not_credible.len(),
+                times_text(&self.altitude_not_credible)
             )?;
         }
         Ok(())
@@ -1228,9 +1243,13 @@ pub fn replay_range_azimuth_in<S: CsvValue>(
                 .update(range, azimuth, dt)
                 .map_err(|error| ReplayError::Filter { line, error })?;
             if data.has_alt {
+                let incredible = altitude.incredible_reports();
                 altitude
                     .scan(report, dt)
                     .map_err(|error| ReplayError::Altitude { line, error })?;
+                if altitude.incredible_reports() > incredible {
+                    events.altitude_not_credible.push(row.t_text.clone());
+                }
             }
             previous_t = Some(row.t);
         }

@@ -12,7 +12,8 @@
 //! altitude in feet; an empty field means the reply carried none. The header
 //! is matched by name: the columns may come in any order, and columns with
 //! other names are ignored. Accepted: a UTF-8 byte-order mark, `\r\n` line
-//! ends, spaces around fields, quoted fields, blank lines.
+//! ends, spaces around fields, quoted fields, blank lines (also lines of
+//! nothing but spaces or tabs).
 //!
 //! Refused, with the line (and column) named and at most a short prefix of
 //! the field echoed: a header without the required columns, a row with
@@ -460,6 +461,24 @@ impl Lines {
     }
 }
 
+/// Lines of nothing but spaces and tabs made blank (their bytes turned into
+/// `\r`, at the same offsets: the line breaks stay where they were), so
+/// that the reader skips them as it skips empty lines; a line inside a
+/// quoted field is left as it is.
+fn blank_whitespace_lines(bytes: &mut [u8]) {
+    let mut in_quotes = false;
+    for line in bytes.split_mut(|b| *b == b'\n') {
+        let quotes = line.iter().filter(|b| **b == b'"').count();
+        if !in_quotes
+            && line.iter().any(|b| matches!(b, b' ' | b'\t'))
+            && line.iter().all(|b| matches!(b, b' ' | b'\t' | b'\r'))
+        {
+            line.fill(b'\r');
+        }
+        in_quotes ^= quotes % 2 == 1;
+    }
+}
+
 type Reader = csv::Reader<std::io::Cursor<Vec<u8>>>;
 
 /// A CSV reader over the whole input and its header.
@@ -468,6 +487,7 @@ fn open<R: Read>(mut input: R, format: Option<InputFormat>) -> Result<(Reader, H
     input
         .read_to_end(&mut bytes)
         .map_err(|e| CsvError::Io(e.to_string()))?;
+    blank_whitespace_lines(&mut bytes);
     let lines = Lines::new(&bytes);
     let mut reader = csv::ReaderBuilder::new()
         .trim(csv::Trim::All)

@@ -471,6 +471,45 @@ fn range_azimuth_replay_restarts_and_skips_too() {
     }
 }
 
+/// The range–azimuth replay's altitude: an altitude report the altitude
+/// tracker finds not credible (a level intruder's 8,000 ft reported once as
+/// 3,000) is listed on stderr with its time, not dropped unseen; a 45 s
+/// hole in the replies starts a new altitude track, without a climb across
+/// the hole.
+#[test]
+fn range_azimuth_replay_lists_incredible_altitudes_and_restarts_after_a_hole() {
+    let mut text = String::from("t,range,azimuth,alt\n");
+    for k in 0..10 {
+        let alt = if k == 5 { 3000 } else { 8000 };
+        text += &format!("{k},{},0.5,{alt}\n", 9000 - 100 * k);
+    }
+    for k in 55..60 {
+        text += &format!("{k},{},0.5,12000\n", 9000 - 100 * k);
+    }
+    for numeric in ["f64", "f32", "q32.32"] {
+        let run = replay("--filter range-azimuth", numeric, &text);
+        assert_eq!(run.events.altitude_not_credible, ["5"], "{numeric}");
+        assert!(
+            run.events
+                .to_string()
+                .contains("1 altitude reports not credible"),
+            "{}",
+            run.events
+        );
+        let header: Vec<&str> = run.csv.lines().next().unwrap().split(',').collect();
+        let column = |name: &str| header.iter().position(|h| *h == name).unwrap();
+        let (alt, rate) = (column("alt"), column("alt_rate"));
+        let after_hole: Vec<&str> = run.csv.lines().nth(11).unwrap().split(',').collect();
+        assert_eq!(after_hole[0], "55");
+        assert_eq!(
+            after_hole[alt].parse::<f64>().unwrap(),
+            12000.0,
+            "{numeric}"
+        );
+        assert_eq!(after_hole[rate].parse::<f64>().unwrap(), 0.0, "{numeric}");
+    }
+}
+
 /// The tracker reads the same recording: through the 26 s hole the track
 /// coasts past 20 s and keeps its id (deletion after 30 misses); the 60 s
 /// hole outlives it (deleted, never restarted) and the target starts a new

@@ -387,3 +387,41 @@ fn configuration_refuses_bad_interval_and_coast() {
     );
     assert!(AltitudeTrackerConfig::<Fix>::new(q, 1.0, 0.0).is_ok());
 }
+
+/// A gap in the replies that reaches the tracker as one interval longer
+/// than its coast limit (a recording's 45 s hole, replayed row by row)
+/// starts a new track at the report after it, as the same gap coasted scan
+/// by scan does: a level intruder seen at 8,000 ft and then at 12,000 ft
+/// is not given the climb of 4,000 ft over 45 s. Intervals within the limit
+/// take the report as before.
+#[test]
+fn a_report_after_a_long_interval_starts_a_new_track() {
+    let config = AltitudeTrackerConfig::default_for(AltitudeQuantum::ModeS25).unwrap();
+    let level = |dt_after: f64| {
+        let mut t = AltitudeTracker::<f64>::new(config);
+        for _ in 0..10 {
+            t.scan(Some(8000.0), 1.0).unwrap();
+        }
+        t.scan(Some(8000.0 + 25.0), dt_after).unwrap();
+        t
+    };
+    let gap = 45.0;
+    assert!(gap > config.max_coast());
+    let after = level(gap);
+    let e = after.estimate().unwrap();
+    assert_eq!((e.altitude_ft, e.vertical_rate_ft_per_s), (8025.0, 0.0));
+    let mut jump = level(1.0);
+    jump.scan(Some(12_000.0), gap).unwrap();
+    let e = jump.estimate().unwrap();
+    assert_eq!((e.altitude_ft, e.vertical_rate_ft_per_s), (12_000.0, 0.0));
+    // Coasted scan by scan through the same gap: the same new track.
+    let mut coasted = level(1.0);
+    for _ in 0..44 {
+        coasted.scan(None, 1.0).unwrap();
+    }
+    coasted.scan(Some(12_000.0), 1.0).unwrap();
+    assert_eq!(coasted.estimate(), jump.estimate());
+    // Within the limit the report is taken by the track.
+    let within = level(config.max_coast());
+    assert!(within.estimate().unwrap().vertical_rate_ft_per_s > 0.0);
+}

@@ -46,6 +46,25 @@ fn accepts_the_three_layouts_and_tolerant_spacing() {
     );
 }
 
+/// Lines of nothing but spaces or tabs are blank lines too (they were
+/// refused as rows of one field); the lines after them keep their numbers,
+/// and such a line inside a quoted field stays part of it.
+#[test]
+fn whitespace_only_lines_are_blank_lines() {
+    let m = read("t,x\n0,1\n   \n\t\n1,2\n  \r\n2,x\n");
+    let Err(e) = m else {
+        panic!("the row at line 7 is malformed");
+    };
+    assert!(e.to_string().contains("line 7"), "{e}");
+    let m = read("t,x\n0,1\n   \n\t\n1,2\n  \r\n2,3\n \n").unwrap();
+    assert_eq!(m.rows.len(), 3);
+    assert_eq!((m.rows[1].line, m.rows[2].line), (5, 7));
+    // Inside quotes: a field with a newline and a blank-looking line.
+    let m = read("t,x,note\n0,1,\"a\n  \nb\"\n1,2,c\n").unwrap();
+    assert_eq!(m.rows.len(), 2);
+    assert_eq!(m.rows[1].line, 5);
+}
+
 /// Before: a header `t,x,y,alt`, extra columns and another column order
 /// were refused; the header is now matched by name.
 #[test]
