@@ -530,11 +530,11 @@ impl<N: Numeric<Wide = S>, S: Scalar> AltitudeState<N> {
     /// `Some(altitude_ft)` if the reply carried an altitude, `None` if it did
     /// not. A missing or incredible altitude coasts the track; after more
     /// than `max_coast` seconds without one the tracker forgets the altitude
-    /// and becomes `NotReporting`, also when that gap comes as one `dt`
-    /// longer than `max_coast` (the report after it starts a new track).
-    /// Invalid input is refused with the filter's error and changes nothing; so is a scan whose arithmetic
-    /// saturates (counted). `config` is the tracker's configuration, the
-    /// same at every scan of a track.
+    /// and becomes `NotReporting` (DO-185B's coast limit), also when the gap
+    /// comes as one long `dt`: the report after it starts a new track.
+    /// Invalid input is refused with the filter's error and changes
+    /// nothing; so is a scan whose arithmetic saturates (counted). `config`
+    /// is the tracker's configuration, the same at every scan of a track.
     pub fn scan(
         &mut self,
         config: &AltitudeTrackerConfig<S>,
@@ -546,10 +546,11 @@ impl<N: Numeric<Wide = S>, S: Scalar> AltitudeState<N> {
         }
         check_interval(dt)?;
         let mut next = *self;
-        // An interval longer than `max_coast` (a gap in the replies, as one
-        // step) starts the track again at its report: the scans of that
-        // gap, coasted one by one, would have forgotten it.
-        let after_a_gap = dt > config.max_coast;
+        // A report after a gap the track would not have coasted through
+        // scan by scan (more than `max_coast` before this scan's nominal
+        // interval, whether the gap came as coasts, as one long `dt` or as
+        // both) starts the track again: the coasts would have forgotten it.
+        let after_a_gap = self.coasted_s + dt > config.max_coast + config.interval;
         match altitude_ft {
             Some(z) if self.reports == 0 || after_a_gap => next.start(z),
             Some(z) => {

@@ -859,7 +859,8 @@ struct Inputs<S> {
 }
 
 /// An intruder's altitude estimate against the own aircraft: relative
-/// altitude, rate and τ_v; refused when a number is invalid.
+/// altitude h, rate ḣ and τ_v = −h/ḣ (DO-185B vertical tau); refused when a
+/// number is invalid.
 fn vertical_measures<S: Scalar>(
     own: &OwnAircraft<S>,
     altitude: Option<AltitudeEstimate<S>>,

@@ -190,8 +190,9 @@ counter_list! {
         over_capacity => "over capacity",
         /// Not representable in the tracker's number type.
         invalid => "not representable",
-        /// Used, and refused by the tracker (not finite, the filter refused
-        /// it, or the scan came too soon after the previous one).
+        /// Used, and refused by the tracker (not finite, a negative range,
+        /// the filter refused it, or the scan came too soon after the
+        /// previous one).
         rejected => "rejected by the tracker",
         /// Used, inside a gate, and the assignment gave the track another
         /// measurement.
@@ -219,8 +220,9 @@ counter_list! {
         /// RA threats beyond the [`crate::scan::MAX_RA_THREATS`] resolved
         /// together (the latest by modified tau are left out).
         ra_threats_over_capacity => "RA threats over capacity",
-        /// Replies the intruder's range or altitude tracker refused (both
-        /// trackers coasted instead).
+        /// Scans where an intruder's range or altitude tracker refused its
+        /// reply or its coast (invalid input or saturated arithmetic); a
+        /// tracker that did not take a reply coasts instead.
         intruder_tracker_errors => "intruder tracker errors",
         /// Altitude reports the intruder's altitude tracker found not
         /// credible (DO-185B) and coasted through.

@@ -463,19 +463,16 @@ impl Lines {
 
 /// Lines of nothing but spaces and tabs made blank (their bytes turned into
 /// `\r`, at the same offsets: the line breaks stay where they were), so
-/// that the reader skips them as it skips empty lines; a line inside a
-/// quoted field is left as it is.
+/// that the reader skips them as it skips empty lines. (Inside a quoted
+/// field such a line becomes `\r`s: only text columns, which are not read,
+/// can hold one.)
 fn blank_whitespace_lines(bytes: &mut [u8]) {
-    let mut in_quotes = false;
     for line in bytes.split_mut(|b| *b == b'\n') {
-        let quotes = line.iter().filter(|b| **b == b'"').count();
-        if !in_quotes
-            && line.iter().any(|b| matches!(b, b' ' | b'\t'))
+        if line.iter().any(|b| matches!(b, b' ' | b'\t'))
             && line.iter().all(|b| matches!(b, b' ' | b'\t' | b'\r'))
         {
             line.fill(b'\r');
         }
-        in_quotes ^= quotes % 2 == 1;
     }
 }
 

@@ -388,40 +388,57 @@ fn configuration_refuses_bad_interval_and_coast() {
     assert!(AltitudeTrackerConfig::<Fix>::new(q, 1.0, 0.0).is_ok());
 }
 
-/// A gap in the replies that reaches the tracker as one interval longer
-/// than its coast limit (a recording's 45 s hole, replayed row by row)
-/// starts a new track at the report after it, as the same gap coasted scan
-/// by scan does: a level intruder seen at 8,000 ft and then at 12,000 ft
-/// is not given the climb of 4,000 ft over 45 s. Intervals within the limit
-/// take the report as before.
+/// A gap in the replies that reaches the tracker as one long interval (a
+/// recording's 45 s hole, replayed row by row), or as coasts and then one
+/// long interval, starts a new track at the report after it, as the same
+/// gap coasted scan by scan does: a level intruder seen at 8,000 ft and then
+/// at 12,000 ft is not given the climb of 4,000 ft over 45 s. The boundary
+/// is the scan-by-scan one: a report after 6 s of coasting (7 s after the
+/// last report, at 1 s scans) is still taken.
 #[test]
 fn a_report_after_a_long_interval_starts_a_new_track() {
     let config = AltitudeTrackerConfig::default_for(AltitudeQuantum::ModeS25).unwrap();
-    let level = |dt_after: f64| {
+    let level = || {
         let mut t = AltitudeTracker::<f64>::new(config);
         for _ in 0..10 {
             t.scan(Some(8000.0), 1.0).unwrap();
         }
-        t.scan(Some(8000.0 + 25.0), dt_after).unwrap();
         t
     };
+    let climbing = |t: &AltitudeTracker<f64>| t.estimate().unwrap().vertical_rate_ft_per_s > 0.0;
     let gap = 45.0;
-    assert!(gap > config.max_coast());
-    let after = level(gap);
-    let e = after.estimate().unwrap();
-    assert_eq!((e.altitude_ft, e.vertical_rate_ft_per_s), (8025.0, 0.0));
-    let mut jump = level(1.0);
+    let mut jump = level();
     jump.scan(Some(12_000.0), gap).unwrap();
     let e = jump.estimate().unwrap();
     assert_eq!((e.altitude_ft, e.vertical_rate_ft_per_s), (12_000.0, 0.0));
     // Coasted scan by scan through the same gap: the same new track.
-    let mut coasted = level(1.0);
+    let mut coasted = level();
     for _ in 0..44 {
         coasted.scan(None, 1.0).unwrap();
     }
     coasted.scan(Some(12_000.0), 1.0).unwrap();
     assert_eq!(coasted.estimate(), jump.estimate());
-    // Within the limit the report is taken by the track.
-    let within = level(config.max_coast());
-    assert!(within.estimate().unwrap().vertical_rate_ft_per_s > 0.0);
+    // Coasts, then a long interval: the same.
+    let mut mixed = level();
+    for _ in 0..5 {
+        mixed.scan(None, 1.0).unwrap();
+    }
+    mixed.scan(Some(12_000.0), 5.0).unwrap();
+    assert_eq!(mixed.estimate(), jump.estimate());
+    // The boundary, scan by scan and as one interval: 6 coasts and a
+    // report, or a report 7 s after the last, is taken (a climb of 25 ft);
+    // 7 coasts, or 8 s, start a new track.
+    let boundary = config.max_coast() + config.interval();
+    for (coasts, taken) in [(6, true), (7, false)] {
+        let mut by_scan = level();
+        for _ in 0..coasts {
+            by_scan.scan(None, 1.0).unwrap();
+        }
+        by_scan.scan(Some(8025.0), 1.0).unwrap();
+        let mut at_once = level();
+        at_once.scan(Some(8025.0), f64::from(coasts + 1)).unwrap();
+        assert_eq!(climbing(&by_scan), taken, "{coasts} coasts");
+        assert_eq!(climbing(&at_once), taken, "{} s", coasts + 1);
+        assert_eq!(f64::from(coasts + 1) <= boundary, taken);
+    }
 }

@@ -141,8 +141,11 @@ fn a_refused_reply_coasts_both_trackers_in_step() {
         Err(FilterError::InvalidMeasurement)
     );
     assert_eq!(t, missed_again);
+    // In step: the next reply finds the range where the coasts put it.
     t.scan(&config, Some(reply(14.0)), 1.0).unwrap();
-    assert_eq!(t.range_tracker().phase(), Phase::Tracking);
+    let e = t.range_tracker().estimate().unwrap();
+    assert!((e.range_m - reply(14.0).range_m).abs() < 1.0, "{e:?}");
+    assert!((e.range_rate_m_per_s + 200.0).abs() < 1.0, "{e:?}");
 }
 
 /// On exact ranges of a straight pass (1 NM abeam, 250 m/s) the

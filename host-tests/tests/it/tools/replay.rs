@@ -48,7 +48,7 @@ fn accepts_the_three_layouts_and_tolerant_spacing() {
 
 /// Lines of nothing but spaces or tabs are blank lines too (they were
 /// refused as rows of one field); the lines after them keep their numbers,
-/// and such a line inside a quoted field stays part of it.
+/// also after such a line inside a quoted (text) field.
 #[test]
 fn whitespace_only_lines_are_blank_lines() {
     let m = read("t,x\n0,1\n   \n\t\n1,2\n  \r\n2,x\n");
