@@ -189,6 +189,9 @@ pub struct AltitudeTrackerConfig<S> {
     quantum: AltitudeQuantum,
     interval: S,
     max_coast: S,
+    /// `max_coast` + `interval`: the longest time from one report to the
+    /// next that the track survives, coasted scan by scan.
+    longest_gap: S,
 }
 
 impl<S: Scalar> AltitudeTrackerConfig<S> {
@@ -212,6 +215,8 @@ impl<S: Scalar> AltitudeTrackerConfig<S> {
             interval: S::try_from_f64(interval_s)
                 .map_err(|_| AltitudeConfigError::IntervalNotPositive)?,
             max_coast: S::try_from_f64(max_coast_s)
+                .map_err(|_| AltitudeConfigError::InvalidCoast)?,
+            longest_gap: S::try_from_f64(max_coast_s + interval_s)
                 .map_err(|_| AltitudeConfigError::InvalidCoast)?,
         })
     }
@@ -546,17 +551,18 @@ impl<N: Numeric<Wide = S>, S: Scalar> AltitudeState<N> {
         }
         check_interval(dt)?;
         let mut next = *self;
-        // A report after a gap the track would not have coasted through
-        // scan by scan (more than `max_coast` before this scan's nominal
-        // interval, whether the gap came as coasts, as one long `dt` or as
-        // both) starts the track again: the coasts would have forgotten it.
-        let after_a_gap = self.coasted_s + dt > config.max_coast + config.interval;
+        // The time since the last report. A report after a gap the track
+        // would not have coasted through scan by scan (more than
+        // `max_coast` before this scan's nominal interval, whether the gap
+        // came as coasts, as one long `dt` or as both) starts the track
+        // again: the coasts would have forgotten it.
+        let elapsed = self.coasted_s + dt;
         match altitude_ft {
-            Some(z) if self.reports == 0 || after_a_gap => next.start(z),
+            Some(z) if self.reports == 0 || elapsed > config.longest_gap => next.start(z),
             Some(z) => {
                 // The change of report, once for the test and the update.
                 let change = z - self.report_ft;
-                if self.credible(config, change, dt) {
+                if self.credible(config, change, dt, elapsed) {
                     next.take(config, z, change, dt);
                 } else {
                     next.incredible_reports = next.incredible_reports.saturating_add(1);
@@ -610,12 +616,12 @@ impl<N: Numeric<Wide = S>, S: Scalar> AltitudeState<N> {
     }
 
     /// DO-185B `credible`: the report is within what the track could have
-    /// done since the last report (`change`: the report minus the last).
-    fn credible(&self, config: &AltitudeTrackerConfig<S>, change: S, dt: S) -> bool {
+    /// done since the last report (`change`: the report minus the last;
+    /// `elapsed`: the time since it, coasts included).
+    fn credible(&self, config: &AltitudeTrackerConfig<S>, change: S, dt: S, elapsed: S) -> bool {
         if change == S::ZERO {
             return true;
         }
-        let elapsed = self.coasted_s + dt;
         if self.since_start_s + dt < c(RATE_SETTLING_S) {
             return change.abs() <= c::<S>(CREDIBLE_INITIAL_RATE_FT_PER_S).times(elapsed);
         }
