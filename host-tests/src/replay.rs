@@ -47,8 +47,9 @@
 //! Timing never stops a run: the filters' interval policy
 //! ([`abtrack::filter::IntervalSpan`]) restarts the estimate at a report
 //! more than 20 s after the last one used, and skips a report less than
-//! 0.05 s after it (a repeated time, a duplicate report, is skipped the
-//! same way), leaving the estimate as it was. Every output has a last
+//! 0.05 s after it (a repeated time, a duplicate report, and a time before
+//! it, a report out of order, are skipped the same way), leaving the
+//! estimate as it was. Every output has a last
 //! column `event`: `restarted`, `skipped` or empty; the rows of both are
 //! listed on stderr ([`TimingEvents`]). The range–azimuth filter gets the
 //! same policy from the runner.
@@ -442,6 +443,8 @@ pub enum RowEvent {
     Skipped,
     /// The same time as the last report used: skipped.
     Duplicate,
+    /// Before the last report used (out of order): skipped.
+    Late,
 }
 
 impl RowEvent {
@@ -450,7 +453,17 @@ impl RowEvent {
         match self {
             RowEvent::Used => "",
             RowEvent::Restarted => "restarted",
-            RowEvent::Skipped | RowEvent::Duplicate => "skipped",
+            RowEvent::Skipped | RowEvent::Duplicate | RowEvent::Late => "skipped",
+        }
+    }
+
+    /// A row [`interval`] gives no interval for: at the time of the last
+    /// report used (`previous_t`) or before it.
+    fn not_after(previous_t: Option<f64>, t: f64) -> Self {
+        if previous_t.is_some_and(|p| t < p) {
+            RowEvent::Late
+        } else {
+            RowEvent::Duplicate
         }
     }
 
@@ -479,6 +492,9 @@ pub struct TimingEvents {
     pub skipped: Vec<String>,
     /// Of the skipped, rows repeating the last used report's time.
     pub duplicates: usize,
+    /// Of the skipped, rows before the last used report's time (out of
+    /// order).
+    pub late: usize,
     /// Rows whose altitude report the altitude tracker found not credible
     /// (DO-185B; it coasted instead): the range–azimuth replay's.
     pub altitude_not_credible: Vec<String>,
@@ -493,6 +509,10 @@ impl TimingEvents {
             RowEvent::Duplicate => {
                 self.skipped.push(t_text.to_string());
                 self.duplicates += 1;
+            }
+            RowEvent::Late => {
+                self.skipped.push(t_text.to_string());
+                self.late += 1;
             }
         }
     }
@@ -538,10 +558,11 @@ impl fmt::Display for TimingEvents {
             writeln!(
                 f,
                 "replay: {} skipped: less than {} s after the last report used, {} of them at \
-                 the same time ({})",
+                 the same time, {} before it (out of order) ({})",
                 self.skipped.len(),
                 abtrack::filter::MIN_INTERVAL_S,
                 self.duplicates,
+                self.late,
                 times_text(&self.skipped)
             )?;
         }
@@ -791,8 +812,8 @@ pub fn bank_header(dims: usize) -> String {
 }
 
 /// The interval since the last report used (1 s for the first row, see the
-/// module docs) in `S`; `None` for a repeated time (a duplicate report,
-/// skipped).
+/// module docs) in `S`; `None` for a repeated or earlier time (a duplicate
+/// or late report, skipped).
 fn interval<S: Scalar>(
     previous_t: Option<f64>,
     t: f64,
@@ -800,7 +821,7 @@ fn interval<S: Scalar>(
 ) -> Result<Option<S>, ReplayError> {
     match previous_t {
         None => Ok(Some(S::ONE)),
-        Some(p) if t == p => Ok(None),
+        Some(p) if t <= p => Ok(None),
         Some(p) => S::try_from_f64(t - p)
             .map(Some)
             .map_err(|error| ReplayError::Value {
@@ -909,7 +930,7 @@ fn run_schedule<S: CsvValue, G: GainSchedule<S, D>, const ORDER: usize, const D:
     let mut previous_t: Option<f64> = None;
     for row in &data.rows {
         let Some(dt) = interval::<S>(previous_t, row.t, row.line)? else {
-            events.record(RowEvent::Duplicate, &row.t_text);
+            events.record(RowEvent::not_after(previous_t, row.t), &row.t_text);
             let skipped = [UpdateOutcome::Skipped; D];
             write_kinematic_row(&mut out, &row.t_text, track.filter(), &skipped);
             continue;
@@ -947,7 +968,10 @@ fn run_bank<S: CsvValue, const D: usize>(
     let mut previous_t: Option<f64> = None;
     for row in &data.rows {
         let (outcomes, event) = match interval::<S>(previous_t, row.t, row.line)? {
-            None => ([BankOutcome::Skipped; D], RowEvent::Duplicate),
+            None => (
+                [BankOutcome::Skipped; D],
+                RowEvent::not_after(previous_t, row.t),
+            ),
             Some(dt) => {
                 let z = positions::<S, D>(row)?;
                 let outcomes = bank.update(z, dt).map_err(|error| ReplayError::Filter {
@@ -1222,7 +1246,7 @@ pub fn replay_range_azimuth_in<S: CsvValue>(
             None => None,
         };
         let event = match (interval::<S>(previous_t, row.t, line)?, previous_t) {
-            (None, _) => RowEvent::Duplicate,
+            (None, _) => RowEvent::not_after(previous_t, row.t),
             (Some(_), None) => RowEvent::Used,
             (Some(_), Some(p)) => match IntervalSpan::of(row.t - p) {
                 Ok(IntervalSpan::TooShort) => RowEvent::Skipped,

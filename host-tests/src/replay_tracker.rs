@@ -305,6 +305,9 @@ pub struct Unused {
     /// Their scan came less than 0.05 s after the previous one (or in the
     /// same millisecond of the table's clock): the scan was skipped.
     pub too_close: Tally,
+    /// Their scan's time was before the previous scan's (rows out of time
+    /// order): the scan was skipped.
+    pub out_of_order: Tally,
     /// Tracks restarted: ended by a scan more than 20 s after the previous
     /// one (their targets start again by two-point initiation).
     pub tracks_restarted: usize,
@@ -342,6 +345,7 @@ impl Unused {
             + self.negative_range.count
             + self.filter_refused.count
             + self.too_close.count
+            + self.out_of_order.count
     }
 
     fn record(&mut self, code: Association, line: usize, outside_region: bool) {
@@ -417,10 +421,13 @@ impl std::fmt::Display for Unused {
         )?;
         writeln!(
             f,
-            "{p}   skipped: {} in scans less than {} s after the previous one{}",
+            "{p}   skipped: {} in scans less than {} s after the previous one{}, {} in scans \
+             before the previous one (out of time order){}",
             self.too_close.count,
             abtrack::filter::MIN_INTERVAL_S,
-            self.too_close.lines_text()
+            self.too_close.lines_text(),
+            self.out_of_order.count,
+            self.out_of_order.lines_text()
         )?;
         writeln!(
             f,
@@ -487,23 +494,39 @@ impl ScanRow for crate::csv_input::RangeAzimuthRow {
     }
 }
 
-/// Scans of rows (consecutive rows sharing a `t`).
-fn scans_of<'a, R: ScanRow + 'a>(scans: impl Iterator<Item = &'a [R]>) -> Vec<FileScan<'a>> {
-    scans
-        .filter_map(|rows| {
-            let first = rows.first()?;
-            let (t, t_text) = first.time();
-            Some(FileScan {
-                line: first.line(),
-                t_text,
-                t,
-                rows: rows.iter().map(|r| (r.line(), r.measurement())).collect(),
-            })
-        })
-        .collect()
+/// A file's scans in time order, and the lines of the rows of the scans
+/// out of it.
+struct FileScans<'a> {
+    scans: Vec<FileScan<'a>>,
+    /// The rows of scans before the previous scan kept (skipped, counted).
+    out_of_order: Vec<usize>,
 }
 
-fn file_scans(data: &Recording) -> Result<Vec<FileScan<'_>>, ReplayError> {
+/// Scans of rows (consecutive rows sharing a `t`); a scan before the
+/// previous one kept is set aside.
+fn scans_of<'a, R: ScanRow + 'a>(scans: impl Iterator<Item = &'a [R]>) -> FileScans<'a> {
+    let mut out = FileScans {
+        scans: Vec::new(),
+        out_of_order: Vec::new(),
+    };
+    for rows in scans {
+        let Some(first) = rows.first() else { continue };
+        let (t, t_text) = first.time();
+        if out.scans.last().is_some_and(|s| t < s.t) {
+            out.out_of_order.extend(rows.iter().map(ScanRow::line));
+            continue;
+        }
+        out.scans.push(FileScan {
+            line: first.line(),
+            t_text,
+            t,
+            rows: rows.iter().map(|r| (r.line(), r.measurement())).collect(),
+        });
+    }
+    out
+}
+
+fn file_scans(data: &Recording) -> Result<FileScans<'_>, ReplayError> {
     match data {
         Recording::Cartesian(m) if m.dims != 2 => Err(ReplayError::TrackerAxes { dims: m.dims }),
         Recording::Cartesian(m) => Ok(scans_of(m.scans())),
@@ -776,13 +799,16 @@ struct Prepared<'a, S: abtrack::Numeric> {
     inputs: Vec<ScanInput<'a, S>>,
     added: usize,
     polar: bool,
+    /// [`FileScans::out_of_order`].
+    out_of_order: &'a [usize],
 }
 
 fn prepare<'a, S: abtrack::Numeric>(
     options: &TrackerOptions,
     data: &'a Recording,
-    scans: &'a [FileScan<'a>],
+    file: &'a FileScans<'a>,
 ) -> Result<Prepared<'a, S>, ReplayError> {
+    let scans = &file.scans;
     let polar = matches!(data, Recording::RangeAzimuth(_));
     let farthest = scans
         .iter()
@@ -807,6 +833,7 @@ fn prepare<'a, S: abtrack::Numeric>(
         inputs,
         added,
         polar,
+        out_of_order: &file.out_of_order,
     })
 }
 
@@ -823,8 +850,8 @@ fn run_in<S: CsvValue + std::fmt::Display>(
     options: &TrackerOptions,
     data: &Recording,
 ) -> Result<TrackerReplay, ReplayError> {
-    let scans = file_scans(data)?;
-    let prepared = prepare::<S>(options, data, &scans)?;
+    let file = file_scans(data)?;
+    let prepared = prepare::<S>(options, data, &file)?;
     let own = own_aircraft::<S>(options.own_altitude_ft)?;
     let threat = own.map(|own| {
         move |out: &mut String, position: [S; 2], velocity: [S; 2], line: usize| {
@@ -859,8 +886,8 @@ fn run_fixed32(options: &TrackerOptions, data: &Recording) -> Result<TrackerRepl
     if options.own_altitude_ft.is_some() || matches!(data, Recording::RangeAzimuth(_)) {
         return run_in::<ScaledScalar>(options, data);
     }
-    let scans = file_scans(data)?;
-    let prepared = prepare::<Fixed32>(options, data, &scans)?;
+    let file = file_scans(data)?;
+    let prepared = prepare::<Fixed32>(options, data, &file)?;
     run_cartesian(options, &prepared, None)
 }
 
@@ -977,6 +1004,10 @@ fn run_scans<
         empty_scans: added,
         ..Unused::default()
     };
+    for &line in prepared.out_of_order {
+        unused.measurements += 1;
+        unused.out_of_order.add(line);
+    }
     let mut codes = Vec::new();
     for scan in scans.iter() {
         if table.last_scan_ms() == Some(scan.now_ms) {

@@ -20,13 +20,14 @@
 //! another number of fields than the header, a field that is not a number,
 //! and a value outside [`abtrack::envelope`] (positions and ranges beyond
 //! 400 km, altitudes outside −1000 … 126 700 ft, an azimuth beyond one turn,
-//! a time stamp beyond 2³³ s) and a time before the previous row's. A
-//! radian azimuth beyond 2π is refused with a message naming
-//! `--azimuth-unit deg`: the unit is never guessed.
+//! a time stamp beyond 2³³ s). A radian azimuth beyond 2π is refused with
+//! a message naming `--azimuth-unit deg`: the unit is never guessed.
 //!
-//! Timing is never a reason to refuse a file: gaps and jitter are the
-//! filters' business (an interval beyond the filters' range restarts the
-//! estimate, one below it is skipped and counted, `docs/host-tools.md`).
+//! Timing is never a reason to refuse a file: gaps, jitter and rows out of
+//! time order are the runners' business (an interval beyond the filters'
+//! range restarts the estimate; a row too soon after, at or before the
+//! last one used, or a scan before the previous one, is skipped and
+//! counted, `docs/host-tools.md`).
 //!
 //! # Scans
 //!
@@ -93,13 +94,13 @@ pub enum AngleUnit {
 /// Whether rows may share a time.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
 pub enum TimeOrder {
-    /// One report per row, none before the previous one (single-target
-    /// filters; a repeated time is a duplicate report, skipped by the
+    /// One report per row (single-target filters; a row at or before the
+    /// last one used, a duplicate or late report, is skipped by the
     /// runner).
     #[default]
     Increasing,
-    /// Rows sharing a `t` form one scan; none before the previous one
-    /// (trackers).
+    /// Rows sharing a `t` form one scan (trackers; a scan before the
+    /// previous one is skipped by the runner).
     Scans,
 }
 
@@ -240,12 +241,6 @@ pub enum CsvError {
         text: String,
         why: Refusal,
     },
-    /// A time before the previous row's.
-    TimeDecreasing {
-        line: usize,
-        t: String,
-        previous: String,
-    },
 }
 
 /// At most [`ECHO_CHARS`] characters of `text`, with `…` when cut.
@@ -364,10 +359,6 @@ impl fmt::Display for CsvError {
                     ),
                 }
             }
-            CsvError::TimeDecreasing { line, t, previous } => write!(
-                f,
-                "line {line}, column 1 (t): time {t} is before the previous row's ({previous})"
-            ),
         }
     }
 }
@@ -616,7 +607,7 @@ fn field_error(
 
 const KNOWN_COLUMNS: [&str; 7] = ["t", "x", "y", "z", "range", "azimuth", "alt"];
 
-/// A row's time (and as written), for the order checks and scans.
+/// A row's time (and as written), for the scans.
 pub trait Timed {
     fn time(&self) -> (f64, &str);
 }
@@ -634,9 +625,8 @@ impl Timed for RangeAzimuthRow {
 }
 
 /// Every record after the header: deserialised by column name into `F`,
-/// checked and converted by `row`, then its time checked against the
-/// previous row's. Stops at the first error.
-fn read_rows<F: serde::de::DeserializeOwned, T: Timed>(
+/// checked and converted by `row`. Stops at the first error.
+fn read_rows<F: serde::de::DeserializeOwned, T>(
     mut reader: Reader,
     header: &Header,
     row: impl Fn(&Cell<'_>, F) -> Result<T, CsvError>,
@@ -653,30 +643,9 @@ fn read_rows<F: serde::de::DeserializeOwned, T: Timed>(
             header,
             record: &record,
         };
-        let parsed = row(&cell, fields)?;
-        let (t, t_text) = parsed.time();
-        check_time(line, t, t_text, rows.last().map(Timed::time))?;
-        rows.push(parsed);
+        rows.push(row(&cell, fields)?);
     }
     Ok(rows)
-}
-
-/// Checks that a row is not before `previous` (both orders: equal times
-/// are a scan's rows, or a duplicate report).
-fn check_time(
-    line: usize,
-    t: f64,
-    t_text: &str,
-    previous: Option<(f64, &str)>,
-) -> Result<(), CsvError> {
-    match previous {
-        Some((p, p_text)) if t < p => Err(CsvError::TimeDecreasing {
-            line,
-            t: echo(t_text),
-            previous: echo(p_text),
-        }),
-        _ => Ok(()),
-    }
 }
 
 /// Reads a whole Cartesian file. Stops at the first error. (`_options`:

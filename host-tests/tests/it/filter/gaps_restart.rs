@@ -445,18 +445,40 @@ fn replay_runs_through_gaps_and_jitter_in_every_number_system() {
     let x = |row: &str| row.split(',').nth(1).unwrap().to_string();
     assert_eq!(x(rows[4]), x(rows[3]));
     assert_eq!(x(rows[8]), "300");
-    // A time going back is still refused (a malformed file).
-    let back = "t,x\n0,0\n2,20\n1,10\n";
-    use abtrack_host_tests::cli::{Command, ReplayArgs};
-    use clap::Parser;
-    let Command::Replay { config, .. } =
-        ReplayArgs::parse_from(["replay", "--filter", "ab", "--schedule", "m2", "-"])
-            .into_command()
-            .unwrap()
-    else {
-        panic!()
-    };
-    assert!(replay_events(&config, back.as_bytes()).is_err());
+    // A report out of time order (merged feeds deliver them) is skipped like
+    // a duplicate, in every filter, and counted apart; the file was refused
+    // before.
+    let back = "t,x\n0,0\n1,10\n2,20\n1.5,15\n3,30\n";
+    for filter in [
+        "--filter ab --schedule least-squares",
+        "--filter auto --sigma-m 5",
+        "--filter ab --schedule bank",
+    ] {
+        let run = replay(filter, "f64", back);
+        assert_eq!(run.events.skipped, ["1.5"], "{filter}");
+        assert_eq!((run.events.late, run.events.duplicates), (1, 0), "{filter}");
+        assert!(
+            run.csv.lines().nth(4).unwrap().ends_with(",skipped"),
+            "{filter}"
+        );
+        assert!(
+            run.events
+                .to_string()
+                .contains("1 before it (out of order)"),
+            "{}",
+            run.events
+        );
+    }
+}
+
+/// A range–azimuth report out of time order is skipped and counted too.
+#[test]
+fn range_azimuth_replay_skips_a_report_out_of_order() {
+    let text = "t,range,azimuth\n0,5000,0.5\n1,4990,0.5\n2,4980,0.5\n1.5,4985,0.5\n3,4970,0.5\n";
+    let run = replay("--filter range-azimuth", "f64", text);
+    assert_eq!(run.events.skipped, ["1.5"]);
+    assert_eq!(run.events.late, 1);
+    assert!(run.csv.lines().nth(4).unwrap().ends_with(",skipped"));
 }
 
 #[test]

@@ -412,17 +412,23 @@ fn verbose_log_counts_the_association_codes() {
 
 #[test]
 fn errors_name_the_line() {
-    // A decreasing time.
-    let e = tracker("--tracker", "t,x,y\n0,1,1\n0,2,2\n1,3,3\n0.5,4,4\n").unwrap_err();
-    assert_eq!(
-        e,
-        Failure::Input(CsvError::TimeDecreasing {
-            line: 5,
-            t: "0.5".into(),
-            previous: "1".into()
-        })
+    // A scan before the previous one (rows out of time order, as merged
+    // feeds give): skipped, its rows counted with their lines (the file was
+    // refused before).
+    let run = tracker(
+        "--tracker",
+        "t,x,y\n0,1,1\n0,2,2\n1,3,3\n0.5,4,4\n0.5,5,5\n2,6,6\n",
+    )
+    .unwrap();
+    assert_eq!(run.unused.out_of_order.lines, [5, 6]);
+    assert_eq!(run.unused.scans, 3);
+    assert!(
+        run.unused
+            .to_string()
+            .contains("2 in scans before the previous one (out of time order) (line 5, 6)"),
+        "{}",
+        run.unused
     );
-    assert!(e.to_string().starts_with("line 5, column 1 (t)"), "{e}");
     // Two scans 0.2 ms apart: the second is skipped and counted, naming
     // its line.
     let run = tracker("--tracker", "t,x,y\n0,1,1\n1,2,2\n1.0002,3,3\n").unwrap();
@@ -621,11 +627,11 @@ fn binary_runs_the_tracker_and_names_the_bad_line() {
         .arg(&path)
         .output()
         .unwrap();
-    assert_eq!(out.status.code(), Some(1));
-    assert!(out.stdout.is_empty());
+    // Out of time order: run, the late scan's row counted by its line.
+    assert_eq!(out.status.code(), Some(0));
     let err = String::from_utf8(out.stderr).unwrap();
     assert!(
-        err.contains("line 5, column 1 (t): time 1 is before"),
+        err.contains("1 in scans before the previous one (out of time order) (line 5)"),
         "{err}"
     );
     let _ = std::fs::remove_file(path);
