@@ -457,16 +457,6 @@ impl RowEvent {
         }
     }
 
-    /// A row [`interval`] gives no interval for: at the time of the last
-    /// report used (`previous_t`) or before it.
-    fn not_after(previous_t: Option<f64>, t: f64) -> Self {
-        if previous_t.is_some_and(|p| t < p) {
-            RowEvent::Late
-        } else {
-            RowEvent::Duplicate
-        }
-    }
-
     fn of<N: abtrack::Numeric>(outcome: Option<&UpdateOutcome<N>>) -> Self {
         match outcome {
             Some(UpdateOutcome::Restarted) => RowEvent::Restarted,
@@ -812,18 +802,19 @@ pub fn bank_header(dims: usize) -> String {
 }
 
 /// The interval since the last report used (1 s for the first row, see the
-/// module docs) in `S`; `None` for a repeated or earlier time (a duplicate
-/// or late report, skipped).
+/// module docs) in `S`; `Err` with the row's event for a repeated time (a
+/// duplicate report) or an earlier one (late), both skipped.
 fn interval<S: Scalar>(
     previous_t: Option<f64>,
     t: f64,
     line: usize,
-) -> Result<Option<S>, ReplayError> {
+) -> Result<Result<S, RowEvent>, ReplayError> {
     match previous_t {
-        None => Ok(Some(S::ONE)),
-        Some(p) if t <= p => Ok(None),
+        None => Ok(Ok(S::ONE)),
+        Some(p) if t == p => Ok(Err(RowEvent::Duplicate)),
+        Some(p) if t < p => Ok(Err(RowEvent::Late)),
         Some(p) => S::try_from_f64(t - p)
-            .map(Some)
+            .map(Ok)
             .map_err(|error| ReplayError::Value {
                 line,
                 column: 1,
@@ -929,11 +920,14 @@ fn run_schedule<S: CsvValue, G: GainSchedule<S, D>, const ORDER: usize, const D:
     let mut events = TimingEvents::default();
     let mut previous_t: Option<f64> = None;
     for row in &data.rows {
-        let Some(dt) = interval::<S>(previous_t, row.t, row.line)? else {
-            events.record(RowEvent::not_after(previous_t, row.t), &row.t_text);
-            let skipped = [UpdateOutcome::Skipped; D];
-            write_kinematic_row(&mut out, &row.t_text, track.filter(), &skipped);
-            continue;
+        let dt = match interval::<S>(previous_t, row.t, row.line)? {
+            Ok(dt) => dt,
+            Err(event) => {
+                events.record(event, &row.t_text);
+                let skipped = [UpdateOutcome::Skipped; D];
+                write_kinematic_row(&mut out, &row.t_text, track.filter(), &skipped);
+                continue;
+            }
         };
         let z = positions::<S, D>(row)?;
         let update = track.update(z, dt).map_err(|e| match e {
@@ -968,11 +962,8 @@ fn run_bank<S: CsvValue, const D: usize>(
     let mut previous_t: Option<f64> = None;
     for row in &data.rows {
         let (outcomes, event) = match interval::<S>(previous_t, row.t, row.line)? {
-            None => (
-                [BankOutcome::Skipped; D],
-                RowEvent::not_after(previous_t, row.t),
-            ),
-            Some(dt) => {
+            Err(event) => ([BankOutcome::Skipped; D], event),
+            Ok(dt) => {
                 let z = positions::<S, D>(row)?;
                 let outcomes = bank.update(z, dt).map_err(|error| ReplayError::Filter {
                     line: row.line,
@@ -1245,10 +1236,11 @@ pub fn replay_range_azimuth_in<S: CsvValue>(
             Some(a) => Some(value::<S>(a, line, 4, "alt")?),
             None => None,
         };
-        let event = match (interval::<S>(previous_t, row.t, line)?, previous_t) {
-            (None, _) => RowEvent::not_after(previous_t, row.t),
-            (Some(_), None) => RowEvent::Used,
-            (Some(_), Some(p)) => match IntervalSpan::of(row.t - p) {
+        let interval = interval::<S>(previous_t, row.t, line)?;
+        let event = match (interval, previous_t) {
+            (Err(event), _) => event,
+            (Ok(_), None) => RowEvent::Used,
+            (Ok(_), Some(p)) => match IntervalSpan::of(row.t - p) {
                 Ok(IntervalSpan::TooShort) => RowEvent::Skipped,
                 Ok(IntervalSpan::TooLong) if filter.phase() != Phase::Empty => RowEvent::Restarted,
                 _ => RowEvent::Used,
@@ -1256,8 +1248,7 @@ pub fn replay_range_azimuth_in<S: CsvValue>(
         };
         let mut outcome = RangeAzimuthOutcome::FirstPoint;
         let mut used_dt = None;
-        if event.used() {
-            let dt = interval::<S>(previous_t, row.t, line)?.unwrap_or(S::ONE);
+        if let (true, Ok(dt)) = (event.used(), interval) {
             used_dt = Some(dt);
             if event == RowEvent::Restarted {
                 filter = RangeAzimuthFilter::new(noise);
