@@ -637,7 +637,9 @@ pub enum Fault {
     /// After every 20th frame, a frame outside the envelope (x = 500 km,
     /// range 1000 km, altitude 200 000 ft in turn).
     OutOfRange,
-    /// 200 extra clutter measurements per scan, shuffled with the others.
+    /// [`STORM_CLUTTER_PER_SCAN`] extra clutter measurements per scan,
+    /// shuffled with the others, in the first scans ([`fault_stream`]'s
+    /// `storm_scans`: every scan unless it says fewer).
     ClutterStorm,
     /// The scans in reverse time order.
     Reversed,
@@ -696,6 +698,9 @@ pub const FAULT_SCAN: u32 = 30;
 pub const FAULT_INPUT_SEED: u64 = 1;
 /// [`Fault::Gap`]: scans missing before [`FAULT_SCAN`].
 pub const GAP_SCANS: u32 = 10;
+/// [`Fault::ClutterStorm`]: clutter measurements added to each scan of
+/// the storm.
+pub const STORM_CLUTTER_PER_SCAN: usize = 200;
 /// [`Fault::Backwards`]: the step, ms.
 pub const BACKWARDS_MS: u32 = 10_000;
 /// [`Fault::Jump`]: 40 days, ms (more than 2³¹).
@@ -733,8 +738,15 @@ impl FaultStream {
 }
 
 /// The demo's input with `fault` injected; `capacity` is the board's
-/// measurements per scan (for [`Fault::Flood`]).
-pub fn fault_stream(fault: Fault, capacity: usize, seed: u64) -> Result<FaultStream, String> {
+/// measurements per scan (for [`Fault::Flood`]); `storm_scans` the scans
+/// [`Fault::ClutterStorm`] lasts, from the first ([`TCAS_DEMO_SCANS`] or
+/// more: all of them).
+pub fn fault_stream(
+    fault: Fault,
+    capacity: usize,
+    storm_scans: usize,
+    seed: u64,
+) -> Result<FaultStream, String> {
     let mut rng = rng_from_seed(derive_seed(seed, 0xFA17));
     let mut out = FaultStream::default();
     if fault == Fault::GarbageOnly {
@@ -765,7 +777,7 @@ pub fn fault_stream(fault: Fault, capacity: usize, seed: u64) -> Result<FaultStr
         }
     };
     let fault_ms = FAULT_SCAN * 1000;
-    for (t, _, reports) in scans.iter_mut() {
+    for (k, (t, _, reports)) in scans.iter_mut().enumerate() {
         let k_ms = *t;
         let shifted = match fault {
             Fault::Backwards if k_ms >= fault_ms => Some(t.wrapping_sub(BACKWARDS_MS)),
@@ -781,7 +793,7 @@ pub fn fault_stream(fault: Fault, capacity: usize, seed: u64) -> Result<FaultStr
         }
         let extra = match fault {
             Fault::Flood if k_ms == fault_ms => 10 * capacity,
-            Fault::ClutterStorm => 200,
+            Fault::ClutterStorm if k < storm_scans => STORM_CLUTTER_PER_SCAN,
             _ => 0,
         };
         if extra > 0 {

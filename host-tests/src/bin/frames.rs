@@ -86,6 +86,10 @@ struct EncodeArgs {
     /// The track capacity a --fault flood overwhelms.
     #[arg(long, value_name = "M", default_value_t = 64)]
     capacity: usize,
+    /// The scans a --fault clutter-storm lasts, from the first (default:
+    /// every scan of the input).
+    #[arg(long, value_name = "N", default_value_t = frames::TCAS_DEMO_SCANS)]
+    storm_scans: usize,
     /// Output file.
     #[arg(long, value_name = "FILE")]
     out: PathBuf,
@@ -134,6 +138,7 @@ fn run(command: Command) -> Result<(), String> {
             garbage_every,
             fault_seed,
             capacity,
+            storm_scans,
             out,
         }) => {
             let faults = Faults {
@@ -145,7 +150,7 @@ fn run(command: Command) -> Result<(), String> {
                 Source {
                     fault: Some(fault), ..
                 } => {
-                    let stream = frames::fault_stream(fault, capacity, faults.seed)?;
+                    let stream = frames::fault_stream(fault, capacity, storm_scans, faults.seed)?;
                     let encoded = frames::Encoded {
                         frames: stream.frames,
                         corrupted: stream.damaged,
@@ -339,6 +344,19 @@ mod tests {
         };
         assert_eq!(e.source.fault, Some(Fault::Flood));
         assert_eq!((e.capacity, e.fault_seed), (24, 5));
+        assert_eq!(e.storm_scans, frames::TCAS_DEMO_SCANS);
+        let Ok(Command::Encode(e)) = parse(&[
+            "encode",
+            "--fault",
+            "clutter-storm",
+            "--storm-scans",
+            "30",
+            "--out",
+            "x.bin",
+        ]) else {
+            panic!("encode --storm-scans not parsed")
+        };
+        assert_eq!(e.storm_scans, 30);
         let Ok(Command::Decode(d)) = parse(&["decode", "--check", "r.bin", "--messages"]) else {
             panic!("decode not parsed")
         };

@@ -171,12 +171,38 @@ fn encoded_faults_are_what_the_decoder_counts() {
     assert!(s.to_text().contains("CRC errors"));
 }
 
+/// A clutter storm over the first scans only: the storm's scans carry its
+/// clutter, and every later scan is the input without the fault's.
+#[test]
+fn a_short_clutter_storm_lasts_its_scans() {
+    let storm = 30;
+    let short = frames::fault_stream(Fault::ClutterStorm, 24, storm, 0).unwrap();
+    let whole = frames::fault_stream(Fault::ClutterStorm, 24, frames::TCAS_DEMO_SCANS, 0).unwrap();
+    let clear = frames::fault_stream(Fault::CrcErrors, 24, storm, 0).unwrap();
+    assert_eq!(short.added, frames::STORM_CLUTTER_PER_SCAN * storm);
+    assert_eq!(short.scans.len(), frames::TCAS_DEMO_SCANS);
+    for (k, ((s, w), c)) in short
+        .scans
+        .iter()
+        .zip(&whole.scans)
+        .zip(&clear.scans)
+        .enumerate()
+    {
+        if k < storm {
+            assert_eq!(s, w, "scan {k}");
+        } else {
+            assert_eq!(s, c, "scan {k}");
+        }
+    }
+    assert!(short.bytes.len() < whole.bytes.len() / 2);
+}
+
 /// Every fault stream holds what it says: the frames sent (numbered), the
 /// damaged ones, the garbage; the decoder counts them.
 #[test]
 fn fault_streams_hold_what_they_say() {
     for fault in Fault::ALL {
-        let s = frames::fault_stream(fault, 24, 0).unwrap();
+        let s = frames::fault_stream(fault, 24, frames::TCAS_DEMO_SCANS, 0).unwrap();
         let (messages, stats) = frames::decode_all(&s.bytes);
         let name = fault.name();
         match fault {
@@ -199,7 +225,10 @@ fn fault_streams_hold_what_they_say() {
                 assert_eq!(stats.bytes_skipped as usize, s.garbage_bytes, "{name}")
             }
             Fault::Flood => assert_eq!(s.added, 240),
-            Fault::ClutterStorm => assert_eq!(s.added, 200 * frames::TCAS_DEMO_SCANS),
+            Fault::ClutterStorm => assert_eq!(
+                s.added,
+                frames::STORM_CLUTTER_PER_SCAN * frames::TCAS_DEMO_SCANS
+            ),
             Fault::Gap => assert_eq!(
                 s.scans.len(),
                 frames::TCAS_DEMO_SCANS - frames::GAP_SCANS as usize
