@@ -4,15 +4,13 @@
 # (fuzz/corpus/<target>/), and prints the executions per target.
 #
 #   scripts/fuzz.sh [--grow] [seconds per target] [target ...]
-#   scripts/fuzz.sh --build
 #
 # Each target first runs every input of its committed corpus (libFuzzer
 # reads the corpus before it mutates), then fuzzes until the time is up.
 # Default: 20 s per target, every target (the long run the README
-# documents). The test command runs `scripts/fuzz.sh 5`: the committed
-# corpora replayed plus a few seconds of fuzzing each, after
-# `scripts/fuzz.sh --build` (which only builds the targets, so the test
-# command can start that early, beside the other builds).
+# documents). The test command does not fuzz: its host tests run the
+# committed corpora through the same properties (fuzz/properties/,
+# host-tests/tests/it/fuzz_corpora/).
 # New inputs go to a temporary directory, so the committed corpus stays as
 # it is; with --grow they are added to fuzz/corpus/<target>/ (for a long
 # run; then minimise with `cd fuzz && cargo +nightly fuzz cmin <target>`
@@ -36,14 +34,6 @@ cd "$(dirname "$0")/.."
 # debug assertions (fuzz/Cargo.toml) do not; without it the build takes a
 # third less CPU time and the targets run faster.
 fuzz_options=(--release --sanitizer none)
-
-if [ "${1:-}" = --build ]; then
-    ensure_host_linker
-    ensure_cargo_fuzz
-    # The same build options as `cargo fuzz run` below, so that the runs
-    # reuse this build.
-    cd fuzz && exec cargo +nightly fuzz build "${fuzz_options[@]}"
-fi
 
 grow=
 if [ "${1:-}" = --grow ]; then

@@ -3,7 +3,9 @@
 #   1. formatting (cargo fmt --check, root crate and host-tests),
 #   2. host tests (cd host-tests && cargo test --profile checks, the
 #      release profile at opt-level 1 without LTO; the integration tests
-#      are one binary, host-tests/tests/it/), then, with the same build, the
+#      are one binary, host-tests/tests/it/; among them each fuzz target's
+#      committed corpus run through its properties, fuzz/properties/),
+#      then, with the same build, the
 #      library's doc examples (cargo test -p abtrack --doc) and its
 #      examples/ (built; examples/tcas_cycle.rs run); in lanes beside it:
 #      the library's documentation with no rustdoc warning (cargo doc, as
@@ -39,16 +41,17 @@
 #      the static track table example on the mps2-an386,
 #   6. fault injection (the clutter storm over 30 of the input's 110 scans;
 #      scripts/fault-injection.sh runs it whole) and repeated demo runs on
-#      the three boards (one lane each), a one-hour soak on the Cortex-M3 (docs/firmware-and-boards.md),
-#      each fuzz target's committed corpus replayed plus 5 s of fuzzing
-#      (scripts/fuzz.sh 5; its build starts first, in the background; the
-#      longer run is scripts/fuzz.sh).
+#      the three boards (one lane each), a one-hour soak on the Cortex-M3
+#      (docs/firmware-and-boards.md).
+#
+# The fuzzing itself (nightly, cargo-fuzz) is scripts/fuzz.sh: its build
+# alone took a tenth of this command's CPU time.
 #
 #   scripts/test.sh
 #
 # Installs what is missing (Rust targets, rustfmt and clippy, the
 # minimum-version toolchain, qemu-system-arm, a C compiler and llvm when
-# root, defmt-print, flip-link, nightly and cargo-fuzz). Every step runs
+# root, defmt-print, flip-link). Every step runs
 # even if an earlier one failed; the summary lists them with their wall
 # and CPU times (and when each started), and the whole command's; the exit
 # status is non-zero if any failed. `.ci/run` calls this.
@@ -92,33 +95,7 @@ children_cpu_s() {
     children_cpu_s=$total
 }
 
-# The fuzz targets' build (nightly, its own workspace and target directory)
-# starts now, beside the builds below; the fuzz step waits for it.
-fuzz_build_log=$log_dir/fuzz-build.log
-(
-    status=0 start=$SECONDS
-    bash scripts/fuzz.sh --build >"$fuzz_build_log" 2>&1 || status=$?
-    children_cpu_s
-    echo "the fuzz targets' build, in the background: exit status $status, $((SECONDS - start)) s, $children_cpu_s CPU-s" \
-        >"$log_dir/fuzz-build.summary"
-    echo "$status" >"$log_dir/fuzz-build.status"
-) &
-fuzz_build_pid=$!
-# `|| true`: by the end the build has usually finished, and a failing `kill`
-# under `set -e` would turn a passing run's exit status into 1.
-trap 'kill "$fuzz_build_pid" 2>/dev/null || true; rm -rf "$log_dir"' EXIT
-# The fuzz step (in a lane: a subshell, which cannot `wait` for the build).
-fuzz_after_build() {
-    until [ -s "$log_dir/fuzz-build.status" ]; do sleep 1; done
-    local status
-    status=$(cat "$log_dir/fuzz-build.status")
-    cat "$fuzz_build_log"
-    [ "$status" -eq 0 ] || {
-        echo "the fuzz targets' build failed (exit status $status)" >&2
-        return 1
-    }
-    bash scripts/fuzz.sh 5
-}
+trap 'rm -rf "$log_dir"' EXIT
 
 # step <name> <command...>: runs one step, records PASS/FAIL, its wall
 # time, when it started (seconds since the script started; the lanes share
@@ -295,10 +272,10 @@ build_nrf52840_dk() {
 # library, then the test binary, and leaves a core idle that the other
 # lanes' builds take); then, with that build of the library and its
 # dependencies, the library's doc examples and its examples/ (built, and
-# examples/tcas_cycle.rs run). They run without overflow checks, as the
-# host tests do: the library has no unchecked integer arithmetic to check
-# (clippy's arithmetic_side_effects, in the clippy step) and no debug
-# assertion; the fuzz targets run it with both on.
+# examples/tcas_cycle.rs run). The `checks` profile turns on overflow
+# checks in the library, the CSV reader and the firmware's host modules, as
+# the fuzz targets' profile does (host-tests/Cargo.toml); the library has no
+# debug assertion.
 host_tests_steps() {
     step "cargo fmt --check (host-tests)" in_host_tests cargo fmt --check
     step "host tests (cargo test --profile checks)" in_host_tests cargo test --profile "$(host_profile)"
@@ -410,7 +387,7 @@ library_on_the_host() {
 }
 
 # The builds, and the checks that need no firmware image and no host tool,
-# from the start: three lanes, beside the fuzz targets' build (the machine's
+# from the start: three lanes (the machine's
 # cores stay busy while one lane waits for a single-threaded link).
 in_parallel host_tests_steps library_and_firmware_steps library_on_the_host
 
@@ -503,27 +480,21 @@ fault_injection_mps2_an385() { fault_injection_on mps2-an385; }
 fault_injection_microbit() { fault_injection_on microbit; }
 
 # Lane 6: the soak shortened to one hour of scans (scripts/soak.sh runs the
-# day; its image is built above), then the fuzz targets (their build
-# started first; their own workspace and target directory).
-soak_and_fuzz() {
+# day; its image is built above).
+soak() {
     step "soak, one hour, on mps2-an385" in_host_tests env ABTRACK_SOAK_SCANS=3600 \
         cargo test --profile "$(host_profile)" --test it -- --ignored firmware::soak::soak_mps2_an385
-    step "fuzz: each target's committed corpus replayed, then 5 s of fuzzing (scripts/fuzz.sh 5)" \
-        fuzz_after_build
 }
 
 in_parallel emulated_images stack_marks fault_injection_mps2_an386 fault_injection_mps2_an385 \
-    fault_injection_microbit soak_and_fuzz elf_checks
+    fault_injection_microbit soak elf_checks
 
-# The whole command's CPU time: every lane's and the fuzz build's (waited
-# for here, so that its processes count).
-wait "$fuzz_build_pid" 2>/dev/null || true
+# The whole command's CPU time: every lane's.
 children_cpu_s
 
 echo
 echo "abtrack test summary:"
 sed 's/^/  /' "$results_file"
-[ ! -s "$log_dir/fuzz-build.summary" ] || sed 's/^/  /' "$log_dir/fuzz-build.summary"
 echo "  whole command: $SECONDS s, $children_cpu_s CPU-s (user + system; the lanes side by side; installs included)"
 failures=$(grep -c '^FAIL' "$results_file" || true)
 steps=$(wc -l <"$results_file")

@@ -13,6 +13,7 @@
 mod claims;
 mod filter;
 mod firmware;
+mod fuzz_corpora;
 mod gain;
 mod num;
 mod scan;
