@@ -468,10 +468,11 @@ stack_marks() {
 # the input's first 30 scans of 110 (ABTRACK_CLUTTER_STORM_SCANS): the whole
 # storm, 720 KB through the mps2 boards' one-byte UART, took about 70 s of
 # CPU per board; scripts/fault-injection.sh runs it whole.
+clutter_storm_scans=30
 fault_injection_on() {
     local b=$1
-    step "fault injection (the clutter storm over 30 scans) and repeated runs on $b" in_host_tests \
-        env ABTRACK_CLUTTER_STORM_SCANS=30 cargo test --profile "$(host_profile)" --test it -- --ignored --test-threads=2 \
+    step "fault injection (the clutter storm over $clutter_storm_scans scans) and repeated runs on $b" in_host_tests \
+        env ABTRACK_CLUTTER_STORM_SCANS="$clutter_storm_scans" cargo test --profile "$(host_profile)" --test it -- --ignored --test-threads=2 \
         "firmware::fault_injection::fault_injection_${b//-/_}" \
         "firmware::fault_injection::demo_runs_are_identical_${b//-/_}"
 }

@@ -57,18 +57,28 @@ fn f64_exact(x: Fix) -> Option<f64> {
     (x.to_bits().unsigned_abs() <= 1 << 53).then(|| x.to_f64())
 }
 
-/// One input: the raw words `(a, b, pick)`, drawn from the bytes as
-/// libFuzzer's typed targets draw them (`Arbitrary::arbitrary_take_rest`; an
-/// input too short for them is skipped).
+/// The fuzz target's input: two raw Q32.32 words and a byte that picks
+/// how `a` is drawn.
+pub type Words = (i64, i64, u8);
+
+/// One corpus input: its words drawn from the bytes as libfuzzer-sys's
+/// typed `fuzz_target!` draws them (an input too short for them, or that
+/// does not decode, is skipped, as libFuzzer rejects it). The host tests'
+/// corpus replay calls it; the fuzz target is typed and calls
+/// [`check_words`].
+#[allow(dead_code)]
 pub fn check(data: &[u8]) {
     use arbitrary::{Arbitrary, Unstructured};
-    type Words = (i64, i64, u8);
     if data.len() < <Words as Arbitrary>::size_hint(0).0 {
         return;
     }
-    let Ok(words) = Words::arbitrary_take_rest(Unstructured::new(data)) else {
-        return;
-    };
+    if let Ok(words) = Words::arbitrary_take_rest(Unstructured::new(data)) {
+        check_words(words);
+    }
+}
+
+/// The properties, on one input's words.
+pub fn check_words(words: Words) {
     let (a, b, pick) = (Fix::from_bits(words.0), Fix::from_bits(words.1), words.2);
     // Sentinels and near-range values more often than uniform bits give.
     let a = match pick % 8 {

@@ -225,10 +225,12 @@ fn expected(fault: Fault, fits: bool) -> (bool, Floor) {
 /// the test command's fault-injection time; scripts/fault-injection.sh runs
 /// it whole and writes the results files.
 fn storm_scans() -> usize {
-    std::env::var("ABTRACK_CLUTTER_STORM_SCANS")
-        .ok()
-        .and_then(|s| s.parse().ok())
-        .unwrap_or(frames::TCAS_DEMO_SCANS)
+    match std::env::var("ABTRACK_CLUTTER_STORM_SCANS") {
+        Ok(s) => s
+            .parse()
+            .unwrap_or_else(|_| panic!("ABTRACK_CLUTTER_STORM_SCANS={s:?}: not a number of scans")),
+        Err(_) => frames::TCAS_DEMO_SCANS,
+    }
 }
 
 /// Per intruder, the scans tracked in the demo's input without a fault,

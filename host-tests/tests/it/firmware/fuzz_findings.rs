@@ -1,4 +1,4 @@
-//! Regression tests for what the fuzz targets (fuzz/fuzz_targets/) found,
+//! Regression tests for what the fuzz targets (fuzz/properties/) found,
 //! one per finding, written from the minimised input (docs/safety.md lists
 //! the findings and their inputs under fuzz/corpus/).
 //!

@@ -2,9 +2,11 @@
 //! through the target's properties (`fuzz/properties/`, the same source the
 //! cargo-fuzz targets wrap): each input that once found a new path must
 //! still pass. The fuzzing itself is `scripts/fuzz.sh` (nightly,
-//! cargo-fuzz); the fuzz profile also turns on overflow checks and debug
-//! assertions, which the `checks` profile turns on for the library, the
-//! CSV reader and the firmware's host modules (host-tests/Cargo.toml).
+//! cargo-fuzz). The fuzz profile turns on overflow checks (and debug
+//! assertions, which the library does not use); the `checks` profile turns
+//! them on for the library, the CSV reader and the firmware's host modules
+//! (host-tests/Cargo.toml), not for the properties themselves, whose
+//! arithmetic is wrapping or in i128.
 
 use std::panic::{catch_unwind, AssertUnwindSafe};
 use std::path::{Path, PathBuf};
