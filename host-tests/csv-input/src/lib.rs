@@ -9,7 +9,8 @@
 //!   [`AngleUnit::Degrees`]).
 //!
 //! In both, an optional `alt` column holds the target's reported pressure
-//! altitude in feet; an empty field means the reply carried none. The header
+//! altitude in feet; an empty field, or `NaN` in any case (numpy's and
+//! many exporters' missing value), means the reply carried none. The header
 //! is matched by name: the columns may come in any order, and columns with
 //! other names are ignored. Accepted: a UTF-8 byte-order mark, `\r\n` line
 //! ends, spaces around fields, quoted fields, blank lines (also lines of
@@ -567,10 +568,12 @@ impl Cell<'_> {
         self.record.get(index).unwrap_or("").to_string()
     }
 
-    /// `alt`, which may be empty.
+    /// `alt`, which may be empty or NaN (no altitude reported); an infinity
+    /// is refused.
     fn altitude(&self, v: Option<f64>) -> Result<Option<f64>, CsvError> {
         match v {
             None => Ok(None),
+            Some(v) if v.is_nan() => Ok(None),
             Some(v) => self
                 .value("alt", Some(v), envelope::ALTITUDE_FT, "ft")
                 .map(Some),

@@ -80,11 +80,24 @@ fn header_is_matched_by_name_in_any_order_with_extra_columns() {
         let z = |m: &Measurements| m.rows.iter().map(|r| (r.t, r.z)).collect::<Vec<_>>();
         assert_eq!(z(&m), z(&reference), "{text:?}");
     }
-    // The alt column is read (and checked) when present.
-    let m = read("t,x,y,alt\n0,1,2,8000\n1,3,4,\n").unwrap();
+    // The alt column is read (and checked) when present; empty or NaN is
+    // no altitude, an infinity is refused.
+    let m = read("t,x,y,alt\n0,1,2,8000\n1,3,4,\n2,5,6,NaN\n3,7,8,nan\n").unwrap();
     assert_eq!(
         m.rows.iter().map(|r: &Row| r.alt).collect::<Vec<_>>(),
-        [Some(8000.0), None]
+        [Some(8000.0), None, None, None]
+    );
+    let e = read("t,x,y,alt\n0,1,2,inf\n").unwrap_err();
+    assert!(
+        matches!(
+            e,
+            CsvError::Field {
+                line: 2,
+                name: "alt",
+                ..
+            }
+        ),
+        "{e}"
     );
     // Polar: any order, extra columns, alt optional.
     let p = read_range_azimuth(
