@@ -1,5 +1,6 @@
-//! The CSV reader on arbitrary bytes: the properties in `fuzz/properties/csv_recording.rs`, which the
-//! host tests also run on the committed corpus.
+//! The CSV reader on arbitrary bytes: the properties in
+//! `fuzz/properties/csv_recording.rs`, which the host tests also run on the
+//! committed corpus.
 #![no_main]
 
 #[path = "../properties/csv_recording.rs"]

@@ -1,5 +1,6 @@
-//! A whole tracker scan with arbitrary measurements and times: the properties in `fuzz/properties/tracker_scan.rs`, which the
-//! host tests also run on the committed corpus.
+//! A whole tracker scan with arbitrary measurements and times: the
+//! properties in `fuzz/properties/tracker_scan.rs`, which the host tests
+//! also run on the committed corpus.
 #![no_main]
 
 #[path = "../properties/tracker_scan.rs"]
