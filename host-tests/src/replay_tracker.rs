@@ -166,13 +166,80 @@ pub struct TrackerReplay {
     /// always): [`TrackerReplay::report`].
     pub design: DesignUsed,
     pub unused: Unused,
+    pub one_plot_scans: OnePlotScans,
 }
 
 impl TrackerReplay {
     /// The stderr report: the design, then every measurement not used by
-    /// reason.
+    /// reason, then a note when the file looks like plots time-stamped one
+    /// by one ([`OnePlotScans`]).
     pub fn report(&self) -> String {
-        format!("{}{}", self.design, self.unused)
+        format!("{}{}{}", self.design, self.unused, self.one_plot_scans)
+    }
+}
+
+/// Consecutive scans of one plot each, and those of them whose two plots
+/// are farther apart than one target moves between them (v_max·Δt plus six
+/// measurement σ): plots of different targets, time-stamped one by one,
+/// which the tracker reads as scans of one plot each (docs/host-tools.md).
+#[derive(Debug, Clone, Copy, PartialEq, Default)]
+pub struct OnePlotScans {
+    pub pairs: usize,
+    pub apart: usize,
+}
+
+impl OnePlotScans {
+    fn of(scans: &[FileScan<'_>], design: &TrackerDesign) -> Self {
+        let xy = |m: &Measurement<f64>| match *m {
+            Measurement::Cartesian { x, y } => (x, y),
+            Measurement::Polar { range, azimuth } => (range * azimuth.sin(), range * azimuth.cos()),
+        };
+        let sigma = |m: &Measurement<f64>| match (design.accuracy, *m) {
+            (
+                SensorAccuracy::Polar {
+                    range_sigma,
+                    bearing_sigma,
+                },
+                Measurement::Polar { range, .. },
+            ) => range_sigma.max(range * bearing_sigma),
+            (SensorAccuracy::Cartesian { sigma }, _) => sigma,
+            (SensorAccuracy::Polar { range_sigma, .. }, _) => range_sigma,
+        };
+        let mut out = OnePlotScans::default();
+        for pair in scans.windows(2) {
+            let ([(_, a)], [(_, b)]) = (pair[0].rows.as_slice(), pair[1].rows.as_slice()) else {
+                continue;
+            };
+            out.pairs += 1;
+            let ((xa, ya), (xb, yb)) = (xy(a), xy(b));
+            let reach = design.max_speed * (pair[1].t - pair[0].t) + 6.0 * sigma(a).max(sigma(b));
+            if (xb - xa).hypot(yb - ya) > reach {
+                out.apart += 1;
+            }
+        }
+        out
+    }
+
+    /// At least 10 such pairs, most of them apart.
+    pub fn look_stamped_one_by_one(&self) -> bool {
+        self.pairs >= 10 && 2 * self.apart > self.pairs
+    }
+}
+
+impl std::fmt::Display for OnePlotScans {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        if !self.look_stamped_one_by_one() {
+            return Ok(());
+        }
+        writeln!(
+            f,
+            "replay --tracker: note: in {} of {} pairs of consecutive one-row scans the two \
+             plots are farther apart than a target moves between them (v_max·Δt + 6σ): the \
+             plots look time-stamped one by one; the tracker takes the rows sharing a t as one \
+             scan, so each plot is a scan of its own, which every other track misses \
+             (docs/host-tools.md: give each plot its scan's time)",
+            self.apart, self.pairs
+        )
     }
 }
 
@@ -796,6 +863,7 @@ fn clock_text(first_t: f64, ms: u32) -> String {
 /// A file's scans, ready for the table: the design and the clocked scans.
 struct Prepared<'a, S: abtrack::Numeric> {
     design: DesignUsed,
+    one_plot_scans: OnePlotScans,
     inputs: Vec<ScanInput<'a, S>>,
     added: usize,
     polar: bool,
@@ -829,6 +897,7 @@ fn prepare<'a, S: abtrack::Numeric>(
     let design = design_for(&options.sensor, polar, &times, farthest)?;
     let (inputs, added) = clocked_scans::<S>(scans, design.design.scan_period)?;
     Ok(Prepared {
+        one_plot_scans: OnePlotScans::of(scans, &design.design),
         design,
         inputs,
         added,
@@ -1075,5 +1144,6 @@ fn run_scans<
         scan_log,
         design,
         unused,
+        one_plot_scans: prepared.one_plot_scans,
     })
 }

@@ -896,3 +896,41 @@ fn gaps_are_run_as_empty_scans() {
     let long = tracker("--tracker --clutter-per-km2 0 --scan-period-s 9", &csv).unwrap();
     assert_eq!(long.unused.empty_scans, 0);
 }
+
+/// Plots time-stamped one by one (two targets 3 km apart, each reported
+/// every second, their plots half a second apart) are read as scans of
+/// one plot each; the report says so. The same targets in scans, and one
+/// target alone, raise no note.
+#[test]
+fn plots_time_stamped_one_by_one_are_noted() {
+    let (mut one_by_one, mut in_scans, mut alone) = (
+        String::from("t,x,y\n"),
+        String::from("t,x,y\n"),
+        String::from("t,x,y\n"),
+    );
+    for k in 0..20 {
+        let t = k as f64;
+        writeln!(one_by_one, "{t},{},0", 100.0 * t).unwrap();
+        writeln!(one_by_one, "{},0,{}", t + 0.5, 3000.0 + 100.0 * t).unwrap();
+        writeln!(in_scans, "{t},{},0", 100.0 * t).unwrap();
+        writeln!(in_scans, "{t},0,{}", 3000.0 + 100.0 * t).unwrap();
+        writeln!(alone, "{t},{},0", 100.0 * t).unwrap();
+    }
+    let command = "--tracker --clutter-per-km2 0 --scan-period-s 1";
+    let out = tracker(command, &one_by_one).unwrap();
+    assert_eq!(
+        (out.one_plot_scans.pairs, out.one_plot_scans.apart),
+        (39, 39)
+    );
+    assert!(
+        out.report()
+            .contains("the plots look time-stamped one by one"),
+        "{}",
+        out.report()
+    );
+    for csv in [&in_scans, &alone] {
+        let out = tracker(command, csv).unwrap();
+        assert!(!out.one_plot_scans.look_stamped_one_by_one(), "{csv}");
+        assert!(!out.report().contains("note:"), "{}", out.report());
+    }
+}
