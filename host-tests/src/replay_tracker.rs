@@ -190,11 +190,9 @@ pub struct OnePlotScans {
 
 impl OnePlotScans {
     fn of(scans: &[FileScan<'_>], design: &TrackerDesign) -> Self {
-        let xy = |m: &Measurement<f64>| match *m {
-            Measurement::Cartesian { x, y } => (x, y),
-            Measurement::Polar { range, azimuth } => (range * azimuth.sin(), range * azimuth.cos()),
-        };
+        // The larger of a measurement's σ along and across its range.
         let sigma = |m: &Measurement<f64>| match (design.accuracy, *m) {
+            (SensorAccuracy::Cartesian { sigma }, _) => sigma,
             (
                 SensorAccuracy::Polar {
                     range_sigma,
@@ -202,7 +200,6 @@ impl OnePlotScans {
                 },
                 Measurement::Polar { range, .. },
             ) => range_sigma.max(range * bearing_sigma),
-            (SensorAccuracy::Cartesian { sigma }, _) => sigma,
             (SensorAccuracy::Polar { range_sigma, .. }, _) => range_sigma,
         };
         let mut out = OnePlotScans::default();
@@ -210,8 +207,13 @@ impl OnePlotScans {
             let ([(_, a)], [(_, b)]) = (pair[0].rows.as_slice(), pair[1].rows.as_slice()) else {
                 continue;
             };
+            // Projected as the table projects them; a plot it refuses
+            // makes no pair.
+            let (Ok(oa), Ok(ob)) = (Observation::new(*a), Observation::new(*b)) else {
+                continue;
+            };
             out.pairs += 1;
-            let ((xa, ya), (xb, yb)) = (xy(a), xy(b));
+            let ([xa, ya], [xb, yb]) = (oa.xy(), ob.xy());
             let reach = design.max_speed * (pair[1].t - pair[0].t) + 6.0 * sigma(a).max(sigma(b));
             if (xb - xa).hypot(yb - ya) > reach {
                 out.apart += 1;
