@@ -3,6 +3,7 @@
 
     python3 -m venv /tmp/ss && /tmp/ss/bin/pip install stonesoup==1.9.1
     /tmp/ss/bin/python scripts/stonesoup_scene.py            # both scenes
+    /tmp/ss/bin/python scripts/stonesoup_scene.py --draws [NAME...]   # the scene drawn again
 
 Configured as `replay --tracker` is for the same sensor (its design, printed in
 results/real-adsb/summary.md): a constant-velocity Kalman filter with white acceleration of
@@ -16,6 +17,10 @@ Writes results/real-adsb/stonesoup/<scene>.csv in replay --tracker's layout
 one process per scene takes: the imports and the scene). The real-adsb experiment group
 scores these files with the same metric code as abtrack's when they exist; nothing else needs
 them.
+
+--draws: the scene drawn again (`experiments --only real-adsb` leaves each draw's measurements
+and abtrack's design for it in host-tests/target/scene-draws/); each draw, or those NAMEs, is
+tracked with the design abtrack printed for it, into results/real-adsb/stonesoup/draws/<NAME>.csv.
 """
 import time
 
@@ -24,6 +29,7 @@ START = time.perf_counter()
 import csv  # noqa: E402
 import datetime  # noqa: E402
 import math  # noqa: E402
+import re  # noqa: E402
 import sys  # noqa: E402
 from pathlib import Path  # noqa: E402
 
@@ -48,6 +54,8 @@ IMPORT_SECONDS = time.perf_counter() - START
 ROOT = Path(__file__).resolve().parent.parent
 DATA = ROOT / "host-tests" / "data" / "real" / "scene"
 OUT = ROOT / "results" / "real-adsb" / "stonesoup"
+DRAWS_IN = ROOT / "host-tests" / "target" / "scene-draws"
+DRAWS_OUT = OUT / "draws"
 
 SIGMA_M = 50.0
 Q = 32.0
@@ -102,13 +110,28 @@ def tracker_for(design):
     return initiator, UpdateTimeStepsDeleter(design["delete"]), associator(), updater
 
 
-def run(scene):
-    start = time.perf_counter()
-    initiator, deleter, associator, updater = tracker_for(DESIGN[scene])
+DESIGN_LINE = re.compile(
+    r"design: gate G ([0-9.]+), .*confirm ([0-9]+) of [0-9]+, "
+    r"delete after ([0-9]+) misses \(([0-9]+) tentative\)"
+)
+
+
+def design_of(text):
+    """The design from replay --tracker's design line."""
+    found = DESIGN_LINE.search(text)
+    if not found:
+        sys.exit(f"no design line in: {text!r}")
+    gate, m, delete, tentative = found.groups()
+    return {"gate": float(gate), "m": int(m), "delete": int(delete), "delete_tentative": int(tentative)}
+
+
+def track(design, meas_path):
+    """replay --tracker's layout of Stone Soup's tracks on one measurement file."""
+    initiator, deleter, associator, updater = tracker_for(design)
     tracker = MultiTargetTracker(
         initiator=initiator,
         deleter=deleter,
-        detector=scans(DATA / f"{scene}.meas.csv"),
+        detector=scans(meas_path),
         data_associator=associator,
         updater=updater,
     )
@@ -119,14 +142,36 @@ def run(scene):
         for track in sorted(tracks, key=lambda tr: ids.setdefault(tr.id, len(ids) + 1)):
             sv = track.state_vector
             rows.append(f"{t:.3f},{ids[track.id]},confirmed,{float(sv[0]):.2f},{float(sv[2]):.2f}")
+    return rows, len(ids)
+
+
+def run(scene):
+    start = time.perf_counter()
+    rows, tracks = track(DESIGN[scene], DATA / f"{scene}.meas.csv")
     OUT.mkdir(parents=True, exist_ok=True)
     (OUT / f"{scene}.csv").write_text("\n".join(rows) + "\n")
     # As one process per scene would take: the imports and this scene.
     seconds = IMPORT_SECONDS + time.perf_counter() - start
     (OUT / f"{scene}.time").write_text(f"{seconds:.2f}\n")
-    print(f"{scene}: {len(ids)} tracks, {seconds:.1f} s (imports {IMPORT_SECONDS:.1f} s)", file=sys.stderr)
+    print(f"{scene}: {tracks} tracks, {seconds:.1f} s (imports {IMPORT_SECONDS:.1f} s)", file=sys.stderr)
+
+
+def run_draw(name):
+    start = time.perf_counter()
+    design = design_of((DRAWS_IN / f"{name}.design").read_text())
+    rows, tracks = track(design, DRAWS_IN / f"{name}.meas.csv")
+    DRAWS_OUT.mkdir(parents=True, exist_ok=True)
+    (DRAWS_OUT / f"{name}.csv").write_text("\n".join(rows) + "\n")
+    print(f"{name}: {tracks} tracks, {time.perf_counter() - start:.1f} s", file=sys.stderr)
 
 
 if __name__ == "__main__":
-    for name in sys.argv[1:] or list(DESIGN):
-        run(name)
+    if sys.argv[1:2] == ["--draws"]:
+        names = sys.argv[2:] or sorted(p.name[: -len(".meas.csv")] for p in DRAWS_IN.glob("*.meas.csv"))
+        if not names:
+            sys.exit(f"no draws in {DRAWS_IN}: run `experiments --only real-adsb` first")
+        for name in names:
+            run_draw(name)
+    else:
+        for name in sys.argv[1:] or list(DESIGN):
+            run(name)

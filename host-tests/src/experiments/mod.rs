@@ -17,6 +17,7 @@ pub mod liu;
 pub mod monte_carlo;
 pub mod multi_target;
 pub mod real_adsb;
+pub mod scene_draws;
 pub mod tcas_advisory;
 pub mod tcas_random;
 pub mod tenne_singh;

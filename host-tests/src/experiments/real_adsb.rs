@@ -21,6 +21,8 @@
 //!   [`crate::metrics::track_metrics_with`] (assignment on the distance,
 //!   pairs beyond [`PAIR_LIMIT_M`] dropped) and OSPA ([`OSPA_CUTOFF_M`], order 2) averaged over the scans;
 //!   the whole replay (read, track, write the CSV) is timed in-process.
+//! * The scene drawn again ([`super::scene_draws`]): its truth measured
+//!   with new seeds, also at the held-out scene's clutter density.
 //!
 //! Regenerate with `cd host-tests && cargo run --release --bin experiments
 //! -- --only real-adsb`.
@@ -36,6 +38,7 @@ use abtrack::track::defaults::BANK_30_ACCELERATION;
 use serde::Deserialize;
 
 use super::common::{plot, write_file, Context, PlotSpec, Series, Table};
+use super::scene_draws;
 use crate::kalman::{isotropic, ConstantVelocityKf, ProcessNoise};
 use crate::metrics::{
     common_rmse, mean_ospa, track_metrics_with, PairedPoint, PairingCost, ScanReport, TrackPoint,
@@ -540,7 +543,7 @@ impl Scene {
             numeric,
             schedule,
             sensor: SensorOptions {
-                region_m: Some(50_000.0),
+                region_m: Some(SCENE_HALF_WIDTH_M),
                 sigma_m: Some(SIGMA_M),
                 scan_period_s: Some(4.0),
                 detection_probability: Some(self.detection_probability),
@@ -570,7 +573,9 @@ struct TrackRow {
 }
 
 /// The scene's scan period, ms.
-const SCENE_PERIOD_MS: i64 = 4000;
+pub const SCENE_PERIOD_MS: i64 = 4000;
+/// Half the side of the scene's square (centred on the origin), m.
+pub const SCENE_HALF_WIDTH_M: f64 = 50_000.0;
 
 /// A time as integer milliseconds (the scans' common key).
 fn ms(t: f64) -> i64 {
@@ -1082,7 +1087,9 @@ pub fn run(ctx: &Context) -> Result<(), String> {
             common.join("; ")
         );
     }
-    summary.push_str("\nTracks over truth: `scene_<name>.svg`; flights: `flight_<name>.svg`.\n");
+    summary.push_str("\nTracks over truth: `scene_<name>.svg`; flights: `flight_<name>.svg`.\n\n");
+    let truth = read_scene_truth(&data, &SCENES[0])?;
+    scene_draws::run(&dir, &scene_draws::scratch_dir(), &truth, &mut summary)?;
     write_file(&dir.join("summary.md"), &summary)
 }
 
