@@ -23,32 +23,23 @@ use crate::noise::{
 use crate::replay::Numeric;
 use crate::replay_tracker::replay_tracker_reader;
 
-/// A detection and clutter condition of the scene.
-#[derive(Debug, Clone, Copy)]
-pub struct Condition {
-    /// The name of the draws' files and rows.
-    pub name: &'static str,
-    pub detection_probability: f64,
-    /// Clutter plots per scan (Poisson mean) over the whole square.
-    pub clutter_per_scan: f64,
-}
-
-/// The dev files' two conditions and the held-out scene's.
-pub const CONDITIONS: [Condition; 3] = [
-    Condition {
+/// The dev files' two conditions and the held-out scene's (P_D 0.7, 100
+/// clutter plots a scan), named as the draws' files and rows.
+pub const CONDITIONS: [Scene; 3] = [
+    Scene {
         name: "pd0.9_clutter20",
         detection_probability: 0.9,
-        clutter_per_scan: 20.0,
+        clutter_per_km2: 0.002,
     },
-    Condition {
+    Scene {
         name: "pd0.7_clutter60",
         detection_probability: 0.7,
-        clutter_per_scan: 60.0,
+        clutter_per_km2: 0.006,
     },
-    Condition {
+    Scene {
         name: "pd0.7_clutter100",
         detection_probability: 0.7,
-        clutter_per_scan: 100.0,
+        clutter_per_km2: 0.01,
     },
 ];
 
@@ -58,28 +49,18 @@ pub const DRAW_SEEDS: [u64; 3] = [1, 2, 3];
 /// The scene's last scan, ms.
 const LAST_SCAN_MS: i64 = 1_200_000;
 
-impl Condition {
-    /// The clutter density the tracker is configured with, per km².
-    pub fn clutter_per_km2(&self) -> f64 {
-        let side_km = 2.0 * SCENE_HALF_WIDTH_M / 1000.0;
-        self.clutter_per_scan / (side_km * side_km)
-    }
-
-    /// The scene as the tracker is configured for this condition.
-    fn scene(&self) -> Scene {
-        Scene {
-            name: self.name,
-            detection_probability: self.detection_probability,
-            clutter_per_km2: self.clutter_per_km2(),
-        }
-    }
+/// The mean number of clutter plots a scan of `condition` over the whole
+/// square.
+pub fn clutter_per_scan(condition: &Scene) -> f64 {
+    let side_km = 2.0 * SCENE_HALF_WIDTH_M / 1000.0;
+    condition.clutter_per_km2 * side_km * side_km
 }
 
 /// The measurement file (`t,x,y`) of one draw: each scan (every 4 s to
 /// 1200 s) detects each truth point with P_D and perturbs it by N(0, σ²)
 /// per axis, adds Poisson(clutter) plots uniform over the square, and lists
 /// the scan's plots in a random order.
-pub fn draw(truth: &BTreeMap<i64, Vec<TruthPoint>>, condition: &Condition, stream: u64) -> String {
+pub fn draw(truth: &BTreeMap<i64, Vec<TruthPoint>>, condition: &Scene, stream: u64) -> String {
     let mut rng = rng_from_seed(stream);
     let mut out = String::from("t,x,y\n");
     for scan in 0..=LAST_SCAN_MS / SCENE_PERIOD_MS {
@@ -93,7 +74,7 @@ pub fn draw(truth: &BTreeMap<i64, Vec<TruthPoint>>, condition: &Condition, strea
                 ]);
             }
         }
-        for _ in 0..poisson(&mut rng, condition.clutter_per_scan) {
+        for _ in 0..poisson(&mut rng, clutter_per_scan(condition)) {
             plots.push([
                 uniform(&mut rng, -SCENE_HALF_WIDTH_M, SCENE_HALF_WIDTH_M),
                 uniform(&mut rng, -SCENE_HALF_WIDTH_M, SCENE_HALF_WIDTH_M),
@@ -121,12 +102,12 @@ pub fn measurements(truth: &BTreeMap<i64, Vec<TruthPoint>>, index: usize, seed: 
 /// in [`SceneRun::design`]).
 pub fn track(
     truth: &BTreeMap<i64, Vec<TruthPoint>>,
-    condition: &Condition,
+    condition: &Scene,
     text: &str,
     numeric: Numeric,
     label: &str,
 ) -> Result<SceneRun, String> {
-    let replay = replay_tracker_reader(&condition.scene().options(numeric, None), text.as_bytes())
+    let replay = replay_tracker_reader(&condition.options(numeric, None), text.as_bytes())
         .map_err(|e| format!("{} {label}: {e}", condition.name))?;
     score_tracks(
         label,
@@ -167,7 +148,7 @@ pub fn scratch_dir() -> std::path::PathBuf {
 }
 
 /// The file name of one draw (without extension).
-pub fn draw_name(condition: &Condition, seed: u64) -> String {
+pub fn draw_name(condition: &Scene, seed: u64) -> String {
     format!("{}_seed{seed}", condition.name)
 }
 
@@ -176,7 +157,7 @@ pub fn draw_name(condition: &Condition, seed: u64) -> String {
 /// group's folder `dir`.
 pub fn stonesoup_draw(
     dir: &Path,
-    condition: &Condition,
+    condition: &Scene,
     seed: u64,
     truth: &BTreeMap<i64, Vec<TruthPoint>>,
 ) -> Result<Option<SceneRun>, String> {
@@ -333,13 +314,15 @@ pub fn run(
          The scene's truth measured again as its README says the files were made (each truth \
          point detected with P_D and perturbed by N(0, {SIGMA_M}²) m per axis, Poisson clutter \
          uniform over the square, a scan's plots in random order), seeds {DRAW_SEEDS:?}, in the \
-         dev files' two conditions and in the held-out scene's (P_D 0.7, 100 clutter plots a \
-         scan, {:.3} per km²), each run as `replay --tracker` is configured from those figures. \
+         dev files' two conditions and in the held-out scene's (P_D {}, {:.0} clutter plots a \
+         scan, {} per km²), each run as `replay --tracker` is configured from those figures. \
          Scored as above (pairs beyond {PAIR_LIMIT_M} m dropped, OSPA c = {OSPA_CUTOFF_M} m). \
          Mean over the draws (least–most); per draw: `scene_draws.md`. Stone Soup rows, when \
          present, score what `scripts/stonesoup_scene.py --draws` wrote into `{DRAWS_DIR}/` \
          from the drawn files this group leaves in `host-tests/target/scene-draws/`.\n",
-        CONDITIONS[2].clutter_per_km2(),
+        CONDITIONS[2].detection_probability,
+        clutter_per_scan(&CONDITIONS[2]),
+        CONDITIONS[2].clutter_per_km2,
     );
     let _ = writeln!(summary, "```text\n{}```\n", designs.join(""));
     summary.push_str(&means.to_markdown());

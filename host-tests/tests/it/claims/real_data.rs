@@ -5,10 +5,10 @@
 
 use abtrack_host_tests::experiments::real_adsb::{
     best_kalman_q, data_dir, evaluate_segment, median, read_scene_truth, read_segments, run_scene,
-    truth_for, Figure, SceneRun, Segment, Timing, GRID_MAX_GAP_S, KALMAN_Q_GRID, SCENES,
+    truth_for, Figure, Scene, SceneRun, Segment, Timing, GRID_MAX_GAP_S, KALMAN_Q_GRID, SCENES,
 };
 use abtrack_host_tests::experiments::scene_draws::{
-    self, draw, measurements, Condition, CONDITIONS, DRAW_SEEDS,
+    self, draw, measurements, CONDITIONS, DRAW_SEEDS,
 };
 use abtrack_host_tests::metrics::{
     mean_ospa, track_metrics_with, PairingCost, ScanReport, TrackPoint, TrackStatus, TruthPoint,
@@ -137,7 +137,7 @@ fn the_hard_scene_keeps_identities_through_missed_detections() {
 fn a_drawn_scene_follows_the_recipe_of_the_folders_files() {
     let truth = read_scene_truth(&data_dir(), &SCENES[0]).unwrap();
     let points: usize = truth.values().map(Vec::len).sum();
-    let plots = |condition: &Condition, stream: u64| -> Vec<(i64, f64, f64)> {
+    let plots = |condition: &Scene, stream: u64| -> Vec<(i64, f64, f64)> {
         let text = draw(&truth, condition, stream);
         let mut lines = text.lines();
         assert_eq!(lines.next(), Some("t,x,y"));
@@ -148,10 +148,11 @@ fn a_drawn_scene_follows_the_recipe_of_the_folders_files() {
             })
             .collect()
     };
-    let only = |pd: f64, clutter: f64| Condition {
+    // Clutter per km² over the 100 km square: 0.01 is 100 plots a scan.
+    let only = |pd: f64, clutter_per_km2: f64| Scene {
         name: "recipe",
         detection_probability: pd,
-        clutter_per_scan: clutter,
+        clutter_per_km2,
     };
     // Every point detected, no clutter: one plot per truth point, within
     // 5σ of a truth point of its scan.
@@ -172,7 +173,7 @@ fn a_drawn_scene_follows_the_recipe_of_the_folders_files() {
     );
     // Clutter alone: Poisson(100) in each of the 301 scans, within 4σ of
     // the total, inside the square, at the scan times.
-    let clutter = plots(&only(0.0, 100.0), 3);
+    let clutter = plots(&only(0.0, 0.01), 3);
     let expected = 100.0 * 301.0;
     assert!((clutter.len() as f64 - expected).abs() < 4.0 * expected.sqrt());
     for &(t, x, y) in &clutter {
@@ -190,7 +191,7 @@ fn the_scene_drawn_again_at_the_held_out_clutter_agrees_in_every_number_type() {
     let truth = read_scene_truth(&data_dir(), &SCENES[0]).unwrap();
     let index = CONDITIONS
         .iter()
-        .position(|c| c.clutter_per_scan == 100.0)
+        .position(|c| c.clutter_per_km2 == 0.01)
         .unwrap();
     let condition = &CONDITIONS[index];
     for seed in DRAW_SEEDS {
