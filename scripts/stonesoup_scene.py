@@ -139,9 +139,9 @@ def track(design, meas_path):
     rows = ["t,track_id,status,x,y"]
     for when, tracks in tracker:
         t = (when - EPOCH).total_seconds()
-        for track in sorted(tracks, key=lambda tr: ids.setdefault(tr.id, len(ids) + 1)):
-            sv = track.state_vector
-            rows.append(f"{t:.3f},{ids[track.id]},confirmed,{float(sv[0]):.2f},{float(sv[2]):.2f}")
+        for reported in sorted(tracks, key=lambda tr: ids.setdefault(tr.id, len(ids) + 1)):
+            sv = reported.state_vector
+            rows.append(f"{t:.3f},{ids[reported.id]},confirmed,{float(sv[0]):.2f},{float(sv[2]):.2f}")
     return rows, len(ids)
 
 

@@ -725,7 +725,7 @@ pub fn score_tracks(
 /// `scripts/stonesoup_scene.py` has written them into `group_dir`.
 fn stonesoup_output(group_dir: &Path, scene: &Scene) -> Option<(String, f64)> {
     let base = group_dir.join(STONESOUP_DIR);
-    let csv_text = fs::read_to_string(base.join(format!("{}.csv", scene.name))).ok()?;
+    let csv_text = stonesoup_tracks(&base, scene.name)?;
     let seconds = fs::read_to_string(base.join(format!("{}.time", scene.name)))
         .ok()?
         .trim()
@@ -734,28 +734,38 @@ fn stonesoup_output(group_dir: &Path, scene: &Scene) -> Option<(String, f64)> {
     Some((csv_text, seconds))
 }
 
+/// The tracks `scripts/stonesoup_scene.py` wrote into `dir` for the
+/// measurement file `name`, if it did.
+pub fn stonesoup_tracks(dir: &Path, name: &str) -> Option<String> {
+    fs::read_to_string(dir.join(format!("{name}.csv"))).ok()
+}
+
 /// Where `scripts/stonesoup_scene.py` writes, under the group's folder.
 pub const STONESOUP_DIR: &str = "stonesoup";
-/// The scene table's label of those rows.
-const STONESOUP_LABEL: &str = "Stone Soup 1.9.1 GNN (scripts/stonesoup_scene.py)";
+/// The label of those tracks' rows.
+pub const STONESOUP_LABEL: &str = "Stone Soup 1.9.1 GNN (scripts/stonesoup_scene.py)";
+
+/// The number types the scene runs the default filter in, with their
+/// labels.
+pub const SCENE_NUMERICS: [(Numeric, &str); 3] = [
+    (Numeric::F64, "f64"),
+    (Numeric::F32, "f32"),
+    (Numeric::Fixed32, "fast fixed point"),
+];
 
 /// The tracker configurations of the scene table: the default filter in
-/// f64, f32 and the fast fixed point, and `--schedule auto:sigma=50` in
-/// f64.
+/// each of [`SCENE_NUMERICS`], and `--schedule auto:sigma=50` in f64.
 pub fn scene_configurations(scene: &Scene) -> Result<Vec<(String, TrackerOptions)>, String> {
     let auto = ScheduleSpec::parse(AUTO).map_err(|e| format!("{AUTO}: {e}"))?;
-    Ok(vec![
-        ("f64".into(), scene.options(Numeric::F64, None)),
-        ("f32".into(), scene.options(Numeric::F32, None)),
-        (
-            "fast fixed point".into(),
-            scene.options(Numeric::Fixed32, None),
-        ),
-        (
-            format!("f64, --schedule {AUTO}"),
-            scene.options(Numeric::F64, Some(auto)),
-        ),
-    ])
+    let mut configurations: Vec<(String, TrackerOptions)> = SCENE_NUMERICS
+        .iter()
+        .map(|&(numeric, label)| (label.to_string(), scene.options(numeric, None)))
+        .collect();
+    configurations.push((
+        format!("f64, --schedule {AUTO}"),
+        scene.options(Numeric::F64, Some(auto)),
+    ));
+    Ok(configurations)
 }
 
 // ---------------------------------------------------------------------------

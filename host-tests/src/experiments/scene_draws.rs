@@ -1,6 +1,7 @@
 //! The real scene drawn again: its truth measured with new seeds, in the dev
-//! folder's two conditions and in the held-out scene's (P_D 0.7, 100 clutter
-//! plots a scan), as the folder's README says its files were made. One draw
+//! folder's two conditions and in the condition of the project's held-out
+//! scene (not in the repository: P_D 0.7, 100 clutter plots a scan), as the
+//! folder's README says its files were made. One draw
 //! (the folder's, seed 7) says little about a difference of a few metres or
 //! a few thousandths of coverage; the draws give the spread, and the third
 //! condition checks that the design configured from the sensor's figures
@@ -13,8 +14,8 @@ use std::path::Path;
 
 use super::common::{write_file, Table};
 use super::real_adsb::{
-    score_tracks, Scene, SceneRun, OSPA_CUTOFF_M, PAIR_LIMIT_M, SCENE_HALF_WIDTH_M,
-    SCENE_PERIOD_MS, SIGMA_M,
+    score_tracks, stonesoup_tracks, Scene, SceneRun, OSPA_CUTOFF_M, PAIR_LIMIT_M,
+    SCENE_HALF_WIDTH_M, SCENE_NUMERICS, SCENE_PERIOD_MS, SIGMA_M, STONESOUP_DIR, STONESOUP_LABEL,
 };
 use crate::metrics::{common_rmse, TruthPoint};
 use crate::noise::{
@@ -59,7 +60,9 @@ pub fn clutter_per_scan(condition: &Scene) -> f64 {
 /// The measurement file (`t,x,y`) of one draw: each scan (every 4 s to
 /// 1200 s) detects each truth point with P_D and perturbs it by N(0, σ²)
 /// per axis, adds Poisson(clutter) plots uniform over the square, and lists
-/// the scan's plots in a random order.
+/// the scan's plots in a random order (the folder's files list the
+/// detections in the truth's order, then the clutter: a tracker must not
+/// depend on that).
 pub fn draw(truth: &BTreeMap<i64, Vec<TruthPoint>>, condition: &Scene, stream: u64) -> String {
     let mut rng = rng_from_seed(stream);
     let mut out = String::from("t,x,y\n");
@@ -126,19 +129,9 @@ struct DrawScore {
     run: SceneRun,
 }
 
-/// The number types the draws run in.
-pub const NUMERICS: [(Numeric, &str); 3] = [
-    (Numeric::F64, "f64"),
-    (Numeric::F32, "f32"),
-    (Numeric::Fixed32, "fast fixed point"),
-];
-
-/// Stone Soup's label in the draws' tables.
-const STONESOUP: &str = "Stone Soup 1.9.1 GNN";
-
 /// Where `scripts/stonesoup_scene.py --draws` reads the drawn files and
 /// writes its tracks, under the group's folder.
-pub const DRAWS_DIR: &str = "stonesoup/draws";
+pub const DRAWS_DIR: &str = "draws";
 
 /// Where the drawn measurement files and the tracker's design for each
 /// are written (`host-tests/target/scene-draws/`): inputs of
@@ -161,19 +154,19 @@ pub fn stonesoup_draw(
     seed: u64,
     truth: &BTreeMap<i64, Vec<TruthPoint>>,
 ) -> Result<Option<SceneRun>, String> {
-    let path = dir
-        .join(DRAWS_DIR)
-        .join(format!("{}.csv", draw_name(condition, seed)));
-    let Ok(csv_text) = fs::read_to_string(&path) else {
+    let Some(csv_text) = stonesoup_tracks(
+        &dir.join(STONESOUP_DIR).join(DRAWS_DIR),
+        &draw_name(condition, seed),
+    ) else {
         return Ok(None);
     };
-    score_tracks(STONESOUP, &csv_text, truth, f64::NAN, String::new()).map(Some)
+    score_tracks(STONESOUP_LABEL, &csv_text, truth, f64::NAN, String::new()).map(Some)
 }
 
 /// Runs the draws, writes `scene_draws.csv`/`.md` into `dir` and the drawn
 /// measurement files with the tracker's design into `scratch` (for Stone
 /// Soup), and appends the section to `summary`. Stone Soup's tracks are
-/// scored where `dir`/[`DRAWS_DIR`] has them.
+/// scored where its folder has them.
 pub fn run(
     dir: &Path,
     scratch: &Path,
@@ -194,7 +187,7 @@ pub fn run(
         for &seed in &DRAW_SEEDS {
             let text = measurements(truth, c, seed);
             let name = draw_name(condition, seed);
-            for (numeric, label) in NUMERICS {
+            for (numeric, label) in SCENE_NUMERICS {
                 let run = track(truth, condition, &text, numeric, label)?;
                 if numeric == Numeric::F64 {
                     write_file(&scratch.join(format!("{name}.meas.csv")), &text)?;
@@ -211,9 +204,9 @@ pub fn run(
                 });
             }
             if let Some(run) = stonesoup_draw(dir, condition, seed, truth)? {
-                let ours = scores
-                    .iter()
-                    .find(|s| s.condition == c && s.seed == seed && s.tracker == NUMERICS[0].1);
+                let ours = scores.iter().find(|s| {
+                    s.condition == c && s.seed == seed && s.tracker == SCENE_NUMERICS[0].1
+                });
                 if let Some((a, b, n)) = ours.and_then(|o| common_rmse(&o.run.pairs, &run.pairs)) {
                     common.push([
                         condition.name.to_string(),
@@ -226,7 +219,7 @@ pub fn run(
                 scores.push(DrawScore {
                     condition: c,
                     seed,
-                    tracker: STONESOUP.to_string(),
+                    tracker: STONESOUP_LABEL.to_string(),
                     run,
                 });
             }
@@ -273,8 +266,8 @@ pub fn run(
         "false tracks",
     ]);
     for (c, condition) in CONDITIONS.iter().enumerate() {
-        let mut trackers: Vec<&str> = NUMERICS.iter().map(|(_, l)| *l).collect();
-        trackers.push(STONESOUP);
+        let mut trackers: Vec<&str> = SCENE_NUMERICS.iter().map(|(_, l)| *l).collect();
+        trackers.push(STONESOUP_LABEL);
         for tracker in trackers {
             let runs: Vec<&SceneRun> = scores
                 .iter()
@@ -313,12 +306,14 @@ pub fn run(
         "## The scene drawn again\n\n\
          The scene's truth measured again as its README says the files were made (each truth \
          point detected with P_D and perturbed by N(0, {SIGMA_M}²) m per axis, Poisson clutter \
-         uniform over the square, a scan's plots in random order), seeds {DRAW_SEEDS:?}, in the \
-         dev files' two conditions and in the held-out scene's (P_D {}, {:.0} clutter plots a \
+         uniform over the square; a scan's plots in random order, where the files list the \
+         detections first), seeds {DRAW_SEEDS:?}, in the \
+         dev files' two conditions and in the condition of the held-out scene the project is \
+         checked on (not in the repository; P_D {}, {:.0} clutter plots a \
          scan, {} per km²), each run as `replay --tracker` is configured from those figures. \
          Scored as above (pairs beyond {PAIR_LIMIT_M} m dropped, OSPA c = {OSPA_CUTOFF_M} m). \
          Mean over the draws (least–most); per draw: `scene_draws.md`. Stone Soup rows, when \
-         present, score what `scripts/stonesoup_scene.py --draws` wrote into `{DRAWS_DIR}/` \
+         present, score what `scripts/stonesoup_scene.py --draws` wrote into `{STONESOUP_DIR}/{DRAWS_DIR}/` \
          from the drawn files this group leaves in `host-tests/target/scene-draws/`.\n",
         CONDITIONS[2].detection_probability,
         clutter_per_scan(&CONDITIONS[2]),

@@ -6,6 +6,7 @@
 use abtrack_host_tests::experiments::real_adsb::{
     best_kalman_q, data_dir, evaluate_segment, median, read_scene_truth, read_segments, run_scene,
     truth_for, Figure, Scene, SceneRun, Segment, Timing, GRID_MAX_GAP_S, KALMAN_Q_GRID, SCENES,
+    SCENE_NUMERICS,
 };
 use abtrack_host_tests::experiments::scene_draws::{
     self, draw, measurements, CONDITIONS, DRAW_SEEDS,
@@ -182,8 +183,9 @@ fn a_drawn_scene_follows_the_recipe_of_the_folders_files() {
     }
 }
 
-/// The scene drawn again in the held-out scene's condition (P_D 0.7, 100
-/// clutter plots a scan; results/real-adsb/scene_draws.md): the design is
+/// The scene drawn again in the condition of the project's held-out scene
+/// (not in the repository: P_D 0.7, 100 clutter plots a scan;
+/// results/real-adsb/scene_draws.md): the design is
 /// configured from those figures, and the tracker gives the same figures
 /// in f64, f32 and the fast fixed point on every draw.
 #[test]
@@ -196,7 +198,7 @@ fn the_scene_drawn_again_at_the_held_out_clutter_agrees_in_every_number_type() {
     let condition = &CONDITIONS[index];
     for seed in DRAW_SEEDS {
         let text = measurements(&truth, index, seed);
-        let runs: Vec<_> = scene_draws::NUMERICS
+        let runs: Vec<_> = SCENE_NUMERICS
             .iter()
             .map(|&(n, label)| scene_draws::track(&truth, condition, &text, n, label).unwrap())
             .collect();
