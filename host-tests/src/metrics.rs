@@ -558,8 +558,43 @@ pub struct PairedPoint {
     pub t: f64,
     /// The target's id.
     pub target: u32,
+    /// The paired track's id.
+    pub track: u32,
     /// The distance from the track to the target (m).
     pub distance: f64,
+}
+
+/// The identity changes among `pairs` (a target's paired track changes
+/// between two of its paired scans) where, between those scans, the old
+/// track was updated (status [`TrackStatus::Confirmed`] in `scans`) more
+/// than `far` m from the target: it took another plot (clutter or another
+/// target's) rather than losing the target while it coasted. Meaningful
+/// for a tracker whose output tells updates from coasting.
+pub fn id_changes_after_far_updates(
+    scans: &[ScanReport],
+    pairs: &[PairedPoint],
+    far: f64,
+) -> usize {
+    let mut by_target: BTreeMap<u32, Vec<&PairedPoint>> = BTreeMap::new();
+    for p in pairs {
+        by_target.entry(p.target).or_default().push(p);
+    }
+    let far_update = |target: u32, track: u32, after: f64, until: f64| {
+        let first = scans.partition_point(|s| s.t <= after);
+        scans[first..].iter().take_while(|s| s.t <= until).any(|s| {
+            let truth = s.truth.iter().find(|p| p.id == target);
+            let updated = s
+                .tracks
+                .iter()
+                .find(|t| t.id == track && t.status == TrackStatus::Confirmed);
+            matches!((truth, updated), (Some(p), Some(t)) if (t.x - p.x).hypot(t.y - p.y) > far)
+        })
+    };
+    by_target
+        .values()
+        .flat_map(|pairs| pairs.windows(2))
+        .filter(|w| w[0].track != w[1].track && far_update(w[0].target, w[0].track, w[0].t, w[1].t))
+        .count()
 }
 
 /// The RMSE of each of two runs' pairs over the (scan, target) points both
@@ -689,6 +724,7 @@ pub fn track_metrics_with(scans: &[ScanReport], gate: f64, cost: PairingCost) ->
             paired.push(PairedPoint {
                 t: scan.t,
                 target: p.id,
+                track: id,
                 distance: distance[i][j],
             });
             acc.first_tracked_t.get_or_insert(scan.t);

@@ -17,7 +17,7 @@ use super::real_adsb::{
     score_tracks, stonesoup_tracks, Scene, SceneRun, OSPA_CUTOFF_M, PAIR_LIMIT_M,
     SCENE_HALF_WIDTH_M, SCENE_NUMERICS, SCENE_PERIOD_MS, SIGMA_M, STONESOUP_DIR, STONESOUP_LABEL,
 };
-use crate::metrics::{common_rmse, TruthPoint};
+use crate::metrics::{common_rmse, id_changes_after_far_updates, TruthPoint};
 use crate::noise::{
     bernoulli, derive_seed, poisson, rng_from_seed, shuffle, standard_normal, uniform,
 };
@@ -129,6 +129,16 @@ struct DrawScore {
     run: SceneRun,
 }
 
+/// The cell of a figure that does not apply.
+const NOT_APPLICABLE: &str = "—";
+
+/// [`id_changes_after_far_updates`] (farther than [`PAIR_LIMIT_M`]) of an
+/// abtrack run; `None` for Stone Soup's, whose rows carry no update status.
+fn far_updates(tracker: &str, run: &SceneRun) -> Option<usize> {
+    (tracker != STONESOUP_LABEL)
+        .then(|| id_changes_after_far_updates(&run.scans, &run.pairs, PAIR_LIMIT_M))
+}
+
 /// Where `scripts/stonesoup_scene.py --draws` reads the drawn files and
 /// writes its tracks, under the group's folder.
 pub const DRAWS_DIR: &str = "draws";
@@ -233,6 +243,7 @@ pub fn run(
         "coverage",
         "continuity",
         "id changes",
+        "of which after a far update",
         "RMSE (m)",
         "OSPA (m)",
         "false tracks",
@@ -246,6 +257,7 @@ pub fn run(
             format!("{:.3}", s.run.coverage),
             format!("{:.3}", s.run.continuity),
             s.run.id_changes.to_string(),
+            far_updates(&s.tracker, &s.run).map_or(NOT_APPLICABLE.to_string(), |n| n.to_string()),
             format!("{:.1}", s.run.rmse),
             format!("{:.1}", s.run.ospa),
             s.run.false_tracks.to_string(),
@@ -261,6 +273,7 @@ pub fn run(
         "draws",
         "coverage",
         "id changes",
+        "of which after a far update",
         "RMSE (m)",
         "OSPA (m)",
         "false tracks",
@@ -293,6 +306,11 @@ pub fn run(
                 runs.len().to_string(),
                 spread(&|r| r.coverage, 3),
                 spread(&|r| r.id_changes as f64, 1),
+                if far_updates(tracker, runs[0]).is_some() {
+                    spread(&|r| far_updates(tracker, r).unwrap_or(0) as f64, 1)
+                } else {
+                    NOT_APPLICABLE.to_string()
+                },
                 spread(&|r| r.rmse, 1),
                 spread(&|r| r.ospa, 1),
                 spread(&|r| r.false_tracks as f64, 1),
@@ -312,6 +330,10 @@ pub fn run(
          checked on (not in the repository; P_D {}, {:.0} clutter plots a \
          scan, {} per km²), each run as `replay --tracker` is configured from those figures. \
          Scored as above (pairs beyond {PAIR_LIMIT_M} m dropped, OSPA c = {OSPA_CUTOFF_M} m). \
+         \"After a far update\": identity changes where the old track was updated, between \
+         the flight's last two pairings, with a plot more than {PAIR_LIMIT_M} m from the flight \
+         (it took clutter or another aircraft's plot; the others lost the flight while \
+         coasting); abtrack's only, as Stone Soup's output has no update status. \
          Mean over the draws (least–most); per draw: `scene_draws.md`. Stone Soup rows, when \
          present, score what `scripts/stonesoup_scene.py --draws` wrote into `{STONESOUP_DIR}/{DRAWS_DIR}/` \
          from the drawn files this group leaves in `host-tests/target/scene-draws/`.\n",

@@ -448,6 +448,7 @@ fn common_rmse_takes_the_points_both_runs_paired() {
     let p = |t: f64, target: u32, distance: f64| PairedPoint {
         t,
         target,
+        track: 0,
         distance,
     };
     // Common: (4 s, 1) and (8 s, 2); each run has one point of its own.
@@ -458,4 +459,53 @@ fn common_rmse_takes_the_points_both_runs_paired() {
     assert!((ra - (12.5f64).sqrt()).abs() < 1e-12, "{ra}");
     assert!((rb - (50.0f64).sqrt()).abs() < 1e-12, "{rb}");
     assert_eq!(common_rmse(&a[2..], &b[..2]), None);
+}
+
+/// `id_changes_after_far_updates` tells a track that took a far plot from
+/// one that lost its target while it coasted.
+#[test]
+fn id_changes_after_far_updates_tells_a_far_update_from_a_coast() {
+    let truth = |x: f64| vec![TruthPoint { id: 1, x, y: 0.0 }];
+    // The target moves 100 m a scan; track 1 follows it for two scans, then
+    // (scan 3) is `status` 800 m away while the target is unpaired, and
+    // track 2 has it from scan 4.
+    let scans_with = |status: TrackStatus| {
+        vec![
+            ScanReport {
+                t: 4.0,
+                truth: truth(0.0),
+                tracks: vec![tp(1, TrackStatus::Confirmed, 10.0, 0.0)],
+            },
+            ScanReport {
+                t: 8.0,
+                truth: truth(100.0),
+                tracks: vec![tp(1, TrackStatus::Confirmed, 110.0, 0.0)],
+            },
+            ScanReport {
+                t: 12.0,
+                truth: truth(200.0),
+                tracks: vec![tp(1, status, 200.0, 800.0)],
+            },
+            ScanReport {
+                t: 16.0,
+                truth: truth(300.0),
+                tracks: vec![
+                    tp(1, TrackStatus::Coasting, 300.0, 900.0),
+                    tp(2, TrackStatus::Confirmed, 310.0, 0.0),
+                ],
+            },
+        ]
+    };
+    for (status, after_far_update) in [(TrackStatus::Confirmed, 1), (TrackStatus::Coasting, 0)] {
+        let scans = scans_with(status);
+        let m = track_metrics_with(&scans, 500.0, PairingCost::Distance);
+        assert_eq!(m.id_changes, 1, "{status:?}");
+        assert_eq!(
+            id_changes_after_far_updates(&scans, &m.pairs, 500.0),
+            after_far_update,
+            "{status:?}"
+        );
+        // Nothing is far within 1 km.
+        assert_eq!(id_changes_after_far_updates(&scans, &m.pairs, 1000.0), 0);
+    }
 }
