@@ -316,8 +316,8 @@ impl<const N: usize> Kalman<N> {
         }
     }
     /// The Kalman gain K (N × 2) of the last filtered update. Per axis the αβ
-    /// equivalents are α = K[pos][axis], β = T·K[vel][axis] and, for the CA
-    /// filter, γ = 2T²·K[acc][axis] (Tenne & Singh's γ/(2T²)).
+    /// equivalents are α = `K[pos][axis]`, β = T·`K[vel][axis]` and, for the
+    /// CA filter, γ = 2T²·`K[acc][axis]` (Tenne & Singh's γ/(2T²)).
     pub fn last_gain(&self) -> Option<[[f64; 2]; N]> {
         self.last_gain
     }

@@ -1,6 +1,6 @@
 //! Host-side support for abtrack: what needs `std`.
 //!
-//! * [`reference`]: the independent `f64` reference filters, written straight
+//! * [`reference`](mod@reference): the independent `f64` reference filters, written straight
 //!   from the papers; [`reference_ra`] the same for He et al.'s range-azimuth
 //!   filter; [`reference_tcas`] the TCAS II v7.1 logic on true states.
 //! * [`encounters`]: the TCAS encounter suite and the demo scenario;

@@ -41,7 +41,7 @@
 //!   line of sight that is itself off by ±5°), so it is *not* an optimal
 //!   bound; it is what "just use a Kalman filter" gives.
 //! * **Batch ML (yardstick)** — the maximum-likelihood straight line through
-//!   all polar measurements so far ([`track_batch_ml`]): the truth is exactly
+//!   all polar measurements so far (`track_batch_ml`): the truth is exactly
 //!   straight, so this is what the data allow.
 //! * **Eq. (9) as printed** (host f64, [`crate::reference_ra`] with
 //!   [`crate::reference_ra::Eq9Reading::AsPrinted`]): α, β divided by PCOV₁₁ + VAR as printed,
@@ -534,7 +534,7 @@ fn track_batch_ml(meas: &[Polar], second_start: &Estimates) -> Result<(Estimates
     Ok((out, not_converged))
 }
 
-/// Newton iterations per start of [`track_batch_ml`] at most.
+/// Newton iterations per start of `track_batch_ml` at most.
 pub const ML_MAX_ITERATIONS: usize = 50;
 
 /// Cost Σ res², the vector g = Jᵀ·res (−½ the cost's gradient) and the

@@ -244,7 +244,7 @@ const TIMING_REPEATS: usize = 40;
 const TIMING_PASSES: usize = 10;
 
 /// Wall time of the standard and the improved filter over every run's
-/// measurements (f64): per filter, the best of [`TIMING_REPEATS`] samples,
+/// measurements (f64): per filter, the best of `TIMING_REPEATS` samples,
 /// the two filters' samples interleaved so that both see the same machine
 /// load; returned per pass over the data.
 pub fn running_time(exp: &Experiment) -> Result<(f64, f64), String> {

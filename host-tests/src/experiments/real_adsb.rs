@@ -619,7 +619,7 @@ pub struct SceneRun {
     /// track's start and confirmation) and after it (losses).
     pub unpaired_before_first: usize,
     pub unpaired_after_first: usize,
-    /// The least whole-replay time of [`TIMING_REPEATS`], s.
+    /// The least whole-replay time of `TIMING_REPEATS` runs, s.
     pub seconds: f64,
     /// The design `replay --tracker` printed.
     pub design: String,

@@ -176,7 +176,7 @@ impl ScanThreat {
 #[derive(Debug, Clone, PartialEq)]
 pub struct RunTimelines {
     pub truth: Vec<ScanThreat>,
-    /// estimated[sigma][arithmetic][scan]
+    /// `estimated[sigma][arithmetic][scan]`
     pub estimated: Vec<Vec<Vec<ScanThreat>>>,
     /// Refused filter/tracker updates and failed assessments, per σ_a and
     /// arithmetic (should all be 0).
