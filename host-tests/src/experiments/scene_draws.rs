@@ -330,8 +330,9 @@ pub fn run(
          checked on (not in the repository; P_D {}, {:.0} clutter plots a \
          scan, {} per km²), each run as `replay --tracker` is configured from those figures. \
          Scored as above (pairs beyond {PAIR_LIMIT_M} m dropped, OSPA c = {OSPA_CUTOFF_M} m). \
-         \"After a far update\": identity changes where the old track was updated, between \
-         the flight's last two pairings, with a plot more than {PAIR_LIMIT_M} m from the flight \
+         \"After a far update\": identity changes where the old track was updated, after the \
+         flight's last pairing with it and up to its first with the new one, with a plot more \
+         than {PAIR_LIMIT_M} m from the flight \
          (it took clutter or another aircraft's plot; the others lost the flight while \
          coasting); abtrack's only, as Stone Soup's output has no update status. \
          Mean over the draws (least–most); per draw: `scene_draws.md`. Stone Soup rows, when \
