@@ -139,8 +139,11 @@ fn far_updates(tracker: &str, run: &SceneRun) -> Option<usize> {
         .then(|| id_changes_after_far_updates(&run.scans, &run.pairs, PAIR_LIMIT_M))
 }
 
-/// Where `scripts/stonesoup_scene.py --draws` reads the drawn files and
-/// writes its tracks, under the group's folder.
+/// Where `scripts/stonesoup_scene.py --draws` writes its tracks, under the
+/// group's folder. They are the tracks of the draws the code made when the
+/// script ran: a change to [`draw`] or to its random streams needs the
+/// script run again (`on_the_scene_drawn_again_the_tracker_is_at_least_as_good_as_stone_soup`
+/// compares with them).
 pub const DRAWS_DIR: &str = "draws";
 
 /// Where the drawn measurement files and the tracker's design for each
