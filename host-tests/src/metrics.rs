@@ -565,11 +565,12 @@ pub struct PairedPoint {
 }
 
 /// The identity changes among `pairs` (a target's paired track changes
-/// between two of its paired scans) where, between those scans, the old
-/// track was updated (status [`TrackStatus::Confirmed`] in `scans`) more
-/// than `far` m from the target: it took another plot (clutter or another
-/// target's) rather than losing the target while it coasted. Meaningful
-/// for a tracker whose output tells updates from coasting.
+/// between two of its paired scans) where, after the first of those scans
+/// and up to the second, the old track was updated (status
+/// [`TrackStatus::Confirmed`] in `scans`, which are in time order) to a
+/// position more than `far` m from the target: it took a plot from
+/// elsewhere (clutter or another target's). Meaningful for a tracker whose
+/// output tells updates from coasting.
 pub fn id_changes_after_far_updates(
     scans: &[ScanReport],
     pairs: &[PairedPoint],

@@ -133,14 +133,26 @@ struct DrawScore {
 const NOT_APPLICABLE: &str = "—";
 
 /// [`id_changes_after_far_updates`] (farther than [`PAIR_LIMIT_M`]) of an
-/// abtrack run; `None` for Stone Soup's, whose rows carry no update status.
-fn far_updates(tracker: &str, run: &SceneRun) -> Option<usize> {
+/// abtrack run; `None` for Stone Soup's, whose rows are all `confirmed`
+/// (no update status).
+fn far_update_id_changes(tracker: &str, run: &SceneRun) -> Option<usize> {
     (tracker != STONESOUP_LABEL)
         .then(|| id_changes_after_far_updates(&run.scans, &run.pairs, PAIR_LIMIT_M))
 }
 
+/// "mean (least–most)" of `values`, with `digits` decimals.
+fn mean_and_range(values: &[f64], digits: usize) -> String {
+    let mean = values.iter().sum::<f64>() / values.len() as f64;
+    let (lo, hi) = values
+        .iter()
+        .fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), &x| {
+            (a.min(x), b.max(x))
+        });
+    format!("{mean:.digits$} ({lo:.digits$}–{hi:.digits$})")
+}
+
 /// Where `scripts/stonesoup_scene.py --draws` writes its tracks, under the
-/// group's folder. They are the tracks of the draws the code made when the
+/// group's [`STONESOUP_DIR`]. They are the tracks of the draws the code made when the
 /// script ran: a change to [`draw`] or to its random streams needs the
 /// script run again (`on_the_scene_drawn_again_the_tracker_is_at_least_as_good_as_stone_soup`
 /// compares with them).
@@ -260,7 +272,8 @@ pub fn run(
             format!("{:.3}", s.run.coverage),
             format!("{:.3}", s.run.continuity),
             s.run.id_changes.to_string(),
-            far_updates(&s.tracker, &s.run).map_or(NOT_APPLICABLE.to_string(), |n| n.to_string()),
+            far_update_id_changes(&s.tracker, &s.run)
+                .map_or(NOT_APPLICABLE.to_string(), |n| n.to_string()),
             format!("{:.1}", s.run.rmse),
             format!("{:.1}", s.run.ospa),
             s.run.false_tracks.to_string(),
@@ -293,30 +306,21 @@ pub fn run(
             if runs.is_empty() {
                 continue;
             }
-            let spread = |f: &dyn Fn(&SceneRun) -> f64, digits: usize| {
-                let v: Vec<f64> = runs.iter().map(|r| f(r)).collect();
-                let mean = v.iter().sum::<f64>() / v.len() as f64;
-                let (lo, hi) = v
-                    .iter()
-                    .fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), &x| {
-                        (a.min(x), b.max(x))
-                    });
-                format!("{mean:.digits$} ({lo:.digits$}–{hi:.digits$})")
-            };
+            let of = |f: &dyn Fn(&SceneRun) -> f64| runs.iter().map(|r| f(r)).collect::<Vec<f64>>();
+            let far: Option<Vec<f64>> = runs
+                .iter()
+                .map(|r| far_update_id_changes(tracker, r).map(|n| n as f64))
+                .collect();
             means.push([
                 condition.name.to_string(),
                 tracker.to_string(),
                 runs.len().to_string(),
-                spread(&|r| r.coverage, 3),
-                spread(&|r| r.id_changes as f64, 1),
-                if far_updates(tracker, runs[0]).is_some() {
-                    spread(&|r| far_updates(tracker, r).unwrap_or(0) as f64, 1)
-                } else {
-                    NOT_APPLICABLE.to_string()
-                },
-                spread(&|r| r.rmse, 1),
-                spread(&|r| r.ospa, 1),
-                spread(&|r| r.false_tracks as f64, 1),
+                mean_and_range(&of(&|r| r.coverage), 3),
+                mean_and_range(&of(&|r| r.id_changes as f64), 1),
+                far.map_or(NOT_APPLICABLE.to_string(), |v| mean_and_range(&v, 1)),
+                mean_and_range(&of(&|r| r.rmse), 1),
+                mean_and_range(&of(&|r| r.ospa), 1),
+                mean_and_range(&of(&|r| r.false_tracks as f64), 1),
             ]);
         }
     }
@@ -334,10 +338,9 @@ pub fn run(
          scan, {} per km²), each run as `replay --tracker` is configured from those figures. \
          Scored as above (pairs beyond {PAIR_LIMIT_M} m dropped, OSPA c = {OSPA_CUTOFF_M} m). \
          \"After a far update\": identity changes where the old track was updated, after the \
-         flight's last pairing with it and up to its first with the new one, with a plot more \
-         than {PAIR_LIMIT_M} m from the flight \
-         (it took clutter or another aircraft's plot; the others lost the flight while \
-         coasting); abtrack's only, as Stone Soup's output has no update status. \
+         flight's last pairing with it and up to its first with the new one, to a position \
+         more than {PAIR_LIMIT_M} m from the flight (it took a plot from elsewhere: clutter or \
+         another aircraft's); abtrack's only, as Stone Soup's rows have no update status. \
          Mean over the draws (least–most); per draw: `scene_draws.md`. Stone Soup rows, when \
          present, score what `scripts/stonesoup_scene.py --draws` wrote into `{STONESOUP_DIR}/{DRAWS_DIR}/` \
          from the drawn files this group leaves in `host-tests/target/scene-draws/`.\n",

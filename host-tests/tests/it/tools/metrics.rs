@@ -508,4 +508,41 @@ fn id_changes_after_far_updates_tells_a_far_update_from_a_coast() {
         // Nothing is far within 1 km.
         assert_eq!(id_changes_after_far_updates(&scans, &m.pairs, 1000.0), 0);
     }
+    // None counts: the old track coasts away while another track (3) is
+    // updated far from the target in the window; or the old track is
+    // updated far away and comes back to the target (no identity change).
+    // A second target keeps its own track throughout.
+    let with_second_target = |mut scans: Vec<ScanReport>| {
+        for s in &mut scans {
+            s.truth.push(TruthPoint {
+                id: 2,
+                x: 0.0,
+                y: 5000.0,
+            });
+            s.tracks.push(tp(4, TrackStatus::Confirmed, 0.0, 5010.0));
+        }
+        scans
+    };
+    let mut other_track_far = with_second_target(scans_with(TrackStatus::Coasting));
+    other_track_far[2]
+        .tracks
+        .push(tp(3, TrackStatus::Confirmed, 200.0, 900.0));
+    let mut comes_back = with_second_target(scans_with(TrackStatus::Confirmed));
+    comes_back[3].tracks[0] = tp(1, TrackStatus::Confirmed, 310.0, 0.0);
+    comes_back[3].tracks.remove(1);
+    for (scans, id_changes) in [(other_track_far, 1), (comes_back, 0)] {
+        let m = track_metrics_with(&scans, 500.0, PairingCost::Distance);
+        assert_eq!(m.id_changes, id_changes);
+        assert_eq!(id_changes_after_far_updates(&scans, &m.pairs, 500.0), 0);
+    }
+    // The window includes the scan of the change: the old track updated far
+    // away at 16 s (having coasted at 12 s) counts.
+    let mut at_the_change = scans_with(TrackStatus::Coasting);
+    at_the_change[3].tracks[0] = tp(1, TrackStatus::Confirmed, 300.0, 900.0);
+    let m = track_metrics_with(&at_the_change, 500.0, PairingCost::Distance);
+    assert_eq!(m.id_changes, 1);
+    assert_eq!(
+        id_changes_after_far_updates(&at_the_change, &m.pairs, 500.0),
+        1
+    );
 }
