@@ -227,7 +227,8 @@ fn plot_inner(
     Ok(())
 }
 
-fn min_max(values: impl Iterator<Item = f64>) -> (f64, f64) {
+/// The least and the most of `values` (∞ and −∞ when there are none).
+pub fn min_max(values: impl Iterator<Item = f64>) -> (f64, f64) {
     values.fold((f64::INFINITY, f64::NEG_INFINITY), |(lo, hi), v| {
         (lo.min(v), hi.max(v))
     })

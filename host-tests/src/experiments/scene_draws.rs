@@ -12,7 +12,7 @@ use std::fmt::Write as _;
 use std::fs;
 use std::path::Path;
 
-use super::common::{write_file, Table};
+use super::common::{min_max, write_file, Table};
 use super::real_adsb::{
     score_tracks, stonesoup_tracks, Scene, SceneRun, OSPA_CUTOFF_M, PAIR_LIMIT_M,
     SCENE_HALF_WIDTH_M, SCENE_NUMERICS, SCENE_PERIOD_MS, SIGMA_M, STONESOUP_DIR, STONESOUP_LABEL,
@@ -143,11 +143,7 @@ fn far_update_id_changes(tracker: &str, run: &SceneRun) -> Option<usize> {
 /// "mean (least–most)" of `values`, with `digits` decimals.
 fn mean_and_range(values: &[f64], digits: usize) -> String {
     let mean = values.iter().sum::<f64>() / values.len() as f64;
-    let (lo, hi) = values
-        .iter()
-        .fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), &x| {
-            (a.min(x), b.max(x))
-        });
+    let (lo, hi) = min_max(values.iter().copied());
     format!("{mean:.digits$} ({lo:.digits$}–{hi:.digits$})")
 }
 
