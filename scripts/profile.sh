@@ -86,19 +86,22 @@ else
         trap 'rm -f "$dwarf"' EXIT
         "$(tool llvm-dwarfdump)" --debug-info "$elf" >"$dwarf"
         # The linkage names of the functions whose full name contains TEXT.
-        linkage=$(awk -v f="$instance" '
+        # (In a file, not an awk variable: a short TEXT can name thousands.)
+        linkage=$(mktemp "${TMPDIR:-/tmp}/abtrack-profile-names.XXXXXX")
+        trap 'rm -f "$dwarf" "$linkage"' EXIT
+        awk -v f="$instance" '
             /DW_AT_linkage_name/ { match($0, /"[^"]*"/); last = substr($0, RSTART + 1, RLENGTH - 2) }
-            /DW_AT_name/ && index($0, f) && last != "" { print last }' "$dwarf" | sort -u)
-        [ -n "$linkage" ] || die "no function in the debug information is named with '$instance'"
+            /DW_AT_name/ && index($0, f) && last != "" { print last }' "$dwarf" | sort -u >"$linkage"
+        [ -s "$linkage" ] || die "no function in the debug information is named with '$instance'"
         # The concrete functions (those with an address) that are, or inline, one of them.
-        hosts=$(awk -v names="$linkage" '
-            BEGIN { n = split(names, list, "\n"); for (i = 1; i <= n; i++) want[list[i]] = 1 }
+        hosts=$(awk '
+            FNR == NR { want[$0] = 1; next }
             /DW_TAG_subprogram/ { sub_pending = 1; next }
             sub_pending && /DW_AT_low_pc/ { match($0, /0x[0-9a-f]+/); pc = substr($0, RSTART, RLENGTH); sub_pending = 0; next }
             /DW_TAG_/ { sub_pending = 0 }
             /DW_AT_(linkage_name|abstract_origin|specification)/ && pc != "" {
                 if (match($0, /"[^"]*"/) && (substr($0, RSTART + 1, RLENGTH - 2) in want)) print pc
-            }' "$dwarf" | sort -u)
+            }' "$linkage" "$dwarf" | sort -u)
         matches=$(while read -r a m; do
             for h in $hosts; do
                 if [ $((16#$a)) -eq $((h)) ]; then echo "$a $m"; fi
@@ -120,7 +123,7 @@ qemu-system-arm -machine "$board" -display none -monitor none \
     -semihosting-config enable=on,target=native -serial none \
     -kernel "$elf" -gdb "tcp::$port" -S >/dev/null 2>&1 &
 qemu_pid=$!
-trap 'kill "$qemu_pid" 2>/dev/null || true; rm -f "${dwarf:-}" "$gdb_log"' EXIT
+trap 'kill "$qemu_pid" 2>/dev/null || true; rm -f "${dwarf:-}" "${linkage:-}" "$gdb_log"' EXIT
 PROFILE_ELF=$elf PROFILE_ADDRESS=$address PROFILE_SKIP=$skip PROFILE_TOP=$top PROFILE_PORT=$port \
     gdb-multiarch -q -batch -nx -ex "file $elf" -x scripts/profile.py >"$gdb_log" 2>&1 || true
 if grep -q '^=== profile$' "$gdb_log"; then
