@@ -123,6 +123,10 @@ fn main() -> ExitCode {
     // Read by boards/qemu/src/board.rs (`env!`), for the firmware's reports.
     println!("cargo:rustc-env=ABTRACK_BOARD={}", board.name);
     println!("cargo:rustc-env=ABTRACK_CORE={}", board.core);
+    // The profile's opt-level, which the benchmark prints beside its figures
+    // (`s` for the release profile; `scripts/bench.sh` also measures `3`).
+    let opt_level = env::var("OPT_LEVEL").unwrap_or_default();
+    println!("cargo:rustc-env=ABTRACK_OPT_LEVEL={opt_level}");
     println!("cargo:rustc-cfg=abtrack_board=\"{}\"", board.name);
     ExitCode::SUCCESS
 }

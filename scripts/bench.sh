@@ -13,11 +13,13 @@
 #
 #   scripts/bench.sh                  all three cores; writes bench/results.csv
 #                                     and bench/BENCHMARKS.md (generated files:
-#                                     never edit them, re-run this)
+#                                     never edit them, re-run this), and the
+#                                     same two files for the mps2 images built
+#                                     at opt-level 3 in bench/opt-level-3/
 #   scripts/bench.sh m4f|m3|m0 ...    those cores only (target triples and
-#                                     board names work too); writes the two
-#                                     files under target/bench/ instead, since
-#                                     the committed ones cover all three
+#                                     board names work too); writes the files
+#                                     under target/bench/ instead, since the
+#                                     committed ones cover all three
 set -euo pipefail
 cd "$(dirname "$0")/.."
 # shellcheck source=scripts/setup.sh
@@ -58,43 +60,68 @@ ensure_host_linker
 ensure_defmt_print
 ensure_llvm_tools
 
-# The whole images, built first (the targets in one cargo invocation, so
-# their link-time optimisations overlap) and checked as the test command
-# checks its smoke images; the checks' reports in
-# target/bench/elf-checks.log.
-mkdir -p target/bench "$out_dir"
-elves=() target_args=()
-for t in "${targets[@]}"; do
-    target_args+=(--target "$t")
-    elves+=("target/$t/release/bench")
-done
-cargo build --quiet --release "${target_args[@]}" --bin bench --features bench-anchors
-checks_log=target/bench/elf-checks.log
-if check_panic_calls bench "${elves[@]}" >"$checks_log" 2>&1 &&
-    check_stack_layout_of "${elves[@]}" >>"$checks_log" 2>&1; then
-    say "benchmark images: no call into core::panicking but minikalman's, the stack below the statics ($checks_log)"
-else
-    tail -n 20 "$checks_log" >&2
-    die "a benchmark image failed the ELF checks; the report is in $checks_log"
-fi
-
-logs=()
-for t in "${targets[@]}"; do
-    core=$(core_for_target "$t")
-    log="$root/target/bench/$core.log"
-    say "benchmark on $(board_for_target "$t") ($core), output in target/bench/$core.log"
-    if ! cargo run --quiet --release --target "$t" --bin bench --features bench-anchors >"$log"; then
-        tail -n 20 "$log" >&2
-        die "the benchmark failed on $(board_for_target "$t"); its output is in $log"
-    fi
-    logs+=("$log")
-done
-
 qemu_version=$(qemu-system-arm --version | head -n 1)
 rustc_version=$(rustc --version)
-(cd host-tests && cargo run --quiet --release --bin bench_report -- \
-    --qemu-version "$qemu_version" \
-    --rustc-version "$rustc_version" \
-    --csv "$root/$out_dir/results.csv" \
-    --markdown "$root/$out_dir/BENCHMARKS.md" \
-    "${logs[@]}")
+
+# One benchmark: the images for the targets given, built (in one cargo
+# invocation, so their link-time optimisations overlap) and checked as the
+# test command checks its smoke images, run on their boards, and their logs
+# turned into results.csv and BENCHMARKS.md in DIR. LABEL names the build in
+# the messages; cargo's environment (the opt-level, the target directory)
+# is the caller's.
+#   measure LABEL DIR LOG_DIR ELF_DIR TARGET...
+measure() {
+    local label=$1 dir=$2 log_dir=$3 elf_dir=$4
+    shift 4
+    local t core log elves=() target_args=() logs=()
+    mkdir -p "$log_dir" "$dir"
+    for t in "$@"; do
+        target_args+=(--target "$t")
+        elves+=("$elf_dir/$t/release/bench")
+    done
+    cargo build --quiet --release "${target_args[@]}" --bin bench --features bench-anchors
+    local checks_log=$log_dir/elf-checks.log
+    if check_panic_calls bench "${elves[@]}" >"$checks_log" 2>&1 &&
+        check_stack_layout_of "${elves[@]}" >>"$checks_log" 2>&1; then
+        say "benchmark images ($label): no call into core::panicking but minikalman's, the stack below the statics ($checks_log)"
+    else
+        tail -n 20 "$checks_log" >&2
+        die "a benchmark image ($label) failed the ELF checks; the report is in $checks_log"
+    fi
+    for t in "$@"; do
+        core=$(core_for_target "$t")
+        log="$root/$log_dir/$core.log"
+        say "benchmark ($label) on $(board_for_target "$t") ($core), output in ${log#"$root"/}"
+        if ! cargo run --quiet --release --target "$t" --bin bench --features bench-anchors >"$log"; then
+            tail -n 20 "$log" >&2
+            die "the benchmark ($label) failed on $(board_for_target "$t"); its output is in $log"
+        fi
+        logs+=("$log")
+    done
+    # The host tool in its own target directory, built as always.
+    (cd host-tests && env -u CARGO_TARGET_DIR -u CARGO_PROFILE_RELEASE_OPT_LEVEL \
+        cargo run --quiet --release --bin bench_report -- \
+        --qemu-version "$qemu_version" \
+        --rustc-version "$rustc_version" \
+        --csv "$root/$dir/results.csv" \
+        --markdown "$root/$dir/BENCHMARKS.md" \
+        "${logs[@]}")
+}
+
+# The firmware's own build: the release profile (opt-level "s").
+measure 'opt-level "s"' "$out_dir" target/bench target "${targets[@]}"
+
+# The mps2 images again at opt-level 3, Rust's default for release builds:
+# what a user of an anchor (minikalman) would build it with unless flash is
+# short, and what abtrack costs where flash is not (docs/benchmarks.md). In
+# their own target directory, so that neither build replaces the other.
+# The micro:bit's image does not fit its 256 KiB of flash at opt-level 3.
+wide_flash=()
+for t in "${targets[@]}"; do
+    [ "$t" = thumbv6m-none-eabi ] || wide_flash+=("$t")
+done
+if [ ${#wide_flash[@]} -gt 0 ]; then
+    CARGO_PROFILE_RELEASE_OPT_LEVEL=3 CARGO_TARGET_DIR="$root/target/opt-level-3" \
+        measure 'opt-level 3' "$out_dir/opt-level-3" target/bench/opt-level-3 \
+        target/opt-level-3 "${wide_flash[@]}"
+fi

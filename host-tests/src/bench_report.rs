@@ -800,10 +800,25 @@ pub fn benchmarks_md(report: &Report, qemu_version: &str, rustc_version: &str) -
 
 fn method(s: &mut String, report: &Report, qemu_version: &str, rustc_version: &str) {
     s.push_str("## Method\n\n");
+    // The opt-level each image says it was built at (`s`, the release
+    // profile's; `scripts/bench.sh` also builds the mps2 images at `3`).
+    let mut levels: Vec<&str> = Vec::new();
+    for run in &report.runs {
+        let level = run.meta("opt_level").unwrap_or("not given");
+        if !levels.contains(&level) {
+            levels.push(level);
+        }
+    }
+    let levels = levels
+        .iter()
+        .map(|l| format!("\"{l}\""))
+        .collect::<Vec<_>>()
+        .join(", ");
     s.push_str(&format!(
         "- Emulator: `{qemu_version}`, run with `-icount shift=0` \
          (scripts/qemu-run.sh).\n- Compiler: `{rustc_version}`; the release profile \
-         (opt-level \"s\", fat LTO, one codegen unit).\n"
+         (fat LTO, one codegen unit) at opt-level {levels} (per core in the table \
+         below; the profile's own is \"s\").\n"
     ));
     s.push_str(
         "- Counting: SysTick on the core clock, calibrated at start-up on a loop of a \
@@ -825,6 +840,7 @@ fn method(s: &mut String, report: &Report, qemu_version: &str, rustc_version: &s
     s.push_str(&header(&[
         "core",
         "board",
+        "opt-level",
         "instructions per SysTick tick",
         "calls per figure",
         "scans per figure",
@@ -836,6 +852,7 @@ fn method(s: &mut String, report: &Report, qemu_version: &str, rustc_version: &s
         s.push_str(&row(&[
             format!("{} (`{}`)", m("core"), run.core),
             m("board"),
+            m("opt_level"),
             m("instructions_per_tick"),
             m("calls"),
             m("scans"),

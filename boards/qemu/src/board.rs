@@ -39,6 +39,10 @@ pub const BOARD: &str = env!("ABTRACK_BOARD");
 /// The core of [`BOARD`].
 pub const CORE: &str = env!("ABTRACK_CORE");
 
+/// The opt-level this image was built at (set by boards/build.rs from
+/// cargo's profile): `s` for the release profile.
+pub const OPT_LEVEL: &str = env!("ABTRACK_OPT_LEVEL");
+
 #[cfg(target_abi = "eabihf")]
 use crate::number_types::cortex_m4f as core_types;
 

@@ -121,6 +121,35 @@ fn benchmarks_md_says_what_it_is_and_holds_every_table() {
     }
     // Deterministic: the same logs give the same file (no date in it).
     assert_eq!(md, benchmarks_md(&sample(), QEMU, RUSTC));
+    // The sample's images predate the opt-level line: said, not guessed.
+    assert!(md.contains("at opt-level \"not given\""));
+}
+
+#[test]
+fn benchmarks_md_gives_the_opt_level_each_image_was_built_at() {
+    let with_level = |log: &str, core: &str, level: &str| {
+        let board_line = format!("bench-meta,{core},board,");
+        let mut out = String::new();
+        for line in log.lines() {
+            out.push_str(line);
+            out.push('\n');
+            if line.starts_with(&board_line) {
+                out.push_str(&format!("bench-meta,{core},opt_level,{level}\n"));
+            }
+        }
+        parse_log(&out).expect("the sample with an opt-level line parses")
+    };
+    let report = Report::new(vec![
+        with_level(M4F, "m4f", "3"),
+        with_level(M3, "m3", "3"),
+        with_level(M0, "m0", "s"),
+    ])
+    .unwrap();
+    assert_eq!(report.runs[0].meta("opt_level"), Some("3"));
+    let md = benchmarks_md(&report, QEMU, RUSTC);
+    // Each level once, in the cores' order, and per core in their table.
+    assert!(md.contains("at opt-level \"3\", \"s\" (per core"), "{md}");
+    assert!(md.contains("| mps2-an386 | 3 |") && md.contains("| microbit | s |"));
 }
 
 /// The row of the anchors table for (core, numeric, operation).

@@ -136,6 +136,7 @@ impl Bench {
         );
         defmt::println!("bench-meta,{=str},board,{=str}", core, board::BOARD);
         defmt::println!("bench-meta,{=str},core,{=str}", core, board::CORE);
+        defmt::println!("bench-meta,{=str},opt_level,{=str}", core, board::OPT_LEVEL);
         defmt::println!(
             "bench-meta,{=str},instructions_per_tick,{=f32}",
             core,
