@@ -67,6 +67,7 @@ impl<S: Numeric> TrackFilter<S> for AutoFilter<S, 2> {
         AutoFilter::coast(self, step.interval.interval())
     }
 
+    #[inline(always)]
     fn predict(
         &self,
         _: &Self::Params,
@@ -97,6 +98,7 @@ impl<S: Numeric> TrackFilter<S> for AutoFilter<S, 2> {
             .map_or(<S::Ratio as Real>::ONE, |s| self.next_alpha(s.interval()))
     }
 
+    #[inline(always)]
     fn gate_region(
         &self,
         params: &Self::Params,

@@ -896,15 +896,15 @@ impl<S: Numeric, F: TrackFilter<S>, const N: usize, const M: usize> TrackTable<S
         rule: &impl PairRule,
         report: &mut ScanReport,
     ) -> Result<(), ScanError> {
+        // Counted in registers, added to the report once (at most N each).
+        let (mut clusters, mut single_pairs) = (0u32, 0u32);
         for root in 0..N {
             if !self.clusters.is_root(root) {
                 continue;
             }
-            increment(&mut report.clusters);
+            clusters = clusters.wrapping_add(1);
             if let Some(k) = self.clusters.single_pair(root) {
-                increment(&mut report.single_pairs);
-                increment(&mut report.assigned);
-                report.largest_cluster = report.largest_cluster.max(1);
+                single_pairs = single_pairs.wrapping_add(1);
                 self.clusters.assign(root, k);
                 continue;
             }
@@ -912,6 +912,12 @@ impl<S: Numeric, F: TrackFilter<S>, const N: usize, const M: usize> TrackTable<S
             report.largest_cluster = report.largest_cluster.max(sat_u32(rows));
             self.solve_cluster(config, dt, rule, rows, cols, report)?;
         }
+        if single_pairs > 0 {
+            report.largest_cluster = report.largest_cluster.max(1);
+        }
+        report.clusters = report.clusters.saturating_add(clusters);
+        report.single_pairs = report.single_pairs.saturating_add(single_pairs);
+        report.assigned = report.assigned.saturating_add(single_pairs);
         Ok(())
     }
 
