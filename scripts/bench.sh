@@ -18,8 +18,9 @@
 #                                     at opt-level 3 in bench/opt-level-3/
 #   scripts/bench.sh m4f|m3|m0 ...    those cores only (target triples and
 #                                     board names work too); writes the files
-#                                     under target/bench/ instead, since the
-#                                     committed ones cover all three
+#                                     under target/bench/ instead (m4f and m3
+#                                     also under target/bench/opt-level-3/),
+#                                     since the committed ones cover all three
 set -euo pipefail
 cd "$(dirname "$0")/.."
 # shellcheck source=scripts/setup.sh
@@ -62,6 +63,10 @@ ensure_llvm_tools
 
 qemu_version=$(qemu-system-arm --version | head -n 1)
 rustc_version=$(rustc --version)
+# The ELF checker, built once here (in host-tests, as always): the checks
+# below run with the opt-level 3 build's cargo environment too.
+ABTRACK_FIRMWARE_CHECK=$(firmware_check_tool)
+export ABTRACK_FIRMWARE_CHECK
 
 # One benchmark: the images for the targets given, built (in one cargo
 # invocation, so their link-time optimisations overlap) and checked as the
@@ -69,10 +74,11 @@ rustc_version=$(rustc --version)
 # turned into results.csv and BENCHMARKS.md in DIR. LABEL names the build in
 # the messages; cargo's environment (the opt-level, the target directory)
 # is the caller's.
-#   measure LABEL DIR LOG_DIR ELF_DIR TARGET...
+#   measure LABEL DIR LOG_DIR TARGET...
 measure() {
-    local label=$1 dir=$2 log_dir=$3 elf_dir=$4
-    shift 4
+    local label=$1 dir=$2 log_dir=$3
+    shift 3
+    local elf_dir=${CARGO_TARGET_DIR:-target}
     local t core log elves=() target_args=() logs=()
     mkdir -p "$log_dir" "$dir"
     for t in "$@"; do
@@ -109,7 +115,7 @@ measure() {
 }
 
 # The firmware's own build: the release profile (opt-level "s").
-measure 'opt-level "s"' "$out_dir" target/bench target "${targets[@]}"
+measure 'opt-level "s"' "$out_dir" target/bench "${targets[@]}"
 
 # The mps2 images again at opt-level 3, Rust's default for release builds:
 # what a user of an anchor (minikalman) would build it with unless flash is
@@ -122,6 +128,5 @@ for t in "${targets[@]}"; do
 done
 if [ ${#wide_flash[@]} -gt 0 ]; then
     CARGO_PROFILE_RELEASE_OPT_LEVEL=3 CARGO_TARGET_DIR="$root/target/opt-level-3" \
-        measure 'opt-level 3' "$out_dir/opt-level-3" target/bench/opt-level-3 \
-        target/opt-level-3 "${wide_flash[@]}"
+        measure 'opt-level 3' "$out_dir/opt-level-3" target/bench/opt-level-3 "${wide_flash[@]}"
 fi

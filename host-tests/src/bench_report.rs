@@ -809,16 +809,21 @@ fn method(s: &mut String, report: &Report, qemu_version: &str, rustc_version: &s
             levels.push(level);
         }
     }
-    let levels = levels
-        .iter()
-        .map(|l| format!("\"{l}\""))
-        .collect::<Vec<_>>()
-        .join(", ");
+    let build = match levels.as_slice() {
+        [level] => format!("at opt-level \"{level}\""),
+        _ => format!(
+            "at opt-level {} (per core in the table below)",
+            levels
+                .iter()
+                .map(|l| format!("\"{l}\""))
+                .collect::<Vec<_>>()
+                .join(", ")
+        ),
+    };
     s.push_str(&format!(
         "- Emulator: `{qemu_version}`, run with `-icount shift=0` \
          (scripts/qemu-run.sh).\n- Compiler: `{rustc_version}`; the release profile \
-         (fat LTO, one codegen unit) at opt-level {levels} (per core in the table \
-         below; the profile's own is \"s\").\n"
+         (fat LTO, one codegen unit) {build}.\n"
     ));
     s.push_str(
         "- Counting: SysTick on the core clock, calibrated at start-up on a loop of a \

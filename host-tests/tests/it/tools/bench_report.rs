@@ -150,6 +150,13 @@ fn benchmarks_md_gives_the_opt_level_each_image_was_built_at() {
     // Each level once, in the cores' order, and per core in their table.
     assert!(md.contains("at opt-level \"3\", \"s\" (per core"), "{md}");
     assert!(md.contains("| mps2-an386 | 3 |") && md.contains("| microbit | s |"));
+    // One level: said once.
+    let report = Report::new(vec![with_level(M4F, "m4f", "s")]).unwrap();
+    let md = benchmarks_md(&report, QEMU, RUSTC);
+    assert!(
+        md.contains("one codegen unit) at opt-level \"s\".\n"),
+        "{md}"
+    );
 }
 
 /// The row of the anchors table for (core, numeric, operation).
