@@ -63,6 +63,7 @@ pub mod numeric;
 pub mod scaled;
 pub mod scaled_scalar;
 pub mod sine;
+pub mod wide;
 
 pub use fixed32::Fixed32;
 pub use numeric::{AddProduct, Numeric, Quantity, Real};

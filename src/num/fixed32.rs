@@ -30,6 +30,7 @@ use fixed::types::{I14F18, I20F12, I4F28, I8F24};
 
 use super::numeric::{AddProduct, Numeric, Quantity};
 use super::scaled::{isqrt_u64, unit, Scaled};
+use super::wide::{wide_mul, wide_mul_unsigned};
 use super::NumError;
 use crate::track::numeric::fixed as fixed_track;
 use crate::track::numeric::{FixedGridScale, FixedVariance};
@@ -124,33 +125,6 @@ impl Fixed32Guard {
     #[inline]
     pub fn passed(&self) -> bool {
         self.bad == 0
-    }
-}
-
-/// The exact product of two words. On ARMv6-M (Cortex-M0: no 32×32→64
-/// multiply, recognised on stable Rust by its lack of 32-bit atomics) LLVM
-/// would call the general 64×64 `__aeabi_lmul`; four 16×16 partial
-/// products inline are about half its cost.
-#[inline(always)]
-fn wide_mul(a: i32, b: i32) -> i64 {
-    #[cfg(all(target_arch = "arm", not(target_has_atomic = "32")))]
-    {
-        // a = ah·2¹⁶ + al with ah signed (|ah| ≤ 2¹⁵) and 0 ≤ al < 2¹⁶, so
-        // every partial product fits its word: |ah·bh| ≤ 2³⁰,
-        // |ah·bl| < 2³¹, al·bl < 2³² (unsigned).
-        let (ah, al) = (a >> 16, a & 0xFFFF);
-        let (bh, bl) = (b >> 16, b & 0xFFFF);
-        let high = ah.wrapping_mul(bh);
-        let middle = i64::from(ah.wrapping_mul(bl)).wrapping_add(i64::from(al.wrapping_mul(bh)));
-        let low = (al as u32).wrapping_mul(bl as u32);
-        (i64::from(high) << 32)
-            .wrapping_add(middle << 16)
-            .wrapping_add(i64::from(low))
-    }
-    #[cfg(not(all(target_arch = "arm", not(target_has_atomic = "32"))))]
-    {
-        // |a·b| ≤ 2⁶²: exact.
-        i64::from(a).wrapping_mul(i64::from(b))
     }
 }
 
@@ -717,7 +691,7 @@ impl Numeric for Fixed32 {
         if is_sentinel(a.0) || is_sentinel(b.0) {
             return Length::MAX;
         }
-        let square = |v: i32| u64::from(v.unsigned_abs()).wrapping_mul(u64::from(v.unsigned_abs()));
+        let square = |v: i32| wide_mul_unsigned(v.unsigned_abs(), v.unsigned_abs());
         let sum = square(a.0).wrapping_add(square(b.0));
         Length(saturate(isqrt_u64(sum) as i64))
     }

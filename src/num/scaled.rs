@@ -28,6 +28,7 @@ use core::num::NonZeroU32;
 use core::ops::{Add, Div, Mul, Neg, Sub};
 
 use super::numeric::{Quantity, Real};
+use super::wide::wide_mul_unsigned;
 use super::NumError;
 
 /// Largest exponent: values up to 2^(100 + 31).
@@ -198,7 +199,7 @@ fn isqrt_floor_normalized(n: u64) -> u32 {
     };
     let mut root = ((u64::from(first).wrapping_add(u64::from(q))) >> 1) as u32;
     for _ in 0..2 {
-        if u64::from(root).wrapping_mul(u64::from(root)) > n {
+        if wide_mul_unsigned(root, root) > n {
             root = root.wrapping_sub(1);
         }
     }
@@ -358,8 +359,8 @@ impl<U> Scaled<U> {
             };
         }
         let negative = (self.mantissa ^ other.mantissa) < 0;
-        let product = u64::from(self.mantissa.unsigned_abs())
-            .wrapping_mul(u64::from(other.mantissa.unsigned_abs()));
+        let product =
+            wide_mul_unsigned(self.mantissa.unsigned_abs(), other.mantissa.unsigned_abs());
         // The stored exponents lie in [0, 300]: their sum cannot wrap, and
         // that sum plus EXPONENT_MIN is the stored form of e_a + e_b.
         let stored = (self.biased_exponent.wrapping_add(other.biased_exponent) as i32)
@@ -600,7 +601,7 @@ impl<U> Scaled<U> {
         } else {
             (other, self)
         };
-        let square = |m: i32| u64::from(m.unsigned_abs()).wrapping_mul(u64::from(m.unsigned_abs()));
+        let square = |m: i32| wide_mul_unsigned(m.unsigned_abs(), m.unsigned_abs());
         let gap = high.exponent().wrapping_sub(low.exponent()) as u32; // ≥ 0
         let low_square = if gap < 32 {
             square(low.mantissa) >> (gap << 1)
@@ -627,9 +628,9 @@ impl<U> Scaled<U> {
         let top = self.exponent().max(b.exponent()).max(c.exponent());
         let square_at_top = |v: Self| {
             let gap = top.wrapping_sub(v.exponent()) as u32; // ≥ 0
-            let magnitude = u64::from(v.mantissa.unsigned_abs());
+            let magnitude = v.mantissa.unsigned_abs();
             if gap < 32 {
-                magnitude.wrapping_mul(magnitude) >> (gap << 1)
+                wide_mul_unsigned(magnitude, magnitude) >> (gap << 1)
             } else {
                 0
             }

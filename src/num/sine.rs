@@ -22,6 +22,8 @@
 //! checks the table against f64 and the bound over every table interval's
 //! ends and random angles.
 
+use super::wide::wide_mul_unsigned;
+
 /// sin(jπ/512)·2³¹, rounded to nearest, j = 0..=256 (computed with 200-bit
 /// mpmath; f64 gives the same words, the closest to a tie being 0.0013
 /// units away).
@@ -66,16 +68,13 @@ pub const SIN_COS_MAX_ERROR_Q31: f64 = 3.0;
 
 /// π·2³⁰ rounded: one binary-angle unit (2π/2³² rad) is π·2³⁰ units of
 /// 2⁻⁶¹ rad.
-const PI_Q30: u64 = 3_373_259_426;
+const PI_Q30: u32 = 3_373_259_426;
 
 /// `a·b/2³²` rounded to nearest (a, b < 2³²).
 #[inline(always)]
 fn product_q32(a: u32, b: u32) -> u32 {
     // a·b + 2³¹ < 2⁶⁴: no wrap; the result is below 2³².
-    (u64::from(a)
-        .wrapping_mul(u64::from(b))
-        .wrapping_add(1 << 31)
-        >> 32) as u32
+    (wide_mul_unsigned(a, b).wrapping_add(1 << 31) >> 32) as u32
 }
 
 /// (sin θ, cos θ)·2³¹ for θ = `turns`·2π/2³², each in [−2³¹, 2³¹] (module
@@ -93,15 +92,12 @@ pub fn sin_cos_q31(turns: u32) -> (i64, i64) {
         .unwrap_or(0);
     // d·2³⁹ = fraction·2π·2⁷ < 2²²·2¹⁰ (exact to 2⁻⁶¹ rad: PI_Q30's
     // rounding); below 2³², d < 0.0062.
-    let d39 = (u64::from(fraction).wrapping_mul(PI_Q30) >> 22) as u32;
+    let d39 = (wide_mul_unsigned(fraction, PI_Q30) >> 22) as u32;
     // d²/2 in Q32 (< 2¹⁷): d39²/2⁴⁷, rounded.
-    let half_square = (u64::from(d39)
-        .wrapping_mul(u64::from(d39))
-        .wrapping_add(1 << 46)
-        >> 47) as u32;
+    let half_square = (wide_mul_unsigned(d39, d39).wrapping_add(1 << 46) >> 47) as u32;
     // d − d³/6 in Q32: d/2⁷ rounded, minus (d²/2)·d/3 (below 2¹⁰).
     let d32 = d39.wrapping_add(64) >> 7;
-    let cube_sixth = ((u64::from(half_square).wrapping_mul(u64::from(d39)) >> 39) as u32) / 3;
+    let cube_sixth = ((wide_mul_unsigned(half_square, d39) >> 39) as u32) / 3;
     let sin_d = d32.wrapping_sub(cube_sixth);
     // Every term below 2³² and the sums within [−2³¹·0.01, 2³¹·1.01]: i64.
     let term = |v: u32| i64::from(v);

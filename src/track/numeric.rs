@@ -6,6 +6,7 @@
 
 use super::assign::MAX_COST;
 use crate::num::fixed32::{Fixed32Guard, Ratio};
+use crate::num::wide::wide_mul;
 use crate::num::{NumError, Quantity, Real, Scalar};
 
 /// A value in [0, 1] to `0 ..= MAX_COST`, rounded to nearest: scaled in
@@ -216,7 +217,7 @@ impl core::ops::Mul for FixedVariance {
     type Output = Self;
     fn mul(self, rhs: Self) -> Self {
         // |a·b| < 2⁶²: exact; rounded half up to 16 fractional bits.
-        let product = i64::from(self.0).wrapping_mul(i64::from(rhs.0));
+        let product = wide_mul(self.0, rhs.0);
         if self.is_sentinel() || rhs.is_sentinel() {
             return Self::sentinel(product < 0);
         }
@@ -344,6 +345,7 @@ pub(crate) mod fixed {
     use super::{FixedGridScale, MAX_COST};
     use crate::num::fixed32::{Length, Ratio};
     use crate::num::scaled::div_wide;
+    use crate::num::wide::wide_mul_unsigned;
     use crate::num::Quantity;
 
     /// The offsets are the words' differences, exact in 32 bits for
@@ -389,7 +391,7 @@ pub(crate) mod fixed {
         if x > r || y > r {
             return None;
         }
-        let square = |v: u32| u64::from(v).wrapping_mul(u64::from(v));
+        let square = |v: u32| wide_mul_unsigned(v, v);
         // Each square < 2⁶², so the sum fits.
         let offset = square(x).wrapping_add(square(y));
         let limit = square(r);
@@ -401,12 +403,13 @@ pub(crate) mod fixed {
             .saturating_sub(32);
         let (n, d) = (offset >> shift, limit >> shift);
         // n ≤ d < 2³², so n·MAX_COST < 2⁴⁸; d ≥ 1.
-        let numerator = n.wrapping_mul(u64::from(MAX_COST)).wrapping_add(d / 2);
+        let n = u32::try_from(n).ok()?;
+        let d = u32::try_from(d).ok().filter(|&d| d != 0)?;
+        let numerator = wide_mul_unsigned(n, u32::from(MAX_COST)).wrapping_add(u64::from(d / 2));
         // The floor of numerator/d without a 64-bit division: both scaled
         // by 2^s so that d's top bit is set ([`div_wide`]'s divisor); the
         // quotient (≤ MAX_COST + ½) is unchanged, and numerator·2^s <
         // d·2^s·2¹⁶ < 2⁴⁸, its high word below the divisor.
-        let d = u32::try_from(d).ok().filter(|&d| d != 0)?;
         let s = d.leading_zeros();
         let numerator = numerator << s;
         let (cost, _) = div_wide((numerator >> 32) as u32, numerator as u32, d << s);

@@ -1,5 +1,5 @@
 //! The number types and their functions: `Fix` (Q32.32), the fast fixed point,
-//! `ScaledScalar`, CORDIC, sine, hypot and the error budget.
+//! `ScaledScalar`, CORDIC, sine, hypot, the error budget and the wide products.
 
 mod cordic;
 mod error_budget;
@@ -10,3 +10,4 @@ mod hypot3;
 mod scaled_scalar;
 mod sine;
 mod two;
+mod wide;
