@@ -402,14 +402,13 @@ pub(crate) mod fixed {
             .saturating_sub(limit.leading_zeros())
             .saturating_sub(32);
         let (n, d) = (offset >> shift, limit >> shift);
-        // n ≤ d < 2³², so n·MAX_COST < 2⁴⁸; d ≥ 1.
-        let n = u32::try_from(n).ok()?;
-        let d = u32::try_from(d).ok().filter(|&d| d != 0)?;
-        let numerator = wide_mul_unsigned(n, u32::from(MAX_COST)).wrapping_add(u64::from(d / 2));
+        // n ≤ d < 2³² (the cast is exact), so n·MAX_COST < 2⁴⁸; d ≥ 1.
+        let numerator = wide_mul_unsigned(n as u32, u32::from(MAX_COST)).wrapping_add(d / 2);
         // The floor of numerator/d without a 64-bit division: both scaled
         // by 2^s so that d's top bit is set ([`div_wide`]'s divisor); the
         // quotient (≤ MAX_COST + ½) is unchanged, and numerator·2^s <
         // d·2^s·2¹⁶ < 2⁴⁸, its high word below the divisor.
+        let d = u32::try_from(d).ok().filter(|&d| d != 0)?;
         let s = d.leading_zeros();
         let numerator = numerator << s;
         let (cost, _) = div_wide((numerator >> 32) as u32, numerator as u32, d << s);
