@@ -30,7 +30,7 @@ use fixed::types::{I14F18, I20F12, I4F28, I8F24};
 
 use super::numeric::{AddProduct, Numeric, Quantity};
 use super::scaled::{isqrt_u64, unit, Scaled};
-use super::wide::{wide_mul, wide_mul_unsigned};
+use super::wide::{wide_mul, wide_mul_signed_unsigned, wide_mul_unsigned};
 use super::NumError;
 use crate::track::numeric::fixed as fixed_track;
 use crate::track::numeric::{FixedGridScale, FixedVariance};
@@ -607,7 +607,7 @@ impl From<Ratio> for Rate {
 
 /// 2³⁴/(2π), rounded: radians to binary-angle units (2³² per turn), with
 /// two extra bits (relative error 1.1·10⁻¹⁰).
-const TURNS_PER_RADIAN_Q34: i64 = 2_734_261_102;
+const TURNS_PER_RADIAN_Q34: u32 = 2_734_261_102;
 
 /// 2π in Q32.32.
 const TWO_PI_Q32: i64 = 26_986_075_409;
@@ -615,8 +615,8 @@ const TWO_PI_Q32: i64 = 26_986_075_409;
 /// The binary angle (2³² per turn) of a valid angle: any angle maps to one
 /// direction (the reduction modulo a turn is the wrap of the u32).
 pub(super) fn turns(theta: Angle) -> u32 {
-    // θ·2³²/(2π) = m·2^e·C·2⁻² with C = 2³⁴/(2π); |m·C| < 2⁶³.
-    let wide = i64::from(theta.mantissa()).wrapping_mul(TURNS_PER_RADIAN_Q34);
+    // θ·2³²/(2π) = m·2^e·C·2⁻² with C = 2³⁴/(2π); |m|·C < 2⁶³.
+    let wide = wide_mul_signed_unsigned(theta.mantissa(), TURNS_PER_RADIAN_Q34);
     let shift = 2i32.wrapping_sub(theta.exponent());
     let turns = if shift >= 0 {
         shift_round(wide, shift)

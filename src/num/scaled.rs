@@ -28,7 +28,7 @@ use core::num::NonZeroU32;
 use core::ops::{Add, Div, Mul, Neg, Sub};
 
 use super::numeric::{Quantity, Real};
-use super::wide::wide_mul_unsigned;
+use super::wide::{div_wide, wide_mul_unsigned};
 use super::NumError;
 
 /// Largest exponent: values up to 2^(100 + 31).
@@ -110,43 +110,6 @@ impl<U> PartialEq for Scaled<U> {
     fn eq(&self, other: &Self) -> bool {
         self.mantissa == other.mantissa && self.biased_exponent == other.biased_exponent
     }
-}
-
-/// ⌊(u1·2³² + u0)/v⌋ and the remainder, for v ≥ 2³¹ and u1 < v: Knuth's
-/// algorithm D with 16-bit digits (Warren, *Hacker's Delight*, 2nd ed.,
-/// §9-4, `divlu`). Two 32-bit divisions (the Cortex-M3's `udiv`) and at
-/// most four corrections, instead of a 64-bit division routine. Outside
-/// its preconditions the result is meaningless, but nothing panics.
-pub(crate) fn div_wide(u1: u32, u0: u32, v: u32) -> (u32, u32) {
-    const DIGIT: u32 = 1 << 16;
-    // v ≥ 2³¹, so its high digit is at least 2¹⁵.
-    let v_high = NonZeroU32::new(v >> 16).unwrap_or(NonZeroU32::MIN);
-    let v_low = v & 0xFFFF;
-    // One quotient digit of (high·2¹⁶ + low)/v, high < v: estimated from
-    // v's high digit, then corrected (at most twice, Knuth's step D3).
-    let digit = |high: u32, low: u32| {
-        let mut q = high / v_high;
-        let mut rest = high.wrapping_sub(q.wrapping_mul(v_high.get()));
-        for _ in 0..2 {
-            // rest < 2¹⁶ here, so rest·2¹⁶ + low fits a word.
-            if q >= DIGIT || q.wrapping_mul(v_low) > ((rest << 16) | low) {
-                q = q.wrapping_sub(1);
-                rest = rest.wrapping_add(v_high.get());
-                if rest < DIGIT {
-                    continue;
-                }
-            }
-            break;
-        }
-        q
-    };
-    let (u0_high, u0_low) = (u0 >> 16, u0 & 0xFFFF);
-    let q1 = digit(u1, u0_high);
-    // The partial remainder u1·2¹⁶ + u0_high − q1·v < v (modulo 2³²).
-    let partial = ((u1 << 16) | u0_high).wrapping_sub(q1.wrapping_mul(v));
-    let q0 = digit(partial, u0_low);
-    let remainder = ((partial << 16) | u0_low).wrapping_sub(q0.wrapping_mul(v));
-    ((q1 << 16) | q0, remainder)
 }
 
 /// √((i + 64.5)·2²⁴), rounded, for i = 0..192: a first estimate of the

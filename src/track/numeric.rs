@@ -344,7 +344,7 @@ impl FixedGridScale {
 pub(crate) mod fixed {
     use super::{FixedGridScale, MAX_COST};
     use crate::num::fixed32::{Length, Ratio};
-    use crate::num::scaled::div_wide;
+    use crate::num::wide::div_wide;
     use crate::num::wide::wide_mul_unsigned;
     use crate::num::Quantity;
 
