@@ -133,14 +133,14 @@ fn reciprocal(v: u32) -> u32 {
             .copied()
             .unwrap_or(0),
     );
-    // a·z0 in units of 2⁻³¹ from v's top 16 bits: at most 2³¹ (the seed is
-    // below 1/a), at least 2³¹(1 − 2⁻⁷); e = 1 − a·z0 below 2²⁴.
+    // a′·z0 in units of 2⁻³¹, a′ = (v >> 16)/2¹⁶ ≤ a: at most 2³¹ (the seed
+    // is below 1/a′), at least 2³¹(1 − 2⁻⁷); e = 1 − a′·z0 below 2²⁴.
     let product = (v >> 16).wrapping_mul(seed);
     let error = (1u32 << 31).wrapping_sub(product);
-    // z1 = z0·(1 + e) in units of 2⁻³¹ (below 2³²: z1 < 1/a ≤ 2).
+    // z1 = z0·(1 + e) in units of 2⁻³¹ (below 2³²: z1 ≤ 1/a′ ≤ 2).
     let first = (seed << 16).wrapping_add(seed.wrapping_mul(error >> 8) >> 7);
     // e = 1 − a·z1 in units of 2⁻⁶³, |e| < 2⁴⁹ (z1 is within 2⁻¹⁵ of 1/a,
-    // from either side: v's lower bits were left out).
+    // from either side: 1/a′ ≥ 1/a).
     let error = (1u64 << 63).wrapping_sub(wide_mul_unsigned(v, first)) as i64;
     // z2 = z1 + z1·e in units of 2⁻³², the correction rounded down.
     let step = (error >> 30) as i32; // |step| < 2¹⁹
@@ -162,7 +162,7 @@ fn reciprocal(v: u32) -> u32 {
 /// the manner of Möller & Granlund, "Improved division by invariant
 /// integers", IEEE Trans. Computers 60(2), 2011): the quotient estimated
 /// from below, u1 + ⌊u1·m/2³²⌋ with m within 16 below ⌊2⁶⁴/v⌋ − 2³², and
-/// the remainder's excess taken off by whole divisors (fewer than 18
+/// the remainder's excess taken off by whole divisors (fewer than 20
 /// steps).
 pub fn div_wide_by_reciprocal(u1: u32, u0: u32, v: u32) -> (u32, u32) {
     let m = reciprocal(v);
@@ -170,8 +170,8 @@ pub fn div_wide_by_reciprocal(u1: u32, u0: u32, v: u32) -> (u32, u32) {
     let dividend = (u64::from(u1) << 32) | u64::from(u0);
     let mut remainder = dividend.wrapping_sub(wide_mul_unsigned(q, v));
     let divisor = u64::from(v);
-    // At most u1·16/2³² + 2 < 18 steps under the preconditions; bounded
-    // anyway, so that nothing outside them loops long.
+    // Fewer than u1·17/2³² + u0/v + 1 < 20 steps under the preconditions;
+    // bounded anyway, so that nothing outside them loops long.
     for _ in 0..32 {
         if remainder < divisor {
             break;
