@@ -119,12 +119,12 @@ const fn reciprocal_seed() -> [u16; 256] {
     table
 }
 
-/// ⌊2⁶⁴/v⌋ − 2³² for v ≥ 2³¹, from below and within 16: [`RECIPROCAL_SEED`]
-/// and two Newton steps
-/// z ← z + z·(1 − a·z) for 1/a, a = v/2³² (the first on v's top 16 bits
-/// in 32-bit words, the second on v in wide products). A Newton step from
-/// any z gives (1 − ε²)/a ≤ 1/a, and every rounding here is down, so the
-/// result never exceeds the reciprocal.
+/// ⌊2⁶⁴/v⌋ − 2³² for v ≥ 2³¹ (at most `u32::MAX`), from below and within
+/// 16: [`RECIPROCAL_SEED`] and two Newton steps z ← z + z·(1 − a·z) for
+/// 1/a, a = v/2³² (the first on v's top 16 bits in 32-bit words, the
+/// second on v in wide products). A Newton step from any z gives
+/// (1 − ε²)/a ≤ 1/a, and every rounding here is down, so the result never
+/// exceeds the reciprocal.
 #[inline(always)]
 fn reciprocal(v: u32) -> u32 {
     let seed = u32::from(
