@@ -125,6 +125,9 @@ impl<N: Numeric, const D: usize> GainSchedule<N, D> for FixedGains<N> {
         Ok([self.gains; D])
     }
     fn accepted(&mut self, _ctx: &GainContext<N, D>, _used: &[Gains<N>; D]) {}
+    fn count_gains(&self, _n: u32) -> Option<Result<Gains<N>, ScheduleError>> {
+        Some(Ok(self.gains))
+    }
     fn reset(&mut self) {}
 }
 
@@ -210,6 +213,9 @@ impl<N: Numeric, const D: usize> GainSchedule<N, D> for LeastSquaresGains {
         Ok([self.gains_at(ctx.n)?; D])
     }
     fn accepted(&mut self, _ctx: &GainContext<N, D>, _used: &[Gains<N>; D]) {}
+    fn count_gains(&self, n: u32) -> Option<Result<Gains<N>, ScheduleError>> {
+        Some(self.gains_at(n))
+    }
     fn reset(&mut self) {}
 }
 

@@ -236,8 +236,11 @@ pub(crate) use crate::gains::{check_range, config_quantity};
 /// gains, and the schedule is told with [`initialised`](Self::initialised);
 /// for every later measurement the caller builds the [`GainContext`], asks
 /// [`gains`](Self::gains), updates the filter with them and, if the filter
-/// accepted the update, reports it with [`accepted`](Self::accepted). A scan
-/// without a measurement is reported with [`missed`](Self::missed).
+/// accepted the update, reports it with [`accepted`](Self::accepted); a
+/// schedule whose gains depend on the count alone gives them by
+/// [`count_gains`](Self::count_gains) instead, with no context and no
+/// report. A scan without a measurement is reported with
+/// [`missed`](Self::missed).
 ///
 /// `gains` does not change the schedule, so a refused update leaves it as it
 /// was. Schedules are `Copy`: a track table stores them by value.
@@ -255,6 +258,16 @@ pub trait GainSchedule<N: Numeric, const D: usize>: Copy {
 
     /// A scan `dt` long passed without a measurement for this track.
     fn missed(&mut self, _dt: N::Interval) {}
+
+    /// The gains of measurement `n`, when they depend on the count alone
+    /// and are the same on every axis (M1's, M2's): [`ScheduledFilter`]
+    /// then builds no [`GainContext`] and does not call
+    /// [`accepted`](Self::accepted), so a schedule that gives them keeps no
+    /// state `accepted` would change. `None` (the default): the gains need
+    /// the context.
+    fn count_gains(&self, _n: u32) -> Option<Result<Gains<N>, ScheduleError>> {
+        None
+    }
 
     /// Whether the gains already account for the real interval (a
     /// covariance propagated with it), so that [`ScheduledFilter`] applies
@@ -437,7 +450,9 @@ where
     /// measurements initialise the filter (no gains). Later ones: each axis
     /// predicts, the [`GainContext`] is built, the schedule gives the gains,
     /// the filter updates every axis with them (all or none) and the
-    /// schedule hears that the update was [accepted](GainSchedule::accepted).
+    /// schedule hears that the update was [accepted](GainSchedule::accepted)
+    /// (gains of the count alone, [`GainSchedule::count_gains`], skip the
+    /// context and the report).
     /// A refused update changes neither the filter (but for its saturation
     /// count) nor the schedule.
     ///
@@ -477,7 +492,11 @@ where
         };
         let restarted = gap || self.schedule.restart_required(self.filter.phase());
         if !restarted && self.filter.phase() == Phase::Tracking {
-            return self.filtered_update(z, dt, self.measurements.saturating_add(1));
+            let n = self.measurements.saturating_add(1);
+            return match self.schedule.count_gains(n) {
+                Some(gains) => self.counted_update(z, dt, n, gains),
+                None => self.filtered_update(z, dt, n),
+            };
         }
         let mut filter = if restarted {
             Cartesian::new()
@@ -548,40 +567,92 @@ where
         if !(valid && ctx.axes.iter().all(|a| a.innovation.is_valid())) {
             return self.refuse_overflow(self.filter, z, dt);
         }
-        // Matched rather than `?`: the conversion's temporaries cost a
-        // library copy of the gains each.
+        // Matched rather than `?` (here and below): the conversion's
+        // temporaries cost a library copy of the gains each.
         let scheduled = match self.schedule.gains(&ctx) {
             Ok(g) => g,
             Err(e) => return Err(ScheduledError::Schedule(e)),
         };
-        let gains = if self.schedule.gains_follow_interval()
-            || intervals_regular(dt, self.previous_interval, self.reference_interval)
-        {
-            scheduled
-        } else {
-            match robust_gains(
-                scheduled,
-                dt,
-                self.previous_interval,
-                self.reference_interval,
-            ) {
-                Ok(g) => g,
-                Err(e) => return Err(ScheduledError::Schedule(e)),
-            }
+        let gains = match self.bounded(scheduled, dt) {
+            Ok(g) => g,
+            Err(e) => return Err(ScheduledError::Schedule(e)),
         };
         let outcome = match self.filter.update_per_axis_terms(z, &terms, &gains) {
             Ok(o) => o,
             Err(e) => return Err(ScheduledError::Filter(e)),
         };
-        self.measurements = n;
-        self.previous_interval = dt;
-        self.reference_interval = next_reference(self.reference_interval, dt);
+        self.count_update(n, dt);
         self.schedule.accepted(&ctx, &gains);
         Ok(ScheduledUpdate {
             outcome,
             gains: Some(gains),
             restarted: false,
         })
+    }
+
+    /// A filtered update with gains of the count alone
+    /// ([`GainSchedule::count_gains`]): the filter's own update with one
+    /// set of gains for every axis, bounded as in [`Self::filtered_update`];
+    /// no context, and the schedule is not told. The same arithmetic as
+    /// [`Self::filtered_update`] (the filter predicts, checks and refuses
+    /// alike), without the predictions formed twice.
+    #[inline(always)]
+    fn counted_update(
+        &mut self,
+        z: [N::Length; D],
+        dt: N::Interval,
+        n: u32,
+        gains: Result<Gains<N>, ScheduleError>,
+    ) -> Result<ScheduledUpdate<N, D>, ScheduledError> {
+        let scheduled = match gains {
+            Ok(g) => g,
+            Err(e) => return Err(ScheduledError::Schedule(e)),
+        };
+        let [gains] = match self.bounded([scheduled], dt) {
+            Ok(g) => g,
+            Err(e) => return Err(ScheduledError::Schedule(e)),
+        };
+        let outcome = match self.filter.update(z, dt, &gains) {
+            Ok(o) => o,
+            Err(e) => return Err(ScheduledError::Filter(e)),
+        };
+        self.count_update(n, dt);
+        Ok(ScheduledUpdate {
+            outcome,
+            gains: Some([gains; D]),
+            restarted: false,
+        })
+    }
+
+    /// The schedule's gains for an update `dt` after the previous one,
+    /// bounded by [`robust_gains`] unless they follow the interval or the
+    /// intervals are regular (per axis, or one set for every axis).
+    #[inline(always)]
+    fn bounded<const K: usize>(
+        &self,
+        scheduled: [Gains<N>; K],
+        dt: N::Interval,
+    ) -> Result<[Gains<N>; K], ScheduleError> {
+        if self.schedule.gains_follow_interval()
+            || intervals_regular(dt, self.previous_interval, self.reference_interval)
+        {
+            return Ok(scheduled);
+        }
+        robust_gains(
+            scheduled,
+            dt,
+            self.previous_interval,
+            self.reference_interval,
+        )
+    }
+
+    /// Measurement `n`, `dt` after the previous one, was filtered: the
+    /// count and the intervals [`robust_gains`] reads.
+    #[inline(always)]
+    fn count_update(&mut self, n: u32, dt: N::Interval) {
+        self.measurements = n;
+        self.previous_interval = dt;
+        self.reference_interval = next_reference(self.reference_interval, dt);
     }
 
     /// The prediction or innovation of this update overflowed: let the
@@ -798,6 +869,9 @@ impl<N: Numeric, const D: usize, const W: usize> GainSchedule<N, D> for AnySched
     }
     fn missed(&mut self, dt: N::Interval) {
         dispatch!(self, s => GainSchedule::<N, D>::missed(s, dt))
+    }
+    fn count_gains(&self, n: u32) -> Option<Result<Gains<N>, ScheduleError>> {
+        dispatch!(self, s => GainSchedule::<N, D>::count_gains(s, n))
     }
     fn gains_follow_interval(&self) -> bool {
         dispatch!(self, s => GainSchedule::<N, D>::gains_follow_interval(s))

@@ -447,3 +447,84 @@ fn scaled_noise_levels_smooth_a_noisier_sensor() {
         );
     }
 }
+
+/// A schedule's gains through the context path alone: `G`'s gains and
+/// `accepted`, without its `count_gains`.
+#[derive(Clone, Copy)]
+struct ThroughContext<G>(G);
+
+impl<N: abtrack::Numeric, const D: usize, G: GainSchedule<N, D>> GainSchedule<N, D>
+    for ThroughContext<G>
+{
+    fn gains(
+        &self,
+        ctx: &abtrack::gain::GainContext<N, D>,
+    ) -> Result<[Gains<N>; D], abtrack::gain::ScheduleError> {
+        self.0.gains(ctx)
+    }
+    fn accepted(&mut self, ctx: &abtrack::gain::GainContext<N, D>, used: &[Gains<N>; D]) {
+        self.0.accepted(ctx, used)
+    }
+    fn reset(&mut self) {
+        self.0.reset()
+    }
+}
+
+/// Feeds the same reports to `G` and to `G` through the context path:
+/// every result (outcomes, gains, errors) and every state after it are
+/// the same, bit for bit.
+fn count_path_matches_context_path<N: abtrack::Numeric, G>(schedule: G, reports: &[(f64, [f64; 2])])
+where
+    G: GainSchedule<N, 2> + core::fmt::Debug + PartialEq,
+{
+    use abtrack::num::Quantity;
+    let mut counted = ScheduledFilter::<N, G, 2, 2>::new(schedule);
+    let mut through = ScheduledFilter::<N, ThroughContext<G>, 2, 2>::new(ThroughContext(schedule));
+    assert!(schedule.count_gains(3).is_some(), "not a count schedule");
+    for (k, &(dt, z)) in reports.iter().enumerate() {
+        let z = z.map(N::Length::from_f64_lossy);
+        let dt = N::Interval::from_f64_lossy(dt);
+        let (a, b) = (counted.update(z, dt), through.update(z, dt));
+        assert_eq!(a, b, "report {k}");
+        assert_eq!(counted.filter(), through.filter(), "report {k}");
+        assert_eq!(counted.measurements(), through.measurements(), "report {k}");
+        assert_eq!(counted.schedule(), &through.schedule().0, "report {k}");
+    }
+}
+
+proptest! {
+    #![proptest_config(ProptestConfig::with_cases(64))]
+
+    /// M1's and M2's gains skip the context (`GainSchedule::count_gains`)
+    /// and give what the context path gives, on irregular intervals, skips,
+    /// gaps, invalid and overflowing measurements, in every number type.
+    #[test]
+    fn count_gains_give_what_the_context_path_gives(
+        reports in proptest::collection::vec(
+            (
+                prop_oneof![
+                    8 => 0.06f64..8.0,
+                    1 => Just(1.0),
+                    1 => 0.0f64..0.05,
+                    1 => 20.5f64..40.0,
+                    1 => Just(f64::NAN),
+                ],
+                prop_oneof![
+                    12 => (-2.0e4f64..2.0e4, -2.0e4f64..2.0e4).prop_map(|(x, y)| [x, y]),
+                    1 => Just([f64::NAN, 0.0]),
+                    1 => Just([1.0e30, -1.0e30]),
+                ],
+            ),
+            1..40,
+        ),
+    ) {
+        let ls = abtrack::gain::LeastSquaresGains::default();
+        count_path_matches_context_path::<f64, _>(ls, &reports);
+        count_path_matches_context_path::<f32, _>(ls, &reports);
+        count_path_matches_context_path::<abtrack::Fixed32, _>(ls, &reports);
+        let m1 = FixedGains::<f32>::new(Gains::alpha_beta_f64(0.6, 0.3).unwrap());
+        count_path_matches_context_path::<f32, _>(m1, &reports);
+        let m1 = FixedGains::<abtrack::Fixed32>::new(Gains::alpha_beta_f64(0.6, 0.3).unwrap());
+        count_path_matches_context_path::<abtrack::Fixed32, _>(m1, &reports);
+    }
+}
