@@ -129,7 +129,9 @@ pub struct IntervalTerms<N: Numeric> {
 
 impl<N: Numeric> IntervalTerms<N> {
     /// T and T²/2; refuses an interval that is not a valid number or is
-    /// ≤ 0, and one whose square is not representable.
+    /// ≤ 0, and one whose square is not representable. (Callers chain it
+    /// with `and_then`: `?` copies the terms through a library call, byte by
+    /// byte in the fast fixed point, at every update.)
     pub fn new(dt: N::Interval) -> Result<Self, FilterError> {
         check_interval(dt)?;
         let half_squared = (dt * dt).half();
@@ -172,7 +174,7 @@ impl<N: Numeric> StepGains<N> {
     /// one for which β/T, γ/(2T²) or T² is not representable
     /// ([`FilterError::Saturated`]).
     pub fn new(gains: &Gains<N>, dt: N::Interval) -> Result<Self, FilterError> {
-        Self::with_terms(gains, &IntervalTerms::new(dt)?)
+        IntervalTerms::new(dt).and_then(|terms| Self::with_terms(gains, &terms))
     }
 
     /// [`Self::new`] with the interval's terms formed already (one interval,
@@ -442,7 +444,7 @@ impl<N: Numeric, const ORDER: usize> KinematicFilter<N, ORDER> {
     /// The state predicted `dt` ahead, without changing the filter
     /// (Tenne & Singh eqs. 1–2; for αβ, Al-Wagih eq. 3).
     pub fn predict(&self, dt: N::Interval) -> Result<Prediction<N>, FilterError> {
-        self.predict_terms(&IntervalTerms::new(dt)?)
+        IntervalTerms::new(dt).and_then(|terms| self.predict_terms(&terms))
     }
 
     /// [`Self::predict`] with the interval's terms formed already.
@@ -883,7 +885,7 @@ impl<N: Numeric, const ORDER: usize, const D: usize> Cartesian<N, ORDER, D> {
         if z.iter().any(|v| !v.is_valid()) {
             return Err(FilterError::InvalidMeasurement);
         }
-        self.update_per_axis_terms(z, &IntervalTerms::<N>::new(dt)?, gains)
+        IntervalTerms::<N>::new(dt).and_then(|terms| self.update_per_axis_terms(z, &terms, gains))
     }
 
     /// [`Self::update_per_axis`] with the interval's terms formed already
@@ -909,14 +911,20 @@ impl<N: Numeric, const ORDER: usize, const D: usize> Cartesian<N, ORDER, D> {
         });
         if let Some(e) = refused {
             if e == FilterError::Saturated {
-                if let Some(first) = self.axes.first_mut() {
-                    first.count_saturation();
-                }
+                self.count_saturation();
             }
             return Err(e);
         }
         let kind = update_axes_each(&mut self.axes, z, steps.each_ref())?;
         Ok(self.outcomes(kind))
+    }
+
+    /// Counts one discarded update (on the first axis, as every refusal
+    /// does).
+    pub(crate) fn count_saturation(&mut self) {
+        if let Some(first) = self.axes.first_mut() {
+            first.count_saturation();
+        }
     }
 
     fn outcomes(&self, kind: UpdateKind) -> [UpdateOutcome<N>; D] {
@@ -926,7 +934,7 @@ impl<N: Numeric, const ORDER: usize, const D: usize> Cartesian<N, ORDER, D> {
     /// The state of every axis predicted `dt` ahead, without changing the
     /// filter ([`KinematicFilter::predict`] per axis).
     pub fn predict(&self, dt: N::Interval) -> Result<[Prediction<N>; D], FilterError> {
-        self.predict_terms(&IntervalTerms::new(dt)?)
+        IntervalTerms::new(dt).and_then(|terms| self.predict_terms(&terms))
     }
 
     /// [`Self::predict`] with the interval's terms formed already.

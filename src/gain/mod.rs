@@ -260,11 +260,13 @@ pub trait GainSchedule<N: Numeric, const D: usize>: Copy {
     fn missed(&mut self, _dt: N::Interval) {}
 
     /// The gains of measurement `n`, when they depend on the count alone
-    /// and are the same on every axis (M1's, M2's): [`ScheduledFilter`]
-    /// then builds no [`GainContext`] and does not call
+    /// and are the same on every axis (M1's, M2's): what
+    /// [`gains`](Self::gains) gives for every context of measurement `n`.
+    /// [`ScheduledFilter`] then builds no [`GainContext`] and does not call
     /// [`accepted`](Self::accepted), so a schedule that gives them keeps no
-    /// state `accepted` would change. `None` (the default): the gains need
-    /// the context.
+    /// state `accepted` would change; it asks for them before the filter
+    /// predicts, so their error comes before a saturation. `None` (the
+    /// default): the gains need the context.
     fn count_gains(&self, _n: u32) -> Option<Result<Gains<N>, ScheduleError>> {
         None
     }
@@ -573,7 +575,7 @@ where
             Ok(g) => g,
             Err(e) => return Err(ScheduledError::Schedule(e)),
         };
-        let gains = match self.bounded(scheduled, dt) {
+        let gains = match self.interval_bounded(scheduled, dt) {
             Ok(g) => g,
             Err(e) => return Err(ScheduledError::Schedule(e)),
         };
@@ -581,7 +583,7 @@ where
             Ok(o) => o,
             Err(e) => return Err(ScheduledError::Filter(e)),
         };
-        self.count_update(n, dt);
+        self.record_filtered(n, dt);
         self.schedule.accepted(&ctx, &gains);
         Ok(ScheduledUpdate {
             outcome,
@@ -608,7 +610,7 @@ where
             Ok(g) => g,
             Err(e) => return Err(ScheduledError::Schedule(e)),
         };
-        let [gains] = match self.bounded([scheduled], dt) {
+        let [gains] = match self.interval_bounded([scheduled], dt) {
             Ok(g) => g,
             Err(e) => return Err(ScheduledError::Schedule(e)),
         };
@@ -616,7 +618,7 @@ where
             Ok(o) => o,
             Err(e) => return Err(ScheduledError::Filter(e)),
         };
-        self.count_update(n, dt);
+        self.record_filtered(n, dt);
         Ok(ScheduledUpdate {
             outcome,
             gains: Some([gains; D]),
@@ -628,7 +630,7 @@ where
     /// bounded by [`robust_gains`] unless they follow the interval or the
     /// intervals are regular (per axis, or one set for every axis).
     #[inline(always)]
-    fn bounded<const K: usize>(
+    fn interval_bounded<const K: usize>(
         &self,
         scheduled: [Gains<N>; K],
         dt: N::Interval,
@@ -649,7 +651,7 @@ where
     /// Measurement `n`, `dt` after the previous one, was filtered: the
     /// count and the intervals [`robust_gains`] reads.
     #[inline(always)]
-    fn count_update(&mut self, n: u32, dt: N::Interval) {
+    fn record_filtered(&mut self, n: u32, dt: N::Interval) {
         self.measurements = n;
         self.previous_interval = dt;
         self.reference_interval = next_reference(self.reference_interval, dt);
@@ -657,8 +659,9 @@ where
 
     /// The prediction or innovation of this update overflowed: let the
     /// filter refuse (and count) the update, as it would without a schedule.
-    /// Its arithmetic is the same, so it refuses; should it not, the result
-    /// is discarded all the same.
+    /// Its gains are not the schedule's (α = β = 1), and its update can stay
+    /// in the number format where the schedule's would not; then the result
+    /// is discarded and the saturation counted all the same.
     fn refuse_overflow(
         &mut self,
         mut filter: Cartesian<N, ORDER, D>,
@@ -673,7 +676,10 @@ where
                 }
                 Err(e.into())
             }
-            Ok(_) => Err(FilterError::Saturated.into()),
+            Ok(_) => {
+                self.filter.count_saturation();
+                Err(FilterError::Saturated.into())
+            }
         }
     }
 

@@ -448,8 +448,8 @@ fn scaled_noise_levels_smooth_a_noisier_sensor() {
     }
 }
 
-/// A schedule's gains through the context path alone: `G`'s gains and
-/// `accepted`, without its `count_gains`.
+/// A schedule's gains through the context path alone: `G` with every
+/// method forwarded but `count_gains` (the trait's default, `None`).
 #[derive(Clone, Copy)]
 struct ThroughContext<G>(G);
 
@@ -465,31 +465,121 @@ impl<N: abtrack::Numeric, const D: usize, G: GainSchedule<N, D>> GainSchedule<N,
     fn accepted(&mut self, ctx: &abtrack::gain::GainContext<N, D>, used: &[Gains<N>; D]) {
         self.0.accepted(ctx, used)
     }
+    fn initialised(&mut self, n: u32, dt: N::Interval) {
+        self.0.initialised(n, dt)
+    }
+    fn missed(&mut self, dt: N::Interval) {
+        self.0.missed(dt)
+    }
+    fn gains_follow_interval(&self) -> bool {
+        self.0.gains_follow_interval()
+    }
+    fn predicted_variance_ratios(&self, dt: N::Interval) -> Option<[N::Ratio; D]> {
+        self.0.predicted_variance_ratios(dt)
+    }
+    fn restart_required(&self, phase: abtrack::filter::Phase) -> bool {
+        self.0.restart_required(phase)
+    }
     fn reset(&mut self) {
         self.0.reset()
     }
 }
 
-/// Feeds the same reports to `G` and to `G` through the context path:
-/// every result (outcomes, gains, errors) and every state after it are
-/// the same, bit for bit.
-fn count_path_matches_context_path<N: abtrack::Numeric, G>(schedule: G, reports: &[(f64, [f64; 2])])
+/// A report of the count-path comparison: an interval and a position, or
+/// (`None`) a pair of positions at ± the largest length of the number type,
+/// whose innovation overflows it.
+type Report = (f64, Option<[f64; 2]>);
+
+/// What [`count_path_matches_context_path`] saw: filtered updates, and
+/// updates refused as saturated.
+#[derive(Default)]
+struct PathCounts {
+    filtered: usize,
+    saturated: usize,
+}
+
+/// Feeds the same reports to `G` (`count_gains`) and to `G` through the
+/// context path: every result (outcomes, gains, errors) and every state
+/// after it are the same, bit for bit (compared in their `Debug` form,
+/// which tells −0 from +0).
+fn count_path_matches_context_path<N, G, const ORDER: usize>(
+    schedule: G,
+    reports: &[Report],
+    largest: f64,
+) -> PathCounts
 where
-    G: GainSchedule<N, 2> + core::fmt::Debug + PartialEq,
+    N: abtrack::Numeric,
+    G: GainSchedule<N, 2> + core::fmt::Debug,
 {
+    use abtrack::gain::ScheduledError;
     use abtrack::num::Quantity;
-    let mut counted = ScheduledFilter::<N, G, 2, 2>::new(schedule);
-    let mut through = ScheduledFilter::<N, ThroughContext<G>, 2, 2>::new(ThroughContext(schedule));
     assert!(schedule.count_gains(3).is_some(), "not a count schedule");
+    let mut counted = ScheduledFilter::<N, G, ORDER, 2>::new(schedule);
+    let mut through =
+        ScheduledFilter::<N, ThroughContext<G>, ORDER, 2>::new(ThroughContext(schedule));
+    let mut counts = PathCounts::default();
     for (k, &(dt, z)) in reports.iter().enumerate() {
+        let sign = if k % 2 == 0 { 1.0 } else { -1.0 };
+        let z = z.unwrap_or([sign * largest, -sign * largest]);
         let z = z.map(N::Length::from_f64_lossy);
         let dt = N::Interval::from_f64_lossy(dt);
         let (a, b) = (counted.update(z, dt), through.update(z, dt));
-        assert_eq!(a, b, "report {k}");
-        assert_eq!(counted.filter(), through.filter(), "report {k}");
+        assert_eq!(format!("{a:?}"), format!("{b:?}"), "report {k}");
+        assert_eq!(
+            format!("{:?}", counted.filter()),
+            format!("{:?}", through.filter()),
+            "report {k}"
+        );
         assert_eq!(counted.measurements(), through.measurements(), "report {k}");
-        assert_eq!(counted.schedule(), &through.schedule().0, "report {k}");
+        assert_eq!(
+            format!("{:?}", counted.schedule()),
+            format!("{:?}", through.schedule().0),
+            "report {k}"
+        );
+        match a {
+            Ok(u) if u.gains.is_some() => counts.filtered += 1,
+            Err(ScheduledError::Filter(abtrack::filter::FilterError::Saturated)) => {
+                counts.saturated += 1
+            }
+            _ => {}
+        }
     }
+    counts
+}
+
+/// The largest length each number type takes, about: ± it in the two axes
+/// overflows an innovation.
+const LARGEST_F64: f64 = 1.7e308;
+const LARGEST_F32: f64 = 3.0e38;
+const LARGEST_FIXED32: f64 = 5.0e5;
+
+/// Every count schedule, in every number type, on `reports`: M2 (also
+/// as `AnySchedule` from its spec), M1 αβ and M1 αβγ (an order-3 filter).
+fn every_count_schedule(reports: &[Report]) -> [PathCounts; 8] {
+    use abtrack::Fixed32;
+    let ls = abtrack::gain::LeastSquaresGains::default();
+    let spec = ScheduleSpec::parse("least-squares").unwrap();
+    let any = AnySchedule::<f32, 2, W>::from_spec(&spec).unwrap();
+    fn m1<N: abtrack::Numeric>() -> FixedGains<N> {
+        FixedGains::new(Gains::alpha_beta_f64(0.6, 0.3).unwrap())
+    }
+    fn m1_gamma<N: abtrack::Numeric>() -> FixedGains<N> {
+        FixedGains::new(Gains::alpha_beta_gamma_f64(0.7, 0.4, 0.05).unwrap())
+    }
+    [
+        count_path_matches_context_path::<f64, _, 2>(ls, reports, LARGEST_F64),
+        count_path_matches_context_path::<f32, _, 2>(ls, reports, LARGEST_F32),
+        count_path_matches_context_path::<Fixed32, _, 2>(ls, reports, LARGEST_FIXED32),
+        count_path_matches_context_path::<f32, _, 2>(any, reports, LARGEST_F32),
+        count_path_matches_context_path::<f64, _, 2>(m1::<f64>(), reports, LARGEST_F64),
+        count_path_matches_context_path::<Fixed32, _, 2>(m1::<Fixed32>(), reports, LARGEST_FIXED32),
+        count_path_matches_context_path::<f32, _, 3>(m1_gamma::<f32>(), reports, LARGEST_F32),
+        count_path_matches_context_path::<Fixed32, _, 3>(
+            m1_gamma::<Fixed32>(),
+            reports,
+            LARGEST_FIXED32,
+        ),
+    ]
 }
 
 proptest! {
@@ -510,21 +600,41 @@ proptest! {
                     1 => Just(f64::NAN),
                 ],
                 prop_oneof![
-                    12 => (-2.0e4f64..2.0e4, -2.0e4f64..2.0e4).prop_map(|(x, y)| [x, y]),
-                    1 => Just([f64::NAN, 0.0]),
-                    1 => Just([1.0e30, -1.0e30]),
+                    12 => (-2.0e4f64..2.0e4, -2.0e4f64..2.0e4).prop_map(|(x, y)| Some([x, y])),
+                    1 => Just(Some([f64::NAN, 0.0])),
+                    1 => Just(None),
                 ],
             ),
             1..40,
         ),
     ) {
-        let ls = abtrack::gain::LeastSquaresGains::default();
-        count_path_matches_context_path::<f64, _>(ls, &reports);
-        count_path_matches_context_path::<f32, _>(ls, &reports);
-        count_path_matches_context_path::<abtrack::Fixed32, _>(ls, &reports);
-        let m1 = FixedGains::<f32>::new(Gains::alpha_beta_f64(0.6, 0.3).unwrap());
-        count_path_matches_context_path::<f32, _>(m1, &reports);
-        let m1 = FixedGains::<abtrack::Fixed32>::new(Gains::alpha_beta_f64(0.6, 0.3).unwrap());
-        count_path_matches_context_path::<abtrack::Fixed32, _>(m1, &reports);
+        every_count_schedule(&reports);
+    }
+}
+
+/// The comparison above is not vacuous: on a fixed sequence (regular and
+/// irregular intervals, then reports at ± the largest length, the second
+/// of which overflows its innovation at the latest) every
+/// schedule and number type filters updates and refuses one as saturated
+/// on both paths.
+#[test]
+fn count_gains_comparison_filters_and_refuses() {
+    let mut reports: Vec<Report> = (0..12)
+        .map(|k| {
+            let t = f64::from(k);
+            (
+                if k % 3 == 0 { 2.5 } else { 1.0 },
+                Some([100.0 * t, -40.0 * t]),
+            )
+        })
+        .collect();
+    reports.extend([(1.0, None), (1.0, None), (1.0, Some([1300.0, -520.0]))]);
+    for (i, counts) in every_count_schedule(&reports).iter().enumerate() {
+        assert!(
+            counts.filtered >= 8,
+            "schedule {i}: {} filtered",
+            counts.filtered
+        );
+        assert!(counts.saturated >= 1, "schedule {i}: no saturated update");
     }
 }
