@@ -975,14 +975,18 @@ impl<S: Scalar> ThreatState<S> {
         altitude: Option<AltitudeEstimate<S>>,
         dt: Option<S>,
     ) -> Result<ThreatStatus<S>, TcasError> {
-        let inputs = Inputs {
-            miss_distance: MissDistances::both(miss_distance_m),
-            altitude,
-            vertical: vertical_measures(&cycle.own, altitude)?,
-            firm_for_ta: true,
-            firm_for_ra: true,
-        };
-        Ok(self.evaluate(cycle, geometry, &inputs, dt))
+        // `map`, not `?`: its temporaries copy the measures through a
+        // library call at every assessment.
+        vertical_measures(&cycle.own, altitude).map(|vertical| {
+            let inputs = Inputs {
+                miss_distance: MissDistances::both(miss_distance_m),
+                altitude,
+                vertical,
+                firm_for_ta: true,
+                firm_for_ra: true,
+            };
+            self.evaluate(cycle, geometry, &inputs, dt)
+        })
     }
 
     /// The tests of one cycle; `geometry.r` ≥ 0 and valid and the vertical
