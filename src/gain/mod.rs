@@ -597,7 +597,8 @@ where
     /// set of gains for every axis, bounded as in [`Self::filtered_update`];
     /// no context, and the schedule is not told. The same arithmetic as
     /// [`Self::filtered_update`] (the filter predicts, checks and refuses
-    /// alike), without the predictions formed twice.
+    /// alike, but for f64 outputs above `f64::MAX`/8, where f64's summing
+    /// guard is not exact), without the predictions formed twice.
     #[inline(always)]
     fn counted_update(
         &mut self,
