@@ -197,6 +197,21 @@ fn every_schedule_stays_bounded_on_intervals_across_the_envelope() {
     }
 }
 
+/// 1200 report times: 0, 1 s, then `pattern`'s intervals repeated.
+fn repeating(pattern: &[f64]) -> Vec<f64> {
+    let mut t = 0.0;
+    (0..1200)
+        .map(|k| {
+            if k == 1 {
+                t += 1.0;
+            } else if k > 1 {
+                t += pattern[k % pattern.len()];
+            }
+            t
+        })
+        .collect()
+}
+
 proptest! {
     #![proptest_config(ProptestConfig::with_cases(48))]
 
@@ -208,17 +223,7 @@ proptest! {
         seed in 0u64..10_000,
         pattern in proptest::collection::vec(0.06f64..20.0, 2..8),
     ) {
-        let mut t = 0.0;
-        let times: Vec<f64> = (0..1200)
-            .map(|k| {
-                if k == 1 {
-                    t += 1.0;
-                } else if k > 1 {
-                    t += pattern[k % pattern.len()];
-                }
-                t
-            })
-            .collect();
+        let times = repeating(&pattern);
         for spec in ALL_SCHEDULES {
             let mut track = any_track(spec);
             let worst = worst_error(&mut track, &times, 10.0, seed, 600);
@@ -236,18 +241,7 @@ proptest! {
 #[ignore = "known limitation: M4 leaves the 10 km bound on this pattern (docs/auto.md)"]
 fn m4_on_a_long_short_medium_pattern_stays_bounded() {
     let pattern = [15.870185795895068, 0.12461074173788983, 2.66273256798735];
-    let mut t = 0.0;
-    let times: Vec<f64> = (0..1200)
-        .map(|k| {
-            if k == 1 {
-                t += 1.0;
-            } else if k > 1 {
-                t += pattern[k % pattern.len()];
-            }
-            t
-        })
-        .collect();
-    let worst = worst_error(&mut any_track("m4"), &times, 10.0, 1637, 600);
+    let worst = worst_error(&mut any_track("m4"), &repeating(&pattern), 10.0, 1637, 600);
     assert!(worst < 1e4, "m4: {worst} m");
 }
 
