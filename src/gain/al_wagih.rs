@@ -453,6 +453,10 @@ impl MovingWindowConfig {
 /// Cost per update: `steps` × (L − 1) αβ steps per axis (20 × 7 × 2 = 280
 /// with the defaults). Memory: L entries of (n, T, and per axis z, x_p, v_p,
 /// e).
+///
+/// Not bounded on every report-time pattern: gains that switch every update
+/// can make an αβ filter diverge although each pair is stable
+/// (`docs/auto.md`, "Real timing").
 #[derive(Debug, Clone, Copy, PartialEq)]
 #[cfg_attr(feature = "defmt", derive(defmt::Format))]
 pub struct MovingWindowGains<N: Numeric, const D: usize, const W: usize> {

@@ -217,14 +217,16 @@ proptest! {
 
     /// Any repeating pattern of accepted intervals (from 0.06 s: summed in
     /// f64, 0.05 s steps can come out a hair below the minimum and be
-    /// refused): every schedule stays within the bound above.
+    /// refused): every schedule but M4 stays within the bound above. M4
+    /// switches its gains in a way no interval bound can hold (the two
+    /// tests below).
     #[test]
-    fn any_interval_sequence_keeps_every_schedule_bounded(
+    fn any_interval_sequence_keeps_every_schedule_but_m4_bounded(
         seed in 0u64..10_000,
         pattern in proptest::collection::vec(0.06f64..20.0, 2..8),
     ) {
         let times = repeating(&pattern);
-        for spec in ALL_SCHEDULES {
+        for spec in ALL_SCHEDULES.iter().filter(|spec| **spec != "m4") {
             let mut track = any_track(spec);
             let worst = worst_error(&mut track, &times, 10.0, seed, 600);
             prop_assert!(worst < 1e4, "{} with intervals {:?}: {} m", spec, pattern, worst);
@@ -232,17 +234,89 @@ proptest! {
     }
 }
 
-/// A case the search above found (seed 1637): Al-Wagih's moving window
-/// (M4) on the repeating intervals 15.87 s, 0.125 s, 2.66 s leaves the
-/// bound, with a worst error of 24.7 km; every other schedule stays within
-/// it. A known limitation of M4 under `robust_gains` (docs/auto.md, "Real
-/// timing"), kept here so that it can be run and fixed.
+/// Why M4 is outside the search above: Al-Wagih's Algorithm 2 picks α
+/// anew after every update, and an αβ filter whose gains switch is not
+/// stable under every switching, even at equal intervals and with each
+/// pair stable on its own. M4's own pairs (β = α²/(2 − α), eq. 23b) in the
+/// periodic order α = 1, 0.1, 0.1 at 1 s: the error matrix of the cycle
+/// has spectral radius 1.705, while each pair's own is below 1; on
+/// noiseless reports of a constant-velocity target with one 100 m outlier
+/// the switched filter's error passes 1000 km, either pair held removes it.
 #[test]
-#[ignore = "known limitation: M4 leaves the 10 km bound on this pattern (docs/auto.md)"]
-fn m4_on_a_long_short_medium_pattern_stays_bounded() {
+fn m4_gain_pairs_switched_periodically_diverge_at_equal_intervals() {
+    let beta = |alpha: f64| alpha * alpha / (2.0 - alpha);
+    // The spectral radius of the product of the error matrices
+    // [[1 − α, (1 − α)T], [−β/T, 1 − β]] (T = 1 s) of a cycle.
+    let radius = |cycle: &[f64]| {
+        let mut m = [[1.0, 0.0], [0.0, 1.0]];
+        for &alpha in cycle {
+            let b = beta(alpha);
+            let step = [[1.0 - alpha, 1.0 - alpha], [-b, 1.0 - b]];
+            m = [
+                [
+                    step[0][0] * m[0][0] + step[0][1] * m[1][0],
+                    step[0][0] * m[0][1] + step[0][1] * m[1][1],
+                ],
+                [
+                    step[1][0] * m[0][0] + step[1][1] * m[1][0],
+                    step[1][0] * m[0][1] + step[1][1] * m[1][1],
+                ],
+            ];
+        }
+        let (trace, det) = (m[0][0] + m[1][1], m[0][0] * m[1][1] - m[0][1] * m[1][0]);
+        let discriminant = trace * trace / 4.0 - det;
+        if discriminant >= 0.0 {
+            (trace / 2.0).abs() + discriminant.sqrt()
+        } else {
+            det.sqrt()
+        }
+    };
+    let switched = [1.0, 0.1, 0.1];
+    assert!(
+        (radius(&switched) - 1.705).abs() < 5e-4,
+        "{}",
+        radius(&switched)
+    );
+    assert!(radius(&[1.0]) < 1.0 && radius(&[0.1]) < 1.0);
+
+    let final_error = |cycle: &[f64]| {
+        let mut filter: Cartesian<f64, 2, 1> = Cartesian::new();
+        let mut error = 0.0;
+        for k in 0..92usize {
+            let truth = 80.0 * k as f64;
+            let z = if k == 5 { truth + 100.0 } else { truth };
+            let alpha = cycle[k % cycle.len()];
+            let gains = Gains::<f64>::alpha_beta(alpha, beta(alpha)).unwrap();
+            filter.update([z], 1.0, &gains).unwrap();
+            error = (filter.position()[0] - truth).abs();
+        }
+        error
+    };
+    let diverged = final_error(&switched);
+    assert!(diverged > 1e6, "switched pairs: {diverged} m");
+    for alpha in [1.0, 0.1] {
+        let held = final_error(&[alpha]);
+        assert!(held < 1.0, "α = {alpha} held: {held} m");
+    }
+}
+
+/// A case the search above found (seed 1637) before M4 was taken out of
+/// it: on the repeating intervals 15.87 s, 0.125 s, 2.66 s, M4's error
+/// passes the 10 km bound while every other schedule stays within it. Kept as the
+/// record of a limitation of the published method (docs/auto.md): the
+/// assertion fails, and the docs must change, if M4 is ever bounded here.
+#[test]
+fn m4_leaves_the_bound_on_a_long_short_medium_pattern_and_the_others_do_not() {
     let pattern = [15.870185795895068, 0.12461074173788983, 2.66273256798735];
-    let worst = worst_error(&mut any_track("m4"), &repeating(&pattern), 10.0, 1637, 600);
-    assert!(worst < 1e4, "m4: {worst} m");
+    let times = repeating(&pattern);
+    for spec in ALL_SCHEDULES {
+        let worst = worst_error(&mut any_track(spec), &times, 10.0, 1637, 600);
+        if *spec == "m4" {
+            assert!(worst > 1e4, "m4: {worst} m");
+        } else {
+            assert!(worst < 1e4, "{spec}: {worst} m");
+        }
+    }
 }
 
 /// Equal intervals (every experiment of the papers) leave the gains as the
