@@ -225,49 +225,52 @@ pub fn assess_in<S: Scalar>(
     cycle: &Cycle<S>,
     intruder: &Intruder<S>,
 ) -> Result<ThreatAssessment<S>, TcasError> {
-    let (relative, closest) = relative_state(intruder)?;
-    let (range, range_rate) = (relative.range_m, relative.range_rate_m_per_s);
-    let mut geometry = RangeGeometry::new(range, range_rate, cycle.thresholds());
-    let status = ThreatState::new().assess_state(
-        cycle,
-        &mut geometry,
-        closest.map(|c| c.distance_m),
-        intruder.altitude,
-        None,
-    )?;
-    // The taus of the report from the quotients the tests formed: none
-    // while the range opens, except τ_mod = 0 inside DMOD.
-    let opening = range_rate > S::ZERO;
-    let (ta_dmod_m, ra_dmod_m) = cycle.thresholds().dmod_m();
-    let modified_tau = |g: &mut RangeGeometry<S>, dmod_m: S, ra: bool| {
-        if range <= dmod_m {
-            Ok(Some(S::ZERO))
-        } else if opening {
-            Ok(None)
-        } else if ra {
-            measures::valid_result(g.ra_modified_tau(dmod_m)).map(Some)
-        } else {
-            measures::valid_result(g.modified_tau(dmod_m)).map(Some)
-        }
-    };
-    Ok(ThreatAssessment {
-        sensitivity: cycle.params().level,
-        range_m: range,
-        range_rate_m_per_s: range_rate,
-        range_tau_s: if opening {
-            None
-        } else {
-            Some(measures::valid_result(geometry.range_tau())?)
-        },
-        ta_modified_tau_s: modified_tau(&mut geometry, ta_dmod_m, false)?,
-        ra_modified_tau_s: match ra_dmod_m {
-            Some(dmod_m) => modified_tau(&mut geometry, dmod_m, true)?,
-            None => None,
-        },
-        closest_approach: closest,
-        vertical: status.vertical,
-        miss_distance_filtered: status.miss_distance_filtered,
-        advisory: status.advisory,
+    // Chained rather than `?`, which copies the relative state through
+    // memcpy in the wide formats.
+    relative_state(intruder).and_then(|(relative, closest)| {
+        let (range, range_rate) = (relative.range_m, relative.range_rate_m_per_s);
+        let mut geometry = RangeGeometry::new(range, range_rate, cycle.thresholds());
+        let status = ThreatState::new().assess_state(
+            cycle,
+            &mut geometry,
+            closest.map(|c| c.distance_m),
+            intruder.altitude,
+            None,
+        )?;
+        // The taus of the report from the quotients the tests formed: none
+        // while the range opens, except τ_mod = 0 inside DMOD.
+        let opening = range_rate > S::ZERO;
+        let (ta_dmod_m, ra_dmod_m) = cycle.thresholds().dmod_m();
+        let modified_tau = |g: &mut RangeGeometry<S>, dmod_m: S, ra: bool| {
+            if range <= dmod_m {
+                Ok(Some(S::ZERO))
+            } else if opening {
+                Ok(None)
+            } else if ra {
+                measures::valid_result(g.ra_modified_tau(dmod_m)).map(Some)
+            } else {
+                measures::valid_result(g.modified_tau(dmod_m)).map(Some)
+            }
+        };
+        Ok(ThreatAssessment {
+            sensitivity: cycle.params().level,
+            range_m: range,
+            range_rate_m_per_s: range_rate,
+            range_tau_s: if opening {
+                None
+            } else {
+                Some(measures::valid_result(geometry.range_tau())?)
+            },
+            ta_modified_tau_s: modified_tau(&mut geometry, ta_dmod_m, false)?,
+            ra_modified_tau_s: match ra_dmod_m {
+                Some(dmod_m) => modified_tau(&mut geometry, dmod_m, true)?,
+                None => None,
+            },
+            closest_approach: closest,
+            vertical: status.vertical,
+            miss_distance_filtered: status.miss_distance_filtered,
+            advisory: status.advisory,
+        })
     })
 }
 
