@@ -40,7 +40,9 @@ use crate::filter::{
     outcome as outcome_of, AlphaBeta, FilterError, Gains, IntervalSpan, Phase, Prediction,
     StepGains, UpdateOutcome,
 };
-use crate::gains::{beta_from_alpha, check_range, config_quantity, grid_point, ConfigError};
+use crate::gains::{
+    beta_from_alpha, check_capacity, check_range, config_quantity, grid_point, ConfigError,
+};
 use crate::num::{Numeric, Quantity, Real};
 
 /// Configuration of a bank (`bank:k=8,min=0.05,max=1`).
@@ -162,13 +164,8 @@ impl<N: Numeric, const K: usize> ParallelBank<N, K> {
     /// The bank a [`BankConfig`] describes.
     pub fn from_config(c: &BankConfig) -> Result<Self, ConfigError> {
         c.validate()?;
+        check_capacity(c.k, K, "k")?;
         let k = usize::from(c.k);
-        if k > K {
-            return Err(ConfigError::ExceedsCapacity {
-                parameter: "k",
-                capacity: K,
-            });
-        }
         let lo: N::Ratio = config_quantity(c.alpha_min, "min")?;
         let hi: N::Ratio = config_quantity(c.alpha_max, "max")?;
         let mut gains = [Gains::alpha_beta(N::Ratio::ONE, N::Ratio::ONE)

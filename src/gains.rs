@@ -238,6 +238,22 @@ pub(crate) fn config_quantity<Q: Quantity>(
     Q::try_from_f64(v).map_err(|_| ConfigError::NotRepresentable { parameter })
 }
 
+/// Checks that `v` entries fit a type whose const capacity is `capacity`.
+pub(crate) fn check_capacity(
+    v: u16,
+    capacity: usize,
+    parameter: &'static str,
+) -> Result<(), ConfigError> {
+    if usize::from(v) > capacity {
+        Err(ConfigError::ExceedsCapacity {
+            parameter,
+            capacity,
+        })
+    } else {
+        Ok(())
+    }
+}
+
 /// Checks lo < v ≤ hi (or lo ≤ v ≤ hi when `closed_low`), refusing NaN.
 pub(crate) fn check_range(
     v: f64,

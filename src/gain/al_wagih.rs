@@ -11,7 +11,10 @@
 //!   error over a moving window, β from eq. (23b) (Algorithm 2).
 
 use super::window::{argmin, Window};
-use super::{check_range, config_quantity, ConfigError, GainContext, GainSchedule, ScheduleError};
+use super::{
+    check_capacity, check_range, config_quantity, ConfigError, GainContext, GainSchedule,
+    ScheduleError,
+};
 use crate::filter::Gains;
 use crate::gains::grid_point;
 use crate::num::{Numeric, Quantity, Real};
@@ -304,12 +307,7 @@ impl<N: Numeric, const D: usize, const W: usize> LinearCombinationGains<N, D, W>
     /// M3 as `c` configures it; the window must fit the capacity `W`.
     pub fn new(c: &LinearCombinationConfig) -> Result<Self, ConfigError> {
         c.validate()?;
-        if usize::from(c.window) > W {
-            return Err(ConfigError::ExceedsCapacity {
-                parameter: "window",
-                capacity: W,
-            });
-        }
+        check_capacity(c.window, W, "window")?;
         let alpha0: N::Ratio = config_quantity(c.alpha0, "alpha0")?;
         let w: N::Ratio = config_quantity(c.w, "w")?;
         Ok(LinearCombinationGains {
@@ -472,12 +470,7 @@ impl<N: Numeric, const D: usize, const W: usize> MovingWindowGains<N, D, W> {
     /// M4 as `c` configures it; the window must fit the capacity `W`.
     pub fn new(c: &MovingWindowConfig) -> Result<Self, ConfigError> {
         c.validate()?;
-        if usize::from(c.window) > W {
-            return Err(ConfigError::ExceedsCapacity {
-                parameter: "window",
-                capacity: W,
-            });
-        }
+        check_capacity(c.window, W, "window")?;
         let alpha0: N::Ratio = config_quantity(c.alpha0, "alpha0")?;
         let initial = Gains::alpha_beta(alpha0, beta_from_alpha(alpha0)).map_err(|_| {
             ConfigError::NotRepresentable {

@@ -19,7 +19,8 @@ use super::al_wagih::{
     beta_from_alpha, least_squares_alpha, least_squares_beta, LeastSquaresConfig,
 };
 use super::{
-    check_range, config_quantity, ConfigError, FixedGains, GainContext, GainSchedule, ScheduleError,
+    check_capacity, check_range, config_quantity, ConfigError, FixedGains, GainContext,
+    GainSchedule, ScheduleError,
 };
 use crate::filter::Gains;
 use crate::num::{Numeric, Quantity, Real};
@@ -193,12 +194,7 @@ impl<N: Numeric, const D: usize, const H: usize> ResidualAccumulationGains<N, D,
     /// §2.1.4's schedule as `c` configures it; n must fit the capacity `H`.
     pub fn new(c: &ResidualAccumulationConfig) -> Result<Self, ConfigError> {
         c.validate()?;
-        if usize::from(c.n) > H {
-            return Err(ConfigError::ExceedsCapacity {
-                parameter: "n",
-                capacity: H,
-            });
-        }
+        check_capacity(c.n, H, "n")?;
         // σ_m = √σ_m², taken once in f64 (configuration).
         let sigma_m: N::Length = config_quantity(libm::sqrt(c.sigma_m2), "sigma-m2")?;
         if !(sigma_m.is_valid() && sigma_m > N::Length::ZERO) {

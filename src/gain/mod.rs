@@ -226,7 +226,7 @@ impl fmt::Display for ScheduleError {
 impl core::error::Error for ScheduleError {}
 
 pub use crate::gains::ConfigError;
-pub(crate) use crate::gains::{check_range, config_quantity};
+pub(crate) use crate::gains::{check_capacity, check_range, config_quantity};
 
 /// A gain schedule: a small state machine that gives the gains of each
 /// filtered update.
