@@ -121,8 +121,10 @@ pub const SCHEDULES: &[ScheduleInfo] = &[
 ///
 /// * `m1` α and `m3` α₀: α_K, Kalata's steady-state α for the tracking
 ///   index Λ = σ_w·T²/σ with σ_w = a_max/2 (the rule of the default tracker,
-///   `crate::track::defaults` rule 2); `least-squares` and `m3` n-max: the
-///   first n with α̂(n) ≤ α_K (the least-squares gains held at α_K);
+///   `crate::track::defaults` rule 2); `least-squares` and `m3` n-max,
+///   `li-improved` and `liu-count-adjusted` k-max (the same count-based
+///   gains, eq. 24 / eq. 4 / eq. 5, with the count bound this crate adds):
+///   the first n with α̂(n) ≤ α_K (the least-squares gains held at α_K);
 /// * `li-improved` Δρ = σ; `liu-residual`, `liu-adaptive` σ_m² = σ²;
 ///   `liu-count-adjusted` threshold = 14σ and `liu-adaptive` limit = 3.8σ
 ///   (the paper's 70 m and 19 m at its σ = 5 m);
@@ -427,9 +429,13 @@ impl ScheduleSpec {
                 c.alpha0 = sensor.steady_state_alpha()?;
                 c.n_max = sensor.least_squares_n_max()?;
             }
-            ScheduleSpec::LiImproved(c) => c.range_error = sigma,
+            ScheduleSpec::LiImproved(c) => {
+                c.range_error = sigma;
+                c.k_max = sensor.least_squares_n_max()?;
+            }
             ScheduleSpec::ScanCountAdjusted(c) => {
                 c.threshold = sigma * SensorScale::LIU_THRESHOLD_SIGMAS;
+                c.k_max = sensor.least_squares_n_max()?;
             }
             ScheduleSpec::ResidualAccumulation(c) => c.sigma_m2 = sigma * sigma,
             ScheduleSpec::AdaptiveSwitch(c) => {

@@ -426,12 +426,20 @@ fn defaults_scale_with_the_sensor() {
     assert_eq!(parsed("m1"), format!("m1:alpha={alpha}"));
     assert_eq!(parsed("m1:alpha=0.3"), "m1:alpha=0.3");
     assert!(parsed("li-improved").contains("range-error=50,"));
+    assert!(parsed("li-improved").ends_with(&format!(",k-max={n_max}")));
+    assert_eq!(
+        parsed("liu-count-adjusted"),
+        format!("liu-count-adjusted:threshold=700,k-max={n_max}")
+    );
+    assert_eq!(
+        parsed("liu-count-adjusted:k-max=1000"),
+        "liu-count-adjusted:threshold=700,k-max=1000"
+    );
     assert_eq!(
         parsed("liu-residual"),
         "liu-residual:n=3,sigma-m2=2500,alpha-min=0.01"
     );
     assert!(parsed("liu-adaptive").starts_with("liu-adaptive:limit=190,"));
-    assert!(parsed("liu-count-adjusted").starts_with("liu-count-adjusted:threshold=700,"));
     assert_eq!(parsed("auto"), "auto:sigma=50");
     // Without a sensor the papers' defaults stay (the experiments use them).
     assert_eq!(
@@ -490,6 +498,26 @@ fn scaled_defaults_follow_a_turn() {
             let lag = worst_on_turn(&scaled, seed);
             assert!(lag < 400.0, "{name} ({scaled}) lags {lag} m");
         }
+    }
+}
+
+/// Finding: "`liu-count-adjusted` scaled to a 50 m sensor is 15× the
+/// Kalman filter on real flights": its threshold (14σ = 700 m) scaled but
+/// its count bound left at 1000, the count grows while the innovations stay
+/// under the threshold, and its gains (eq. 5) fall far below the sensor's
+/// steady-state α, so it lags by kilometres in a turn. Scaled as the
+/// least-squares count bound (k-max = n-max, the first n with α̂(n) ≤ α_K)
+/// it follows the turn as `m2` does.
+#[test]
+fn a_scaled_count_bound_keeps_liu_count_adjusted_in_a_turn() {
+    let unbounded =
+        ScheduleSpec::parse_scaled("liu-count-adjusted:k-max=1000", &scale(50.0)).unwrap();
+    let scaled = ScheduleSpec::parse_scaled("liu-count-adjusted", &scale(50.0)).unwrap();
+    for seed in 1..=3 {
+        let lag = worst_on_turn(&unbounded, seed);
+        assert!(lag > 1000.0, "{unbounded} lags only {lag} m");
+        let lag = worst_on_turn(&scaled, seed);
+        assert!(lag < 400.0, "{scaled} lags {lag} m");
     }
 }
 
