@@ -5,8 +5,9 @@
 //! of the rules on the true states. Writes `results/tcas-random/`: the
 //! table by level (`by_level.md`/`.csv`), false vs missed RAs by level
 //! (`false_vs_missed.svg`), the distribution of RA onset delays
-//! (`onset_delay.svg`), the encounters with false RAs (`false_ras.md`) and
-//! with the other sense at onset (`wrong_senses.md`) at σB 5° and 25 ft,
+//! (`onset_delay.svg`), the encounters with false RAs (`false_ras.md`),
+//! late RAs (`late_ras.md`) and the other sense at onset
+//! (`wrong_senses.md`) at σB 5° and 25 ft,
 //! the HMD filter's trade-off (`trade_off.md`, `trade_off.svg`) and
 //! `summary.md`.
 
@@ -225,6 +226,7 @@ pub fn run(ctx: &Context) -> Result<(), String> {
     )?;
 
     false_ra_table(&encounters, &results[1][0]).write(&dir, "false_ras")?;
+    late_ra_table(&encounters, &results[1][0]).write(&dir, "late_ras")?;
     wrong_sense_table(&encounters, &results[0][0], &results[1][0]).write(&dir, "wrong_senses")?;
     let trade_off = trade_off_table(&encounters, seeds);
     trade_off.write(&dir, "trade_off")?;
@@ -289,8 +291,9 @@ pub fn run(ctx: &Context) -> Result<(), String> {
          on the true states. Definitions in the module docs. Table by level: `by_level.md`; \
          plots: `false_vs_missed.svg`, `onset_delay.svg`; the HMD filter's confidence factor \
          k swept in `trade_off.md` and `trade_off.svg`; at σB 5° and 25 ft, the encounters \
-         with false RAs in `false_ras.md` and those with the other sense at onset, beside \
-         their vertical miss against the 25 ft quantum, in `wrong_senses.md`.\n",
+         with false RAs in `false_ras.md`, those with an RA onset more than {LATE_ONSET_S} s \
+         late in `late_ras.md`, and those with the other sense at onset, beside their \
+         vertical miss against the 25 ft quantum, in `wrong_senses.md`.\n",
         encounters.len()
     );
     let overall: Vec<&Vec<String>> = table.rows.iter().filter(|r| r[2] == "all").collect();
@@ -306,9 +309,17 @@ pub fn run(ctx: &Context) -> Result<(), String> {
 }
 
 /// The new-threat confidence factors k the trade-off sweeps (an RA needs
-/// the combined miss distance's upper bound m + kσ under the HMD
-/// threshold; `abtrack::tcas::detection::MISS_DISTANCE_CONFIDENCE`).
-pub const CONFIDENCES: [f64; 9] = [0.0, 0.25, 0.35, 0.5, 0.75, 1.0, 1.5, 2.0, 3.0];
+/// the combined miss distance's bound m + kσ under the HMD threshold;
+/// `abtrack::tcas::detection::MISS_DISTANCE_CONFIDENCE`): k > 0 asks for
+/// confidence that the miss is small, k < 0 filters only when confident
+/// that it is large.
+pub const CONFIDENCES: [f64; 12] = [
+    -1.0, -0.5, -0.25, 0.0, 0.25, 0.35, 0.5, 0.75, 1.0, 1.5, 2.0, 3.0,
+];
+
+/// An RA onset later than this after the reference's is late (the
+/// randomized suite's p95 target), s.
+pub const LATE_ONSET_S: f64 = 5.0;
 
 /// False and missed RAs, the onset delay, RAs in pieces and wrong senses as
 /// the HMD filter's confidence factor varies, for each noisy condition
@@ -384,6 +395,47 @@ pub fn false_ra_table(encounters: &[RandomEncounter], runs: &[Vec<RunResult>]) -
             format!("{:+.0}", e.vmd_ft),
             format!("{:.0}", e.closure_kt),
             format!("{:+.0}", e.intruder_rate_ft_per_min),
+        ]);
+    }
+    table
+}
+
+/// The encounters with an RA onset more than [`LATE_ONSET_S`] after the
+/// reference's under `runs` (one condition and type): how many of their
+/// runs, the delays, and the encounter's figures against the level's HMD
+/// threshold.
+pub fn late_ra_table(encounters: &[RandomEncounter], runs: &[Vec<RunResult>]) -> Table {
+    let mut table = Table::new([
+        "encounter",
+        "level",
+        "late runs",
+        "onset delays (s)",
+        "HMD (m)",
+        "HMD / threshold",
+        "VMD (ft)",
+        "closure (kt)",
+    ]);
+    for (e, rs) in encounters.iter().zip(runs) {
+        let late = rs
+            .iter()
+            .filter(|r| r.onset_delay_s.is_some_and(|d| d > LATE_ONSET_S))
+            .count();
+        if late == 0 {
+            continue;
+        }
+        let delays: Vec<String> = rs.iter().map(|r| seconds(r.onset_delay_s)).collect();
+        let threshold = crate::reference_tcas::level_for(e.encounter.own_altitude_ft)
+            .ra
+            .map_or(f64::NAN, |ra| ra.hmd_m);
+        table.push([
+            e.index.to_string(),
+            format!("SL{}", e.level),
+            format!("{late} of {}", rs.len()),
+            delays.join(" "),
+            format!("{:.0}", e.hmd_m),
+            format!("{:.2}", e.hmd_m / threshold),
+            format!("{:+.0}", e.vmd_ft),
+            format!("{:.0}", e.closure_kt),
         ]);
     }
     table
