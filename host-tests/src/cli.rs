@@ -174,8 +174,8 @@ pub struct ReplayArgs {
     #[arg(long, value_enum, default_value = "rad", help_heading = "Sensor")]
     pub azimuth_unit: AngleUnit,
     /// tracker, auto: Cartesian noise σ per axis, m (tracker default 20, or the polar sensor's
-    /// figures); ab, abg: scales the schedule's paper-tied defaults (Li's Δρ, Liu's σ_m², the
-    /// m1/m3 α and n-max: docs/auto.md).
+    /// figures); ab, abg: scales the schedule's paper-tied defaults to the sensor (noise
+    /// levels, thresholds, α and count bounds: docs/auto.md).
     #[arg(long, value_parser = finite, allow_hyphen_values = true, help_heading = "Sensor")]
     pub sigma_m: Option<f64>,
     /// tracker: the region watched, m: half-width of a square (x/y input) or radius of a

@@ -317,8 +317,8 @@ pub const CONFIDENCES: [f64; 12] = [
     -1.0, -0.5, -0.25, 0.0, 0.25, 0.35, 0.5, 0.75, 1.0, 1.5, 2.0, 3.0,
 ];
 
-/// An RA onset later than this after the reference's is late (the
-/// randomized suite's p95 target), s.
+/// An RA onset later than this after the reference's is late, s: the
+/// randomized suite's p95 target with 25 ft reports.
 pub const LATE_ONSET_S: f64 = 5.0;
 
 /// False and missed RAs, the onset delay, RAs in pieces and wrong senses as
@@ -383,21 +383,26 @@ pub fn false_ra_table(encounters: &[RandomEncounter], runs: &[Vec<RunResult>]) -
         if n == 0 {
             continue;
         }
-        let threshold = crate::reference_tcas::level_for(e.encounter.own_altitude_ft)
-            .ra
-            .map_or(f64::NAN, |ra| ra.hmd_m);
         table.push([
             e.index.to_string(),
             format!("SL{}", e.level),
             n.to_string(),
             format!("{:.0}", e.hmd_m),
-            format!("{:.2}", e.hmd_m / threshold),
+            format!("{:.2}", e.hmd_m / hmd_threshold_m(e)),
             format!("{:+.0}", e.vmd_ft),
             format!("{:.0}", e.closure_kt),
             format!("{:+.0}", e.intruder_rate_ft_per_min),
         ]);
     }
     table
+}
+
+/// The HMD threshold of the encounter's level, m (NaN at a level without
+/// RAs).
+fn hmd_threshold_m(e: &RandomEncounter) -> f64 {
+    crate::reference_tcas::level_for(e.encounter.own_altitude_ft)
+        .ra
+        .map_or(f64::NAN, |ra| ra.hmd_m)
 }
 
 /// The encounters with an RA onset more than [`LATE_ONSET_S`] after the
@@ -424,16 +429,13 @@ pub fn late_ra_table(encounters: &[RandomEncounter], runs: &[Vec<RunResult>]) ->
             continue;
         }
         let delays: Vec<String> = rs.iter().map(|r| seconds(r.onset_delay_s)).collect();
-        let threshold = crate::reference_tcas::level_for(e.encounter.own_altitude_ft)
-            .ra
-            .map_or(f64::NAN, |ra| ra.hmd_m);
         table.push([
             e.index.to_string(),
             format!("SL{}", e.level),
             format!("{late} of {}", rs.len()),
             delays.join(" "),
             format!("{:.0}", e.hmd_m),
-            format!("{:.2}", e.hmd_m / threshold),
+            format!("{:.2}", e.hmd_m / hmd_threshold_m(e)),
             format!("{:+.0}", e.vmd_ft),
             format!("{:.0}", e.closure_kt),
         ]);

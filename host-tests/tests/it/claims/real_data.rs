@@ -3,10 +3,12 @@
 //! (`abtrack_host_tests::experiments::real_adsb`); results/real-adsb/ has
 //! the full figures.
 
+use abtrack::gain::spec::{ScheduleSpec, SensorScale};
+use abtrack::track::defaults::BANK_30_ACCELERATION;
 use abtrack_host_tests::experiments::real_adsb::{
     best_kalman_q, data_dir, evaluate_segment, median, read_scene_truth, read_segments, run_scene,
     truth_for, Figure, Scene, SceneRun, Segment, Timing, GRID_MAX_GAP_S, KALMAN_Q_GRID, SCENES,
-    SCENE_NUMERICS,
+    SCENE_NUMERICS, SCHEDULES, SIGMA_M,
 };
 use abtrack_host_tests::experiments::scene_draws::{
     self, draw, measurements, CONDITIONS, DRAW_SEEDS,
@@ -60,32 +62,33 @@ fn the_one_q_kalman_filter_beats_the_raw_measurements_at_both_timings() {
     }
 }
 
-/// Every schedule whose defaults follow the sensor (`--sigma-m`,
-/// `SensorScale`) stays within 1.2× the one-q Kalman filter's median
+/// Every schedule of the experiment whose defaults follow the sensor
+/// (`--sigma-m`, `SensorScale`) stays within 1.2× the one-q Kalman filter's median
 /// per-segment RMSE at both timings (seed 1): comparable filters, where a
 /// default tied to a paper's own sensor was 15× (`liu-count-adjusted`'s
 /// count bound, docs/auto.md).
 #[test]
 fn every_sensor_scaled_schedule_is_within_a_fifth_of_the_kalman_filter() {
-    const SCALED: [&str; 8] = [
-        "m1",
-        "least-squares",
-        "m3",
-        "li-improved",
-        "liu-count-adjusted",
-        "liu-residual",
-        "liu-adaptive",
-        "auto:sigma=50",
-    ];
+    // The experiment's schedules whose defaults change with the sensor.
+    let sensor = SensorScale {
+        sigma: SIGMA_M,
+        period: 1.0,
+        max_acceleration: BANK_30_ACCELERATION,
+    };
+    let sensor_scaled: Vec<&str> = SCHEDULES
+        .into_iter()
+        .filter(|s| ScheduleSpec::parse_scaled(s, &sensor).ok() != ScheduleSpec::parse(s).ok())
+        .collect();
+    assert_eq!(sensor_scaled.len(), 7, "{sensor_scaled:?}");
     let segments = read_segments(&data_dir()).unwrap();
     for timing in Timing::ALL {
         let results: Vec<_> = segments
             .iter()
-            .map(|s| evaluate_segment(s, timing, &[1], &SCALED).unwrap())
+            .map(|s| evaluate_segment(s, timing, &[1], &sensor_scaled).unwrap())
             .collect();
         let refs: Vec<_> = results.iter().collect();
         let (_, kf) = best_kalman_q(&refs);
-        for spec in SCALED {
+        for &spec in &sensor_scaled {
             let rmse: Vec<f64> = results
                 .iter()
                 .map(|r| r.schedule(spec).and_then(Figure::rmse).unwrap())

@@ -11,6 +11,7 @@ use abtrack::filter::altitude::AltitudeQuantum;
 use abtrack::filter::range_azimuth::{RangeAzimuthFilter, RangeAzimuthNoise};
 use abtrack::tcas::MAX_CLOSURE_SPEED_M_PER_S;
 use abtrack::{Scalar, ScaledScalar};
+use abtrack_host_tests::experiments::tcas_random::LATE_ONSET_S;
 use abtrack_host_tests::noise::{rng_from_seed, standard_normal};
 use abtrack_host_tests::random_encounters::{
     reference, run_one, suite, Condition, RandomEncounter, Tally, CONDITIONS, LEVELS, PER_LEVEL,
@@ -124,7 +125,7 @@ fn noisy_runs_are_never_refused_and_ras_are_timely_in_every_type() {
             );
             assert!(t.delay_quantile(0.5).unwrap() <= 1.0, "{}", condition.name);
             let p95_limit = match condition.quantum {
-                AltitudeQuantum::ModeS25 => 5.0,
+                AltitudeQuantum::ModeS25 => LATE_ONSET_S,
                 AltitudeQuantum::ModeC => 6.0,
             };
             assert!(
