@@ -15,6 +15,8 @@ use std::path::{Path, PathBuf};
 mod csv_recording;
 #[path = "../../../../fuzz/properties/fixed_point.rs"]
 mod fixed_point;
+#[path = "../../../../fuzz/properties/tcas_intruder.rs"]
+mod tcas_intruder;
 #[path = "../../../../fuzz/properties/tracker_scan.rs"]
 mod tracker_scan;
 #[path = "../../../../fuzz/properties/wire_decoder.rs"]
@@ -78,6 +80,11 @@ fn csv_recording_corpus() {
 #[test]
 fn fixed_point_corpus() {
     replay("fixed_point", fixed_point::check);
+}
+
+#[test]
+fn tcas_intruder_corpus() {
+    replay("tcas_intruder", tcas_intruder::check);
 }
 
 #[test]
