@@ -4,7 +4,7 @@
 # (host-tests/tests/it/firmware/fault_injection.rs); writes the outcome tables to
 # results/fault-injection-<board>.md, with the whole clutter storm (an
 # ABTRACK_CLUTTER_STORM_SCANS in the environment is ignored). scripts/test.sh
-# runs the same tests without writing the tables, the clutter storm over 30
+# runs the same tests without writing the tables, the clutter storm over 15
 # scans.
 #
 #   scripts/fault-injection.sh [target | board | core ...]   (default: all three)

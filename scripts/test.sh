@@ -39,7 +39,7 @@
 #      well-formed report (nothing about speed is checked; scripts/bench.sh
 #      builds, checks and runs the whole image, and measures);
 #      the static track table example on the mps2-an386,
-#   6. fault injection (the clutter storm over 30 of the input's 110 scans;
+#   6. fault injection (the clutter storm over 15 of the input's 110 scans;
 #      scripts/fault-injection.sh runs it whole) and repeated demo runs on
 #      the three boards (one lane each), a one-hour soak on the Cortex-M3
 #      (docs/firmware-and-boards.md).
@@ -465,10 +465,10 @@ stack_marks() {
 # `Fault` side by side, and three runs of the demo compared byte for byte,
 # with each other and with the same core run on the host:
 # host-tests/tests/it/firmware/fault_injection.rs). The clutter storm lasts
-# the input's first 30 scans of 110 (ABTRACK_CLUTTER_STORM_SCANS): the whole
+# the input's first 15 scans of 110 (ABTRACK_CLUTTER_STORM_SCANS): the whole
 # storm, 720 KB through the mps2 boards' one-byte UART, took about 70 s of
 # CPU per board; scripts/fault-injection.sh runs it whole.
-clutter_storm_scans=30
+clutter_storm_scans=15
 fault_injection_on() {
     local b=$1
     step "fault injection (the clutter storm over $clutter_storm_scans scans) and repeated runs on $b" in_host_tests \

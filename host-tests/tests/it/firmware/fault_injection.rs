@@ -220,7 +220,7 @@ fn expected(fault: Fault, fits: bool) -> (bool, Floor) {
 
 /// The scans [`Fault::ClutterStorm`] lasts, from the first: every scan of
 /// the demo's input, unless `ABTRACK_CLUTTER_STORM_SCANS` says fewer.
-/// scripts/test.sh runs 30: the whole storm is 720 KB through the mps2
+/// scripts/test.sh runs 15: the whole storm is 720 KB through the mps2
 /// boards' one-byte UART, about 70 s of QEMU's CPU time per board, most of
 /// the test command's fault-injection time; scripts/fault-injection.sh runs
 /// it whole and writes the results files.
