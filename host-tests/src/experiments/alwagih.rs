@@ -559,7 +559,10 @@ pub fn run(ctx: &Context) -> Result<(), String> {
     }
     paper_table(&r)?.write(&dir, "paper_vs_ours")?;
     let mut claims = claims(&r)?;
-    let fits = trajectory_fits(ctx.runs(trajectories::REPORT_RUNS))?;
+    let fits = trajectory_fits(
+        ctx.runs(trajectories::FIT_RUNS),
+        ctx.runs(trajectories::REPORT_RUNS),
+    )?;
     trajectory_tables(&fits).0.write(&dir, "trajectories")?;
     trajectory_tables(&fits).1.write(&dir, "trajectory_cells")?;
     claims.push(trajectory_claim(&fits));
@@ -574,10 +577,10 @@ pub struct TrajectoryFits {
     pub line_fit: Vec<trajectories::Fit>,
 }
 
-pub fn trajectory_fits(report_runs: usize) -> Result<TrajectoryFits, String> {
+pub fn trajectory_fits(search_runs: usize, report_runs: usize) -> Result<TrajectoryFits, String> {
     Ok(TrajectoryFits {
-        all: trajectories::fit(report_runs, &trajectories::ALL_METHODS)?,
-        line_fit: trajectories::fit(report_runs, &trajectories::LINE_FIT_METHODS)?,
+        all: trajectories::fit(search_runs, report_runs, &trajectories::ALL_METHODS)?,
+        line_fit: trajectories::fit(search_runs, report_runs, &trajectories::LINE_FIT_METHODS)?,
     })
 }
 

@@ -304,13 +304,14 @@ pub struct Fit {
 /// Grid search per family (white noise against Table 1, the distance over
 /// the cells of `counted`), a local refinement (each parameter and σ ×
 /// 0.7…1.4), then the best of each family re-run with `report_runs` runs,
-/// white and coloured.
-pub fn fit(report_runs: usize, counted: &[usize]) -> Result<Vec<Fit>, String> {
+/// white and coloured. Each grid point is scored on `search_runs` runs
+/// ([`FIT_RUNS`] documented).
+pub fn fit(search_runs: usize, report_runs: usize, counted: &[usize]) -> Result<Vec<Fit>, String> {
     let methods = paper_methods()?;
     let paper = paper_means(&PAPER_TABLE_1);
     let score = |t: &Trajectory, sigma: f64| -> Result<f64, String> {
         Ok(distance(
-            &evaluate(&methods, t, sigma, false, FIT_RUNS)?,
+            &evaluate(&methods, t, sigma, false, search_runs)?,
             &paper,
             counted,
         ))
