@@ -11,8 +11,8 @@
 //! hour after the first scans), the instructions per scan stay within
 //! twice the first hour's mean (and those to receive a scan within twice
 //! the first hour's most); and at the end, the board's confirmed
-//! tracks are the f64 run's: the same ids, positions within 1 m (Q32.32) or
-//! 10 m (f32).
+//! tracks are the f64 run's: the same ids, positions within 1 m (the
+//! Cortex-M3's `ScaledScalar`) or 10 m (f32).
 //!
 //! Needs QEMU, so ignored by a plain `cargo test`. scripts/test.sh runs a
 //! one-hour day (`ABTRACK_SOAK_SCANS=3600`); scripts/soak.sh runs the full
