@@ -339,6 +339,41 @@ pub fn run_library_for<S: Scalar>(
     sensor: &Sensor,
     miss_distance_confidence: Option<f64>,
 ) -> Result<Vec<ScanOutcome>, String> {
+    run_library_traced::<S>(e, meas, sensor, miss_distance_confidence, None)
+}
+
+/// What the library's surveillance held at one scan of a run, beside the
+/// truth: the range tracker against the true range acceleration, the
+/// bearing track's miss distance, and the miss distance the HMD filter
+/// compared.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct ScanTrace {
+    /// True range, m.
+    pub true_range_m: f64,
+    /// True r̈ = (v² − ṙ²)/r of the straight relative path, m/s².
+    pub true_range_acceleration_m_per_s2: f64,
+    /// The range tracker's ṙ, m/s, and r̈, m/s² (`None` before it has a
+    /// range rate).
+    pub range_rate_m_per_s: Option<f64>,
+    pub range_acceleration_m_per_s2: Option<f64>,
+    /// The bearing track's miss distance and its σ, m.
+    pub bearing_miss_distance_m: Option<f64>,
+    pub bearing_miss_distance_sigma_m: Option<f64>,
+    /// The miss distance the HMD filter compared (`None`: filter off), m.
+    pub filter_miss_distance_m: Option<f64>,
+    /// The filter removed the RA range hit.
+    pub miss_distance_filtered: bool,
+}
+
+/// [`run_library_for`], pushing each scan's [`ScanTrace`] onto `trace`
+/// when it is given.
+pub fn run_library_traced<S: Scalar>(
+    e: &Encounter,
+    meas: &[Measurement],
+    sensor: &Sensor,
+    miss_distance_confidence: Option<f64>,
+    mut trace: Option<&mut Vec<ScanTrace>>,
+) -> Result<Vec<ScanOutcome>, String> {
     let c = |v: f64| S::from_f64_lossy(v);
     let one = S::ONE;
     let mut cas = CollisionAvoidance::<S>::new();
@@ -391,6 +426,29 @@ pub fn run_library_for<S: Scalar>(
         let status = track
             .assess(&cycle, Some(&bearing), one)
             .map_err(|e| format!("scan {k}: {e}"))?;
+        if let Some(trace) = trace.as_deref_mut() {
+            // What `assess` saw: it moves only the threat state.
+            let observation = track.observation(Some(&bearing));
+            let truth = e.relative(k as f64);
+            let r = truth.s[0].hypot(truth.s[1]);
+            let rate = (truth.s[0] * truth.v[0] + truth.s[1] * truth.v[1]) / r;
+            let speed_squared = truth.v[0] * truth.v[0] + truth.v[1] * truth.v[1];
+            trace.push(ScanTrace {
+                true_range_m: r,
+                true_range_acceleration_m_per_s2: (speed_squared - rate * rate) / r,
+                range_rate_m_per_s: observation.map(|o| o.range.range_rate_m_per_s.to_f64()),
+                range_acceleration_m_per_s2: observation
+                    .map(|o| o.range.range_acceleration_m_per_s2.to_f64()),
+                bearing_miss_distance_m: observation
+                    .and_then(|o| o.bearing_miss_distance_m)
+                    .map(|v| v.to_f64()),
+                bearing_miss_distance_sigma_m: observation
+                    .and_then(|o| o.bearing_miss_distance_sigma_m)
+                    .map(|v| v.to_f64()),
+                filter_miss_distance_m: status.and_then(|s| s.miss_distance_m).map(|v| v.to_f64()),
+                miss_distance_filtered: status.is_some_and(|s| s.miss_distance_filtered),
+            });
+        }
         let threats: Vec<ThreatGeometry<S>> = status.and_then(|s| s.geometry).into_iter().collect();
         let ra = cas
             .resolve(&cycle, &threats, one)

@@ -29,7 +29,8 @@ use abtrack::Scalar;
 
 use crate::altitude_figures::RateChange;
 use crate::encounters::{
-    measurements_by, run_library_for, run_reference, Encounter, Noise, ScanOutcome, Sensor, KT, NM,
+    measurements_by, run_library_for, run_library_traced, run_reference, Encounter, Measurement,
+    Noise, ScanOutcome, ScanTrace, Sensor, KT, NM,
 };
 use crate::noise::{derive_seed, rng_from_seed, uniform};
 use crate::reference_tcas::{level_for, Alert, Sense};
@@ -276,16 +277,7 @@ pub fn run_one<S: Scalar>(
     reference: &[ScanOutcome],
     miss_distance_confidence: Option<f64>,
 ) -> RunResult {
-    let encounter = Encounter {
-        quantum: condition.quantum,
-        ..e.encounter
-    };
-    let noise = if condition.noisy {
-        Noise::Seeded(run_seed(e.index, run))
-    } else {
-        Noise::Exact
-    };
-    let meas = measurements_by(&encounter, noise, &condition.sensor);
+    let (encounter, meas) = inputs(e, condition, run);
     match run_library_for::<S>(
         &encounter,
         &meas,
@@ -300,6 +292,35 @@ pub fn run_one<S: Scalar>(
             ..RunResult::default()
         },
     }
+}
+
+/// The encounter as run under `condition` (its altitude quantum) and the
+/// measurements of run `run`.
+fn inputs(e: &RandomEncounter, condition: &Condition, run: usize) -> (Encounter, Vec<Measurement>) {
+    let encounter = Encounter {
+        quantum: condition.quantum,
+        ..e.encounter
+    };
+    let noise = if condition.noisy {
+        Noise::Seeded(run_seed(e.index, run))
+    } else {
+        Noise::Exact
+    };
+    let meas = measurements_by(&encounter, noise, &condition.sensor);
+    (encounter, meas)
+}
+
+/// Run `run` of `e` under `condition` in `S` with the library's HMD filter,
+/// scan by scan: the outcomes and the [`ScanTrace`]s.
+pub fn trace_one<S: Scalar>(
+    e: &RandomEncounter,
+    condition: &Condition,
+    run: usize,
+) -> Result<(Vec<ScanOutcome>, Vec<ScanTrace>), String> {
+    let (encounter, meas) = inputs(e, condition, run);
+    let mut trace = Vec::with_capacity(meas.len());
+    run_library_traced::<S>(&encounter, &meas, &condition.sensor, None, Some(&mut trace))
+        .map(|outcomes| (outcomes, trace))
 }
 
 /// The reference's timeline of an encounter.

@@ -6,7 +6,8 @@
 //! table by level (`by_level.md`/`.csv`), false vs missed RAs by level
 //! (`false_vs_missed.svg`), the distribution of RA onset delays
 //! (`onset_delay.svg`), the encounters with false RAs (`false_ras.md`),
-//! late RAs (`late_ras.md`) and the other sense at onset
+//! late RAs (`late_ras.md`; scan by scan, for the encounters late in
+//! every seed, `late_ra_traces.md`) and the other sense at onset
 //! (`wrong_senses.md`) at σB 5° and 25 ft,
 //! the HMD filter's trade-off (`trade_off.md`, `trade_off.svg`) and
 //! `summary.md`.
@@ -20,8 +21,8 @@ use abtrack::{Fixed32, Numeric, Scalar};
 
 use super::common::{plot, write_file, Context, PlotSpec, Series, Table};
 use crate::random_encounters::{
-    reference, run_one, suite, Condition, RandomEncounter, RunResult, Tally, CONDITIONS, LEVELS,
-    PER_LEVEL,
+    reference, run_one, suite, trace_one, Condition, RandomEncounter, RunResult, Tally, CONDITIONS,
+    LEVELS, PER_LEVEL,
 };
 
 /// The group's name (`--only tcas-random`, `results/tcas-random/`).
@@ -227,6 +228,8 @@ pub fn run(ctx: &Context) -> Result<(), String> {
 
     false_ra_table(&encounters, &results[1][0]).write(&dir, "false_ras")?;
     late_ra_table(&encounters, &results[1][0]).write(&dir, "late_ras")?;
+    late_ra_trace_table(&encounters, &CONDITIONS[1], &results[1][0])?
+        .write(&dir, "late_ra_traces")?;
     wrong_sense_table(&encounters, &results[0][0], &results[1][0]).write(&dir, "wrong_senses")?;
     let trade_off = trade_off_table(&encounters, seeds);
     trade_off.write(&dir, "trade_off")?;
@@ -292,7 +295,8 @@ pub fn run(ctx: &Context) -> Result<(), String> {
          plots: `false_vs_missed.svg`, `onset_delay.svg`; the HMD filter's confidence factor \
          k swept in `trade_off.md` and `trade_off.svg`; at σB 5° and 25 ft, the encounters \
          with false RAs in `false_ras.md`, those with an RA onset more than {LATE_ONSET_S} s \
-         late in `late_ras.md`, and those with the other sense at onset, beside their \
+         late in `late_ras.md` (scan by scan, for those late in every seed, in \
+         `late_ra_traces.md`), and those with the other sense at onset, beside their \
          vertical miss against the 25 ft quantum, in `wrong_senses.md`.\n",
         encounters.len()
     );
@@ -441,6 +445,75 @@ pub fn late_ra_table(encounters: &[RandomEncounter], runs: &[Vec<RunResult>]) ->
         ]);
     }
     table
+}
+
+/// Scan by scan, the first seed of every encounter whose RA onset is more
+/// than [`LATE_ONSET_S`] late in every run of `runs` (under `condition`,
+/// f64), from 2 s before the reference's onset to the run's: the range
+/// tracker's ṙ and r̈ (r̈ beside the truth's), the bearing track's miss
+/// distance, and the miss distance the HMD filter compared with the level's
+/// threshold.
+pub fn late_ra_trace_table(
+    encounters: &[RandomEncounter],
+    condition: &Condition,
+    runs: &[Vec<RunResult>],
+) -> Result<Table, String> {
+    let mut table = Table::new([
+        "encounter",
+        "t (s)",
+        "true range (m)",
+        "ṙ (m/s)",
+        "r̈ (m/s²)",
+        "true r̈ (m/s²)",
+        "bearing HMD (m)",
+        "bearing HMD σ (m)",
+        "filter HMD (m)",
+        "HMD threshold (m)",
+        "RA removed by the filter",
+        "alert",
+    ]);
+    let cell = |v: Option<f64>, digits: usize| v.map_or("–".into(), |v| format!("{v:.digits$}"));
+    let ra_onset = |timeline: &[crate::encounters::ScanOutcome]| {
+        timeline
+            .iter()
+            .position(|o| o.alert == crate::reference_tcas::Alert::Ra)
+    };
+    for (e, rs) in encounters.iter().zip(runs) {
+        let always_late = !rs.is_empty()
+            && rs
+                .iter()
+                .all(|r| r.onset_delay_s.is_some_and(|d| d > LATE_ONSET_S));
+        if !always_late {
+            continue;
+        }
+        let (outcomes, trace) = trace_one::<f64>(e, condition, 0)?;
+        let (Some(expected), Some(got)) = (ra_onset(&reference(e)), ra_onset(&outcomes)) else {
+            continue;
+        };
+        for (k, (t, o)) in trace
+            .iter()
+            .zip(&outcomes)
+            .enumerate()
+            .take(got + 1)
+            .skip(expected.saturating_sub(2))
+        {
+            table.push([
+                e.index.to_string(),
+                k.to_string(),
+                format!("{:.0}", t.true_range_m),
+                cell(t.range_rate_m_per_s, 1),
+                cell(t.range_acceleration_m_per_s2, 3),
+                format!("{:.3}", t.true_range_acceleration_m_per_s2),
+                cell(t.bearing_miss_distance_m, 0),
+                cell(t.bearing_miss_distance_sigma_m, 0),
+                cell(t.filter_miss_distance_m, 0),
+                format!("{:.0}", hmd_threshold_m(e)),
+                if t.miss_distance_filtered { "yes" } else { "" }.into(),
+                format!("{:?}", o.alert),
+            ]);
+        }
+    }
+    Ok(table)
 }
 
 /// The encounters whose RA takes the other sense at onset under `noisy`

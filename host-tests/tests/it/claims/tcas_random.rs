@@ -14,8 +14,10 @@ use abtrack::{Scalar, ScaledScalar};
 use abtrack_host_tests::experiments::tcas_random::LATE_ONSET_S;
 use abtrack_host_tests::noise::{rng_from_seed, standard_normal};
 use abtrack_host_tests::random_encounters::{
-    reference, run_one, suite, Condition, RandomEncounter, Tally, CONDITIONS, LEVELS, PER_LEVEL,
+    reference, run_one, suite, trace_one, Condition, RandomEncounter, Tally, CONDITIONS, LEVELS,
+    PER_LEVEL,
 };
+use abtrack_host_tests::reference_tcas::Alert;
 use rayon::prelude::*;
 
 const SEEDS: usize = 5;
@@ -177,6 +179,46 @@ fn noisy_runs_are_never_refused_and_ras_are_timely_in_every_type() {
             assert!(f <= 0.05, "{} SL{level}: false RAs {f}", condition.name);
         }
     }
+}
+
+/// The late RA docs/tcas.md ("Late RAs") traces: encounter 20 (SL 3, a
+/// 121 m pass), seed 0 at σB 5° and 25 ft, in f64
+/// (`results/tcas-random/late_ra_traces.md`). Its RA comes more than
+/// [`LATE_ONSET_S`] after the reference's, and in at least 5 of the scans
+/// between the two onsets the HMD filter removes the RA while the range
+/// track's r̈ is more than 10 × the true r̈ (the straight-path prediction
+/// holding a miss distance the range noise gave it) and the bearing track's
+/// miss distance is below the one the filter compared. An estimator that
+/// ends this fails the test, and the docs must change with it.
+#[test]
+fn a_near_collision_is_late_while_the_range_track_holds_a_false_miss() {
+    let encounters = suite();
+    let e = &encounters[20];
+    assert_eq!((e.index, e.level), (20, 3));
+    let condition = &CONDITIONS[1];
+    assert_eq!(condition.name, "σB 5°, 25 ft");
+    let (outcomes, trace) = trace_one::<f64>(e, condition, 0).unwrap();
+    let onset = |timeline: &[abtrack_host_tests::encounters::ScanOutcome]| {
+        timeline.iter().position(|o| o.alert == Alert::Ra).unwrap()
+    };
+    let (expected, got) = (onset(&reference(e)), onset(&outcomes));
+    assert!(
+        got as f64 > expected as f64 + LATE_ONSET_S,
+        "onsets {expected} and {got}"
+    );
+    let held = trace[expected..got]
+        .iter()
+        .filter(|t| {
+            t.miss_distance_filtered
+                && t.range_acceleration_m_per_s2
+                    .is_some_and(|a| a > 10.0 * t.true_range_acceleration_m_per_s2)
+                && matches!(
+                    (t.bearing_miss_distance_m, t.filter_miss_distance_m),
+                    (Some(b), Some(f)) if b < f
+                )
+        })
+        .count();
+    assert!(held >= 5, "{held} scans held by a false range miss");
 }
 
 /// On exact measurements no RA is false or missed, no run refused, no RA in
