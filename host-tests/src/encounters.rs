@@ -430,8 +430,7 @@ pub fn run_library_traced<S: Scalar>(
             // What `assess` saw: it moves only the threat state.
             let observation = track.observation(Some(&bearing));
             let truth = e.relative(k as f64);
-            let r = truth.s[0].hypot(truth.s[1]);
-            let rate = (truth.s[0] * truth.v[0] + truth.s[1] * truth.v[1]) / r;
+            let (r, rate) = reference_tcas::range_and_rate(truth.s, truth.v);
             let speed_squared = truth.v[0] * truth.v[0] + truth.v[1] * truth.v[1];
             trace.push(ScanTrace {
                 true_range_m: r,

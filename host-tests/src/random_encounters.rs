@@ -227,7 +227,8 @@ pub struct RunResult {
     pub reversed: bool,
 }
 
-fn ra_onset(scans: &[ScanOutcome]) -> Option<(usize, Option<Sense>)> {
+/// The scan of a timeline's first RA and its sense.
+pub fn ra_onset(scans: &[ScanOutcome]) -> Option<(usize, Option<Sense>)> {
     scans
         .iter()
         .position(|s| s.alert == Alert::Ra)
@@ -277,7 +278,7 @@ pub fn run_one<S: Scalar>(
     reference: &[ScanOutcome],
     miss_distance_confidence: Option<f64>,
 ) -> RunResult {
-    let (encounter, meas) = inputs(e, condition, run);
+    let (encounter, meas) = run_inputs(e, condition, run);
     match run_library_for::<S>(
         &encounter,
         &meas,
@@ -296,7 +297,11 @@ pub fn run_one<S: Scalar>(
 
 /// The encounter as run under `condition` (its altitude quantum) and the
 /// measurements of run `run`.
-fn inputs(e: &RandomEncounter, condition: &Condition, run: usize) -> (Encounter, Vec<Measurement>) {
+fn run_inputs(
+    e: &RandomEncounter,
+    condition: &Condition,
+    run: usize,
+) -> (Encounter, Vec<Measurement>) {
     let encounter = Encounter {
         quantum: condition.quantum,
         ..e.encounter
@@ -317,7 +322,7 @@ pub fn trace_one<S: Scalar>(
     condition: &Condition,
     run: usize,
 ) -> Result<(Vec<ScanOutcome>, Vec<ScanTrace>), String> {
-    let (encounter, meas) = inputs(e, condition, run);
+    let (encounter, meas) = run_inputs(e, condition, run);
     let mut trace = Vec::with_capacity(meas.len());
     run_library_traced::<S>(&encounter, &meas, &condition.sensor, None, Some(&mut trace))
         .map(|outcomes| (outcomes, trace))

@@ -176,8 +176,8 @@ fn cross(a: [f64; 2], b: [f64; 2]) -> f64 {
     a[0] * b[1] - a[1] * b[0]
 }
 
-/// r, ṙ from the state vector.
-fn range_and_rate(s: [f64; 2], v: [f64; 2]) -> (f64, f64) {
+/// r, ṙ from the state vector (ṙ = 0 at r = 0).
+pub fn range_and_rate(s: [f64; 2], v: [f64; 2]) -> (f64, f64) {
     let r = dot(s, s).sqrt();
     let rdot = if r > 0.0 { dot(s, v) / r } else { 0.0 };
     (r, rdot)

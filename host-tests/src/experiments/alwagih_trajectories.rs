@@ -304,8 +304,8 @@ pub struct Fit {
 /// Grid search per family (white noise against Table 1, the distance over
 /// the cells of `counted`), a local refinement (each parameter and σ ×
 /// 0.7…1.4), then the best of each family re-run with `report_runs` runs,
-/// white and coloured. Each grid point is scored on `search_runs` runs
-/// ([`FIT_RUNS`] documented).
+/// white and coloured. Each point of the grid and of the refinement is
+/// scored on `search_runs` runs ([`FIT_RUNS`] documented).
 pub fn fit(search_runs: usize, report_runs: usize, counted: &[usize]) -> Result<Vec<Fit>, String> {
     let methods = paper_methods()?;
     let paper = paper_means(&PAPER_TABLE_1);

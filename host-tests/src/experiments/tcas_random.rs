@@ -21,8 +21,8 @@ use abtrack::{Fixed32, Numeric, Scalar};
 
 use super::common::{plot, write_file, Context, PlotSpec, Series, Table};
 use crate::random_encounters::{
-    reference, run_one, suite, trace_one, Condition, RandomEncounter, RunResult, Tally, CONDITIONS,
-    LEVELS, PER_LEVEL,
+    ra_onset, reference, run_one, suite, trace_one, Condition, RandomEncounter, RunResult, Tally,
+    CONDITIONS, LEVELS, PER_LEVEL,
 };
 
 /// The group's name (`--only tcas-random`, `results/tcas-random/`).
@@ -452,7 +452,7 @@ pub fn late_ra_table(encounters: &[RandomEncounter], runs: &[Vec<RunResult>]) ->
 /// f64), from 2 s before the reference's onset to the run's: the range
 /// tracker's ṙ and r̈ (r̈ beside the truth's), the bearing track's miss
 /// distance, and the miss distance the HMD filter compared with the level's
-/// threshold.
+/// threshold. `runs` are the f64 runs under `condition`.
 pub fn late_ra_trace_table(
     encounters: &[RandomEncounter],
     condition: &Condition,
@@ -473,11 +473,6 @@ pub fn late_ra_trace_table(
         "alert",
     ]);
     let cell = |v: Option<f64>, digits: usize| v.map_or("–".into(), |v| format!("{v:.digits$}"));
-    let ra_onset = |timeline: &[crate::encounters::ScanOutcome]| {
-        timeline
-            .iter()
-            .position(|o| o.alert == crate::reference_tcas::Alert::Ra)
-    };
     for (e, rs) in encounters.iter().zip(runs) {
         let always_late = !rs.is_empty()
             && rs
@@ -487,7 +482,8 @@ pub fn late_ra_trace_table(
             continue;
         }
         let (outcomes, trace) = trace_one::<f64>(e, condition, 0)?;
-        let (Some(expected), Some(got)) = (ra_onset(&reference(e)), ra_onset(&outcomes)) else {
+        let (Some((expected, _)), Some((got, _))) = (ra_onset(&reference(e)), ra_onset(&outcomes))
+        else {
             continue;
         };
         for (k, (t, o)) in trace

@@ -14,10 +14,9 @@ use abtrack::{Scalar, ScaledScalar};
 use abtrack_host_tests::experiments::tcas_random::LATE_ONSET_S;
 use abtrack_host_tests::noise::{rng_from_seed, standard_normal};
 use abtrack_host_tests::random_encounters::{
-    reference, run_one, suite, trace_one, Condition, RandomEncounter, Tally, CONDITIONS, LEVELS,
-    PER_LEVEL,
+    ra_onset, reference, run_one, suite, trace_one, Condition, RandomEncounter, Tally, CONDITIONS,
+    LEVELS, PER_LEVEL,
 };
-use abtrack_host_tests::reference_tcas::Alert;
 use rayon::prelude::*;
 
 const SEEDS: usize = 5;
@@ -194,13 +193,11 @@ fn noisy_runs_are_never_refused_and_ras_are_timely_in_every_type() {
 fn a_near_collision_is_late_while_the_range_track_holds_a_false_miss() {
     let encounters = suite();
     let e = &encounters[20];
-    assert_eq!((e.index, e.level), (20, 3));
+    assert_eq!((e.index, e.level, e.hmd_m.round()), (20, 3, 121.0));
     let condition = &CONDITIONS[1];
     assert_eq!(condition.name, "σB 5°, 25 ft");
     let (outcomes, trace) = trace_one::<f64>(e, condition, 0).unwrap();
-    let onset = |timeline: &[abtrack_host_tests::encounters::ScanOutcome]| {
-        timeline.iter().position(|o| o.alert == Alert::Ra).unwrap()
-    };
+    let onset = |timeline| ra_onset(timeline).unwrap().0;
     let (expected, got) = (onset(&reference(e)), onset(&outcomes));
     assert!(
         got as f64 > expected as f64 + LATE_ONSET_S,
