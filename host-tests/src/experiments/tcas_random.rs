@@ -409,6 +409,12 @@ fn hmd_threshold_m(e: &RandomEncounter) -> f64 {
         .map_or(f64::NAN, |ra| ra.hmd_m)
 }
 
+/// Whether a run's RA onset is more than [`LATE_ONSET_S`] after the
+/// reference's.
+fn is_late(r: &RunResult) -> bool {
+    r.onset_delay_s.is_some_and(|d| d > LATE_ONSET_S)
+}
+
 /// The encounters with an RA onset more than [`LATE_ONSET_S`] after the
 /// reference's under `runs` (one condition and type): how many of their
 /// runs, the delays, and the encounter's figures against the level's HMD
@@ -425,10 +431,7 @@ pub fn late_ra_table(encounters: &[RandomEncounter], runs: &[Vec<RunResult>]) ->
         "closure (kt)",
     ]);
     for (e, rs) in encounters.iter().zip(runs) {
-        let late = rs
-            .iter()
-            .filter(|r| r.onset_delay_s.is_some_and(|d| d > LATE_ONSET_S))
-            .count();
+        let late = rs.iter().filter(|r| is_late(r)).count();
         if late == 0 {
             continue;
         }
@@ -448,11 +451,11 @@ pub fn late_ra_table(encounters: &[RandomEncounter], runs: &[Vec<RunResult>]) ->
 }
 
 /// Scan by scan, the first seed of every encounter whose RA onset is more
-/// than [`LATE_ONSET_S`] late in every run of `runs` (under `condition`,
-/// f64), from 2 s before the reference's onset to the run's: the range
-/// tracker's ṙ and r̈ (r̈ beside the truth's), the bearing track's miss
-/// distance, and the miss distance the HMD filter compared with the level's
-/// threshold. `runs` are the f64 runs under `condition`.
+/// than [`LATE_ONSET_S`] late in every run of `runs` (the f64 runs under
+/// `condition`), from 2 s before the reference's onset to the run's: the
+/// range tracker's ṙ and r̈ (r̈ beside the truth's), the bearing track's
+/// miss distance, and the miss distance the HMD filter compared with the
+/// level's threshold.
 pub fn late_ra_trace_table(
     encounters: &[RandomEncounter],
     condition: &Condition,
@@ -474,11 +477,7 @@ pub fn late_ra_trace_table(
     ]);
     let cell = |v: Option<f64>, digits: usize| v.map_or("–".into(), |v| format!("{v:.digits$}"));
     for (e, rs) in encounters.iter().zip(runs) {
-        let always_late = !rs.is_empty()
-            && rs
-                .iter()
-                .all(|r| r.onset_delay_s.is_some_and(|d| d > LATE_ONSET_S));
-        if !always_late {
+        if rs.is_empty() || !rs.iter().all(is_late) {
             continue;
         }
         let (outcomes, trace) = trace_one::<f64>(e, condition, 0)?;
