@@ -27,7 +27,11 @@ use crate::wire::{
 /// built by a `const fn` in a `static`.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct ScanConfig<T: Numeric, P> {
-    /// The track table's configuration (gates, lifecycle, region).
+    /// The track table's configuration (gates, lifecycle, region). The
+    /// loop keeps the previous scan's replies only, so its identity rule
+    /// starts no track from an earlier scan's first point: first points
+    /// kept through a miss cost carrying and start nothing (the demo turns
+    /// them off, `keep_first_points_through_a_miss(false)`).
     pub tracker: TrackerConfig<T::Wide, P>,
     /// The own aircraft, for the threat assessment.
     pub own: OwnAircraft<T::Wide>,

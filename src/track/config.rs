@@ -54,6 +54,8 @@ impl<S: Numeric> Volume<S> {
 ///   the scan that started it counting as the first hit);
 /// * deletion after 3 consecutive misses for a confirmed track, 2 for a
 ///   tentative one;
+/// * a first point that finds no second point in the next scan waits one
+///   more scan ([`Self::keep_first_points_through_a_miss`]);
 /// * no initiation margin, no surveillance volume.
 ///
 /// Kept outside the table and passed to every scan, so that the table itself
@@ -69,6 +71,7 @@ pub struct TrackerConfig<S: Numeric, P> {
     confirm_window: u8,
     delete_confirmed_misses: u8,
     delete_tentative_misses: u8,
+    first_points_through_a_miss: bool,
     volume: Option<Volume<S>>,
 }
 
@@ -93,6 +96,7 @@ impl<S: Numeric, P: Copy> TrackerConfig<S, P> {
             confirm_window: 3,
             delete_confirmed_misses: 3,
             delete_tentative_misses: 2,
+            first_points_through_a_miss: true,
             volume: None,
         })
     }
@@ -127,6 +131,19 @@ impl<S: Numeric, P: Copy> TrackerConfig<S, P> {
         Ok(self)
     }
 
+    /// Whether an unused measurement that found no second point in the next
+    /// scan is kept as a first point for one more scan (two-point
+    /// initiation over both intervals, radius `max_speed·(T₁ + T₂)` plus the
+    /// margin, after the previous scan's first points have paired). Such a
+    /// track's M-of-N window starts at the missed scan, so with the default
+    /// 2 of 3 it must be seen in the next scan. On by default: without it, a
+    /// target missed in the scan after its first detection starts a scan
+    /// later (`docs/track-table.md`, "First points").
+    pub fn keep_first_points_through_a_miss(mut self, keep: bool) -> Self {
+        self.first_points_through_a_miss = keep;
+        self
+    }
+
     /// Delete tracks that leave `volume`; start none outside it.
     pub fn with_volume(mut self, volume: Volume<S>) -> Self {
         self.volume = Some(volume);
@@ -156,6 +173,11 @@ impl<S: Numeric, P: Copy> TrackerConfig<S, P> {
     /// (confirmed, tentative) consecutive misses before deletion.
     pub fn deletion(&self) -> (u8, u8) {
         (self.delete_confirmed_misses, self.delete_tentative_misses)
+    }
+    /// Whether first points wait one missed scan
+    /// ([`Self::keep_first_points_through_a_miss`]).
+    pub fn first_points_through_a_miss(&self) -> bool {
+        self.first_points_through_a_miss
     }
     /// The surveillance volume, if any.
     pub fn volume(&self) -> Option<&Volume<S>> {

@@ -37,7 +37,10 @@
 //! 8. **Initiate** (two-point method, Al-Wagih & Abdulla eqs. 9–10): a
 //!    measurement outside every gate pairs with an unused measurement of the
 //!    previous scan at most `v_max·T` (+ margin) away and starts a tentative
-//!    track. When the table is full the candidate displaces the weakest
+//!    track; then, by default, with one of the scan before that found none,
+//!    `v_max·(T₁ + T₂)` away (a target missed once; its M-of-N window starts
+//!    at the missed scan: [`TrackerConfig::keep_first_points_through_a_miss`]).
+//!    When the table is full the candidate displaces the weakest
 //!    tentative track that missed the last scan (fewest hits in its M-of-N
 //!    window, then most consecutive misses, then most scans, then lowest
 //!    slot): that track's id ends, counted as a deletion
@@ -47,7 +50,8 @@
 //!    counted ([`DropReason::TableFull`]). Replacing the least promising
 //!    tentative track keeps a clutter-filled table open to new targets
 //!    (`docs/track-table.md`, "Full table"). Unpaired measurements outside
-//!    every gate become the first points for the next scan.
+//!    every gate become the first points for the next scan, and the previous
+//!    scan's that found no second point wait one more where there is room.
 //!
 //! # Time
 //!
@@ -134,6 +138,6 @@ pub use model::{
 };
 pub use numeric::{FixedGridScale, FixedVariance};
 pub use table::{
-    AnyPair, Association, DropReason, PairRule, ScanError, ScanReport, ScanStage, TableStats,
-    Track, TrackId, TrackSlot, TrackStatus, TrackTable,
+    AnyPair, Association, DropReason, FirstPoint, PairRule, ScanError, ScanReport, ScanStage,
+    TableStats, Track, TrackId, TrackSlot, TrackStatus, TrackTable,
 };

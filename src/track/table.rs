@@ -214,9 +214,19 @@ impl<S: Numeric, F: TrackFilter<S>> Track<S, F> {
 pub trait PairRule {
     /// Measurement `k` of this scan may update track `track`.
     fn may_update(&self, track: TrackId, k: usize) -> bool;
-    /// The first point `p` (measurement `p` of the previous scan) and
-    /// measurement `k` of this scan may start a track together.
-    fn may_start(&self, p: usize, k: usize) -> bool;
+    /// `first` and measurement `k` of this scan may start a track together.
+    fn may_start(&self, first: FirstPoint, k: usize) -> bool;
+}
+
+/// Which scan a first point of two-point initiation came from
+/// ([`PairRule::may_start`]).
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum FirstPoint {
+    /// Measurement `p` of the previous scan.
+    PreviousScan(usize),
+    /// An unused measurement of the scan before the previous one, kept
+    /// through a miss ([`TrackerConfig::keep_first_points_through_a_miss`]).
+    ScanBefore,
 }
 
 /// Every pair allowed ([`TrackTable::scan`]).
@@ -227,7 +237,7 @@ impl PairRule for AnyPair {
     fn may_update(&self, _: TrackId, _: usize) -> bool {
         true
     }
-    fn may_start(&self, _: usize, _: usize) -> bool {
+    fn may_start(&self, _: FirstPoint, _: usize) -> bool {
         true
     }
 }
@@ -514,9 +524,15 @@ pub struct TrackTable<S: Numeric, F, const N: usize, const M: usize> {
     /// whose first id is 1.
     previous_id: u32,
     last_scan_ms: Option<u32>,
-    /// Unused measurements of the previous scan: first points for two-point
-    /// initiation.
+    /// First points for two-point initiation: unused measurements of the
+    /// previous scan (at their index), and, where those leave room, those of
+    /// the scan before that found no second point (`pending_earlier`).
     pending: [Option<Observation<S>>; M],
+    /// Which of `pending` are from the scan before the previous one.
+    pending_earlier: [bool; M],
+    /// The previous accepted scan's interval (ms): with this scan's, the
+    /// interval to an earlier first point.
+    previous_interval_ms: u32,
     stats: TableStats,
     // --- per-scan workspace (kept here, not on the stack)
     observations: [Option<Observation<S>>; M],
@@ -560,6 +576,8 @@ impl<S: Numeric, F: TrackFilter<S>, const N: usize, const M: usize> TrackTable<S
             previous_id: first_id.wrapping_sub(1),
             last_scan_ms: None,
             pending: [const { None }; M],
+            pending_earlier: [false; M],
+            previous_interval_ms: 0,
             stats: TableStats {
                 scans: 0,
                 tracks_started: 0,
@@ -746,6 +764,7 @@ impl<S: Numeric, F: TrackFilter<S>, const N: usize, const M: usize> TrackTable<S
             self.initiate(config, dt, now_ms, rule, &mut report);
         }
         self.keep_pending(config, used, &mut report);
+        self.previous_interval_ms = interval_ms;
         self.write_codes(codes, measurements.len());
         self.count_lifetime(&mut report);
         probe(ScanStage::Initiate);
@@ -1054,12 +1073,13 @@ impl<S: Numeric, F: TrackFilter<S>, const N: usize, const M: usize> TrackTable<S
         }
     }
 
-    /// Two-point initiation. For each pending first point in turn, the nearest
-    /// unused measurement of this scan within `max_speed·T + margin` is its
-    /// second point (sequential nearest neighbour over the measurements the
-    /// pre-gate finds in the circle's bounding box; ties go to the lowest
-    /// measurement index; see the module docs for why not an optimal
-    /// assignment here).
+    /// Two-point initiation. For each pending first point in turn, the
+    /// previous scan's first, then the earlier ones, the nearest unused
+    /// measurement of this scan within `max_speed·T + margin` (T the time
+    /// since the first point) is its second point (sequential nearest
+    /// neighbour over the measurements the pre-gate finds in the circle's
+    /// bounding box; ties go to the lowest measurement index; see the module
+    /// docs for why not an optimal assignment here).
     fn initiate(
         &mut self,
         config: &TrackerConfig<S, F::Params>,
@@ -1068,22 +1088,58 @@ impl<S: Numeric, F: TrackFilter<S>, const N: usize, const M: usize> TrackTable<S
         rule: &impl PairRule,
         report: &mut ScanReport,
     ) {
+        self.initiate_from(config, dt, false, now_ms, rule, report);
+        if !self.pending_earlier.contains(&true) {
+            return;
+        }
+        // Both intervals in range, else the earlier points are too old.
+        let since_earlier = self.previous_interval_ms.saturating_add(report.interval_ms);
+        if since_earlier > MAX_INTERVAL_MS {
+            return;
+        }
+        let Some(earlier_dt) =
+            ScanInterval::from_ms(since_earlier).and_then(|i| F::step(config.params(), &i).ok())
+        else {
+            return;
+        };
+        self.initiate_from(config, &earlier_dt, true, now_ms, rule, report);
+    }
+
+    /// [`Self::initiate`] from the first points of the previous scan
+    /// (`earlier` false) or of the scan before it, `dt` after them.
+    fn initiate_from(
+        &mut self,
+        config: &TrackerConfig<S, F::Params>,
+        dt: &F::Step,
+        earlier: bool,
+        now_ms: u32,
+        rule: &impl PairRule,
+        report: &mut ScanReport,
+    ) {
         let interval = F::interval_of(dt).interval();
         let radius = config.max_speed() * interval + config.initiation_margin();
         for p in 0..M {
+            if self.pending_earlier.get(p) != Some(&earlier) {
+                continue;
+            }
             let Some(Some(first)) = self.pending.get(p).copied() else {
                 continue;
             };
             let Some(region) = GateRegion::circle(first.xy(), radius) else {
                 continue;
             };
-            let Some(k) = self.nearest_unused(config, &region, |k| rule.may_start(p, k)) else {
+            let which = if earlier {
+                FirstPoint::ScanBefore
+            } else {
+                FirstPoint::PreviousScan(p)
+            };
+            let Some(k) = self.nearest_unused(config, &region, |k| rule.may_start(which, k)) else {
                 continue;
             };
             let Some(Some(second)) = self.observations.get(k).copied() else {
                 continue;
             };
-            let code = self.start_track(config, dt, now_ms, &first, &second, report);
+            let code = self.start_track(config, dt, now_ms, [&first, &second], earlier, report);
             if let Some(c) = self.codes.get_mut(k) {
                 *c = code;
             }
@@ -1120,16 +1176,17 @@ impl<S: Numeric, F: TrackFilter<S>, const N: usize, const M: usize> TrackTable<S
         best.map(|(_, k)| k)
     }
 
-    /// A tentative track from two points, in a free slot or, the table
-    /// full, in the slot of the weakest displaceable tentative track
+    /// A tentative track from two points (the first `earlier`: of the scan
+    /// before the previous one), in a free slot or, the table full, in the
+    /// slot of the weakest displaceable tentative track
     /// ([`Self::displaceable`]), which ends there; the second point's code.
     fn start_track(
         &mut self,
         config: &TrackerConfig<S, F::Params>,
         dt: &F::Step,
         now_ms: u32,
-        first: &Observation<S>,
-        second: &Observation<S>,
+        [first, second]: [&Observation<S>; 2],
+        earlier: bool,
         report: &mut ScanReport,
     ) -> Association {
         let free = self.slots.iter().position(|s| !s.is_live());
@@ -1159,7 +1216,9 @@ impl<S: Numeric, F: TrackFilter<S>, const N: usize, const M: usize> TrackTable<S
             last_update_ms: now_ms,
             history: 1,
             hits: 2,
-            scans: 1,
+            // From an earlier first point, the M-of-N window starts at the
+            // missed scan between the two points.
+            scans: if earlier { 2 } else { 1 },
             lifecycle: Lifecycle::Tentative,
             misses: 0,
             refusals: 0,
@@ -1208,16 +1267,19 @@ impl<S: Numeric, F: TrackFilter<S>, const N: usize, const M: usize> TrackTable<S
         used: usize,
         report: &mut ScanReport,
     ) {
-        self.pending.fill(None);
+        self.keep_unpaired_first_points(config, used);
         // Only the codes of this scan's measurements: the slots beyond them
         // hold no measurement (counting them put them outside gates).
-        for ((pending, obs), code) in self
+        for (((pending, earlier), obs), code) in self
             .pending
             .iter_mut()
+            .zip(self.pending_earlier.iter_mut())
             .zip(self.observations.iter())
             .zip(self.codes.iter())
             .take(used)
         {
+            *pending = None;
+            *earlier = false;
             match code {
                 Association::OutsideGates => {
                     increment(&mut report.outside_gates);
@@ -1229,6 +1291,45 @@ impl<S: Numeric, F: TrackFilter<S>, const N: usize, const M: usize> TrackTable<S
                 }
                 Association::NotAssigned => increment(&mut report.not_assigned),
                 _ => {}
+            }
+        }
+    }
+
+    /// Drops the earlier first points; with
+    /// [`TrackerConfig::keep_first_points_through_a_miss`], marks the
+    /// previous scan's unpaired ones as earlier and moves those at this
+    /// scan's indices (`..used`, this scan's first points' places) to free
+    /// places above them, from the top; those that find none are dropped.
+    fn keep_unpaired_first_points(&mut self, config: &TrackerConfig<S, F::Params>, used: usize) {
+        let keep = config.first_points_through_a_miss();
+        for (pending, earlier) in self.pending.iter_mut().zip(self.pending_earlier.iter_mut()) {
+            if *earlier || !keep {
+                *pending = None;
+            }
+            *earlier = pending.is_some();
+        }
+        if !keep {
+            return;
+        }
+        // Free places are looked for below `top`, downwards.
+        let mut top = M;
+        for p in 0..used {
+            let Some(Some(first)) = self.pending.get(p).copied() else {
+                continue;
+            };
+            let Some(free) = (used..top)
+                .rev()
+                .find(|&q| matches!(self.pending.get(q), Some(None)))
+            else {
+                return;
+            };
+            top = free;
+            if let (Some(to), Some(earlier)) = (
+                self.pending.get_mut(free),
+                self.pending_earlier.get_mut(free),
+            ) {
+                *to = Some(first);
+                *earlier = true;
             }
         }
     }

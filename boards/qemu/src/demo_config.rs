@@ -95,7 +95,10 @@ pub fn config_for_square<N: Numeric<Wide = S>, S: Scalar>(
     let tracker = TrackerConfig::new(gains, gate, s(MAX_SPEED_M_PER_S)?)
         .and_then(|c| c.with_initiation_margin(margin))
         .map_err(|_| "tracker configuration refused")?
-        .with_volume(volume);
+        .with_volume(volume)
+        // The scan loop keeps the previous scan's replies only, so its
+        // identity rule starts no track from an earlier scan's first point.
+        .keep_first_points_through_a_miss(false);
     let clock = ClockConfig::new(SCAN_PERIOD_MS).map_err(|_| "scan period refused")?;
     Ok(ScanConfig {
         tracker,

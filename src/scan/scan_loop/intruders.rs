@@ -8,7 +8,9 @@ use crate::filter::altitude::AltitudeQuantum;
 use crate::num::{hypot, Numeric, Scalar};
 use crate::tcas::detection::MAX_INTRUDER_RATE_FT_PER_S;
 use crate::tcas::{Advisory, IntruderTrack, Reply, SensitivityLevel, ThreatGeometry};
-use crate::track::{Association, Measurement, PairRule, ScanReport, TrackFilter, TrackId};
+use crate::track::{
+    Association, FirstPoint, Measurement, PairRule, ScanReport, TrackFilter, TrackId,
+};
 use crate::wire::{LoopCounters, ModeSAddress, RaCode};
 
 /// What a scan's reply carries besides its position.
@@ -95,7 +97,12 @@ impl<S: Scalar> PairRule for IdentityRule<'_, S> {
         }
     }
 
-    fn may_start(&self, p: usize, k: usize) -> bool {
+    /// A first point of an earlier scan has no reply kept with it (the loop
+    /// keeps the previous scan's replies only), so it starts no track here.
+    fn may_start(&self, first: FirstPoint, k: usize) -> bool {
+        let FirstPoint::PreviousScan(p) = first else {
+            return false;
+        };
         let (Some(first), Some(second)) = (self.previous.get(p), self.replies.get(k)) else {
             return false;
         };

@@ -20,8 +20,8 @@ use abtrack::num::fixed32::Fixed32;
 use abtrack::track::assign::{AssignmentSolver, FORBIDDEN, MAX_COST};
 use abtrack::track::ScanInterval;
 use abtrack::track::{
-    Association, FixedGainTrack, GateRegion, Measurement, Observation, PairRule, ScanReport,
-    TrackFilter, TrackId, TrackTable, TrackerConfig,
+    Association, FirstPoint, FixedGainTrack, GateRegion, Measurement, Observation, PairRule,
+    ScanReport, TrackFilter, TrackId, TrackTable, TrackerConfig,
 };
 use abtrack::Fix;
 use abtrack::Numeric;
@@ -576,7 +576,7 @@ fn pair_rule_holds_for_tracks_outside_the_pair_cache() {
         fn may_update(&self, track: TrackId, k: usize) -> bool {
             track.get() <= 16 || k == 0
         }
-        fn may_start(&self, _: usize, _: usize) -> bool {
+        fn may_start(&self, _: FirstPoint, _: usize) -> bool {
             true
         }
     }

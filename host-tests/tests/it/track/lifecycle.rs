@@ -75,6 +75,94 @@ fn confirm_after_one_miss() {
     assert_eq!(out[3].2, vec![TrackStatus::Confirmed]);
 }
 
+/// A target missed in the scan after its first detection starts from that
+/// detection when it is seen again (two-point start over both intervals),
+/// and confirms on the next hit: one scan earlier than a start from the
+/// next two detections, which is what the option turned off gives.
+#[test]
+fn a_first_point_waits_through_one_miss() {
+    let config = default_config::<f64>();
+    assert!(config.first_points_through_a_miss());
+    let (table, out) = run(&config, &[true, false, true, true]);
+    assert_eq!(out[1].1.started, 0);
+    assert_eq!(out[2].0, Some(Association::Started(id(1))));
+    assert_eq!(out[3].1.confirmed, 1);
+    assert_eq!(out[3].2, vec![TrackStatus::Confirmed]);
+    // Velocity differenced over the 2 s since the first point, then a
+    // filtered update: exact on a noise-free constant-velocity target.
+    let track = table.tracks().next().unwrap();
+    assert!((track.velocity()[0] - 50.0).abs() < 1e-9);
+    assert!((track.velocity()[1] + 20.0).abs() < 1e-9);
+
+    // Its M-of-N window starts at the missed scan: with 2 of 3 it must be
+    // seen in the next scan, where a track started from two consecutive
+    // detections may miss it (confirm_after_one_miss).
+    let (_, out) = run(&config, &[true, false, true, false, true]);
+    assert_eq!(out[3].1.deleted_unconfirmed, 1);
+    assert!(out[3].2.is_empty());
+
+    let config = default_config::<f64>().keep_first_points_through_a_miss(false);
+    let (_, out) = run(&config, &[true, false, true, true, true]);
+    assert_eq!(out[2].0, Some(Association::OutsideGates));
+    assert_eq!(out[3].0, Some(Association::Started(id(1))));
+    assert_eq!(out[4].1.confirmed, 1);
+}
+
+/// An earlier first point waits one scan, not more; and the two intervals
+/// together must be within the filters' longest, else it is too old.
+#[test]
+fn an_earlier_first_point_waits_one_scan_only() {
+    let config = default_config::<f64>();
+    let (_, out) = run(&config, &[true, false, false, true, true]);
+    assert_eq!(out[3].0, Some(Association::OutsideGates));
+    assert_eq!(out[4].0, Some(Association::Started(id(1))));
+
+    let mut table = T::new();
+    let mut codes = [Association::OutsideGates; 1];
+    table.scan(&config, 0, &[target(0)], &mut codes).unwrap();
+    table.scan(&config, 12_000, &[], &mut codes).unwrap();
+    let r = table
+        .scan(&config, 24_000, &[target(24_000)], &mut codes)
+        .unwrap();
+    assert_eq!((r.started, codes[0]), (0, Association::OutsideGates));
+}
+
+/// The previous scan's unused measurements take their own indices; an
+/// earlier first point at one of them moves to a free index above this
+/// scan's measurements and still starts its target. The previous scan's
+/// first points pair first.
+#[test]
+fn earlier_first_points_make_room_for_the_previous_scans() {
+    let config = default_config::<f64>();
+    let mut table = T::new();
+    let far = cart(-40_000.0, -40_000.0);
+    let mut codes = [Association::OutsideGates; 2];
+    table.scan(&config, 0, &[target(0)], &mut codes).unwrap();
+    // Missed; a far plot takes index 0, the target's first point moves up.
+    table.scan(&config, 1000, &[far], &mut codes[..1]).unwrap();
+    assert_eq!(table.pending(), 2);
+    let r = table
+        .scan(&config, 2000, &[far, target(2000)], &mut codes)
+        .unwrap();
+    assert_eq!(r.started, 2);
+    // The far plot's own first point (previous scan) took the far plot;
+    // the target's earlier one took the target.
+    assert_eq!(
+        codes,
+        [Association::Started(id(1)), Association::Started(id(2))]
+    );
+    let t = table.tracks().find(|t| t.id() == id(2)).unwrap();
+    assert!((t.velocity()[0] - 50.0).abs() < 1e-9);
+
+    // With every index taken by this scan's first points, the earlier one
+    // has no room and is dropped.
+    let mut table = Table::<f64, 8, 1>::new();
+    let mut codes = [Association::OutsideGates; 1];
+    table.scan(&config, 0, &[target(0)], &mut codes).unwrap();
+    table.scan(&config, 1000, &[far], &mut codes).unwrap();
+    assert_eq!(table.pending(), 1);
+}
+
 #[test]
 fn tentative_deleted_after_two_misses() {
     let config = default_config::<f64>();
