@@ -221,6 +221,7 @@ pub trait PairRule {
 /// Which scan a first point of two-point initiation came from
 /// ([`PairRule::may_start`]).
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
+#[cfg_attr(feature = "defmt", derive(defmt::Format))]
 pub enum FirstPoint {
     /// Measurement `p` of the previous scan.
     PreviousScan(usize),
@@ -1302,21 +1303,24 @@ impl<S: Numeric, F: TrackFilter<S>, const N: usize, const M: usize> TrackTable<S
     /// places above them, from the top; those that find none are dropped.
     fn keep_unpaired_first_points(&mut self, config: &TrackerConfig<S, F::Params>, used: usize) {
         let keep = config.first_points_through_a_miss();
+        let mut kept = false;
         for (pending, earlier) in self.pending.iter_mut().zip(self.pending_earlier.iter_mut()) {
             if *earlier || !keep {
                 *pending = None;
             }
             *earlier = pending.is_some();
+            kept |= *earlier;
         }
-        if !keep {
+        if !kept {
             return;
         }
         // Free places are looked for below `top`, downwards.
         let mut top = M;
         for p in 0..used {
-            let Some(Some(first)) = self.pending.get(p).copied() else {
+            let Some(Some(first)) = self.pending.get(p) else {
                 continue;
             };
+            let first = *first;
             let Some(free) = (used..top)
                 .rev()
                 .find(|&q| matches!(self.pending.get(q), Some(None)))
