@@ -531,6 +531,8 @@ pub struct TrackTable<S: Numeric, F, const N: usize, const M: usize> {
     pending: [Option<Observation<S>>; M],
     /// Which of `pending` are from the scan before the previous one.
     pending_earlier: [bool; M],
+    /// How many of `pending` hold a first point (≤ M < 65535).
+    pending_count: u16,
     /// The previous accepted scan's interval (ms): with this scan's, the
     /// interval to an earlier first point.
     previous_interval_ms: u32,
@@ -578,6 +580,7 @@ impl<S: Numeric, F: TrackFilter<S>, const N: usize, const M: usize> TrackTable<S
             last_scan_ms: None,
             pending: [const { None }; M],
             pending_earlier: [false; M],
+            pending_count: 0,
             previous_interval_ms: 0,
             stats: TableStats {
                 scans: 0,
@@ -642,7 +645,7 @@ impl<S: Numeric, F: TrackFilter<S>, const N: usize, const M: usize> TrackTable<S
     }
     /// Measurements held as first points for initiation.
     pub fn pending(&self) -> usize {
-        self.pending.iter().filter(|p| p.is_some()).count()
+        self.pending_count as usize
     }
     /// The id the next track will get (unless it is in use then).
     pub fn next_id(&self) -> u32 {
@@ -661,6 +664,7 @@ impl<S: Numeric, F: TrackFilter<S>, const N: usize, const M: usize> TrackTable<S
     pub fn clear(&mut self) {
         self.slots.fill(TrackSlot::Empty);
         self.pending.fill(None);
+        self.pending_count = 0;
         self.last_scan_ms = None;
     }
 
@@ -830,6 +834,7 @@ impl<S: Numeric, F: TrackFilter<S>, const N: usize, const M: usize> TrackTable<S
             }
         }
         self.pending.fill(None);
+        self.pending_count = 0;
     }
 
     /// Intake: validate and project every measurement once, and forget the
@@ -1089,11 +1094,28 @@ impl<S: Numeric, F: TrackFilter<S>, const N: usize, const M: usize> TrackTable<S
         rule: &impl PairRule,
         report: &mut ScanReport,
     ) {
-        self.initiate_from(config, dt, false, now_ms, rule, report);
-        if !self.pending_earlier.contains(&true) {
+        if self.pending_count == 0 {
             return;
         }
-        // Both intervals in range, else the earlier points are too old.
+        self.initiate_from(config, dt, false, now_ms, rule, report);
+        if self.pending_earlier.contains(&true) {
+            self.initiate_from_earlier(config, now_ms, rule, report);
+        }
+    }
+
+    /// The second pass of [`Self::initiate`], from the earlier first
+    /// points, if both intervals together are in range (else they are too
+    /// old). Not inlined: its step for the two intervals stays off the
+    /// stack of scans that have no earlier first point (the firmware's scan
+    /// loop never has one).
+    #[inline(never)]
+    fn initiate_from_earlier(
+        &mut self,
+        config: &TrackerConfig<S, F::Params>,
+        now_ms: u32,
+        rule: &impl PairRule,
+        report: &mut ScanReport,
+    ) {
         let since_earlier = self.previous_interval_ms.saturating_add(report.interval_ms);
         if since_earlier > MAX_INTERVAL_MS {
             return;
@@ -1108,6 +1130,8 @@ impl<S: Numeric, F: TrackFilter<S>, const N: usize, const M: usize> TrackTable<S
 
     /// [`Self::initiate`] from the first points of the previous scan
     /// (`earlier` false) or of the scan before it, `dt` after them.
+    /// Inlined, so that the previous scan's pass adds no stack frame.
+    #[inline(always)]
     fn initiate_from(
         &mut self,
         config: &TrackerConfig<S, F::Params>,
@@ -1146,6 +1170,7 @@ impl<S: Numeric, F: TrackFilter<S>, const N: usize, const M: usize> TrackTable<S
             }
             if let Some(pending) = self.pending.get_mut(p) {
                 *pending = None;
+                self.pending_count = self.pending_count.saturating_sub(1);
             }
         }
     }
@@ -1268,7 +1293,7 @@ impl<S: Numeric, F: TrackFilter<S>, const N: usize, const M: usize> TrackTable<S
         used: usize,
         report: &mut ScanReport,
     ) {
-        self.keep_unpaired_first_points(config, used);
+        let mut count = self.keep_unpaired_first_points(config, used);
         // Only the codes of this scan's measurements: the slots beyond them
         // hold no measurement (counting them put them outside gates).
         for (((pending, earlier), obs), code) in self
@@ -1287,6 +1312,7 @@ impl<S: Numeric, F: TrackFilter<S>, const N: usize, const M: usize> TrackTable<S
                     if let Some(o) = obs {
                         if config.in_volume(o.xy()) {
                             *pending = Some(*o);
+                            count = count.saturating_add(1);
                         }
                     }
                 }
@@ -1294,6 +1320,7 @@ impl<S: Numeric, F: TrackFilter<S>, const N: usize, const M: usize> TrackTable<S
                 _ => {}
             }
         }
+        self.pending_count = count;
     }
 
     /// Drops the earlier first points; with
@@ -1301,18 +1328,36 @@ impl<S: Numeric, F: TrackFilter<S>, const N: usize, const M: usize> TrackTable<S
     /// previous scan's unpaired ones as earlier and moves those at this
     /// scan's indices (`..used`, this scan's first points' places) to free
     /// places above them, from the top; those that find none are dropped.
-    fn keep_unpaired_first_points(&mut self, config: &TrackerConfig<S, F::Params>, used: usize) {
+    /// Returns how many are kept above `used` (those below are about to be
+    /// overwritten). With no first point pending, nothing to do: the places
+    /// are empty (their `pending_earlier` flags say nothing then).
+    fn keep_unpaired_first_points(
+        &mut self,
+        config: &TrackerConfig<S, F::Params>,
+        used: usize,
+    ) -> u16 {
+        if self.pending_count == 0 {
+            return 0;
+        }
         let keep = config.first_points_through_a_miss();
-        let mut kept = false;
-        for (pending, earlier) in self.pending.iter_mut().zip(self.pending_earlier.iter_mut()) {
+        let (mut kept, mut above) = (false, 0u16);
+        for (p, (pending, earlier)) in self
+            .pending
+            .iter_mut()
+            .zip(self.pending_earlier.iter_mut())
+            .enumerate()
+        {
             if *earlier || !keep {
                 *pending = None;
             }
             *earlier = pending.is_some();
             kept |= *earlier;
+            if *earlier && p >= used {
+                above = above.saturating_add(1);
+            }
         }
         if !kept {
-            return;
+            return 0;
         }
         // Free places are looked for below `top`, downwards.
         let mut top = M;
@@ -1325,7 +1370,7 @@ impl<S: Numeric, F: TrackFilter<S>, const N: usize, const M: usize> TrackTable<S
                 .rev()
                 .find(|&q| matches!(self.pending.get(q), Some(None)))
             else {
-                return;
+                break;
             };
             top = free;
             if let (Some(to), Some(earlier)) = (
@@ -1334,8 +1379,10 @@ impl<S: Numeric, F: TrackFilter<S>, const N: usize, const M: usize> TrackTable<S
             ) {
                 *to = Some(first);
                 *earlier = true;
+                above = above.saturating_add(1);
             }
         }
+        above
     }
 
     /// The codes out; the measurements beyond M were dropped.

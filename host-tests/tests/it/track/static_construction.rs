@@ -105,10 +105,10 @@ fn bytes_per_track() {
 
     // The whole table, rounded up to its alignment (8).
     let round = |b: usize| b.div_ceil(8) * 8;
-    let f64_bytes = |n: usize, m: usize| round(124 + 151 * n + 157 * m);
-    let f32_bytes = |n: usize, m: usize| round(96 + 115 * n + 117 * m);
-    let fixed_bytes = |n: usize, m: usize| round(104 + 115 * n + 125 * m);
-    let scaled_bytes = |n: usize, m: usize| round(120 + 143 * n + 149 * m);
+    let f64_bytes = |n: usize, m: usize| round(128 + 151 * n + 157 * m);
+    let f32_bytes = |n: usize, m: usize| round(100 + 115 * n + 117 * m);
+    let fixed_bytes = |n: usize, m: usize| round(106 + 115 * n + 125 * m);
+    let scaled_bytes = |n: usize, m: usize| round(124 + 143 * n + 149 * m);
     let tables = [
         ("f64", size_of::<Table<f64, 32, 32>>()),
         ("f32", size_of::<Table<f32, 32, 32>>()),
