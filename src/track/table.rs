@@ -1079,13 +1079,16 @@ impl<S: Numeric, F: TrackFilter<S>, const N: usize, const M: usize> TrackTable<S
         }
     }
 
-    /// Two-point initiation. For each pending first point in turn, the
-    /// previous scan's first, then the earlier ones, the nearest unused
-    /// measurement of this scan within `max_speed·T + margin` (T the time
-    /// since the first point) is its second point (sequential nearest
-    /// neighbour over the measurements the pre-gate finds in the circle's
-    /// bounding box; ties go to the lowest measurement index; see the module
-    /// docs for why not an optimal assignment here).
+    /// Two-point initiation: the previous scan's first points (`dt` after
+    /// them), then the scan before's, if both intervals together are in
+    /// range (else they are too old). For each first point in turn, the
+    /// nearest unused measurement of this scan within `max_speed·T + margin`
+    /// (T the time since the first point) is its second point (sequential
+    /// nearest neighbour over the measurements the pre-gate finds in the
+    /// circle's bounding box; ties go to the lowest measurement index; see
+    /// the module docs for why not an optimal assignment here). One loop
+    /// for both (one copy of the code per table type, kept inside the
+    /// scan's frame).
     fn initiate(
         &mut self,
         config: &TrackerConfig<S, F::Params>,
@@ -1094,83 +1097,58 @@ impl<S: Numeric, F: TrackFilter<S>, const N: usize, const M: usize> TrackTable<S
         rule: &impl PairRule,
         report: &mut ScanReport,
     ) {
-        if self.pending_count == 0 {
-            return;
-        }
-        self.initiate_from(config, dt, false, now_ms, rule, report);
-        if self.pending_earlier.contains(&true) {
-            self.initiate_from_earlier(config, now_ms, rule, report);
-        }
-    }
-
-    /// The second pass of [`Self::initiate`], from the earlier first
-    /// points, if both intervals together are in range (else they are too
-    /// old). Not inlined: its step for the two intervals stays off the
-    /// stack of scans that have no earlier first point (the firmware's scan
-    /// loop never has one).
-    #[inline(never)]
-    fn initiate_from_earlier(
-        &mut self,
-        config: &TrackerConfig<S, F::Params>,
-        now_ms: u32,
-        rule: &impl PairRule,
-        report: &mut ScanReport,
-    ) {
-        let since_earlier = self.previous_interval_ms.saturating_add(report.interval_ms);
-        if since_earlier > MAX_INTERVAL_MS {
-            return;
-        }
-        let Some(earlier_dt) =
-            ScanInterval::from_ms(since_earlier).and_then(|i| F::step(config.params(), &i).ok())
-        else {
-            return;
-        };
-        self.initiate_from(config, &earlier_dt, true, now_ms, rule, report);
-    }
-
-    /// [`Self::initiate`] from the first points of the previous scan
-    /// (`earlier` false) or of the scan before it, `dt` after them.
-    /// Inlined, so that the previous scan's pass adds no stack frame.
-    #[inline(always)]
-    fn initiate_from(
-        &mut self,
-        config: &TrackerConfig<S, F::Params>,
-        dt: &F::Step,
-        earlier: bool,
-        now_ms: u32,
-        rule: &impl PairRule,
-        report: &mut ScanReport,
-    ) {
-        let interval = F::interval_of(dt).interval();
-        let radius = config.max_speed() * interval + config.initiation_margin();
-        for p in 0..M {
-            if self.pending_earlier.get(p) != Some(&earlier) {
-                continue;
+        for earlier in [false, true] {
+            if self.pending_count == 0 {
+                return;
             }
-            let Some(Some(first)) = self.pending.get(p).copied() else {
-                continue;
-            };
-            let Some(region) = GateRegion::circle(first.xy(), radius) else {
-                continue;
-            };
-            let which = if earlier {
-                FirstPoint::ScanBefore
+            let since_earlier;
+            let dt = if earlier {
+                if !self.pending_earlier.contains(&true) {
+                    return;
+                }
+                let interval = self.previous_interval_ms.saturating_add(report.interval_ms);
+                if interval > MAX_INTERVAL_MS {
+                    return;
+                }
+                let Some(step) =
+                    ScanInterval::from_ms(interval).and_then(|i| F::step(config.params(), &i).ok())
+                else {
+                    return;
+                };
+                since_earlier = step;
+                &since_earlier
             } else {
-                FirstPoint::PreviousScan(p)
+                dt
             };
-            let Some(k) = self.nearest_unused(config, &region, |k| rule.may_start(which, k)) else {
-                continue;
-            };
-            let Some(Some(second)) = self.observations.get(k).copied() else {
-                continue;
-            };
-            let code = self.start_track(config, dt, now_ms, [&first, &second], earlier, report);
-            if let Some(c) = self.codes.get_mut(k) {
-                *c = code;
-            }
-            if let Some(pending) = self.pending.get_mut(p) {
-                *pending = None;
-                self.pending_count = self.pending_count.saturating_sub(1);
+            let interval = F::interval_of(dt).interval();
+            let radius = config.max_speed() * interval + config.initiation_margin();
+            for p in 0..M {
+                if self.pending_earlier.get(p) != Some(&earlier) {
+                    continue;
+                }
+                let Some(Some(first)) = self.pending.get(p) else {
+                    continue;
+                };
+                let Some(region) = GateRegion::circle(first.xy(), radius) else {
+                    continue;
+                };
+                let which = if earlier {
+                    FirstPoint::ScanBefore
+                } else {
+                    FirstPoint::PreviousScan(p)
+                };
+                let Some(k) = self.nearest_unused(config, &region, |k| rule.may_start(which, k))
+                else {
+                    continue;
+                };
+                let code = self.start_track(config, dt, now_ms, [p, k], earlier, report);
+                if let Some(c) = self.codes.get_mut(k) {
+                    *c = code;
+                }
+                if let Some(pending) = self.pending.get_mut(p) {
+                    *pending = None;
+                    self.pending_count = self.pending_count.saturating_sub(1);
+                }
             }
         }
     }
@@ -1202,16 +1180,18 @@ impl<S: Numeric, F: TrackFilter<S>, const N: usize, const M: usize> TrackTable<S
         best.map(|(_, k)| k)
     }
 
-    /// A tentative track from two points (the first `earlier`: of the scan
-    /// before the previous one), in a free slot or, the table full, in the
-    /// slot of the weakest displaceable tentative track
-    /// ([`Self::displaceable`]), which ends there; the second point's code.
+    /// A tentative track from first point `p` (`earlier`: of the scan before
+    /// the previous one) and this scan's measurement `k`, in a free slot or,
+    /// the table full, in the slot of the weakest displaceable tentative
+    /// track ([`Self::displaceable`]), which ends there; the second point's
+    /// code. The points are read in place, not copied (this is the scan's
+    /// deepest call).
     fn start_track(
         &mut self,
         config: &TrackerConfig<S, F::Params>,
         dt: &F::Step,
         now_ms: u32,
-        [first, second]: [&Observation<S>; 2],
+        [p, k]: [usize; 2],
         earlier: bool,
         report: &mut ScanReport,
     ) -> Association {
@@ -1219,6 +1199,12 @@ impl<S: Numeric, F: TrackFilter<S>, const N: usize, const M: usize> TrackTable<S
         let Some(slot) = free.or_else(|| self.displaceable(config)) else {
             increment(&mut report.refused_table_full);
             return Association::Dropped(DropReason::TableFull);
+        };
+        let (Some(Some(first)), Some(Some(second))) =
+            (self.pending.get(p), self.observations.get(k))
+        else {
+            // Not reached: the caller found both.
+            return Association::OutsideGates;
         };
         let params = config.params();
         let mut filter = F::empty(params);
