@@ -134,11 +134,13 @@ impl<S: Numeric, P: Copy> TrackerConfig<S, P> {
     /// Whether an unused measurement that found no second point in the next
     /// scan is kept as a first point for one more scan (two-point
     /// initiation over both intervals, radius `max_speed·(T₁ + T₂)` plus the
-    /// margin, after the previous scan's first points have paired). Such a
-    /// track's M-of-N window starts at the missed scan, so with the default
-    /// 2 of 3 it must be seen in the next scan. On by default: without it, a
-    /// target missed in the scan after its first detection starts a scan
-    /// later (`docs/track-table.md`, "First points").
+    /// margin, after the previous scan's first points have paired), in the
+    /// places above the previous scan's measurements (M less their number).
+    /// Such a track's M-of-N window starts at the missed scan, so with the
+    /// default 2 of 3 it must be seen in the next scan; with M-of-M it
+    /// could never confirm, so the option has no effect then. On by default:
+    /// without it, a target missed in the scan after its first detection
+    /// starts a scan later (`docs/track-table.md`, "First points").
     pub fn keep_first_points_through_a_miss(mut self, keep: bool) -> Self {
         self.first_points_through_a_miss = keep;
         self
@@ -175,9 +177,12 @@ impl<S: Numeric, P: Copy> TrackerConfig<S, P> {
         (self.delete_confirmed_misses, self.delete_tentative_misses)
     }
     /// Whether first points wait one missed scan
-    /// ([`Self::keep_first_points_through_a_miss`]).
+    /// ([`Self::keep_first_points_through_a_miss`]): set, and the
+    /// confirmation leaves such a track a way to confirm (M ≤ N − 1, or
+    /// M = 1; with M-of-M a window starting at the missed scan cannot).
     pub fn first_points_through_a_miss(&self) -> bool {
         self.first_points_through_a_miss
+            && (self.confirm_hits <= 1 || self.confirm_hits < self.confirm_window)
     }
     /// The surveillance volume, if any.
     pub fn volume(&self) -> Option<&Volume<S>> {

@@ -124,7 +124,8 @@ pub struct Track<S: Numeric, F> {
     /// Measurements incorporated (the two initiation points included),
     /// saturating.
     hits: u16,
-    /// Scans since the track was started (that scan included), saturating.
+    /// Scans since the track was started (that scan included; from an
+    /// earlier first point, the missed scan before it too), saturating.
     scans: u16,
     lifecycle: Lifecycle,
     /// Consecutive scans without a measurement (the history holds only 32;
@@ -174,7 +175,8 @@ impl<S: Numeric, F: TrackFilter<S>> Track<S, F> {
     pub fn hits(&self) -> u16 {
         self.hits
     }
-    /// Scans since the track started (its first scan counts 1).
+    /// Scans since the track started (its first scan counts 1; started from
+    /// a first point kept through a miss, the missed scan counts too).
     pub fn scans(&self) -> u16 {
         self.scans
     }
@@ -259,14 +261,16 @@ pub enum DropReason {
 #[cfg_attr(feature = "defmt", derive(defmt::Format))]
 pub enum Association {
     /// Inside no gate and paired with nothing; kept (if inside the
-    /// surveillance volume) as a first point for initiation in the next scan.
+    /// surveillance volume) as a first point for initiation in the next scan
+    /// (and, unpaired there, the one after:
+    /// [`TrackerConfig::keep_first_points_through_a_miss`]).
     /// (First: the code of a table's workspace before its first scan is zero
     /// bytes.)
     OutsideGates,
     /// Updated this track.
     Updated(TrackId),
-    /// Paired with a measurement of the previous scan and started this
-    /// (tentative) track.
+    /// Paired with a first point (a measurement of the previous scan, or of
+    /// the scan before it) and started this (tentative) track.
     Started(TrackId),
     /// Inside at least one gate, but the optimal assignment gave those tracks
     /// other measurements. Not used to start tracks (it would duplicate a
@@ -526,8 +530,9 @@ pub struct TrackTable<S: Numeric, F, const N: usize, const M: usize> {
     previous_id: u32,
     last_scan_ms: Option<u32>,
     /// First points for two-point initiation: unused measurements of the
-    /// previous scan (at their index), and, where those leave room, those of
-    /// the scan before that found no second point (`pending_earlier`).
+    /// previous scan (at their index), and those of the scan before that
+    /// found no second point (`pending_earlier`), in the places above the
+    /// previous scan's measurements.
     pending: [Option<Observation<S>>; M],
     /// Which of `pending` are from the scan before the previous one.
     pending_earlier: [bool; M],
@@ -664,6 +669,7 @@ impl<S: Numeric, F: TrackFilter<S>, const N: usize, const M: usize> TrackTable<S
     pub fn clear(&mut self) {
         self.slots.fill(TrackSlot::Empty);
         self.pending.fill(None);
+        self.pending_earlier.fill(false);
         self.pending_count = 0;
         self.last_scan_ms = None;
     }
@@ -718,8 +724,8 @@ impl<S: Numeric, F: TrackFilter<S>, const N: usize, const M: usize> TrackTable<S
     }
 
     /// [`Self::scan_with_probe`] where only the pairs `rule` allows may
-    /// gate (a track and a measurement) or start a track (a first point of
-    /// the previous scan and a measurement): reply identity.
+    /// gate (a track and a measurement) or start a track (a first point,
+    /// [`FirstPoint`], and a measurement): reply identity.
     pub fn scan_with_rule(
         &mut self,
         config: &TrackerConfig<S, F::Params>,
@@ -800,10 +806,14 @@ impl<S: Numeric, F: TrackFilter<S>, const N: usize, const M: usize> TrackTable<S
         if interval > MAX_INTERVAL_MS {
             return Ok((interval, ScanTiming::Gap));
         }
-        let step = ScanInterval::from_ms(interval)
-            .and_then(|i| F::step(config.params(), &i).ok())
-            .ok_or(ScanError::IntervalNotRepresentable)?;
+        let step = Self::step_of(config, interval).ok_or(ScanError::IntervalNotRepresentable)?;
         Ok((interval, ScanTiming::Step(step)))
+    }
+
+    /// The filters' step for an interval of `ms` milliseconds, formed once
+    /// for every track; `None` if not representable.
+    fn step_of(config: &TrackerConfig<S, F::Params>, ms: u32) -> Option<F::Step> {
+        ScanInterval::from_ms(ms).and_then(|i| F::step(config.params(), &i).ok())
     }
 
     /// A scan too close to the previous one: nothing changes but the
@@ -834,6 +844,7 @@ impl<S: Numeric, F: TrackFilter<S>, const N: usize, const M: usize> TrackTable<S
             }
         }
         self.pending.fill(None);
+        self.pending_earlier.fill(false);
         self.pending_count = 0;
     }
 
@@ -1110,9 +1121,7 @@ impl<S: Numeric, F: TrackFilter<S>, const N: usize, const M: usize> TrackTable<S
                 if interval > MAX_INTERVAL_MS {
                     return;
                 }
-                let Some(step) =
-                    ScanInterval::from_ms(interval).and_then(|i| F::step(config.params(), &i).ok())
-                else {
+                let Some(step) = Self::step_of(config, interval) else {
                     return;
                 };
                 since_earlier = step;
@@ -1145,8 +1154,11 @@ impl<S: Numeric, F: TrackFilter<S>, const N: usize, const M: usize> TrackTable<S
                 if let Some(c) = self.codes.get_mut(k) {
                     *c = code;
                 }
-                if let Some(pending) = self.pending.get_mut(p) {
+                if let (Some(pending), Some(flag)) =
+                    (self.pending.get_mut(p), self.pending_earlier.get_mut(p))
+                {
                     *pending = None;
+                    *flag = false;
                     self.pending_count = self.pending_count.saturating_sub(1);
                 }
             }
@@ -1310,10 +1322,11 @@ impl<S: Numeric, F: TrackFilter<S>, const N: usize, const M: usize> TrackTable<S
     }
 
     /// Drops the earlier first points; with
-    /// [`TrackerConfig::keep_first_points_through_a_miss`], marks the
-    /// previous scan's unpaired ones as earlier and moves those at this
-    /// scan's indices (`..used`, this scan's first points' places) to free
-    /// places above them, from the top; those that find none are dropped.
+    /// [`TrackerConfig::first_points_through_a_miss`], marks the previous
+    /// scan's unpaired ones as earlier and moves those at this scan's
+    /// measurement places (`..used`, where this scan's first points go) to
+    /// free places above them, from the top; those that find none are
+    /// dropped.
     /// Returns how many are kept above `used` (those below are about to be
     /// overwritten). With no first point pending, nothing to do: the places
     /// are empty (their `pending_earlier` flags say nothing then).
@@ -1490,7 +1503,8 @@ fn lifecycle<S: Numeric, F: TrackFilter<S>>(
 
 /// Scans with a measurement among the last `window` of `history`: for a
 /// tentative track (at most `window` scans old), the hits of M-of-N over
-/// its first N scans (the starting scan is scan 1).
+/// its first N scans (the starting scan is scan 1, or scan 2 after the
+/// missed scan of a first point kept through a miss).
 fn hits_in_window(history: u32, window: u8) -> u32 {
     let mask = match window {
         32.. => u32::MAX,

@@ -108,6 +108,21 @@ fn a_first_point_waits_through_one_miss() {
     assert_eq!(out[4].1.confirmed, 1);
 }
 
+/// With M-of-M confirmation a window starting at the missed scan could
+/// never be met: first points are not kept through a miss then.
+#[test]
+fn m_of_m_confirmation_keeps_no_first_point_through_a_miss() {
+    let config = default_config::<f64>().with_confirmation(3, 3).unwrap();
+    assert!(!config.first_points_through_a_miss());
+    let (_, out) = run(&config, &[true, false, true, true, true, true]);
+    assert_eq!(out[2].0, Some(Association::OutsideGates));
+    assert_eq!(out[3].0, Some(Association::Started(id(1))));
+    assert_eq!(out[5].1.confirmed, 1);
+    // 3 of 4 leaves a way: kept.
+    let config = default_config::<f64>().with_confirmation(3, 4).unwrap();
+    assert!(config.first_points_through_a_miss());
+}
+
 /// An earlier first point waits one scan, not more; and the two intervals
 /// together must be within the filters' longest, else it is too old.
 #[test]
@@ -154,7 +169,7 @@ fn earlier_first_points_make_room_for_the_previous_scans() {
     let t = table.tracks().find(|t| t.id() == id(2)).unwrap();
     assert!((t.velocity()[0] - 50.0).abs() < 1e-9);
 
-    // With every index taken by this scan's first points, the earlier one
+    // With every place taken by this scan's measurements, the earlier one
     // has no room and is dropped.
     let mut table = Table::<f64, 8, 1>::new();
     let mut codes = [Association::OutsideGates; 1];
