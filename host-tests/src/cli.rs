@@ -220,6 +220,10 @@ pub struct ReplayArgs {
     /// tracker: delete a confirmed track after K consecutive misses. Default: from the design.
     #[arg(long, value_name = "K", value_parser = clap::value_parser!(u8).range(1..), help_heading = "Tracker")]
     pub delete: Option<u8>,
+    /// tracker: pair first points with the next scan only (by default a first point that
+    /// finds no second point waits one more scan).
+    #[arg(long, help_heading = "Tracker")]
+    pub no_first_point_wait: bool,
     /// tracker: one line of association counts per scan on stderr.
     #[arg(long, help_heading = "Tracker")]
     pub verbose: bool,
@@ -259,7 +263,7 @@ impl ReplayArgs {
     /// The options given, by name, besides the mode, `--numeric` and the
     /// input.
     fn given(&self) -> Vec<&'static str> {
-        let options: [(&'static str, bool); 22] = [
+        let options: [(&'static str, bool); 23] = [
             ("--schedule", self.schedule.is_some()),
             ("--alpha", self.alpha.is_some()),
             ("--beta", self.beta.is_some()),
@@ -281,6 +285,7 @@ impl ReplayArgs {
             ("--capacity", self.capacity.is_some()),
             ("--confirm", self.confirm.is_some()),
             ("--delete", self.delete.is_some()),
+            ("--no-first-point-wait", self.no_first_point_wait),
             ("--verbose", self.verbose),
         ];
         options
@@ -316,6 +321,7 @@ impl ReplayArgs {
                     "--capacity",
                     "--confirm",
                     "--delete",
+                    "--no-first-point-wait",
                     "--verbose",
                 ],
             ),
@@ -617,6 +623,7 @@ impl ReplayArgs {
             capacity,
             confirmation: self.confirm,
             delete_confirmed: self.delete,
+            first_points_through_a_miss: !self.no_first_point_wait,
             own_altitude_ft: self.own_alt,
             sensor: SensorOptions {
                 region_m: self.region_m,

@@ -133,6 +133,9 @@ pub struct TrackerOptions {
     pub confirmation: Option<(u8, u8)>,
     /// `--delete K` (confirmed tracks).
     pub delete_confirmed: Option<u8>,
+    /// Not `--no-first-point-wait`: a first point waits through one missed
+    /// scan (`TrackerConfig::keep_first_points_through_a_miss`).
+    pub first_points_through_a_miss: bool,
     /// `--own-alt FEET`.
     pub own_altitude_ft: Option<f64>,
     pub sensor: SensorOptions,
@@ -148,6 +151,7 @@ impl Default for TrackerOptions {
             capacity: DEFAULT_CAPACITY,
             confirmation: None,
             delete_confirmed: None,
+            first_points_through_a_miss: true,
             own_altitude_ft: None,
             sensor: SensorOptions::default(),
             azimuth_unit: AngleUnit::Radians,
@@ -989,12 +993,12 @@ fn run_cartesian<S: abtrack::Numeric<Length: std::fmt::Display, Speed: std::fmt:
     }
 }
 
-/// `--confirm` and `--delete` applied to `config`.
+/// `--confirm`, `--delete` and `--no-first-point-wait` applied to `config`.
 pub fn with_lifecycle<S: abtrack::Numeric, P: Copy>(
     config: TrackerConfig<S, P>,
     options: &TrackerOptions,
 ) -> Result<TrackerConfig<S, P>, ReplayError> {
-    let mut config = config;
+    let mut config = config.keep_first_points_through_a_miss(options.first_points_through_a_miss);
     if let Some((hits, window)) = options.confirmation {
         let (confirmed, _) = config.deletion();
         config = config

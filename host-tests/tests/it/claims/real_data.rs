@@ -7,8 +7,8 @@ use abtrack::gain::spec::{ScheduleSpec, SensorScale};
 use abtrack::track::defaults::BANK_30_ACCELERATION;
 use abtrack_host_tests::experiments::real_adsb::{
     best_kalman_q, data_dir, evaluate_segment, median, read_scene_truth, read_segments, run_scene,
-    truth_for, Figure, Scene, SceneRun, Segment, Timing, GRID_MAX_GAP_S, KALMAN_Q_GRID, SCENES,
-    SCENE_NUMERICS, SCHEDULES, SIGMA_M,
+    score_tracks, truth_for, Figure, Scene, SceneRun, Segment, Timing, GRID_MAX_GAP_S,
+    KALMAN_Q_GRID, SCENES, SCENE_NUMERICS, SCHEDULES, SIGMA_M,
 };
 use abtrack_host_tests::experiments::scene_draws::{
     self, draw, measurements, CONDITIONS, DRAW_SEEDS,
@@ -171,6 +171,64 @@ fn the_hard_scene_keeps_identities_through_missed_detections() {
     assert!(run.id_changes <= 12, "id changes {}", run.id_changes);
     assert!(run.ospa <= 285.5, "OSPA {}", run.ospa);
     assert!(run.false_tracks <= 9, "false tracks {}", run.false_tracks);
+}
+
+/// A first point kept through one missed scan starts the real flights
+/// sooner (docs/track-table.md, "First points"): on both dev files fewer
+/// truth points are unpaired before their flight's first pairing, OSPA is
+/// lower and there are no more false tracks than with the previous scan's
+/// first points only (`replay --tracker --no-first-point-wait`); on the
+/// scene drawn again, coverage is higher and OSPA lower on the mean of
+/// every condition.
+#[test]
+fn first_points_kept_through_a_miss_start_real_flights_sooner() {
+    use abtrack_host_tests::replay_tracker::{replay_tracker_reader, TrackerOptions};
+    let dir = data_dir();
+    for scene in SCENES.iter() {
+        let truth = read_scene_truth(&dir, scene).unwrap();
+        let kept = scene.options(Numeric::F64, None);
+        assert!(kept.first_points_through_a_miss);
+        let next_scan_only = TrackerOptions {
+            first_points_through_a_miss: false,
+            ..kept
+        };
+        let a = run_scene(&dir, scene, &truth, &kept, "").unwrap();
+        let b = run_scene(&dir, scene, &truth, &next_scan_only, "").unwrap();
+        let name = scene.name;
+        assert!(
+            a.unpaired_before_first < b.unpaired_before_first,
+            "{name}: {} against {}",
+            a.unpaired_before_first,
+            b.unpaired_before_first
+        );
+        assert!(
+            a.ospa < b.ospa,
+            "{name}: OSPA {} against {}",
+            a.ospa,
+            b.ospa
+        );
+        assert!(a.false_tracks <= b.false_tracks, "{name}");
+    }
+    let truth = read_scene_truth(&dir, &SCENES[0]).unwrap();
+    for (index, condition) in CONDITIONS.iter().enumerate() {
+        let (mut coverage, mut ospa) = ([0.0; 2], [0.0; 2]);
+        for seed in DRAW_SEEDS {
+            let text = measurements(&truth, index, seed);
+            for (i, keep) in [true, false].into_iter().enumerate() {
+                let options = TrackerOptions {
+                    first_points_through_a_miss: keep,
+                    ..condition.options(Numeric::F64, None)
+                };
+                let replay = replay_tracker_reader(&options, text.as_bytes()).unwrap();
+                let run = score_tracks("", &replay.csv, &truth, f64::NAN, String::new()).unwrap();
+                coverage[i] += run.coverage;
+                ospa[i] += run.ospa;
+            }
+        }
+        let name = condition.name;
+        assert!(coverage[0] > coverage[1], "{name}: coverage {coverage:?}");
+        assert!(ospa[0] < ospa[1], "{name}: OSPA {ospa:?}");
+    }
 }
 
 /// The scene drawn again follows its README's recipe: every truth point
