@@ -1338,7 +1338,12 @@ impl<S: Numeric, F: TrackFilter<S>, const N: usize, const M: usize> TrackTable<S
         if self.pending_count == 0 {
             return 0;
         }
-        let keep = config.first_points_through_a_miss();
+        if !config.first_points_through_a_miss() {
+            // As before the option: every first point goes (a flag left on
+            // an empty place says nothing).
+            self.pending.fill(None);
+            return 0;
+        }
         let (mut kept, mut above) = (false, 0u16);
         for (p, (pending, earlier)) in self
             .pending
@@ -1346,7 +1351,7 @@ impl<S: Numeric, F: TrackFilter<S>, const N: usize, const M: usize> TrackTable<S
             .zip(self.pending_earlier.iter_mut())
             .enumerate()
         {
-            if *earlier || !keep {
+            if *earlier {
                 *pending = None;
             }
             *earlier = pending.is_some();
