@@ -7,7 +7,8 @@
 
 Configured as `replay --tracker` is for the same sensor (its design, printed in
 results/real-adsb/summary.md): a constant-velocity Kalman filter with white acceleration of
-density q = 32 m^2/s^3 (from the a_max rule abtrack uses), R = 50^2 I, a Mahalanobis distance gate
+density q = 32 m^2/s^3 (from the a_max rule abtrack uses), R = sigma^2 I (50 m on the scene, the
+draw's sensor sigma on a draw, read from its design file), a Mahalanobis distance gate
 at sqrt(G) (G being abtrack's gate on the squared distance), global-nearest-neighbour assignment,
 tracks started by MultiMeasurementInitiator with min_points = M + 1 and deleted by
 UpdateTimeStepsDeleter after abtrack's miss counts.
@@ -64,19 +65,19 @@ V_MAX = 300.0
 # Mahalanobis distance, confirm M of N, delete a confirmed track after K misses and a tentative
 # one after K_t.
 DESIGN = {
-    "paris_1400": {"gate": 13.82, "m": 2, "delete": 4, "delete_tentative": 2},
-    "paris_1400_hard": {"gate": 11.62, "m": 3, "delete": 8, "delete_tentative": 4},
+    "paris_1400": {"sigma": SIGMA_M, "gate": 13.82, "m": 2, "delete": 4, "delete_tentative": 2},
+    "paris_1400_hard": {"sigma": SIGMA_M, "gate": 11.62, "m": 3, "delete": 8, "delete_tentative": 4},
 }
 EPOCH = datetime.datetime(2021, 10, 7, 14, 0, 0)
 
 
-def scans(path):
-    """(time, set of detections) per scan time of the file."""
+def scans(path, sigma):
+    """(time, set of detections) per scan time of the file, σ `sigma` per axis."""
     by_t = {}
     with open(path, newline="") as f:
         for row in csv.DictReader(f):
             by_t.setdefault(float(row["t"]), []).append((float(row["x"]), float(row["y"])))
-    model = LinearGaussian(ndim_state=4, mapping=(0, 2), noise_covar=np.eye(2) * SIGMA_M**2)
+    model = LinearGaussian(ndim_state=4, mapping=(0, 2), noise_covar=np.eye(2) * sigma**2)
     for t in sorted(by_t):
         when = EPOCH + datetime.timedelta(seconds=t)
         yield when, {
@@ -86,8 +87,9 @@ def scans(path):
 
 
 def tracker_for(design):
+    sigma = design["sigma"]
     transition = CombinedLinearGaussianTransitionModel([ConstantVelocity(Q), ConstantVelocity(Q)])
-    measurement = LinearGaussian(ndim_state=4, mapping=(0, 2), noise_covar=np.eye(2) * SIGMA_M**2)
+    measurement = LinearGaussian(ndim_state=4, mapping=(0, 2), noise_covar=np.eye(2) * sigma**2)
     predictor = KalmanPredictor(transition)
     updater = KalmanUpdater(measurement)
     gate = math.sqrt(design["gate"])
@@ -99,7 +101,7 @@ def tracker_for(design):
 
     initiator = MultiMeasurementInitiator(
         prior_state=GaussianState(
-            np.zeros((4, 1)), np.diag([SIGMA_M**2, V_MAX**2, SIGMA_M**2, V_MAX**2])
+            np.zeros((4, 1)), np.diag([sigma**2, V_MAX**2, sigma**2, V_MAX**2])
         ),
         measurement_model=measurement,
         deleter=UpdateTimeStepsDeleter(design["delete_tentative"]),
@@ -110,6 +112,7 @@ def tracker_for(design):
     return initiator, UpdateTimeStepsDeleter(design["delete"]), associator(), updater
 
 
+SENSOR_LINE = re.compile(r"sensor σ ([0-9.]+) m per axis")
 DESIGN_LINE = re.compile(
     r"design: gate G ([0-9.]+), .*confirm ([0-9]+) of [0-9]+, "
     r"delete after ([0-9]+) misses \(([0-9]+) tentative\)"
@@ -117,12 +120,18 @@ DESIGN_LINE = re.compile(
 
 
 def design_of(text):
-    """The design from replay --tracker's design line."""
-    found = DESIGN_LINE.search(text)
-    if not found:
-        sys.exit(f"no design line in: {text!r}")
+    """The sensor's σ and the design from replay --tracker's sensor and design lines."""
+    sensor, found = SENSOR_LINE.search(text), DESIGN_LINE.search(text)
+    if not sensor or not found:
+        sys.exit(f"no sensor or design line in: {text!r}")
     gate, m, delete, tentative = found.groups()
-    return {"gate": float(gate), "m": int(m), "delete": int(delete), "delete_tentative": int(tentative)}
+    return {
+        "sigma": float(sensor.group(1)),
+        "gate": float(gate),
+        "m": int(m),
+        "delete": int(delete),
+        "delete_tentative": int(tentative),
+    }
 
 
 def track(design, meas_path):
@@ -131,7 +140,7 @@ def track(design, meas_path):
     tracker = MultiTargetTracker(
         initiator=initiator,
         deleter=deleter,
-        detector=scans(meas_path),
+        detector=scans(meas_path, design["sigma"]),
         data_associator=associator,
         updater=updater,
     )

@@ -519,6 +519,10 @@ pub struct Scene {
     pub name: &'static str,
     pub detection_probability: f64,
     pub clutter_per_km2: f64,
+    /// The measurement σ per axis, m.
+    pub sigma_m: f64,
+    /// The scan period, ms (a multiple of the truth's [`SCENE_PERIOD_MS`]).
+    pub scan_period_ms: i64,
 }
 
 /// The dev scene in its two difficulties.
@@ -527,16 +531,20 @@ pub const SCENES: [Scene; 2] = [
         name: "paris_1400",
         detection_probability: 0.9,
         clutter_per_km2: 0.002,
+        sigma_m: SIGMA_M,
+        scan_period_ms: SCENE_PERIOD_MS,
     },
     Scene {
         name: "paris_1400_hard",
         detection_probability: 0.7,
         clutter_per_km2: 0.006,
+        sigma_m: SIGMA_M,
+        scan_period_ms: SCENE_PERIOD_MS,
     },
 ];
 
 impl Scene {
-    /// `replay --tracker --region-m 50000 --sigma-m 50 --scan-period-s 4
+    /// `replay --tracker --region-m 50000 --sigma-m σ --scan-period-s T
     /// --pd P --clutter-per-km2 C [--schedule SPEC] --numeric N`.
     pub fn options(&self, numeric: Numeric, schedule: Option<ScheduleSpec>) -> TrackerOptions {
         TrackerOptions {
@@ -544,14 +552,27 @@ impl Scene {
             schedule,
             sensor: SensorOptions {
                 region_m: Some(SCENE_HALF_WIDTH_M),
-                sigma_m: Some(SIGMA_M),
-                scan_period_s: Some(4.0),
+                sigma_m: Some(self.sigma_m),
+                scan_period_s: Some(self.scan_period_ms as f64 / 1000.0),
                 detection_probability: Some(self.detection_probability),
                 clutter_per_km2: Some(self.clutter_per_km2),
                 ..SensorOptions::default()
             },
             ..TrackerOptions::default()
         }
+    }
+
+    /// The truth at this scene's scan times (all of it at the truth's own
+    /// period).
+    pub fn truth_at_scans(
+        &self,
+        truth: &BTreeMap<i64, Vec<TruthPoint>>,
+    ) -> BTreeMap<i64, Vec<TruthPoint>> {
+        truth
+            .iter()
+            .filter(|(t, _)| *t % self.scan_period_ms == 0)
+            .map(|(t, points)| (*t, points.clone()))
+            .collect()
     }
 }
 
@@ -650,17 +671,26 @@ pub fn run_scene(
     let Some(run) = output else {
         return Err("no run".into());
     };
-    score_tracks(label, &run.csv, truth, best, run.design.to_string())
-        .map_err(|e| format!("{}: {e}", scene.name))
+    score_tracks(
+        label,
+        &run.csv,
+        truth,
+        scene.scan_period_ms,
+        best,
+        run.design.to_string(),
+    )
+    .map_err(|e| format!("{}: {e}", scene.name))
 }
 
 /// Scores a tracker's output in `replay --tracker`'s layout (`t,track_id,
-/// status,x,y`, other columns ignored) against `truth`; `label`, `seconds`
-/// and `design` are carried into the result.
+/// status,x,y`, other columns ignored) against `truth` (at the scans, every
+/// `period_ms`); `label`, `seconds` and `design` are carried into the
+/// result.
 pub fn score_tracks(
     label: &str,
     csv_text: &str,
     truth: &BTreeMap<i64, Vec<TruthPoint>>,
+    period_ms: i64,
     seconds: f64,
     design: String,
 ) -> Result<SceneRun, String> {
@@ -676,10 +706,11 @@ pub fn score_tracks(
             y: r.y,
         });
     }
-    // Every scan of the scene (every 4 s to the last truth time), and any
-    // other time of the truth or of the output.
+    // Every scan of the scene (every period to the last truth time), and
+    // any other time of the truth or of the output.
     let last = truth.keys().next_back().copied().unwrap_or(0);
-    let grid = (0..=last / SCENE_PERIOD_MS).map(|k| k * SCENE_PERIOD_MS);
+    let period_ms = period_ms.max(1);
+    let grid = (0..=last / period_ms).map(|k| k * period_ms);
     let times: std::collections::BTreeSet<i64> = truth
         .keys()
         .chain(tracks.keys())
@@ -1052,7 +1083,14 @@ pub fn run(ctx: &Context) -> Result<(), String> {
             }
         }
         if let Some((csv_text, seconds)) = stonesoup_output(&dir, scene) {
-            let r = score_tracks(STONESOUP_LABEL, &csv_text, &truth, seconds, String::new())?;
+            let r = score_tracks(
+                STONESOUP_LABEL,
+                &csv_text,
+                &truth,
+                scene.scan_period_ms,
+                seconds,
+                String::new(),
+            )?;
             scene_table.push(scene_row(scene, &r));
             if let Some((ours, theirs, n)) = common_rmse(&f64_pairs, &r.pairs) {
                 common.push(format!(

@@ -5,7 +5,11 @@
 //! (the folder's, seed 7) says little about a difference of a few metres or
 //! a few thousandths of coverage; the draws give the spread, and the third
 //! condition checks that the design configured from the sensor's figures
-//! holds at a clutter density the dev files do not have.
+//! holds at a clutter density the dev files do not have. Three more
+//! conditions measure the same truth with other sensors' figures (a 12 s
+//! scan; σ 150 m; 8 s, σ 100 m, P_D 0.8 and 50 clutter plots a scan), each
+//! configured from its own figures, as a recording from another sensor
+//! would be.
 
 use std::collections::BTreeMap;
 use std::fmt::Write as _;
@@ -25,24 +29,58 @@ use crate::replay::Numeric;
 use crate::replay_tracker::replay_tracker_reader;
 
 /// The dev files' two conditions and the held-out scene's (P_D 0.7, 100
-/// clutter plots a scan), named as the draws' files and rows.
-pub const CONDITIONS: [Scene; 3] = [
+/// clutter plots a scan), all with the dev files' sensor (σ 50 m, a scan
+/// every 4 s), then [`SAME_SENSOR_CONDITIONS`] onwards other sensors'
+/// figures; named as the draws' files and rows. A condition's index is its
+/// random stream's.
+pub const CONDITIONS: [Scene; 6] = [
     Scene {
         name: "pd0.9_clutter20",
         detection_probability: 0.9,
         clutter_per_km2: 0.002,
+        sigma_m: SIGMA_M,
+        scan_period_ms: SCENE_PERIOD_MS,
     },
     Scene {
         name: "pd0.7_clutter60",
         detection_probability: 0.7,
         clutter_per_km2: 0.006,
+        sigma_m: SIGMA_M,
+        scan_period_ms: SCENE_PERIOD_MS,
     },
     Scene {
         name: "pd0.7_clutter100",
         detection_probability: 0.7,
         clutter_per_km2: 0.01,
+        sigma_m: SIGMA_M,
+        scan_period_ms: SCENE_PERIOD_MS,
+    },
+    Scene {
+        name: "pd0.9_clutter20_T12s",
+        detection_probability: 0.9,
+        clutter_per_km2: 0.002,
+        sigma_m: SIGMA_M,
+        scan_period_ms: 3 * SCENE_PERIOD_MS,
+    },
+    Scene {
+        name: "pd0.9_clutter20_sigma150m",
+        detection_probability: 0.9,
+        clutter_per_km2: 0.002,
+        sigma_m: 150.0,
+        scan_period_ms: SCENE_PERIOD_MS,
+    },
+    Scene {
+        name: "pd0.8_clutter50_T8s_sigma100m",
+        detection_probability: 0.8,
+        clutter_per_km2: 0.005,
+        sigma_m: 100.0,
+        scan_period_ms: 2 * SCENE_PERIOD_MS,
     },
 ];
+
+/// The conditions of [`CONDITIONS`] with the dev files' sensor (σ 50 m,
+/// 4 s): the first ones.
+pub const SAME_SENSOR_CONDITIONS: usize = 3;
 
 /// The draws' seeds (the folder's files are seed 7).
 pub const DRAW_SEEDS: [u64; 3] = [1, 2, 3];
@@ -57,23 +95,24 @@ pub fn clutter_per_scan(condition: &Scene) -> f64 {
     condition.clutter_per_km2 * side_km * side_km
 }
 
-/// The measurement file (`t,x,y`) of one draw: each scan (every 4 s to
-/// 1200 s) detects each truth point with P_D and perturbs it by N(0, σ²)
-/// per axis, adds Poisson(clutter) plots uniform over the square, and lists
+/// The measurement file (`t,x,y`) of one draw: each scan (every scan
+/// period to 1200 s) detects each truth point with P_D and perturbs it by
+/// N(0, σ²) per axis, adds Poisson(clutter) plots uniform over the square, and lists
 /// the scan's plots in a random order (the folder's files list the
 /// detections in the truth's order, then the clutter: a tracker must not
 /// depend on that).
 pub fn draw(truth: &BTreeMap<i64, Vec<TruthPoint>>, condition: &Scene, stream: u64) -> String {
     let mut rng = rng_from_seed(stream);
     let mut out = String::from("t,x,y\n");
-    for scan in 0..=LAST_SCAN_MS / SCENE_PERIOD_MS {
-        let t_ms = scan * SCENE_PERIOD_MS;
+    let (period_ms, sigma) = (condition.scan_period_ms.max(1), condition.sigma_m);
+    for scan in 0..=LAST_SCAN_MS / period_ms {
+        let t_ms = scan * period_ms;
         let mut plots: Vec<[f64; 2]> = Vec::new();
         for p in truth.get(&t_ms).map(Vec::as_slice).unwrap_or_default() {
             if bernoulli(&mut rng, condition.detection_probability) {
                 plots.push([
-                    p.x + SIGMA_M * standard_normal(&mut rng),
-                    p.y + SIGMA_M * standard_normal(&mut rng),
+                    p.x + sigma * standard_normal(&mut rng),
+                    p.y + sigma * standard_normal(&mut rng),
                 ]);
             }
         }
@@ -101,8 +140,8 @@ pub fn measurements(truth: &BTreeMap<i64, Vec<TruthPoint>>, index: usize, seed: 
 }
 
 /// `replay --tracker` in `numeric`, configured for `condition`, on the
-/// measurement file `text`, scored against `truth` (the design it printed
-/// in [`SceneRun::design`]).
+/// measurement file `text`, scored against `truth` at the condition's scans
+/// (the design it printed in [`SceneRun::design`]).
 pub fn track(
     truth: &BTreeMap<i64, Vec<TruthPoint>>,
     condition: &Scene,
@@ -115,7 +154,8 @@ pub fn track(
     score_tracks(
         label,
         &replay.csv,
-        truth,
+        &condition.truth_at_scans(truth),
+        condition.scan_period_ms,
         f64::NAN,
         replay.design.to_string(),
     )
@@ -181,7 +221,15 @@ pub fn stonesoup_draw(
     ) else {
         return Ok(None);
     };
-    score_tracks(STONESOUP_LABEL, &csv_text, truth, f64::NAN, String::new()).map(Some)
+    score_tracks(
+        STONESOUP_LABEL,
+        &csv_text,
+        &condition.truth_at_scans(truth),
+        condition.scan_period_ms,
+        f64::NAN,
+        String::new(),
+    )
+    .map(Some)
 }
 
 /// Runs the draws, writes `scene_draws.csv`/`.md` into `dir` and the drawn
@@ -331,7 +379,9 @@ pub fn run(
          detections first), seeds {DRAW_SEEDS:?}, in the \
          dev files' two conditions and in the condition of the held-out scene the project is \
          checked on (not in the repository; P_D {}, {:.0} clutter plots a \
-         scan, {} per km²), each run as `replay --tracker` is configured from those figures. \
+         scan, {} per km²), and with other sensors' figures on the same truth (the conditions \
+         named with a scan period T or a σ: the truth at that period, perturbed by that σ), \
+         each run as `replay --tracker` is configured from its condition's figures. \
          Scored as above (pairs beyond {PAIR_LIMIT_M} m dropped, OSPA c = {OSPA_CUTOFF_M} m). \
          \"After a far update\": identity changes where the old track was updated, after the \
          flight's last pairing with it and up to its first with the new one, to a position \

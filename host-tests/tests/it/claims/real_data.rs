@@ -11,7 +11,7 @@ use abtrack_host_tests::experiments::real_adsb::{
     KALMAN_Q_GRID, SCENES, SCENE_NUMERICS, SCHEDULES, SIGMA_M,
 };
 use abtrack_host_tests::experiments::scene_draws::{
-    self, draw, measurements, CONDITIONS, DRAW_SEEDS,
+    self, draw, measurements, CONDITIONS, DRAW_SEEDS, SAME_SENSOR_CONDITIONS,
 };
 use abtrack_host_tests::metrics::{
     mean_ospa, track_metrics_with, PairingCost, ScanReport, TrackPoint, TrackStatus, TruthPoint,
@@ -179,7 +179,11 @@ fn the_hard_scene_keeps_identities_through_missed_detections() {
 /// lower and there are no more false tracks than with the previous scan's
 /// first points only (`replay --tracker --no-first-point-wait`); on the
 /// scene drawn again, coverage is higher and OSPA lower on the mean of
-/// every condition.
+/// every condition with the dev files' sensor (σ 50 m, 4 s). Not claimed
+/// for the other sensors' figures (docs/track-table.md, "First points"):
+/// at 12 s scans a first point cannot wait (two scans exceed the filter's
+/// 20 s) and the runs are the same; at σ 150 m the mean coverage is 0.0004
+/// lower and OSPA 0.6 m higher with the wait.
 #[test]
 fn first_points_kept_through_a_miss_start_real_flights_sooner() {
     use abtrack_host_tests::replay_tracker::{replay_tracker_reader, TrackerOptions};
@@ -210,7 +214,7 @@ fn first_points_kept_through_a_miss_start_real_flights_sooner() {
         assert!(a.false_tracks <= b.false_tracks, "{name}");
     }
     let truth = read_scene_truth(&dir, &SCENES[0]).unwrap();
-    for (index, condition) in CONDITIONS.iter().enumerate() {
+    for (index, condition) in CONDITIONS[..SAME_SENSOR_CONDITIONS].iter().enumerate() {
         let (mut coverage, mut ospa) = ([0.0; 2], [0.0; 2]);
         for seed in DRAW_SEEDS {
             let text = measurements(&truth, index, seed);
@@ -220,7 +224,15 @@ fn first_points_kept_through_a_miss_start_real_flights_sooner() {
                     ..condition.options(Numeric::F64, None)
                 };
                 let replay = replay_tracker_reader(&options, text.as_bytes()).unwrap();
-                let run = score_tracks("", &replay.csv, &truth, f64::NAN, String::new()).unwrap();
+                let run = score_tracks(
+                    "",
+                    &replay.csv,
+                    &condition.truth_at_scans(&truth),
+                    condition.scan_period_ms,
+                    f64::NAN,
+                    String::new(),
+                )
+                .unwrap();
                 coverage[i] += run.coverage;
                 ospa[i] += run.ospa;
             }
@@ -254,6 +266,8 @@ fn a_drawn_scene_follows_the_recipe_of_the_folders_files() {
         name: "recipe",
         detection_probability: pd,
         clutter_per_km2,
+        sigma_m: 50.0,
+        scan_period_ms: 4000,
     };
     // Every point detected, no clutter: one plot per truth point, within
     // 5σ of a truth point of its scan.
@@ -329,8 +343,9 @@ fn the_scene_drawn_again_at_the_held_out_clutter_agrees_in_every_number_type() {
     }
 }
 
-/// The scene drawn again, three seeds in each of the three conditions
-/// (results/real-adsb/scene_draws_means.md): on the mean over the seeds,
+/// The scene drawn again, three seeds in each of the six conditions, three
+/// of them other sensors' figures (results/real-adsb/scene_draws_means.md):
+/// on the mean over the seeds,
 /// the tracker covers at least as much of the truth as Stone Soup 1.9.1's
 /// GNN tracker on the same draws (its tracks committed in
 /// results/real-adsb/stonesoup/draws/), with no more identity changes, no
