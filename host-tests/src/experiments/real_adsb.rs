@@ -513,7 +513,8 @@ pub fn summarise(results: &[&SegmentResult], specs: &[&str], kq: usize) -> Vec<M
 // Scene
 // ---------------------------------------------------------------------------
 
-/// One difficulty of the scene, with the sensor figures it is run with.
+/// The scene's truth as one sensor measures it: its detection, clutter,
+/// σ and scan period, which also configure the tracker.
 #[derive(Debug, Clone, Copy)]
 pub struct Scene {
     pub name: &'static str,
@@ -521,7 +522,8 @@ pub struct Scene {
     pub clutter_per_km2: f64,
     /// The measurement σ per axis, m.
     pub sigma_m: f64,
-    /// The scan period, ms (a multiple of the truth's [`SCENE_PERIOD_MS`]).
+    /// The scan period, ms: a multiple of the truth's period
+    /// ([`SCENE_PERIOD_MS`]), whose points at the scans are scored.
     pub scan_period_ms: i64,
 }
 
@@ -561,19 +563,6 @@ impl Scene {
             ..TrackerOptions::default()
         }
     }
-
-    /// The truth at this scene's scan times (all of it at the truth's own
-    /// period).
-    pub fn truth_at_scans(
-        &self,
-        truth: &BTreeMap<i64, Vec<TruthPoint>>,
-    ) -> BTreeMap<i64, Vec<TruthPoint>> {
-        truth
-            .iter()
-            .filter(|(t, _)| *t % self.scan_period_ms == 0)
-            .map(|(t, points)| (*t, points.clone()))
-            .collect()
-    }
 }
 
 #[derive(Deserialize)]
@@ -593,7 +582,7 @@ struct TrackRow {
     y: f64,
 }
 
-/// The scene's scan period, ms.
+/// The truth's period and the dev sensor's scan period, ms.
 pub const SCENE_PERIOD_MS: i64 = 4000;
 /// Half the side of the scene's square (centred on the origin), m.
 pub const SCENE_HALF_WIDTH_M: f64 = 50_000.0;
@@ -683,14 +672,14 @@ pub fn run_scene(
 }
 
 /// Scores a tracker's output in `replay --tracker`'s layout (`t,track_id,
-/// status,x,y`, other columns ignored) against `truth` (at the scans, every
-/// `period_ms`); `label`, `seconds` and `design` are carried into the
-/// result.
+/// status,x,y`, other columns ignored) against the points of `truth` at
+/// the scans (every `scan_period_ms`); `label`, `seconds` and `design` are
+/// carried into the result.
 pub fn score_tracks(
     label: &str,
     csv_text: &str,
     truth: &BTreeMap<i64, Vec<TruthPoint>>,
-    period_ms: i64,
+    scan_period_ms: i64,
     seconds: f64,
     design: String,
 ) -> Result<SceneRun, String> {
@@ -706,11 +695,16 @@ pub fn score_tracks(
             y: r.y,
         });
     }
-    // Every scan of the scene (every period to the last truth time), and
-    // any other time of the truth or of the output.
+    // The truth at the scans; every scan (every period to the last truth
+    // time), and any other time of the output.
+    let period = scan_period_ms.max(1);
+    let truth: BTreeMap<i64, Vec<TruthPoint>> = truth
+        .iter()
+        .filter(|(t, _)| *t % period == 0)
+        .map(|(t, points)| (*t, points.clone()))
+        .collect();
     let last = truth.keys().next_back().copied().unwrap_or(0);
-    let period_ms = period_ms.max(1);
-    let grid = (0..=last / period_ms).map(|k| k * period_ms);
+    let grid = (0..=last / period).map(|k| k * period);
     let times: std::collections::BTreeSet<i64> = truth
         .keys()
         .chain(tracks.keys())

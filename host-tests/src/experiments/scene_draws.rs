@@ -28,11 +28,12 @@ use crate::noise::{
 use crate::replay::Numeric;
 use crate::replay_tracker::replay_tracker_reader;
 
-/// The dev files' two conditions and the held-out scene's (P_D 0.7, 100
-/// clutter plots a scan), all with the dev files' sensor (σ 50 m, a scan
-/// every 4 s), then [`SAME_SENSOR_CONDITIONS`] onwards other sensors'
-/// figures; named as the draws' files and rows. A condition's index is its
-/// random stream's.
+/// The draws' conditions, named as their files and rows: first the
+/// [`DEV_SENSOR_CONDITION_COUNT`] with the dev files' sensor (σ 50 m, a
+/// scan every 4 s): the dev files' two and the held-out scene's (P_D 0.7,
+/// 100 clutter plots a scan); then other sensors' figures. Each
+/// condition's random stream is derived from its index here, so a
+/// condition added at the end changes no earlier draw.
 pub const CONDITIONS: [Scene; 6] = [
     Scene {
         name: "pd0.9_clutter20",
@@ -78,9 +79,9 @@ pub const CONDITIONS: [Scene; 6] = [
     },
 ];
 
-/// The conditions of [`CONDITIONS`] with the dev files' sensor (σ 50 m,
-/// 4 s): the first ones.
-pub const SAME_SENSOR_CONDITIONS: usize = 3;
+/// How many of [`CONDITIONS`], from the first, have the dev files' sensor
+/// (σ 50 m, 4 s).
+pub const DEV_SENSOR_CONDITION_COUNT: usize = 3;
 
 /// The draws' seeds (the folder's files are seed 7).
 pub const DRAW_SEEDS: [u64; 3] = [1, 2, 3];
@@ -97,8 +98,8 @@ pub fn clutter_per_scan(condition: &Scene) -> f64 {
 
 /// The measurement file (`t,x,y`) of one draw: each scan (every scan
 /// period to 1200 s) detects each truth point with P_D and perturbs it by
-/// N(0, σ²) per axis, adds Poisson(clutter) plots uniform over the square, and lists
-/// the scan's plots in a random order (the folder's files list the
+/// N(0, σ²) per axis, adds Poisson(clutter) plots uniform over the square,
+/// and lists the scan's plots in a random order (the folder's files list the
 /// detections in the truth's order, then the clutter: a tracker must not
 /// depend on that).
 pub fn draw(truth: &BTreeMap<i64, Vec<TruthPoint>>, condition: &Scene, stream: u64) -> String {
@@ -154,7 +155,7 @@ pub fn track(
     score_tracks(
         label,
         &replay.csv,
-        &condition.truth_at_scans(truth),
+        truth,
         condition.scan_period_ms,
         f64::NAN,
         replay.design.to_string(),
@@ -224,7 +225,7 @@ pub fn stonesoup_draw(
     score_tracks(
         STONESOUP_LABEL,
         &csv_text,
-        &condition.truth_at_scans(truth),
+        truth,
         condition.scan_period_ms,
         f64::NAN,
         String::new(),
@@ -374,7 +375,8 @@ pub fn run(
         summary,
         "## The scene drawn again\n\n\
          The scene's truth measured again as its README says the files were made (each truth \
-         point detected with P_D and perturbed by N(0, {SIGMA_M}²) m per axis, Poisson clutter \
+         point detected with P_D and perturbed by N(0, σ²) m per axis, σ {SIGMA_M} m unless the \
+         condition names another, Poisson clutter \
          uniform over the square; a scan's plots in random order, where the files list the \
          detections first), seeds {DRAW_SEEDS:?}, in the \
          dev files' two conditions and in the condition of the held-out scene the project is \
