@@ -695,27 +695,20 @@ pub fn score_tracks(
             y: r.y,
         });
     }
-    // The truth at the scans; every scan (every period to the last truth
-    // time), and any other time of the output.
+    // Every scan (every period to the last truth time) with the truth at
+    // it, and any other time of the output.
     let period = scan_period_ms.max(1);
-    let truth: BTreeMap<i64, Vec<TruthPoint>> = truth
-        .iter()
-        .filter(|(t, _)| *t % period == 0)
-        .map(|(t, points)| (*t, points.clone()))
-        .collect();
     let last = truth.keys().next_back().copied().unwrap_or(0);
     let grid = (0..=last / period).map(|k| k * period);
-    let times: std::collections::BTreeSet<i64> = truth
-        .keys()
-        .chain(tracks.keys())
-        .copied()
-        .chain(grid)
-        .collect();
+    let times: std::collections::BTreeSet<i64> = tracks.keys().copied().chain(grid).collect();
     let scans: Vec<ScanReport> = times
         .iter()
         .map(|&k| ScanReport {
             t: k as f64 / 1000.0,
-            truth: truth.get(&k).cloned().unwrap_or_default(),
+            truth: (k % period == 0)
+                .then(|| truth.get(&k).cloned())
+                .flatten()
+                .unwrap_or_default(),
             tracks: tracks.get(&k).cloned().unwrap_or_default(),
         })
         .collect();
