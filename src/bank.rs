@@ -37,8 +37,8 @@
 use core::fmt;
 
 use crate::filter::{
-    outcome as outcome_of, start_speed_beyond_envelope, AlphaBeta, FilterError, Gains,
-    IntervalSpan, Phase, Prediction, StepGains, UpdateOutcome,
+    outcome as outcome_of, AlphaBeta, FilterError, Gains, IntervalSpan, Phase, Prediction,
+    StepGains, UpdateOutcome,
 };
 use crate::gains::{
     beta_from_alpha, check_capacity, check_range, config_quantity, grid_point, ConfigError,
@@ -259,13 +259,13 @@ impl<N: Numeric, const K: usize> ParallelBank<N, K> {
             }
             IntervalSpan::InRange => false,
         };
-        match next.step_gains(dt).and_then(|steps| {
-            let outcome = next.update_step(z, &steps)?;
-            next.restart_if_too_fast(z, &steps, outcome)
-        }) {
-            Ok((outcome, too_fast)) => {
+        match next
+            .step_gains(dt)
+            .and_then(|steps| next.update_step(z, &steps))
+        {
+            Ok(outcome) => {
                 *self = next;
-                Ok(if restart || too_fast {
+                Ok(if restart {
                     BankOutcome::Restarted
                 } else {
                     outcome
@@ -285,24 +285,6 @@ impl<N: Numeric, const K: usize> ParallelBank<N, K> {
             return Ok(IntervalSpan::InRange);
         }
         IntervalSpan::of(dt)
-    }
-
-    /// After a second point that implies a speed beyond the envelope
-    /// ([`start_speed_beyond_envelope`]): every member restarts from `z`,
-    /// and `true` says so.
-    fn restart_if_too_fast(
-        &mut self,
-        z: N::Length,
-        steps: &[StepGains<N>; K],
-        outcome: BankOutcome<N>,
-    ) -> Result<(BankOutcome<N>, bool), FilterError> {
-        if !(matches!(outcome, BankOutcome::SecondPoint)
-            && start_speed_beyond_envelope(&[self.velocity()]))
-        {
-            return Ok((outcome, false));
-        }
-        self.restart();
-        Ok((self.update_step(z, steps)?, true))
     }
 
     /// Every member back to its first point's wait (the counts kept).
@@ -493,18 +475,8 @@ impl<N: Numeric, const K: usize, const D: usize> CartesianBank<N, K, D> {
                 }
             }
         }
-        // Two points implying a speed beyond the envelope on any axis: every
-        // axis restarts from this measurement.
-        let too_fast = out.iter().any(|o| matches!(o, BankOutcome::SecondPoint))
-            && start_speed_beyond_envelope(&next.map(|a| a.velocity()));
-        if let (true, Ok(steps)) = (too_fast, &steps) {
-            for (axis, z) in next.iter_mut().zip(z) {
-                axis.restart();
-                axis.update_step(z, steps)?;
-            }
-        }
         self.axes = next;
-        if span == IntervalSpan::TooLong || too_fast {
+        if span == IntervalSpan::TooLong {
             out = [BankOutcome::Restarted; D];
         }
         Ok(out)

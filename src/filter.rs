@@ -119,17 +119,6 @@ impl IntervalSpan {
     }
 }
 
-/// Whether a two-point start's velocity leaves the physical envelope
-/// ([`crate::envelope::VELOCITY_M_PER_S`] per axis): two reports closer in
-/// time than their noise allows (report-time jitter). What holds the filter
-/// then restarts it from the second report ([`UpdateOutcome::Restarted`])
-/// instead of carrying a velocity no aircraft has.
-#[cold]
-pub(crate) fn start_speed_beyond_envelope<S: Quantity>(velocity: &[S]) -> bool {
-    let bound = S::from_f64_lossy(crate::envelope::VELOCITY_M_PER_S.max);
-    velocity.iter().any(|v| v.abs() > bound)
-}
-
 /// The prediction terms of one interval: T and T²/2, checked once.
 #[derive(Debug, Clone, Copy, PartialEq)]
 #[cfg_attr(feature = "defmt", derive(defmt::Format))]
@@ -247,10 +236,8 @@ pub enum UpdateOutcome<N: Numeric> {
     Filtered(Innovation<N>),
     /// The estimate was dropped before this measurement, which became the
     /// first point of a new one: the interval since the previous update
-    /// was longer than [`MAX_INTERVAL_S`] (or a gain schedule required it),
-    /// or this measurement and the first point implied a speed beyond the
-    /// envelope ([`crate::envelope::VELOCITY_M_PER_S`]). Given by what
-    /// applies the interval policy (module docs).
+    /// was longer than [`MAX_INTERVAL_S`] (or a gain schedule required it).
+    /// Given by what applies the interval policy (module docs).
     Restarted,
     /// Less than [`MIN_INTERVAL_S`] after the previous update: the
     /// measurement was not used and the estimate is unchanged.

@@ -104,11 +104,10 @@ fn after_help() -> String {
          \x20 --azimuth-unit deg; alt is the target's reported pressure altitude, empty when\n\
          \x20 the reply had none. Values outside the envelope (positions and ranges beyond\n\
          \x20 400 km, altitudes outside -1000..126700 ft, an azimuth beyond one turn, t beyond\n\
-         \x20 2^33 s) are refused naming the line and column. With --tracker, rows sharing\n\
-         \x20 a t are one scan. Timing is never refused: a report over 20 s after the last\n\
-         \x20 one used, or a second one implying over 1500 m/s, restarts the estimate; one\n\
-         \x20 under 0.05 s (or a repeated or earlier time) is skipped; the last column,\n\
-         \x20 event, says which.\n\
+         \x20 2^33 s, a time before the previous row's) are refused naming the line and\n\
+         \x20 column. With --tracker, rows sharing a t are one scan. Timing is never refused:\n\
+         \x20 a report over 20 s after the last one used restarts the estimate, one under\n\
+         \x20 0.05 s (or a repeated time) is skipped; the last column, event, says which.\n\
          \n\
          Output (stdout, CSV, written only when the whole file has run; f32 in its shortest\n\
          form, fixed point in decimal, an undefined value empty; details: docs/host-tools.md):\n\

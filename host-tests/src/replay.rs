@@ -437,8 +437,7 @@ impl std::error::Error for Failure {}
 pub enum RowEvent {
     /// Used as usual.
     Used,
-    /// More than 20 s after the last report used, or a start implying a
-    /// speed beyond the envelope: the estimate restarted.
+    /// More than 20 s after the last report used: the estimate restarted.
     Restarted,
     /// Less than 0.05 s after the last report used: skipped.
     Skipped,
@@ -538,11 +537,10 @@ impl fmt::Display for TimingEvents {
         if !self.restarted.is_empty() {
             writeln!(
                 f,
-                "replay: {} restarted: more than {} s after the last report used, or two \
-                 reports implying a speed beyond {} m/s, the estimate started again there ({})",
+                "replay: {} restarted: more than {} s after the last report used, the estimate \
+                 started again there ({})",
                 self.restarted.len(),
                 abtrack::filter::MAX_INTERVAL_S,
-                abtrack::envelope::VELOCITY_M_PER_S.max,
                 times_text(&self.restarted)
             )?;
         }

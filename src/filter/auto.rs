@@ -14,7 +14,7 @@
 //! [`crate::gain::AutoGains`] (one covariance per axis) with
 //! [`crate::gain::ScheduledFilter`].
 
-use crate::filter::{start_speed_beyond_envelope, FilterError, IntervalSpan, Phase};
+use crate::filter::{FilterError, IntervalSpan, Phase};
 use crate::gain::auto::{
     capped_nis, covariance_step_or_restart, match_manoeuvre, mean_over_axes, predicted, two_point,
     AutoAxis, SharedNoise, Span,
@@ -32,10 +32,8 @@ pub enum AutoUpdate {
     SecondPoint,
     /// A Kalman update.
     Filtered,
-    /// The interval was longer than [`crate::filter::MAX_INTERVAL_S`], or
-    /// this measurement and the first point implied a speed beyond the
-    /// envelope ([`crate::envelope::VELOCITY_M_PER_S`]): the estimate was
-    /// dropped and this measurement is its first point.
+    /// The interval was longer than [`crate::filter::MAX_INTERVAL_S`]: the
+    /// estimate was dropped and this measurement is its first point.
     Restarted,
     /// Less than [`crate::filter::MIN_INTERVAL_S`] after the previous
     /// measurement: nothing changed.
@@ -210,10 +208,6 @@ impl<N: Numeric, const D: usize> AutoFilter<N, D> {
             }
             if !N::passed(&guard) {
                 return Err(FilterError::Saturated);
-            }
-            if start_speed_beyond_envelope(&velocity) {
-                self.start(z);
-                return Ok(AutoUpdate::Restarted);
             }
             self.position = z;
             self.velocity = velocity;

@@ -79,8 +79,7 @@
 use core::fmt;
 
 use crate::filter::{
-    start_speed_beyond_envelope, Cartesian, FilterError, GainError, Gains, IntervalTerms, Phase,
-    Prediction, UpdateOutcome,
+    Cartesian, FilterError, GainError, Gains, IntervalTerms, Phase, Prediction, UpdateOutcome,
 };
 use crate::gains::li_beta;
 use crate::num::{Numeric, Quantity, Real};
@@ -517,16 +516,6 @@ where
         let unused = unused_gains::<N>()?;
         match filter.update(z, dt, &unused) {
             Ok(outcome) => {
-                // Two reports implying a speed no aircraft has: the second
-                // is the first point of a new estimate.
-                let (outcome, n, restarted) = if filter.phase() == Phase::Tracking
-                    && start_speed_beyond_envelope(&filter.velocity())
-                {
-                    filter = Cartesian::new();
-                    (filter.update(z, dt, &unused)?, 1, true)
-                } else {
-                    (outcome, n, restarted)
-                };
                 self.filter = filter;
                 self.measurements = n;
                 self.previous_interval = if filter.phase() == Phase::Tracking {

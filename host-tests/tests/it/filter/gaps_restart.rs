@@ -6,13 +6,10 @@
 
 use abtrack::bank::{BankConfig, BankOutcome, CartesianBank};
 use abtrack::filter::altitude::{AltitudeQuantum, AltitudeTrackerConfig};
-use abtrack::filter::auto::{AutoFilter, AutoUpdate};
 use abtrack::filter::{
     Cartesian, FilterError, IntervalSpan, Phase, UpdateOutcome, MAX_INTERVAL_S, MIN_INTERVAL_S,
 };
-use abtrack::gain::{
-    AutoConfig, AutoGains, FixedGains, LeastSquaresGains, ScheduledError, ScheduledFilter,
-};
+use abtrack::gain::{FixedGains, LeastSquaresGains, ScheduledError, ScheduledFilter};
 use abtrack::num::fixed32::Fixed32;
 use abtrack::num::{Numeric, Quantity};
 use abtrack::scan::{ClockConfig, MeasurementQueue, ScanConfig, ScanLoop};
@@ -386,93 +383,6 @@ const GAPPY: &str = "t,x,y\n\
 0,0,0\n1,10,-5\n2,20,-10\n2,20.5,-10\n2.02,20.2,-10.1\n3,30,-15\n4,40,-20\n\
 30,300,-150\n31,310,-155\n32,320,-160\n33,330,-165\n\
 93,930,-465\n94,940,-470\n95,950,-475\n96,960,-480\n";
-
-/// Report-time jitter at a start: the first two reports 0.1 s apart, 200 m
-/// apart (2,000 m/s, beyond the 1,500 m/s envelope). The estimate restarts
-/// from the second (the file was refused before).
-const JITTERED_START: &str = "t,x,y\n0.45,0,0\n0.55,200,-10\n2,210,-15\n3,220,-20\n4,230,-25\n";
-
-#[test]
-fn two_reports_implying_a_speed_beyond_the_envelope_restart_the_estimate() {
-    for filter in [
-        "--filter ab --schedule least-squares",
-        "--filter abg --schedule tcas-firmness",
-        "--filter auto --sigma-m 50",
-        "--filter ab --schedule bank",
-    ] {
-        for numeric in ["f64", "f32", "q32.32"] {
-            let run = replay(filter, numeric, JITTERED_START);
-            assert_eq!(run.csv.lines().count(), 6, "{filter} {numeric}");
-            assert_eq!(run.events.restarted, ["0.55"], "{filter} {numeric}");
-            assert!(run.events.skipped.is_empty(), "{filter} {numeric}");
-            let text = run.events.to_string();
-            assert!(text.contains("beyond 1500 m/s"), "{text}");
-        }
-    }
-}
-
-/// The same start through the library's holders: the scheduled filter,
-/// the M5 bank and the fused `auto` filter restart from the second report,
-/// and the next report starts the velocity from the new points only.
-fn jittered_start<N: Numeric>() {
-    let z = |x: f64, y: f64| [q::<N::Length>(x), q::<N::Length>(y)];
-    let gains = Gains::<N>::alpha_beta_f64(0.5, 0.2).unwrap();
-    let mut f = ScheduledFilter::<N, _, 2, 2>::new(FixedGains::new(gains));
-    f.update(z(0.0, 0.0), q(1.0)).unwrap();
-    let out = f.update(z(200.0, -10.0), q(0.1)).unwrap();
-    assert_eq!(out.outcome, [UpdateOutcome::Restarted; 2], "{}", N::NAME);
-    assert!(out.restarted);
-    assert_eq!(f.filter().phase(), Phase::OnePoint);
-    let out = f.update(z(220.0, -20.0), q(2.0)).unwrap();
-    assert_eq!(out.outcome, [UpdateOutcome::SecondPoint; 2], "{}", N::NAME);
-    let [vx, vy] = f.filter().velocity();
-    assert!((vx.to_f64() - 10.0).abs() < 1e-3 && (vy.to_f64() + 5.0).abs() < 1e-3);
-    // Just inside the envelope (1,400 m/s) it starts as before.
-    let mut g = ScheduledFilter::<N, _, 2, 2>::new(FixedGains::new(gains));
-    g.update(z(0.0, 0.0), q(1.0)).unwrap();
-    let out = g.update(z(140.0, 0.0), q(0.1)).unwrap();
-    assert_eq!(out.outcome, [UpdateOutcome::SecondPoint; 2], "{}", N::NAME);
-
-    let mut bank = CartesianBank::<N, 8, 2>::from_config(&BankConfig::DEFAULT).unwrap();
-    bank.update(z(0.0, 0.0), q(1.0)).unwrap();
-    assert!(matches!(
-        bank.update(z(200.0, -10.0), q(0.1)).unwrap(),
-        [BankOutcome::Restarted, BankOutcome::Restarted]
-    ));
-    assert!(matches!(
-        bank.update(z(220.0, -20.0), q(2.0)).unwrap(),
-        [BankOutcome::SecondPoint, BankOutcome::SecondPoint]
-    ));
-    let [vx, vy] = bank.velocity();
-    assert!((vx.to_f64() - 10.0).abs() < 1e-3 && (vy.to_f64() + 5.0).abs() < 1e-3);
-
-    let noise = AutoGains::<N, 2>::new(&AutoConfig::cartesian(50.0))
-        .unwrap()
-        .shared_noise();
-    let mut a = AutoFilter::<N, 2>::new();
-    a.update(&noise, z(0.0, 0.0), q(1.0)).unwrap();
-    assert_eq!(
-        a.update(&noise, z(200.0, -10.0), q(0.1)),
-        Ok(AutoUpdate::Restarted),
-        "{}",
-        N::NAME
-    );
-    assert_eq!(a.phase(), Phase::OnePoint);
-    assert_eq!(
-        a.update(&noise, z(220.0, -20.0), q(2.0)),
-        Ok(AutoUpdate::SecondPoint)
-    );
-    let [vx, vy] = a.velocity();
-    assert!((vx.to_f64() - 10.0).abs() < 1e-2 && (vy.to_f64() + 5.0).abs() < 1e-2);
-}
-
-#[test]
-fn a_start_beyond_the_speed_envelope_restarts_in_every_number_system() {
-    jittered_start::<f64>();
-    jittered_start::<f32>();
-    jittered_start::<Fix>();
-    jittered_start::<Fixed32>();
-}
 
 fn replay(filter: &str, numeric: &str, text: &str) -> Replayed {
     use abtrack_host_tests::cli::{Command, ReplayArgs};
