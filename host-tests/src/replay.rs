@@ -617,15 +617,33 @@ fn check_kinematics<S: Scalar>(
     line: usize,
     axes: impl IntoIterator<Item = (S, S, Option<S>)>,
 ) -> Result<(), ReplayError> {
+    check_kinematics_within(line, axes, [0.0; 3])
+}
+
+/// Estimates an envelope check does not refuse for their own uncertainty:
+/// a velocity beyond [`envelope::VELOCITY_M_PER_S`] by at most this many
+/// of its σ (a start over a short, jittered interval, whose velocity the
+/// filter knows to be that uncertain) is not a diverged filter.
+pub const VELOCITY_SIGMAS_ALLOWED: f64 = 3.0;
+
+/// [`check_kinematics`], each axis's velocity envelope widened by
+/// `velocity_allowance` (m/s).
+fn check_kinematics_within<S: Scalar>(
+    line: usize,
+    axes: impl IntoIterator<Item = (S, S, Option<S>)>,
+    velocity_allowance: [f64; 3],
+) -> Result<(), ReplayError> {
     const VELOCITY: [&str; 3] = ["vx", "vy", "vz"];
     const ACCELERATION: [&str; 3] = ["ax", "ay", "az"];
-    for (((x, v, a), names), (vn, an)) in axes
+    for ((((x, v, a), names), (vn, an)), allowance) in axes
         .into_iter()
         .zip(AXIS_NAMES)
         .zip(VELOCITY.into_iter().zip(ACCELERATION))
+        .zip(velocity_allowance)
     {
+        let velocity_limit = Limit::symmetric(envelope::VELOCITY_M_PER_S.max + allowance);
         check_estimate(line, names, x, envelope::POSITION_M, "m")?;
-        check_estimate(line, vn, v, envelope::VELOCITY_M_PER_S, "m/s")?;
+        check_estimate(line, vn, v, velocity_limit, "m/s")?;
         if let Some(a) = a {
             check_estimate(line, an, a, envelope::ACCELERATION_M_PER_S2, "m/s²")?;
         }
@@ -880,8 +898,9 @@ fn write_kinematic_row<S: CsvValue, const ORDER: usize, const D: usize>(
 fn check_filter<S: Scalar, const ORDER: usize, const D: usize>(
     line: usize,
     filter: &Cartesian<S, ORDER, D>,
+    velocity_allowance: [f64; 3],
 ) -> Result<(), ReplayError> {
-    check_kinematics(
+    check_kinematics_within(
         line,
         filter.axes().iter().map(|a| {
             (
@@ -890,6 +909,7 @@ fn check_filter<S: Scalar, const ORDER: usize, const D: usize>(
                 (ORDER == 3).then(|| a.acceleration()),
             )
         }),
+        velocity_allowance,
     )
 }
 
@@ -899,7 +919,7 @@ fn run_cartesian<S: CsvValue, const ORDER: usize, const D: usize>(
     gains: &Gains<S>,
     data: &Measurements,
 ) -> Result<Replayed, ReplayError> {
-    run_schedule::<S, _, ORDER, D>(FixedGains::new(*gains), data)
+    run_schedule::<S, _, ORDER, D>(FixedGains::new(*gains), data, |_| [0.0; 3])
 }
 
 fn run_scheduled<S: CsvValue, const ORDER: usize, const D: usize>(
@@ -907,12 +927,38 @@ fn run_scheduled<S: CsvValue, const ORDER: usize, const D: usize>(
     data: &Measurements,
 ) -> Result<Replayed, ReplayError> {
     let schedule = ReplaySchedule::<S, D>::from_spec(spec).map_err(ReplayError::Schedule)?;
-    run_schedule::<S, _, ORDER, D>(schedule, data)
+    let sigma = match spec {
+        // The covariance is normalised by σ, or by σ_R for a polar sensor.
+        ScheduleSpec::Auto(c) => c.sigma.or(c.range_sigma),
+        _ => None,
+    };
+    run_schedule::<S, _, ORDER, D>(schedule, data, |s| velocity_allowance(s, sigma))
+}
+
+/// `auto`'s allowance on each axis's velocity envelope:
+/// [`VELOCITY_SIGMAS_ALLOWED`] of the velocity's σ, σ·√(P_vv/σ²) from the
+/// schedule's normalised covariance (σ the reference it is normalised by;
+/// none for the other schedules, which carry no covariance).
+fn velocity_allowance<S: Scalar, const D: usize>(
+    schedule: &ReplaySchedule<S, D>,
+    sigma: Option<f64>,
+) -> [f64; 3] {
+    let mut out = [0.0; 3];
+    if let (ReplaySchedule::Auto(auto), Some(sigma)) = (schedule, sigma) {
+        for (o, axis) in out.iter_mut().zip(auto.axes()) {
+            let variance_ratio = axis.velocity.to_f64();
+            if variance_ratio.is_finite() && variance_ratio > 0.0 {
+                *o = VELOCITY_SIGMAS_ALLOWED * sigma * variance_ratio.sqrt();
+            }
+        }
+    }
+    out
 }
 
 fn run_schedule<S: CsvValue, G: GainSchedule<S, D>, const ORDER: usize, const D: usize>(
     schedule: G,
     data: &Measurements,
+    velocity_allowance: impl Fn(&G) -> [f64; 3],
 ) -> Result<Replayed, ReplayError> {
     let mut track = ScheduledFilter::<S, _, ORDER, D>::new(schedule);
     let mut out = header(ORDER, D);
@@ -945,7 +991,11 @@ fn run_schedule<S: CsvValue, G: GainSchedule<S, D>, const ORDER: usize, const D:
             previous_t = Some(row.t);
         }
         events.record(event, &row.t_text);
-        check_filter(row.line, track.filter())?;
+        check_filter(
+            row.line,
+            track.filter(),
+            velocity_allowance(track.schedule()),
+        )?;
         write_kinematic_row(&mut out, &row.t_text, track.filter(), &update.outcome);
     }
     Ok(Replayed { csv: out, events })

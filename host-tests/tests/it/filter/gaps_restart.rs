@@ -384,7 +384,50 @@ const GAPPY: &str = "t,x,y\n\
 30,300,-150\n31,310,-155\n32,320,-160\n33,330,-165\n\
 93,930,-465\n94,940,-470\n95,950,-475\n96,960,-480\n";
 
+/// Report-time jitter at a start: the first two reports 0.1 s apart and
+/// 200 m apart, a two-point velocity of 2,000 m/s, beyond the 1,500 m/s
+/// envelope. With σ 50 m that velocity's σ is 50·√2/0.1 = 707 m/s, so `auto`
+/// (which carries it) runs the file; the next report brings the estimate
+/// back inside the envelope. With σ 5 m (σ_v 71 m/s) the same start is
+/// outside by more than three of its σ and the run stops at its row, as
+/// for the schedules that carry no covariance.
+#[test]
+fn a_jittered_start_within_its_own_uncertainty_is_not_refused() {
+    let text = "t,x,y\n0.45,0,0\n0.55,200,-10\n2,210,-15\n3,220,-20\n4,230,-25\n";
+    for numeric in ["f64", "f32", "q32.32"] {
+        let run = replay("--filter auto --sigma-m 50", numeric, text);
+        let rows: Vec<&str> = run.csv.lines().collect();
+        assert_eq!(rows.len(), 6, "{numeric}");
+        let vx = |row: &str| row.split(',').nth(2).unwrap().parse::<f64>().unwrap();
+        assert!((vx(rows[2]) - 2000.0).abs() < 1.0, "{numeric}: {}", rows[2]);
+        assert!(vx(rows[3]).abs() < 1500.0, "{numeric}: {}", rows[3]);
+        assert!(vx(rows[5]).abs() < 100.0, "{numeric}: {}", rows[5]);
+    }
+    for filter in [
+        "--filter auto --sigma-m 5",
+        "--filter ab --schedule least-squares",
+    ] {
+        let e = replay_failure(filter, "f64", text);
+        assert!(
+            e.starts_with("line 3: after this row the estimate vx = 2.000000e3 m/s"),
+            "{filter}: {e}"
+        );
+    }
+}
+
+fn replay_failure(filter: &str, numeric: &str, text: &str) -> String {
+    match replay_events(&replay_config(filter, numeric), text.as_bytes()) {
+        Err(abtrack_host_tests::replay::Failure::Replay(e)) => e.to_string(),
+        other => panic!("{filter}: expected a refusal, got {other:?}"),
+    }
+}
+
 fn replay(filter: &str, numeric: &str, text: &str) -> Replayed {
+    replay_events(&replay_config(filter, numeric), text.as_bytes()).unwrap()
+}
+
+/// The configuration `replay FILTER --numeric NUMERIC -` parses to.
+fn replay_config(filter: &str, numeric: &str) -> abtrack_host_tests::replay::ReplayConfig {
     use abtrack_host_tests::cli::{Command, ReplayArgs};
     use clap::Parser;
     let args: Vec<String> = ["replay"]
@@ -397,7 +440,7 @@ fn replay(filter: &str, numeric: &str, text: &str) -> Replayed {
     else {
         panic!("not a replay command");
     };
-    replay_events(&config, text.as_bytes()).unwrap()
+    config
 }
 
 fn events(csv: &str) -> Vec<(String, String)> {
