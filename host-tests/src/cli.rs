@@ -17,8 +17,8 @@ use clap::{CommandFactory, Parser, ValueEnum};
 
 use crate::csv_input::AngleUnit;
 use crate::replay::{
-    FilterKind, Numeric, Order, RangeAzimuthOptions, ReplayBank, ReplayConfig, ReplaySchedule,
-    BANK_CAPACITY, WINDOW_CAPACITY,
+    FilterKind, Numeric, Order, RangeAzimuthOptions, ReplayBank, ReplayConfig, ReplayError,
+    ReplaySchedule, BANK_CAPACITY, WINDOW_CAPACITY,
 };
 use crate::replay_tracker::{SensorOptions, TrackerOptions, CAPACITIES, MAX_MEASUREMENTS};
 
@@ -104,10 +104,10 @@ fn after_help() -> String {
          \x20 --azimuth-unit deg; alt is the target's reported pressure altitude, empty when\n\
          \x20 the reply had none. Values outside the envelope (positions and ranges beyond\n\
          \x20 400 km, altitudes outside -1000..126700 ft, an azimuth beyond one turn, t beyond\n\
-         \x20 2^33 s, a time before the previous row's) are refused naming the line and\n\
-         \x20 column. With --tracker, rows sharing a t are one scan. Timing is never refused:\n\
-         \x20 a report over 20 s after the last one used restarts the estimate, one under\n\
-         \x20 0.05 s (or a repeated time) is skipped; the last column, event, says which.\n\
+         \x20 2^33 s) are refused naming the line and column. With --tracker, rows sharing\n\
+         \x20 a t are one scan. Timing is never refused: a report over 20 s after the last\n\
+         \x20 one used restarts the estimate, one under 0.05 s (or at a repeated or earlier\n\
+         \x20 time) is skipped; the last column, event, says which.\n\
          \n\
          Output (stdout, CSV, written only when the whole file has run; f32 in its shortest\n\
          form, fixed point in decimal, an undefined value empty; details: docs/host-tools.md):\n\
@@ -374,6 +374,16 @@ impl ReplayArgs {
             return Err(usage_error(
                 ErrorKind::ArgumentConflict,
                 format!("{option} does not apply to {mode}"),
+            ));
+        }
+        let single_filter = matches!(
+            self.filter,
+            Some(FilterName::AlphaBeta | FilterName::AlphaBetaGamma | FilterName::Auto)
+        );
+        if single_filter && self.numeric == Numeric::Fixed32 {
+            return Err(usage_error(
+                ErrorKind::ArgumentConflict,
+                ReplayError::Fixed32SingleFilter,
             ));
         }
         match self.filter {

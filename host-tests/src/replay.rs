@@ -405,7 +405,7 @@ impl fmt::Display for ReplayError {
             ReplayError::Fixed32SingleFilter => write!(
                 f,
                 "--numeric fixed32 runs --tracker and --filter range-azimuth (as the Cortex-M3 \
-                 firmware does), not the single x/y filters --filter ab|abg"
+                 firmware does), not the single x/y filters --filter ab|abg|auto"
             ),
         }
     }

@@ -709,6 +709,10 @@ fn command_line() {
             "--filter ab --alpha NaN --beta 0.3 d.csv",
             "\"NaN\" is not a finite number",
         ),
+        (
+            "--filter auto --sigma-m 50 --numeric fixed32 d.csv",
+            "not the single x/y filters",
+        ),
         ("--filter ab --alpha 2 --beta 0.3 d.csv", "stability region"),
         (
             "--filter ab --alpha 0.5 --beta 3.1 d.csv",
