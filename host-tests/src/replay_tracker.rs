@@ -258,42 +258,50 @@ pub struct DesignUsed {
     pub period_from_file: bool,
 }
 
+/// The sensor figures a design was derived from, as one line of text (no
+/// newline).
+fn design_figures(d: &TrackerDesign, period_from_file: bool) -> String {
+    let accuracy = match d.accuracy {
+        SensorAccuracy::Cartesian { sigma } => format!("σ {sigma} m per axis"),
+        SensorAccuracy::Polar {
+            range_sigma,
+            bearing_sigma,
+        } => format!(
+            "range σ {range_sigma} m, bearing σ {:.4}°",
+            bearing_sigma.to_degrees()
+        ),
+    };
+    let coverage = match d.coverage {
+        Coverage::None => format!(
+            "no region (clutter counted over the disc to the farthest measurement, {:.1} km)",
+            d.max_range / 1000.0
+        ),
+        Coverage::Square { half_width } => format!("square ±{half_width} m"),
+        Coverage::Disc { radius } => format!("disc of {radius} m"),
+    };
+    format!(
+        "sensor {accuracy}, T {} s{}, P_D {}, clutter {} per km², {coverage}, v_max {} m/s, \
+         a_max {:.2} m/s²",
+        d.scan_period,
+        if period_from_file {
+            " (median scan interval of the file)"
+        } else {
+            ""
+        },
+        d.detection_probability,
+        short(d.clutter_density * 1e6),
+        d.max_speed,
+        d.max_acceleration,
+    )
+}
+
 impl std::fmt::Display for DesignUsed {
     fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
-        let d = &self.design;
         let p = &self.derived;
-        let accuracy = match d.accuracy {
-            SensorAccuracy::Cartesian { sigma } => format!("σ {sigma} m per axis"),
-            SensorAccuracy::Polar {
-                range_sigma,
-                bearing_sigma,
-            } => format!(
-                "range σ {range_sigma} m, bearing σ {:.4}°",
-                bearing_sigma.to_degrees()
-            ),
-        };
-        let coverage = match d.coverage {
-            Coverage::None => format!(
-                "no region (clutter counted over the disc to the farthest measurement, {:.1} km)",
-                d.max_range / 1000.0
-            ),
-            Coverage::Square { half_width } => format!("square ±{half_width} m"),
-            Coverage::Disc { radius } => format!("disc of {radius} m"),
-        };
         writeln!(
             f,
-            "replay --tracker: sensor {accuracy}, T {} s{}, P_D {}, clutter {} per km², {coverage}, \
-             v_max {} m/s, a_max {:.2} m/s²",
-            d.scan_period,
-            if self.period_from_file {
-                " (median scan interval of the file)"
-            } else {
-                ""
-            },
-            d.detection_probability,
-            short(d.clutter_density * 1e6),
-            d.max_speed,
-            d.max_acceleration,
+            "replay --tracker: {}",
+            design_figures(&self.design, self.period_from_file)
         )?;
         writeln!(
             f,
@@ -747,15 +755,20 @@ pub fn design_for(
         )?,
         scan_period,
     };
+    let period_from_file = sensor.scan_period_s.is_none() && median.is_some();
     let derived = design.derive().map_err(|e| {
         ReplayError::Design(format!(
-            "no configuration meets the design rules for these figures: {e}"
+            "no configuration meets the design rules for these figures ({}): {e} (the \
+             figures come from --sigma-m or --range-sigma-m/--bearing-sigma-deg, \
+             --scan-period-s, --pd, --clutter-per-km2, --region-m, --max-speed-mps and \
+             --max-accel-mps2)",
+            design_figures(&design, period_from_file)
         ))
     })?;
     Ok(DesignUsed {
         design,
         derived,
-        period_from_file: sensor.scan_period_s.is_none() && median.is_some(),
+        period_from_file,
     })
 }
 

@@ -483,6 +483,9 @@ fn errors_name_the_line() {
             "--tracker --clutter-per-km2 100 -",
             "no configuration meets the design rules",
         ),
+        // The refusal names the figures it was derived from (the run's
+        // figures line is printed only when the design succeeds).
+        ("--tracker --clutter-per-km2 100 -", "clutter 100 per km²"),
         (
             "--tracker --sigma-m 20 --range-sigma-m 20 -",
             "cannot be combined",
