@@ -362,6 +362,9 @@ pub struct Unused {
     pub scans: usize,
     /// Empty scans run for gaps (module docs).
     pub empty_scans: usize,
+    /// Scans of the file before the previous one, not run (their
+    /// measurements are [`Self::out_of_order`]).
+    pub out_of_order_scans: usize,
     /// Updated a track.
     pub updated: usize,
     /// Started a track (its second point) ...
@@ -451,11 +454,19 @@ impl std::fmt::Display for Unused {
         let p = "replay --tracker:";
         writeln!(
             f,
-            "{p} {} measurements in {} scans{}: {} used, {} not used",
+            "{p} {} measurements in {} scans{}{}: {} used, {} not used",
             self.measurements,
             self.scans,
             if self.empty_scans > 0 {
                 format!(" (and {} empty scans run for gaps)", self.empty_scans)
+            } else {
+                String::new()
+            },
+            if self.out_of_order_scans > 0 {
+                format!(
+                    " (and {} scans out of time order, not run)",
+                    self.out_of_order_scans
+                )
             } else {
                 String::new()
             },
@@ -581,6 +592,8 @@ struct FileScans<'a> {
     scans: Vec<FileScan<'a>>,
     /// The rows of scans before the previous scan kept (skipped, counted).
     out_of_order: Vec<usize>,
+    /// How many scans those rows made.
+    out_of_order_scans: usize,
 }
 
 /// Scans of rows (consecutive rows sharing a `t`); a scan before the
@@ -589,12 +602,14 @@ fn scans_of<'a, R: ScanRow + 'a>(scans: impl Iterator<Item = &'a [R]>) -> FileSc
     let mut out = FileScans {
         scans: Vec::new(),
         out_of_order: Vec::new(),
+        out_of_order_scans: 0,
     };
     for rows in scans {
         let Some(first) = rows.first() else { continue };
         let (t, t_text) = first.time();
         if out.scans.last().is_some_and(|s| t < s.t) {
             out.out_of_order.extend(rows.iter().map(ScanRow::line));
+            out.out_of_order_scans += 1;
             continue;
         }
         out.scans.push(FileScan {
@@ -888,6 +903,8 @@ struct Prepared<'a, S: abtrack::Numeric> {
     polar: bool,
     /// [`FileScans::out_of_order`].
     out_of_order: &'a [usize],
+    /// [`FileScans::out_of_order_scans`].
+    out_of_order_scans: usize,
 }
 
 fn prepare<'a, S: abtrack::Numeric>(
@@ -922,6 +939,7 @@ fn prepare<'a, S: abtrack::Numeric>(
         added,
         polar,
         out_of_order: &file.out_of_order,
+        out_of_order_scans: file.out_of_order_scans,
     })
 }
 
@@ -1090,6 +1108,7 @@ fn run_scans<
     let mut unused = Unused {
         scans: scans.len() - added,
         empty_scans: added,
+        out_of_order_scans: prepared.out_of_order_scans,
         ..Unused::default()
     };
     for &line in prepared.out_of_order {

@@ -422,6 +422,15 @@ fn errors_name_the_line() {
     .unwrap();
     assert_eq!(run.unused.out_of_order.lines, [5, 6]);
     assert_eq!(run.unused.scans, 3);
+    // The scan count says which scans were not run.
+    assert_eq!(run.unused.out_of_order_scans, 1);
+    assert!(
+        run.unused
+            .to_string()
+            .contains("6 measurements in 3 scans (and 1 scans out of time order, not run)"),
+        "{}",
+        run.unused
+    );
     assert!(
         run.unused
             .to_string()
