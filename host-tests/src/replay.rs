@@ -63,7 +63,8 @@ use std::io::Read;
 use abtrack::bank::{BankConfig, BankOutcome, CartesianBank};
 use abtrack::filter::altitude::{AltitudeQuantum, AltitudeTracker, AltitudeTrackerConfig};
 use abtrack::filter::range_azimuth::{
-    NoiseError, RangeAzimuthFilter, RangeAzimuthNoise, RangeAzimuthOutcome, PAPER_BEARING_VARIANCE,
+    CovarianceFactor, NoiseError, RangeAzimuthFilter, RangeAzimuthNoise, RangeAzimuthOutcome,
+    PAPER_BEARING_VARIANCE,
 };
 use abtrack::filter::{Cartesian, Gains, IntervalSpan, Phase, UpdateOutcome};
 use abtrack::gain::auto::AutoConfig;
@@ -955,6 +956,20 @@ fn velocity_allowance<S: Scalar, const D: usize>(
     out
 }
 
+/// The range–azimuth filter's allowance on each axis's velocity envelope:
+/// [`VELOCITY_SIGMAS_ALLOWED`] of the larger of its along- and cross-range
+/// velocity σ (√(L₂₁² + L₂₂²) of each covariance factor), which bounds
+/// either Cartesian axis's.
+fn range_azimuth_velocity_allowance<S: Scalar>(filter: &RangeAzimuthFilter<S>) -> f64 {
+    let sigma = |f: CovarianceFactor<S>| f.b.to_f64().hypot(f.c.to_f64());
+    let larger = sigma(filter.range_covariance()).max(sigma(filter.cross_range_covariance()));
+    if larger.is_finite() {
+        VELOCITY_SIGMAS_ALLOWED * larger
+    } else {
+        0.0
+    }
+}
+
 fn run_schedule<S: CsvValue, G: GainSchedule<S, D>, const ORDER: usize, const D: usize>(
     schedule: G,
     data: &Measurements,
@@ -1321,12 +1336,14 @@ pub fn replay_range_azimuth_in<S: CsvValue>(
         events.record(event, &row.t_text);
         let position = filter.position();
         let velocity = filter.velocity();
-        check_kinematics(
+        let allowance = range_azimuth_velocity_allowance(&filter);
+        check_kinematics_within(
             line,
             [
                 (position[0], velocity[0], None),
                 (position[1], velocity[1], None),
             ],
+            [allowance, allowance, 0.0],
         )?;
         check_estimate(line, "range", filter.range(), envelope::RANGE_M, "m")?;
         let estimate = altitude.estimate();

@@ -415,6 +415,32 @@ fn a_jittered_start_within_its_own_uncertainty_is_not_refused() {
     }
 }
 
+/// The same jittered start seen by a range–azimuth sensor 22 km away: the
+/// filter's velocity σ (the larger of along and across range) allows it in
+/// every number system, the firmware's included.
+#[test]
+fn a_jittered_polar_start_within_its_own_uncertainty_is_not_refused() {
+    let mut text = String::from("t,range,azimuth\n");
+    for (t, x, y) in [
+        (0.45, 0.0, 0.0),
+        (0.55, 200.0, -10.0),
+        (2.0, 210.0, -15.0),
+        (3.0, 220.0, -20.0),
+        (4.0, 230.0, -25.0),
+    ] {
+        let (x, y) = (20_000.0 + x, 10_000.0 + y);
+        text.push_str(&format!("{t},{},{}\n", f64::hypot(x, y), f64::atan2(x, y)));
+    }
+    for numeric in ["f64", "f32", "q32.32", "fixed32"] {
+        let run = replay("--filter range-azimuth", numeric, &text);
+        let rows: Vec<&str> = run.csv.lines().collect();
+        assert_eq!(rows.len(), 6, "{numeric}");
+        let vx = |row: &str| row.split(',').nth(2).unwrap().parse::<f64>().unwrap();
+        assert!(vx(rows[2]).abs() > 1500.0, "{numeric}: {}", rows[2]);
+        assert!(vx(rows[3]).abs() < 1500.0, "{numeric}: {}", rows[3]);
+    }
+}
+
 fn replay_failure(filter: &str, numeric: &str, text: &str) -> String {
     match replay_events(&replay_config(filter, numeric), text.as_bytes()) {
         Err(abtrack_host_tests::replay::Failure::Replay(e)) => e.to_string(),
