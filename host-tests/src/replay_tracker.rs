@@ -254,13 +254,26 @@ impl std::fmt::Display for OnePlotScans {
 pub struct DesignUsed {
     pub design: TrackerDesign,
     pub derived: DerivedParameters,
-    /// The scan period is the file's median scan interval.
-    pub period_from_file: bool,
+    /// Where the scan period came from.
+    pub period: PeriodSource,
+}
+
+/// Where a tracker replay's scan period came from.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum PeriodSource {
+    /// `--scan-period-s`, or the nominal period (a file of one scan).
+    Given,
+    /// The file's median scan interval.
+    FileMedian,
+    /// The file's median scan interval (this many s), outside the filters'
+    /// interval range and clamped to it: a sparse or irregular file is
+    /// run, not refused.
+    FileMedianClamped(f64),
 }
 
 /// The sensor figures a design was derived from, as one line of text (no
 /// newline).
-fn design_figures(d: &TrackerDesign, period_from_file: bool) -> String {
+fn design_figures(d: &TrackerDesign, period: PeriodSource) -> String {
     let accuracy = match d.accuracy {
         SensorAccuracy::Cartesian { sigma } => format!("σ {sigma} m per axis"),
         SensorAccuracy::Polar {
@@ -283,10 +296,16 @@ fn design_figures(d: &TrackerDesign, period_from_file: bool) -> String {
         "sensor {accuracy}, T {} s{}, P_D {}, clutter {} per km², {coverage}, v_max {} m/s, \
          a_max {:.2} m/s²",
         d.scan_period,
-        if period_from_file {
-            " (median scan interval of the file)"
-        } else {
-            ""
+        match period {
+            PeriodSource::Given => String::new(),
+            PeriodSource::FileMedian => " (median scan interval of the file)".to_string(),
+            PeriodSource::FileMedianClamped(median) => format!(
+                " (the file's median scan interval, {}, is outside the filters' {} ..= {} s: \
+                 the nearest end is used; --scan-period-s sets it)",
+                short(median),
+                envelope::INTERVAL_S.min,
+                envelope::INTERVAL_S.max
+            ),
         },
         d.detection_probability,
         short(d.clutter_density * 1e6),
@@ -301,7 +320,7 @@ impl std::fmt::Display for DesignUsed {
         writeln!(
             f,
             "replay --tracker: {}",
-            design_figures(&self.design, self.period_from_file)
+            design_figures(&self.design, self.period)
         )?;
         writeln!(
             f,
@@ -709,16 +728,20 @@ pub fn design_for(
         }
     };
     let median = median_scan_interval(scan_times);
-    let scan_period = figure(
-        if sensor.scan_period_s.is_some() {
-            "--scan-period-s"
-        } else {
-            "the scan period (the file's median scan interval; give --scan-period-s)"
-        },
-        sensor.scan_period_s,
-        median.unwrap_or(nominal.scan_period),
-        envelope::INTERVAL_S,
-    )?;
+    // A period given is checked; one taken from the file is brought into
+    // the filters' range (a sparse or irregular file is run, not refused).
+    let (scan_period, period) = match (sensor.scan_period_s, median) {
+        (Some(given), _) => (
+            figure("--scan-period-s", Some(given), 0.0, envelope::INTERVAL_S)?,
+            PeriodSource::Given,
+        ),
+        (None, Some(m)) if envelope::INTERVAL_S.contains(m) => (m, PeriodSource::FileMedian),
+        (None, Some(m)) => (
+            m.clamp(envelope::INTERVAL_S.min, envelope::INTERVAL_S.max),
+            PeriodSource::FileMedianClamped(m),
+        ),
+        (None, None) => (nominal.scan_period, PeriodSource::Given),
+    };
     let coverage = match sensor.region_m {
         None => Coverage::None,
         Some(r) => {
@@ -770,20 +793,19 @@ pub fn design_for(
         )?,
         scan_period,
     };
-    let period_from_file = sensor.scan_period_s.is_none() && median.is_some();
     let derived = design.derive().map_err(|e| {
         ReplayError::Design(format!(
             "no configuration meets the design rules for these figures ({}): {e} (the \
              figures come from --sigma-m or --range-sigma-m/--bearing-sigma-deg, \
              --scan-period-s, --pd, --clutter-per-km2, --region-m, --max-speed-mps and \
              --max-accel-mps2)",
-            design_figures(&design, period_from_file)
+            design_figures(&design, period)
         ))
     })?;
     Ok(DesignUsed {
         design,
         derived,
-        period_from_file,
+        period,
     })
 }
 

@@ -410,6 +410,30 @@ fn verbose_log_counts_the_association_codes() {
     );
 }
 
+/// A file whose median scan interval is outside the filters' range (a
+/// sparse recording, or plots stamped one by one) is run with the nearest
+/// end of the range and says so; it was refused before.
+#[test]
+fn a_median_scan_interval_outside_the_range_is_clamped_not_refused() {
+    use abtrack_host_tests::replay_tracker::PeriodSource;
+    let sparse = "t,x,y\n0,1000,1000\n26,1500,1000\n52,2000,1000\n";
+    let run = tracker("--tracker --sigma-m 50 --clutter-per-km2 0.002", sparse).unwrap();
+    assert_eq!(run.design.period, PeriodSource::FileMedianClamped(26.0));
+    assert_eq!(run.design.design.scan_period, 20.0);
+    assert_eq!(run.unused.measurements, 3);
+    assert!(
+        run.report()
+            .contains("the file's median scan interval, 26, is outside"),
+        "{}",
+        run.report()
+    );
+    let dense = "t,x,y\n0,1000,1000\n0.01,1001,1000\n0.02,1002,1000\n";
+    let run = tracker("--tracker --sigma-m 50 --clutter-per-km2 0.002", dense).unwrap();
+    assert_eq!(run.design.design.scan_period, 0.05);
+    // Given, the period is checked as before.
+    assert!(tracker("--tracker --scan-period-s 30", sparse).is_err());
+}
+
 #[test]
 fn errors_name_the_line() {
     // A scan before the previous one (rows out of time order, as merged
