@@ -117,8 +117,9 @@ fn after_help() -> String {
          \x20 tracker        t,track_id,status,x,y,vx,vy (one row per live track per scan)\n\
          \x20 --own-alt adds tau,tau_mod,t_cpa,d_cpa,advisory,tau_mod_ra (TCAS II 7.1; the own\n\
          \x20 aircraft at the origin, level at FEET over sea-level terrain, own velocity zero).\n\
-         An estimate outside the envelope (or not finite) stops the run with its line named.\n\
-         Restarted and skipped rows are listed on stderr.\n\
+         An estimate outside the envelope (or not finite) stops the run with its line named,\n\
+         but a two-point start that leaves the velocity envelope (jitter) starts again from\n\
+         its row, once. Restarted and skipped rows are listed on stderr.\n\
          --tracker always reports on stderr the design used and every measurement not used,\n\
          by reason. Exit status: 0 success (also when stdout is closed early), 1 bad input or a\n\
          refused row, 2 bad arguments.\n",

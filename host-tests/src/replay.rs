@@ -49,7 +49,8 @@
 //! more than 20 s after the last one used, and skips a report less than
 //! 0.05 s after it (a repeated time, a duplicate report, and a time before
 //! it, a report out of order, are skipped the same way), leaving the
-//! estimate as it was. Every output has a last
+//! estimate as it was; a two-point start that leaves the velocity envelope
+//! starts again from its row ([`StartCheck`]). Every output has a last
 //! column `event`: `restarted`, `skipped` or empty; the rows of both are
 //! listed on stderr ([`TimingEvents`]). The range–azimuth filter gets the
 //! same policy from the runner.
@@ -440,6 +441,9 @@ pub enum RowEvent {
     Used,
     /// More than 20 s after the last report used: the estimate restarted.
     Restarted,
+    /// The start this row completed left the velocity envelope (beyond its
+    /// allowance): the estimate started again from this row ([`StartCheck`]).
+    RestartedStart,
     /// Less than 0.05 s after the last report used: skipped.
     Skipped,
     /// The same time as the last report used: skipped.
@@ -453,7 +457,7 @@ impl RowEvent {
     pub const fn name(self) -> &'static str {
         match self {
             RowEvent::Used => "",
-            RowEvent::Restarted => "restarted",
+            RowEvent::Restarted | RowEvent::RestartedStart => "restarted",
             RowEvent::Skipped | RowEvent::Duplicate | RowEvent::Late => "skipped",
         }
     }
@@ -468,7 +472,10 @@ impl RowEvent {
 
     /// Whether the row was used (its time is the next interval's start).
     fn used(self) -> bool {
-        matches!(self, RowEvent::Used | RowEvent::Restarted)
+        matches!(
+            self,
+            RowEvent::Used | RowEvent::Restarted | RowEvent::RestartedStart
+        )
     }
 }
 
@@ -477,8 +484,11 @@ impl RowEvent {
 /// (stderr, when any).
 #[derive(Debug, Clone, PartialEq, Default)]
 pub struct TimingEvents {
-    /// Rows where the estimate restarted.
+    /// Rows where the estimate restarted (a gap).
     pub restarted: Vec<String>,
+    /// Rows where a start left the velocity envelope and the estimate
+    /// started again ([`StartCheck`]).
+    pub restarted_starts: Vec<String>,
     /// Rows skipped (duplicates included).
     pub skipped: Vec<String>,
     /// Of the skipped, rows repeating the last used report's time.
@@ -496,6 +506,7 @@ impl TimingEvents {
         match event {
             RowEvent::Used => {}
             RowEvent::Restarted => self.restarted.push(t_text.to_string()),
+            RowEvent::RestartedStart => self.restarted_starts.push(t_text.to_string()),
             RowEvent::Skipped => self.skipped.push(t_text.to_string()),
             RowEvent::Duplicate => {
                 self.skipped.push(t_text.to_string());
@@ -511,6 +522,7 @@ impl TimingEvents {
     /// No row restarted or skipped, and every altitude report taken.
     pub fn is_empty(&self) -> bool {
         self.restarted.is_empty()
+            && self.restarted_starts.is_empty()
             && self.skipped.is_empty()
             && self.altitude_not_credible.is_empty()
     }
@@ -543,6 +555,16 @@ impl fmt::Display for TimingEvents {
                 self.restarted.len(),
                 abtrack::filter::MAX_INTERVAL_S,
                 times_text(&self.restarted)
+            )?;
+        }
+        if !self.restarted_starts.is_empty() {
+            writeln!(
+                f,
+                "replay: {} restarted: the two-point start ending there left the velocity \
+                 envelope (reports close together for their noise), the estimate started again \
+                 there ({})",
+                self.restarted_starts.len(),
+                times_text(&self.restarted_starts)
             )?;
         }
         if !self.skipped.is_empty() {
@@ -650,6 +672,48 @@ fn check_kinematics_within<S: Scalar>(
         }
     }
     Ok(())
+}
+
+/// The envelope check of a start: a two-point velocity is the difference of
+/// two noisy reports over their interval, and jitter can bring two reports
+/// close enough for it to leave the velocity envelope (beyond the filter's
+/// own allowance). Such a start drops the estimate and starts again from
+/// its row, once: if the start that follows leaves the envelope too, the
+/// reports themselves move faster than the envelope and the run stops there.
+#[derive(Debug, Default)]
+struct StartCheck {
+    /// The estimate began at a start that left the envelope.
+    restarted: bool,
+}
+
+impl StartCheck {
+    /// `check`, the envelope check after a row with `event`, at a row
+    /// completing a two-point start (`start`) or not: `Ok(true)` when the
+    /// estimate is to start again from this row, the check's error when it
+    /// stops the run. A gap's restart begins a new estimate.
+    fn restart(
+        &mut self,
+        check: Result<(), ReplayError>,
+        start: bool,
+        event: RowEvent,
+    ) -> Result<bool, ReplayError> {
+        if event == RowEvent::Restarted {
+            self.restarted = false;
+        }
+        match check {
+            Ok(()) => {
+                if start {
+                    self.restarted = false;
+                }
+                Ok(false)
+            }
+            Err(ReplayError::Estimate { unit: "m/s", .. }) if start && !self.restarted => {
+                self.restarted = true;
+                Ok(true)
+            }
+            Err(e) => Err(e),
+        }
+    }
 }
 
 /// `,value`.
@@ -874,6 +938,7 @@ fn write_kinematic_row<S: CsvValue, const ORDER: usize, const D: usize>(
     t_text: &str,
     filter: &Cartesian<S, ORDER, D>,
     outcomes: &[UpdateOutcome<S>; D],
+    event: RowEvent,
 ) {
     out.push_str(t_text);
     for (axis, outcome) in filter.axes().iter().zip(outcomes) {
@@ -891,7 +956,7 @@ fn write_kinematic_row<S: CsvValue, const ORDER: usize, const D: usize>(
         }
     }
     out.push(',');
-    out.push_str(RowEvent::of(outcomes.first()).name());
+    out.push_str(event.name());
     out.push('\n');
 }
 
@@ -980,18 +1045,19 @@ fn run_schedule<S: CsvValue, G: GainSchedule<S, D>, const ORDER: usize, const D:
     out.push('\n');
     let mut events = TimingEvents::default();
     let mut previous_t: Option<f64> = None;
+    let mut starts = StartCheck::default();
     for row in &data.rows {
         let dt = match interval::<S>(previous_t, row.t, row.line)? {
             Ok(dt) => dt,
             Err(event) => {
                 events.record(event, &row.t_text);
                 let skipped = [UpdateOutcome::Skipped; D];
-                write_kinematic_row(&mut out, &row.t_text, track.filter(), &skipped);
+                write_kinematic_row(&mut out, &row.t_text, track.filter(), &skipped, event);
                 continue;
             }
         };
         let z = positions::<S, D>(row)?;
-        let update = track.update(z, dt).map_err(|e| match e {
+        let refused = |e| match e {
             ScheduledError::Filter(error) => ReplayError::Filter {
                 line: row.line,
                 error,
@@ -1000,18 +1066,25 @@ fn run_schedule<S: CsvValue, G: GainSchedule<S, D>, const ORDER: usize, const D:
                 line: row.line,
                 error,
             },
-        })?;
-        let event = RowEvent::of(update.outcome.first());
+        };
+        let mut outcome = track.update(z, dt).map_err(refused)?.outcome;
+        let mut event = RowEvent::of(outcome.first());
+        let check = check_filter(
+            row.line,
+            track.filter(),
+            velocity_allowance(track.schedule()),
+        );
+        let start = matches!(outcome.first(), Some(UpdateOutcome::SecondPoint));
+        if starts.restart(check, start, event)? {
+            track = ScheduledFilter::new(schedule);
+            outcome = track.update(z, dt).map_err(refused)?.outcome;
+            event = RowEvent::RestartedStart;
+        }
         if event.used() {
             previous_t = Some(row.t);
         }
         events.record(event, &row.t_text);
-        check_filter(
-            row.line,
-            track.filter(),
-            velocity_allowance(track.schedule()),
-        )?;
-        write_kinematic_row(&mut out, &row.t_text, track.filter(), &update.outcome);
+        write_kinematic_row(&mut out, &row.t_text, track.filter(), &outcome, event);
     }
     Ok(Replayed { csv: out, events })
 }
@@ -1020,14 +1093,16 @@ fn run_bank<S: CsvValue, const D: usize>(
     config: &BankConfig,
     data: &Measurements,
 ) -> Result<Replayed, ReplayError> {
-    let mut bank = ReplayBank::<S, D>::from_config(config).map_err(ReplayError::Schedule)?;
+    let fresh = ReplayBank::<S, D>::from_config(config).map_err(ReplayError::Schedule)?;
+    let mut bank = fresh;
     let mut out = bank_header(D);
     out.push('\n');
     let mut events = TimingEvents::default();
     let mut previous_t: Option<f64> = None;
+    let mut starts = StartCheck::default();
     for row in &data.rows {
-        let (outcomes, event) = match interval::<S>(previous_t, row.t, row.line)? {
-            Err(event) => ([BankOutcome::Skipped; D], event),
+        let (mut outcomes, mut event, z_dt) = match interval::<S>(previous_t, row.t, row.line)? {
+            Err(event) => ([BankOutcome::Skipped; D], event, None),
             Ok(dt) => {
                 let z = positions::<S, D>(row)?;
                 let outcomes = bank.update(z, dt).map_err(|error| ReplayError::Filter {
@@ -1039,19 +1114,28 @@ fn run_bank<S: CsvValue, const D: usize>(
                     Some(BankOutcome::Skipped) => RowEvent::Skipped,
                     _ => RowEvent::Used,
                 };
-                (outcomes, event)
+                (outcomes, event, Some((z, dt)))
             }
         };
-        if event.used() {
-            previous_t = Some(row.t);
-        }
-        events.record(event, &row.t_text);
-        check_kinematics(
+        let check = check_kinematics(
             row.line,
             bank.axes()
                 .iter()
                 .map(|a| (a.position(), a.velocity(), None)),
-        )?;
+        );
+        let start = matches!(outcomes.first(), Some(BankOutcome::SecondPoint));
+        if let (true, Some((z, dt))) = (starts.restart(check, start, event)?, z_dt) {
+            bank = fresh;
+            outcomes = bank.update(z, dt).map_err(|error| ReplayError::Filter {
+                line: row.line,
+                error,
+            })?;
+            event = RowEvent::RestartedStart;
+        }
+        if event.used() {
+            previous_t = Some(row.t);
+        }
+        events.record(event, &row.t_text);
         out.push_str(&row.t_text);
         for (axis, outcome) in bank.axes().iter().zip(&outcomes) {
             cell(&mut out, axis.position());
@@ -1069,6 +1153,24 @@ fn run_bank<S: CsvValue, const D: usize>(
         out.push('\n');
     }
     Ok(Replayed { csv: out, events })
+}
+
+/// The range–azimuth filter's position and velocity against the envelope,
+/// its velocity's allowance included.
+fn check_range_azimuth<S: Scalar>(
+    line: usize,
+    filter: &RangeAzimuthFilter<S>,
+) -> Result<(), ReplayError> {
+    let (position, velocity) = (filter.position(), filter.velocity());
+    let allowance = range_azimuth_velocity_allowance(filter);
+    check_kinematics_within(
+        line,
+        [
+            (position[0], velocity[0], None),
+            (position[1], velocity[1], None),
+        ],
+        [allowance, allowance, 0.0],
+    )
 }
 
 /// The output header of the range–azimuth filter: with `has_alt` (the input
@@ -1293,6 +1395,7 @@ pub fn replay_range_azimuth_in<S: CsvValue>(
     let mut events = TimingEvents::default();
     let mut previous_t: Option<f64> = None;
     let mut ra_memory = RaMemory::<S>::new();
+    let mut starts = StartCheck::default();
     for row in &data.rows {
         let line = row.line;
         let range: S = value(row.range, line, 2, "range")?;
@@ -1302,7 +1405,7 @@ pub fn replay_range_azimuth_in<S: CsvValue>(
             None => None,
         };
         let interval = interval::<S>(previous_t, row.t, line)?;
-        let event = match (interval, previous_t) {
+        let mut event = match (interval, previous_t) {
             (Err(event), _) => event,
             (Ok(_), None) => RowEvent::Used,
             (Ok(_), Some(p)) => match IntervalSpan::of(row.t - p) {
@@ -1333,18 +1436,19 @@ pub fn replay_range_azimuth_in<S: CsvValue>(
             }
             previous_t = Some(row.t);
         }
+        let check = check_range_azimuth(line, &filter);
+        let start = matches!(outcome, RangeAzimuthOutcome::SecondPoint);
+        if let (true, Some(dt)) = (starts.restart(check, start, event)?, used_dt) {
+            filter = RangeAzimuthFilter::new(noise);
+            ra_memory = RaMemory::new();
+            outcome = filter
+                .update(range, azimuth, dt)
+                .map_err(|error| ReplayError::Filter { line, error })?;
+            event = RowEvent::RestartedStart;
+        }
         events.record(event, &row.t_text);
         let position = filter.position();
         let velocity = filter.velocity();
-        let allowance = range_azimuth_velocity_allowance(&filter);
-        check_kinematics_within(
-            line,
-            [
-                (position[0], velocity[0], None),
-                (position[1], velocity[1], None),
-            ],
-            [allowance, allowance, 0.0],
-        )?;
         check_estimate(line, "range", filter.range(), envelope::RANGE_M, "m")?;
         let estimate = altitude.estimate();
         if let Some(e) = estimate {

@@ -14,9 +14,9 @@
 //! or, inside `host-tests/`, `cargo run --release --bin replay -- ...`.
 //!
 //! Gaps and jitter never stop a run: the rows where the estimate restarted
-//! (more than 20 s after the last report used) or that were skipped (less
-//! than 0.05 s after it) are marked in the `event` column and listed on
-//! stderr.
+//! (more than 20 s after the last report used, or a two-point start that
+//! left the velocity envelope) or that were skipped (less than 0.05 s after
+//! it) are marked in the `event` column and listed on stderr.
 //!
 //! The output is built in memory and written only when the whole file has run:
 //! on any error stdout stays empty, the message (naming the line and column)
