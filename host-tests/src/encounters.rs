@@ -24,6 +24,7 @@ use abtrack::Scalar;
 
 use crate::altitude_figures::{report, Profile, RateChange};
 use crate::noise::{derive_seed, rng_from_seed, standard_normal, uniform, SimRng};
+use crate::recorded_encounters::RecordedIntruder;
 use crate::reference_tcas::{self, Alert, Own, Reference, Relative, Sense};
 
 /// Metres per nautical mile, per knot.
@@ -55,6 +56,9 @@ pub struct Encounter {
     pub intruder_velocity: [f64; 2],
     /// Intruder altitude profile; `None`: it does not report altitude.
     pub intruder_vertical: Option<RateChange>,
+    /// A recorded intruder, which then replaces the straight path and the
+    /// altitude profile above ([`crate::recorded_encounters`]).
+    pub intruder_recording: Option<RecordedIntruder>,
     pub quantum: AltitudeQuantum,
     /// Scans (1 s each).
     pub scans: usize,
@@ -87,6 +91,7 @@ fn head_on(
         intruder_start: [offset_nm * NM, 14.0 * NM],
         intruder_velocity: [0.0, -OWN_SPEED],
         intruder_vertical: vertical,
+        intruder_recording: None,
         quantum: AltitudeQuantum::ModeC,
         scans: 160,
     }
@@ -111,6 +116,7 @@ pub fn suite() -> Vec<Encounter> {
             intruder_start: [OWN_SPEED * crossing_cpa_s, OWN_SPEED * crossing_cpa_s],
             intruder_velocity: [-OWN_SPEED, 0.0],
             intruder_vertical: level(7700.0),
+            intruder_recording: None,
             quantum: AltitudeQuantum::ModeC,
             scans: 180,
         },
@@ -122,6 +128,7 @@ pub fn suite() -> Vec<Encounter> {
             intruder_start: [0.1 * NM, -3.0 * NM],
             intruder_velocity: [0.0, OWN_SPEED + 100.0 * KT],
             intruder_vertical: level(8300.0),
+            intruder_recording: None,
             quantum: AltitudeQuantum::ModeC,
             scans: 200,
         },
@@ -174,6 +181,7 @@ pub fn suite() -> Vec<Encounter> {
             intruder_start: [0.0, 1.0 * NM],
             intruder_velocity: [0.0, 2.0 * OWN_SPEED],
             intruder_vertical: level(8000.0),
+            intruder_recording: None,
             quantum: AltitudeQuantum::ModeC,
             scans: 80,
         },
@@ -210,6 +218,9 @@ pub fn suite() -> Vec<Encounter> {
 impl Encounter {
     /// The true relative state at t s.
     pub fn relative(&self, t: f64) -> Relative {
+        if let Some(recorded) = &self.intruder_recording {
+            return recorded.relative(t, self.own_velocity);
+        }
         let v = [
             self.intruder_velocity[0] - self.own_velocity[0],
             self.intruder_velocity[1] - self.own_velocity[1],

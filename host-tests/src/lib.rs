@@ -38,6 +38,7 @@ pub mod noise;
 pub mod output;
 pub mod precision;
 pub mod random_encounters;
+pub mod recorded_encounters;
 pub mod reference;
 pub mod reference_ra;
 pub mod reference_tcas;

@@ -142,6 +142,7 @@ pub fn encounter(index: usize) -> RandomEncounter {
                 t_change: 0.0,
                 accel: f64::INFINITY,
             }),
+            intruder_recording: None,
             quantum: AltitudeQuantum::ModeS25,
             scans,
         },
@@ -331,6 +332,14 @@ pub fn trace_one<S: Scalar>(
 /// The reference's timeline of an encounter.
 pub fn reference(e: &RandomEncounter) -> Vec<ScanOutcome> {
     run_reference(&e.encounter)
+}
+
+/// The library's own timeline of an encounter in f64 on exact ranges and
+/// bearings with 25 ft altitudes (the first of [`CONDITIONS`]): the
+/// baseline against which the receiver's noise alone is measured (empty
+/// should the library refuse the run).
+pub fn exact_library_timeline(e: &RandomEncounter) -> Vec<ScanOutcome> {
+    trace_one::<f64>(e, &CONDITIONS[0], 0).map_or_else(|_| Vec::new(), |(outcomes, _)| outcomes)
 }
 
 /// Counts over a set of runs.

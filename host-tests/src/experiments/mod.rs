@@ -20,6 +20,7 @@ pub mod real_adsb;
 pub mod scene_draws;
 pub mod tcas_advisory;
 pub mod tcas_random;
+pub mod tcas_real;
 pub mod tenne_singh;
 
 use common::Context;
@@ -79,6 +80,11 @@ pub const GROUPS: &[Group] = &[
         name: tcas_random::NAME,
         about: tcas_random::ABOUT,
         run: tcas_random::run,
+    },
+    Group {
+        name: tcas_real::NAME,
+        about: tcas_real::ABOUT,
+        run: tcas_real::run,
     },
     Group {
         name: tenne_singh::GROUP,

@@ -20,6 +20,7 @@ use abtrack::tcas::detection::MISS_DISTANCE_CONFIDENCE;
 use abtrack::{Fixed32, Numeric, Scalar};
 
 use super::common::{plot, write_file, Context, PlotSpec, Series, Table};
+use crate::encounters::ScanOutcome;
 use crate::random_encounters::{
     ra_onset, reference, run_one, suite, trace_one, Condition, RandomEncounter, RunResult, Tally,
     CONDITIONS, LEVELS, PER_LEVEL,
@@ -41,7 +42,7 @@ fn runs_in<S: Scalar>(
     e: &RandomEncounter,
     condition: &Condition,
     seeds: usize,
-    reference: &[crate::encounters::ScanOutcome],
+    reference: &[ScanOutcome],
 ) -> Vec<RunResult> {
     let n = if condition.noisy { seeds } else { 1 };
     (0..n)
@@ -55,10 +56,22 @@ pub type SuiteResults = Vec<Vec<Vec<Vec<RunResult>>>>;
 /// Runs the whole suite with `seeds` noisy runs per encounter.
 pub fn simulate(seeds: usize) -> (Vec<RandomEncounter>, SuiteResults) {
     let encounters = suite();
+    let results = simulate_encounters(&encounters, seeds, reference);
+    (encounters, results)
+}
+
+/// Runs `encounters` under every condition in every type, with `seeds`
+/// noisy runs each, each compared with the timeline `against` gives for
+/// its encounter (the reference's, [`reference`]).
+pub fn simulate_encounters(
+    encounters: &[RandomEncounter],
+    seeds: usize,
+    against: impl Fn(&RandomEncounter) -> Vec<ScanOutcome> + Sync,
+) -> SuiteResults {
     let per_encounter: Vec<Vec<Vec<Vec<RunResult>>>> = encounters
         .par_iter()
         .map(|e| {
-            let reference = reference(e);
+            let reference = against(e);
             CONDITIONS
                 .iter()
                 .map(|c| {
@@ -72,14 +85,13 @@ pub fn simulate(seeds: usize) -> (Vec<RandomEncounter>, SuiteResults) {
         })
         .collect();
     // Transpose to [condition][type][encounter].
-    let results = (0..CONDITIONS.len())
+    (0..CONDITIONS.len())
         .map(|c| {
             (0..TYPES.len())
                 .map(|t| per_encounter.iter().map(|e| e[c][t].clone()).collect())
                 .collect()
         })
-        .collect();
-    (encounters, results)
+        .collect()
 }
 
 /// The tally of `runs` over the encounters whose level is `level` (`None`:

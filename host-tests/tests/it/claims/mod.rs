@@ -8,3 +8,4 @@ mod paper_readings;
 mod range_azimuth_and_advisories;
 mod real_data;
 mod tcas_random;
+mod tcas_real;
