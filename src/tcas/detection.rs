@@ -548,12 +548,10 @@ impl MissDistanceFilter {
         if self.shutdown_cycles > 0 {
             return MissDistances::OFF;
         }
-        let acceleration_sigma = hypot(
-            k.acceleration_sigma_per_residual_sigma
-                .times(range.residual_sigma_m)
-                .over(dt.times(dt)),
-            range.acceleration_threshold_m_per_s2,
-        );
+        let acceleration_sigma = k
+            .acceleration_sigma_per_residual_sigma
+            .times(range.residual_sigma_m)
+            .over(dt.times(dt));
         let rate_sigma = k
             .rate_sigma_per_residual_sigma
             .times(range.residual_sigma_m)
