@@ -41,7 +41,7 @@ pub const BEARING_TRACKER_PROCESS_NOISE: f64 = 1.0;
 /// is false, s.
 pub const FALSE_ALERT_TOLERANCE_S: f64 = 3.0;
 
-/// One straight-line encounter.
+/// One encounter: the own aircraft level and straight, the intruder's path.
 #[derive(Debug, Clone, Copy)]
 pub struct Encounter {
     pub name: &'static str,
@@ -50,18 +50,26 @@ pub struct Encounter {
     pub own_altitude_ft: f64,
     /// Own ground velocity, m/s.
     pub own_velocity: [f64; 2],
-    /// Intruder position relative to the own aircraft at t = 0, m.
-    pub intruder_start: [f64; 2],
-    /// Intruder ground velocity, m/s.
-    pub intruder_velocity: [f64; 2],
-    /// Intruder altitude profile; `None`: it does not report altitude.
-    pub intruder_vertical: Option<RateChange>,
-    /// A recorded intruder, which then replaces the straight path and the
-    /// altitude profile above ([`crate::recorded_encounters`]).
-    pub intruder_recording: Option<RecordedIntruder>,
+    pub intruder: IntruderPath,
     pub quantum: AltitudeQuantum,
     /// Scans (1 s each).
     pub scans: usize,
+}
+
+/// How the intruder moves.
+#[derive(Debug, Clone, Copy)]
+pub enum IntruderPath {
+    /// A straight line at a constant ground velocity.
+    Straight {
+        /// Position relative to the own aircraft at t = 0, m.
+        start: [f64; 2],
+        /// Ground velocity, m/s.
+        velocity: [f64; 2],
+        /// Altitude profile; `None`: it does not report altitude.
+        vertical: Option<RateChange>,
+    },
+    /// A recorded aircraft ([`crate::recorded_encounters`]).
+    Recorded(RecordedIntruder),
 }
 
 const OWN_SPEED: f64 = 250.0 * KT;
@@ -88,10 +96,11 @@ fn head_on(
         description,
         own_altitude_ft: 8000.0,
         own_velocity: [0.0, OWN_SPEED],
-        intruder_start: [offset_nm * NM, 14.0 * NM],
-        intruder_velocity: [0.0, -OWN_SPEED],
-        intruder_vertical: vertical,
-        intruder_recording: None,
+        intruder: IntruderPath::Straight {
+            start: [offset_nm * NM, 14.0 * NM],
+            velocity: [0.0, -OWN_SPEED],
+            vertical,
+        },
         quantum: AltitudeQuantum::ModeC,
         scans: 160,
     }
@@ -113,10 +122,11 @@ pub fn suite() -> Vec<Encounter> {
             description: "90° crossing from the east at 250 kt, collision course (CPA at 120 s), intruder level 300 ft below",
             own_altitude_ft: 8000.0,
             own_velocity: [0.0, OWN_SPEED],
-            intruder_start: [OWN_SPEED * crossing_cpa_s, OWN_SPEED * crossing_cpa_s],
-            intruder_velocity: [-OWN_SPEED, 0.0],
-            intruder_vertical: level(7700.0),
-            intruder_recording: None,
+            intruder: IntruderPath::Straight {
+                start: [OWN_SPEED * crossing_cpa_s, OWN_SPEED * crossing_cpa_s],
+                velocity: [-OWN_SPEED, 0.0],
+                vertical: level(7700.0),
+            },
             quantum: AltitudeQuantum::ModeC,
             scans: 180,
         },
@@ -125,10 +135,11 @@ pub fn suite() -> Vec<Encounter> {
             description: "overtaken from 3 NM behind by an intruder 100 kt faster, 0.1 NM abeam, level 300 ft above",
             own_altitude_ft: 8000.0,
             own_velocity: [0.0, OWN_SPEED],
-            intruder_start: [0.1 * NM, -3.0 * NM],
-            intruder_velocity: [0.0, OWN_SPEED + 100.0 * KT],
-            intruder_vertical: level(8300.0),
-            intruder_recording: None,
+            intruder: IntruderPath::Straight {
+                start: [0.1 * NM, -3.0 * NM],
+                velocity: [0.0, OWN_SPEED + 100.0 * KT],
+                vertical: level(8300.0),
+            },
             quantum: AltitudeQuantum::ModeC,
             scans: 200,
         },
@@ -145,7 +156,11 @@ pub fn suite() -> Vec<Encounter> {
             level(8200.0),
         ),
         Encounter {
-            intruder_velocity: [0.0, -240.0 * KT],
+            intruder: IntruderPath::Straight {
+                start: [1.2 * NM, 14.0 * NM],
+                velocity: [0.0, -240.0 * KT],
+                vertical: level(8000.0),
+            },
             own_velocity: [0.0, 240.0 * KT],
             own_altitude_ft: 8000.0,
             ..head_on(
@@ -178,10 +193,11 @@ pub fn suite() -> Vec<Encounter> {
             description: "1 NM ahead, same track, opening at 250 kt, co-altitude",
             own_altitude_ft: 8000.0,
             own_velocity: [0.0, OWN_SPEED],
-            intruder_start: [0.0, 1.0 * NM],
-            intruder_velocity: [0.0, 2.0 * OWN_SPEED],
-            intruder_vertical: level(8000.0),
-            intruder_recording: None,
+            intruder: IntruderPath::Straight {
+                start: [0.0, 1.0 * NM],
+                velocity: [0.0, 2.0 * OWN_SPEED],
+                vertical: level(8000.0),
+            },
             quantum: AltitudeQuantum::ModeC,
             scans: 80,
         },
@@ -218,22 +234,31 @@ pub fn suite() -> Vec<Encounter> {
 impl Encounter {
     /// The true relative state at t s.
     pub fn relative(&self, t: f64) -> Relative {
-        if let Some(recorded) = &self.intruder_recording {
-            return recorded.relative(t, self.own_velocity);
+        match &self.intruder {
+            IntruderPath::Straight {
+                start,
+                velocity,
+                vertical,
+            } => {
+                let v = [
+                    velocity[0] - self.own_velocity[0],
+                    velocity[1] - self.own_velocity[1],
+                ];
+                Relative {
+                    s: [start[0] + v[0] * t, start[1] + v[1] * t],
+                    v,
+                    altitude: vertical.map(|p| (p.altitude_ft(t), p.rate_ft_per_s(t))),
+                }
+            }
+            IntruderPath::Recorded(recorded) => recorded.relative(t, self.own_velocity),
         }
-        let v = [
-            self.intruder_velocity[0] - self.own_velocity[0],
-            self.intruder_velocity[1] - self.own_velocity[1],
-        ];
-        Relative {
-            s: [
-                self.intruder_start[0] + v[0] * t,
-                self.intruder_start[1] + v[1] * t,
-            ],
-            v,
-            altitude: self
-                .intruder_vertical
-                .map(|p| (p.altitude_ft(t), p.rate_ft_per_s(t))),
+    }
+
+    /// The recorded intruder, if the intruder is one.
+    pub fn recorded(&self) -> Option<&RecordedIntruder> {
+        match &self.intruder {
+            IntruderPath::Recorded(r) => Some(r),
+            IntruderPath::Straight { .. } => None,
         }
     }
 
@@ -650,8 +675,11 @@ pub fn demo_intruders() -> Vec<Encounter> {
         },
         Encounter {
             own_velocity: [0.0, OWN_SPEED],
-            intruder_start: [9.0 * NM, 9.0 * NM],
-            intruder_velocity: [-OWN_SPEED, 0.0],
+            intruder: IntruderPath::Straight {
+                start: [9.0 * NM, 9.0 * NM],
+                velocity: [-OWN_SPEED, 0.0],
+                vertical: level(9000.0),
+            },
             ..head_on(
                 "demo-level-1000",
                 "crossing, level 1000 ft above",
@@ -660,8 +688,11 @@ pub fn demo_intruders() -> Vec<Encounter> {
             )
         },
         Encounter {
-            intruder_start: [-6.0 * NM, 11.0 * NM],
-            intruder_velocity: [200.0 * KT, -150.0 * KT],
+            intruder: IntruderPath::Straight {
+                start: [-6.0 * NM, 11.0 * NM],
+                velocity: [200.0 * KT, -150.0 * KT],
+                vertical: None,
+            },
             ..head_on(
                 "demo-non-reporting",
                 "converging from the north-west, no altitude",

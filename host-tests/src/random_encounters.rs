@@ -29,8 +29,8 @@ use abtrack::Scalar;
 
 use crate::altitude_figures::RateChange;
 use crate::encounters::{
-    measurements_by, run_library_for, run_library_traced, run_reference, Encounter, Measurement,
-    Noise, ScanOutcome, ScanTrace, Sensor, KT, NM,
+    measurements_by, run_library_for, run_library_traced, run_reference, Encounter, IntruderPath,
+    Measurement, Noise, ScanOutcome, ScanTrace, Sensor, KT, NM,
 };
 use crate::noise::{derive_seed, rng_from_seed, uniform};
 use crate::reference_tcas::{level_for, Alert, Sense};
@@ -133,16 +133,17 @@ pub fn encounter(index: usize) -> RandomEncounter {
             description: "randomized straight-line encounter",
             own_altitude_ft: own_ft,
             own_velocity: [0.0, 0.0],
-            intruder_start: start,
-            intruder_velocity: v,
-            intruder_vertical: Some(RateChange {
-                start_ft: own_ft + vmd_ft - rate / 60.0 * t_cpa,
-                rate0: rate / 60.0,
-                rate1: rate / 60.0,
-                t_change: 0.0,
-                accel: f64::INFINITY,
-            }),
-            intruder_recording: None,
+            intruder: IntruderPath::Straight {
+                start,
+                velocity: v,
+                vertical: Some(RateChange {
+                    start_ft: own_ft + vmd_ft - rate / 60.0 * t_cpa,
+                    rate0: rate / 60.0,
+                    rate1: rate / 60.0,
+                    t_change: 0.0,
+                    accel: f64::INFINITY,
+                }),
+            },
             quantum: AltitudeQuantum::ModeS25,
             scans,
         },
@@ -336,10 +337,12 @@ pub fn reference(e: &RandomEncounter) -> Vec<ScanOutcome> {
 
 /// The library's own timeline of an encounter in f64 on exact ranges and
 /// bearings with 25 ft altitudes (the first of [`CONDITIONS`]): the
-/// baseline against which the receiver's noise alone is measured (empty
+/// baseline against which the receiver's noise alone is measured (`None`
 /// should the library refuse the run).
-pub fn exact_library_timeline(e: &RandomEncounter) -> Vec<ScanOutcome> {
-    trace_one::<f64>(e, &CONDITIONS[0], 0).map_or_else(|_| Vec::new(), |(outcomes, _)| outcomes)
+pub fn exact_library_timeline(e: &RandomEncounter) -> Option<Vec<ScanOutcome>> {
+    trace_one::<f64>(e, &CONDITIONS[0], 0)
+        .ok()
+        .map(|(outcomes, _)| outcomes)
 }
 
 /// Counts over a set of runs.

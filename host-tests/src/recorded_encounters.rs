@@ -15,9 +15,10 @@
 //!   report times or every 4 s), so the acceleration is continuous through
 //!   turns; a recording is cut into pieces where its samples are more than
 //!   [`MAX_GAP_S`] apart.
-//! * Altitude and rate: the least-squares line through the reported
-//!   altitudes within ±[`ALTITUDE_WINDOW_S`] (ADS-B altitudes come in
-//!   25 ft steps; the fit is the truth the reports are quantised from).
+//! * Altitude and rate: the least-squares line through the recorded
+//!   altitudes within ±[`ALTITUDE_WINDOW_S`] (ADS-B's 25 ft steps; the
+//!   scene's truth interpolates a few); the runs' reports are this truth
+//!   quantised again.
 //!
 //! # Drawing an encounter
 //!
@@ -28,12 +29,13 @@
 //! and flies level at the intruder's altitude there minus the vertical
 //! miss. The run starts where the straight relative path's range tau is
 //! the level's TA tau + 30 s (at least 6 NM out), as in the randomized
-//! suite, and ends [`AFTER_CPA_S`] after. A candidate is kept when the
-//! recording covers the run with no interval over [`MAX_GAP_S`], the
-//! closure is at least [`MIN_CLOSURE_KT`], the own altitude lies in
-//! SL 3–7's band (1700–40 000 ft, as the randomized suite's) and the
+//! suite, and ends [`AFTER_CPA_S`] after. A candidate is kept when one
+//! piece of the recording covers the run, the closure is at least
+//! [`MIN_CLOSURE_KT`], the own altitude lies in [`OWN_ALTITUDE_FT`], the
 //! intruder stays above [`LOWEST_INTRUDER_FT`] with an altitude at every
-//! scan.
+//! scan, and the recorded intruder, which need not fly that straight path,
+//! also starts at least 6 NM out and, when closing, at a range tau of at
+//! least the TA tau + 30 s.
 
 use std::collections::BTreeMap;
 use std::path::Path;
@@ -42,10 +44,10 @@ use std::sync::OnceLock;
 use abtrack::filter::altitude::AltitudeQuantum;
 use serde::Deserialize;
 
-use crate::encounters::{Encounter, KT, NM};
+use crate::encounters::{Encounter, IntruderPath, KT, NM};
 use crate::noise::{derive_seed, rng_from_seed, uniform};
 use crate::random_encounters::{RandomEncounter, AFTER_CPA_S, HMD_NM, LOWEST_INTRUDER_FT, VMD_FT};
-use crate::reference_tcas::{level_for, Relative};
+use crate::reference_tcas::{level_for, range_and_rate, Relative};
 
 /// Base seed of the drawn geometry.
 pub const BASE_SEED: u64 = 0x0019_7CA5_4EC0_4D19;
@@ -58,7 +60,8 @@ pub const OWN_SPEED_KT: (f64, f64) = (150.0, 350.0);
 /// The least closure speed at the designed closest approach, kt (the
 /// randomized suite's least).
 pub const MIN_CLOSURE_KT: f64 = 100.0;
-/// The own altitude band, ft (SL 3–7, the randomized suite's).
+/// The own altitude band, ft: SL 3–7 (the randomized suite draws within
+/// narrower bands away from the levels' edges).
 pub const OWN_ALTITUDE_FT: (f64, f64) = (1700.0, 40_000.0);
 /// Half-width of the altitude fit, s.
 pub const ALTITUDE_WINDOW_S: f64 = 10.0;
@@ -107,18 +110,11 @@ impl RecordedPath {
         )
     }
 
-    /// The longest interval between samples over [t0, t1] (infinite
-    /// outside the recording), s.
-    pub fn longest_gap(&self, t0: f64, t1: f64) -> f64 {
+    /// Whether [t0, t1] lies inside the recording (a path has no interval
+    /// over [`MAX_GAP_S`]: [`read_paths`] cuts it there).
+    pub fn covers(&self, t0: f64, t1: f64) -> bool {
         let (first, last) = self.span();
-        if !(t0 >= first && t1 <= last) {
-            return f64::INFINITY;
-        }
-        self.times
-            .windows(2)
-            .filter(|w| w[1] > t0 && w[0] < t1)
-            .map(|w| w[1] - w[0])
-            .fold(0.0, f64::max)
+        t0 >= first && t1 <= last
     }
 
     /// Position (m), velocity (m/s) and acceleration (m/s²) at `t` inside
@@ -256,9 +252,7 @@ impl RecordedIntruder {
             altitude: self.path.altitude(self.t0 + t),
         }
     }
-}
 
-impl RecordedIntruder {
     /// The intruder's largest horizontal acceleration over the `window` s
     /// before scan `k` (the curve's, every 0.25 s), m/s².
     pub fn largest_acceleration_before(&self, k: usize, window: f64) -> f64 {
@@ -266,7 +260,8 @@ impl RecordedIntruder {
         let steps = (window * 4.0) as usize;
         (0..=steps)
             .map(|i| {
-                let (_, _, a) = self.path.kinematics(end - i as f64 * 0.25);
+                let t = (end - i as f64 * 0.25).max(self.path.span().0);
+                let (_, _, a) = self.path.kinematics(t);
                 a[0].hypot(a[1])
             })
             .fold(0.0, f64::max)
@@ -315,7 +310,7 @@ pub fn read_paths(dir: &Path) -> Result<Vec<RecordedPath>, String> {
         let several = cut.len() > 1;
         for (k, piece) in cut.iter().enumerate() {
             let name = if several {
-                format!("{name} (piece {})", k + 1)
+                format!("{name}, part {}", k + 1)
             } else {
                 name.clone()
             };
@@ -388,7 +383,7 @@ fn candidate(
     let start_range = (closure * (level.ta_tau + 30.0)).max(6.0 * NM).max(hmd_m);
     let lead = (start_range * start_range - hmd_m * hmd_m).sqrt() / closure;
     let (t0, end) = (t_cpa - lead, t_cpa + AFTER_CPA_S);
-    if path.longest_gap(t0, end) > MAX_GAP_S {
+    if !path.covers(t0, end) {
         return None;
     }
     let scans = (end - t0).ceil() as usize;
@@ -407,6 +402,21 @@ fn candidate(
         own_at_cpa[0] - own_velocity[0] * lead,
         own_at_cpa[1] - own_velocity[1] * lead,
     ];
+    let intruder = RecordedIntruder {
+        path,
+        t0,
+        own_start,
+        t_cpa,
+    };
+    // The recorded intruder need not fly the straight path the start was
+    // placed on: kept when it too starts as far out as the randomized
+    // suite's (6 NM, and a range tau of the TA tau + 30 s when closing).
+    let start = intruder.relative(0.0, own_velocity);
+    let (range, rate) = range_and_rate(start.s, start.v);
+    let far_enough = range >= 6.0 * NM && (rate >= 0.0 || range / -rate >= level.ta_tau + 30.0);
+    if !far_enough {
+        return None;
+    }
     Some(RandomEncounter {
         index: 0,
         level: level.sl,
@@ -419,15 +429,7 @@ fn candidate(
             description: "a recorded intruder against a level, straight own aircraft",
             own_altitude_ft: own_ft,
             own_velocity,
-            intruder_start: [0.0; 2],
-            intruder_velocity: [0.0; 2],
-            intruder_vertical: None,
-            intruder_recording: Some(RecordedIntruder {
-                path,
-                t0,
-                own_start,
-                t_cpa,
-            }),
+            intruder: IntruderPath::Recorded(intruder),
             quantum: AltitudeQuantum::ModeS25,
             scans,
         },

@@ -679,10 +679,12 @@ fn check_kinematics_within<S: Scalar>(
 /// close enough for it to leave the velocity envelope (beyond the filter's
 /// own allowance). Such a start drops the estimate and starts again from
 /// its row, once: if the start that follows leaves the envelope too, the
-/// reports themselves move faster than the envelope and the run stops there.
+/// reports keep implying a speed beyond it (data that fast, or an outlier
+/// row) and the run stops there.
 #[derive(Debug, Default)]
 struct StartCheck {
-    /// The estimate began at a start that left the envelope.
+    /// The estimate began at a start that left the envelope (a gap's
+    /// restart begins a new one).
     restarted: bool,
 }
 
@@ -690,7 +692,7 @@ impl StartCheck {
     /// `check`, the envelope check after a row with `event`, at a row
     /// completing a two-point start (`start`) or not: `Ok(true)` when the
     /// estimate is to start again from this row, the check's error when it
-    /// stops the run. A gap's restart begins a new estimate.
+    /// stops the run.
     fn restart(
         &mut self,
         check: Result<(), ReplayError>,
@@ -701,17 +703,11 @@ impl StartCheck {
             self.restarted = false;
         }
         match check {
-            Ok(()) => {
-                if start {
-                    self.restarted = false;
-                }
-                Ok(false)
-            }
             Err(ReplayError::Estimate { unit: "m/s", .. }) if start && !self.restarted => {
                 self.restarted = true;
                 Ok(true)
             }
-            Err(e) => Err(e),
+            other => other.map(|()| false),
         }
     }
 }
@@ -1101,14 +1097,15 @@ fn run_bank<S: CsvValue, const D: usize>(
     let mut previous_t: Option<f64> = None;
     let mut starts = StartCheck::default();
     for row in &data.rows {
+        let refused = |error| ReplayError::Filter {
+            line: row.line,
+            error,
+        };
         let (mut outcomes, mut event, z_dt) = match interval::<S>(previous_t, row.t, row.line)? {
             Err(event) => ([BankOutcome::Skipped; D], event, None),
             Ok(dt) => {
                 let z = positions::<S, D>(row)?;
-                let outcomes = bank.update(z, dt).map_err(|error| ReplayError::Filter {
-                    line: row.line,
-                    error,
-                })?;
+                let outcomes = bank.update(z, dt).map_err(refused)?;
                 let event = match outcomes.first() {
                     Some(BankOutcome::Restarted) => RowEvent::Restarted,
                     Some(BankOutcome::Skipped) => RowEvent::Skipped,
@@ -1126,10 +1123,7 @@ fn run_bank<S: CsvValue, const D: usize>(
         let start = matches!(outcomes.first(), Some(BankOutcome::SecondPoint));
         if let (true, Some((z, dt))) = (starts.restart(check, start, event)?, z_dt) {
             bank = fresh;
-            outcomes = bank.update(z, dt).map_err(|error| ReplayError::Filter {
-                line: row.line,
-                error,
-            })?;
+            outcomes = bank.update(z, dt).map_err(refused)?;
             event = RowEvent::RestartedStart;
         }
         if event.used() {
@@ -1385,7 +1379,9 @@ pub fn replay_range_azimuth_in<S: CsvValue>(
     data: &RangeAzimuthMeasurements,
 ) -> Result<Replayed, ReplayError> {
     let noise = options.noise::<S>().map_err(ReplayError::Noise)?;
-    let mut filter = RangeAzimuthFilter::new(noise);
+    // A new estimate and, with it, no RA in force.
+    let fresh = || (RangeAzimuthFilter::new(noise), RaMemory::<S>::new());
+    let (mut filter, mut ra_memory) = fresh();
     let altitude_config = AltitudeTrackerConfig::<S>::default_for(options.altitude_quantum)
         .map_err(ReplayError::AltitudeGains)?;
     let mut altitude = AltitudeTracker::<S>::new(altitude_config);
@@ -1394,10 +1390,10 @@ pub fn replay_range_azimuth_in<S: CsvValue>(
     out.push('\n');
     let mut events = TimingEvents::default();
     let mut previous_t: Option<f64> = None;
-    let mut ra_memory = RaMemory::<S>::new();
     let mut starts = StartCheck::default();
     for row in &data.rows {
         let line = row.line;
+        let refused = |error| ReplayError::Filter { line, error };
         let range: S = value(row.range, line, 2, "range")?;
         let azimuth: S = value(row.azimuth, line, 3, "azimuth")?;
         let report = match row.alt {
@@ -1419,12 +1415,9 @@ pub fn replay_range_azimuth_in<S: CsvValue>(
         if let (true, Ok(dt)) = (event.used(), interval) {
             used_dt = Some(dt);
             if event == RowEvent::Restarted {
-                filter = RangeAzimuthFilter::new(noise);
-                ra_memory = RaMemory::new();
+                (filter, ra_memory) = fresh();
             }
-            outcome = filter
-                .update(range, azimuth, dt)
-                .map_err(|error| ReplayError::Filter { line, error })?;
+            outcome = filter.update(range, azimuth, dt).map_err(refused)?;
             if data.has_alt {
                 let incredible = altitude.incredible_reports();
                 altitude
@@ -1439,11 +1432,8 @@ pub fn replay_range_azimuth_in<S: CsvValue>(
         let check = check_range_azimuth(line, &filter);
         let start = matches!(outcome, RangeAzimuthOutcome::SecondPoint);
         if let (true, Some(dt)) = (starts.restart(check, start, event)?, used_dt) {
-            filter = RangeAzimuthFilter::new(noise);
-            ra_memory = RaMemory::new();
-            outcome = filter
-                .update(range, azimuth, dt)
-                .map_err(|error| ReplayError::Filter { line, error })?;
+            (filter, ra_memory) = fresh();
+            outcome = filter.update(range, azimuth, dt).map_err(refused)?;
             event = RowEvent::RestartedStart;
         }
         events.record(event, &row.t_text);

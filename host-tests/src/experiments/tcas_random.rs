@@ -118,6 +118,17 @@ fn seconds(v: Option<f64>) -> String {
     v.map_or("–".into(), |v| format!("{v:+.0}"))
 }
 
+/// The rows of a [`by_level_table`] over all levels.
+pub fn all_levels(by_level: &Table) -> Table {
+    let mut out = Table::new(by_level.headers.clone());
+    by_level
+        .rows
+        .iter()
+        .filter(|r| r[2] == "all")
+        .for_each(|r| out.push(r.clone()));
+    out
+}
+
 /// The table by condition, type and level.
 pub fn by_level_table(encounters: &[RandomEncounter], results: &SuiteResults) -> Table {
     let mut table = Table::new([
@@ -312,10 +323,7 @@ pub fn run(ctx: &Context) -> Result<(), String> {
          vertical miss against the 25 ft quantum, in `wrong_senses.md`.\n",
         encounters.len()
     );
-    let overall: Vec<&Vec<String>> = table.rows.iter().filter(|r| r[2] == "all").collect();
-    let mut t = Table::new(table.headers.clone());
-    overall.into_iter().for_each(|r| t.push(r.clone()));
-    let _ = writeln!(s, "## All levels\n\n{}", t.to_markdown());
+    let _ = writeln!(s, "## All levels\n\n{}", all_levels(&table).to_markdown());
     let _ = writeln!(
         s,
         "## HMD filter confidence k (f64; the library's k = {MISS_DISTANCE_CONFIDENCE})\n\n{}",

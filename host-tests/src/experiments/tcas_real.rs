@@ -15,9 +15,12 @@ use std::collections::BTreeMap;
 use std::fmt::Write as _;
 
 use super::common::{write_file, Context, Table};
+use rayon::prelude::*;
+
 use super::tcas_random::{
-    by_level_table, late_ra_table, simulate_encounters, wrong_sense_table, RUNS,
+    all_levels, by_level_table, late_ra_table, simulate_encounters, wrong_sense_table, RUNS,
 };
+use crate::encounters::ScanOutcome;
 use crate::random_encounters::{
     exact_library_timeline, ra_onset, reference, trace_one, RandomEncounter, RunResult, CONDITIONS,
 };
@@ -37,7 +40,7 @@ pub const ABOUT: &str =
 fn encounters_table(encounters: &[RandomEncounter]) -> Table {
     let mut by_path: BTreeMap<&str, BTreeMap<u8, usize>> = BTreeMap::new();
     for e in encounters {
-        if let Some(r) = &e.encounter.intruder_recording {
+        if let Some(r) = e.encounter.recorded() {
             *by_path
                 .entry(r.path.name.as_str())
                 .or_default()
@@ -71,46 +74,53 @@ fn closest_approach_m(e: &RandomEncounter) -> f64 {
         .fold(f64::INFINITY, f64::min)
 }
 
-/// The encounters with false RAs under `runs` (one condition, f64): the
-/// recorded path, how many runs, the drawn HMD and the path's actual
-/// closest approach against the level's HMD threshold, whether the
-/// library's run on exact inputs has one too, and at that run's RA onset whether the HMD filter was off
-/// after a detected manoeuvre (DO-185B `detect_maneuvers`) and the
-/// intruder's largest acceleration over the 10 s before.
-fn false_ra_causes_table(encounters: &[RandomEncounter], runs: &[Vec<RunResult>]) -> Table {
+/// The encounters with a false RA on exact inputs (`exact`, f64) or under
+/// `noisy` (one condition, f64): the recorded path, the false RAs of each,
+/// the drawn HMD and the path's actual closest approach against the
+/// level's HMD threshold, and at the exact-input run's RA onset whether
+/// the HMD filter had no miss distance (off for the cycles after a
+/// detected manoeuvre, DO-185B `detect_maneuvers`, or no straight path
+/// fits the range track) and the intruder's largest acceleration over the
+/// [`ACCELERATION_WINDOW_S`] before.
+fn false_ra_table(
+    encounters: &[RandomEncounter],
+    exact: &[Vec<RunResult>],
+    noisy: &[Vec<RunResult>],
+) -> Table {
     let mut table = Table::new([
         "encounter".to_string(),
         "level".into(),
         "recorded path".into(),
-        "closest approach at (s)".into(),
-        "false RA runs".into(),
+        "designed closest approach, recording time (s)".into(),
+        "false RA on exact inputs".into(),
+        format!("false RA runs, {}", CONDITIONS[1].name),
         "HMD / threshold".into(),
         "closest approach / threshold".into(),
-        "on exact inputs too".into(),
-        "HMD filter off at onset (exact)".into(),
-        format!("intruder's largest acceleration, {ACCELERATION_WINDOW_S} s before onset (m/s²)"),
+        "no miss distance at the exact onset".into(),
+        format!("intruder's largest acceleration, {ACCELERATION_WINDOW_S} s before the exact onset (m/s²)"),
     ]);
-    for (e, rs) in encounters.iter().zip(runs) {
-        let n = rs.iter().filter(|r| r.ra && !r.reference_ra).count();
-        let Some(recorded) = e.encounter.intruder_recording.filter(|_| n > 0) else {
+    let false_ras = |rs: &[RunResult]| rs.iter().filter(|r| r.ra && !r.reference_ra).count();
+    for ((e, x), rs) in encounters.iter().zip(exact).zip(noisy) {
+        let (on_exact, n) = (false_ras(x), false_ras(rs));
+        let Some(recorded) = e.encounter.recorded().filter(|_| on_exact + n > 0) else {
             continue;
         };
         let threshold = level_for(e.encounter.own_altitude_ft)
             .ra
             .map_or(f64::NAN, |ra| ra.hmd_m);
-        let exact = trace_one::<f64>(e, &CONDITIONS[0], 0).ok();
-        let onset = exact
-            .as_ref()
-            .and_then(|(outcomes, traces)| ra_onset(outcomes).map(|(k, _)| (k, traces[k])));
+        let onset = (on_exact > 0)
+            .then(|| trace_one::<f64>(e, &CONDITIONS[0], 0).ok())
+            .flatten()
+            .and_then(|(outcomes, traces)| ra_onset(&outcomes).map(|(k, _)| (k, traces[k])));
         table.push([
             e.index.to_string(),
             format!("SL{}", e.level),
             recorded.path.name.clone(),
             format!("{:.0}", recorded.t_cpa),
+            if on_exact > 0 { "yes" } else { "no" }.to_string(),
             format!("{n} of {}", rs.len()),
             format!("{:.2}", e.hmd_m / threshold),
             format!("{:.2}", closest_approach_m(e) / threshold),
-            if onset.is_some() { "yes" } else { "no" }.to_string(),
             onset.map_or("–".into(), |(_, trace)| {
                 if trace.filter_miss_distance_m.is_none() {
                     "yes".into()
@@ -136,11 +146,18 @@ pub fn run(ctx: &Context) -> Result<(), String> {
     let results = simulate_encounters(&encounters, seeds, reference);
     let table = by_level_table(&encounters, &results);
     table.write(&dir, "by_level")?;
-    let against_exact = simulate_encounters(&encounters, seeds, exact_library_timeline);
+    let baselines: Vec<Vec<ScanOutcome>> = encounters
+        .par_iter()
+        .map(|e| {
+            exact_library_timeline(e)
+                .ok_or_else(|| format!("encounter {}: the library refused exact inputs", e.index))
+        })
+        .collect::<Result<_, _>>()?;
+    let against_exact = simulate_encounters(&encounters, seeds, |e| baselines[e.index].clone());
     let exact_table = by_level_table(&encounters, &against_exact);
     exact_table.write(&dir, "by_level_against_exact_inputs")?;
     encounters_table(&encounters).write(&dir, "encounters")?;
-    false_ra_causes_table(&encounters, &results[1][0]).write(&dir, "false_ras")?;
+    false_ra_table(&encounters, &results[0][0], &results[1][0]).write(&dir, "false_ras")?;
     late_ra_table(&encounters, &results[1][0]).write(&dir, "late_ras")?;
     wrong_sense_table(&encounters, &results[0][0], &results[1][0]).write(&dir, "wrong_senses")?;
 
@@ -167,24 +184,16 @@ pub fn run(ctx: &Context) -> Result<(), String> {
         OWN_SPEED_KT.0,
         OWN_SPEED_KT.1,
     );
-    let all_levels = |t: &Table| {
-        let mut out = Table::new(t.headers.clone());
-        t.rows
-            .iter()
-            .filter(|r| r[2] == "all")
-            .for_each(|r| out.push(r.clone()));
-        out.to_markdown()
-    };
     let _ = writeln!(
         s,
         "## Against the reference on the true states, all levels\n\n\
          The f64 reference of the rules on the true states, as for the randomized suite \
          (its HMD filter on the straight path of the current true velocity). Table by level: \
-         `by_level.md`; at {} (f64) the encounters with false RAs, with the library's state \
-         at its RA onset on exact inputs: `false_ras.md`; late RAs and the other sense at \
-         onset: `late_ras.md`, `wrong_senses.md`.\n\n{}",
+         `by_level.md`; the encounters with false RAs on exact inputs or at {} (f64), with \
+         the library's state at its RA onset on exact inputs: `false_ras.md`; late RAs and \
+         the other sense at onset: `late_ras.md`, `wrong_senses.md`.\n\n{}",
         CONDITIONS[1].name,
-        all_levels(&table)
+        all_levels(&table).to_markdown()
     );
     let _ = writeln!(
         s,
@@ -193,7 +202,7 @@ pub fn run(ctx: &Context) -> Result<(), String> {
          with 25 ft altitudes: what the receiver's noise (and, for the 100 ft condition, the \
          coarser altitude) changes, apart from what the surveillance does on exact inputs. \
          Table by level: `by_level_against_exact_inputs.md`.\n\n{}",
-        all_levels(&exact_table)
+        all_levels(&exact_table).to_markdown()
     );
     write_file(&dir.join("summary.md"), &s)
 }

@@ -402,7 +402,8 @@ fn a_jittered_start_within_its_own_uncertainty_is_not_refused() {
     }
 }
 
-/// The first two reports of [`a_jittered_start_within_its_own_uncertainty_is_not_refused`].
+/// A file whose first two reports are 0.1 s and 200 m apart, then a slow
+/// straight track ([`a_jittered_start_within_its_own_uncertainty_is_not_refused`]).
 const JITTERED_START: &str = "t,x,y\n0.45,0,0\n0.55,200,-10\n2,210,-15\n3,220,-20\n4,230,-25\n";
 
 /// The `vx` cell of a Cartesian output row (`t,x,vx,…`).
@@ -507,9 +508,9 @@ fn reports_faster_than_the_envelope_stop_at_the_second_start() {
             "{filter}: {e}"
         );
     }
-    // A new estimate clears the mark: after a gap (at 60 s, right after
-    // the first restart) a fast start restarts again rather than stopping
-    // the run, and so does one after a start that stayed inside (130.1 s).
+    // A gap's restart begins a new estimate and clears the mark: after the
+    // gaps at 60 s (right after the first restart) and 130 s, a fast start
+    // restarts again rather than stopping the run.
     let text = "t,x,y\n0,0,0\n0.1,200,0\n60,800,0\n60.1,1000,0\n61,1010,0\n62,1020,0\n\
                 130,1700,0\n130.1,1900,0\n131,1910,0\n";
     let run = replay("--filter ab --alpha 0.5 --beta 0.2", "f64", text);
