@@ -405,11 +405,17 @@ impl<U> Scaled<U> {
                 self
             };
         }
-        let (high, low) = if self.biased_exponent >= other.biased_exponent {
-            (self, other)
+        // One copy of the rest for each order (no selects to swap them).
+        if self.biased_exponent >= other.biased_exponent {
+            Self::ordered_sum(self, other)
         } else {
-            (other, self)
-        };
+            Self::ordered_sum(other, self)
+        }
+    }
+
+    /// The sum of two nonzero numbers, `high`'s exponent the larger.
+    #[inline(always)]
+    fn ordered_sum(high: Self, low: Self) -> Self {
         let gap = high.biased_exponent.wrapping_sub(low.biased_exponent); // ≥ 0
         if gap > 31 {
             return Self::sum_far_apart(high, low, gap);
