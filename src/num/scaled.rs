@@ -477,29 +477,70 @@ impl<U> Scaled<U> {
     /// the larger, correctly rounded on 32-bit words: the exact sum of the
     /// magnitudes is (`word` + `fraction`/2³²)·2^e_high, `word` = |m_high| +
     /// `low_word` < 2³², so its leading bit is bit 30 or 31 of `word` and
-    /// the rounding bit the next one down ([`Self::rounded`]).
+    /// the rounding bit the next one down. Only a carry into bit 31 moves
+    /// the exponent (up: the one overflow); otherwise it is `high`'s own.
     #[inline(always)]
     fn sum_of_magnitudes(high: Self, low_word: u32, fraction: u32) -> Self {
         let word = high.mantissa.unsigned_abs().wrapping_add(low_word);
-        Self::rounded(
-            high.mantissa < 0,
-            word,
-            fraction >> 31,
-            high.biased_exponent as i32,
-        )
+        let negative = high.mantissa < 0;
+        if word >> 31 != 0 {
+            // word/2 rounded half up: the half bit is word's last bit.
+            Self::finish(
+                negative,
+                word.wrapping_add(1) >> 1,
+                (high.biased_exponent as i32).wrapping_add(1),
+            )
+        } else {
+            Self::at_valid_exponent(
+                negative,
+                word.wrapping_add(fraction >> 31),
+                high.biased_exponent,
+            )
+        }
     }
 
     /// ±(`word` + `next_bit`/2 + less)·2^e for a word in [2³⁰, 2³² − 1) and
-    /// `stored` = e − [`EXPONENT_MIN`], rounded to nearest, ties away from
-    /// zero: a word of 32 bits is halved, its last bit the rounding bit;
-    /// otherwise `next_bit` rounds it (to 2³¹ at most, which [`Self::finish`]
-    /// takes as one bit more).
+    /// `stored` = e − [`EXPONENT_MIN`] as [`Self::finish`] takes it, rounded
+    /// to nearest, ties away from zero: a word of 32 bits is halved, its
+    /// last bit the rounding bit; otherwise `next_bit` rounds it (to 2³¹ at
+    /// most, rarely: [`Self::rounded_to_power`]).
     #[inline(always)]
     fn rounded(negative: bool, word: u32, next_bit: u32, stored: i32) -> Self {
         if word >> 31 != 0 {
             Self::finish(negative, word.wrapping_add(1) >> 1, stored.wrapping_add(1))
         } else {
-            Self::finish(negative, word.wrapping_add(next_bit), stored)
+            let m = word.wrapping_add(next_bit);
+            if m >> 31 != 0 {
+                return Self::rounded_to_power(negative, stored);
+            }
+            Self::finish(negative, m, stored)
+        }
+    }
+
+    /// ±2³¹·2^e, `stored` = e − [`EXPONENT_MIN`] as [`Self::finish`] takes
+    /// it: a mantissa rounded up to the next power of two (rare; apart, so
+    /// that the common paths test for it with one branch).
+    #[cold]
+    #[inline(never)]
+    fn rounded_to_power(negative: bool, stored: i32) -> Self {
+        Self::finish(negative, 1 << 31, stored)
+    }
+
+    /// ±`magnitude`·2^e for a magnitude in [2³⁰, 2³¹] and e a valid
+    /// value's exponent (`stored` = e − [`EXPONENT_MIN`] in 0..=300), as
+    /// [`Self::finish`] gives it with fewer tests: only the magnitude 2³¹
+    /// (rare) can leave the range.
+    #[inline(always)]
+    fn at_valid_exponent(negative: bool, magnitude: u32, stored: u32) -> Self {
+        if magnitude >> 31 != 0 {
+            return Self::rounded_to_power(negative, stored as i32);
+        }
+        // m < 2³¹: the cast is exact and the negation cannot wrap.
+        let m = magnitude as i32;
+        Scaled {
+            mantissa: if negative { m.wrapping_neg() } else { m },
+            biased_exponent: stored,
+            unit: PhantomData,
         }
     }
 
@@ -554,10 +595,10 @@ impl<U> Scaled<U> {
         let word = (difference >> 32) as u32;
         let fraction = difference as u32;
         if word >> 30 != 0 {
-            Self::finish(
+            Self::at_valid_exponent(
                 negative,
                 word.wrapping_add(fraction >> 31),
-                high.biased_exponent as i32,
+                high.biased_exponent,
             )
         } else {
             // One bit up from the fraction, the next one rounds.
@@ -579,10 +620,9 @@ impl<U> Scaled<U> {
         }
     }
 
+    /// −self; the invalid value's mantissa `i32::MIN` is its own wrapping
+    /// negation, so it stays invalid.
     fn negated(self) -> Self {
-        if self.is_invalid() {
-            return self;
-        }
         Scaled {
             mantissa: self.mantissa.wrapping_neg(),
             ..self
