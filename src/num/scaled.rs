@@ -294,25 +294,28 @@ impl<U> Scaled<U> {
         Some(self.order_key().cmp(&other.order_key()))
     }
 
-    /// A key whose order is the values' (valid values): ±(stored exponent ·
-    /// 2³¹ + |mantissa|), 0 for zero. |mantissa| < 2³¹ stays below the
-    /// exponent's bits, and normalised mantissas make a larger exponent a
-    /// larger magnitude.
+    /// Whether neither is the invalid value (which is unordered).
+    #[inline(always)]
+    fn ordered_with(self, other: Self) -> bool {
+        !self.is_invalid() && !other.is_invalid()
+    }
+
+    /// A key whose order is the values' (valid values), in two words: the
+    /// stored exponent, complemented for a negative mantissa, above the
+    /// mantissa with its sign bit flipped. Normalised mantissas make a
+    /// larger exponent a larger magnitude, and zero (mantissa 0, stored
+    /// exponent 0) sorts as the smallest non-negative value.
     #[inline(always)]
     fn order_key(self) -> i64 {
-        let key = (i64::from(self.biased_exponent) << 31) | i64::from(self.mantissa.unsigned_abs());
-        if self.mantissa > 0 {
-            key
-        } else if self.mantissa < 0 {
-            key.wrapping_neg()
-        } else {
-            0
-        }
+        let sign = self.mantissa >> 31;
+        let high = (self.biased_exponent as i32) ^ sign;
+        let low = (self.mantissa as u32) ^ (1 << 31);
+        (i64::from(high) << 32) | i64::from(low)
     }
 
     /// Rounded to nearest, ties away from zero: the product of two
     /// normalised mantissas lies in [2⁶⁰, 2⁶²), so its leading bit is one of
-    /// two and the rounding is a constant shift.
+    /// two, both in its word above 2³⁰ ([`Self::rounded`]).
     fn multiply(self, other: Self) -> Self {
         if is_special(self.mantissa) || is_special(other.mantissa) {
             return if self.is_invalid() || other.is_invalid() {
@@ -328,13 +331,13 @@ impl<U> Scaled<U> {
         // that sum plus EXPONENT_MIN is the stored form of e_a + e_b.
         let stored = (self.biased_exponent.wrapping_add(other.biased_exponent) as i32)
             .wrapping_add(EXPONENT_MIN);
-        if product >> 61 != 0 {
-            let m = ((product >> 30).wrapping_add(1) >> 1) as u32;
-            Self::finish(negative, m, stored.wrapping_add(31))
-        } else {
-            let m = ((product >> 29).wrapping_add(1) >> 1) as u32;
-            Self::finish(negative, m, stored.wrapping_add(30))
-        }
+        // ⌊product/2³⁰⌋ is in [2³⁰, 2³² − 4], the next bit down is bit 29.
+        Self::rounded(
+            negative,
+            (product >> 30) as u32,
+            ((product as u32) >> 29) & 1,
+            stored.wrapping_add(30),
+        )
     }
 
     /// ±`magnitude`·2^e for a magnitude in [2³⁰, 2³¹] (2³¹ is one bit
@@ -402,96 +405,204 @@ impl<U> Scaled<U> {
                 self
             };
         }
-        let (high, low) = if self.biased_exponent >= other.biased_exponent {
-            (self, other)
+        // One copy of the rest for each order (no selects to swap them).
+        if self.biased_exponent >= other.biased_exponent {
+            Self::ordered_sum(self, other)
         } else {
-            (other, self)
-        };
-        let gap = high.biased_exponent.wrapping_sub(low.biased_exponent); // ≥ 0
-        if gap > 32 {
-            // The smaller one is below 2⁻² of an ulp of the larger: the
-            // sum rounds to the larger (also when it lowers its leading bit:
-            // 2³⁰·2³¹ − x, x < 2²⁹, rounds back to 2³⁰ at the new scale).
-            return high;
+            Self::ordered_sum(other, self)
         }
+    }
+
+    /// The sum of two nonzero numbers, `high`'s exponent the larger.
+    #[inline(always)]
+    fn ordered_sum(high: Self, low: Self) -> Self {
+        let gap = high.biased_exponent.wrapping_sub(low.biased_exponent); // ≥ 0
+        if gap > 31 {
+            return Self::sum_far_apart(high, low, gap);
+        }
+        let (low_word, fraction) = Self::aligned(low, gap);
         if (high.mantissa ^ low.mantissa) >= 0 {
-            Self::sum_of_magnitudes(high, low, gap)
+            Self::sum_of_magnitudes(high, low_word, fraction)
+        } else if gap < 2 {
+            Self::close_difference(high, low, gap)
         } else {
-            Self::difference_of_magnitudes(high, low, gap)
+            Self::difference_of_magnitudes(high, low_word, fraction)
+        }
+    }
+
+    /// The sum of two nonzero numbers whose exponents are `gap` ≥ 32 apart,
+    /// `high` the larger: the smaller is below 2⁻¹ of an ulp of the larger,
+    /// so the sum rounds to the larger, with one exception. With opposite
+    /// signs, a gap of 32 and |m_high| = 2³⁰ the difference 2³⁰ − |m_low|/2³²
+    /// (in units of 2^e_high) is within half a unit of 2³¹ − 1 at the next
+    /// lower exponent unless |m_low| = 2³⁰ (a tie, rounded away from zero,
+    /// back to the larger). At a gap above 32 (|m_low| below 2⁻² units) it
+    /// rounds back to the larger at any scale.
+    #[cold]
+    fn sum_far_apart(high: Self, low: Self, gap: u32) -> Self {
+        let opposite = (high.mantissa ^ low.mantissa) < 0;
+        let high_is_power = high.mantissa.unsigned_abs() == 1 << TOP_BIT;
+        let low_is_power = low.mantissa.unsigned_abs() == 1 << TOP_BIT;
+        if gap == 32 && opposite && high_is_power && !low_is_power {
+            // The exponent is at least 32 above the smaller's: no flush.
+            let m = i32::MAX;
+            Scaled {
+                mantissa: if high.mantissa < 0 {
+                    m.wrapping_neg()
+                } else {
+                    m
+                },
+                biased_exponent: high.biased_exponent.wrapping_sub(1),
+                unit: PhantomData,
+            }
+        } else {
+            high
         }
     }
 
     /// |m_low|·2^(32 − `gap`) split into the word above 2³² and the word
-    /// below (`gap` ≤ 32): the smaller magnitude aligned to the larger's
-    /// exponent, with the 32 bits shifted out kept.
+    /// below (`gap` ≤ 31): the smaller magnitude aligned to the larger's
+    /// exponent, with the bits shifted out kept at the top of a word
+    /// (shifting twice keeps both shift counts below 32: none for gap 0).
     #[inline(always)]
     fn aligned(low: Self, gap: u32) -> (u32, u32) {
         let magnitude = low.mantissa.unsigned_abs();
         (
-            magnitude.checked_shr(gap).unwrap_or(0),
-            magnitude.checked_shl(32u32.wrapping_sub(gap)).unwrap_or(0),
+            magnitude.wrapping_shr(gap),
+            (magnitude << 1).wrapping_shl(31u32.wrapping_sub(gap)),
         )
     }
 
     /// The sum of two nonzero numbers of the same sign, `high`'s exponent
-    /// `gap` ≤ 32 above `low`'s, correctly rounded on 32-bit words: the
-    /// exact sum of the magnitudes is (`word` + `fraction`/2³²)·2^e_high,
-    /// `word` = |m_high| + ⌊|m_low|/2^gap⌋ < 2³² and `fraction` the bits
-    /// shifted out, so its leading bit is bit 30 or 31 of `word`.
+    /// the larger, correctly rounded on 32-bit words: the exact sum of the
+    /// magnitudes is (`word` + `fraction`/2³²)·2^e_high, `word` = |m_high| +
+    /// `low_word` < 2³², so its leading bit is bit 30 or 31 of `word` and
+    /// the rounding bit the next one down. Only a carry into bit 31 moves
+    /// the exponent (up: the one overflow); otherwise it is `high`'s own.
     #[inline(always)]
-    fn sum_of_magnitudes(high: Self, low: Self, gap: u32) -> Self {
-        let (low_word, fraction) = Self::aligned(low, gap);
+    fn sum_of_magnitudes(high: Self, low_word: u32, fraction: u32) -> Self {
         let word = high.mantissa.unsigned_abs().wrapping_add(low_word);
         let negative = high.mantissa < 0;
         if word >> 31 != 0 {
             // word/2 rounded half up: the half bit is word's last bit.
             Self::finish(
                 negative,
-                (word >> 1).wrapping_add(word & 1),
+                word.wrapping_add(1) >> 1,
                 (high.biased_exponent as i32).wrapping_add(1),
             )
         } else {
-            Self::finish(
+            Self::at_valid_exponent(
                 negative,
                 word.wrapping_add(fraction >> 31),
-                high.biased_exponent as i32,
+                high.biased_exponent,
             )
         }
     }
 
-    /// The sum of two nonzero numbers of opposite signs, `high`'s exponent
-    /// `gap` ≤ 32 above `low`'s, correctly rounded: the exact difference of
-    /// the magnitudes (`word` + `fraction`/2³²)·2^e_high. For `gap` ≥ 2 the
-    /// smaller is below 2²⁹ units, so `word`'s leading bit is bit 29 or 30
-    /// and the rounding takes one or two bits of `fraction`; a closer gap
-    /// (cancellation to any depth) is normalised by [`Self::from_wide`] on
-    /// the exact 64-bit difference.
+    /// ±(`word` + `next_bit`/2 + less)·2^e for a word in [2³⁰, 2³² − 1) and
+    /// `stored` = e − [`EXPONENT_MIN`] as [`Self::finish`] takes it, rounded
+    /// to nearest, ties away from zero: a word of 32 bits is halved, its
+    /// last bit the rounding bit; otherwise `next_bit` rounds it (to 2³¹ at
+    /// most, rarely: [`Self::rounded_to_power`]).
     #[inline(always)]
-    fn difference_of_magnitudes(high: Self, low: Self, gap: u32) -> Self {
-        let (low_word, low_fraction) = Self::aligned(low, gap);
-        let high_magnitude = high.mantissa.unsigned_abs();
-        let negative = high.mantissa < 0;
-        if gap < 2 {
-            // Both below 2⁶³: exact in i64, of either sign.
-            let wide = (i64::from(high_magnitude) << 32)
-                .wrapping_sub((i64::from(low_word) << 32) | i64::from(low_fraction));
-            let signed = if negative { wide.wrapping_neg() } else { wide };
-            return Self::from_wide(signed, high.exponent().wrapping_sub(32));
+    fn rounded(negative: bool, word: u32, next_bit: u32, stored: i32) -> Self {
+        if word >> 31 != 0 {
+            Self::finish(negative, word.wrapping_add(1) >> 1, stored.wrapping_add(1))
+        } else {
+            let m = word.wrapping_add(next_bit);
+            if m >> 31 != 0 {
+                return Self::rounded_to_power(negative, stored);
+            }
+            Self::finish(negative, m, stored)
         }
-        // (high − low_word)·2³² − low_fraction, borrowing from the word.
-        let fraction = 0u32.wrapping_sub(low_fraction);
-        let word = high_magnitude
-            .wrapping_sub(low_word)
-            .wrapping_sub(u32::from(low_fraction != 0));
+    }
+
+    /// ±2³¹·2^e, `stored` = e − [`EXPONENT_MIN`] as [`Self::finish`] takes
+    /// it: a mantissa rounded up to the next power of two (rare; apart, so
+    /// that the common paths test for it with one branch).
+    #[cold]
+    #[inline(never)]
+    fn rounded_to_power(negative: bool, stored: i32) -> Self {
+        Self::finish(negative, 1 << 31, stored)
+    }
+
+    /// ±`magnitude`·2^e for a magnitude in [2³⁰, 2³¹] and e a valid
+    /// value's exponent (`stored` = e − [`EXPONENT_MIN`] in 0..=300), as
+    /// [`Self::finish`] gives it with fewer tests: only the magnitude 2³¹
+    /// (rare) can leave the range.
+    #[inline(always)]
+    fn at_valid_exponent(negative: bool, magnitude: u32, stored: u32) -> Self {
+        if magnitude >> 31 != 0 {
+            return Self::rounded_to_power(negative, stored as i32);
+        }
+        // m < 2³¹: the cast is exact and the negation cannot wrap.
+        let m = magnitude as i32;
+        Scaled {
+            mantissa: if negative { m.wrapping_neg() } else { m },
+            biased_exponent: stored,
+            unit: PhantomData,
+        }
+    }
+
+    /// The sum of two nonzero numbers of opposite signs whose exponents are
+    /// `gap` ≤ 1 apart: exact, and normalised exactly unless it has 32 bits
+    /// at the smaller exponent (then rounded by one bit). At gap 0 it is
+    /// the difference of the mantissas (of either sign, below 2³⁰ in
+    /// magnitude; zero when they cancel); at gap 1, 2·|m_high| − |m_low|
+    /// at the smaller exponent, positive and below 3·2³⁰.
+    #[inline(always)]
+    fn close_difference(high: Self, low: Self, gap: u32) -> Self {
+        let stored = (high.biased_exponent as i32).wrapping_sub(gap as i32);
+        let (negative, magnitude) = if gap == 0 {
+            // Opposite signs: no wrap.
+            let difference = high.mantissa.wrapping_add(low.mantissa);
+            if difference == 0 {
+                return Self::ZERO_VALUE;
+            }
+            (difference < 0, difference.unsigned_abs())
+        } else {
+            let magnitude =
+                (high.mantissa.unsigned_abs() << 1).wrapping_sub(low.mantissa.unsigned_abs());
+            if magnitude >> 31 != 0 {
+                return Self::finish(
+                    high.mantissa < 0,
+                    magnitude.wrapping_add(1) >> 1,
+                    stored.wrapping_add(1),
+                );
+            }
+            (high.mantissa < 0, magnitude)
+        };
+        // A nonzero magnitude below 2³¹: 0..=30 places to the leading bit.
+        let shift = magnitude.leading_zeros().wrapping_sub(1);
+        Self::finish(
+            negative,
+            magnitude << shift,
+            stored.wrapping_sub(shift as i32),
+        )
+    }
+
+    /// The sum of two nonzero numbers of opposite signs, `high`'s exponent
+    /// 2..=31 above the smaller's, correctly rounded: the exact difference
+    /// of the magnitudes is (`word` + `fraction`/2³²)·2^e_high. The smaller
+    /// is below 2²⁹ units, so `word`'s leading bit is bit 29 or 30 and the
+    /// rounding takes one or two bits of `fraction`.
+    #[inline(always)]
+    fn difference_of_magnitudes(high: Self, low_word: u32, low_fraction: u32) -> Self {
+        let negative = high.mantissa < 0;
+        // (|m_high|·2³² − (low_word·2³² + low_fraction)), borrowing from the word.
+        let difference = (u64::from(high.mantissa.unsigned_abs()) << 32)
+            .wrapping_sub((u64::from(low_word) << 32) | u64::from(low_fraction));
+        let word = (difference >> 32) as u32;
+        let fraction = difference as u32;
         if word >> 30 != 0 {
-            Self::finish(
+            Self::at_valid_exponent(
                 negative,
                 word.wrapping_add(fraction >> 31),
-                high.biased_exponent as i32,
+                high.biased_exponent,
             )
         } else {
             // One bit up from the fraction, the next one rounds.
-            let m = (word << 1) | (fraction >> 31);
+            let m = (difference >> 31) as u32;
             Self::finish(
                 negative,
                 m.wrapping_add((fraction >> 30) & 1),
@@ -509,10 +620,9 @@ impl<U> Scaled<U> {
         }
     }
 
+    /// −self; the invalid value's mantissa `i32::MIN` is its own wrapping
+    /// negation, so it stays invalid.
     fn negated(self) -> Self {
-        if self.is_invalid() {
-            return self;
-        }
         Scaled {
             mantissa: self.mantissa.wrapping_neg(),
             ..self
@@ -668,6 +778,28 @@ impl<U> Scaled<U> {
 impl<U> PartialOrd for Scaled<U> {
     fn partial_cmp(&self, other: &Self) -> Option<Ordering> {
         self.compare(*other)
+    }
+
+    // The comparisons from the keys directly (the same results as through
+    // `partial_cmp`, without forming an `Ordering`).
+    #[inline]
+    fn lt(&self, other: &Self) -> bool {
+        self.ordered_with(*other) && self.order_key() < other.order_key()
+    }
+
+    #[inline]
+    fn le(&self, other: &Self) -> bool {
+        self.ordered_with(*other) && self.order_key() <= other.order_key()
+    }
+
+    #[inline]
+    fn gt(&self, other: &Self) -> bool {
+        self.ordered_with(*other) && self.order_key() > other.order_key()
+    }
+
+    #[inline]
+    fn ge(&self, other: &Self) -> bool {
+        self.ordered_with(*other) && self.order_key() >= other.order_key()
     }
 }
 

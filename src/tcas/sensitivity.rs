@@ -341,6 +341,9 @@ impl<S: Scalar> OwnAircraft<S> {
     }
 }
 
+// Inline, so that the bound (a constant at every call) is converted at
+// compile time.
+#[inline]
 fn below<S: Scalar>(v: S, bound: f64) -> bool {
     v < S::from_f64_lossy(bound)
 }
