@@ -331,12 +331,17 @@ pub(crate) fn covariance_step<N: Numeric>(
     let alpha = pxx * inverse;
     let mut rate = pxv * inverse;
     // Inside the stability triangle (β < 2(2 − α)) whatever the rounding.
-    let two = N::Ratio::TWO;
-    let limit = (two - alpha) + (two - alpha).half();
+    // The bound is formed only when it can bind: for α ≤ 1 it is at least
+    // 1.5 (rounding is monotone), so a β ≤ 1 is inside it.
     let mut beta = rate * s.interval;
-    if beta > limit {
-        beta = limit;
-        rate = limit / s.interval;
+    let clearly_inside = beta <= one && alpha <= one;
+    if !clearly_inside {
+        let two = N::Ratio::TWO;
+        let limit = (two - alpha) + (two - alpha).half();
+        if beta > limit {
+            beta = limit;
+            rate = limit / s.interval;
+        }
     }
     let mut velocity = pvv - rate * pxv;
     let (position, cross) = (scaled_by(alpha, r), scaled_by(rate, r));
