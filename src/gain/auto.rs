@@ -453,6 +453,12 @@ pub(crate) fn match_manoeuvre<N: Numeric>(
     bounds: (N::Ratio, N::Ratio),
 ) {
     a.nis = a.nis + (nis - a.nis) * s.weight;
+    // At the floor with an average ≤ 1 the step is toward the floor (the
+    // rounded level is then at most the floor), so the clamp gives the
+    // floor back: not formed.
+    if a.manoeuvre == bounds.0 && a.nis <= N::Ratio::ONE {
+        return;
+    }
     a.manoeuvre = (a.manoeuvre + a.manoeuvre * (a.nis - N::Ratio::ONE).half().half())
         .min_of(bounds.1)
         .max_of(bounds.0);
