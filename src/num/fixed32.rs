@@ -704,6 +704,11 @@ impl Numeric for Fixed32 {
         fixed_track::circle_cost(dx, dy, radius, scale)
     }
 
+    #[inline]
+    fn circle_bounds(center: [Length; 2], reach: Length) -> ([Length; 2], [Length; 2]) {
+        fixed_track::circle_bounds(center, reach)
+    }
+
     fn grid_scale(min: Length, max: Length, cells: u16) -> FixedGridScale {
         fixed_track::grid_scale(min, max, cells)
     }

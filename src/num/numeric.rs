@@ -250,6 +250,20 @@ pub trait Real: Quantity + Mul<Output = Self> + Div<Output = Self> {
     }
 }
 
+/// The corners (min, max) of `center` ± (ρ + ρ/2⁴), ρ = `reach`, the
+/// sixteenth formed by four halvings ([`Numeric::circle_bounds`]).
+#[inline(always)]
+pub(crate) fn circle_box<S: Numeric>(
+    center: [S::Length; 2],
+    reach: S::Length,
+) -> ([S::Length; 2], [S::Length; 2]) {
+    let half = reach + reach.half().half().half().half();
+    (
+        [center[0] - half, center[1] - half],
+        [center[0] + half, center[1] + half],
+    )
+}
+
 /// `self + a·b`, rounded once, with overflow reported to the guard.
 pub trait AddProduct<A, B>: Quantity {
     /// `self + a·b`; marks `guard` if the result does not fit.
@@ -399,6 +413,17 @@ pub trait Numeric:
     ) -> Option<(Self::Length, Self::CircleScale)> {
         let radius = factor.sqrt() * sigma;
         Some((radius, Self::circle_scale(radius)?))
+    }
+
+    /// The corners (min, max) of the box `center` ± ρ·(1 + 2⁻⁴) around a
+    /// circle of reach ρ = `reach` ([`crate::track::GateRegion::bounds`]),
+    /// the sixteenth formed by four halvings.
+    #[inline]
+    fn circle_bounds(
+        center: [Self::Length; 2],
+        reach: Self::Length,
+    ) -> ([Self::Length; 2], [Self::Length; 2]) {
+        circle_box::<Self>(center, reach)
     }
 
     /// The radius of a circle of reach `reach` and scale `scale`: by

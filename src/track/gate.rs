@@ -325,11 +325,8 @@ impl<S: Numeric> GateRegion<S> {
     pub fn bounds(&self) -> BoundingBox<S> {
         match *self {
             GateRegion::Circle { center, reach, .. } => {
-                let half = reach + reach.half().half().half().half();
-                BoundingBox {
-                    min: [center[0] - half, center[1] - half],
-                    max: [center[0] + half, center[1] + half],
-                }
+                let (min, max) = S::circle_bounds(center, reach);
+                BoundingBox { min, max }
             }
             GateRegion::Polar(window) => {
                 let (min, max) = window.bounds();

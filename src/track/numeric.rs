@@ -377,6 +377,29 @@ pub(crate) mod fixed {
         (radius.is_valid() && radius > Length::ZERO).then_some(())
     }
 
+    /// [`crate::num::numeric::circle_box`] on the words: for a centre
+    /// within ±(2³⁰ − 1) steps and a reach within ±2²⁹ steps no sum
+    /// saturates or meets a sentinel, so the saturating operations are the
+    /// words' own (each halving rounds as `Length::half`, up on a tie);
+    /// anything else takes the saturating operations.
+    #[inline]
+    pub(crate) fn circle_bounds(center: [Length; 2], reach: Length) -> ([Length; 2], [Length; 2]) {
+        let [x, y] = center.map(Length::to_bits);
+        let r = reach.to_bits();
+        let within = |v: i32, limit: u32| v.unsigned_abs() < limit;
+        if !(within(x, 1 << 30) && within(y, 1 << 30) && within(r, (1 << 29) + 1)) {
+            return crate::num::numeric::circle_box::<crate::num::Fixed32>(center, reach);
+        }
+        // |r| ≤ 2²⁹: no step wraps, and |half| < 2³⁰.
+        let sixteenth = (0..4).fold(r, |h, _| h.wrapping_add(1) >> 1);
+        let half = r.wrapping_add(sixteenth);
+        let word = Length::from_bits;
+        (
+            [word(x.wrapping_sub(half)), word(y.wrapping_sub(half))],
+            [word(x.wrapping_add(half)), word(y.wrapping_add(half))],
+        )
+    }
+
     /// Exact in integers: the offsets and the radius are words of the same
     /// format, so (dx² + dy²) ≤ r² is decided exactly in 64 bits (each
     /// square < 2⁶²), and the ratio is formed by one division of the two,
