@@ -705,6 +705,11 @@ impl Numeric for Fixed32 {
     }
 
     #[inline]
+    fn circle_cost_at(z: [Length; 2], center: [Length; 2], reach: Length, _: ()) -> Option<u16> {
+        fixed_track::circle_cost_at(z, center, reach)
+    }
+
+    #[inline]
     fn circle_bounds(center: [Length; 2], reach: Length) -> ([Length; 2], [Length; 2]) {
         fixed_track::circle_bounds(center, reach)
     }

@@ -443,6 +443,18 @@ pub trait Numeric:
         scale: Self::CircleScale,
     ) -> Option<u16>;
 
+    /// [`Self::circle_cost`] of the measurement at `z` in the circle
+    /// around `center`: by default of the offsets `z` − `center`.
+    #[inline]
+    fn circle_cost_at(
+        z: [Self::Length; 2],
+        center: [Self::Length; 2],
+        reach: Self::Length,
+        scale: Self::CircleScale,
+    ) -> Option<u16> {
+        Self::circle_cost(z[0] - center[0], z[1] - center[1], reach, scale)
+    }
+
     /// The scale that spreads `min ..= max` over `cells` cells (about
     /// equal widths); everything in cell 0 if it cannot be formed.
     fn grid_scale(min: Self::Length, max: Self::Length, cells: u16) -> Self::GridScale;

@@ -69,28 +69,7 @@ pub fn div_wide(u1: u32, u0: u32, v: u32) -> (u32, u32) {
 /// *Hacker's Delight*, 2nd ed., §9-4, `divlu`): two 32-bit divisions (the
 /// Cortex-M3's `udiv`) and at most four corrections.
 pub fn div_wide_by_digits(u1: u32, u0: u32, v: u32) -> (u32, u32) {
-    const DIGIT: u32 = 1 << 16;
-    // v ≥ 2³¹, so its high digit is at least 2¹⁵.
-    let v_high = NonZeroU32::new(v >> 16).unwrap_or(NonZeroU32::MIN);
-    let v_low = v & 0xFFFF;
-    // One quotient digit of (high·2¹⁶ + low)/v, high < v: estimated from
-    // v's high digit, then corrected (at most twice, Knuth's step D3).
-    let digit = |high: u32, low: u32| {
-        let mut q = high / v_high;
-        let mut rest = high.wrapping_sub(q.wrapping_mul(v_high.get()));
-        for _ in 0..2 {
-            // rest < 2¹⁶ here, so rest·2¹⁶ + low fits a word.
-            if q >= DIGIT || q.wrapping_mul(v_low) > ((rest << 16) | low) {
-                q = q.wrapping_sub(1);
-                rest = rest.wrapping_add(v_high.get());
-                if rest < DIGIT {
-                    continue;
-                }
-            }
-            break;
-        }
-        q
-    };
+    let digit = |high: u32, low: u32| quotient_digit(high, low, v);
     let (u0_high, u0_low) = (u0 >> 16, u0 & 0xFFFF);
     let q1 = digit(u1, u0_high);
     // The partial remainder u1·2¹⁶ + u0_high − q1·v < v (modulo 2³²).
@@ -98,6 +77,44 @@ pub fn div_wide_by_digits(u1: u32, u0: u32, v: u32) -> (u32, u32) {
     let q0 = digit(partial, u0_low);
     let remainder = ((partial << 16) | u0_low).wrapping_sub(q0.wrapping_mul(v));
     ((q1 << 16) | q0, remainder)
+}
+
+/// One quotient digit ⌊(high·2¹⁶ + low)/v⌋ of Knuth's algorithm D with
+/// 16-bit digits, for v ≥ 2³¹, high < v and low < 2¹⁶: estimated from v's
+/// high digit, then corrected (at most twice, Knuth's step D3).
+#[inline(always)]
+fn quotient_digit(high: u32, low: u32, v: u32) -> u32 {
+    const DIGIT: u32 = 1 << 16;
+    // v ≥ 2³¹, so its high digit is at least 2¹⁵.
+    let v_high = NonZeroU32::new(v >> 16).unwrap_or(NonZeroU32::MIN);
+    let v_low = v & 0xFFFF;
+    let mut q = high / v_high;
+    let mut rest = high.wrapping_sub(q.wrapping_mul(v_high.get()));
+    for _ in 0..2 {
+        // rest < 2¹⁶ here, so rest·2¹⁶ + low fits a word.
+        if q >= DIGIT || q.wrapping_mul(v_low) > ((rest << 16) | low) {
+            q = q.wrapping_sub(1);
+            rest = rest.wrapping_add(v_high.get());
+            if rest < DIGIT {
+                continue;
+            }
+        }
+        break;
+    }
+    q
+}
+
+/// [`div_wide`]'s quotient when it is below 2¹⁶: for v ≥ 2³¹ and
+/// u1·2¹⁶ + ⌊u0/2¹⁶⌋ < v. Knuth's first quotient digit is then 0, so the
+/// Cortex-M3 runs only the second digit's step ([`quotient_digit`]); the
+/// Cortex-M0 divides as [`div_wide`].
+#[inline]
+pub fn div_wide_short(u1: u32, u0: u32, v: u32) -> u32 {
+    if ARMV6M {
+        div_wide_by_reciprocal(u1, u0, v).0
+    } else {
+        quotient_digit((u1 << 16) | (u0 >> 16), u0 & 0xFFFF, v)
+    }
 }
 
 /// ⌊2²⁴/(257 + i)⌋ for i = 0..256: a first reciprocal of a word v ≥ 2³¹

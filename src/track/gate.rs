@@ -358,10 +358,7 @@ impl<S: Numeric> GateRegion<S> {
                 center,
                 reach,
                 scale,
-            } => {
-                let z = observation.xy();
-                S::circle_cost(z[0] - center[0], z[1] - center[1], reach, scale)
-            }
+            } => S::circle_cost_at(observation.xy(), center, reach, scale),
             GateRegion::Polar(window) => {
                 let z = observation.xy().map(S::length_to_polar);
                 let measured_range = match observation.measurement() {

@@ -344,7 +344,7 @@ impl FixedGridScale {
 pub(crate) mod fixed {
     use super::{FixedGridScale, MAX_COST};
     use crate::num::fixed32::{Length, Ratio};
-    use crate::num::wide::div_wide;
+    use crate::num::wide::div_wide_short;
     use crate::num::wide::wide_mul_unsigned;
     use crate::num::Quantity;
 
@@ -400,6 +400,25 @@ pub(crate) mod fixed {
         )
     }
 
+    /// The offsets `z` − `center` on the words when both lie within
+    /// ±(2³⁰ − 1) steps (no difference then saturates or meets a
+    /// sentinel, so the saturating subtraction is the words' own), then
+    /// [`circle_cost`]; anything else through the saturating subtraction.
+    #[inline]
+    pub(crate) fn circle_cost_at(
+        z: [Length; 2],
+        center: [Length; 2],
+        reach: Length,
+    ) -> Option<u16> {
+        let within = |v: Length| v.to_bits().unsigned_abs() < 1 << 30;
+        if !(within(z[0]) && within(z[1]) && within(center[0]) && within(center[1])) {
+            return circle_cost(z[0] - center[0], z[1] - center[1], reach, ());
+        }
+        let offset =
+            |a: Length, b: Length| Length::from_bits(a.to_bits().wrapping_sub(b.to_bits()));
+        circle_cost(offset(z[0], center[0]), offset(z[1], center[1]), reach, ())
+    }
+
     /// Exact in integers: the offsets and the radius are words of the same
     /// format, so (dx² + dy²) ≤ r² is decided exactly in 64 bits (each
     /// square < 2⁶²), and the ratio is formed by one division of the two,
@@ -428,13 +447,14 @@ pub(crate) mod fixed {
         // n ≤ d < 2³² (the cast is exact), so n·MAX_COST < 2⁴⁸; d ≥ 1.
         let numerator = wide_mul_unsigned(n as u32, u32::from(MAX_COST)).wrapping_add(d / 2);
         // The floor of numerator/d without a 64-bit division: both scaled
-        // by 2^s so that d's top bit is set ([`div_wide`]'s divisor); the
-        // quotient (≤ MAX_COST + ½) is unchanged, and numerator·2^s <
-        // d·2^s·2¹⁶ < 2⁴⁸, its high word below the divisor.
+        // by 2^s so that d's top bit is set ([`div_wide_short`]'s divisor);
+        // the quotient (≤ MAX_COST + ½ < 2¹⁶) is unchanged, and
+        // numerator·2^s < d·2^s·2¹⁶ < 2⁴⁸: its bits above the low 16 are
+        // below the divisor ([`div_wide_short`]'s condition).
         let d = u32::try_from(d).ok().filter(|&d| d != 0)?;
         let s = d.leading_zeros();
         let numerator = numerator << s;
-        let (cost, _) = div_wide((numerator >> 32) as u32, numerator as u32, d << s);
+        let cost = div_wide_short((numerator >> 32) as u32, numerator as u32, d << s);
         u16::try_from(cost).ok().map(|c| c.min(MAX_COST))
     }
 

@@ -3,7 +3,7 @@
 //! other cores' digit division) against exact 64-bit arithmetic.
 
 use abtrack::num::wide::{
-    div_wide_by_digits, div_wide_by_reciprocal, wide_mul_by_halves,
+    div_wide_by_digits, div_wide_by_reciprocal, div_wide_short, wide_mul_by_halves,
     wide_mul_signed_unsigned_by_halves, wide_mul_unsigned_by_halves,
 };
 use proptest::prelude::*;
@@ -109,6 +109,44 @@ fn divisions_are_exact_on_many_draws() {
         let v = next() | (1 << 31);
         let (high, u0) = (next(), next());
         assert_divisions(high % v, u0, v);
+    }
+}
+
+/// The short division's quotient, for a dividend whose bits above its
+/// low 16 (`above`, below v) and low 16 bits (`low`) are given: exact.
+fn assert_short_division(above: u32, low: u32, v: u32) {
+    let (u1, u0) = (above >> 16, (above << 16) | (low & 0xFFFF));
+    let dividend = (u64::from(u1) << 32) | u64::from(u0);
+    assert_eq!(
+        div_wide_short(u1, u0, v),
+        (dividend / u64::from(v)) as u32,
+        "{dividend:#x} / {v:#x}"
+    );
+}
+
+#[test]
+fn short_divisions_are_exact() {
+    for &low in &EDGES {
+        for k in 0..4096u32 {
+            for v in [u32::MAX - k, (1 << 31) + k] {
+                for above in [0, k, v >> 1, v - 1 - k.min(v - 1), v - 1] {
+                    assert_short_division(above, low, v);
+                }
+            }
+        }
+    }
+    // xorshift32, as below.
+    let mut state = 0x2545_F491u32;
+    let mut next = || {
+        state ^= state << 13;
+        state ^= state >> 17;
+        state ^= state << 5;
+        state
+    };
+    for _ in 0..200_000 {
+        let v = next() | (1 << 31);
+        let (above, low) = (next(), next());
+        assert_short_division(above % v, low, v);
     }
 }
 
