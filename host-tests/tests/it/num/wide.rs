@@ -95,16 +95,21 @@ fn divisions_are_exact_at_the_edges() {
     }
 }
 
-#[test]
-fn divisions_are_exact_on_many_draws() {
-    // xorshift32: 200,000 divisors and dividends across the whole range.
-    let mut state = 0x9E37_79B9u32;
-    let mut next = || {
+/// Marsaglia's xorshift32 from `state` (nonzero): a cheap, seeded stream
+/// of words across the whole range.
+fn xorshift32(mut state: u32) -> impl FnMut() -> u32 {
+    move || {
         state ^= state << 13;
         state ^= state >> 17;
         state ^= state << 5;
         state
-    };
+    }
+}
+
+#[test]
+fn divisions_are_exact_on_many_draws() {
+    // 200,000 divisors and dividends across the whole range.
+    let mut next = xorshift32(0x9E37_79B9);
     for _ in 0..200_000 {
         let v = next() | (1 << 31);
         let (high, u0) = (next(), next());
@@ -135,14 +140,7 @@ fn short_divisions_are_exact() {
             }
         }
     }
-    // xorshift32, as below.
-    let mut state = 0x2545_F491u32;
-    let mut next = || {
-        state ^= state << 13;
-        state ^= state >> 17;
-        state ^= state << 5;
-        state
-    };
+    let mut next = xorshift32(0x2545_F491);
     for _ in 0..200_000 {
         let v = next() | (1 << 31);
         let (above, low) = (next(), next());
