@@ -106,7 +106,7 @@ fn quotient_digit(high: u32, low: u32, v: u32) -> u32 {
 
 /// [`div_wide`]'s quotient when it is below 2¹⁶: for v ≥ 2³¹ and
 /// u1·2¹⁶ + ⌊u0/2¹⁶⌋ < v. Knuth's first quotient digit is then 0, so the
-/// Cortex-M3 runs only the second digit's step ([`quotient_digit`]); the
+/// Cortex-M3 runs only the second digit's step (`quotient_digit`); the
 /// Cortex-M0 divides as [`div_wide`].
 #[inline]
 pub fn div_wide_short(u1: u32, u0: u32, v: u32) -> u32 {
