@@ -406,6 +406,21 @@ fn a_jittered_start_within_its_own_uncertainty_is_not_refused() {
 /// straight track ([`a_jittered_start_within_its_own_uncertainty_is_not_refused`]).
 const JITTERED_START: &str = "t,x,y\n0.45,0,0\n0.55,200,-10\n2,210,-15\n3,220,-20\n4,230,-25\n";
 
+/// One of each kind of x/y filter `replay` runs: `auto` (with σ 5 m, whose
+/// covariance allows little), a count schedule, fixed αβ and αβγ gains, a
+/// context schedule and the bank.
+const CARTESIAN_FILTERS: [&str; 6] = [
+    "--filter auto --sigma-m 5",
+    "--filter ab --schedule least-squares",
+    "--filter ab --alpha 0.5 --beta 0.2",
+    "--filter abg --alpha 0.5 --beta 0.2 --gamma 0.02",
+    "--filter abg --schedule tcas-firmness",
+    "--filter ab --schedule bank",
+];
+
+/// The number systems of `replay`'s x/y filters.
+const REPLAY_NUMERICS: [&str; 3] = ["f64", "f32", "q32.32"];
+
 /// The `vx` cell of a Cartesian output row (`t,x,vx,…`).
 fn vx(row: &str) -> f64 {
     row.split(',').nth(2).unwrap().parse().unwrap()
@@ -417,14 +432,8 @@ fn vx(row: &str) -> f64 {
 /// row, marked `restarted` and listed on stderr; the run goes on.
 #[test]
 fn a_start_outside_the_velocity_envelope_starts_again_from_its_row() {
-    for filter in [
-        "--filter auto --sigma-m 5",
-        "--filter ab --schedule least-squares",
-        "--filter ab --alpha 0.5 --beta 0.2",
-        "--filter abg --alpha 0.5 --beta 0.2 --gamma 0.02",
-        "--filter ab --schedule bank",
-    ] {
-        for numeric in ["f64", "f32", "q32.32"] {
+    for filter in CARTESIAN_FILTERS {
+        for numeric in REPLAY_NUMERICS {
             let run = replay(filter, numeric, JITTERED_START);
             let rows: Vec<&str> = run.csv.lines().collect();
             assert_eq!(rows.len(), 6, "{filter} {numeric}");
@@ -591,14 +600,8 @@ fn replay_runs_through_gaps_and_jitter_in_every_number_system() {
     ]
     .map(|(t, e)| (t.to_string(), e.to_string()))
     .to_vec();
-    for filter in [
-        "--filter ab --schedule least-squares",
-        "--filter ab --alpha 0.5 --beta 0.2",
-        "--filter abg --schedule tcas-firmness",
-        "--filter auto --sigma-m 5",
-        "--filter ab --schedule bank",
-    ] {
-        for numeric in ["f64", "f32", "q32.32"] {
+    for filter in CARTESIAN_FILTERS {
+        for numeric in REPLAY_NUMERICS {
             let run = replay(filter, numeric, GAPPY);
             assert_eq!(run.csv.lines().count(), 16, "{filter} {numeric}");
             assert_eq!(events(&run.csv), want, "{filter} {numeric}");
