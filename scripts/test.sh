@@ -11,10 +11,10 @@
 #      the library's documentation with no rustdoc warning (cargo doc, as
 #      docs.rs builds it) and the library and the firmware on their minimum
 #      Rust version,
-#   3. (in a lane beside step 2) the library alone (no default features)
-#      for the M4F and the M0 (with and without 32-bit atomics, the only
-#      target property that changes which of its code compiles) in one
-#      clippy pass with its no-panic lints, its dependency tree (no
+#   3. (in a lane beside step 2) the library alone (without features and
+#      with `defmt`) for the M4F and the M0 (with and without 32-bit
+#      atomics, the only target property that changes which of its code
+#      compiles) in a clippy pass with its no-panic lints, its dependency tree (no
 #      firmware crates), and the package as crates.io gets it
 #      (`cargo publish --dry-run --no-verify`, then the unpacked package
 #      checked: the verification build without its code generation, which
@@ -355,18 +355,25 @@ check_on_msrv() {
         --target thumbv7em-none-eabihf --target-dir target/msrv
 }
 
-# The library alone (no default features) for the M4F and the M0
-# (library_targets), in one clippy pass with its no-panic lints (Cargo.toml
+# The library alone (without features and with `defmt`) for the M4F and
+# the M0 (library_targets), in a clippy pass with its no-panic lints (Cargo.toml
 # [lints.clippy], .clippy.toml): indexing, unwrap/expect, panic! and integer
 # arithmetic are errors, and so is every other clippy warning
 # (docs/safety.md). Its code generation for the three targets is the
 # firmware build's. Every image is built here, the nRF52840-DK's last (it
 # reuses the M4F build's crates.io dependencies), so that no later lane
 # holds the build directory's lock for a link while the others run.
+# The library's clippy pass, without features and with `defmt` (the
+# firmware's: its Format impls are code too).
+clippy_library() {
+    cargo clippy -p abtrack --lib --no-default-features "${library_target_args[@]}" -- -D warnings &&
+        cargo clippy -p abtrack --lib --features defmt "${library_target_args[@]}" -- -D warnings
+}
+
 library_and_firmware_steps() {
     step "cargo fmt --check" cargo fmt --check
-    step "library alone for the M4F and the M0: clippy, no panic paths (indexing, unwrap, arithmetic)" \
-        cargo clippy -p abtrack --lib --no-default-features "${library_target_args[@]}" -- -D warnings
+    step "library alone for the M4F and the M0, without and with its defmt feature: clippy, no panic paths (indexing, unwrap, arithmetic)" \
+        clippy_library
     step "library: no firmware crates among its dependencies" library_has_no_firmware_dependencies
     step "library: the crates.io package (cargo publish --dry-run --no-verify; every file the build reads packaged)" check_package
     step "firmware build for the three targets (and the example static_track_table)" build_firmware

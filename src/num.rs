@@ -541,8 +541,18 @@ impl defmt::Format for Fix {
             let bits = self.0.to_bits();
             let neg = bits < 0;
             let mag = bits.unsigned_abs();
-            let int = mag >> 32;
-            let frac = ((mag & 0xFFFF_FFFF) * 1_000_000 + (1 << 31)) >> 32;
+            // The fraction rounded to six places, below 2⁶⁴ before the
+            // shift; rounding up to 1.000000 carries into the integer part
+            // (at most 2³¹: no wrap).
+            let millionths = (mag & 0xFFFF_FFFF)
+                .wrapping_mul(1_000_000)
+                .wrapping_add(1 << 31)
+                >> 32;
+            let (int, frac) = if millionths == 1_000_000 {
+                ((mag >> 32).wrapping_add(1), 0)
+            } else {
+                (mag >> 32, millionths)
+            };
             let sign = if neg { "-" } else { "" };
             defmt::write!(f, "{=str}{=u64}.{=u64:06}", sign, int, frac)
         }
