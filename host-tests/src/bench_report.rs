@@ -580,7 +580,11 @@ pub const OPERATIONS: &[(&str, &str)] = &[
     ),
     (
         "auto2d_update",
-        "2-D `auto`, fused with its filter (`filter::auto::AutoFilter`: one covariance for both axes; docs/auto.md)",
+        "2-D `auto`, fused with its filter (`filter::auto::AutoFilter::update_step`: one covariance for both axes, the interval's terms formed once per interval; docs/auto.md)",
+    ),
+    (
+        "auto2d_update_per_call_interval",
+        "the same, the interval's terms formed in every call (`AutoFilter::update`: reports that each come with their own interval)",
     ),
     (
         "range_azimuth_update",
@@ -663,6 +667,7 @@ const COMPARED: &[&str] = &[
     "ab2d_least_squares_update",
     "ab2d_liu_adaptive_update",
     "auto2d_update",
+    "auto2d_update_per_call_interval",
     "axis_kalman_cv2d_update",
 ];
 const FLOOR: &str = "floor_ab2d_update";

@@ -40,6 +40,38 @@ pub enum AutoUpdate {
     Skipped,
 }
 
+/// One update interval's terms for [`AutoFilter::update_step`]: the
+/// interval T and `auto`'s terms of it alone (T³, 1.5T², 3T and the NIS
+/// average's weight, [`crate::gain::auto`]), formed once for every filter
+/// updated after that interval (a scan's tracks, a regular report rate), as
+/// [`crate::filter::StepGains`] is for the fixed-gain filters. A filter that
+/// coasted since its last update forms its own from the whole span.
+#[derive(Debug, Clone, Copy, PartialEq)]
+#[cfg_attr(feature = "defmt", derive(defmt::Format))]
+pub struct AutoInterval<N: Numeric> {
+    interval: N::Interval,
+    span: Span<N::Ratio>,
+}
+
+impl<N: Numeric> AutoInterval<N> {
+    /// The terms of `dt`; refuses an interval that is not a valid number
+    /// or is ≤ 0 ([`FilterError::InvalidInterval`]). An interval outside
+    /// the filters' range is accepted: the update applies the interval
+    /// policy ([`AutoUpdate::Skipped`], [`AutoUpdate::Restarted`]).
+    pub fn new(dt: N::Interval) -> Result<Self, FilterError> {
+        crate::filter::check_interval(dt)?;
+        Ok(AutoInterval {
+            interval: dt,
+            span: Span::new(N::Ratio::ZERO, N::Ratio::from(dt)),
+        })
+    }
+
+    /// T.
+    pub fn interval(&self) -> N::Interval {
+        self.interval
+    }
+}
+
 /// A D-axis constant-velocity Kalman filter with one σ on every axis and
 /// the manoeuvre level estimated online (module docs): the state per axis,
 /// one normalised covariance, the time coasted and the phase. The
@@ -129,10 +161,16 @@ impl<N: Numeric, const D: usize> AutoFilter<N, D> {
         self.predicted_variance_ratio_over(dt, None)
     }
 
+    /// [`Self::predicted_variance_ratio`] for an update after `step`.
+    #[inline]
+    pub fn predicted_variance_ratio_step(&self, step: &AutoInterval<N>) -> Option<N::Ratio> {
+        self.predicted_variance_ratio_over(step.interval, Some(&step.span))
+    }
+
     /// [`Self::predicted_variance_ratio`], with the span of `dt` alone
     /// formed once for many filters ([`Self::span`]).
     #[inline]
-    pub(crate) fn predicted_variance_ratio_over(
+    fn predicted_variance_ratio_over(
         &self,
         dt: N::Interval,
         uncoasted: Option<&Span<N::Ratio>>,
@@ -167,9 +205,20 @@ impl<N: Numeric, const D: usize> AutoFilter<N, D> {
         self.update_over(noise, z, dt, None)
     }
 
+    /// [`Self::update`] after `step`'s interval, its terms formed once for
+    /// many updates ([`AutoInterval`]); the same results.
+    pub fn update_step(
+        &mut self,
+        noise: &SharedNoise<N>,
+        z: [N::Length; D],
+        step: &AutoInterval<N>,
+    ) -> Result<AutoUpdate, FilterError> {
+        self.update_over(noise, z, step.interval, Some(&step.span))
+    }
+
     /// [`Self::update`], with the span of `dt` alone formed once for many
     /// filters ([`Self::span`]).
-    pub(crate) fn update_over(
+    fn update_over(
         &mut self,
         noise: &SharedNoise<N>,
         z: [N::Length; D],

@@ -228,6 +228,7 @@ pub struct AutoGains<N: Numeric, const D: usize> {
 /// time coasted), τ³, 1.5τ², 3τ, the fading weight min(τ/8 s, ½), and the
 /// update's own interval T.
 #[derive(Debug, Clone, Copy, PartialEq)]
+#[cfg_attr(feature = "defmt", derive(defmt::Format))]
 pub(crate) struct Span<R> {
     tau: R,
     cube: R,

@@ -5,20 +5,18 @@ use super::gate::{Gate, GateRegion};
 use super::model::{
     uncertainty_region, wave_radius, Observation, PredictedState, ScanInterval, TrackFilter,
 };
-use crate::filter::auto::{AutoFilter, AutoUpdate};
+use crate::filter::auto::{AutoFilter, AutoInterval, AutoUpdate};
 use crate::filter::FilterError;
-use crate::gain::auto::Span;
 use crate::gain::AutoGains;
 use crate::num::{Numeric, Quantity, Real};
 
 /// A scan's interval as the default track uses it: the interval and
-/// `auto`'s per-interval terms of it alone (τ³, 1.5τ², 3τ, the fading
-/// weight), formed once per scan and used by every track that coasted
-/// nothing since its last update.
+/// `auto`'s terms of it ([`AutoInterval`]), formed once per scan and used
+/// by every track that coasted nothing since its last update.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct AutoStep<S: Numeric> {
     interval: ScanInterval<S>,
-    span: Span<S::Ratio>,
+    terms: AutoInterval<S>,
 }
 
 /// `Params` is the `auto` schedule as configured ([`AutoGains`]; its σ
@@ -32,10 +30,9 @@ impl<S: Numeric> TrackFilter<S> for AutoFilter<S, 2> {
     type Step = AutoStep<S>;
 
     fn step(_: &Self::Params, interval: &ScanInterval<S>) -> Result<AutoStep<S>, FilterError> {
-        let seconds = <S as Numeric>::Ratio::from(interval.interval());
         Ok(AutoStep {
             interval: *interval,
-            span: Span::new(<S as Numeric>::Ratio::ZERO, seconds),
+            terms: AutoInterval::new(interval.interval())?,
         })
     }
 
@@ -55,7 +52,7 @@ impl<S: Numeric> TrackFilter<S> for AutoFilter<S, 2> {
     ) -> Result<(), FilterError> {
         // In place: an `Err` and a skip change nothing.
         let noise = params.shared_noise();
-        match self.update_over(&noise, z.xy(), step.interval.interval(), Some(&step.span))? {
+        match self.update_step(&noise, z.xy(), &step.terms)? {
             // The table never offers a measurement that close (it skips the
             // whole scan): refused as an interval outside the filter's.
             AutoUpdate::Skipped => Err(FilterError::InvalidInterval),
@@ -88,7 +85,7 @@ impl<S: Numeric> TrackFilter<S> for AutoFilter<S, 2> {
     }
 
     fn predicted_variance_ratio(&self, _: &Self::Params, step: &AutoStep<S>) -> Option<S::Ratio> {
-        self.predicted_variance_ratio_over(step.interval.interval(), Some(&step.span))
+        self.predicted_variance_ratio_step(&step.terms)
     }
 
     /// α for a scan 1 s ahead (this signature has no interval); the table

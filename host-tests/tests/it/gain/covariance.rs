@@ -246,3 +246,59 @@ fn the_fused_filter_is_the_schedule_on_one_axis() {
     }
     assert!(filtered > 300, "{filtered} filtered updates");
 }
+
+/// `AutoFilter::update_step` with the interval's terms formed once
+/// (`AutoInterval`, as a track table forms them per scan) is `update`
+/// forming them in the call: the same outcome and the same filter, bit for
+/// bit, over irregular intervals, coasts, intervals under the shortest and
+/// over the longest, in every number system; the gate's variance likewise.
+fn interval_formed_once_is_update<N: Numeric>() {
+    use abtrack::filter::auto::{AutoFilter, AutoInterval};
+    let sigma = 50.0;
+    let gains = AutoGains::<N, 2>::new(&AutoConfig::cartesian(sigma)).expect("auto builds");
+    let noise = gains.shared_noise();
+    let (mut per_call, mut once) = (AutoFilter::<N, 2>::new(), AutoFilter::<N, 2>::new());
+    let mut events = events(5, 300, sigma, 0.5, 6.0, 20.0);
+    // An interval under the shortest (skipped) and one over the longest
+    // (restarted), each with a measurement.
+    events.insert(100, (0.01, Some([5000.0, 5000.0])));
+    events.insert(200, (25.0, Some([9000.0, 9000.0])));
+    let mut outcomes = std::collections::BTreeSet::new();
+    for (dt, z) in events {
+        let dt = N::Interval::from_f64_lossy(dt);
+        let step = AutoInterval::<N>::new(dt).expect("a positive interval");
+        assert_eq!(
+            per_call.predicted_variance_ratio(dt),
+            once.predicted_variance_ratio_step(&step)
+        );
+        match z {
+            Some(z) => {
+                let z = z.map(N::Length::from_f64_lossy);
+                let a = per_call.update(&noise, z, dt);
+                let b = once.update_step(&noise, z, &step);
+                assert_eq!(a, b);
+                outcomes.insert(format!("{a:?}"));
+            }
+            None => {
+                per_call.coast(dt).expect("coast");
+                once.coast(dt).expect("coast");
+            }
+        }
+        assert_eq!(per_call, once);
+    }
+    assert_eq!(outcomes.len(), 5, "every outcome taken: {outcomes:?}");
+    for dt in [0.0, -1.0, f64::NAN] {
+        assert_eq!(
+            AutoInterval::<N>::new(N::Interval::from_f64_lossy(dt)),
+            Err(abtrack::FilterError::InvalidInterval),
+            "{dt}"
+        );
+    }
+}
+
+#[test]
+fn an_interval_formed_once_gives_what_each_update_forms() {
+    interval_formed_once_is_update::<f64>();
+    interval_formed_once_is_update::<f32>();
+    interval_formed_once_is_update::<Fixed32>();
+}

@@ -11,7 +11,7 @@ use core::hint::black_box;
 use abtrack::filter::altitude::{
     AltitudeEstimate, AltitudeQuantum, AltitudeTracker, AltitudeTrackerConfig,
 };
-use abtrack::filter::auto::AutoFilter;
+use abtrack::filter::auto::{AutoFilter, AutoInterval};
 use abtrack::filter::range_azimuth::{RangeAzimuthFilter, RangeAzimuthNoise};
 use abtrack::filter::{Cartesian, Gains, KinematicFilter, StepGains};
 use abtrack::gain::al_wagih::LeastSquaresConfig;
@@ -89,6 +89,16 @@ fn update_scheduled<N: abtrack::Numeric, G: GainSchedule<N, 2>>(
 
 #[inline(never)]
 fn update_auto<N: abtrack::Numeric>(
+    filter: &mut AutoFilter<N, 2>,
+    noise: &SharedNoise<N>,
+    z: [N::Length; 2],
+    step: &AutoInterval<N>,
+) -> bool {
+    filter.update_step(noise, z, step).is_ok()
+}
+
+#[inline(never)]
+fn update_auto_per_call_interval<N: abtrack::Numeric>(
     filter: &mut AutoFilter<N, 2>,
     noise: &SharedNoise<N>,
     z: [N::Length; 2],
@@ -255,22 +265,37 @@ fn scheduled<N: BenchNumber>(bench: &mut Bench) {
 
 /// `auto` as the default Cartesian track runs it ([`AutoFilter`]: one
 /// covariance for both axes, docs/auto.md), configured with the data's σ,
-/// on the same target as the scheduled rows.
+/// on the same target as the scheduled rows: with the interval's terms
+/// formed once, before the loop ([`AutoInterval`], as the fixed-gain rows'
+/// step gains and a track table's scan), and formed in every call
+/// (`AutoFilter::update`, as for reports that each come with their own
+/// interval).
 #[inline(never)]
 fn auto<N: BenchNumber>(bench: &mut Bench) {
     let numeric = N::LABEL;
     let dt = black_box(N::Interval::from_f64_lossy(1.0));
     let target = PlaneRing::<N>::new(5.0);
-    let Ok(auto) = AutoGains::<N, 2>::new(&AutoConfig::cartesian(5.0)) else {
-        bench.fail(numeric, "auto2d_update", "schedule refused");
+    let (Ok(auto), Ok(step)) = (
+        AutoGains::<N, 2>::new(&AutoConfig::cartesian(5.0)),
+        AutoInterval::new(dt),
+    ) else {
+        bench.fail(numeric, "auto2d_update", "schedule or interval refused");
         return;
     };
     let noise = black_box(auto.shared_noise());
+    let step = black_box(step);
     let mut filter = AutoFilter::<N, 2>::new();
     bench.per_accepted_call(
         numeric,
         "auto2d_update",
-        |k| update_auto(&mut filter, &noise, target.get(k), dt),
+        |k| update_auto(&mut filter, &noise, target.get(k), &step),
+        |k| target.fetch(k),
+    );
+    let mut filter = AutoFilter::<N, 2>::new();
+    bench.per_accepted_call(
+        numeric,
+        "auto2d_update_per_call_interval",
+        |k| update_auto_per_call_interval(&mut filter, &noise, target.get(k), dt),
         |k| target.fetch(k),
     );
 }
