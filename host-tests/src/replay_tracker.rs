@@ -66,8 +66,8 @@ use abtrack::track::defaults::{
     TrackerDesign,
 };
 use abtrack::track::{
-    Association, DropReason, Measurement, Observation, RejectReason, ScanReport, ScheduledTrack,
-    TrackFilter, TrackTable, TrackerConfig,
+    Association, ConfigError, DropReason, Measurement, Observation, RejectReason, ScanReport,
+    ScheduledTrack, TrackFilter, TrackTable, TrackerConfig,
 };
 use abtrack::{Fix, Fixed32, ScaledScalar};
 
@@ -794,9 +794,23 @@ pub fn design_for(
         scan_period,
     };
     let derived = design.derive().map_err(|e| {
+        // Rule 4 weighs the clutter (its density in a new track's gates,
+        // its count over the area) against P_D: say what the clutter was.
+        let clutter = if e == ConfigError::NoConfirmationRule {
+            let area = design.clutter_area();
+            format!(
+                "; the clutter: {} false measurements a scan expected over the {} km² \
+                 counted; the sensor's own density (--clutter-per-km2; the default is the \
+                 nominal sensor's), the region watched (--region-m) or P_D (--pd) change it",
+                three_significant(design.clutter_density * area),
+                three_significant(area * 1e-6)
+            )
+        } else {
+            String::new()
+        };
         ReplayError::Design(format!(
-            "no configuration meets the design rules for these figures ({}): {e} (the \
-             figures come from --sigma-m or --range-sigma-m/--bearing-sigma-deg, \
+            "no configuration meets the design rules for these figures ({}): {e}{clutter} \
+             (the figures come from --sigma-m or --range-sigma-m/--bearing-sigma-deg, \
              --scan-period-s, --pd, --clutter-per-km2, --region-m, --max-speed-mps and \
              --max-accel-mps2)",
             design_figures(&design, period)
@@ -807,6 +821,15 @@ pub fn design_for(
         derived,
         period,
     })
+}
+
+/// `v` with three significant digits (no exponent: 2420, 0.00251).
+fn three_significant(v: f64) -> String {
+    if v == 0.0 || !v.is_finite() {
+        return format!("{v}");
+    }
+    let decimals = (2.0 - v.abs().log10().floor()).max(0.0);
+    format!("{v:.*}", decimals as usize)
 }
 
 /// Reads the whole input, picks the layout from its header and runs the

@@ -125,6 +125,12 @@ pub const MAX_SPURIOUS_DELETIONS_PER_SCAN: f64 = 1e-4;
 pub const MANOEUVRE_SIGMA_FRACTION: f64 = 0.5;
 /// Largest confirmation window considered (rule 4).
 pub const MAX_CONFIRMATION_WINDOW: u8 = 8;
+const _: () = assert!(
+    MAX_CONFIRMATION_WINDOW == 8
+        && MIN_TRUE_CONFIRMATION == 0.95
+        && MAX_FALSE_CONFIRMATIONS_PER_SCAN == 1e-3,
+    "ConfigError::NoConfirmationRule's message states them"
+);
 
 /// g·tan 30° (m/s²): the lateral acceleration of a coordinated turn at 30°
 /// of bank.
@@ -341,6 +347,15 @@ impl TrackerDesign {
         scan_period: 1.0,
     };
 
+    /// The area the rules count clutter over (m²): the coverage's, or else
+    /// the disc reaching `max_range` (module docs, inputs).
+    pub fn clutter_area(&self) -> f64 {
+        let max_range = self.coverage.max_range().unwrap_or(self.max_range);
+        self.coverage
+            .area()
+            .unwrap_or(core::f64::consts::PI * max_range * max_range)
+    }
+
     /// The parameters the rules of the module docs give.
     pub fn derive(&self) -> Result<DerivedParameters, ConfigError> {
         let pd = self.detection_probability;
@@ -360,13 +375,8 @@ impl TrackerDesign {
         let v_max = positive(self.max_speed)?;
         let a_max = positive(self.max_acceleration)?;
         let t = positive(self.scan_period)?;
-        // The region the rules count clutter over (module docs, inputs).
         let max_range = positive(self.coverage.max_range().unwrap_or(self.max_range))?;
-        let area = positive(
-            self.coverage
-                .area()
-                .unwrap_or(core::f64::consts::PI * max_range * max_range),
-        )?;
+        let area = positive(self.clutter_area())?;
         let (sigma_axis, max_sigma, across_first) = match self.accuracy {
             SensorAccuracy::Cartesian { sigma } => {
                 let s = positive(sigma)?;
@@ -438,7 +448,7 @@ impl TrackerDesign {
             }
         }
         let (confirmation, true_confirmation_probability, false_confirmations_per_scan) =
-            chosen.ok_or(ConfigError::Confirmation)?;
+            chosen.ok_or(ConfigError::NoConfirmationRule)?;
 
         // Rule 5.
         let p_miss = 1.0 - p_hit;

@@ -145,7 +145,21 @@ fn design_refuses_bad_figures() {
     // below one per 1000 scans: refused, not silently weakened.
     let mut d = TrackerDesign::NOMINAL_RADAR;
     d.clutter_density = 1e-4;
-    assert!(d.derive().is_err());
+    assert_eq!(
+        d.derive().unwrap_err(),
+        abtrack::track::ConfigError::NoConfirmationRule
+    );
+    // So low a P_D that no rule confirms a true target with probability
+    // 0.95 (at most 7 hits after the first point): the same rule fails.
+    let mut d = TrackerDesign::NOMINAL_RADAR;
+    d.detection_probability = 0.3;
+    assert_eq!(
+        d.derive().unwrap_err(),
+        abtrack::track::ConfigError::NoConfirmationRule
+    );
+    // The area clutter is counted over: the coverage's (the nominal
+    // radar's 10 km square).
+    assert_eq!(TrackerDesign::NOMINAL_RADAR.clutter_area(), 1e8);
 }
 
 // Bytes per track of every filter and number system: host-tests/tests/

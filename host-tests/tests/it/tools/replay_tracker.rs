@@ -519,6 +519,13 @@ fn errors_name_the_line() {
         // The refusal names the figures it was derived from (the run's
         // figures line is printed only when the design succeeds).
         ("--tracker --clutter-per-km2 100 -", "clutter 100 per km²"),
+        // Which rule failed, and the clutter it weighed: 100 per km² over
+        // the disc to the farthest point, √8 m.
+        ("--tracker --clutter-per-km2 100 -", "(design rule 4)"),
+        (
+            "--tracker --clutter-per-km2 100 -",
+            "0.00251 false measurements a scan expected over the 0.0000251 km² counted",
+        ),
         (
             "--tracker --sigma-m 20 --range-sigma-m 20 -",
             "cannot be combined",
