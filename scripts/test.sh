@@ -303,7 +303,7 @@ library_target_args=("${library_targets[@]/#/--target=}")
 # The package as crates.io gets it: `cargo publish --dry-run --no-verify`
 # makes it without its verification build (a build of the packaged
 # sources); instead, every file the library's compilation read (its
-# dep-info from the clippy pass: sources, include_str! files) must be in the
+# dep-info from the clippy passes: sources, include_str! files) must be in the
 # package. The packaged sources are then the ones clippy checked and the
 # firmware build compiles for the three targets.
 check_package() {
@@ -355,6 +355,14 @@ check_on_msrv() {
         --target thumbv7em-none-eabihf --target-dir target/msrv
 }
 
+# The library's clippy pass, without features and with `defmt` (the
+# firmware's: its Format impls are code too).
+clippy_library() {
+    cargo clippy -p abtrack --lib --no-default-features "${library_target_args[@]}" -- -D warnings &&
+        cargo clippy -p abtrack --lib --no-default-features --features defmt \
+            "${library_target_args[@]}" -- -D warnings
+}
+
 # The library alone (without features and with `defmt`) for the M4F and
 # the M0 (library_targets), in a clippy pass with its no-panic lints (Cargo.toml
 # [lints.clippy], .clippy.toml): indexing, unwrap/expect, panic! and integer
@@ -363,13 +371,6 @@ check_on_msrv() {
 # firmware build's. Every image is built here, the nRF52840-DK's last (it
 # reuses the M4F build's crates.io dependencies), so that no later lane
 # holds the build directory's lock for a link while the others run.
-# The library's clippy pass, without features and with `defmt` (the
-# firmware's: its Format impls are code too).
-clippy_library() {
-    cargo clippy -p abtrack --lib --no-default-features "${library_target_args[@]}" -- -D warnings &&
-        cargo clippy -p abtrack --lib --features defmt "${library_target_args[@]}" -- -D warnings
-}
-
 library_and_firmware_steps() {
     step "cargo fmt --check" cargo fmt --check
     step "library alone for the M4F and the M0, without and with its defmt feature: clippy, no panic paths (indexing, unwrap, arithmetic)" \

@@ -462,6 +462,27 @@ impl Fix {
     /// The smallest positive step, 2⁻³².
     pub const DELTA: Fix = Fix(I32F32::DELTA);
 
+    /// The value as a decimal with six places, without floats (the firmware
+    /// log's form): (negative, integer part, millionths), |value| rounded to
+    /// the nearest millionth, half up; a fraction that rounds to 1.000000
+    /// carries into the integer part. A sentinel gives its bits' value.
+    pub fn decimal_millionths(self) -> (bool, u64, u64) {
+        let bits = self.0.to_bits();
+        let magnitude = bits.unsigned_abs();
+        // Below 2⁶⁴ before the shift: (2³² − 1)·10⁶ + 2³¹.
+        let millionths = (magnitude & 0xFFFF_FFFF)
+            .wrapping_mul(1_000_000)
+            .wrapping_add(1 << 31)
+            >> 32;
+        // The integer part is at most 2³¹: adding the carry cannot wrap.
+        let (int, frac) = if millionths == 1_000_000 {
+            ((magnitude >> 32).wrapping_add(1), 0)
+        } else {
+            (magnitude >> 32, millionths)
+        };
+        (bits < 0, int, frac)
+    }
+
     /// Wraps a raw `fixed` value. A value equal to `I32F32::MIN`/`MAX` is a
     /// saturation sentinel.
     pub const fn from_fixed(v: I32F32) -> Self {
@@ -537,23 +558,8 @@ impl defmt::Format for Fix {
         if self.is_sentinel() {
             defmt::write!(f, "SAT")
         } else {
-            // Q32.32 printed as a decimal with six places, without floats.
-            let bits = self.0.to_bits();
-            let neg = bits < 0;
-            let mag = bits.unsigned_abs();
-            // The fraction rounded to six places, below 2⁶⁴ before the
-            // shift; rounding up to 1.000000 carries into the integer part
-            // (at most 2³¹: no wrap).
-            let millionths = (mag & 0xFFFF_FFFF)
-                .wrapping_mul(1_000_000)
-                .wrapping_add(1 << 31)
-                >> 32;
-            let (int, frac) = if millionths == 1_000_000 {
-                ((mag >> 32).wrapping_add(1), 0)
-            } else {
-                (mag >> 32, millionths)
-            };
-            let sign = if neg { "-" } else { "" };
+            let (negative, int, frac) = self.decimal_millionths();
+            let sign = if negative { "-" } else { "" };
             defmt::write!(f, "{=str}{=u64}.{=u64:06}", sign, int, frac)
         }
     }

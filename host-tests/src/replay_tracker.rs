@@ -823,13 +823,16 @@ pub fn design_for(
     })
 }
 
-/// `v` with three significant digits (no exponent: 2420, 0.00251).
+/// `v` rounded to three significant digits, without an exponent (24300,
+/// 100, 0.00251).
 fn three_significant(v: f64) -> String {
     if v == 0.0 || !v.is_finite() {
         return format!("{v}");
     }
-    let decimals = (2.0 - v.abs().log10().floor()).max(0.0);
-    format!("{v:.*}", decimals as usize)
+    let scale = 10f64.powf(v.abs().log10().floor() - 2.0);
+    let rounded = (v / scale).round() * scale;
+    let decimals = (2.0 - rounded.abs().log10().floor()).max(0.0);
+    format!("{rounded:.*}", decimals as usize)
 }
 
 /// Reads the whole input, picks the layout from its header and runs the

@@ -44,7 +44,7 @@
 //!    (polar: max(σ_R, R_max·σ_B)).
 //! 4. **Confirmation M-of-N** (the scan that starts a track counts as its
 //!    first hit): the rule with the smallest M (fastest confirmation), then
-//!    the smallest N ≤ 8, such that
+//!    the smallest N ≤ 8 (none: [`ConfigError::NoConfirmationRule`]), such that
 //!    * a true target is confirmed with probability ≥
 //!      [`MIN_TRUE_CONFIRMATION`] = 0.95: P(at least M − 1 hits in N − 1
 //!      scans, each hit with probability P_D·P_G), and
@@ -348,15 +348,16 @@ impl TrackerDesign {
     };
 
     /// The area the rules count clutter over (m²): the coverage's, or else
-    /// the disc reaching `max_range` (module docs, inputs).
+    /// the disc reaching `max_range` (module docs, inputs). The figures are
+    /// not checked here ([`Self::derive`] checks them).
     pub fn clutter_area(&self) -> f64 {
-        let max_range = self.coverage.max_range().unwrap_or(self.max_range);
         self.coverage
             .area()
-            .unwrap_or(core::f64::consts::PI * max_range * max_range)
+            .unwrap_or(core::f64::consts::PI * self.max_range * self.max_range)
     }
 
-    /// The parameters the rules of the module docs give.
+    /// The parameters the rules of the module docs give;
+    /// [`ConfigError::NoConfirmationRule`] when rule 4 finds no M-of-N.
     pub fn derive(&self) -> Result<DerivedParameters, ConfigError> {
         let pd = self.detection_probability;
         if !pd.is_finite() {

@@ -301,4 +301,6 @@ fn an_interval_formed_once_gives_what_each_update_forms() {
     interval_formed_once_is_update::<f64>();
     interval_formed_once_is_update::<f32>();
     interval_formed_once_is_update::<Fixed32>();
+    interval_formed_once_is_update::<abtrack::Fix>();
+    interval_formed_once_is_update::<abtrack::ScaledScalar>();
 }

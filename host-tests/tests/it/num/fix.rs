@@ -199,3 +199,22 @@ proptest! {
         }
     }
 }
+
+/// The firmware log's decimal form (`Fix::decimal_millionths`, defmt's
+/// `Format`): rounded to the nearest millionth, a fraction that rounds to
+/// 1.000000 carried into the integer part, the sign apart.
+#[test]
+fn decimal_millionths_round_and_carry() {
+    let bits = |b: i64| Fix::from_bits(b);
+    assert_eq!(fix(3.25).decimal_millionths(), (false, 3, 250_000));
+    assert_eq!(fix(-3.25).decimal_millionths(), (true, 3, 250_000));
+    // 3 + (2³² − 1)/2³²: the fraction rounds up to 1.000000.
+    assert_eq!(bits((4 << 32) - 1).decimal_millionths(), (false, 4, 0));
+    assert_eq!(bits(-((4 << 32) - 1)).decimal_millionths(), (true, 4, 0));
+    // Half a millionth is 2147.48 steps of 2⁻³²: 2148 rounds up, 2147
+    // down.
+    assert_eq!(bits((1 << 32) + 2148).decimal_millionths(), (false, 1, 1));
+    assert_eq!(bits((1 << 32) + 2147).decimal_millionths(), (false, 1, 0));
+    // The largest magnitude carries to 2³¹ without a wrap.
+    assert_eq!(bits(i64::MIN + 1).decimal_millionths(), (true, 1 << 31, 0));
+}

@@ -279,7 +279,9 @@ fn auto<N: BenchNumber>(bench: &mut Bench) {
         AutoGains::<N, 2>::new(&AutoConfig::cartesian(5.0)),
         AutoInterval::new(dt),
     ) else {
-        bench.fail(numeric, "auto2d_update", "schedule or interval refused");
+        for row in ["auto2d_update", "auto2d_update_per_call_interval"] {
+            bench.fail(numeric, row, "schedule or interval refused");
+        }
         return;
     };
     let noise = black_box(auto.shared_noise());
