@@ -155,21 +155,23 @@ impl FixedVariance {
         self.0
     }
 
+    /// `i32::MAX` or `i32::MIN`: the word less `i32::MAX`, unsigned, is 0
+    /// or (wrapping) 1 for them alone.
+    #[inline(always)]
     fn is_sentinel(self) -> bool {
-        self.0 == i32::MIN || self.0 == i32::MAX
+        (self.0 as u32).wrapping_sub(i32::MAX as u32) < 2
     }
 
     /// `wide` as a word, or the sentinel of its sign.
+    #[inline(always)]
     fn saturate(wide: i64) -> Self {
-        match i32::try_from(wide) {
-            Ok(v) if v != i32::MIN && v != i32::MAX => FixedVariance(v),
-            _ => {
-                if wide < 0 {
-                    Self::MIN
-                } else {
-                    Self::MAX
-                }
-            }
+        if wide >= i64::from(i32::MAX) {
+            Self::MAX
+        } else if wide <= i64::from(i32::MIN) {
+            Self::MIN
+        } else {
+            // Strictly between the sentinels: exact.
+            FixedVariance(wide as i32)
         }
     }
 
@@ -197,7 +199,8 @@ impl core::ops::Add for FixedVariance {
 impl core::ops::Neg for FixedVariance {
     type Output = Self;
     fn neg(self) -> Self {
-        // The valid range is symmetric; the sentinels swap.
+        // The sentinels swap; the lowest valid word, 1 − 2³¹, negates to
+        // i32::MAX, the sentinel its exact negation saturates to.
         match self {
             Self::MAX => Self::MIN,
             Self::MIN => Self::MAX,
@@ -208,8 +211,14 @@ impl core::ops::Neg for FixedVariance {
 
 impl core::ops::Sub for FixedVariance {
     type Output = Self;
+    /// The exact difference, saturated; with a sentinel operand, the sum
+    /// with −`rhs` (whose sentinels swap). Not `self + (-rhs)` for valid
+    /// operands: the negation of the lowest valid word is a sentinel.
     fn sub(self, rhs: Self) -> Self {
-        self + (-rhs)
+        if self.is_sentinel() || rhs.is_sentinel() {
+            return self + (-rhs);
+        }
+        Self::saturate(i64::from(self.0).wrapping_sub(i64::from(rhs.0)))
     }
 }
 

@@ -6,6 +6,7 @@ mod error_budget;
 mod f32_integer_paths;
 mod fix;
 mod fixed32;
+mod fixed_variance;
 mod hypot3;
 mod scaled_scalar;
 mod sine;
