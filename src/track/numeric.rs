@@ -213,7 +213,9 @@ impl core::ops::Sub for FixedVariance {
     type Output = Self;
     /// The exact difference, saturated; with a sentinel operand, the sum
     /// with −`rhs` (whose sentinels swap). Not `self + (-rhs)` for valid
-    /// operands: the negation of the lowest valid word is a sentinel.
+    /// operands: the negation of the lowest valid word is a sentinel, which
+    /// made a difference with that word as `rhs` a sentinel for any
+    /// negative `self`.
     fn sub(self, rhs: Self) -> Self {
         if self.is_sentinel() || rhs.is_sentinel() {
             return self + (-rhs);

@@ -38,6 +38,10 @@ fn word() -> impl Strategy<Value = i32> {
         Just(i32::MIN),
         Just(i32::MAX - 1),
         Just(i32::MIN + 1),
+        Just(0),
+        Just(1),
+        Just(-1),
+        Just(65_536),
         -70_000i32..70_000,
     ]
 }
@@ -45,8 +49,10 @@ fn word() -> impl Strategy<Value = i32> {
 proptest! {
     #![proptest_config(ProptestConfig { cases: 5000, ..ProptestConfig::default() })]
 
+    /// The exact result, saturated at the sentinels; with a sentinel
+    /// operand, the sentinel of the exact result's sign.
     #[test]
-    fn arithmetic_is_the_exact_result_saturated(a in word(), b in word()) {
+    fn sums_differences_and_products_against_the_exact_values(a in word(), b in word()) {
         let (x, y) = (from_bits(a), from_bits(b));
         prop_assert_eq!(x.to_bits(), a);
         let sentinel = is_sentinel(a) || is_sentinel(b);
@@ -70,5 +76,25 @@ proptest! {
         let product = (wa * wb + (1 << 15)) >> 16;
         prop_assert_eq!((x * y).to_bits(), expected(product, sentinel));
         prop_assert_eq!(x.is_valid(), !is_sentinel(a));
+    }
+}
+
+/// The words next to the sentinels: the last valid result on each side,
+/// the first that saturates, and the differences with the lowest valid
+/// word (whose negation is a sentinel) as the subtrahend.
+#[test]
+fn results_at_the_saturation_boundaries() {
+    let (max, min) = (i32::MAX, i32::MIN);
+    for (result, expected_bits) in [
+        (from_bits(max - 1) + from_bits(0), max - 1),
+        (from_bits(max - 1) + from_bits(1), max),
+        (from_bits(min + 1) - from_bits(0), min + 1),
+        (from_bits(min + 1) - from_bits(1), min),
+        (from_bits(-1) - from_bits(min + 1), max - 1),
+        (from_bits(0) - from_bits(min + 1), max),
+        (from_bits(min + 1) - from_bits(min + 1), 0),
+        (from_bits(max - 1) - from_bits(max - 1), 0),
+    ] {
+        assert_eq!(result.to_bits(), expected_bits);
     }
 }
