@@ -50,8 +50,6 @@ pub enum AutoUpdate {
 #[cfg_attr(feature = "defmt", derive(defmt::Format))]
 pub struct AutoInterval<N: Numeric> {
     interval: N::Interval,
-    /// Where T falls against the filters' range (the interval policy).
-    class: IntervalSpan,
     span: Span<N::Ratio>,
 }
 
@@ -61,9 +59,9 @@ impl<N: Numeric> AutoInterval<N> {
     /// the filters' range is accepted: the update applies the interval
     /// policy ([`AutoUpdate::Skipped`], [`AutoUpdate::Restarted`]).
     pub fn new(dt: N::Interval) -> Result<Self, FilterError> {
+        crate::filter::check_interval(dt)?;
         Ok(AutoInterval {
             interval: dt,
-            class: IntervalSpan::of(dt)?,
             span: Span::new(N::Ratio::ZERO, N::Ratio::from(dt)),
         })
     }
@@ -143,18 +141,6 @@ impl<N: Numeric, const D: usize> AutoFilter<N, D> {
     /// filter.
     pub fn predict(&self, dt: N::Interval) -> Result<[N::Length; D], FilterError> {
         crate::filter::check_interval(dt)?;
-        self.predict_valid(dt)
-    }
-
-    /// [`Self::predict`] `step`'s interval ahead (checked when the step was
-    /// formed).
-    pub fn predict_step(&self, step: &AutoInterval<N>) -> Result<[N::Length; D], FilterError> {
-        self.predict_valid(step.interval)
-    }
-
-    /// [`Self::predict`] for an interval known valid.
-    #[inline(always)]
-    fn predict_valid(&self, dt: N::Interval) -> Result<[N::Length; D], FilterError> {
         let mut guard = N::Guard::default();
         let mut out = self.position;
         for (x, v) in out.iter_mut().zip(&self.velocity) {
@@ -216,9 +202,7 @@ impl<N: Numeric, const D: usize> AutoFilter<N, D> {
         z: [N::Length; D],
         dt: N::Interval,
     ) -> Result<AutoUpdate, FilterError> {
-        // The interval's class is formed first but reported after the
-        // measurement's check, as in a step's update.
-        self.update_over(noise, z, dt, IntervalSpan::of(dt), None)
+        self.update_over(noise, z, dt, None)
     }
 
     /// [`Self::update`] after `step`'s interval, its terms formed once for
@@ -229,18 +213,16 @@ impl<N: Numeric, const D: usize> AutoFilter<N, D> {
         z: [N::Length; D],
         step: &AutoInterval<N>,
     ) -> Result<AutoUpdate, FilterError> {
-        self.update_over(noise, z, step.interval, Ok(step.class), Some(&step.span))
+        self.update_over(noise, z, step.interval, Some(&step.span))
     }
 
-    /// [`Self::update`], with `dt`'s class (`Err` for an invalid interval)
-    /// and the span of `dt` alone formed once for many filters
-    /// ([`Self::span`]).
+    /// [`Self::update`], with the span of `dt` alone formed once for many
+    /// filters ([`Self::span`]).
     fn update_over(
         &mut self,
         noise: &SharedNoise<N>,
         z: [N::Length; D],
         dt: N::Interval,
-        class: Result<IntervalSpan, FilterError>,
         uncoasted: Option<&Span<N::Ratio>>,
     ) -> Result<AutoUpdate, FilterError> {
         let mut guard = N::Guard::default();
@@ -250,12 +232,12 @@ impl<N: Numeric, const D: usize> AutoFilter<N, D> {
         if !N::passed(&guard) {
             return Err(FilterError::InvalidMeasurement);
         }
-        let class = class?;
         if self.phase == Phase::Empty {
+            crate::filter::check_interval(dt)?;
             self.start(z);
             return Ok(AutoUpdate::FirstPoint);
         }
-        match class {
+        match IntervalSpan::of(dt)? {
             IntervalSpan::InRange => {}
             IntervalSpan::TooShort => return Ok(AutoUpdate::Skipped),
             IntervalSpan::TooLong => {

@@ -71,7 +71,7 @@ impl<S: Numeric> TrackFilter<S> for AutoFilter<S, 2> {
         step: &AutoStep<S>,
     ) -> Result<PredictedState<S>, FilterError> {
         Ok(PredictedState {
-            position: AutoFilter::predict_step(self, &step.terms)?,
+            position: AutoFilter::predict(self, step.interval.interval())?,
             velocity: AutoFilter::velocity(self),
         })
     }
