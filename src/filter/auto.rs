@@ -16,8 +16,8 @@
 
 use crate::filter::{FilterError, IntervalSpan, Phase};
 use crate::gain::auto::{
-    capped_nis, covariance_step_or_restart, match_manoeuvre, mean_over_axes, predicted, two_point,
-    AutoAxis, SharedNoise, Span,
+    capped_nis, covariance_step_or_restart, match_manoeuvre, mean_over_axes,
+    predicted_variance_and_cross, two_point, AutoAxis, SharedNoise, Span,
 };
 use crate::num::{AddProduct, Numeric, Quantity, Real};
 
@@ -69,6 +69,32 @@ impl<N: Numeric> AutoInterval<N> {
     /// T.
     pub fn interval(&self) -> N::Interval {
         self.interval
+    }
+}
+
+/// What a gate forms of [`AutoFilter`]'s predicted covariance for an update
+/// after an [`AutoInterval`], formed once for the gate and the update of the
+/// same scan (the track table's default track): p̃⁻_xx, whose check the gate
+/// needs, and the cross term before its process noise
+/// (`crate::gain::auto::predicted_variance_and_cross`).
+#[derive(Debug, Clone, Copy, PartialEq)]
+#[cfg_attr(feature = "defmt", derive(defmt::Format))]
+pub struct AutoPrediction<N: Numeric> {
+    position: N::Ratio,
+    cross: N::Ratio,
+}
+
+impl<N: Numeric> AutoPrediction<N> {
+    /// A placeholder (zeros) for a workspace no gate has written yet.
+    pub const NONE: Self = AutoPrediction {
+        position: N::Ratio::ZERO,
+        cross: N::Ratio::ZERO,
+    };
+
+    /// p̃⁻_xx: the predicted position variance over σ² (valid: the filter
+    /// gives no prediction otherwise).
+    pub fn predicted_variance_ratio(&self) -> N::Ratio {
+        self.position
     }
 }
 
@@ -175,11 +201,32 @@ impl<N: Numeric, const D: usize> AutoFilter<N, D> {
         dt: N::Interval,
         uncoasted: Option<&Span<N::Ratio>>,
     ) -> Option<N::Ratio> {
+        self.prediction_over(dt, uncoasted)
+            .map(|p| p.predicted_variance_ratio())
+    }
+
+    /// The predicted covariance's part for an update after `step`
+    /// ([`AutoPrediction`]); `None` before two measurements or when p̃⁻_xx
+    /// is not a valid number.
+    #[inline]
+    pub(crate) fn prediction_step(&self, step: &AutoInterval<N>) -> Option<AutoPrediction<N>> {
+        self.prediction_over(step.interval, Some(&step.span))
+    }
+
+    #[inline]
+    fn prediction_over(
+        &self,
+        dt: N::Interval,
+        uncoasted: Option<&Span<N::Ratio>>,
+    ) -> Option<AutoPrediction<N>> {
         if self.phase != Phase::Tracking {
             return None;
         }
-        let p = predicted(&self.covariance, &self.span(dt, uncoasted)).0;
-        p.is_valid().then_some(p)
+        let (position, cross) =
+            predicted_variance_and_cross(&self.covariance, &self.span(dt, uncoasted));
+        position
+            .is_valid()
+            .then_some(AutoPrediction { position, cross })
     }
 
     /// The span of an update `dt` from now: `uncoasted` (the span of `dt`
@@ -202,7 +249,7 @@ impl<N: Numeric, const D: usize> AutoFilter<N, D> {
         z: [N::Length; D],
         dt: N::Interval,
     ) -> Result<AutoUpdate, FilterError> {
-        self.update_over(noise, z, dt, None)
+        self.update_over(noise, z, dt, None, None)
     }
 
     /// [`Self::update`] after `step`'s interval, its terms formed once for
@@ -213,17 +260,33 @@ impl<N: Numeric, const D: usize> AutoFilter<N, D> {
         z: [N::Length; D],
         step: &AutoInterval<N>,
     ) -> Result<AutoUpdate, FilterError> {
-        self.update_over(noise, z, step.interval, Some(&step.span))
+        self.update_over(noise, z, step.interval, Some(&step.span), None)
+    }
+
+    /// [`Self::update_step`] after `prediction`, which
+    /// [`Self::prediction_step`] gave for this step with the filter as it
+    /// is now (the track table's gate): the same results, the prediction not
+    /// formed again.
+    pub(crate) fn update_predicted(
+        &mut self,
+        noise: &SharedNoise<N>,
+        z: [N::Length; D],
+        step: &AutoInterval<N>,
+        prediction: &AutoPrediction<N>,
+    ) -> Result<AutoUpdate, FilterError> {
+        self.update_over(noise, z, step.interval, Some(&step.span), Some(prediction))
     }
 
     /// [`Self::update`], with the span of `dt` alone formed once for many
-    /// filters ([`Self::span`]).
+    /// filters ([`Self::span`]) and the prediction formed by a gate
+    /// ([`Self::update_predicted`]).
     fn update_over(
         &mut self,
         noise: &SharedNoise<N>,
         z: [N::Length; D],
         dt: N::Interval,
         uncoasted: Option<&Span<N::Ratio>>,
+        predicted: Option<&AutoPrediction<N>>,
     ) -> Result<AutoUpdate, FilterError> {
         let mut guard = N::Guard::default();
         for v in &z {
@@ -269,7 +332,12 @@ impl<N: Numeric, const D: usize> AutoFilter<N, D> {
         // each axis is predicted, corrected and its ν²/S taken in one pass.
         let span = self.span(dt, uncoasted);
         let bounds = noise.bounds();
-        let step = covariance_step_or_restart(&self.covariance, &span, None, bounds);
+        let variance_and_cross = match predicted {
+            Some(p) => (p.position, p.cross),
+            None => predicted_variance_and_cross(&self.covariance, &span),
+        };
+        let step =
+            covariance_step_or_restart(&self.covariance, &span, variance_and_cross, None, bounds);
         let (alpha, rate) = (N::gain(step.gains.alpha), N::Rate::from(step.gains.rate));
         let mut position = self.position;
         let mut velocity = self.velocity;

@@ -262,20 +262,32 @@ fn nis_cap<R: Real>() -> R {
     ten * ten
 }
 
-/// An axis's covariance predicted over the span (P⁻ = FPFᵀ + Q), as
-/// (p̃_xx, p̃_xv, p̃_vv).
+/// The part of an axis's predicted covariance (P⁻ = FPFᵀ + Q,
+/// [`predicted_from`]) that a gate needs: p̃⁻_xx, and p̃_xv + τ·p̃_vv (the
+/// cross term before its process noise).
 #[inline(always)]
-pub(crate) fn predicted<N: Numeric>(
+pub(crate) fn predicted_variance_and_cross<N: Numeric>(
     a: &AutoAxis<N>,
     s: &Span<N::Ratio>,
-) -> (N::Ratio, N::Ratio, N::Ratio) {
-    let q = a.manoeuvre;
+) -> (N::Ratio, N::Ratio) {
     let cross = a.cross + s.tau * a.velocity;
     (
-        a.position + s.tau * (a.cross + cross) + q * s.cube,
-        cross + q * s.square,
-        a.velocity + q * s.triple,
+        a.position + s.tau * (a.cross + cross) + a.manoeuvre * s.cube,
+        cross,
     )
+}
+
+/// An axis's covariance predicted over the span (P⁻ = FPFᵀ + Q), as
+/// (p̃_xx, p̃_xv, p̃_vv), from its part [`predicted_variance_and_cross`] over
+/// the same span.
+#[inline(always)]
+fn predicted_from<N: Numeric>(
+    a: &AutoAxis<N>,
+    s: &Span<N::Ratio>,
+    (variance, cross): (N::Ratio, N::Ratio),
+) -> (N::Ratio, N::Ratio, N::Ratio) {
+    let q = a.manoeuvre;
+    (variance, cross + q * s.square, a.velocity + q * s.triple)
 }
 
 /// The gains of one Kalman step of a normalised covariance: α, the
@@ -318,16 +330,19 @@ fn scaled_by<R: Real>(v: R, r: VarianceRatio<R>) -> R {
 }
 
 /// One Kalman update of the normalised covariance `a` for measurement
-/// variance ratio `r` (R/σ²): the gains, 1/S̃ and P⁺, or `None` when the
-/// covariance left the number format. One division (1/S̃); no libm.
+/// variance ratio `r` (R/σ²), `variance_and_cross` being
+/// [`predicted_variance_and_cross`] of `a` over `s`: the gains, 1/S̃ and P⁺,
+/// or `None` when the covariance left the number format. One division
+/// (1/S̃); no libm.
 #[inline(always)]
 pub(crate) fn covariance_step<N: Numeric>(
     a: &AutoAxis<N>,
     s: &Span<N::Ratio>,
+    variance_and_cross: (N::Ratio, N::Ratio),
     r: VarianceRatio<N::Ratio>,
 ) -> Option<CovarianceStep<N>> {
     let one = N::Ratio::ONE;
-    let (pxx, pxv, pvv) = predicted(a, s);
+    let (pxx, pxv, pvv) = predicted_from(a, s, variance_and_cross);
     let inverse = one / (pxx + r.unwrap_or(one));
     let alpha = pxx * inverse;
     let mut rate = pxv * inverse;
@@ -369,7 +384,9 @@ pub(crate) fn covariance_step<N: Numeric>(
     })
 }
 
-/// [`covariance_step`], and should the covariance have left the number
+/// [`covariance_step`] (`variance_and_cross` is
+/// [`predicted_variance_and_cross`] of `a` over `s`), and should the
+/// covariance have left the number
 /// format (a narrow format, a tiny σ and a long interval), a restart from a
 /// two-point start over the span at the manoeuvre ceiling `bounds.1`,
 /// scaled by `r`; should that fail too, the gains of a two-point start at
@@ -379,10 +396,11 @@ pub(crate) fn covariance_step<N: Numeric>(
 pub(crate) fn covariance_step_or_restart<N: Numeric>(
     a: &AutoAxis<N>,
     s: &Span<N::Ratio>,
+    variance_and_cross: (N::Ratio, N::Ratio),
     r: VarianceRatio<N::Ratio>,
     bounds: (N::Ratio, N::Ratio),
 ) -> CovarianceStep<N> {
-    if let Some(step) = covariance_step(a, s, r) {
+    if let Some(step) = covariance_step(a, s, variance_and_cross, r) {
         return step;
     }
     let start = two_point::<N>(s.tau, bounds.1);
@@ -392,7 +410,14 @@ pub(crate) fn covariance_step_or_restart<N: Numeric>(
         velocity: scaled_by(start.velocity, r),
         ..start
     };
-    covariance_step(&start, &Span::new(N::Ratio::ZERO, s.interval), r).unwrap_or_else(|| {
+    let span = Span::new(N::Ratio::ZERO, s.interval);
+    covariance_step(
+        &start,
+        &span,
+        predicted_variance_and_cross(&start, &span),
+        r,
+    )
+    .unwrap_or_else(|| {
         let beta = N::Ratio::ONE.half();
         CovarianceStep {
             gains: KalmanGains {
@@ -485,7 +510,8 @@ fn step_axis<N: Numeric>(
     bounds: (N::Ratio, N::Ratio),
     cap: N::Ratio,
 ) -> Result<Gains<N>, ScheduleError> {
-    let step = covariance_step_or_restart(a, s, Some(r), bounds);
+    let step =
+        covariance_step_or_restart(a, s, predicted_variance_and_cross(a, s), Some(r), bounds);
     *a = step.next;
     if step.matched {
         match_manoeuvre(a, capped_nis(nu, step.inverse, cap), s, bounds);
@@ -649,7 +675,8 @@ impl<N: Numeric, const D: usize> AutoGains<N, D> {
     pub fn predicted_position_ratios(&self, dt: N::Interval) -> [N::Ratio; D] {
         let dt = N::Ratio::from(dt);
         let span = Span::new(self.coasted, dt);
-        self.current(dt, None).map(|a| predicted(&a, &span).0)
+        self.current(dt, None)
+            .map(|a| predicted_variance_and_cross(&a, &span).0)
     }
 
     /// The gains of the update `ctx` and the state after it.

@@ -135,7 +135,7 @@ fn scaled_i32<S: Scalar>(v: S, scale: u32) -> i32 {
 /// `host-tests/tests/it/scan/loop_on_host.rs` prints the sizes; the firmware prints
 /// its own at start-up.
 #[derive(Debug)]
-pub struct ScanLoop<T: Numeric, F, const N: usize, const M: usize> {
+pub struct ScanLoop<T: Numeric, F: TrackFilter<T::Wide>, const N: usize, const M: usize> {
     table: TrackTable<T::Wide, F, N, M>,
     /// The tracker's time of the next scan (ms; +1 period per scan).
     tracker_ms: u32,

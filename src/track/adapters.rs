@@ -174,6 +174,8 @@ impl<S: Numeric, G: GainSchedule<S, 2>> ScheduledTrack<S, G> {
 impl<S: Numeric, G: GainSchedule<S, 2>> TrackFilter<S> for ScheduledTrack<S, G> {
     type Params = G;
     type Step = ScanInterval<S>;
+    type Prediction = ();
+    const NO_PREDICTION: () = ();
 
     fn step(_: &G, interval: &ScanInterval<S>) -> Result<ScanInterval<S>, FilterError> {
         Ok(*interval)
@@ -506,6 +508,8 @@ impl<N: Numeric<Wide = S>, S: Scalar> RangeAzimuthTrack<N> {
 impl<N: Numeric<Wide = S>, S: Scalar> TrackFilter<S> for RangeAzimuthTrack<N> {
     type Params = RangeAzimuthNoise<S>;
     type Step = ScanInterval<S>;
+    type Prediction = ();
+    const NO_PREDICTION: () = ();
 
     fn step(
         _: &RangeAzimuthNoise<S>,

@@ -5,7 +5,7 @@ use super::gate::{Gate, GateRegion};
 use super::model::{
     uncertainty_region, wave_radius, Observation, PredictedState, ScanInterval, TrackFilter,
 };
-use crate::filter::auto::{AutoFilter, AutoInterval, AutoUpdate};
+use crate::filter::auto::{AutoFilter, AutoInterval, AutoPrediction, AutoUpdate};
 use crate::filter::FilterError;
 use crate::gain::AutoGains;
 use crate::num::{Numeric, Quantity, Real};
@@ -24,10 +24,13 @@ pub struct AutoStep<S: Numeric> {
 /// filter's own covariance: [`Gate::Uncertainty`] with no manoeuvre
 /// allowance on top (the manoeuvre is in p̃⁻ already), [`Gate::Wave`] with
 /// the α the update would use. A track with one point has no gate, as
-/// the other Cartesian tracks.
+/// the other Cartesian tracks. The gate's part of the predicted covariance
+/// is the update's too ([`AutoPrediction`]).
 impl<S: Numeric> TrackFilter<S> for AutoFilter<S, 2> {
     type Params = AutoGains<S, 2>;
     type Step = AutoStep<S>;
+    type Prediction = AutoPrediction<S>;
+    const NO_PREDICTION: AutoPrediction<S> = AutoPrediction::NONE;
 
     fn step(_: &Self::Params, interval: &ScanInterval<S>) -> Result<AutoStep<S>, FilterError> {
         Ok(AutoStep {
@@ -51,13 +54,17 @@ impl<S: Numeric> TrackFilter<S> for AutoFilter<S, 2> {
         step: &AutoStep<S>,
     ) -> Result<(), FilterError> {
         // In place: an `Err` and a skip change nothing.
-        let noise = params.shared_noise();
-        match self.update_step(&noise, z.xy(), &step.terms)? {
-            // The table never offers a measurement that close (it skips the
-            // whole scan): refused as an interval outside the filter's.
-            AutoUpdate::Skipped => Err(FilterError::InvalidInterval),
-            _ => Ok(()),
-        }
+        skip_refused(self.update_step(&params.shared_noise(), z.xy(), &step.terms))
+    }
+
+    fn update_after_gate(
+        &mut self,
+        params: &Self::Params,
+        z: &Observation<S>,
+        step: &AutoStep<S>,
+        prediction: &AutoPrediction<S>,
+    ) -> Result<(), FilterError> {
+        skip_refused(self.update_predicted(&params.shared_noise(), z.xy(), &step.terms, prediction))
     }
 
     fn coast(&mut self, _: &Self::Params, step: &AutoStep<S>) -> Result<(), FilterError> {
@@ -103,7 +110,22 @@ impl<S: Numeric> TrackFilter<S> for AutoFilter<S, 2> {
         step: &AutoStep<S>,
         gate: &Gate<S>,
     ) -> Option<GateRegion<S>> {
-        let p = TrackFilter::predicted_variance_ratio(self, params, step)?;
+        let mut kept = AutoPrediction::NONE;
+        self.gate_region_keeping(params, predicted, step, gate, &mut kept)
+    }
+
+    #[inline(always)]
+    fn gate_region_keeping(
+        &self,
+        _: &Self::Params,
+        predicted: &PredictedState<S>,
+        step: &AutoStep<S>,
+        gate: &Gate<S>,
+        kept: &mut AutoPrediction<S>,
+    ) -> Option<GateRegion<S>> {
+        let prediction = self.prediction_step(&step.terms)?;
+        *kept = prediction;
+        let p = prediction.predicted_variance_ratio();
         let radius = match *gate {
             Gate::Uncertainty {
                 measurement_sigma,
@@ -132,5 +154,16 @@ impl<S: Numeric> TrackFilter<S> for AutoFilter<S, 2> {
             ),
         };
         GateRegion::circle(predicted.position, radius)
+    }
+}
+
+/// An update's outcome as the table takes it: the table never offers a
+/// measurement closer than the filters' shortest interval (it skips the
+/// whole scan), so a skip is refused as an interval outside the filter's.
+#[inline(always)]
+fn skip_refused(update: Result<AutoUpdate, FilterError>) -> Result<(), FilterError> {
+    match update? {
+        AutoUpdate::Skipped => Err(FilterError::InvalidInterval),
+        _ => Ok(()),
     }
 }

@@ -163,6 +163,14 @@ pub trait TrackFilter<S: Numeric>: Copy {
     type Params: Copy;
     /// What every track's update needs of one scan's interval.
     type Step: Copy;
+    /// What the gate forms of a track that the same scan's update of it
+    /// takes again ([`Self::gate_region_keeping`],
+    /// [`Self::update_after_gate`]): the default track's predicted
+    /// covariance terms; `()` for a filter that keeps nothing.
+    type Prediction: Copy + core::fmt::Debug;
+    /// A placeholder [`Self::Prediction`]: the table's workspace before a
+    /// gate writes it.
+    const NO_PREDICTION: Self::Prediction;
 
     /// The step of an interval, formed once per scan for every track.
     fn step(params: &Self::Params, interval: &ScanInterval<S>) -> Result<Self::Step, FilterError>;
@@ -255,6 +263,35 @@ pub trait TrackFilter<S: Numeric>: Copy {
             ),
         };
         GateRegion::circle(predicted.position, radius)
+    }
+
+    /// [`Self::gate_region`], writing to `kept` what the update of the same
+    /// scan takes again ([`Self::update_after_gate`]) when it gives a
+    /// region. The default keeps nothing.
+    fn gate_region_keeping(
+        &self,
+        params: &Self::Params,
+        predicted: &PredictedState<S>,
+        step: &Self::Step,
+        gate: &Gate<S>,
+        kept: &mut Self::Prediction,
+    ) -> Option<GateRegion<S>> {
+        let _ = kept;
+        self.gate_region(params, predicted, step, gate)
+    }
+
+    /// [`Self::update`] in the scan whose gate kept `prediction` for this
+    /// filter as it is and this step ([`Self::gate_region_keeping`]): the
+    /// same result. The default forms everything again.
+    fn update_after_gate(
+        &mut self,
+        params: &Self::Params,
+        z: &Observation<S>,
+        step: &Self::Step,
+        prediction: &Self::Prediction,
+    ) -> Result<(), FilterError> {
+        let _ = prediction;
+        self.update(params, z, step)
     }
 }
 
@@ -597,6 +634,8 @@ impl<S: Numeric> FixedGainTrack<S> {
 impl<S: Numeric> TrackFilter<S> for FixedGainTrack<S> {
     type Params = Gains<S>;
     type Step = FixedGainStep<S>;
+    type Prediction = ();
+    const NO_PREDICTION: () = ();
 
     fn step(gains: &Gains<S>, interval: &ScanInterval<S>) -> Result<FixedGainStep<S>, FilterError> {
         let alpha = S::to_variance(gains.alpha());

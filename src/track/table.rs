@@ -523,7 +523,7 @@ enum ScanTiming<Step> {
 /// # Ok::<(), Box<dyn core::error::Error>>(())
 /// ```
 #[derive(Debug)]
-pub struct TrackTable<S: Numeric, F, const N: usize, const M: usize> {
+pub struct TrackTable<S: Numeric, F: TrackFilter<S>, const N: usize, const M: usize> {
     slots: [TrackSlot<S, F>; N],
     /// The id the next track gets, minus 1 (wrapping): 0 for a new table,
     /// whose first id is 1.
@@ -548,6 +548,10 @@ pub struct TrackTable<S: Numeric, F, const N: usize, const M: usize> {
     index: MeasurementIndex<S, M>,
     clusters: Clusters<N, M>,
     outcomes: [Outcome; N],
+    /// What each gated track's gate formed for its update
+    /// ([`TrackFilter::gate_region_keeping`]); read only for tracks gated in
+    /// the same scan.
+    predictions: [F::Prediction; N],
     /// The cluster being solved: its tracks' slots and measurements.
     row_slot: [u16; N],
     col_measurement: [u16; M],
@@ -606,6 +610,7 @@ impl<S: Numeric, F: TrackFilter<S>, const N: usize, const M: usize> TrackTable<S
             index: MeasurementIndex::new(),
             clusters: Clusters::new(),
             outcomes: [Outcome::Empty; N],
+            predictions: [F::NO_PREDICTION; N],
             row_slot: [0; N],
             col_measurement: [0; M],
             solver: AssignmentSolver::new(),
@@ -891,9 +896,13 @@ impl<S: Numeric, F: TrackFilter<S>, const N: usize, const M: usize> TrackTable<S
                 continue;
             };
             predictions = predictions.wrapping_add(1);
-            let Some(region) = track
-                .filter
-                .gate_region(params, &predicted, dt, config.gate())
+            let Some(kept) = self.predictions.get_mut(t) else {
+                continue;
+            };
+            let Some(region) =
+                track
+                    .filter
+                    .gate_region_keeping(params, &predicted, dt, config.gate(), kept)
             else {
                 continue;
             };
@@ -1018,21 +1027,24 @@ impl<S: Numeric, F: TrackFilter<S>, const N: usize, const M: usize> TrackTable<S
         report: &mut ScanReport,
     ) {
         let params = config.params();
-        for (t, (slot, outcome)) in self
+        for (t, ((slot, outcome), prediction)) in self
             .slots
             .iter_mut()
             .zip(self.outcomes.iter_mut())
+            .zip(self.predictions.iter())
             .enumerate()
         {
             let Some(track) = slot.track_mut() else {
                 continue;
             };
             *outcome = Outcome::Miss;
+            // Only a track gated this scan is assigned: its prediction is
+            // this scan's.
             if let Some(k) = self.clusters.assigned(t) {
                 if let (Some(Some(o)), Some(code)) =
                     (self.observations.get(k), self.codes.get_mut(k))
                 {
-                    match track.filter.update(params, o, dt) {
+                    match track.filter.update_after_gate(params, o, dt, prediction) {
                         Ok(()) => {
                             *outcome = Outcome::Hit;
                             *code = Association::Updated(track.id);

@@ -304,3 +304,89 @@ fn an_interval_formed_once_gives_what_each_update_forms() {
     interval_formed_once_is_update::<abtrack::Fix>();
     interval_formed_once_is_update::<abtrack::ScaledScalar>();
 }
+
+/// The default track's update after its gate (`TrackFilter::update_after_gate`
+/// with the prediction `gate_region_keeping` kept, as the track
+/// table runs it) is its plain `update`: the same outcome and the same
+/// filter, bit for bit, and the same region as `gate_region`, over
+/// irregular intervals, coasts, intervals under the shortest and over the
+/// longest, with the uncertainty gate and the wave gate, in every number
+/// system.
+fn update_after_gate_is_update<N: Numeric>(gate: abtrack::track::Gate<N>) {
+    use abtrack::filter::auto::AutoFilter;
+    use abtrack::track::{Measurement, Observation, ScanInterval, TrackFilter};
+    let sigma = 50.0;
+    let gains = AutoGains::<N, 2>::new(&AutoConfig::cartesian(sigma)).expect("auto builds");
+    let empty = <AutoFilter<N, 2> as TrackFilter<N>>::empty(&gains);
+    let (mut plain, mut after_gate) = (empty, empty);
+    let mut events = events(6, 300, sigma, 0.5, 6.0, 20.0);
+    events.insert(100, (0.01, Some([5000.0, 5000.0])));
+    events.insert(200, (25.0, Some([9000.0, 9000.0])));
+    let (mut kept, mut outcomes) = (0, std::collections::BTreeSet::new());
+    for (dt, z) in events {
+        // Whole milliseconds, as a scan's interval; at least 1.
+        let ms = ((dt * 1000.0).round() as u32).max(1);
+        let interval = ScanInterval::<N>::from_ms(ms).expect("an interval");
+        let step = <AutoFilter<N, 2> as TrackFilter<N>>::step(&gains, &interval).expect("a step");
+        let predicted = TrackFilter::predict(&plain, &gains, &step);
+        assert_eq!(predicted, TrackFilter::predict(&after_gate, &gains, &step));
+        let with_prediction = predicted.ok().and_then(|p| {
+            let mut kept = <AutoFilter<N, 2> as TrackFilter<N>>::NO_PREDICTION;
+            let region = after_gate.gate_region_keeping(&gains, &p, &step, &gate, &mut kept);
+            assert_eq!(region, plain.gate_region(&gains, &p, &step, &gate));
+            region.map(|region| (region, kept))
+        });
+        match z {
+            Some([x, y]) => {
+                let measurement = Measurement::Cartesian {
+                    x: N::Length::from_f64_lossy(x),
+                    y: N::Length::from_f64_lossy(y),
+                };
+                let o = Observation::new(measurement).expect("a valid measurement");
+                let a = TrackFilter::update(&mut plain, &gains, &o, &step);
+                let b = match &with_prediction {
+                    Some((_, prediction)) => {
+                        kept += 1;
+                        after_gate.update_after_gate(&gains, &o, &step, prediction)
+                    }
+                    None => TrackFilter::update(&mut after_gate, &gains, &o, &step),
+                };
+                assert_eq!(a, b);
+                outcomes.insert(format!("{a:?}"));
+            }
+            None => {
+                TrackFilter::coast(&mut plain, &gains, &step).expect("coast");
+                TrackFilter::coast(&mut after_gate, &gains, &step).expect("coast");
+            }
+        }
+        assert_eq!(plain, after_gate);
+    }
+    assert!(kept > 200, "{kept} updates after a gate");
+    // Updated, and the too-short interval refused (the table skips such a
+    // scan whole).
+    for taken in ["Ok(())", "Err(InvalidInterval)"] {
+        assert!(outcomes.contains(taken), "{outcomes:?}");
+    }
+}
+
+#[test]
+fn the_default_track_updated_after_its_gate_is_updated_as_without() {
+    use abtrack::track::Gate;
+    fn both<N: Numeric>() {
+        let sigma = N::Length::from_f64_lossy(50.0);
+        let threshold = N::Ratio::from_f64_lossy(13.8);
+        update_after_gate_is_update::<N>(
+            Gate::uncertainty(sigma, threshold, <N as Numeric>::Acceleration::ZERO)
+                .expect("a gate"),
+        );
+        let bearing = N::Ratio::from_f64_lossy(0.01);
+        update_after_gate_is_update::<N>(
+            Gate::wave(sigma, bearing, N::Ratio::from_f64_lossy(3.0)).expect("a gate"),
+        );
+    }
+    both::<f64>();
+    both::<f32>();
+    both::<Fixed32>();
+    both::<abtrack::Fix>();
+    both::<abtrack::ScaledScalar>();
+}

@@ -143,6 +143,21 @@ fn bytes_per_track() {
         size_of::<Table<ScaledScalar, 256, 256>>(),
         scaled_bytes(256, 256)
     );
+
+    // The default track's table in the fast fixed point (the micro:bit's
+    // default-filter benchmark rows): its slot (92 bytes) and, in the
+    // workspace, the part of the predicted covariance the gate keeps for
+    // the update (`AutoPrediction`, two scaled numbers).
+    type Default<const N: usize, const M: usize> =
+        abtrack::track::TrackTable<Fixed32, abtrack::filter::auto::AutoFilter<Fixed32, 2>, N, M>;
+    let default_bytes = |n: usize, m: usize| round(106 + 163 * n + 125 * m);
+    println!(
+        "TrackTable<Fixed32, AutoFilter<Fixed32, 2>, 32, 32>: {}",
+        size_of::<Default<32, 32>>()
+    );
+    assert_eq!(size_of::<Default<32, 32>>(), default_bytes(32, 32));
+    assert_eq!(size_of::<Default<64, 32>>(), default_bytes(64, 32));
+    assert_eq!(size_of::<Default<3, 5>>(), default_bytes(3, 5));
 }
 
 /// A filter of one byte, to weigh the record header alone.
@@ -152,6 +167,8 @@ struct Tiny(u8);
 impl TrackFilter<f32> for Tiny {
     type Params = ();
     type Step = ScanInterval<f32>;
+    type Prediction = ();
+    const NO_PREDICTION: () = ();
     fn step(_: &(), i: &ScanInterval<f32>) -> Result<ScanInterval<f32>, FilterError> {
         Ok(*i)
     }
