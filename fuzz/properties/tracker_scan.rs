@@ -1,9 +1,12 @@
 //! A whole tracker scan (`abtrack::track::TrackTable::scan`) with arbitrary
-//! measurements and times, in `f32` (the Cortex-M4F's type) and Q32.32
-//! fixed point (the M3's and M0's), with the Cartesian configuration of the
-//! demo's second input (`demo_config::crossing_config`) and a small table
-//! (8 tracks, 16 measurements per scan) so that the table fills and scans
-//! overflow.
+//! measurements and times, in a small table (8 tracks, 16 measurements per
+//! scan) so that the table fills and scans overflow: the fixed-gain track
+//! with the Cartesian configuration of the demo's second input
+//! (`demo_config::crossing_config`) in `f32` (the Cortex-M4F's type) and
+//! Q32.32, and the default track (`auto`'s filter, whose update takes what
+//! its gate formed) with the nominal radar's configuration
+//! (`abtrack::track::defaults::default_cartesian`) in `f32`, the fast fixed point
+//! (`Fixed32`, the M3's and M0's) and Q32.32.
 //!
 //! The input is a sequence of scans: each a time step (forward, zero,
 //! backwards, beyond 2³¹ ms) and up to 40 measurements, each either from
@@ -20,10 +23,13 @@
 
 use std::collections::BTreeSet;
 
+use abtrack::num::fixed32::Fixed32;
+use abtrack::track::defaults::{default_cartesian, DefaultCartesianTrack};
 use abtrack::track::{
-    Association, DropReason, FixedGainTrack, Measurement, RejectReason, TrackTable,
+    Association, DropReason, FixedGainTrack, Measurement, RejectReason, TrackFilter, TrackTable,
+    TrackerConfig,
 };
-use abtrack::{Fix, Scalar};
+use abtrack::{Fix, Numeric, Quantity};
 use arbitrary::{Result, Unstructured};
 
 use abtrack_firmware::demo_config;
@@ -113,12 +119,11 @@ fn scans(u: &mut Unstructured) -> Result<Vec<Scan>> {
     Ok(scans)
 }
 
-fn run<S: Scalar + core::fmt::Debug>(scans: &[Scan]) {
-    let config = demo_config::crossing_config::<S, _>()
-        .expect("the demo configuration is valid")
-        .tracker;
-    let mut table: Box<TrackTable<S, FixedGainTrack<S>, TRACKS, PER_SCAN>> =
-        Box::new(TrackTable::new());
+fn run<S: Numeric, F: TrackFilter<S> + core::fmt::Debug>(
+    scans: &[Scan],
+    config: &TrackerConfig<S, F::Params>,
+) {
+    let mut table: Box<TrackTable<S, F, TRACKS, PER_SCAN>> = Box::new(TrackTable::new());
     let mut now_ms = 0u32;
     let mut ids_used = BTreeSet::new();
     let mut scans_accepted = 0u32;
@@ -128,14 +133,17 @@ fn run<S: Scalar + core::fmt::Debug>(scans: &[Scan]) {
             .measurements
             .iter()
             .map(|&(polar, a, b)| {
-                let (a, b) = (S::from_f64_lossy(a), S::from_f64_lossy(b));
+                let a = S::Length::from_f64_lossy(a);
                 if polar {
                     Measurement::Polar {
                         range: a,
-                        azimuth: b,
+                        azimuth: S::Ratio::from_f64_lossy(b),
                     }
                 } else {
-                    Measurement::Cartesian { x: a, y: b }
+                    Measurement::Cartesian {
+                        x: a,
+                        y: S::Length::from_f64_lossy(b),
+                    }
                 }
             })
             .collect();
@@ -143,7 +151,7 @@ fn run<S: Scalar + core::fmt::Debug>(scans: &[Scan]) {
         const UNWRITTEN: Association = Association::Dropped(DropReason::TableFull);
         let mut codes = vec![UNWRITTEN; measurements.len()];
         let before = format!("{table:?}");
-        match table.scan(&config, now_ms, &measurements, &mut codes) {
+        match table.scan(config, now_ms, &measurements, &mut codes) {
             Err(e) => {
                 assert_eq!(
                     format!("{table:?}"),
@@ -274,6 +282,19 @@ pub fn check(data: &[u8]) {
     let Ok(scans) = scans(&mut u) else {
         return;
     };
-    run::<f32>(&scans);
-    run::<Fix>(&scans);
+    fn fixed_gains<S: abtrack::Scalar>(scans: &[Scan]) {
+        let config = demo_config::crossing_config::<S, _>()
+            .expect("the demo configuration is valid")
+            .tracker;
+        run::<S, FixedGainTrack<S>>(scans, &config);
+    }
+    fn default_track<S: Numeric>(scans: &[Scan]) {
+        let config = default_cartesian::<S>().expect("the nominal radar's design is valid");
+        run::<S, DefaultCartesianTrack<S>>(scans, &config);
+    }
+    fixed_gains::<f32>(&scans);
+    fixed_gains::<Fix>(&scans);
+    default_track::<f32>(&scans);
+    default_track::<Fixed32>(&scans);
+    default_track::<Fix>(&scans);
 }

@@ -16,8 +16,8 @@
 
 use crate::filter::{FilterError, IntervalSpan, Phase};
 use crate::gain::auto::{
-    capped_nis, covariance_step_or_restart, match_manoeuvre, mean_over_axes,
-    predicted_variance_and_cross, two_point, AutoAxis, SharedNoise, Span,
+    capped_nis, covariance_step_or_restart, match_manoeuvre, mean_over_axes, predicted_part,
+    two_point, AutoAxis, AutoPrediction, SharedNoise, Span,
 };
 use crate::num::{AddProduct, Numeric, Quantity, Real};
 
@@ -69,32 +69,6 @@ impl<N: Numeric> AutoInterval<N> {
     /// T.
     pub fn interval(&self) -> N::Interval {
         self.interval
-    }
-}
-
-/// What a gate forms of [`AutoFilter`]'s predicted covariance for an update
-/// after an [`AutoInterval`], formed once for the gate and the update of the
-/// same scan (the track table's default track): p̃⁻_xx, whose check the gate
-/// needs, and the cross term before its process noise
-/// (`crate::gain::auto::predicted_variance_and_cross`).
-#[derive(Debug, Clone, Copy, PartialEq)]
-#[cfg_attr(feature = "defmt", derive(defmt::Format))]
-pub struct AutoPrediction<N: Numeric> {
-    position: N::Ratio,
-    cross: N::Ratio,
-}
-
-impl<N: Numeric> AutoPrediction<N> {
-    /// A placeholder (zeros) for a workspace no gate has written yet.
-    pub const NONE: Self = AutoPrediction {
-        position: N::Ratio::ZERO,
-        cross: N::Ratio::ZERO,
-    };
-
-    /// p̃⁻_xx: the predicted position variance over σ² (valid: the filter
-    /// gives no prediction otherwise).
-    pub fn predicted_variance_ratio(&self) -> N::Ratio {
-        self.position
     }
 }
 
@@ -222,11 +196,8 @@ impl<N: Numeric, const D: usize> AutoFilter<N, D> {
         if self.phase != Phase::Tracking {
             return None;
         }
-        let (position, cross) =
-            predicted_variance_and_cross(&self.covariance, &self.span(dt, uncoasted));
-        position
-            .is_valid()
-            .then_some(AutoPrediction { position, cross })
+        let part = predicted_part(&self.covariance, &self.span(dt, uncoasted));
+        part.predicted_variance_ratio().is_valid().then_some(part)
     }
 
     /// The span of an update `dt` from now: `uncoasted` (the span of `dt`
@@ -332,12 +303,11 @@ impl<N: Numeric, const D: usize> AutoFilter<N, D> {
         // each axis is predicted, corrected and its ν²/S taken in one pass.
         let span = self.span(dt, uncoasted);
         let bounds = noise.bounds();
-        let variance_and_cross = match predicted {
-            Some(p) => (p.position, p.cross),
-            None => predicted_variance_and_cross(&self.covariance, &span),
+        let part = match predicted {
+            Some(part) => *part,
+            None => predicted_part(&self.covariance, &span),
         };
-        let step =
-            covariance_step_or_restart(&self.covariance, &span, variance_and_cross, None, bounds);
+        let step = covariance_step_or_restart(&self.covariance, &span, &part, None, bounds);
         let (alpha, rate) = (N::gain(step.gains.alpha), N::Rate::from(step.gains.rate));
         let mut position = self.position;
         let mut velocity = self.velocity;
@@ -393,17 +363,19 @@ impl<N: Numeric, const D: usize> AutoFilter<N, D> {
     /// The position gain α an update `dt` from now would use (before two
     /// measurements, 1).
     pub fn next_alpha(&self, dt: N::Interval) -> N::Ratio {
+        self.predicted_variance_ratio(dt)
+            .map_or(N::Ratio::ONE, Self::alpha_for)
+    }
+
+    /// The position gain α = p̃⁻_xx/(p̃⁻_xx + 1) for predicted variance ratio
+    /// `p` (1 if that is not a valid number).
+    pub(crate) fn alpha_for(p: N::Ratio) -> N::Ratio {
         let one = N::Ratio::ONE;
-        match self.predicted_variance_ratio(dt) {
-            Some(p) => {
-                let alpha = p / (p + one);
-                if alpha.is_valid() {
-                    alpha
-                } else {
-                    one
-                }
-            }
-            None => one,
+        let alpha = p / (p + one);
+        if alpha.is_valid() {
+            alpha
+        } else {
+            one
         }
     }
 

@@ -262,32 +262,55 @@ fn nis_cap<R: Real>() -> R {
     ten * ten
 }
 
-/// The part of an axis's predicted covariance (P⁻ = FPFᵀ + Q,
-/// [`predicted_from`]) that a gate needs: p̃⁻_xx, and p̃_xv + τ·p̃_vv (the
-/// cross term before its process noise).
+/// The part of an axis's predicted covariance (P⁻ = FPFᵀ + Q) that a
+/// gate forms: p̃⁻_xx, which sizes the gate, and p̃_xv + τ·p̃_vv, the cross
+/// term before its process noise, which only the update needs. The track
+/// table keeps it from a default track's gate for its update in the same
+/// scan ([`crate::track::TrackFilter::GateKept`]).
+#[derive(Debug, Clone, Copy, PartialEq)]
+#[cfg_attr(feature = "defmt", derive(defmt::Format))]
+pub struct AutoPrediction<N: Numeric> {
+    position: N::Ratio,
+    cross_before_noise: N::Ratio,
+}
+
+impl<N: Numeric> AutoPrediction<N> {
+    /// A placeholder (zero bytes) for a workspace no gate has written yet.
+    pub const NONE: Self = AutoPrediction {
+        position: N::Ratio::ZERO,
+        cross_before_noise: N::Ratio::ZERO,
+    };
+
+    /// p̃⁻_xx: the predicted position variance over σ².
+    pub fn predicted_variance_ratio(&self) -> N::Ratio {
+        self.position
+    }
+}
+
+/// [`AutoPrediction`] of covariance `a` over the span.
 #[inline(always)]
-pub(crate) fn predicted_variance_and_cross<N: Numeric>(
-    a: &AutoAxis<N>,
-    s: &Span<N::Ratio>,
-) -> (N::Ratio, N::Ratio) {
-    let cross = a.cross + s.tau * a.velocity;
-    (
-        a.position + s.tau * (a.cross + cross) + a.manoeuvre * s.cube,
-        cross,
-    )
+pub(crate) fn predicted_part<N: Numeric>(a: &AutoAxis<N>, s: &Span<N::Ratio>) -> AutoPrediction<N> {
+    let cross_before_noise = a.cross + s.tau * a.velocity;
+    AutoPrediction {
+        position: a.position + s.tau * (a.cross + cross_before_noise) + a.manoeuvre * s.cube,
+        cross_before_noise,
+    }
 }
 
 /// An axis's covariance predicted over the span (P⁻ = FPFᵀ + Q), as
-/// (p̃_xx, p̃_xv, p̃_vv), from its part [`predicted_variance_and_cross`] over
-/// the same span.
+/// (p̃_xx, p̃_xv, p̃_vv), from its part `part` over the same span.
 #[inline(always)]
 fn predicted_from<N: Numeric>(
     a: &AutoAxis<N>,
     s: &Span<N::Ratio>,
-    (variance, cross): (N::Ratio, N::Ratio),
+    part: &AutoPrediction<N>,
 ) -> (N::Ratio, N::Ratio, N::Ratio) {
     let q = a.manoeuvre;
-    (variance, cross + q * s.square, a.velocity + q * s.triple)
+    (
+        part.position,
+        part.cross_before_noise + q * s.square,
+        a.velocity + q * s.triple,
+    )
 }
 
 /// The gains of one Kalman step of a normalised covariance: α, the
@@ -330,19 +353,18 @@ fn scaled_by<R: Real>(v: R, r: VarianceRatio<R>) -> R {
 }
 
 /// One Kalman update of the normalised covariance `a` for measurement
-/// variance ratio `r` (R/σ²), `variance_and_cross` being
-/// [`predicted_variance_and_cross`] of `a` over `s`: the gains, 1/S̃ and P⁺,
-/// or `None` when the covariance left the number format. One division
-/// (1/S̃); no libm.
+/// variance ratio `r` (R/σ²), `part` being [`predicted_part`] of `a` over
+/// `s`: the gains, 1/S̃ and P⁺, or `None` when the covariance left the
+/// number format. One division (1/S̃); no libm.
 #[inline(always)]
 pub(crate) fn covariance_step<N: Numeric>(
     a: &AutoAxis<N>,
     s: &Span<N::Ratio>,
-    variance_and_cross: (N::Ratio, N::Ratio),
+    part: &AutoPrediction<N>,
     r: VarianceRatio<N::Ratio>,
 ) -> Option<CovarianceStep<N>> {
     let one = N::Ratio::ONE;
-    let (pxx, pxv, pvv) = predicted_from(a, s, variance_and_cross);
+    let (pxx, pxv, pvv) = predicted_from(a, s, part);
     let inverse = one / (pxx + r.unwrap_or(one));
     let alpha = pxx * inverse;
     let mut rate = pxv * inverse;
@@ -384,9 +406,8 @@ pub(crate) fn covariance_step<N: Numeric>(
     })
 }
 
-/// [`covariance_step`] (`variance_and_cross` is
-/// [`predicted_variance_and_cross`] of `a` over `s`), and should the
-/// covariance have left the number
+/// [`covariance_step`] (`part` is [`predicted_part`] of `a` over `s`), and
+/// should the covariance have left the number
 /// format (a narrow format, a tiny σ and a long interval), a restart from a
 /// two-point start over the span at the manoeuvre ceiling `bounds.1`,
 /// scaled by `r`; should that fail too, the gains of a two-point start at
@@ -396,11 +417,11 @@ pub(crate) fn covariance_step<N: Numeric>(
 pub(crate) fn covariance_step_or_restart<N: Numeric>(
     a: &AutoAxis<N>,
     s: &Span<N::Ratio>,
-    variance_and_cross: (N::Ratio, N::Ratio),
+    part: &AutoPrediction<N>,
     r: VarianceRatio<N::Ratio>,
     bounds: (N::Ratio, N::Ratio),
 ) -> CovarianceStep<N> {
-    if let Some(step) = covariance_step(a, s, variance_and_cross, r) {
+    if let Some(step) = covariance_step(a, s, part, r) {
         return step;
     }
     let start = two_point::<N>(s.tau, bounds.1);
@@ -411,13 +432,7 @@ pub(crate) fn covariance_step_or_restart<N: Numeric>(
         ..start
     };
     let span = Span::new(N::Ratio::ZERO, s.interval);
-    covariance_step(
-        &start,
-        &span,
-        predicted_variance_and_cross(&start, &span),
-        r,
-    )
-    .unwrap_or_else(|| {
+    covariance_step(&start, &span, &predicted_part(&start, &span), r).unwrap_or_else(|| {
         let beta = N::Ratio::ONE.half();
         CovarianceStep {
             gains: KalmanGains {
@@ -510,8 +525,7 @@ fn step_axis<N: Numeric>(
     bounds: (N::Ratio, N::Ratio),
     cap: N::Ratio,
 ) -> Result<Gains<N>, ScheduleError> {
-    let step =
-        covariance_step_or_restart(a, s, predicted_variance_and_cross(a, s), Some(r), bounds);
+    let step = covariance_step_or_restart(a, s, &predicted_part(a, s), Some(r), bounds);
     *a = step.next;
     if step.matched {
         match_manoeuvre(a, capped_nis(nu, step.inverse, cap), s, bounds);
@@ -676,7 +690,7 @@ impl<N: Numeric, const D: usize> AutoGains<N, D> {
         let dt = N::Ratio::from(dt);
         let span = Span::new(self.coasted, dt);
         self.current(dt, None)
-            .map(|a| predicted_variance_and_cross(&a, &span).0)
+            .map(|a| predicted_part(&a, &span).predicted_variance_ratio())
     }
 
     /// The gains of the update `ctx` and the state after it.

@@ -1,4 +1,4 @@
-//! The filters of the earlier issues as [`TrackFilter`]s, so a
+//! The library's other filters as [`TrackFilter`]s, so a
 //! [`TrackTable`](super::TrackTable) can hold any of them, in any number
 //! type:
 //!
@@ -174,8 +174,8 @@ impl<S: Numeric, G: GainSchedule<S, 2>> ScheduledTrack<S, G> {
 impl<S: Numeric, G: GainSchedule<S, 2>> TrackFilter<S> for ScheduledTrack<S, G> {
     type Params = G;
     type Step = ScanInterval<S>;
-    type Prediction = ();
-    const NO_PREDICTION: () = ();
+    type GateKept = ();
+    const NOTHING_KEPT: () = ();
 
     fn step(_: &G, interval: &ScanInterval<S>) -> Result<ScanInterval<S>, FilterError> {
         Ok(*interval)
@@ -508,8 +508,8 @@ impl<N: Numeric<Wide = S>, S: Scalar> RangeAzimuthTrack<N> {
 impl<N: Numeric<Wide = S>, S: Scalar> TrackFilter<S> for RangeAzimuthTrack<N> {
     type Params = RangeAzimuthNoise<S>;
     type Step = ScanInterval<S>;
-    type Prediction = ();
-    const NO_PREDICTION: () = ();
+    type GateKept = ();
+    const NOTHING_KEPT: () = ();
 
     fn step(
         _: &RangeAzimuthNoise<S>,

@@ -5,8 +5,9 @@ use super::gate::{Gate, GateRegion};
 use super::model::{
     uncertainty_region, wave_radius, Observation, PredictedState, ScanInterval, TrackFilter,
 };
-use crate::filter::auto::{AutoFilter, AutoInterval, AutoPrediction, AutoUpdate};
+use crate::filter::auto::{AutoFilter, AutoInterval, AutoUpdate};
 use crate::filter::FilterError;
+use crate::gain::auto::AutoPrediction;
 use crate::gain::AutoGains;
 use crate::num::{Numeric, Quantity, Real};
 
@@ -29,8 +30,8 @@ pub struct AutoStep<S: Numeric> {
 impl<S: Numeric> TrackFilter<S> for AutoFilter<S, 2> {
     type Params = AutoGains<S, 2>;
     type Step = AutoStep<S>;
-    type Prediction = AutoPrediction<S>;
-    const NO_PREDICTION: AutoPrediction<S> = AutoPrediction::NONE;
+    type GateKept = AutoPrediction<S>;
+    const NOTHING_KEPT: AutoPrediction<S> = AutoPrediction::NONE;
 
     fn step(_: &Self::Params, interval: &ScanInterval<S>) -> Result<AutoStep<S>, FilterError> {
         Ok(AutoStep {
@@ -149,7 +150,7 @@ impl<S: Numeric> TrackFilter<S> for AutoFilter<S, 2> {
                 range_sigma,
                 bearing_sigma,
                 multiple,
-                self.next_alpha(step.interval.interval()),
+                AutoFilter::<S, 2>::alpha_for(p),
                 predicted.position,
             ),
         };

@@ -109,9 +109,11 @@
 //!
 //! A filter joins by implementing [`TrackFilter`] (a gain schedule's
 //! per-track state goes inside the same `Copy` record, its constants in
-//! [`TrackFilter::Params`]). [`ScheduledTrack`] (any gain schedule) and
+//! [`TrackFilter::Params`]; what its gate forms that its update needs again
+//! may be kept for the scan in [`TrackFilter::GateKept`], or `()`).
+//! [`ScheduledTrack`] (any gain schedule) and
 //! [`RangeAzimuthTrack`] (He et al., gated by a range/azimuth window) do
-//! this for the filters of the earlier issues, with their bytes per track;
+//! this for the library's other filters, with their bytes per track;
 //! [`defaults`] derives the documented default configuration from the
 //! sensor's figures.
 

@@ -154,10 +154,25 @@ impl<S: Numeric> ScanInterval<S> {
 /// in the [`TrackerConfig`](super::TrackerConfig) and passed to every call,
 /// so it costs no bytes per track; what depends only on the parameters and
 /// the scan's interval (β/T of fixed gains) is [`Self::Step`], formed once
-/// per scan ([`Self::step`]).
+/// per scan ([`Self::step`]); what a track's gate forms that its update in
+/// the same scan needs again (the default track's predicted covariance
+/// terms) is [`Self::GateKept`], held in the table's per-scan workspace.
 ///
 /// Contract (as for [`crate::filter`]): the step is for the time since the
 /// previous `update` or `coast`. An `Err` leaves the state untouched.
+///
+/// Keeping (`GateKept` other than `()`): [`Self::gate_region_keeping`]
+/// gives the region [`Self::gate_region`] gives (the table recomputes an
+/// uncached track's costs with the latter) and writes all of `kept`
+/// whenever it gives one, whatever `kept` held (an earlier scan's or
+/// another track's); [`Self::update_after_gate`] gives what
+/// [`Self::update`] gives, bit for bit. The table calls
+/// `update_after_gate` only for a track whose `gate_region_keeping` gave
+/// a region in the same scan, with the same step and the filter unchanged
+/// since; called with anything else (another state's, [`Self::NOTHING_KEPT`])
+/// it gives wrong estimates, not an error. [`Self::NOTHING_KEPT`] should be
+/// all zero bytes, so that a new table still is (a `static` one lands in
+/// `.bss`).
 pub trait TrackFilter<S: Numeric>: Copy {
     /// Configuration shared by every track.
     type Params: Copy;
@@ -166,11 +181,11 @@ pub trait TrackFilter<S: Numeric>: Copy {
     /// What the gate forms of a track that the same scan's update of it
     /// takes again ([`Self::gate_region_keeping`],
     /// [`Self::update_after_gate`]): the default track's predicted
-    /// covariance terms; `()` for a filter that keeps nothing.
-    type Prediction: Copy + core::fmt::Debug;
-    /// A placeholder [`Self::Prediction`]: the table's workspace before a
-    /// gate writes it.
-    const NO_PREDICTION: Self::Prediction;
+    /// covariance terms; `()` for a filter that keeps nothing (no bytes).
+    type GateKept: Copy + core::fmt::Debug;
+    /// A placeholder [`Self::GateKept`]: the table's workspace before a
+    /// gate writes it (all zero bytes; never passed to an update).
+    const NOTHING_KEPT: Self::GateKept;
 
     /// The step of an interval, formed once per scan for every track.
     fn step(params: &Self::Params, interval: &ScanInterval<S>) -> Result<Self::Step, FilterError>;
@@ -267,30 +282,30 @@ pub trait TrackFilter<S: Numeric>: Copy {
 
     /// [`Self::gate_region`], writing to `kept` what the update of the same
     /// scan takes again ([`Self::update_after_gate`]) when it gives a
-    /// region. The default keeps nothing.
+    /// region (the trait's "Keeping"). The default keeps nothing.
     fn gate_region_keeping(
         &self,
         params: &Self::Params,
         predicted: &PredictedState<S>,
         step: &Self::Step,
         gate: &Gate<S>,
-        kept: &mut Self::Prediction,
+        kept: &mut Self::GateKept,
     ) -> Option<GateRegion<S>> {
         let _ = kept;
         self.gate_region(params, predicted, step, gate)
     }
 
-    /// [`Self::update`] in the scan whose gate kept `prediction` for this
-    /// filter as it is and this step ([`Self::gate_region_keeping`]): the
-    /// same result. The default forms everything again.
+    /// [`Self::update`] in the scan whose gate kept `kept` for this filter
+    /// as it is and this step ([`Self::gate_region_keeping`]): the same
+    /// result. The default forms everything again.
     fn update_after_gate(
         &mut self,
         params: &Self::Params,
         z: &Observation<S>,
         step: &Self::Step,
-        prediction: &Self::Prediction,
+        kept: &Self::GateKept,
     ) -> Result<(), FilterError> {
-        let _ = prediction;
+        let _ = kept;
         self.update(params, z, step)
     }
 }
@@ -634,8 +649,8 @@ impl<S: Numeric> FixedGainTrack<S> {
 impl<S: Numeric> TrackFilter<S> for FixedGainTrack<S> {
     type Params = Gains<S>;
     type Step = FixedGainStep<S>;
-    type Prediction = ();
-    const NO_PREDICTION: () = ();
+    type GateKept = ();
+    const NOTHING_KEPT: () = ();
 
     fn step(gains: &Gains<S>, interval: &ScanInterval<S>) -> Result<FixedGainStep<S>, FilterError> {
         let alpha = S::to_variance(gains.alpha());

@@ -548,10 +548,10 @@ pub struct TrackTable<S: Numeric, F: TrackFilter<S>, const N: usize, const M: us
     index: MeasurementIndex<S, M>,
     clusters: Clusters<N, M>,
     outcomes: [Outcome; N],
-    /// What each gated track's gate formed for its update
-    /// ([`TrackFilter::gate_region_keeping`]); read only for tracks gated in
-    /// the same scan.
-    predictions: [F::Prediction; N],
+    /// What each track's gate kept for its update this scan
+    /// ([`TrackFilter::gate_region_keeping`]); read only for a track
+    /// assigned a measurement, which its gate gave a region this scan.
+    gate_kept: [F::GateKept; N],
     /// The cluster being solved: its tracks' slots and measurements.
     row_slot: [u16; N],
     col_measurement: [u16; M],
@@ -610,7 +610,7 @@ impl<S: Numeric, F: TrackFilter<S>, const N: usize, const M: usize> TrackTable<S
             index: MeasurementIndex::new(),
             clusters: Clusters::new(),
             outcomes: [Outcome::Empty; N],
-            predictions: [F::NO_PREDICTION; N],
+            gate_kept: [F::NOTHING_KEPT; N],
             row_slot: [0; N],
             col_measurement: [0; M],
             solver: AssignmentSolver::new(),
@@ -890,15 +890,12 @@ impl<S: Numeric, F: TrackFilter<S>, const N: usize, const M: usize> TrackTable<S
         // Counted in registers, added to the report once: at most N
         // predictions and N·M < 2³² pairs, so no count wraps.
         let (mut predictions, mut candidates, mut gated_pairs) = (0u32, 0u32, 0u32);
-        for (t, slot) in self.slots.iter().enumerate() {
+        for (t, (slot, kept)) in self.slots.iter().zip(self.gate_kept.iter_mut()).enumerate() {
             let Some(track) = slot.track() else { continue };
             let Ok(predicted) = track.filter.predict(params, dt) else {
                 continue;
             };
             predictions = predictions.wrapping_add(1);
-            let Some(kept) = self.predictions.get_mut(t) else {
-                continue;
-            };
             let Some(region) =
                 track
                     .filter
@@ -1027,24 +1024,24 @@ impl<S: Numeric, F: TrackFilter<S>, const N: usize, const M: usize> TrackTable<S
         report: &mut ScanReport,
     ) {
         let params = config.params();
-        for (t, ((slot, outcome), prediction)) in self
+        for (t, ((slot, outcome), kept)) in self
             .slots
             .iter_mut()
             .zip(self.outcomes.iter_mut())
-            .zip(self.predictions.iter())
+            .zip(self.gate_kept.iter())
             .enumerate()
         {
             let Some(track) = slot.track_mut() else {
                 continue;
             };
             *outcome = Outcome::Miss;
-            // Only a track gated this scan is assigned: its prediction is
-            // this scan's.
+            // Only a track whose gate gave a region this scan is assigned:
+            // what its gate kept is this scan's.
             if let Some(k) = self.clusters.assigned(t) {
                 if let (Some(Some(o)), Some(code)) =
                     (self.observations.get(k), self.codes.get_mut(k))
                 {
-                    match track.filter.update_after_gate(params, o, dt, prediction) {
+                    match track.filter.update_after_gate(params, o, dt, kept) {
                         Ok(()) => {
                             *outcome = Outcome::Hit;
                             *code = Association::Updated(track.id);

@@ -331,7 +331,7 @@ fn update_after_gate_is_update<N: Numeric>(gate: abtrack::track::Gate<N>) {
         let predicted = TrackFilter::predict(&plain, &gains, &step);
         assert_eq!(predicted, TrackFilter::predict(&after_gate, &gains, &step));
         let with_prediction = predicted.ok().and_then(|p| {
-            let mut kept = <AutoFilter<N, 2> as TrackFilter<N>>::NO_PREDICTION;
+            let mut kept = <AutoFilter<N, 2> as TrackFilter<N>>::NOTHING_KEPT;
             let region = after_gate.gate_region_keeping(&gains, &p, &step, &gate, &mut kept);
             assert_eq!(region, plain.gate_region(&gains, &p, &step, &gate));
             region.map(|region| (region, kept))

@@ -7,6 +7,7 @@ mod clusters;
 mod crossing;
 mod displacement;
 mod gate;
+mod gate_kept;
 mod lifecycle;
 mod static_construction;
 mod support;

@@ -167,8 +167,8 @@ struct Tiny(u8);
 impl TrackFilter<f32> for Tiny {
     type Params = ();
     type Step = ScanInterval<f32>;
-    type Prediction = ();
-    const NO_PREDICTION: () = ();
+    type GateKept = ();
+    const NOTHING_KEPT: () = ();
     fn step(_: &(), i: &ScanInterval<f32>) -> Result<ScanInterval<f32>, FilterError> {
         Ok(*i)
     }

@@ -68,8 +68,8 @@ pub struct ParkedParams {
 impl TrackFilter<f64> for Parked {
     type Params = ParkedParams;
     type Step = ScanInterval<f64>;
-    type Prediction = ();
-    const NO_PREDICTION: () = ();
+    type GateKept = ();
+    const NOTHING_KEPT: () = ();
     fn step(_: &ParkedParams, i: &ScanInterval<f64>) -> Result<ScanInterval<f64>, FilterError> {
         Ok(*i)
     }

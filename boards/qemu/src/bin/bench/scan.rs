@@ -25,10 +25,11 @@ use crate::numeric::BenchNumber;
 /// The scan rows in `S`, one line per size (each a table type of its own,
 /// with its own code). The micro:bit's 16 KiB of RAM hold the table (on
 /// the stack) up to 32 × 32 in the fast fixed point, and 64 tracks with 32
-/// measurements a scan (11,424 bytes; 64 × 64 is 15,392, the whole RAM);
-/// with the default filter up to 32 × 32 (8,768 bytes; `docs/track-table.md`
-/// gives the formulas): its 64 × 32 table is about 13,470 bytes (64 slots
-/// of 92 bytes where the fixed-gain one has 60), and with the scan's own
+/// measurements a scan (11,472 bytes; 64 × 64 is 15,472, the whole RAM);
+/// with the default filter up to 32 × 32 (9,328 bytes; `docs/track-table.md`
+/// gives the formulas): its 64 × 32 table is 14,544 bytes (64 slots of 92
+/// bytes where the fixed-gain one has 60, and what each track's gate keeps
+/// for its update), and with the scan's own
 /// frames it overflows the 16,224-byte stack (measured: the benchmark's
 /// hard-fault report). The default filter's rows stop at 64 × 64 (the
 /// sizes the cost targets are set for). The test command's smoke image
