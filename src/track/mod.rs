@@ -13,7 +13,8 @@
 //! 2. **Predict** every track to the scan time (the interval may change from
 //!    scan to scan).
 //! 3. **Pre-gate and gate.** Each track builds a validation region from its
-//!    prediction ([`TrackFilter::gate_region`]): sized from the filter's
+//!    prediction ([`TrackFilter::gate_region_keeping`], which keeps what
+//!    the update needs again: [`TrackFilter::GateKept`]): sized from the filter's
 //!    predicted uncertainty, or Li et al.'s wave gate λ = √α ([`Gate`]). The
 //!    measurements inside the region's bounding box are found in an index of
 //!    the scan's measurements (a bucket grid built in O(M), the cells the
@@ -28,7 +29,8 @@
 //!    those, the least total cost; a cluster of one track and one
 //!    measurement is assigned directly. The result is the whole table's
 //!    solve, pair for pair, ties included ([`assign`], "Ties").
-//! 6. **Update** each assigned track; **coast** every other one.
+//! 6. **Update** each assigned track ([`TrackFilter::update_after_gate`],
+//!    with what its gate kept); **coast** every other one.
 //! 7. **Manage.** Confirm a tentative track when M of its first N scans had a
 //!    measurement (default 2 of 3, the starting scan counting as the first
 //!    hit); delete a confirmed track after K consecutive misses (default 3), a
