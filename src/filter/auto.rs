@@ -158,24 +158,14 @@ impl<N: Numeric, const D: usize> AutoFilter<N, D> {
     /// over σ²; the innovation variance over σ² is this plus 1); `None`
     /// before two measurements.
     pub fn predicted_variance_ratio(&self, dt: N::Interval) -> Option<N::Ratio> {
-        self.predicted_variance_ratio_over(dt, None)
+        self.prediction_over(dt, None)
+            .map(|p| p.predicted_variance_ratio())
     }
 
     /// [`Self::predicted_variance_ratio`] for an update after `step`.
     #[inline]
     pub fn predicted_variance_ratio_step(&self, step: &AutoInterval<N>) -> Option<N::Ratio> {
-        self.predicted_variance_ratio_over(step.interval, Some(&step.span))
-    }
-
-    /// [`Self::predicted_variance_ratio`], with the span of `dt` alone
-    /// formed once for many filters ([`Self::span`]).
-    #[inline]
-    fn predicted_variance_ratio_over(
-        &self,
-        dt: N::Interval,
-        uncoasted: Option<&Span<N::Ratio>>,
-    ) -> Option<N::Ratio> {
-        self.prediction_over(dt, uncoasted)
+        self.prediction_step(step)
             .map(|p| p.predicted_variance_ratio())
     }
 
@@ -187,6 +177,8 @@ impl<N: Numeric, const D: usize> AutoFilter<N, D> {
         self.prediction_over(step.interval, Some(&step.span))
     }
 
+    /// [`Self::prediction_step`] after `dt`, with the span of `dt` alone
+    /// formed once for many filters when given ([`Self::span`]).
     #[inline]
     fn prediction_over(
         &self,
