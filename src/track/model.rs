@@ -43,8 +43,9 @@ pub enum RejectReason {
     NotFinite,
     /// A polar measurement with a negative range.
     NegativeRange,
-    /// It won its track's gate, but the filter refused the update (the
-    /// arithmetic saturated); the track coasted instead.
+    /// The filter refused it (the arithmetic saturated): it won its
+    /// track's gate and the track coasted instead, or it was a new track's
+    /// second point and the track did not start.
     FilterRefused,
     /// Its scan came less than [`crate::filter::MIN_INTERVAL_S`] after the
     /// previous scan: the whole scan was skipped, no track changed.

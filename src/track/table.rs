@@ -361,7 +361,9 @@ pub struct ScanReport {
     // --- update
     /// Tracks updated with their measurement.
     pub updated: u32,
-    /// Assigned, but the filter refused the update (the track coasted).
+    /// Measurements the filter refused (its arithmetic saturated): assigned
+    /// to a track, which coasted instead, or the second point of a new
+    /// track, which did not start (its first point is spent).
     pub filter_refused: u32,
     /// Tracks that got no measurement and coasted.
     pub coasted: u32,
@@ -1238,6 +1240,7 @@ impl<S: Numeric, F: TrackFilter<S>, const N: usize, const M: usize> TrackTable<S
             .update(params, first, dt)
             .and_then(|()| filter.update(params, second, dt));
         if started.is_err() {
+            increment(&mut report.filter_refused);
             return Association::Rejected(RejectReason::FilterRefused);
         }
         // The displaced track ends before the id is allocated: at most

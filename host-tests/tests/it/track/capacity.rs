@@ -305,7 +305,7 @@ fn fixed_gain_track_refuses_a_saturating_update_unchanged() {
 fn refused_updates_are_counted_on_the_track() {
     let config = support::parked_config(support::ParkedParams {
         gate_radius: Some(20.0),
-        refuse: true,
+        refuse_after: Some(2),
     });
     let mut table: abtrack::track::TrackTable<f64, support::Parked, 2, 2> =
         abtrack::track::TrackTable::new();
@@ -329,4 +329,34 @@ fn refused_updates_are_counted_on_the_track() {
         assert_eq!(track.refusals() as usize, k + 1);
         assert_eq!(track.misses() as usize, k + 1);
     }
+}
+
+/// A filter that refuses a new track's second point: no track starts, the
+/// measurement is coded `FilterRefused` and counted with the refused
+/// updates, and its first point is spent.
+#[test]
+fn a_refused_start_is_counted() {
+    let config = support::parked_config(support::ParkedParams {
+        gate_radius: Some(20.0),
+        refuse_after: Some(1),
+    });
+    let mut table: abtrack::track::TrackTable<f64, support::Parked, 2, 2> =
+        abtrack::track::TrackTable::new();
+    let mut codes = [Association::OutsideGates; 1];
+    table
+        .scan(&config, 0, &[cart(100.0, 0.0)], &mut codes)
+        .unwrap();
+    let r = table
+        .scan(&config, 1000, &[cart(101.0, 0.0)], &mut codes)
+        .unwrap();
+    assert_eq!(codes[0], Association::Rejected(RejectReason::FilterRefused));
+    assert_eq!((r.filter_refused, r.started, r.tracks), (1, 0, 0));
+    assert_eq!(table.tracks().count(), 0);
+    // The refused point is not a first point either: the next scan's
+    // measurement waits as one.
+    let r = table
+        .scan(&config, 2000, &[cart(102.0, 0.0)], &mut codes)
+        .unwrap();
+    assert_eq!(codes[0], Association::OutsideGates);
+    assert_eq!((r.filter_refused, r.started), (0, 0));
 }

@@ -508,7 +508,7 @@ fn scenes_cover_ties_and_clusters() {
 fn parked_gates(on: bool) -> TrackerConfig<f64, ParkedParams> {
     parked_config(ParkedParams {
         gate_radius: on.then_some(60.0),
-        refuse: false,
+        refuse_after: None,
     })
 }
 

@@ -50,8 +50,9 @@ impl Lcg {
 /// A stationary track for the tests that need a filter of their own: it
 /// takes its position from its measurements and gates a circle of the
 /// configured radius around it (none when the radius is `None`); with
-/// `refuse` it refuses every update after the two initiation points, as a
-/// saturating update would.
+/// `refuse_after: Some(n)` it refuses every update once it holds n points
+/// (2: every update after the two initiation points; 1: the second
+/// initiation point), as a saturating update would.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct Parked {
     points: u8,
@@ -62,7 +63,7 @@ pub struct Parked {
 #[derive(Debug, Clone, Copy)]
 pub struct ParkedParams {
     pub gate_radius: Option<f64>,
-    pub refuse: bool,
+    pub refuse_after: Option<u8>,
 }
 
 impl TrackFilter<f64> for Parked {
@@ -88,7 +89,7 @@ impl TrackFilter<f64> for Parked {
         z: &Observation<f64>,
         _: &ScanInterval<f64>,
     ) -> Result<(), FilterError> {
-        if params.refuse && self.points >= 2 {
+        if params.refuse_after.is_some_and(|n| self.points >= n) {
             return Err(FilterError::Saturated);
         }
         self.points = self.points.saturating_add(1);
