@@ -25,6 +25,7 @@
 
 pub mod bank;
 pub mod budget;
+mod count;
 pub mod design;
 pub mod envelope;
 pub mod filter;

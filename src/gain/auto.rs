@@ -32,11 +32,13 @@ use crate::num::{Numeric, Quantity, Real};
 /// density of an aircraft in straight flight (turbulence, autopilot and
 /// report-time jitter), below which real tracks are never smoother.
 pub const Q_MIN: u64 = 30;
-/// The manoeuvre level of a new track, m²/s³: a ±0.5 g manoeuvre over 2 s
-/// (Bar-Shalom, Li & Kirubarajan 2001 §6.2.2: q ≈ a²·T).
+/// The manoeuvre level of a new track, m²/s³: a ±0.5 g manoeuvre over a
+/// 4 s scan (Bar-Shalom, Li & Kirubarajan 2001 §6.2.2: q ≈ a²·T, here
+/// 4.9²·4 ≈ 96).
 pub const Q_START: u64 = 100;
-/// The manoeuvre level's ceiling, m²/s³: a 3 g manoeuvre sustained over
-/// about 10 s.
+/// The manoeuvre level's ceiling, m²/s³: above any aircraft's at the
+/// filters' intervals (a²·T for 7 g over the longest interval, 20 s, is
+/// about 94,000); it keeps the level inside the number formats.
 pub const Q_MAX: u64 = 100_000;
 /// The time constant of the fading average of the normalised innovation
 /// squared, s (its weight T/τ is formed by three halvings).
@@ -550,13 +552,13 @@ pub(crate) fn two_point<N: Numeric>(t: N::Ratio, manoeuvre: N::Ratio) -> AutoAxi
 impl<N: Numeric, const D: usize> AutoGains<N, D> {
     /// The schedule for the sensor `c` describes (`docs/auto.md`).
     pub fn new(c: &AutoConfig) -> Result<Self, ConfigError> {
-        c.validate()?;
-        let (noise, reference_sigma) = match c.sensor()? {
+        let (noise, reference_sigma, sigma_name) = match c.sensor()? {
             AutoSensor::Cartesian { sigma } => (
                 Noise::Cartesian {
                     inverse_sigma: config_quantity(1.0 / sigma, "sigma")?,
                 },
                 sigma,
+                "sigma",
             ),
             AutoSensor::Polar {
                 range_sigma,
@@ -570,11 +572,12 @@ impl<N: Numeric, const D: usize> AutoGains<N, D> {
                     )?,
                 },
                 range_sigma,
+                "range-sigma",
             ),
         };
         let variance = 3.0 * reference_sigma * reference_sigma;
-        let manoeuvre_min = config_quantity(Q_MIN as f64 / variance, "sigma")?;
-        let manoeuvre_max = config_quantity(Q_MAX as f64 / variance, "sigma")?;
+        let manoeuvre_min = config_quantity(Q_MIN as f64 / variance, sigma_name)?;
+        let manoeuvre_max = config_quantity(Q_MAX as f64 / variance, sigma_name)?;
         let mut out = AutoGains {
             noise,
             manoeuvre_min,

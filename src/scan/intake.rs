@@ -1,7 +1,7 @@
 //! The producer half, run in the receive interrupt: bytes into the decoder,
 //! measurements into a queue.
 
-use super::bump;
+use crate::count::increment;
 
 use crate::wire::{
     Decoder, DecoderStats, EndOfInput, IntakeCounters, MeasurementReport, Message, WireError,
@@ -201,17 +201,17 @@ impl<const Q: usize> Intake<Q> {
     fn handle(&mut self, result: Result<Message, WireError>) -> usize {
         match result {
             Ok(Message::Measurement(m)) => {
-                bump(&mut self.counters.measurements);
+                increment(&mut self.counters.measurements);
                 match self.queue.push(m) {
                     Ok(()) => return 1,
-                    Err(_) => bump(&mut self.counters.queue_full),
+                    Err(_) => increment(&mut self.counters.queue_full),
                 }
             }
             Ok(Message::End(e)) => {
-                bump(&mut self.counters.not_measurement);
+                increment(&mut self.counters.not_measurement);
                 self.ended = Some(e);
             }
-            Ok(_) => bump(&mut self.counters.not_measurement),
+            Ok(_) => increment(&mut self.counters.not_measurement),
             Err(_) => {}
         }
         0
@@ -226,7 +226,7 @@ impl<const Q: usize> Intake<Q> {
     /// Counts a byte the UART lost before it could be read (hardware
     /// overrun flag).
     pub fn count_overrun(&mut self) {
-        bump(&mut self.counters.rx_overruns);
+        increment(&mut self.counters.rx_overruns);
     }
 
     /// The frame decoder, for its statistics ([`Decoder`]).

@@ -105,11 +105,3 @@ pub use clock::ClockConfig;
 pub use intake::{Intake, MeasurementQueue, MeasurementSource};
 pub use scan_loop::{BearingTrack, Collected, ScanConfig, ScanLoop, TickReport, MAX_RA_THREATS};
 pub use verdict::{RunVerdict, MAX_LOST_FRACTION_INVERSE};
-
-fn bump(counter: &mut u32) {
-    *counter = counter.saturating_add(1);
-}
-
-fn bump16(counter: &mut u16) {
-    *counter = counter.saturating_add(1);
-}

@@ -4,7 +4,8 @@
 mod capacity;
 mod intruders;
 
-use super::{bump, bump16, ClockConfig, MeasurementSource};
+use super::{ClockConfig, MeasurementSource};
+use crate::count::{increment, increment16, sat_u16, sat_u32};
 use capacity::{Priority, TrackGate, CLASS_OTHER};
 pub use intruders::MAX_RA_THREATS;
 use intruders::{IdentityRule, IntruderSlot, ReplyData};
@@ -107,14 +108,6 @@ enum Timing {
 /// `d` of [`crate::scan`]'s docs: `t − n` as a signed 32-bit difference.
 fn signed_difference(t: u32, n: u32) -> i32 {
     i32::from_ne_bytes(t.wrapping_sub(n).to_ne_bytes())
-}
-
-fn sat_u16(v: u32) -> u16 {
-    u16::try_from(v).unwrap_or(u16::MAX)
-}
-
-fn sat_u32(v: usize) -> u32 {
-    u32::try_from(v).unwrap_or(u32::MAX)
 }
 
 /// `v·scale` rounded to an integer, saturated to the i32 range (NaN → 0).
@@ -290,8 +283,8 @@ impl<
     /// Drops the held out-of-window measurement, counted.
     fn drop_candidate(&mut self) {
         if self.candidate.pop().is_some() {
-            bump16(&mut self.pending_counts.out_of_window);
-            bump(&mut self.counters.out_of_window);
+            increment16(&mut self.pending_counts.out_of_window);
+            increment(&mut self.counters.out_of_window);
         }
     }
 
@@ -316,7 +309,7 @@ impl<
             if !self.locked {
                 self.locked = true;
                 self.scan_ms = head.time_ms;
-                bump(&mut self.counters.clock_locks);
+                increment(&mut self.counters.clock_locks);
             }
             match self.timing(clock, head.time_ms) {
                 Timing::ThisScan => {
@@ -332,8 +325,8 @@ impl<
                 Timing::Late => {
                     self.drop_candidate();
                     if source.pop().is_some() {
-                        bump16(&mut self.pending_counts.late);
-                        bump(&mut self.counters.late);
+                        increment16(&mut self.pending_counts.late);
+                        increment(&mut self.counters.late);
                     }
                 }
                 Timing::OutOfWindow => {
@@ -359,7 +352,7 @@ impl<
         self.relock = false;
         if let Some(c) = self.candidate.pop() {
             self.scan_ms = c.time_ms;
-            bump(&mut self.counters.clock_relocks);
+            increment(&mut self.counters.clock_relocks);
             self.take(config, &c);
         }
     }
@@ -371,8 +364,8 @@ impl<
             .position::<S>()
             .and_then(|m| report.altitude::<S>().map(|a| (m, a)));
         let Ok((measurement, altitude_ft)) = converted else {
-            bump16(&mut self.pending_counts.invalid);
-            bump(&mut self.counters.invalid);
+            increment16(&mut self.pending_counts.invalid);
+            increment(&mut self.counters.invalid);
             return;
         };
         if self.batch.len() < M {
@@ -399,13 +392,13 @@ impl<
         let observation = Observation::new(measurement).ok();
         let priority = self.priority(observation.as_ref());
         let Some(index) = self.evictable(&priority, observation.as_ref()) else {
-            bump16(&mut self.pending_counts.over_capacity);
-            bump(&mut self.counters.over_capacity);
+            increment16(&mut self.pending_counts.over_capacity);
+            increment(&mut self.counters.over_capacity);
             return;
         };
         self.release(index);
-        bump16(&mut self.pending_counts.over_capacity);
-        bump(&mut self.counters.over_capacity);
+        increment16(&mut self.pending_counts.over_capacity);
+        increment(&mut self.counters.over_capacity);
         if let Some(slot) = self.batch.get_mut(index) {
             *slot = measurement;
         }
@@ -473,7 +466,7 @@ impl<
         let mut counts = self.pending_counts;
         counts.used = sat_u16(sat_u32(used));
         for code in self.codes.iter().take(used) {
-            bump16(match code {
+            increment16(match code {
                 Association::Updated(_) => &mut counts.updated,
                 Association::Started(_) => &mut counts.started,
                 Association::NotAssigned => &mut counts.not_assigned,
@@ -494,7 +487,7 @@ impl<
         counts.confirmed_tracks = sat_u16(confirmed_tracks);
 
         let c = &mut self.counters;
-        bump(&mut c.scans);
+        increment(&mut c.scans);
         c.used = c.used.saturating_add(sat_u32(used));
         c.tracks_started = c.tracks_started.saturating_add(report.started);
         c.tracks_confirmed = c.tracks_confirmed.saturating_add(report.confirmed);
@@ -607,7 +600,7 @@ impl<
                 },
             };
             emit(&Message::Track(report));
-            bump(&mut self.counters.track_reports);
+            increment(&mut self.counters.track_reports);
         }
         (highest, confirmed)
     }

@@ -148,9 +148,10 @@ impl<S: Numeric> ScanInterval<S> {
 ///
 /// The implementing type is the whole per-track estimator state: for a filter
 /// driven by a gain schedule, the filter *and* the schedule's per-track state
-/// (update count, innovation window, ...) in one `Copy` record, e.g.
-/// `struct Scheduled { filter: Cartesian<S, 2, 2>, schedule: G::State,
-/// uncertainty: Uncertainty<S> }`. Everything shared by all tracks (fixed
+/// (update count, innovation window, ...) in one `Copy` record, as
+/// [`ScheduledTrack`](super::ScheduledTrack) holds a
+/// [`ScheduledFilter`](crate::gain::ScheduledFilter) and each axis's
+/// [`Uncertainty`](super::Uncertainty). Everything shared by all tracks (fixed
 /// gains, schedule constants, noise figures) is [`Self::Params`], stored once
 /// in the [`TrackerConfig`](super::TrackerConfig) and passed to every call,
 /// so it costs no bytes per track; what depends only on the parameters and
@@ -229,8 +230,10 @@ pub trait TrackFilter<S: Numeric>: Copy {
         step: &Self::Step,
     ) -> Option<S::Ratio>;
 
-    /// The position gain α the next update will use (Li et al.'s wave gate
-    /// scales by λ = √α, eq. 12).
+    /// The position gain α for [`Self::gate_region`]'s default, Li et
+    /// al.'s wave gate (λ = √α, eq. 12): a filter whose gains follow the
+    /// interval gives them for a 1 s scan here (this signature has no
+    /// interval) and overrides `gate_region` to use the scan's own.
     fn gate_alpha(&self, params: &Self::Params) -> S::Ratio;
 
     /// The step's interval and T²/2.

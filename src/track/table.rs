@@ -8,6 +8,7 @@ use super::config::TrackerConfig;
 use super::gate::GateRegion;
 use super::model::{Measurement, Observation, RejectReason, ScanInterval, TrackFilter};
 use super::pregate::MeasurementIndex;
+use crate::count::{increment, sat_u32};
 use crate::filter::{MAX_INTERVAL_MS, MIN_INTERVAL_MS};
 use crate::num::Numeric;
 
@@ -249,7 +250,8 @@ impl PairRule for AnyPair {
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 #[cfg_attr(feature = "defmt", derive(defmt::Format))]
 pub enum DropReason {
-    /// It would have started a track but the table was full.
+    /// It would have started a track, but the table was full and held no
+    /// tentative track it could displace.
     TableFull,
     /// The scan had more than `M` measurements; this is one of the excess.
     ScanOverflow,
@@ -365,14 +367,17 @@ pub struct ScanReport {
     /// to a track, which coasted instead, or the second point of a new
     /// track, which did not start (its first point is spent).
     pub filter_refused: u32,
-    /// Tracks that got no measurement and coasted.
+    /// Tracks left to coast: no measurement, or the filter refused theirs
+    /// (a coast the filter cannot make deletes the track, counted in
+    /// `deleted_numeric`).
     pub coasted: u32,
     /// Measurements inside a gate but not assigned.
     pub not_assigned: u32,
     // --- manage
     /// Tracks started.
     pub started: u32,
-    /// Tracks that would have started but the table was full.
+    /// Tracks that would have started, but the table was full and held no
+    /// tentative track to displace.
     pub refused_table_full: u32,
     /// Measurements left outside every gate and unpaired.
     pub outside_gates: u32,
@@ -419,7 +424,8 @@ pub struct TableStats {
     pub tracks_confirmed: u32,
     /// Tracks deleted, tentative or confirmed.
     pub tracks_deleted: u32,
-    /// Candidate tracks refused because the table was full.
+    /// Candidate tracks refused: the table was full and held no tentative
+    /// track to displace.
     pub refused_table_full: u32,
     /// Tentative tracks displaced by a new track when the table was full
     /// (also in `tracks_deleted`).
@@ -635,7 +641,9 @@ impl<S: Numeric, F: TrackFilter<S>, const N: usize, const M: usize> TrackTable<S
     pub fn is_empty(&self) -> bool {
         self.slots.iter().all(|s| !s.is_live())
     }
-    /// Every slot holds a live track (new candidates are refused).
+    /// Every slot holds a live track: a new track starts only by
+    /// displacing a tentative one that missed the last scan, and is
+    /// refused when there is none (`DropReason::TableFull`).
     pub fn is_full(&self) -> bool {
         self.slots.iter().all(TrackSlot::is_live)
     }
@@ -1266,7 +1274,8 @@ impl<S: Numeric, F: TrackFilter<S>, const N: usize, const M: usize> TrackTable<S
             _scalar: PhantomData,
         };
         increment(&mut report.started);
-        if config.confirmation().0 <= 1 {
+        // Its start is its first hit: confirmed now under a 1-of-N rule.
+        if meets_confirmation(&track, config) {
             track.lifecycle = Lifecycle::Confirmed;
             increment(&mut report.confirmed);
         }
@@ -1356,8 +1365,8 @@ impl<S: Numeric, F: TrackFilter<S>, const N: usize, const M: usize> TrackTable<S
             return 0;
         }
         if !config.first_points_through_a_miss() {
-            // As before the option: every first point goes (a flag left on
-            // an empty place says nothing).
+            // Option off: every first point is dropped (a flag left on an
+            // empty place says nothing).
             self.pending.fill(None);
             return 0;
         }
@@ -1505,7 +1514,7 @@ fn lifecycle<S: Numeric, F: TrackFilter<S>>(
     if track.lifecycle == Lifecycle::Tentative {
         let hits_in_window = hits_in_window(track.history, confirm_window);
         let remaining = (confirm_window as u32).saturating_sub(track.scans as u32);
-        if hits_in_window >= confirm_hits as u32 {
+        if meets_confirmation(track, config) {
             track.lifecycle = Lifecycle::Confirmed;
             increment(&mut report.confirmed);
             None
@@ -1523,6 +1532,15 @@ fn lifecycle<S: Numeric, F: TrackFilter<S>>(
     }
 }
 
+/// Whether the track's hits meet the M-of-N confirmation rule.
+fn meets_confirmation<S: Numeric, F: TrackFilter<S>>(
+    track: &Track<S, F>,
+    config: &TrackerConfig<S, F::Params>,
+) -> bool {
+    let (confirm_hits, confirm_window) = config.confirmation();
+    hits_in_window(track.history, confirm_window) >= u32::from(confirm_hits)
+}
+
 /// Scans with a measurement among the last `window` of `history`: for a
 /// tentative track (at most `window` scans old), the hits of M-of-N over
 /// its first N scans (the starting scan is scan 1, or scan 2 after the
@@ -1534,13 +1552,4 @@ fn hits_in_window(history: u32, window: u8) -> u32 {
         w => (1u32 << w).wrapping_sub(1),
     };
     (history & mask).count_ones()
-}
-
-/// Counts one (saturating).
-fn increment(counter: &mut u32) {
-    *counter = counter.saturating_add(1);
-}
-
-fn sat_u32(n: usize) -> u32 {
-    u32::try_from(n).unwrap_or(u32::MAX)
 }

@@ -1,4 +1,5 @@
 use super::*;
+use crate::count::{increment, sat_u32};
 
 /// Numbers the frames of one sender's stream (the header's sequence
 /// number, +1 per frame, wrapping), so that the receiver counts lost
@@ -88,14 +89,6 @@ enum Verdict {
     Fail(WireError),
 }
 
-fn bump(counter: &mut u32) {
-    *counter = counter.saturating_add(1);
-}
-
-fn saturating_u32(n: usize) -> u32 {
-    u32::try_from(n).unwrap_or(u32::MAX)
-}
-
 impl Decoder {
     /// An empty decoder: nothing held, zero counters, no sequence expected
     /// yet (a `const fn`, for a `static`).
@@ -128,7 +121,7 @@ impl Decoder {
     /// Takes one received byte; returns a frame or a frame-level error if
     /// one completed.
     pub fn push(&mut self, byte: u8) -> Option<Result<Message, WireError>> {
-        bump(&mut self.stats.bytes);
+        increment(&mut self.stats.bytes);
         if self.held >= MAX_FRAME_LEN {
             // Unreachable: after every call fewer than MAX_FRAME_LEN bytes
             // are held (a candidate of MAX_FRAME_LEN bytes is complete and
@@ -233,8 +226,8 @@ impl Decoder {
     /// Counts a refused candidate and drops its first byte.
     fn refuse(&mut self, e: WireError) -> WireError {
         let s = &mut self.stats;
-        bump(&mut s.frames);
-        bump(match e {
+        increment(&mut s.frames);
+        increment(match e {
             WireError::Checksum => &mut s.crc_errors,
             WireError::UnknownType => &mut s.unknown_type,
             WireError::BadLength => &mut s.bad_length,
@@ -252,15 +245,15 @@ impl Decoder {
     /// bytes.
     fn accept(&mut self, sequence: u16) {
         let s = &mut self.stats;
-        bump(&mut s.frames);
-        bump(&mut s.accepted);
-        s.frame_bytes = s.frame_bytes.saturating_add(saturating_u32(self.accepted));
+        increment(&mut s.frames);
+        increment(&mut s.accepted);
+        s.frame_bytes = s.frame_bytes.saturating_add(sat_u32(self.accepted));
         if let Some(expected) = self.expected_sequence {
             let gap = sequence.wrapping_sub(expected);
             if gap < 0x8000 {
                 s.frames_lost = s.frames_lost.saturating_add(u32::from(gap));
             } else {
-                bump(&mut s.out_of_sequence);
+                increment(&mut s.out_of_sequence);
             }
         }
         self.expected_sequence = Some(sequence.wrapping_add(1));
@@ -270,7 +263,7 @@ impl Decoder {
     /// Drops the first `n` held bytes as skipped; restarts the hunt.
     fn discard(&mut self, n: usize) {
         let n = n.min(self.held);
-        self.stats.bytes_skipped = self.stats.bytes_skipped.saturating_add(saturating_u32(n));
+        self.stats.bytes_skipped = self.stats.bytes_skipped.saturating_add(sat_u32(n));
         self.consume(n);
     }
 

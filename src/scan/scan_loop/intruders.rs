@@ -1,8 +1,8 @@
 //! Each track's TCAS surveillance: reply identity, range and altitude
 //! trackers, threat assessment and the RA.
 
-use super::super::bump;
 use super::{BearingTrack, ScanConfig, ScanLoop};
+use crate::count::increment;
 
 use crate::filter::altitude::AltitudeQuantum;
 use crate::num::{hypot, Numeric, Scalar};
@@ -197,7 +197,7 @@ impl<
                     .scan(config.altitude_of(s.quantum), Some(reply), dt)
                     .is_err()
                 {
-                    bump(&mut self.counters.intruder_tracker_errors);
+                    increment(&mut self.counters.intruder_tracker_errors);
                 }
                 let counted = &mut self.counters.altitude_not_credible;
                 *counted = counted.saturating_add(
@@ -215,7 +215,7 @@ impl<
                     .scan(config.altitude_of(s.quantum), None, dt)
                     .is_err()
             {
-                bump(&mut self.counters.intruder_tracker_errors);
+                increment(&mut self.counters.intruder_tracker_errors);
             }
         }
     }
@@ -242,7 +242,7 @@ impl<
             return none;
         }
         let Ok(cycle) = self.cas.begin_cycle(&config.own, false) else {
-            bump(&mut self.counters.assessment_errors);
+            increment(&mut self.counters.assessment_errors);
             return none;
         };
         let mut threats: heapless::Vec<ThreatGeometry<S>, MAX_RA_THREATS> = heapless::Vec::new();
@@ -253,7 +253,7 @@ impl<
             let status = match slot.tcas.assess(&cycle, track.filter().bearing_track(), dt) {
                 Ok(status) => status,
                 Err(_) => {
-                    bump(&mut self.counters.assessment_errors);
+                    increment(&mut self.counters.assessment_errors);
                     continue;
                 }
             };
@@ -274,7 +274,7 @@ impl<
                 clear_of_conflict: out.clear_of_conflict,
             },
             Err(_) => {
-                bump(&mut self.counters.assessment_errors);
+                increment(&mut self.counters.assessment_errors);
                 none
             }
         }
@@ -298,7 +298,7 @@ fn add_threat<S: Scalar>(
     let Err(threat) = threats.push(threat) else {
         return;
     };
-    bump(&mut counters.ra_threats_over_capacity);
+    increment(&mut counters.ra_threats_over_capacity);
     let latest = threats.iter_mut().reduce(|a, b| {
         if b.modified_tau_s > a.modified_tau_s {
             b
