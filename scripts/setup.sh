@@ -69,9 +69,17 @@ install_packages_or_die() {
     fi
 }
 
+# cargo and a rustc at least as new as the host tools' `rust-version`
+# (host-tests/Cargo.toml; the demo and the tests build them; the library
+# alone builds on the older workspace `rust-version`).
 ensure_cargo() {
     command -v cargo >/dev/null && command -v rustc >/dev/null ||
         die "cargo/rustc not found: install Rust with rustup (https://rustup.rs), then re-run"
+    local need have
+    need=$(awk -F'"' '/^rust-version/ { print $2; exit }' "$(repo_root)/host-tests/Cargo.toml")
+    have=$(rustc --version | awk '{ print $2 }')
+    [ -z "$need" ] || [ "$(printf '%s\n%s\n' "$need" "$have" | sort -V | head -n 1)" = "$need" ] ||
+        die "Rust $need or later is needed, this rustc is $have: run 'rustup update stable', then re-run"
 }
 
 # Rust targets, given as arguments (default: all three firmware targets),
