@@ -25,6 +25,7 @@
 
 pub mod bank;
 pub mod budget;
+#[macro_use]
 mod count;
 pub mod design;
 pub mod envelope;

@@ -365,6 +365,7 @@ impl ReportSummary {
             let _ = writeln!(out, "  receiver: {}", h.decoder);
             let _ = writeln!(out, "  intake: {}", h.intake);
             let _ = writeln!(out, "  scan loop: {}", h.scan);
+            let _ = writeln!(out, "  track table: {}", h.table);
         }
         out
     }
@@ -435,11 +436,12 @@ pub fn message_line(m: &Message) -> String {
         ),
         Message::End(e) => format!("end of input t={} s", seconds(e.time_ms)),
         Message::Health(h) => format!(
-            "health t={} s: receiver: {}; intake: {}; scan loop: {}",
+            "health t={} s: receiver: {}; intake: {}; scan loop: {}; track table: {}",
             seconds(h.time_ms),
             h.decoder,
             h.intake,
-            h.scan
+            h.scan,
+            h.table
         ),
     }
 }
@@ -522,6 +524,7 @@ pub fn run_like_the_firmware<
         decoder,
         intake: intake_counters,
         scan: *scan_loop.counters(),
+        table: *scan_loop.table().stats(),
     };
     run.verdict = Some(RunVerdict::from_health(&run.health));
     run
@@ -543,6 +546,7 @@ pub struct FirmwareRun {
 /// counter lists (`frames layout`; docs/firmware-runtime.md holds a copy,
 /// checked by the frames tool's tests).
 pub fn layout_markdown() -> String {
+    use abtrack::track::TableStats;
     use abtrack::wire::{IntakeCounters, LoopCounters, ScanCounts, LAYOUTS};
     let mut out = String::new();
     for (name, kind, fields) in LAYOUTS {
@@ -570,7 +574,7 @@ pub fn layout_markdown() -> String {
         }
         out += "\n";
     }
-    let lists: [(&str, &[&str], &[&str]); 4] = [
+    let lists: [(&str, &[&str], &[&str]); 5] = [
         (
             "`COUNTS` of the scan summary, u16 each, in order",
             &ScanCounts::NAMES,
@@ -590,6 +594,11 @@ pub fn layout_markdown() -> String {
             "`SCAN` of the health report, u32 each",
             &LoopCounters::NAMES,
             &LoopCounters::LABELS,
+        ),
+        (
+            "`TABLE` of the health report, u32 each",
+            &TableStats::NAMES,
+            &TableStats::LABELS,
         ),
     ];
     for (title, names, labels) in lists {

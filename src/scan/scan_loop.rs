@@ -489,18 +489,10 @@ impl<
         let c = &mut self.counters;
         increment(&mut c.scans);
         c.used = c.used.saturating_add(sat_u32(used));
-        c.tracks_started = c.tracks_started.saturating_add(report.started);
-        c.tracks_confirmed = c.tracks_confirmed.saturating_add(report.confirmed);
-        c.tracks_deleted = c.tracks_deleted.saturating_add(report.deleted);
-        c.tracks_restarted = c.tracks_restarted.saturating_add(report.restarted);
-        c.refused_table_full = c
-            .refused_table_full
-            .saturating_add(report.refused_table_full);
         c.rejected = c.rejected.saturating_add(u32::from(counts.rejected));
         c.not_assigned = c
             .not_assigned
             .saturating_add(u32::from(counts.not_assigned));
-        c.tracks_displaced = c.tracks_displaced.saturating_add(report.deleted_displaced);
 
         let summary = ScanSummary {
             time_ms: self.scan_ms,
@@ -533,6 +525,7 @@ impl<
             decoder,
             intake,
             scan: self.counters,
+            table: *self.table.stats(),
         }));
         Ok(TickReport {
             scan: report,

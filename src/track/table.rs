@@ -412,34 +412,37 @@ pub struct ScanReport {
     pub tracks: u32,
 }
 
-/// Counters over the table's lifetime (saturating).
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
-#[cfg_attr(feature = "defmt", derive(defmt::Format))]
-pub struct TableStats {
-    /// Scans accepted.
-    pub scans: u32,
-    /// Tentative tracks started.
-    pub tracks_started: u32,
-    /// Tentative tracks confirmed.
-    pub tracks_confirmed: u32,
-    /// Tracks deleted, tentative or confirmed.
-    pub tracks_deleted: u32,
-    /// Candidate tracks refused: the table was full and held no tentative
-    /// track to displace.
-    pub refused_table_full: u32,
-    /// Tentative tracks displaced by a new track when the table was full
-    /// (also in `tracks_deleted`).
-    pub tracks_displaced: u32,
-    /// Measurements beyond `M` in a scan.
-    pub dropped_overflow: u32,
-    /// Measurements rejected as bad input.
-    pub rejected: u32,
-    /// Tracks restarted (ended by a scan interval beyond the filters'
-    /// range, [`ScanReport::restarted`]).
-    pub tracks_restarted: u32,
-    /// Scans skipped for coming too close to the previous one
-    /// ([`ScanReport::too_close`]).
-    pub scans_skipped: u32,
+counter_list! {
+    /// Counters over the table's lifetime (saturating); the scan loop sends
+    /// them in its health report.
+    pub struct TableStats: u32 {
+        /// Scans accepted.
+        scans => "scans",
+        /// Tentative tracks started.
+        tracks_started => "tracks started",
+        /// Tentative tracks confirmed.
+        tracks_confirmed => "tracks confirmed",
+        /// Tracks deleted, tentative or confirmed (the displaced ones
+        /// included).
+        tracks_deleted => "tracks deleted",
+        /// Candidate tracks refused: the table was full and held no
+        /// tentative track to displace.
+        refused_table_full => "refused, table full",
+        /// Tentative tracks displaced by a new track when the table was full
+        /// (also in `tracks_deleted`).
+        tracks_displaced => "tentative tracks displaced",
+        /// Measurements beyond `M` in a scan.
+        dropped_overflow => "dropped, scan overflow",
+        /// Measurements rejected as bad input (not finite, a negative
+        /// range).
+        rejected => "rejected as bad input",
+        /// Tracks restarted (ended by a scan interval beyond the filters'
+        /// range, [`ScanReport::restarted`]).
+        tracks_restarted => "tracks restarted",
+        /// Scans skipped for coming too close to the previous one
+        /// ([`ScanReport::too_close`]).
+        scans_skipped => "scans skipped",
+    }
 }
 
 /// The stages of [`TrackTable::scan`], in order: what

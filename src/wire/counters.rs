@@ -1,112 +1,5 @@
-use super::*;
-
-/// Declares a list of counters once: the struct, its names and labels in
-/// wire order, the wire encoding ([`WireValue`]), the log line
-/// (`defmt::Format`, non-zero counters) and the text ([`core::fmt::Display`],
-/// every counter), so that none of them can drift from the others.
-macro_rules! counter_list {
-    (
-        $(#[$meta:meta])*
-        pub struct $name:ident: $int:ty {
-            $( $(#[doc = $doc:literal])* $field:ident => $label:literal, )+
-        }
-    ) => {
-        $(#[$meta])*
-        #[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
-        pub struct $name {
-            $( $(#[doc = $doc])* pub $field: $int, )+
-        }
-
-        impl $name {
-            /// Number of counters.
-            pub const LEN: usize = [$(stringify!($field)),+].len();
-            /// Field names in wire order (CSV column names).
-            pub const NAMES: [&'static str; Self::LEN] = [$(stringify!($field)),+];
-            /// What each counter counts, in wire order (log and text).
-            pub const LABELS: [&'static str; Self::LEN] = [$($label),+];
-
-            /// All zero.
-            pub const fn new() -> Self {
-                Self::from_values([0; Self::LEN])
-            }
-            /// The values in wire order.
-            pub const fn values(&self) -> [$int; Self::LEN] {
-                [$(self.$field),+]
-            }
-            /// From values in wire order.
-            pub const fn from_values(values: [$int; Self::LEN]) -> Self {
-                let [$($field),+] = values;
-                Self { $($field),+ }
-            }
-            /// The counters added one by one, saturating.
-            pub fn saturating_add(self, other: Self) -> Self {
-                let mut sum = self.values();
-                for (s, o) in sum.iter_mut().zip(other.values()) {
-                    *s = s.saturating_add(o);
-                }
-                Self::from_values(sum)
-            }
-        }
-
-        impl WireValue for $name {
-            const WIDTH: usize = Self::LEN.saturating_mul(<$int as WireValue>::WIDTH);
-            fn read(bytes: &[u8]) -> Self {
-                let mut values = [0; Self::LEN];
-                for (v, chunk) in values
-                    .iter_mut()
-                    .zip(bytes.chunks(<$int as WireValue>::WIDTH))
-                {
-                    *v = <$int as WireValue>::read(chunk);
-                }
-                Self::from_values(values)
-            }
-            fn write(self, bytes: &mut [u8]) {
-                for (v, chunk) in self
-                    .values()
-                    .into_iter()
-                    .zip(bytes.chunks_mut(<$int as WireValue>::WIDTH))
-                {
-                    v.write(chunk);
-                }
-            }
-        }
-
-        impl core::fmt::Display for $name {
-            fn fmt(&self, f: &mut core::fmt::Formatter<'_>) -> core::fmt::Result {
-                for (i, (value, label)) in self.values().into_iter().zip(Self::LABELS).enumerate() {
-                    if i > 0 {
-                        f.write_str(", ")?;
-                    }
-                    write!(f, "{value} {label}")?;
-                }
-                Ok(())
-            }
-        }
-
-        #[cfg(feature = "defmt")]
-        impl defmt::Format for $name {
-            fn format(&self, f: defmt::Formatter) {
-                let mut first = true;
-                for (value, label) in self.values().into_iter().zip(Self::LABELS) {
-                    if value == 0 {
-                        continue;
-                    }
-                    if !first {
-                        defmt::write!(f, ", ");
-                    }
-                    defmt::write!(f, "{} {=str}", value, label);
-                    first = false;
-                }
-                if first {
-                    defmt::write!(f, "all zero");
-                }
-            }
-        }
-    };
-}
-
 counter_list! {
-    /// What the [`Decoder`] has seen over its lifetime (saturating).
+    /// What the [`Decoder`](super::Decoder) has seen over its lifetime (saturating).
     ///
     /// Invariants (`host-tests/tests/it/wire/codec.rs`): `bytes = frame_bytes +
     /// bytes_skipped + held`, and `frames = accepted + crc_errors +
@@ -170,7 +63,9 @@ counter_list! {
     /// held for the next scan): `intake.measurements = intake.queue_full +
     /// those + held` ([`crate::scan::ScanLoop::held`]). Of the `used`, the
     /// tracker refused `rejected` and gave `not_assigned` no track (the
-    /// scan summaries' counts of the same names, added up).
+    /// scan summaries' counts of the same names, added up). The tracks'
+    /// lifetime counts are the track table's own
+    /// ([`crate::track::TableStats`], in the same health report).
     pub struct LoopCounters: u32 {
         /// Scans run.
         scans => "scans",
@@ -197,21 +92,6 @@ counter_list! {
         /// Used, inside a gate, and the assignment gave the track another
         /// measurement.
         not_assigned => "not assigned",
-        /// Tentative tracks started.
-        tracks_started => "tracks started",
-        /// Tracks confirmed.
-        tracks_confirmed => "tracks confirmed",
-        /// Tracks deleted (the displaced ones included).
-        tracks_deleted => "tracks deleted",
-        /// Tracks restarted: ended by a scan more than the filters' longest
-        /// interval after the previous one
-        /// ([`crate::track::ScanReport::restarted`]).
-        tracks_restarted => "tracks restarted",
-        /// Candidate tracks refused because the table was full.
-        refused_table_full => "refused, table full",
-        /// Tentative tracks displaced by a new track because the table was
-        /// full (also in `tracks_deleted`).
-        tracks_displaced => "tentative tracks displaced",
         /// Track report frames emitted.
         track_reports => "track reports",
         /// Confirmed tracks whose threat assessment failed (or the

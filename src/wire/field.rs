@@ -124,5 +124,8 @@ layout! {
         INTAKE: IntakeCounters,
         /// The scan loop's ([`LoopCounters`]).
         SCAN: LoopCounters,
+        /// The scan loop's track table's
+        /// ([`TableStats`](crate::track::TableStats)).
+        TABLE: crate::track::TableStats,
     }
 }

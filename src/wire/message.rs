@@ -388,6 +388,8 @@ pub struct Health {
     pub intake: IntakeCounters,
     /// The scan loop's counters.
     pub scan: LoopCounters,
+    /// The scan loop's track table's counters.
+    pub table: crate::track::TableStats,
 }
 
 /// The end of a recording (frame type 0x03).
@@ -568,6 +570,7 @@ impl Message {
                 decoder: health::DECODER.get(p),
                 intake: health::INTAKE.get(p),
                 scan: health::SCAN.get(p),
+                table: health::TABLE.get(p),
             }),
         };
         if let Message::Measurement(m) = &message {
@@ -652,6 +655,7 @@ impl Message {
                 health::DECODER.set(p, h.decoder);
                 health::INTAKE.set(p, h.intake);
                 health::SCAN.set(p, h.scan);
+                health::TABLE.set(p, h.table);
             }
         }
         frame.fill_crc();

@@ -272,6 +272,7 @@ impl Reporter {
                 decoder: DecoderStats::new(),
                 intake: IntakeCounters::new(),
                 scan: abtrack::wire::LoopCounters::new(),
+                table: abtrack::track::TableStats::new(),
             },
         }
     }
@@ -589,6 +590,7 @@ fn summarise(
         decoder,
         intake,
         scan: *scan_loop.counters(),
+        table: *scan_loop.table().stats(),
     };
     match run.end_frame {
         Some(e) => {

@@ -362,16 +362,16 @@ fn the_scan_loop_keeps_a_coasting_track_past_the_longest_interval() {
         .collect();
     assert_eq!(updated_late.len(), 1, "{updated_late:?}");
     assert!(updated_late[0] >= 28_000, "{updated_late:?}");
-    let counters = scan_loop.counters();
+    let stats = scan_loop.table().stats();
     assert_eq!(
         (
-            counters.tracks_started,
-            counters.tracks_restarted,
-            counters.tracks_deleted
+            stats.tracks_started,
+            stats.tracks_restarted,
+            stats.tracks_deleted
         ),
         (1, 0, 0)
     );
-    assert_eq!(health.last().unwrap().scan.tracks_restarted, 0);
+    assert_eq!(health.last().unwrap().table, *stats);
     assert_eq!(scan_loop.table().len(), 1);
 }
 

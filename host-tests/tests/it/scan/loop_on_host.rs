@@ -419,7 +419,7 @@ fn a_gap_runs_empty_scans_on_schedule() {
     assert_eq!(times, expected);
     assert_eq!(scan_loop.counters().clock_relocks, 0);
     // The track (confirmed at 2 s) coasted and was deleted in the gap.
-    assert_eq!(scan_loop.counters().tracks_deleted, 1);
+    assert_eq!(scan_loop.table().stats().tracks_deleted, 1);
 }
 
 /// The clock findings on the scan core: a clock far from zero, a

@@ -4,7 +4,7 @@
 
 use abtrack::num::Quantity;
 use abtrack::tcas::{Advisory, RaSense, RaStrength, SensitivityLevel};
-use abtrack::track::{Measurement, TrackStatus};
+use abtrack::track::{Measurement, TableStats, TrackStatus};
 use abtrack::wire::*;
 use abtrack::Fix;
 use proptest::prelude::*;
@@ -172,6 +172,7 @@ fn health() -> Health {
         decoder: DecoderStats::from_values(std::array::from_fn(|i| 100 + i as u32)),
         intake: IntakeCounters::from_values(std::array::from_fn(|i| 200 + i as u32)),
         scan: LoopCounters::from_values(std::array::from_fn(|i| u32::MAX - i as u32)),
+        table: TableStats::from_values(std::array::from_fn(|i| 300 + i as u32)),
     }
 }
 
@@ -239,8 +240,10 @@ fn report_frames_round_trip() {
     assert_eq!(&p[intake_at..intake_at + 4], &200u32.to_be_bytes());
     assert_eq!(
         p.len(),
-        4 + 4 * (DecoderStats::LEN + IntakeCounters::LEN + LoopCounters::LEN)
+        4 + 4 * (DecoderStats::LEN + IntakeCounters::LEN + LoopCounters::LEN + TableStats::LEN)
     );
+    let table_at = intake_at + 4 * (IntakeCounters::LEN + LoopCounters::LEN);
+    assert_eq!(&p[table_at..table_at + 4], &300u32.to_be_bytes());
 }
 
 #[test]
@@ -249,6 +252,7 @@ fn counter_lists_name_every_counter_once() {
         (&DecoderStats::NAMES[..], &DecoderStats::LABELS[..]),
         (&IntakeCounters::NAMES[..], &IntakeCounters::LABELS[..]),
         (&LoopCounters::NAMES[..], &LoopCounters::LABELS[..]),
+        (&TableStats::NAMES[..], &TableStats::LABELS[..]),
         (&ScanCounts::NAMES[..], &ScanCounts::LABELS[..]),
     ] {
         let unique: std::collections::BTreeSet<_> = names.iter().collect();
@@ -893,13 +897,15 @@ fn any_message() -> impl Strategy<Value = Message> {
         [any::<u32>(); DecoderStats::LEN],
         [any::<u32>(); IntakeCounters::LEN],
         [any::<u32>(); LoopCounters::LEN],
+        [any::<u32>(); TableStats::LEN],
     )
-        .prop_map(|(t, d, i, l)| {
+        .prop_map(|(t, d, i, l, s)| {
             Message::Health(Health {
                 time_ms: t,
                 decoder: DecoderStats::from_values(d),
                 intake: IntakeCounters::from_values(i),
                 scan: LoopCounters::from_values(l),
+                table: TableStats::from_values(s),
             })
         });
     prop_oneof![measurement, track, scan, health]
