@@ -50,9 +50,10 @@ pub const MAX_FIRMNESS: u8 = 8;
 /// # γ convention
 ///
 /// abtrack's acceleration correction is γ/(2T²)·e (Tenne & Singh eq. 5) and
-/// the table's γ is used in it as given. We could not check DO-185B's own
-/// convention; if it is γ/T², these values correct acceleration half as much
-/// as intended. Both readings are inside the stability volume. The entries
+/// the table's γ is used in it as given. DO-185B's range tracker corrects
+/// by γ·e/T² ([`crate::tcas`]'s range tracker, tested), so with these values
+/// this schedule corrects acceleration half as much as that tracker. Both
+/// readings are inside the stability volume. The entries
 /// do satisfy γ ≈ β²/(2α) (e.g. 0.5²/1.66 = 0.151 vs 0.16; 0.1²/0.8 = 0.0125
 /// vs 0.01) to within the table's rounding.
 ///

@@ -91,15 +91,13 @@
 //! | deletion (confirmed, tentative) | 4, 2 | 4, 2 |
 
 //!
-//! # Limits (measured in host-tests, `results/multi-target/`)
+//! # Limits
 //!
 //! Rule 4's false-confirmation estimate counts clutter in a tentative
-//! track's first gate only. On the Cartesian scenarios it holds (predicted
-//! 0.010 confirmed false tracks per 60-scan run; measured 0.004 and 0.002
-//! over 500 runs). On `tcas-30` it is optimistic (predicted 0.05 per run,
-//! measured 2.2): with a 5° bearing error the windows are kilometres wide
-//! across range, tentative tracks pick up intruders' measurements not yet
-//! claimed by their own tracks, and coasting widens the windows further.
+//! track's first gate only: it holds for a Cartesian sensor and is
+//! optimistic for a wide bearing window (kilometres across range at 5°),
+//! which also takes in other targets' measurements; the measured rates are
+//! in `results/multi-target/` (docs/experiments.md, "Many targets").
 
 use super::adapters::RangeAzimuthTrack;
 use super::config::{TrackerConfig, Volume};

@@ -25,8 +25,8 @@ use std::time::Instant;
 use abtrack::filter::auto::AutoFilter;
 use abtrack::gain::{AnySchedule, FirmnessGains, FixedGains, LeastSquaresGains, LiImprovedGains};
 use abtrack::track::defaults::DerivedParameters;
-use abtrack::track::{FixedGainTrack, RangeAzimuthTrack, ScheduledTrack, Track};
-use abtrack::Fix;
+use abtrack::track::{FixedGainTrack, RangeAzimuthTrack, ScheduledTrack, TrackSlot};
+use abtrack::{Fix, Fixed32};
 
 use super::common::{fmt_ci, plot, write_file, Context, PlotSpec, Series, Table};
 use crate::metrics::{mean_ci95, ospa_against_time, track_metrics, MeanCi};
@@ -457,64 +457,50 @@ fn design_rows(table: &mut Table, scenario: &str, d: &DerivedParameters, plan: &
 }
 
 fn bytes_table() -> Table {
-    type Slot<S, F> = Option<Track<S, F>>;
     let mut t = Table::new([
-        "filter F (table slot Option<Track<S, F>>)",
+        "filter F (the table's slot, TrackSlot<S, F>)",
         "f64",
         "f32",
-        "fixed",
+        "q32 (Q32.32)",
+        "fixed (Fixed32)",
     ]);
+    // The track type for each number system S.
     macro_rules! row {
-        ($label:expr, $f:ident $(, $extra:ty)?) => {
+        ($label:expr, $track:ident<S $(, $extra:ty)?>) => {
             t.push([
                 $label.to_string(),
-                size_of::<Slot<f64, $f<f64 $(, $extra)?>>>().to_string(),
-                size_of::<Slot<f32, $f<f32 $(, $extra)?>>>().to_string(),
-                size_of::<Slot<Fix, $f<Fix $(, $extra)?>>>().to_string(),
+                size_of::<TrackSlot<f64, $track<f64 $(, $extra)?>>>().to_string(),
+                size_of::<TrackSlot<f32, $track<f32 $(, $extra)?>>>().to_string(),
+                size_of::<TrackSlot<Fix, $track<Fix $(, $extra)?>>>().to_string(),
+                size_of::<TrackSlot<Fixed32, $track<Fixed32 $(, $extra)?>>>().to_string(),
             ]);
         };
     }
     row!(
         "FixedGainTrack (fixed gains, for comparison)",
-        FixedGainTrack
+        FixedGainTrack<S>
     );
+    row!("ScheduledTrack<S, LeastSquaresGains> (M2)", ScheduledTrack<S, LeastSquaresGains>);
     row!(
-        "ScheduledTrack<S, LeastSquaresGains> (M2)",
-        ScheduledTrack,
-        LeastSquaresGains
+        "AutoFilter<S, 2>, auto fused (default Cartesian)",
+        AutoTrack<S>
     );
-    t.push([
-        "AutoFilter<S, 2>, auto fused (default Cartesian)".to_string(),
-        size_of::<Slot<f64, AutoFilter<f64, 2>>>().to_string(),
-        size_of::<Slot<f32, AutoFilter<f32, 2>>>().to_string(),
-        size_of::<Slot<Fix, AutoFilter<Fix, 2>>>().to_string(),
-    ]);
-    t.push([
-        "ScheduledTrack<S, FixedGains<S>> (M1)".to_string(),
-        size_of::<Slot<f64, ScheduledTrack<f64, FixedGains<f64>>>>().to_string(),
-        size_of::<Slot<f32, ScheduledTrack<f32, FixedGains<f32>>>>().to_string(),
-        size_of::<Slot<Fix, ScheduledTrack<Fix, FixedGains<Fix>>>>().to_string(),
-    ]);
-    t.push([
-        "ScheduledTrack<S, LiImprovedGains<S>>".to_string(),
-        size_of::<Slot<f64, ScheduledTrack<f64, LiImprovedGains<f64>>>>().to_string(),
-        size_of::<Slot<f32, ScheduledTrack<f32, LiImprovedGains<f32>>>>().to_string(),
-        size_of::<Slot<Fix, ScheduledTrack<Fix, LiImprovedGains<Fix>>>>().to_string(),
-    ]);
+    row!("ScheduledTrack<S, FixedGains<S>> (M1)", FixedGainsTrack<S>);
+    row!("ScheduledTrack<S, LiImprovedGains<S>>", LiTrack<S>);
+    row!("ScheduledTrack<S, FirmnessGains> (TCAS)", ScheduledTrack<S, FirmnessGains>);
     row!(
-        "ScheduledTrack<S, FirmnessGains> (TCAS)",
-        ScheduledTrack,
-        FirmnessGains
+        "ScheduledTrack<S, AnySchedule<S, 2, 8>> (any schedule)",
+        AnyScheduleTrack<S>
     );
-    t.push([
-        "ScheduledTrack<S, AnySchedule<S, 2, 8>> (any schedule)".to_string(),
-        size_of::<Slot<f64, ScheduledTrack<f64, AnySchedule<f64, 2, 8>>>>().to_string(),
-        size_of::<Slot<f32, ScheduledTrack<f32, AnySchedule<f32, 2, 8>>>>().to_string(),
-        size_of::<Slot<Fix, ScheduledTrack<Fix, AnySchedule<Fix, 2, 8>>>>().to_string(),
-    ]);
-    row!("RangeAzimuthTrack (default polar)", RangeAzimuthTrack);
+    row!("RangeAzimuthTrack (default polar)", RangeAzimuthTrack<S>);
     t
 }
+
+/// The tracks whose type has more than the number system as a parameter.
+type AutoTrack<S> = AutoFilter<S, 2>;
+type FixedGainsTrack<S> = ScheduledTrack<S, FixedGains<S>>;
+type LiTrack<S> = ScheduledTrack<S, LiImprovedGains<S>>;
+type AnyScheduleTrack<S> = ScheduledTrack<S, AnySchedule<S, 2, 8>>;
 
 /// The group's entry point.
 pub fn run(ctx: &Context) -> Result<(), String> {
@@ -623,7 +609,7 @@ pub fn run(ctx: &Context) -> Result<(), String> {
          (also the track-to-truth gate of the track metrics). Intervals are 95 % (Student t \
          for means, Wilson for proportions). Identity switches follow the CLEAR-MOT continuity \
          rule (`tracking::identity_switches`); the per-scan-assignment id changes of \
-         `metrics::track_metrics` are listed too. Discussion: `results/multi-target.md`.\n"
+         `metrics::track_metrics` are listed too. Discussion: docs/experiments.md, \"Many targets\".\n"
     );
     for l in &summary_lines {
         let _ = writeln!(s, "{l}");

@@ -808,7 +808,7 @@ pub fn claims(o: &Outcome) -> Vec<Claim> {
             100.0 * mixed_excess
         ),
         &[mixed_excess < 1e-3],
-        "The printed cross term +v·a_s·T⁴/β² has the wrong sign (README, \"four misprints\"); with only v or only a_s (Fig. 2) it vanishes and the printed and consistent optima coincide.",
+        "The printed cross term +v·a_s·T⁴/β² has the wrong sign (docs/numerics.md, \"four misprints\"); with only v or only a_s (Fig. 2) it vanishes and the printed and consistent optima coincide.",
     ));
     let printed_ratio = |rows: &mut dyn Iterator<Item = (Option<f64>, f64)>| {
         rows.map(|(p, best)| p.map_or(f64::INFINITY, |p| p / best))
