@@ -133,7 +133,7 @@ pub const PLANS: &[Plan] = &[
     },
 ];
 
-/// Runs the scenario in f64, f32 and Fix with the default design, the table
+/// Runs the scenario in f64, f32 and Q32.32 (`Fix`) with the default design, the table
 /// capacity of its [`Plan`].
 pub fn run_types(
     plan: &Plan,
@@ -238,7 +238,7 @@ pub fn figures(plan: &Plan, out: &TrackerRun) -> RunFigures {
 #[derive(Debug, Clone)]
 pub struct RunResult {
     pub figures: [RunFigures; 3],
-    /// f32 vs f64, Fix vs f64.
+    /// f32 vs f64, Q32.32 vs f64.
     pub diffs: [DecisionDiff; 2],
     /// "f64 kind → other kind" of the first differing code, per type.
     pub first_diff: [Option<String>; 2],
@@ -306,7 +306,7 @@ pub fn monte_carlo(
     Ok((results, first.ok_or("run 0 missing")?))
 }
 
-const TYPES: [&str; 3] = ["f64", "f32", "fixed"];
+const TYPES: [&str; 3] = ["f64", "f32", "q32"];
 
 fn ci_of(results: &[RunResult], t: usize, f: impl Fn(&RunFigures) -> f64) -> MeanCi {
     let v: Vec<f64> = results.iter().map(|r| f(&r.figures[t])).collect();
@@ -550,7 +550,7 @@ pub fn run(ctx: &Context) -> Result<(), String> {
         for t in 0..3 {
             metrics.push(aggregate(plan, &results, t).row);
         }
-        for (i, ty) in ["f32", "fixed"].iter().enumerate() {
+        for (i, ty) in ["f32", "q32"].iter().enumerate() {
             let total = |f: fn(&DecisionDiff) -> usize| -> usize {
                 results.iter().map(|r| f(&r.diffs[i])).sum()
             };
