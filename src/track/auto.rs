@@ -23,8 +23,12 @@ pub struct AutoStep<S: Numeric> {
 /// `Params` is the `auto` schedule as configured ([`AutoGains`]; its σ
 /// and manoeuvre bounds, [`AutoGains::shared_noise`]). The gate is the
 /// filter's own covariance: [`Gate::Uncertainty`] with no manoeuvre
-/// allowance on top (the manoeuvre is in p̃⁻ already), [`Gate::Wave`] with
-/// the α the update would use. A track with one point has no gate, as
+/// allowance on top (the manoeuvre is in p̃⁻ already: the gate's
+/// `max_acceleration` is not used), [`Gate::Wave`] with the α the update
+/// would use. p̃⁻ is in units of the schedule's σ², so the gate's
+/// `measurement_sigma` must be that σ
+/// ([`TrackerDesign`](super::defaults::TrackerDesign) builds both from the
+/// sensor's one figure). A track with one point has no gate, as
 /// the other Cartesian tracks. The gate's part of the predicted covariance
 /// is the update's too ([`AutoPrediction`]).
 impl<S: Numeric> TrackFilter<S> for AutoFilter<S, 2> {
