@@ -138,20 +138,6 @@ impl AutoConfig {
     }
 }
 
-/// The sensor noise in the schedule's number system.
-#[derive(Debug, Clone, Copy, PartialEq)]
-#[cfg_attr(feature = "defmt", derive(defmt::Format))]
-enum Noise<N: Numeric> {
-    /// 1/σ (per metre): the covariance is normalised by σ².
-    Cartesian { inverse_sigma: N::Ratio },
-    /// 1/σ_R (per metre; the covariance is normalised by σ_R²) and σ_B/σ_R
-    /// (rad per metre).
-    Polar {
-        inverse_range_sigma: N::Ratio,
-        bearing_over_range: N::Ratio,
-    },
-}
-
 /// What `auto` keeps per axis: the normalised covariance of the last update
 /// (P/σ²) and the manoeuvre level's estimate.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -187,8 +173,9 @@ enum Start {
     Tracking,
 }
 
-/// The configuration of a filter whose axes share one σ: 1/σ and the
-/// manoeuvre level's bounds as q/(3σ²) ([`AutoGains::shared_noise`]).
+/// The configuration of a filter whose axes share one σ: 1/σ (per metre;
+/// the covariance is normalised by σ²) and the manoeuvre level's bounds as
+/// q/(3σ²) ([`AutoGains::shared_noise`]). A polar sensor's σ here is σ_R.
 #[derive(Debug, Clone, Copy, PartialEq)]
 #[cfg_attr(feature = "defmt", derive(defmt::Format))]
 pub struct SharedNoise<N: Numeric> {
@@ -214,12 +201,12 @@ impl<N: Numeric> SharedNoise<N> {
 #[derive(Debug, Clone, Copy, PartialEq)]
 #[cfg_attr(feature = "defmt", derive(defmt::Format))]
 pub struct AutoGains<N: Numeric, const D: usize> {
-    noise: Noise<N>,
-    /// [`Q_MIN`] and [`Q_MAX`] as q/(3σ²).
-    manoeuvre_min: N::Ratio,
-    manoeuvre_max: N::Ratio,
-    /// [`NIS_CAP`].
-    nis_cap: N::Ratio,
+    /// 1/σ (a polar sensor's 1/σ_R), the manoeuvre level's bounds, the
+    /// NIS cap.
+    noise: SharedNoise<N>,
+    /// A polar sensor's σ_B/σ_R (rad per metre); `None` for a Cartesian
+    /// one.
+    bearing_over_range: Option<N::Ratio>,
     axes: [AutoAxis<N>; D],
     /// Time coasted since the last update, s (added to the next interval).
     coasted: N::Ratio,
@@ -552,37 +539,30 @@ pub(crate) fn two_point<N: Numeric>(t: N::Ratio, manoeuvre: N::Ratio) -> AutoAxi
 impl<N: Numeric, const D: usize> AutoGains<N, D> {
     /// The schedule for the sensor `c` describes (`docs/auto.md`).
     pub fn new(c: &AutoConfig) -> Result<Self, ConfigError> {
-        let (noise, reference_sigma, sigma_name) = match c.sensor()? {
-            AutoSensor::Cartesian { sigma } => (
-                Noise::Cartesian {
-                    inverse_sigma: config_quantity(1.0 / sigma, "sigma")?,
-                },
-                sigma,
-                "sigma",
-            ),
+        let (sigma, sigma_name, bearing_over_range) = match c.sensor()? {
+            AutoSensor::Cartesian { sigma } => (sigma, "sigma", None),
             AutoSensor::Polar {
                 range_sigma,
                 bearing_sigma,
             } => (
-                Noise::Polar {
-                    inverse_range_sigma: config_quantity(1.0 / range_sigma, "range-sigma")?,
-                    bearing_over_range: config_quantity(
-                        bearing_sigma / range_sigma,
-                        "bearing-sigma-deg",
-                    )?,
-                },
                 range_sigma,
                 "range-sigma",
+                Some(config_quantity(
+                    bearing_sigma / range_sigma,
+                    "bearing-sigma-deg",
+                )?),
             ),
         };
-        let variance = 3.0 * reference_sigma * reference_sigma;
-        let manoeuvre_min = config_quantity(Q_MIN as f64 / variance, sigma_name)?;
-        let manoeuvre_max = config_quantity(Q_MAX as f64 / variance, sigma_name)?;
+        let variance = 3.0 * sigma * sigma;
+        let noise = SharedNoise {
+            inverse_sigma: config_quantity(1.0 / sigma, sigma_name)?,
+            manoeuvre_min: config_quantity(Q_MIN as f64 / variance, sigma_name)?,
+            manoeuvre_max: config_quantity(Q_MAX as f64 / variance, sigma_name)?,
+            nis_cap: nis_cap(),
+        };
         let mut out = AutoGains {
             noise,
-            manoeuvre_min,
-            manoeuvre_max,
-            nis_cap: nis_cap(),
+            bearing_over_range,
             axes: [two_point::<N>(N::Ratio::ONE, N::Ratio::ZERO); D],
             coasted: N::Ratio::ZERO,
             start: Start::Empty,
@@ -600,22 +580,7 @@ impl<N: Numeric, const D: usize> AutoGains<N, D> {
     /// this configuration: 1/σ (a polar sensor's 1/σ_R: that filter takes
     /// one σ for every axis) and the manoeuvre level's bounds.
     pub fn shared_noise(&self) -> SharedNoise<N> {
-        SharedNoise {
-            inverse_sigma: match self.noise {
-                Noise::Cartesian { inverse_sigma } => inverse_sigma,
-                Noise::Polar {
-                    inverse_range_sigma,
-                    ..
-                } => inverse_range_sigma,
-            },
-            manoeuvre_min: self.manoeuvre_min,
-            manoeuvre_max: self.manoeuvre_max,
-            nis_cap: self.nis_cap,
-        }
-    }
-
-    fn start_manoeuvre(&self) -> N::Ratio {
-        self.shared_noise().start_manoeuvre()
+        self.noise
     }
 
     /// R/σ² and ν/σ of every axis: 1 and e/σ for a Cartesian sensor; for a
@@ -626,34 +591,27 @@ impl<N: Numeric, const D: usize> AutoGains<N, D> {
     fn measurement_ratios(&self, ctx: &GainContext<N, D>) -> [(N::Ratio, N::Ratio); D] {
         let one = N::Ratio::ONE;
         let mut out = [(one, N::Ratio::ZERO); D];
-        match self.noise {
-            Noise::Cartesian { inverse_sigma } => {
-                for (o, a) in out.iter_mut().zip(&ctx.axes) {
-                    o.1 = N::Ratio::from(a.innovation) * inverse_sigma;
-                }
-            }
-            Noise::Polar {
-                inverse_range_sigma,
-                bearing_over_range,
-            } => {
-                let x = ctx.axes.first().map_or(N::Length::ZERO, |a| a.predicted);
-                let y = ctx.axes.get(1).map_or(N::Length::ZERO, |a| a.predicted);
-                let range = N::hypot(x, y);
-                for (i, (o, a)) in out.iter_mut().zip(&ctx.axes).enumerate() {
-                    o.1 = N::Ratio::from(a.innovation) * inverse_range_sigma;
-                    let (along, across) = match i {
-                        0 => (x, y),
-                        1 => (y, x),
-                        _ => continue,
-                    };
-                    if range > N::Length::ZERO {
-                        let u = along / range;
-                        let c = N::Ratio::from(across) * bearing_over_range;
-                        // Floored at (σ_R/32)²: a target at the sensor
-                        // would otherwise have no measurement noise.
-                        let floor = (0..10).fold(one, |f, _| f.half());
-                        o.0 = (u * u + c * c).max_of(floor);
-                    }
+        let inverse_sigma = self.noise.inverse_sigma;
+        for (o, a) in out.iter_mut().zip(&ctx.axes) {
+            o.1 = N::Ratio::from(a.innovation) * inverse_sigma;
+        }
+        if let Some(bearing_over_range) = self.bearing_over_range {
+            let x = ctx.axes.first().map_or(N::Length::ZERO, |a| a.predicted);
+            let y = ctx.axes.get(1).map_or(N::Length::ZERO, |a| a.predicted);
+            let range = N::hypot(x, y);
+            for (i, o) in out.iter_mut().enumerate() {
+                let (along, across) = match i {
+                    0 => (x, y),
+                    1 => (y, x),
+                    _ => continue,
+                };
+                if range > N::Length::ZERO {
+                    let u = along / range;
+                    let c = N::Ratio::from(across) * bearing_over_range;
+                    // Floored at (σ_R/32)²: a target at the sensor would
+                    // otherwise have no measurement noise.
+                    let floor = (0..10).fold(one, |f, _| f.half());
+                    o.0 = (u * u + c * c).max_of(floor);
                 }
             }
         }
@@ -673,7 +631,9 @@ impl<N: Numeric, const D: usize> AutoGains<N, D> {
         let mut axes = match self.start {
             Start::Tracking => return self.axes,
             Start::TwoPoint => self.axes,
-            Start::Empty | Start::FirstPoint => [two_point::<N>(dt, self.start_manoeuvre()); D],
+            Start::Empty | Start::FirstPoint => {
+                [two_point::<N>(dt, self.noise.start_manoeuvre()); D]
+            }
         };
         if let Some(ratios) = ratios {
             for (a, (r, _)) in axes.iter_mut().zip(ratios) {
@@ -701,12 +661,12 @@ impl<N: Numeric, const D: usize> AutoGains<N, D> {
         let dt = N::Ratio::from(ctx.dt);
         let span = Span::new(self.coasted, dt);
         let ratios = self.measurement_ratios(ctx);
-        let bounds = (self.manoeuvre_min, self.manoeuvre_max);
+        let bounds = self.noise.bounds();
         let one = N::Ratio::ONE;
         let mut gains = [Gains::alpha_beta(one, one)?; D];
         let mut next = self.current(dt, Some(&ratios));
         for ((g, a), (r, nu)) in gains.iter_mut().zip(next.iter_mut()).zip(ratios) {
-            *g = step_axis(a, &span, r, nu, bounds, self.nis_cap)?;
+            *g = step_axis(a, &span, r, nu, bounds, self.noise.nis_cap)?;
         }
         Ok((gains, next))
     }
@@ -731,7 +691,7 @@ impl<N: Numeric, const D: usize> GainSchedule<N, D> for AutoGains<N, D> {
             self.start = Start::FirstPoint;
         } else {
             let t = self.coasted + N::Ratio::from(dt);
-            self.axes = [two_point::<N>(t, self.start_manoeuvre()); D];
+            self.axes = [two_point::<N>(t, self.noise.start_manoeuvre()); D];
             self.coasted = N::Ratio::ZERO;
             self.start = Start::TwoPoint;
         }
@@ -754,7 +714,7 @@ impl<N: Numeric, const D: usize> GainSchedule<N, D> for AutoGains<N, D> {
     }
 
     fn reset(&mut self) {
-        self.axes = [two_point::<N>(N::Ratio::ONE, self.start_manoeuvre()); D];
+        self.axes = [two_point::<N>(N::Ratio::ONE, self.noise.start_manoeuvre()); D];
         self.coasted = N::Ratio::ZERO;
         self.start = Start::Empty;
     }
