@@ -17,7 +17,7 @@
 use crate::filter::{FilterError, IntervalSpan, Phase};
 use crate::gain::auto::{
     capped_nis, covariance_step_or_restart, match_manoeuvre, mean_over_axes, predicted_part,
-    two_point, AutoAxis, AutoPrediction, SharedNoise, Span,
+    two_point, AutoAxis, AutoPrediction, IntervalTerms, SharedNoise,
 };
 use crate::num::{AddProduct, Numeric, Quantity, Real};
 
@@ -45,12 +45,12 @@ pub enum AutoUpdate {
 /// average's weight, [`crate::gain::auto`]), formed once for every filter
 /// updated after that interval (a scan's tracks, a regular report rate), as
 /// [`crate::filter::StepGains`] is for the fixed-gain filters. A filter that
-/// coasted since its last update forms its own from the whole span.
+/// coasted since its last update forms its own from the whole time since.
 #[derive(Debug, Clone, Copy, PartialEq)]
 #[cfg_attr(feature = "defmt", derive(defmt::Format))]
 pub struct AutoInterval<N: Numeric> {
     interval: N::Interval,
-    span: Span<N::Ratio>,
+    terms: IntervalTerms<N::Ratio>,
 }
 
 impl<N: Numeric> AutoInterval<N> {
@@ -62,7 +62,7 @@ impl<N: Numeric> AutoInterval<N> {
         crate::filter::check_interval(dt)?;
         Ok(AutoInterval {
             interval: dt,
-            span: Span::new(N::Ratio::ZERO, N::Ratio::from(dt)),
+            terms: IntervalTerms::new(N::Ratio::ZERO, N::Ratio::from(dt)),
         })
     }
 
@@ -174,32 +174,36 @@ impl<N: Numeric, const D: usize> AutoFilter<N, D> {
     /// is not a valid number.
     #[inline]
     pub(crate) fn prediction_step(&self, step: &AutoInterval<N>) -> Option<AutoPrediction<N>> {
-        self.prediction_over(step.interval, Some(&step.span))
+        self.prediction_over(step.interval, Some(&step.terms))
     }
 
-    /// [`Self::prediction_step`] after `dt`, with the span of `dt` alone
-    /// formed once for many filters when given ([`Self::span`]).
+    /// [`Self::prediction_step`] after `dt`, with the terms of `dt` alone
+    /// formed once for many filters when given ([`Self::interval_terms`]).
     #[inline]
     fn prediction_over(
         &self,
         dt: N::Interval,
-        uncoasted: Option<&Span<N::Ratio>>,
+        uncoasted: Option<&IntervalTerms<N::Ratio>>,
     ) -> Option<AutoPrediction<N>> {
         if self.phase != Phase::Tracking {
             return None;
         }
-        let part = predicted_part(&self.covariance, &self.span(dt, uncoasted));
+        let part = predicted_part(&self.covariance, &self.interval_terms(dt, uncoasted));
         part.predicted_variance_ratio().is_valid().then_some(part)
     }
 
-    /// The span of an update `dt` from now: `uncoasted` (the span of `dt`
-    /// alone, `Span::new(0, dt)`, which a track table forms once per scan)
+    /// The interval terms of an update `dt` from now: `uncoasted` (the terms of `dt`
+    /// alone, `IntervalTerms::new(0, dt)`, which a track table forms once per scan)
     /// when nothing was coasted, else formed here.
     #[inline(always)]
-    fn span(&self, dt: N::Interval, uncoasted: Option<&Span<N::Ratio>>) -> Span<N::Ratio> {
+    fn interval_terms(
+        &self,
+        dt: N::Interval,
+        uncoasted: Option<&IntervalTerms<N::Ratio>>,
+    ) -> IntervalTerms<N::Ratio> {
         match uncoasted {
-            Some(span) if self.coasted == N::Interval::ZERO => *span,
-            _ => Span::new(N::Ratio::from(self.coasted), N::Ratio::from(dt)),
+            Some(terms) if self.coasted == N::Interval::ZERO => *terms,
+            _ => IntervalTerms::new(N::Ratio::from(self.coasted), N::Ratio::from(dt)),
         }
     }
 
@@ -223,7 +227,7 @@ impl<N: Numeric, const D: usize> AutoFilter<N, D> {
         z: [N::Length; D],
         step: &AutoInterval<N>,
     ) -> Result<AutoUpdate, FilterError> {
-        self.update_over(noise, z, step.interval, Some(&step.span), None)
+        self.update_over(noise, z, step.interval, Some(&step.terms), None)
     }
 
     /// [`Self::update_step`] after `prediction`, which
@@ -237,18 +241,18 @@ impl<N: Numeric, const D: usize> AutoFilter<N, D> {
         step: &AutoInterval<N>,
         prediction: &AutoPrediction<N>,
     ) -> Result<AutoUpdate, FilterError> {
-        self.update_over(noise, z, step.interval, Some(&step.span), Some(prediction))
+        self.update_over(noise, z, step.interval, Some(&step.terms), Some(prediction))
     }
 
-    /// [`Self::update`], with the span of `dt` alone formed once for many
-    /// filters ([`Self::span`]) and the prediction formed by a gate
+    /// [`Self::update`], with the terms of `dt` alone formed once for many
+    /// filters ([`Self::interval_terms`]) and the prediction formed by a gate
     /// ([`Self::update_predicted`]).
     fn update_over(
         &mut self,
         noise: &SharedNoise<N>,
         z: [N::Length; D],
         dt: N::Interval,
-        uncoasted: Option<&Span<N::Ratio>>,
+        uncoasted: Option<&IntervalTerms<N::Ratio>>,
         predicted: Option<&AutoPrediction<N>>,
     ) -> Result<AutoUpdate, FilterError> {
         let mut guard = N::Guard::default();
@@ -293,13 +297,13 @@ impl<N: Numeric, const D: usize> AutoFilter<N, D> {
         }
         // The gains depend on the covariance alone: formed first, so that
         // each axis is predicted, corrected and its ν²/S taken in one pass.
-        let span = self.span(dt, uncoasted);
+        let terms = self.interval_terms(dt, uncoasted);
         let bounds = noise.bounds();
         let part = match predicted {
             Some(part) => *part,
-            None => predicted_part(&self.covariance, &span),
+            None => predicted_part(&self.covariance, &terms),
         };
-        let step = covariance_step_or_restart(&self.covariance, &span, &part, None, bounds);
+        let step = covariance_step_or_restart(&self.covariance, &terms, &part, None, bounds);
         let (alpha, rate) = (N::gain(step.gains.alpha), N::Rate::from(step.gains.rate));
         let mut position = self.position;
         let mut velocity = self.velocity;
@@ -328,7 +332,7 @@ impl<N: Numeric, const D: usize> AutoFilter<N, D> {
         }
         let mut covariance = step.next;
         if step.matched {
-            match_manoeuvre(&mut covariance, mean_over_axes::<_, D>(nis), &span, bounds);
+            match_manoeuvre(&mut covariance, mean_over_axes::<_, D>(nis), &terms, bounds);
         }
         self.position = position;
         self.velocity = velocity;

@@ -43,7 +43,7 @@ pub const Q_MAX: u64 = 100_000;
 /// The time constant of the fading average of the normalised innovation
 /// squared, s (its weight T/τ is formed by three halvings).
 pub const NIS_MEMORY_S: u64 = 8;
-const _: () = assert!(NIS_MEMORY_S == 8, "Span::new halves three times");
+const _: () = assert!(NIS_MEMORY_S == 8, "IntervalTerms::new halves three times");
 /// The largest normalised innovation squared the average takes in.
 pub const NIS_CAP: u64 = 100;
 const _: () = assert!(NIS_CAP == 100, "nis_cap builds the cap as 10·10");
@@ -218,7 +218,7 @@ pub struct AutoGains<N: Numeric, const D: usize> {
 /// update's own interval T.
 #[derive(Debug, Clone, Copy, PartialEq)]
 #[cfg_attr(feature = "defmt", derive(defmt::Format))]
-pub(crate) struct Span<R> {
+pub(crate) struct IntervalTerms<R> {
     tau: R,
     cube: R,
     square: R,
@@ -227,12 +227,12 @@ pub(crate) struct Span<R> {
     interval: R,
 }
 
-impl<R: Real> Span<R> {
+impl<R: Real> IntervalTerms<R> {
     pub(crate) fn new(coasted: R, dt: R) -> Self {
         let tau = coasted + dt;
         let squared = tau * tau;
         let weight = tau.half().half().half().min_of(R::ONE.half());
-        Span {
+        IntervalTerms {
             tau,
             cube: squared * tau,
             square: squared + squared.half(),
@@ -276,9 +276,12 @@ impl<N: Numeric> AutoPrediction<N> {
     }
 }
 
-/// [`AutoPrediction`] of covariance `a` over the span.
+/// [`AutoPrediction`] of covariance `a` over the interval of `s`.
 #[inline(always)]
-pub(crate) fn predicted_part<N: Numeric>(a: &AutoAxis<N>, s: &Span<N::Ratio>) -> AutoPrediction<N> {
+pub(crate) fn predicted_part<N: Numeric>(
+    a: &AutoAxis<N>,
+    s: &IntervalTerms<N::Ratio>,
+) -> AutoPrediction<N> {
     let cross_before_noise = a.cross + s.tau * a.velocity;
     AutoPrediction {
         position: a.position + s.tau * (a.cross + cross_before_noise) + a.manoeuvre * s.cube,
@@ -286,12 +289,12 @@ pub(crate) fn predicted_part<N: Numeric>(a: &AutoAxis<N>, s: &Span<N::Ratio>) ->
     }
 }
 
-/// An axis's covariance predicted over the span (P⁻ = FPFᵀ + Q), as
-/// (p̃_xx, p̃_xv, p̃_vv), from its part `part` over the same span.
+/// An axis's covariance predicted over the interval of `s` (P⁻ = FPFᵀ +
+/// Q), as (p̃_xx, p̃_xv, p̃_vv), from its part `part` over the same interval.
 #[inline(always)]
 fn predicted_from<N: Numeric>(
     a: &AutoAxis<N>,
-    s: &Span<N::Ratio>,
+    s: &IntervalTerms<N::Ratio>,
     part: &AutoPrediction<N>,
 ) -> (N::Ratio, N::Ratio, N::Ratio) {
     let q = a.manoeuvre;
@@ -348,7 +351,7 @@ fn scaled_by<R: Real>(v: R, r: VarianceRatio<R>) -> R {
 #[inline(always)]
 pub(crate) fn covariance_step<N: Numeric>(
     a: &AutoAxis<N>,
-    s: &Span<N::Ratio>,
+    s: &IntervalTerms<N::Ratio>,
     part: &AutoPrediction<N>,
     r: VarianceRatio<N::Ratio>,
 ) -> Option<CovarianceStep<N>> {
@@ -398,14 +401,14 @@ pub(crate) fn covariance_step<N: Numeric>(
 /// [`covariance_step`] (`part` is [`predicted_part`] of `a` over `s`), and
 /// should the covariance have left the number
 /// format (a narrow format, a tiny σ and a long interval), a restart from a
-/// two-point start over the span at the manoeuvre ceiling `bounds.1`,
+/// two-point start over the interval at the manoeuvre ceiling `bounds.1`,
 /// scaled by `r`; should that fail too, the gains of a two-point start at
 /// equal intervals without process noise (α = 5/6, β = 1/2: Al-Wagih &
 /// Abdulla eq. 24 at n = 3), the manoeuvre level left as it is.
 #[inline(always)]
 pub(crate) fn covariance_step_or_restart<N: Numeric>(
     a: &AutoAxis<N>,
-    s: &Span<N::Ratio>,
+    s: &IntervalTerms<N::Ratio>,
     part: &AutoPrediction<N>,
     r: VarianceRatio<N::Ratio>,
     bounds: (N::Ratio, N::Ratio),
@@ -420,8 +423,8 @@ pub(crate) fn covariance_step_or_restart<N: Numeric>(
         velocity: scaled_by(start.velocity, r),
         ..start
     };
-    let span = Span::new(N::Ratio::ZERO, s.interval);
-    covariance_step(&start, &span, &predicted_part(&start, &span), r).unwrap_or_else(|| {
+    let terms = IntervalTerms::new(N::Ratio::ZERO, s.interval);
+    covariance_step(&start, &terms, &predicted_part(&start, &terms), r).unwrap_or_else(|| {
         let beta = N::Ratio::ONE.half();
         CovarianceStep {
             gains: KalmanGains {
@@ -470,7 +473,7 @@ pub(crate) fn mean_over_axes<R: Real, const K: usize>(sum: R) -> R {
 
 /// Covariance matching (module docs): the fading average of ν²/S takes in
 /// `nis` (this update's, averaged over the axes sharing `a`) with the
-/// span's weight, and the manoeuvre level moves by 1 + (average − 1)/4
+/// interval's weight, and the manoeuvre level moves by 1 + (average − 1)/4
 /// within `bounds`. Both stay valid without a check: `nis` is a mean of
 /// [`capped_nis`] (in [0, cap] whatever ν), so the average stays between
 /// the previous one and the cap, and the level's step is bounded before
@@ -479,7 +482,7 @@ pub(crate) fn mean_over_axes<R: Real, const K: usize>(sum: R) -> R {
 pub(crate) fn match_manoeuvre<N: Numeric>(
     a: &mut AutoAxis<N>,
     nis: N::Ratio,
-    s: &Span<N::Ratio>,
+    s: &IntervalTerms<N::Ratio>,
     bounds: (N::Ratio, N::Ratio),
 ) {
     a.nis = a.nis + (nis - a.nis) * s.weight;
@@ -508,7 +511,7 @@ impl<const K: usize> AxesPowerOfTwo<K> {
 #[inline(always)]
 fn step_axis<N: Numeric>(
     a: &mut AutoAxis<N>,
-    s: &Span<N::Ratio>,
+    s: &IntervalTerms<N::Ratio>,
     r: N::Ratio,
     nu: N::Ratio,
     bounds: (N::Ratio, N::Ratio),
@@ -651,22 +654,22 @@ impl<N: Numeric, const D: usize> AutoGains<N, D> {
     /// sensor's two-point start is in units of σ_R² until its first update.
     pub fn predicted_position_ratios(&self, dt: N::Interval) -> [N::Ratio; D] {
         let dt = N::Ratio::from(dt);
-        let span = Span::new(self.coasted, dt);
+        let terms = IntervalTerms::new(self.coasted, dt);
         self.current(dt, None)
-            .map(|a| predicted_part(&a, &span).predicted_variance_ratio())
+            .map(|a| predicted_part(&a, &terms).predicted_variance_ratio())
     }
 
     /// The gains of the update `ctx` and the state after it.
     fn plan(&self, ctx: &GainContext<N, D>) -> Result<Plan<N, D>, ScheduleError> {
         let dt = N::Ratio::from(ctx.dt);
-        let span = Span::new(self.coasted, dt);
+        let terms = IntervalTerms::new(self.coasted, dt);
         let ratios = self.measurement_ratios(ctx);
         let bounds = self.noise.bounds();
         let one = N::Ratio::ONE;
         let mut gains = [Gains::alpha_beta(one, one)?; D];
         let mut next = self.current(dt, Some(&ratios));
         for ((g, a), (r, nu)) in gains.iter_mut().zip(next.iter_mut()).zip(ratios) {
-            *g = step_axis(a, &span, r, nu, bounds, self.noise.nis_cap)?;
+            *g = step_axis(a, &terms, r, nu, bounds, self.noise.nis_cap)?;
         }
         Ok((gains, next))
     }
