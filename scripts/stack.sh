@@ -15,10 +15,12 @@
 #   tcas-demo      the demo's default input (scripts/demo-input.sh)
 #   two-crossing   its second input (scripts/demo-input.sh FILE two-crossing)
 #   empty          no input at all
-#   corrupt        every frame with a CRC error, 1-16 garbage bytes before each
+#   corrupt        the two-crossing input with every frame's CRC wrong and
+#                  1-16 garbage bytes before each
 #   flood          2,000 measurements in one scan (capacity: 256, 12 on the micro:bit)
-#   replayed       the default input twice in a row: time goes back at the join
-#   truncated      the first half of the default input, cut inside a frame
+#   replayed       the two-crossing input twice in a row: time goes back at
+#                  the join
+#   truncated      the first half of the two-crossing input, cut inside a frame
 #
 # plus every *.bin file in $ABTRACK_STACK_INPUTS (a directory), if set.
 # `--all` also reports the self-tests' and the benchmark's deepest test.
