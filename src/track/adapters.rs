@@ -35,8 +35,8 @@
 
 use super::gate::{hypot, Gate, GateRegion};
 use super::model::{
-    uncertainty_region, wave_radius, Measurement, Observation, PredictedState, ScanInterval,
-    TrackFilter, Uncertainty,
+    one_second, uncertainty_region, wave_radius, Measurement, Observation, PredictedState,
+    ScanInterval, TrackFilter, Uncertainty,
 };
 use crate::filter::range_azimuth::{
     azimuth_of, CovarianceFactor, RangeAzimuthNoise, RangeAzimuthState,
@@ -55,12 +55,6 @@ fn kind_of<N: Numeric>(outcome: &UpdateOutcome<N>) -> Option<UpdateKind> {
         UpdateOutcome::Filtered(_) => Some(UpdateKind::Filtered),
         UpdateOutcome::Skipped => None,
     }
-}
-
-/// One second: the interval [`TrackFilter::gate_alpha`] assumes (its
-/// signature has none).
-fn one_second<S: Numeric>() -> Option<ScanInterval<S>> {
-    ScanInterval::from_ms(1000)
 }
 
 /// A scheduled update the table refused: the filter's own error, or, for a

@@ -3,7 +3,8 @@
 
 use super::gate::{Gate, GateRegion};
 use super::model::{
-    uncertainty_region, wave_radius, Observation, PredictedState, ScanInterval, TrackFilter,
+    one_second, uncertainty_region, wave_radius, Observation, PredictedState, ScanInterval,
+    TrackFilter,
 };
 use crate::filter::auto::{AutoFilter, AutoInterval, AutoUpdate};
 use crate::filter::FilterError;
@@ -103,8 +104,7 @@ impl<S: Numeric> TrackFilter<S> for AutoFilter<S, 2> {
     /// α for a scan 1 s ahead (this signature has no interval); the table
     /// does not call it: [`Self::gate_region`] uses the scan's own.
     fn gate_alpha(&self, _: &Self::Params) -> S::Ratio {
-        ScanInterval::<S>::from_ms(1000)
-            .map_or(<S::Ratio as Real>::ONE, |s| self.next_alpha(s.interval()))
+        one_second::<S>().map_or(<S::Ratio as Real>::ONE, |s| self.next_alpha(s.interval()))
     }
 
     #[inline(always)]

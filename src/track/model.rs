@@ -314,6 +314,12 @@ pub trait TrackFilter<S: Numeric>: Copy {
     }
 }
 
+/// One second: the interval [`TrackFilter::gate_alpha`] assumes (its
+/// signature has none).
+pub(super) fn one_second<S: Numeric>() -> Option<ScanInterval<S>> {
+    ScanInterval::from_ms(1000)
+}
+
 /// The region of [`Gate::Uncertainty`] around `center` for predicted
 /// variance ratio `p` (the rule documented on [`Gate`]): radius
 /// σ·√(G·(p + 1)) + ½·a_max·T². Without a manoeuvre allowance it is formed

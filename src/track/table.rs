@@ -492,7 +492,7 @@ enum ScanTiming<Step> {
     TooClose,
     /// More than the longest interval: every track restarts, and the
     /// previous scan's first points are too old to pair with.
-    Gap,
+    TooLong,
     /// In range: every track's step for the interval.
     Step(Step),
 }
@@ -765,7 +765,7 @@ impl<S: Numeric, F: TrackFilter<S>, const N: usize, const M: usize> TrackTable<S
         let dt = match timing {
             ScanTiming::TooClose => return Ok(self.skip(measurements, codes, report)),
             ScanTiming::Step(step) => Some(step),
-            ScanTiming::First | ScanTiming::Gap => None,
+            ScanTiming::First | ScanTiming::TooLong => None,
         };
         self.intake(measurements, &mut report);
         probe(ScanStage::Intake);
@@ -782,7 +782,7 @@ impl<S: Numeric, F: TrackFilter<S>, const N: usize, const M: usize> TrackTable<S
         // From here on the table changes: the scan is accepted.
         self.last_scan_ms = Some(now_ms);
         self.stats.scans = self.stats.scans.saturating_add(1);
-        if matches!(timing, ScanTiming::Gap) {
+        if matches!(timing, ScanTiming::TooLong) {
             self.restart_all(&mut report);
         }
         if let Some(dt) = &dt {
@@ -822,7 +822,7 @@ impl<S: Numeric, F: TrackFilter<S>, const N: usize, const M: usize> TrackTable<S
             return Ok((interval, ScanTiming::TooClose));
         }
         if interval > MAX_INTERVAL_MS {
-            return Ok((interval, ScanTiming::Gap));
+            return Ok((interval, ScanTiming::TooLong));
         }
         let step = Self::step_of(config, interval).ok_or(ScanError::IntervalNotRepresentable)?;
         Ok((interval, ScanTiming::Step(step)))
