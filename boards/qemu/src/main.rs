@@ -621,6 +621,7 @@ fn summarise(
     defmt::println!("receiver: {}", health.decoder);
     defmt::println!("intake: {}", health.intake);
     defmt::println!("scan loop: {}", health.scan);
+    defmt::println!("track table: {}", health.table);
     defmt::println!(
         "confirmed tracks ({=usize}):",
         reporter.seen.len() + reporter.not_remembered as usize
