@@ -1,5 +1,5 @@
-//! Saturating counters: every count the library keeps stops at its type's
-//! maximum instead of wrapping; a list of them is declared once
+//! Saturating counters: the counts these helpers keep stop at their type's
+//! maximum instead of wrapping; a list of counters is declared once
 //! ([`counter_list!`]).
 
 /// Adds one to `counter`, saturating.

@@ -542,6 +542,7 @@ pub(crate) fn two_point<N: Numeric>(t: N::Ratio, manoeuvre: N::Ratio) -> AutoAxi
 impl<N: Numeric, const D: usize> AutoGains<N, D> {
     /// The schedule for the sensor `c` describes (`docs/auto.md`).
     pub fn new(c: &AutoConfig) -> Result<Self, ConfigError> {
+        // σ (a polar sensor's σ_R) and, for a polar sensor, σ_B/σ_R.
         let (sigma, sigma_name, bearing_over_range) = match c.sensor()? {
             AutoSensor::Cartesian { sigma } => (sigma, "sigma", None),
             AutoSensor::Polar {
@@ -550,10 +551,7 @@ impl<N: Numeric, const D: usize> AutoGains<N, D> {
             } => (
                 range_sigma,
                 "range-sigma",
-                Some(config_quantity(
-                    bearing_sigma / range_sigma,
-                    "bearing-sigma-deg",
-                )?),
+                Some(bearing_sigma / range_sigma),
             ),
         };
         let variance = 3.0 * sigma * sigma;
@@ -562,6 +560,10 @@ impl<N: Numeric, const D: usize> AutoGains<N, D> {
             manoeuvre_min: config_quantity(Q_MIN as f64 / variance, sigma_name)?,
             manoeuvre_max: config_quantity(Q_MAX as f64 / variance, sigma_name)?,
             nis_cap: nis_cap(),
+        };
+        let bearing_over_range = match bearing_over_range {
+            Some(ratio) => Some(config_quantity(ratio, "bearing-sigma-deg")?),
+            None => None,
         };
         let mut out = AutoGains {
             noise,

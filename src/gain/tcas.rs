@@ -52,8 +52,9 @@ pub const MAX_FIRMNESS: u8 = 8;
 /// abtrack's acceleration correction is γ/(2T²)·e (Tenne & Singh eq. 5) and
 /// the table's γ is used in it as given. DO-185B's range tracker corrects
 /// by γ·e/T² ([`crate::tcas`]'s range tracker, tested), so with these values
-/// this schedule corrects acceleration half as much as that tracker. Both
-/// readings are inside the stability volume. The entries
+/// this schedule corrects acceleration half as much as that tracker. The
+/// values are inside the stability volume under both conventions
+/// (γ/(2T²) here, γ/T² in the range tracker). The entries
 /// do satisfy γ ≈ β²/(2α) (e.g. 0.5²/1.66 = 0.151 vs 0.16; 0.1²/0.8 = 0.0125
 /// vs 0.01) to within the table's rounding.
 ///

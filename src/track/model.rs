@@ -45,7 +45,8 @@ pub enum RejectReason {
     NegativeRange,
     /// The filter refused it (the arithmetic saturated): it won its
     /// track's gate and the track coasted instead, or it was a new track's
-    /// second point and the track did not start.
+    /// second point and the filter refused the two points: the track did
+    /// not start.
     FilterRefused,
     /// Its scan came less than [`crate::filter::MIN_INTERVAL_S`] after the
     /// previous scan: the whole scan was skipped, no track changed.

@@ -364,8 +364,9 @@ pub struct ScanReport {
     /// Tracks updated with their measurement.
     pub updated: u32,
     /// Measurements the filter refused (its arithmetic saturated): assigned
-    /// to a track, which coasted instead, or the second point of a new
-    /// track, which did not start (its first point is spent).
+    /// to a track, which coasted instead, or a new track's two points
+    /// (counted on the second), and the track did not start (its first
+    /// point is spent).
     pub filter_refused: u32,
     /// Tracks left to coast: no measurement, or the filter refused theirs
     /// (a coast the filter cannot make deletes the track, counted in
@@ -417,7 +418,7 @@ counter_list! {
     /// them in its health report.
     pub struct TableStats: u32 {
         /// Scans accepted.
-        scans => "scans",
+        scans => "scans accepted",
         /// Tentative tracks started.
         tracks_started => "tracks started",
         /// Tentative tracks confirmed.
@@ -602,18 +603,7 @@ impl<S: Numeric, F: TrackFilter<S>, const N: usize, const M: usize> TrackTable<S
             pending_earlier: [false; M],
             pending_count: 0,
             previous_interval_ms: 0,
-            stats: TableStats {
-                scans: 0,
-                tracks_started: 0,
-                tracks_confirmed: 0,
-                tracks_deleted: 0,
-                refused_table_full: 0,
-                tracks_displaced: 0,
-                dropped_overflow: 0,
-                rejected: 0,
-                tracks_restarted: 0,
-                scans_skipped: 0,
-            },
+            stats: TableStats::new(),
             // The workspace is written at the start of each scan before it
             // is read; zero bytes until then.
             observations: [const { None }; M],
@@ -781,7 +771,7 @@ impl<S: Numeric, F: TrackFilter<S>, const N: usize, const M: usize> TrackTable<S
         }
         // From here on the table changes: the scan is accepted.
         self.last_scan_ms = Some(now_ms);
-        self.stats.scans = self.stats.scans.saturating_add(1);
+        increment(&mut self.stats.scans);
         if matches!(timing, ScanTiming::TooLong) {
             self.restart_all(&mut report);
         }
@@ -848,7 +838,7 @@ impl<S: Numeric, F: TrackFilter<S>, const N: usize, const M: usize> TrackTable<S
         for code in codes.iter_mut().take(measurements.len()) {
             *code = Association::Rejected(RejectReason::TooClose);
         }
-        self.stats.scans_skipped = self.stats.scans_skipped.saturating_add(1);
+        increment(&mut self.stats.scans_skipped);
         report
     }
 
@@ -1517,7 +1507,7 @@ fn lifecycle<S: Numeric, F: TrackFilter<S>>(
     if track.lifecycle == Lifecycle::Tentative {
         let hits_in_window = hits_in_window(track.history, confirm_window);
         let remaining = (confirm_window as u32).saturating_sub(track.scans as u32);
-        if meets_confirmation(track, config) {
+        if hits_in_window >= u32::from(confirm_hits) {
             track.lifecycle = Lifecycle::Confirmed;
             increment(&mut report.confirmed);
             None
@@ -1535,7 +1525,9 @@ fn lifecycle<S: Numeric, F: TrackFilter<S>>(
     }
 }
 
-/// Whether the track's hits meet the M-of-N confirmation rule.
+/// Whether the track's hits meet the M-of-N confirmation rule (a new
+/// track's start; [`lifecycle`] applies the same test with its window's
+/// count at hand).
 fn meets_confirmation<S: Numeric, F: TrackFilter<S>>(
     track: &Track<S, F>,
     config: &TrackerConfig<S, F::Params>,

@@ -137,16 +137,18 @@ counter_list! {
         not_assigned => "not assigned",
         /// Inside no gate, and not paired (kept as a first point).
         outside_gates => "outside gates",
-        /// Refused by the tracker (not finite, the filter refused it, or the
-        /// scan came too soon after the previous one).
+        /// Refused by the tracker (not finite, a negative range, the filter
+        /// refused it, or the scan came too soon after the previous one).
         rejected => "rejected",
-        /// Would have started a track; the table was full.
+        /// Would have started a track; the table was full and held no
+        /// tentative track to displace.
         refused_table_full => "refused, table full",
         /// Tracks predicted to the scan time.
         predicted => "predicted",
         /// (track, measurement) pairs inside a gate.
         gated_pairs => "gated pairs",
-        /// Tracks without a measurement this scan.
+        /// Tracks left to coast this scan: no measurement, or the filter
+        /// refused theirs.
         coasted => "coasted",
         /// Tracks confirmed in this scan.
         confirmed => "confirmed",

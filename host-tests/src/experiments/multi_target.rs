@@ -496,7 +496,8 @@ fn bytes_table() -> Table {
     t
 }
 
-/// The tracks whose type has more than the number system as a parameter.
+/// Track types whose other parameters name the number system too, as one
+/// parameter for `row!`.
 type AutoTrack<S> = AutoFilter<S, 2>;
 type FixedGainsTrack<S> = ScheduledTrack<S, FixedGains<S>>;
 type LiTrack<S> = ScheduledTrack<S, LiImprovedGains<S>>;

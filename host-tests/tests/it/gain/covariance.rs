@@ -390,3 +390,23 @@ fn the_default_track_updated_after_its_gate_is_updated_as_without() {
     both::<abtrack::Fix>();
     both::<abtrack::ScaledScalar>();
 }
+
+/// A sensor figure the number system cannot hold is refused under its own
+/// name: a polar sensor's tiny σ_R is named as range-sigma (its 1/σ_R and
+/// bounds are formed first), not as the bearing ratio it also spoils.
+#[test]
+fn an_unrepresentable_sensor_figure_is_named() {
+    use abtrack::gain::ConfigError;
+    use abtrack::Fix;
+    assert_eq!(
+        AutoGains::<Fix, 2>::new(&AutoConfig::polar(1e-10, 90.0)),
+        Err(ConfigError::NotRepresentable {
+            parameter: "range-sigma"
+        })
+    );
+    assert_eq!(
+        AutoGains::<Fix, 2>::new(&AutoConfig::cartesian(1e-10)),
+        Err(ConfigError::NotRepresentable { parameter: "sigma" })
+    );
+    assert!(AutoGains::<Fix, 2>::new(&AutoConfig::polar(15.0, 5.0)).is_ok());
+}

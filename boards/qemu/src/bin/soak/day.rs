@@ -230,6 +230,7 @@ fn main() -> ! {
     defmt::println!("receiver: {}", intake.decoder().stats());
     defmt::println!("intake: {}", intake.counters());
     defmt::println!("scan loop: {}", scan_loop.counters());
+    defmt::println!("track table: {}", scan_loop.table().stats());
     // The end state, for the comparison with the f64 run on the host.
     for t in reports.tracks.iter() {
         defmt::println!(
