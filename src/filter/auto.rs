@@ -17,7 +17,7 @@
 use crate::filter::{FilterError, IntervalSpan, Phase};
 use crate::gain::auto::{
     capped_nis, covariance_step_or_restart, match_manoeuvre, mean_over_axes, predicted_part,
-    two_point, AutoAxis, AutoPrediction, IntervalTerms, SharedNoise,
+    two_point, AutoAxis, AutoPrediction, CovarianceTerms, SharedNoise,
 };
 use crate::num::{AddProduct, Numeric, Quantity, Real};
 
@@ -50,7 +50,7 @@ pub enum AutoUpdate {
 #[cfg_attr(feature = "defmt", derive(defmt::Format))]
 pub struct AutoInterval<N: Numeric> {
     interval: N::Interval,
-    terms: IntervalTerms<N::Ratio>,
+    terms: CovarianceTerms<N::Ratio>,
 }
 
 impl<N: Numeric> AutoInterval<N> {
@@ -62,7 +62,7 @@ impl<N: Numeric> AutoInterval<N> {
         crate::filter::check_interval(dt)?;
         Ok(AutoInterval {
             interval: dt,
-            terms: IntervalTerms::new(N::Ratio::ZERO, N::Ratio::from(dt)),
+            terms: CovarianceTerms::new(N::Ratio::ZERO, N::Ratio::from(dt)),
         })
     }
 
@@ -178,32 +178,33 @@ impl<N: Numeric, const D: usize> AutoFilter<N, D> {
     }
 
     /// [`Self::prediction_step`] after `dt`, with the terms of `dt` alone
-    /// formed once for many filters when given ([`Self::interval_terms`]).
+    /// formed once for many filters when given ([`Self::covariance_terms`]).
     #[inline]
     fn prediction_over(
         &self,
         dt: N::Interval,
-        uncoasted: Option<&IntervalTerms<N::Ratio>>,
+        uncoasted: Option<&CovarianceTerms<N::Ratio>>,
     ) -> Option<AutoPrediction<N>> {
         if self.phase != Phase::Tracking {
             return None;
         }
-        let part = predicted_part(&self.covariance, &self.interval_terms(dt, uncoasted));
+        let part = predicted_part(&self.covariance, &self.covariance_terms(dt, uncoasted));
         part.predicted_variance_ratio().is_valid().then_some(part)
     }
 
-    /// The interval terms of an update `dt` from now: `uncoasted` (the terms of `dt`
-    /// alone, `IntervalTerms::new(0, dt)`, which a track table forms once per scan)
-    /// when nothing was coasted, else formed here.
+    /// The covariance terms of an update `dt` from now: `uncoasted` (the
+    /// terms of `dt` alone, `CovarianceTerms::new(0, dt)`, which a track
+    /// table forms once per scan) when nothing was coasted, else formed
+    /// here.
     #[inline(always)]
-    fn interval_terms(
+    fn covariance_terms(
         &self,
         dt: N::Interval,
-        uncoasted: Option<&IntervalTerms<N::Ratio>>,
-    ) -> IntervalTerms<N::Ratio> {
+        uncoasted: Option<&CovarianceTerms<N::Ratio>>,
+    ) -> CovarianceTerms<N::Ratio> {
         match uncoasted {
             Some(terms) if self.coasted == N::Interval::ZERO => *terms,
-            _ => IntervalTerms::new(N::Ratio::from(self.coasted), N::Ratio::from(dt)),
+            _ => CovarianceTerms::new(N::Ratio::from(self.coasted), N::Ratio::from(dt)),
         }
     }
 
@@ -245,14 +246,14 @@ impl<N: Numeric, const D: usize> AutoFilter<N, D> {
     }
 
     /// [`Self::update`], with the terms of `dt` alone formed once for many
-    /// filters ([`Self::interval_terms`]) and the prediction formed by a gate
+    /// filters ([`Self::covariance_terms`]) and the prediction formed by a gate
     /// ([`Self::update_predicted`]).
     fn update_over(
         &mut self,
         noise: &SharedNoise<N>,
         z: [N::Length; D],
         dt: N::Interval,
-        uncoasted: Option<&IntervalTerms<N::Ratio>>,
+        uncoasted: Option<&CovarianceTerms<N::Ratio>>,
         predicted: Option<&AutoPrediction<N>>,
     ) -> Result<AutoUpdate, FilterError> {
         let mut guard = N::Guard::default();
@@ -297,7 +298,7 @@ impl<N: Numeric, const D: usize> AutoFilter<N, D> {
         }
         // The gains depend on the covariance alone: formed first, so that
         // each axis is predicted, corrected and its ν²/S taken in one pass.
-        let terms = self.interval_terms(dt, uncoasted);
+        let terms = self.covariance_terms(dt, uncoasted);
         let bounds = noise.bounds();
         let part = match predicted {
             Some(part) => *part,

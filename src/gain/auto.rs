@@ -43,7 +43,7 @@ pub const Q_MAX: u64 = 100_000;
 /// The time constant of the fading average of the normalised innovation
 /// squared, s (its weight T/τ is formed by three halvings).
 pub const NIS_MEMORY_S: u64 = 8;
-const _: () = assert!(NIS_MEMORY_S == 8, "IntervalTerms::new halves three times");
+const _: () = assert!(NIS_MEMORY_S == 8, "CovarianceTerms::new halves three times");
 /// The largest normalised innovation squared the average takes in.
 pub const NIS_CAP: u64 = 100;
 const _: () = assert!(NIS_CAP == 100, "nis_cap builds the cap as 10·10");
@@ -213,12 +213,13 @@ pub struct AutoGains<N: Numeric, const D: usize> {
     start: Start,
 }
 
-/// The per-interval terms shared by the axes: τ (the next interval plus the
+/// The terms of an interval that the covariance's prediction and the NIS
+/// average take, shared by the axes: τ (the next interval plus the
 /// time coasted), τ³, 1.5τ², 3τ, the fading weight min(τ/8 s, ½), and the
 /// update's own interval T.
 #[derive(Debug, Clone, Copy, PartialEq)]
 #[cfg_attr(feature = "defmt", derive(defmt::Format))]
-pub(crate) struct IntervalTerms<R> {
+pub(crate) struct CovarianceTerms<R> {
     tau: R,
     cube: R,
     square: R,
@@ -227,12 +228,12 @@ pub(crate) struct IntervalTerms<R> {
     interval: R,
 }
 
-impl<R: Real> IntervalTerms<R> {
+impl<R: Real> CovarianceTerms<R> {
     pub(crate) fn new(coasted: R, dt: R) -> Self {
         let tau = coasted + dt;
         let squared = tau * tau;
         let weight = tau.half().half().half().min_of(R::ONE.half());
-        IntervalTerms {
+        CovarianceTerms {
             tau,
             cube: squared * tau,
             square: squared + squared.half(),
@@ -280,7 +281,7 @@ impl<N: Numeric> AutoPrediction<N> {
 #[inline(always)]
 pub(crate) fn predicted_part<N: Numeric>(
     a: &AutoAxis<N>,
-    s: &IntervalTerms<N::Ratio>,
+    s: &CovarianceTerms<N::Ratio>,
 ) -> AutoPrediction<N> {
     let cross_before_noise = a.cross + s.tau * a.velocity;
     AutoPrediction {
@@ -294,7 +295,7 @@ pub(crate) fn predicted_part<N: Numeric>(
 #[inline(always)]
 fn predicted_from<N: Numeric>(
     a: &AutoAxis<N>,
-    s: &IntervalTerms<N::Ratio>,
+    s: &CovarianceTerms<N::Ratio>,
     part: &AutoPrediction<N>,
 ) -> (N::Ratio, N::Ratio, N::Ratio) {
     let q = a.manoeuvre;
@@ -351,7 +352,7 @@ fn scaled_by<R: Real>(v: R, r: VarianceRatio<R>) -> R {
 #[inline(always)]
 pub(crate) fn covariance_step<N: Numeric>(
     a: &AutoAxis<N>,
-    s: &IntervalTerms<N::Ratio>,
+    s: &CovarianceTerms<N::Ratio>,
     part: &AutoPrediction<N>,
     r: VarianceRatio<N::Ratio>,
 ) -> Option<CovarianceStep<N>> {
@@ -408,7 +409,7 @@ pub(crate) fn covariance_step<N: Numeric>(
 #[inline(always)]
 pub(crate) fn covariance_step_or_restart<N: Numeric>(
     a: &AutoAxis<N>,
-    s: &IntervalTerms<N::Ratio>,
+    s: &CovarianceTerms<N::Ratio>,
     part: &AutoPrediction<N>,
     r: VarianceRatio<N::Ratio>,
     bounds: (N::Ratio, N::Ratio),
@@ -423,7 +424,7 @@ pub(crate) fn covariance_step_or_restart<N: Numeric>(
         velocity: scaled_by(start.velocity, r),
         ..start
     };
-    let terms = IntervalTerms::new(N::Ratio::ZERO, s.interval);
+    let terms = CovarianceTerms::new(N::Ratio::ZERO, s.interval);
     covariance_step(&start, &terms, &predicted_part(&start, &terms), r).unwrap_or_else(|| {
         let beta = N::Ratio::ONE.half();
         CovarianceStep {
@@ -482,7 +483,7 @@ pub(crate) fn mean_over_axes<R: Real, const K: usize>(sum: R) -> R {
 pub(crate) fn match_manoeuvre<N: Numeric>(
     a: &mut AutoAxis<N>,
     nis: N::Ratio,
-    s: &IntervalTerms<N::Ratio>,
+    s: &CovarianceTerms<N::Ratio>,
     bounds: (N::Ratio, N::Ratio),
 ) {
     a.nis = a.nis + (nis - a.nis) * s.weight;
@@ -511,7 +512,7 @@ impl<const K: usize> AxesPowerOfTwo<K> {
 #[inline(always)]
 fn step_axis<N: Numeric>(
     a: &mut AutoAxis<N>,
-    s: &IntervalTerms<N::Ratio>,
+    s: &CovarianceTerms<N::Ratio>,
     r: N::Ratio,
     nu: N::Ratio,
     bounds: (N::Ratio, N::Ratio),
@@ -656,7 +657,7 @@ impl<N: Numeric, const D: usize> AutoGains<N, D> {
     /// sensor's two-point start is in units of σ_R² until its first update.
     pub fn predicted_position_ratios(&self, dt: N::Interval) -> [N::Ratio; D] {
         let dt = N::Ratio::from(dt);
-        let terms = IntervalTerms::new(self.coasted, dt);
+        let terms = CovarianceTerms::new(self.coasted, dt);
         self.current(dt, None)
             .map(|a| predicted_part(&a, &terms).predicted_variance_ratio())
     }
@@ -664,7 +665,7 @@ impl<N: Numeric, const D: usize> AutoGains<N, D> {
     /// The gains of the update `ctx` and the state after it.
     fn plan(&self, ctx: &GainContext<N, D>) -> Result<Plan<N, D>, ScheduleError> {
         let dt = N::Ratio::from(ctx.dt);
-        let terms = IntervalTerms::new(self.coasted, dt);
+        let terms = CovarianceTerms::new(self.coasted, dt);
         let ratios = self.measurement_ratios(ctx);
         let bounds = self.noise.bounds();
         let one = N::Ratio::ONE;
