@@ -141,6 +141,18 @@ impl<N: Numeric, const D: usize> AutoFilter<N, D> {
     /// filter.
     pub fn predict(&self, dt: N::Interval) -> Result<[N::Length; D], FilterError> {
         crate::filter::check_interval(dt)?;
+        self.predict_over(dt)
+    }
+
+    /// [`Self::predict`] after `step`'s interval (checked when the step was
+    /// formed: a track table's scan predicts every track after one).
+    #[inline]
+    pub fn predict_step(&self, step: &AutoInterval<N>) -> Result<[N::Length; D], FilterError> {
+        self.predict_over(step.interval)
+    }
+
+    /// [`Self::predict`] after a valid `dt`.
+    fn predict_over(&self, dt: N::Interval) -> Result<[N::Length; D], FilterError> {
         let mut guard = N::Guard::default();
         let mut out = self.position;
         for (x, v) in out.iter_mut().zip(&self.velocity) {

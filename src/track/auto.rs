@@ -84,7 +84,7 @@ impl<S: Numeric> TrackFilter<S> for AutoFilter<S, 2> {
         step: &AutoStep<S>,
     ) -> Result<PredictedState<S>, FilterError> {
         Ok(PredictedState {
-            position: AutoFilter::predict(self, step.interval.interval())?,
+            position: self.predict_step(&step.terms)?,
             velocity: AutoFilter::velocity(self),
         })
     }

@@ -271,6 +271,7 @@ fn interval_formed_once_is_update<N: Numeric>() {
             per_call.predicted_variance_ratio(dt),
             once.predicted_variance_ratio_step(&step)
         );
+        assert_eq!(per_call.predict(dt), once.predict_step(&step));
         match z {
             Some(z) => {
                 let z = z.map(N::Length::from_f64_lossy);
