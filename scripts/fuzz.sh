@@ -7,15 +7,13 @@
 #
 # Each target first runs every input of its committed corpus (libFuzzer
 # reads the corpus before it mutates), then fuzzes until the time is up.
-# Default: 20 s per target, every target (the long run the README
-# documents). The test command does not fuzz: its host tests run the
+# Default: 20 s per target, every target. The test command does not fuzz: its host tests run the
 # committed corpora through the same properties (fuzz/properties/,
 # host-tests/tests/it/fuzz_corpora/).
 # New inputs go to a temporary directory, so the committed corpus stays as
 # it is; with --grow they are added to fuzz/corpus/<target>/ (for a long
 # run; then minimise with `cd fuzz && cargo +nightly fuzz cmin <target>`
-# before committing). The documented long run (docs/safety.md) is
-# `scripts/fuzz.sh --grow 600`.
+# before committing): `scripts/fuzz.sh --grow 600` (docs/safety.md).
 # A failing property or a panic stops that target: libFuzzer writes the input
 # to fuzz/artifacts/<target>/ and this script's exit status is 1. Reproduce
 # with `cd fuzz && cargo +nightly fuzz run --release --sanitizer none <target> <artifact>`.

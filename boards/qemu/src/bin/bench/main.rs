@@ -112,6 +112,8 @@ impl Group {
                 "abg2d_update",
                 "ab2d_least_squares_update",
                 "ab2d_liu_adaptive_update",
+                "auto2d_update",
+                "auto2d_update_per_call_interval",
                 "range_azimuth_update",
                 "floor_ab2d_update",
             ],
@@ -122,7 +124,12 @@ impl Group {
                 "tcas_assess_in_cycle",
                 "tcas_intruder_scan",
             ],
-            Group::Scans => &["scan_separated", "scan_crowded"],
+            Group::Scans => &[
+                "scan_separated",
+                "scan_crowded",
+                "scan_default_separated",
+                "scan_default_crowded",
+            ],
         }
     }
 }
@@ -134,6 +141,9 @@ use counter::Omission;
 fn bench_numeric<N: BenchNumber>(bench: &mut Bench) {
     if let Some(why) = omitted::<N>(Group::Filters) {
         bench.omitted_group(N::LABEL, Group::Filters.operations(), why);
+        if let Some(why) = omitted::<N>(Group::Scans) {
+            bench.omitted_group(N::LABEL, Group::Scans.operations(), why);
+        }
         return;
     }
     filters::run::<N>(bench);
