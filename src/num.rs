@@ -42,7 +42,7 @@
 //! correction β·e/T with β < 4, e ≤ 800 km, T ≥ 0.05 s: 6.4·10⁷ < 2.1·10⁹) and
 //! keeps the smallest gain to 10⁻⁴ relative. The cost is 64-bit multiplies
 //! (four 32×32 partial products on a Cortex-M3, a library call on an M0),
-//! measured by the firmware benchmark in the README.
+//! measured by the firmware benchmark (docs/benchmarks.md).
 //! Measured there: on the M3 and M0 software `f64` is faster than Q32.32
 //! (its products need 128-bit intermediates), so this format buys
 //! saturation semantics and a fixed absolute resolution, not speed.

@@ -208,7 +208,7 @@ pub fn compare_axis<N: Numeric, const ORDER: usize, const D: usize>(
     })
 }
 
-/// A run whose deviations the README and the closing note quote, produced by
+/// A run whose deviations docs/numerics.md quotes, produced by
 /// `cargo run --release --bin precision` and checked against the budget by
 /// `tests/it/num/error_budget.rs`.
 #[derive(Debug, Clone, Copy, PartialEq)]

@@ -40,7 +40,7 @@ pub fn write_file(path: &Path, contents: &str) -> Result<(), String> {
 }
 
 /// A results table, written both as CSV (machine-readable) and Markdown (for
-/// the README).
+/// the documents that quote it).
 #[derive(Debug, Clone, Default)]
 pub struct Table {
     pub headers: Vec<String>,

@@ -1,6 +1,6 @@
-//! The library example of README.md ("Using the library"), compiled and run
-//! so the README cannot drift from the API; `readme_shows_this_example`
-//! fails when the README's copy differs from this one.
+//! The library example of docs/library.md ("A first look"), compiled and
+//! run so the documentation cannot drift from the API;
+//! `readme_shows_this_example` fails when that copy differs from this one.
 
 use abtrack::filter::auto::{AutoFilter, AutoInterval, AutoUpdate};
 use abtrack::filter::UpdateOutcome;
@@ -87,18 +87,18 @@ fn readme_example() -> Result<(), Box<dyn std::error::Error>> {
     Ok(())
 }
 
-/// The README's ```rust block is this file's `use` lines and the body between
-/// the markers (indented one level less): a README edit that is not made here
-/// too fails the test command.
+/// docs/library.md's ```rust block is this file's `use` lines and the body
+/// between the markers (indented one level less): an edit there that is not
+/// made here too fails the test command.
 #[test]
 fn readme_shows_this_example() {
-    let readme = include_str!("../../../../README.md");
+    let readme = include_str!("../../../../docs/library.md");
     let this = include_str!("readme_example.rs");
     let shown = readme
         .split_once("```rust\n")
         .and_then(|(_, rest)| rest.split_once("```"))
         .map(|(block, _)| block)
-        .expect("README.md has a ```rust block");
+        .expect("docs/library.md has a ```rust block");
     let uses: String = this
         .lines()
         .filter(|l| l.starts_with("use "))
