@@ -642,7 +642,15 @@ pub const OPERATIONS: &[(&str, &str)] = &[
         "scan_default_crowded",
         "track table with the default filter (auto), one whole scan: clusters of 4–8 targets 12 m apart",
     ),
+    (
+        HAND_WRITTEN_SCAN,
+        "anchor: a hand-written scan of the separated scene, each track in turn (the hand-written Kalman filter) taking the nearest measurement left inside its gate, every measurement tested",
+    ),
 ];
+
+/// The hand-written scan anchor, and the table's scan it is set beside.
+const HAND_WRITTEN_SCAN: &str = "axis_kalman_nn_scan_separated";
+const DEFAULT_SCAN: &str = "scan_default_separated";
 
 /// Why a row is not measured (the `reason` of a `bench-omitted` line), with
 /// what it means. An unknown reason is shown as not described.
@@ -800,6 +808,7 @@ pub fn benchmarks_md(report: &Report, qemu_version: &str, rustc_version: &str) -
     }
     anchors(&mut s, report);
     scans(&mut s, report);
+    hand_written_scan(&mut s, report);
     s
 }
 
@@ -1113,6 +1122,72 @@ fn scans(s: &mut String, report: &Report) {
     }
     s.push('\n');
     scan_counts(s, report);
+}
+
+/// The table's scan with the default filter beside the hand-written scan,
+/// per core and size: in each of the anchor's types, and in the table's
+/// type of the same label (the fast fixed point: the anchor in its wide
+/// format, the table in `Fixed32`).
+fn hand_written_scan(s: &mut String, report: &Report) {
+    s.push_str("## Against a hand-written scan\n\n");
+    s.push_str(&format!(
+        "`{HAND_WRITTEN_SCAN}` is the scan a user would write around the hand-written \
+         Kalman filter (`axis_kalman_cv2d_update`) on the separated scene: each track in \
+         turn predicted, every measurement not yet taken tested on the normalised \
+         distance, the nearest inside the gate taken; no input checks, no assignment, no \
+         track starts or deletions, no counts. Beside it, the track table's scan with its \
+         default filter (`{DEFAULT_SCAN}`) at the same size, N tracks and M = N \
+         measurements, in the anchor's type and in the core's own (f32 on a core with \
+         an FPU, else the fast fixed point, `fixed`). A ratio above 1: the table costs \
+         more.\n\n"
+    ));
+    s.push_str(&header(&[
+        "core",
+        "N × M",
+        "numeric",
+        "hand-written",
+        "table, same label",
+        "table ÷ hand-written",
+        "table, the core's type",
+        "its ÷ hand-written",
+    ]));
+    for run in &report.runs {
+        let numerics = numerics(run);
+        let own = if numerics.iter().any(|n| n == "f32") {
+            "f32"
+        } else {
+            "fixed"
+        };
+        for n in &numerics {
+            let mut sizes: Vec<ScanSize> = run
+                .figures
+                .iter()
+                .filter(|f| f.numeric == *n && f.operation == HAND_WRITTEN_SCAN)
+                .filter_map(|f| f.size)
+                .collect();
+            sizes.sort();
+            for size in sizes {
+                let Some(anchor) = run.figure(n, HAND_WRITTEN_SCAN, Some(size)) else {
+                    continue;
+                };
+                let table = run.figure(n, DEFAULT_SCAN, Some(size));
+                let table_own = run.figure(own, DEFAULT_SCAN, Some(size));
+                let cell = |t: Option<Tenths>| t.map_or("—".into(), instructions);
+                let over = |t: Option<Tenths>| t.map_or("—".into(), |t| ratio(t, anchor));
+                s.push_str(&row(&[
+                    format!("`{}`", run.core),
+                    format!("{} × {}", size.n, size.m),
+                    format!("`{n}`"),
+                    instructions(anchor),
+                    cell(table),
+                    over(table),
+                    format!("`{own}` {}", cell(table_own)),
+                    over(table_own),
+                ]));
+            }
+        }
+    }
+    s.push('\n');
 }
 
 /// Every count, one row per (core, numeric, scan, size).

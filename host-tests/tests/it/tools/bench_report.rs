@@ -337,3 +337,40 @@ fn a_report_needs_one_log_per_core() {
     );
     assert_eq!(Report::new(Vec::new()), Err(ReportError::NoRuns));
 }
+
+#[test]
+fn the_hand_written_scan_is_set_beside_the_table_in_its_type_and_the_cores_own() {
+    let m4f = parse_log(&log(&[
+        "bench-figure,m4f,f32,scan_default_separated,16,16,20000.0",
+        "bench-figure,m4f,f32,axis_kalman_nn_scan_separated,16,16,8000.0",
+        "bench-end,m4f,2,0",
+    ]))
+    .unwrap();
+    let m0 = parse_log(&log(&[
+        "bench-figure,m0,fixed,scan_default_separated,16,16,100000.0",
+        "bench-figure,m0,f32soft,axis_kalman_nn_scan_separated,16,16,40000.0",
+        "bench-end,m0,2,0",
+    ]))
+    .unwrap();
+    let md = benchmarks_md(&Report::new(vec![m4f, m0]).unwrap(), QEMU, RUSTC);
+    let start = md
+        .find("## Against a hand-written scan")
+        .expect("the section");
+    let row = |prefix: &str| {
+        md[start..]
+            .lines()
+            .find(|l| l.starts_with(prefix))
+            .unwrap_or_else(|| panic!("no row {prefix}:\n{md}"))
+            .to_string()
+    };
+    // The M4F's f32 is the anchor's type and the core's own.
+    assert_eq!(
+        row("| `m4f` | 16 × 16 | `f32` |"),
+        "| `m4f` | 16 × 16 | `f32` | 8,000 | 20,000 | 2.50 | `f32` 20,000 | 2.50 |"
+    );
+    // The M0's table has no soft-f32 row: set beside its own type.
+    assert_eq!(
+        row("| `m0` | 16 × 16 | `f32soft` |"),
+        "| `m0` | 16 × 16 | `f32soft` | 40,000 | — | — | `fixed` 100,000 | 2.50 |"
+    );
+}

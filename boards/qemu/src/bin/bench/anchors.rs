@@ -172,24 +172,39 @@ struct AxisKalman<S> {
 }
 
 impl<S: Scalar> AxisKalman<S> {
-    /// Predict P = F·P·Fᵀ + Q with F = [1, T; 0, 1], then the scalar update
-    /// with H = [1, 0]: one division per axis.
+    /// Predict: x + T·v and P = F·P·Fᵀ + Q with F = [1, T; 0, 1].
+    #[inline(always)]
+    fn predicted(&self, m: &AxisKalmanModel<S>) -> Self {
+        let t = m.interval;
+        AxisKalman {
+            position: self.position + t * self.velocity,
+            velocity: self.velocity,
+            p_xx: self.p_xx + (t + t) * self.p_xv + m.interval_squared * self.p_vv + m.q_position,
+            p_xv: self.p_xv + t * self.p_vv + m.q_cross,
+            p_vv: self.p_vv + m.q_velocity,
+        }
+    }
+
+    /// The scalar update of a predicted axis with H = [1, 0] and innovation
+    /// variance `innovation_variance` (p_xx + R): one division per gain.
+    #[inline(always)]
+    fn correct(&mut self, z: S, innovation_variance: S) {
+        let k_x = self.p_xx / innovation_variance;
+        let k_v = self.p_xv / innovation_variance;
+        let residual = z - self.position;
+        self.position = self.position + k_x * residual;
+        self.velocity = self.velocity + k_v * residual;
+        self.p_vv = self.p_vv - k_v * self.p_xv;
+        self.p_xv = (S::ONE - k_x) * self.p_xv;
+        self.p_xx = (S::ONE - k_x) * self.p_xx;
+    }
+
+    /// Predict, then the update: one division per gain.
     #[inline(always)]
     fn update(&mut self, z: S, m: &AxisKalmanModel<S>) {
-        let t = m.interval;
-        let x = self.position + t * self.velocity;
-        let p_xx = self.p_xx + (t + t) * self.p_xv + m.interval_squared * self.p_vv + m.q_position;
-        let p_xv = self.p_xv + t * self.p_vv + m.q_cross;
-        let p_vv = self.p_vv + m.q_velocity;
-        let innovation_variance = p_xx + m.measurement_variance;
-        let k_x = p_xx / innovation_variance;
-        let k_v = p_xv / innovation_variance;
-        let residual = z - x;
-        self.position = x + k_x * residual;
-        self.velocity = self.velocity + k_v * residual;
-        self.p_xx = (S::ONE - k_x) * p_xx;
-        self.p_xv = (S::ONE - k_x) * p_xv;
-        self.p_vv = p_vv - k_v * p_xv;
+        let mut predicted = self.predicted(m);
+        predicted.correct(z, predicted.p_xx + m.measurement_variance);
+        *self = predicted;
     }
 }
 
@@ -245,4 +260,189 @@ where
         |[x, y], [zx, zy]| axis_kalman_update(x, y, zx, zy, &model),
         |[x, y]| [x.position, y.position],
     );
+}
+
+// ---------------------------------------------------------------------------
+// A hand-written nearest-neighbour scan
+// ---------------------------------------------------------------------------
+
+/// The hand-written scan's row.
+pub const NEAREST_NEIGHBOUR_SCAN: &str = "axis_kalman_nn_scan_separated";
+
+/// `axis_kalman_nn_scan_separated`: the scan a user would write around the
+/// hand-written Kalman filter above, on the track table's separated scene
+/// (`scan_default_separated`'s measurements, gate σ and G): for each track
+/// in turn, predict both axes, test every measurement not yet taken
+/// (brute force) on the normalised distance squared dx²/S_x + dy²/S_y ≤ G
+/// and update with the nearest, or coast. No measurement checks, no
+/// assignment (the first track to reach a measurement takes it), no track
+/// starts or deletions, no counts: what the table does beyond this is
+/// what its figure costs beyond this row's.
+#[inline(never)]
+pub fn nearest_neighbour_scan<S>(bench: &mut Bench)
+where
+    S: Scalar + crate::numeric::BenchNumber,
+{
+    nearest_neighbour_scene::<S>(bench, 16);
+    #[cfg(not(feature = "bench-smoke"))]
+    nearest_neighbour_scene::<S>(bench, 32);
+    #[cfg(not(any(feature = "bench-smoke", abtrack_board = "microbit")))]
+    nearest_neighbour_scene::<S>(bench, 64);
+}
+
+/// One track of the hand-written scan: its x and y filters.
+type AxisTrack<S> = [AxisKalman<S>; 2];
+
+/// One scan (the section's docs), on slices (one copy of the code for
+/// every size): returns the number of tracks updated.
+#[inline(never)]
+fn nearest_neighbour_step<S: Scalar>(
+    tracks: &mut [AxisTrack<S>],
+    z: &[[S; 2]],
+    taken: &mut [bool],
+    m: &AxisKalmanModel<S>,
+    gate: S,
+) -> usize {
+    taken.fill(false);
+    let mut updated = 0;
+    for track in tracks.iter_mut() {
+        // Axis by axis in loops: one copy of the filter's code (the
+        // micro:bit's flash).
+        let mut predicted = *track;
+        let mut inverse = [S::ONE; 2];
+        for (axis, i) in predicted.iter_mut().zip(inverse.iter_mut()) {
+            *axis = axis.predicted(m);
+            *i = S::ONE / (axis.p_xx + m.measurement_variance);
+        }
+        let [(px, ix), (py, iy)] = [
+            (predicted[0].position, inverse[0]),
+            (predicted[1].position, inverse[1]),
+        ];
+        let (mut nearest, mut least) = (None, gate);
+        for (k, ([zx, zy], used)) in z.iter().zip(taken.iter()).enumerate() {
+            if *used {
+                continue;
+            }
+            let (dx, dy) = (*zx - px, *zy - py);
+            let d2 = dx * dx * ix + dy * dy * iy;
+            if d2 <= least {
+                (nearest, least) = (Some(k), d2);
+            }
+        }
+        if let Some(k) = nearest {
+            if let (Some(zk), Some(used)) = (z.get(k), taken.get_mut(k)) {
+                *used = true;
+                for (axis, zi) in predicted.iter_mut().zip(zk) {
+                    let innovation_variance = axis.p_xx + m.measurement_variance;
+                    axis.correct(*zi, innovation_variance);
+                }
+                updated += 1;
+            }
+        }
+        *track = predicted;
+    }
+    updated
+}
+
+/// The most tracks (and measurements) of [`nearest_neighbour_scene`].
+const NEAREST_NEIGHBOUR_CAPACITY: usize = 64;
+
+/// The scene at `targets` tracks and measurements (at most
+/// [`NEAREST_NEIGHBOUR_CAPACITY`]; one copy of the code for every size):
+/// the tracks started from the scene's two noise-free first scans (the
+/// two-point start: P = R·[1, 1/T; 1/T, 2/T²]), the next scans run untimed
+/// as the table's warm-up, then [`crate::scan::TIMED_SCANS`] scans timed
+/// one by one; each must update every track.
+#[inline(never)]
+fn nearest_neighbour_scene<S>(bench: &mut Bench, targets: usize)
+where
+    S: Scalar + crate::numeric::BenchNumber,
+{
+    use crate::scan::{Scene, GATE_SIGMA_M, GATE_THRESHOLD, TIMED_SCANS, WARM_UP_SCANS};
+    const CAPACITY: usize = NEAREST_NEIGHBOUR_CAPACITY;
+    let numeric = S::LABEL;
+    let size = crate::counter::Size {
+        n: targets,
+        m: targets,
+    };
+    let c = |v: f64| <S as abtrack::Quantity>::from_f64_lossy(v);
+    let zero = <S as abtrack::Quantity>::ZERO;
+    let (t, q, r) = (1.0, 1.0, GATE_SIGMA_M * GATE_SIGMA_M);
+    let model = black_box(AxisKalmanModel {
+        interval: c(t),
+        interval_squared: c(t * t),
+        q_position: c(q * t * t * t / 3.0),
+        q_cross: c(q * t * t / 2.0),
+        q_velocity: c(q * t),
+        measurement_variance: c(r),
+    });
+    let gate = black_box(c(GATE_THRESHOLD));
+    let mut rng = crate::synth::Lcg::new(5);
+    let mut z = [[zero; 2]; CAPACITY];
+    let mut scan = |k: u32, z: &mut [[S; 2]; CAPACITY]| {
+        for (i, zi) in z.iter_mut().take(targets).enumerate() {
+            let (x, y) = Scene::Separated.position(k, i, targets, &mut rng);
+            *zi = [c(x), c(y)];
+        }
+    };
+    let axis = AxisKalman {
+        position: zero,
+        velocity: zero,
+        p_xx: c(r),
+        p_xv: c(r / t),
+        p_vv: c(2.0 * r / (t * t)),
+    };
+    let mut tracks = [[axis; 2]; CAPACITY];
+    let mut taken = [false; CAPACITY];
+    // At most CAPACITY: in bounds.
+    let targets = targets.min(CAPACITY);
+    let (tracks, taken) = (&mut tracks[..targets], &mut taken[..targets]);
+    let (mut scan_ticks, mut empty_ticks) = (0u32, 0u32);
+    // Scans 0 and 1 start the tracks (the velocity from their difference),
+    // the warm-up's scans follow, then the timed ones (the warm-up's times
+    // not counted); every scan after the start must time and update every
+    // track.
+    let mut every_track_updated = true;
+    for k in 0..WARM_UP_SCANS + TIMED_SCANS {
+        scan(k, &mut z);
+        let measured = &z[..targets];
+        if k < 2 {
+            for (track, zi) in tracks.iter_mut().zip(measured) {
+                for (a, zi) in track.iter_mut().zip(zi) {
+                    a.velocity = (*zi - a.position) / c(t);
+                    a.position = *zi;
+                }
+            }
+            continue;
+        }
+        let mut updated = 0;
+        let t = bench.time(|| {
+            updated = black_box(nearest_neighbour_step(
+                tracks,
+                black_box(measured),
+                taken,
+                &model,
+                gate,
+            ));
+        });
+        let e = bench.time(|| {
+            black_box(black_box(measured));
+        });
+        every_track_updated &= updated == targets && t.is_some() && e.is_some();
+        if k >= WARM_UP_SCANS {
+            scan_ticks += t.unwrap_or(0);
+            empty_ticks += e.unwrap_or(0);
+        }
+    }
+    if !every_track_updated {
+        bench.fail(
+            numeric,
+            NEAREST_NEIGHBOUR_SCAN,
+            "a scan missed a track or its time",
+        );
+        return;
+    }
+    let net = scan_ticks.saturating_sub(empty_ticks);
+    let per_scan = bench.instructions(net) / TIMED_SCANS as f64;
+    bench.figure(numeric, NEAREST_NEIGHBOUR_SCAN, Some(size), per_scan);
 }

@@ -120,7 +120,7 @@ use crate::synth::Lcg;
 /// Scans timed per `scan_*` figure (one by one, averaged).
 pub const TIMED_SCANS: u32 = 16;
 /// Scans before the timing: initiation and confirmation of every track.
-const WARM_UP_SCANS: u32 = 5;
+pub const WARM_UP_SCANS: u32 = 5;
 /// Distance between separated targets, and between crowded clusters, m.
 const APART_M: f64 = 2_000.0;
 /// Distance between neighbours in a crowded cluster, m: inside a
@@ -129,7 +129,9 @@ const APART_M: f64 = 2_000.0;
 /// still each track's own.
 const CROWDED_SPACING_M: f64 = 12.0;
 /// σ of the gate (and of the default filter's sensor), m.
-const GATE_SIGMA_M: f64 = 5.0;
+pub const GATE_SIGMA_M: f64 = 5.0;
+/// The gate's threshold G on the normalised distance squared.
+pub const GATE_THRESHOLD: f64 = 13.8;
 /// Measurement noise: uniform in ± this, m.
 const NOISE_M: f64 = 2.0;
 /// Ground speed of every target, m/s (along x).
@@ -183,7 +185,7 @@ const CLUSTER_CLASSES: [(u32, u32, &str); 4] = [
 ];
 
 #[derive(Clone, Copy)]
-enum Scene {
+pub enum Scene {
     /// N targets on a grid 2 km apart: every gate holds one measurement.
     Separated,
     /// Clusters of 4 to 8 targets, 12 m apart across the direction of
@@ -228,20 +230,29 @@ impl Scene {
     /// the target's own (12 m across, 100 m along), well inside the noise.
     /// With exact points every track starts on its own target; the scans
     /// measured come later.
-    fn measurements<S: Numeric, const M: usize>(
+    pub fn measurements<S: Numeric, const M: usize>(
         self,
         k: u32,
         rng: &mut Lcg,
     ) -> [Measurement<S>; M] {
-        let t = k as f64;
-        let noise = if k < 2 { 0.0 } else { NOISE_M };
         core::array::from_fn(|i| {
-            let (x, y) = self.start(i, M);
+            let (x, y) = self.position(k, i, M, rng);
             Measurement::Cartesian {
-                x: S::Length::from_f64_lossy(x + SPEED_M_PER_S * t + rng.uniform(-noise, noise)),
-                y: S::Length::from_f64_lossy(y + rng.uniform(-noise, noise)),
+                x: S::Length::from_f64_lossy(x),
+                y: S::Length::from_f64_lossy(y),
             }
         })
+    }
+
+    /// Target `i` of `targets` as measured at scan `k` (x, y), m: each
+    /// scan's targets in turn from one `rng` ([`Self::measurements`]).
+    pub fn position(self, k: u32, i: usize, targets: usize, rng: &mut Lcg) -> (f64, f64) {
+        let noise = if k < 2 { 0.0 } else { NOISE_M };
+        let (x, y) = self.start(i, targets);
+        (
+            x + SPEED_M_PER_S * k as f64 + rng.uniform(-noise, noise),
+            y + rng.uniform(-noise, noise),
+        )
     }
 }
 
@@ -316,7 +327,7 @@ fn scene<S: BenchNumber, F: BenchFilter<S>, const N: usize, const M: usize>(
         F::params(),
         Gate::uncertainty(
             S::Length::from_f64_lossy(GATE_SIGMA_M),
-            S::Ratio::from_f64_lossy(13.8),
+            S::Ratio::from_f64_lossy(GATE_THRESHOLD),
             S::Acceleration::from_f64_lossy(5.0),
         ),
     ) else {
