@@ -644,7 +644,7 @@ pub const OPERATIONS: &[(&str, &str)] = &[
     ),
     (
         HAND_WRITTEN_SCAN,
-        "anchor: a hand-written scan of the separated scene, each track in turn (the hand-written Kalman filter) taking the nearest measurement left inside its gate, every measurement tested",
+        "anchor: a hand-written scan of the separated scene, each track in turn (the hand-written Kalman filter) taking the nearest measurement inside its gate, every measurement not yet taken tested",
     ),
 ];
 
@@ -1137,9 +1137,11 @@ fn hand_written_scan(s: &mut String, report: &Report) {
          distance, the nearest inside the gate taken; no input checks, no assignment, no \
          track starts or deletions, no counts. Beside it, the track table's scan with its \
          default filter (`{DEFAULT_SCAN}`) at the same size, N tracks and M = N \
-         measurements, in the anchor's type and in the core's own (f32 on a core with \
-         an FPU, else the fast fixed point, `fixed`). A ratio above 1: the table costs \
-         more.\n\n"
+         measurements, in the anchor's type (for `fixed`, the table in `Fixed32` and the \
+         anchor in `ScaledScalar`) and in the core's own (f32 on a core with an FPU, \
+         else the fast fixed point, `fixed`). The table's figure includes its own \
+         filter's updates (`auto2d_update` against `axis_kalman_cv2d_update`). A ratio \
+         above 1: the table costs more.\n\n"
     ));
     s.push_str(&header(&[
         "core",

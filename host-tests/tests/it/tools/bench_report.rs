@@ -343,7 +343,9 @@ fn the_hand_written_scan_is_set_beside_the_table_in_its_type_and_the_cores_own()
     let m4f = parse_log(&log(&[
         "bench-figure,m4f,f32,scan_default_separated,16,16,20000.0",
         "bench-figure,m4f,f32,axis_kalman_nn_scan_separated,16,16,8000.0",
-        "bench-end,m4f,2,0",
+        "bench-figure,m4f,fixed,scan_default_separated,16,16,60000.0",
+        "bench-figure,m4f,fixed,axis_kalman_nn_scan_separated,16,16,80000.0",
+        "bench-end,m4f,4,0",
     ]))
     .unwrap();
     let m0 = parse_log(&log(&[
@@ -367,6 +369,11 @@ fn the_hand_written_scan_is_set_beside_the_table_in_its_type_and_the_cores_own()
     assert_eq!(
         row("| `m4f` | 16 × 16 | `f32` |"),
         "| `m4f` | 16 × 16 | `f32` | 8,000 | 20,000 | 2.50 | `f32` 20,000 | 2.50 |"
+    );
+    // The fast fixed point on a core with an FPU: its own table, and the f32 one.
+    assert_eq!(
+        row("| `m4f` | 16 × 16 | `fixed` |"),
+        "| `m4f` | 16 × 16 | `fixed` | 80,000 | 60,000 | 0.75 | `f32` 20,000 | 0.25 |"
     );
     // The M0's table has no soft-f32 row: set beside its own type.
     assert_eq!(

@@ -1,6 +1,7 @@
 //! Benchmark firmware: instructions per call of abtrack's operations in every
 //! numeric type the core runs, beside anchors (a minimal αβ update, a
-//! hand-written Kalman filter, `minikalman`), on the emulated core.
+//! hand-written Kalman filter and a hand-written scan around it,
+//! `minikalman`), on the emulated core.
 //! Prints figures, one machine-readable line each; it is not a test
 //! (scripts/bench.sh runs it on the three boards and turns the lines into
 //! bench/results.csv and bench/BENCHMARKS.md; docs/benchmarks.md has the
