@@ -236,15 +236,16 @@ pub enum Numeric {
     F64,
     #[value(name = "f32")]
     F32,
+    // The values' doc comments are `--help` text (clap): plain words, no
+    // doc links.
     /// The Cortex-M3's fast fixed point as its firmware runs it
-    /// (`abtrack_firmware::number_types::cortex_m3`): [`abtrack::Fixed32`]
-    /// for the x/y track table, its wide format [`abtrack::ScaledScalar`]
-    /// for the code written for a `Scalar` (the range–azimuth filter and
-    /// tracks, the altitude tracker, the TCAS columns). Not the single x/y
-    /// filters.
+    /// (abtrack_firmware::number_types::cortex_m3): Fixed32 for the x/y
+    /// track table, its wide format ScaledScalar for the code written for a
+    /// Scalar (the range–azimuth filter and tracks, the altitude tracker,
+    /// the TCAS columns). Not the single x/y filters.
     #[value(name = "fixed32")]
     Fixed32,
-    /// Q32.32 ([`abtrack::Fix`]), which no firmware runs.
+    /// Q32.32 (abtrack::Fix), which no firmware runs.
     #[value(name = "q32.32")]
     Q32,
 }
