@@ -371,6 +371,12 @@ where
     use crate::scan::{Scene, GATE_SIGMA_M, GATE_THRESHOLD, TIMED_SCANS, WARM_UP_SCANS};
     const CAPACITY: usize = NEAREST_NEIGHBOUR_CAPACITY;
     let numeric = S::LABEL;
+    // At most CAPACITY: in bounds (and the row says what was measured).
+    let targets = targets.min(CAPACITY);
+    let size = crate::counter::Size {
+        n: targets,
+        m: targets,
+    };
     let c = |v: f64| <S as abtrack::Quantity>::from_f64_lossy(v);
     let zero = <S as abtrack::Quantity>::ZERO;
     let (t, q, r) = (1.0, 1.0, GATE_SIGMA_M * GATE_SIGMA_M);
@@ -400,12 +406,6 @@ where
     };
     let mut tracks = [[axis; 2]; CAPACITY];
     let mut taken = [false; CAPACITY];
-    // At most CAPACITY: in bounds (and the row says what was measured).
-    let targets = targets.min(CAPACITY);
-    let size = crate::counter::Size {
-        n: targets,
-        m: targets,
-    };
     let (tracks, taken) = (&mut tracks[..targets], &mut taken[..targets]);
     let (mut scan_ticks, mut empty_ticks) = (0u32, 0u32);
     // Scans 0 and 1 start the tracks (the velocity from their difference),
@@ -426,7 +426,7 @@ where
             continue;
         }
         let mut updated = 0;
-        let t = bench.time(|| {
+        let ticks = bench.time(|| {
             updated = black_box(nearest_neighbour_step(
                 tracks,
                 black_box(measured),
@@ -435,13 +435,13 @@ where
                 gate,
             ));
         });
-        let e = bench.time(|| {
+        let empty = bench.time(|| {
             black_box(black_box(measured));
         });
-        every_track_updated &= updated == targets && t.is_some() && e.is_some();
+        every_track_updated &= updated == targets && ticks.is_some() && empty.is_some();
         if k >= WARM_UP_SCANS {
-            scan_ticks += t.unwrap_or(0);
-            empty_ticks += e.unwrap_or(0);
+            scan_ticks += ticks.unwrap_or(0);
+            empty_ticks += empty.unwrap_or(0);
         }
     }
     // Each track on its own target: within DIVERGED_M of the target's last
