@@ -168,6 +168,22 @@ struct AxisKalmanModel<S> {
     measurement_variance: S,
 }
 
+impl<S: Scalar> AxisKalmanModel<S> {
+    /// The constants for interval `t` (s), white-acceleration density `q`
+    /// (m²/s³) and measurement σ `sigma` (m).
+    fn new(t: f64, q: f64, sigma: f64) -> Self {
+        let c = |v: f64| <S as abtrack::Quantity>::from_f64_lossy(v);
+        AxisKalmanModel {
+            interval: c(t),
+            interval_squared: c(t * t),
+            q_position: c(q * t * t * t / 3.0),
+            q_cross: c(q * t * t / 2.0),
+            q_velocity: c(q * t),
+            measurement_variance: c(sigma * sigma),
+        }
+    }
+}
+
 /// One axis: state (x, v) and the symmetric covariance (p_xx, p_xv, p_vv).
 #[derive(Clone, Copy)]
 struct AxisKalman<S> {
@@ -241,15 +257,7 @@ where
     const OPERATION: &str = "axis_kalman_cv2d_update";
     let numeric = S::LABEL;
     let c = |v: f64| <S as abtrack::Quantity>::from_f64_lossy(v);
-    let (t, q) = (1.0, 1.0);
-    let model = black_box(AxisKalmanModel {
-        interval: c(t),
-        interval_squared: c(t * t),
-        q_position: c(q * t * t * t / 3.0),
-        q_cross: c(q * t * t / 2.0),
-        q_velocity: c(q * t),
-        measurement_variance: c(25.0 * 25.0),
-    });
+    let model = black_box(AxisKalmanModel::new(1.0, 1.0, 25.0));
     let target = target::<S>();
     let start = |z: S| AxisKalman {
         position: z,
@@ -379,15 +387,8 @@ where
     };
     let c = |v: f64| <S as abtrack::Quantity>::from_f64_lossy(v);
     let zero = <S as abtrack::Quantity>::ZERO;
-    let (t, q, r) = (1.0, 1.0, GATE_SIGMA_M * GATE_SIGMA_M);
-    let model = black_box(AxisKalmanModel {
-        interval: c(t),
-        interval_squared: c(t * t),
-        q_position: c(q * t * t * t / 3.0),
-        q_cross: c(q * t * t / 2.0),
-        q_velocity: c(q * t),
-        measurement_variance: c(r),
-    });
+    let (t, r) = (1.0, GATE_SIGMA_M * GATE_SIGMA_M);
+    let model = black_box(AxisKalmanModel::new(t, 1.0, GATE_SIGMA_M));
     let gate = black_box(c(GATE_THRESHOLD));
     let mut rng = crate::synth::Lcg::new(5);
     let mut z = [[zero; 2]; CAPACITY];
