@@ -585,8 +585,8 @@ impl<N: Numeric, const D: usize> AutoGains<N, D> {
     /// What the fused filter [`crate::filter::auto::AutoFilter`] needs of
     /// this configuration: 1/σ (a polar sensor's 1/σ_R: that filter takes
     /// one σ for every axis) and the manoeuvre level's bounds.
-    pub fn shared_noise(&self) -> SharedNoise<N> {
-        self.noise
+    pub fn shared_noise(&self) -> &SharedNoise<N> {
+        &self.noise
     }
 
     /// R/σ² and ν/σ of every axis: 1 and e/σ for a Cartesian sensor; for a

@@ -60,7 +60,7 @@ impl<S: Numeric> TrackFilter<S> for AutoFilter<S, 2> {
         step: &AutoStep<S>,
     ) -> Result<(), FilterError> {
         // In place: an `Err` and a skip change nothing.
-        skip_refused(self.update_step(&params.shared_noise(), z.xy(), &step.terms))
+        skip_refused(self.update_step(params.shared_noise(), z.xy(), &step.terms))
     }
 
     fn update_after_gate(
@@ -70,7 +70,7 @@ impl<S: Numeric> TrackFilter<S> for AutoFilter<S, 2> {
         step: &AutoStep<S>,
         prediction: &AutoPrediction<S>,
     ) -> Result<(), FilterError> {
-        skip_refused(self.update_predicted(&params.shared_noise(), z.xy(), &step.terms, prediction))
+        skip_refused(self.update_predicted(params.shared_noise(), z.xy(), &step.terms, prediction))
     }
 
     fn coast(&mut self, _: &Self::Params, step: &AutoStep<S>) -> Result<(), FilterError> {

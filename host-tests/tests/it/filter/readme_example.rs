@@ -65,22 +65,23 @@ fn readme_example() -> Result<(), Box<dyn std::error::Error>> {
     // as αβ gains, configured from the sensor's σ alone, its manoeuvre level
     // estimated from the innovations (docs/auto.md). For a regular report
     // rate the interval's terms are formed once (`AutoInterval`).
-    let noise = AutoGains::<f32, 2>::new(&AutoConfig::cartesian(50.0))?.shared_noise();
+    let auto_gains = AutoGains::<f32, 2>::new(&AutoConfig::cartesian(50.0))?;
+    let noise = auto_gains.shared_noise();
     let four_seconds = AutoInterval::<f32>::new(4.0)?;
     let mut auto = AutoFilter::<f32, 2>::new();
     for k in 0..10u8 {
         let t = 4.0 * f32::from(k);
-        auto.update_step(&noise, [200.0 * t, -100.0 * t], &four_seconds)?;
+        auto.update_step(noise, [200.0 * t, -100.0 * t], &four_seconds)?;
     }
     assert_eq!(auto.velocity(), [200.0, -100.0]);
     // A report after more than 20 s starts the estimate again from it, and
     // one under 0.05 s after the last is skipped: neither refuses the input.
     assert_eq!(
-        auto.update(&noise, [9000.0, 0.0], 30.0)?,
+        auto.update(noise, [9000.0, 0.0], 30.0)?,
         AutoUpdate::Restarted
     );
     assert_eq!(
-        auto.update(&noise, [9001.0, 0.0], 0.01)?,
+        auto.update(noise, [9001.0, 0.0], 0.01)?,
         AutoUpdate::Skipped
     );
     // --- README example ends ---

@@ -224,7 +224,7 @@ fn the_fused_filter_is_the_schedule_on_one_axis() {
             Some([x, _]) => {
                 scheduled.update([x], dt).expect("scheduled update");
                 let outcome = fused
-                    .update(&gains.shared_noise(), [x], dt)
+                    .update(gains.shared_noise(), [x], dt)
                     .expect("fused update");
                 filtered += usize::from(outcome == AutoUpdate::Filtered);
             }

@@ -284,7 +284,7 @@ fn auto<N: BenchNumber>(bench: &mut Bench) {
         }
         return;
     };
-    let noise = black_box(auto.shared_noise());
+    let noise = black_box(*auto.shared_noise());
     let step = black_box(step);
     let mut filter = AutoFilter::<N, 2>::new();
     bench.per_accepted_call(
