@@ -303,12 +303,7 @@ fn fixed_gain_track_refuses_a_saturating_update_unchanged() {
 /// `FilterRefused`, the track coasts, and the refusal is counted on it.
 #[test]
 fn refused_updates_are_counted_on_the_track() {
-    let config = support::parked_config(support::ParkedParams {
-        gate_radius: Some(20.0),
-        refuse_after: Some(2),
-    });
-    let mut table: abtrack::track::TrackTable<f64, support::Parked, 2, 2> =
-        abtrack::track::TrackTable::new();
+    let (config, mut table) = refusing_table(2);
     let mut codes = [Association::OutsideGates; 1];
     for t in [0, 1000] {
         table
@@ -336,12 +331,7 @@ fn refused_updates_are_counted_on_the_track() {
 /// updates, and its first point is spent.
 #[test]
 fn a_refused_start_is_counted() {
-    let config = support::parked_config(support::ParkedParams {
-        gate_radius: Some(20.0),
-        refuse_after: Some(1),
-    });
-    let mut table: abtrack::track::TrackTable<f64, support::Parked, 2, 2> =
-        abtrack::track::TrackTable::new();
+    let (config, mut table) = refusing_table(1);
     let mut codes = [Association::OutsideGates; 1];
     table
         .scan(&config, 0, &[cart(100.0, 0.0)], &mut codes)
@@ -359,4 +349,19 @@ fn a_refused_start_is_counted() {
         .unwrap();
     assert_eq!(codes[0], Association::OutsideGates);
     assert_eq!((r.filter_refused, r.started), (0, 0));
+}
+
+/// A 2-track table of [`support::Parked`] filters (20 m gates) that refuse
+/// every update after their first `refuse_after` points, and its config.
+fn refusing_table(
+    refuse_after: u8,
+) -> (
+    abtrack::track::TrackerConfig<f64, support::ParkedParams>,
+    abtrack::track::TrackTable<f64, support::Parked, 2, 2>,
+) {
+    let config = support::parked_config(support::ParkedParams {
+        gate_radius: Some(20.0),
+        refuse_after: Some(refuse_after),
+    });
+    (config, abtrack::track::TrackTable::new())
 }
