@@ -293,6 +293,7 @@ pub const NEAREST_NEIGHBOUR_SCAN: &str = "axis_kalman_nn_scan_separated";
 /// assignment (the first track to reach a measurement takes it), no track
 /// starts or deletions, no counts: what the table does beyond this is
 /// what its figure costs beyond this row's.
+#[cfg(not(abtrack_board = "microbit"))]
 #[inline(never)]
 pub fn nearest_neighbour_scan<S>(bench: &mut Bench)
 where
@@ -301,15 +302,17 @@ where
     nearest_neighbour_scene::<S>(bench, 16);
     #[cfg(not(feature = "bench-smoke"))]
     nearest_neighbour_scene::<S>(bench, 32);
-    #[cfg(not(any(feature = "bench-smoke", abtrack_board = "microbit")))]
+    #[cfg(not(feature = "bench-smoke"))]
     nearest_neighbour_scene::<S>(bench, 64);
 }
 
+#[cfg(not(abtrack_board = "microbit"))]
 /// One track of the hand-written scan: its x and y filters.
 type AxisTrack<S> = [AxisKalman<S>; 2];
 
 /// One scan of [`nearest_neighbour_scan`], on slices (one copy of the code for
 /// every size): returns the number of tracks updated.
+#[cfg(not(abtrack_board = "microbit"))]
 #[inline(never)]
 fn nearest_neighbour_step<S: Scalar>(
     tracks: &mut [AxisTrack<S>],
@@ -360,6 +363,7 @@ fn nearest_neighbour_step<S: Scalar>(
 }
 
 /// The most tracks (and measurements) of [`nearest_neighbour_scene`].
+#[cfg(not(abtrack_board = "microbit"))]
 const NEAREST_NEIGHBOUR_CAPACITY: usize = 64;
 
 /// The scene at `targets` tracks and measurements (at most
@@ -371,6 +375,7 @@ const NEAREST_NEIGHBOUR_CAPACITY: usize = 64;
 /// every track, and each track must end within [`DIVERGED_M`] of its own
 /// target's last measurement (the targets are 2 km apart: a track led to
 /// another target's measurements fails it).
+#[cfg(not(abtrack_board = "microbit"))]
 #[inline(never)]
 fn nearest_neighbour_scene<S>(bench: &mut Bench, targets: usize)
 where

@@ -85,18 +85,18 @@ fn run(bench: &mut Bench) {
     // point, and minikalman (f32, with its I16F16 build).
     anchors::axis_kalman::<f32>(bench);
     anchors::axis_kalman::<ScaledScalar>(bench);
-    // The scan a user would write around that filter: in f32 (software f32
-    // on the M3 and M0) and, where the flash holds it (not the micro:bit's),
+    // The scan a user would write around that filter, where the flash
+    // holds it (not the micro:bit's): in f32 (software f32 on the M3) and
     // in the fast fixed point's wide format.
-    anchors::nearest_neighbour_scan::<f32>(bench);
     #[cfg(not(abtrack_board = "microbit"))]
-    anchors::nearest_neighbour_scan::<ScaledScalar>(bench);
+    {
+        anchors::nearest_neighbour_scan::<f32>(bench);
+        anchors::nearest_neighbour_scan::<ScaledScalar>(bench);
+    }
     #[cfg(abtrack_board = "microbit")]
-    bench.omitted_group(
-        ScaledScalar::LABEL,
-        &[anchors::NEAREST_NEIGHBOUR_SCAN],
-        Omission::Flash,
-    );
+    for label in [f32::LABEL, ScaledScalar::LABEL] {
+        bench.omitted_group(label, &[anchors::NEAREST_NEIGHBOUR_SCAN], Omission::Flash);
+    }
     minikalman::run(bench);
     // Integer-only code, the same in every numeric.
     decoder::parse_byte(bench);
