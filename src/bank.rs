@@ -33,6 +33,11 @@
 //!
 //! Selection is per axis: [`CartesianBank`] runs one bank per axis (the
 //! paper evaluates X and Y separately, Tables 1–2).
+//!
+//! Irregular intervals (real report times) bound every member's gains as
+//! [`crate::gain::ScheduledFilter`] bounds a schedule's
+//! ([`crate::gain::robust_gains`]); at a regular interval, as in the paper,
+//! they are the members' own.
 
 use core::fmt;
 
@@ -40,6 +45,7 @@ use crate::filter::{
     outcome as outcome_of, AlphaBeta, FilterError, Gains, IntervalSpan, Phase, Prediction,
     StepGains, UpdateOutcome,
 };
+use crate::gain::{next_reference, robust_gains};
 use crate::gains::{
     beta_from_alpha, check_capacity, check_range, config_quantity, grid_point, ConfigError,
 };
@@ -138,6 +144,11 @@ pub struct ParallelBank<N: Numeric, const K: usize> {
     selected: usize,
     last: Option<BankSelection<N>>,
     saturations: u32,
+    /// T of the last update that left the members tracking (zero before):
+    /// the previous interval of [`robust_gains`].
+    previous_interval: N::Interval,
+    /// The reference interval of [`robust_gains`] ([`next_reference`]).
+    reference_interval: N::Interval,
 }
 
 impl<N: Numeric, const K: usize> ParallelBank<N, K> {
@@ -158,6 +169,8 @@ impl<N: Numeric, const K: usize> ParallelBank<N, K> {
             selected: 0,
             last: None,
             saturations: 0,
+            previous_interval: N::Interval::ZERO,
+            reference_interval: N::Interval::ZERO,
         })
     }
 
@@ -264,6 +277,7 @@ impl<N: Numeric, const K: usize> ParallelBank<N, K> {
             .and_then(|steps| next.update_step(z, &steps))
         {
             Ok(outcome) => {
+                next.record_intervals(&outcome, dt);
                 *self = next;
                 Ok(if restart {
                     BankOutcome::Restarted
@@ -278,13 +292,14 @@ impl<N: Numeric, const K: usize> ParallelBank<N, K> {
         }
     }
 
-    /// The interval policy of the filters ([`IntervalSpan`]; the first
-    /// measurement takes any valid interval).
+    /// The interval policy of the filters
+    /// ([`KinematicFilter::interval_span`](crate::filter::KinematicFilter::interval_span);
+    /// the first measurement takes any valid interval).
     fn interval_span(&self, dt: N::Interval) -> Result<IntervalSpan, FilterError> {
-        if self.phase() == Phase::Empty {
-            return Ok(IntervalSpan::InRange);
+        match self.members.first() {
+            Some(m) if m.phase() != Phase::Empty => m.interval_span(dt),
+            _ => Ok(IntervalSpan::InRange),
         }
-        IntervalSpan::of(dt)
     }
 
     /// Every member back to its first point's wait (the counts kept).
@@ -294,23 +309,55 @@ impl<N: Numeric, const K: usize> ParallelBank<N, K> {
         }
         self.selected = 0;
         self.last = None;
+        self.previous_interval = N::Interval::ZERO;
+        self.reference_interval = N::Interval::ZERO;
     }
 
-    /// Every member's [`StepGains`] at `dt`, formed once per interval (a
-    /// [`CartesianBank`] shares them between its axes); a saturated gain is
-    /// counted and refuses the update.
+    /// The intervals [`robust_gains`] reads, after an update `dt` after
+    /// the previous one that gave `outcome` (as [`crate::gain::ScheduledFilter`]
+    /// keeps them).
+    fn record_intervals(&mut self, outcome: &BankOutcome<N>, dt: N::Interval) {
+        match outcome {
+            BankOutcome::FirstPoint | BankOutcome::Restarted => {
+                self.previous_interval = N::Interval::ZERO;
+                self.reference_interval = N::Interval::ZERO;
+            }
+            BankOutcome::SecondPoint => {
+                self.previous_interval = dt;
+                self.reference_interval = dt;
+            }
+            BankOutcome::Filtered(_) => {
+                self.previous_interval = dt;
+                self.reference_interval = next_reference(self.reference_interval, dt);
+            }
+            BankOutcome::Skipped => {}
+        }
+    }
+
+    /// Every member's [`StepGains`] at `dt`, its gains bounded for an
+    /// irregular interval ([`robust_gains`]), formed once per interval (a
+    /// [`CartesianBank`] shares them between its axes); a saturated or
+    /// unrepresentable gain is counted and refuses the update.
     fn step_gains(&mut self, dt: N::Interval) -> Result<[StepGains<N>; K], FilterError> {
-        let formed = self
-            .gains
-            .first()
-            .map_or(Err(FilterError::InvalidInterval), |g| {
-                let first = StepGains::new(g, dt)?;
-                let mut steps = [first; K];
-                for (step, gains) in steps.iter_mut().zip(&self.gains).take(self.len).skip(1) {
-                    *step = StepGains::new(gains, dt)?;
-                }
-                Ok(steps)
-            });
+        let bounded = robust_gains(
+            self.gains,
+            dt,
+            self.previous_interval,
+            self.reference_interval,
+        )
+        .map_err(|_| FilterError::Saturated);
+        let formed = bounded.and_then(|gains| {
+            gains
+                .first()
+                .map_or(Err(FilterError::InvalidInterval), |g| {
+                    let first = StepGains::new(g, dt)?;
+                    let mut steps = [first; K];
+                    for (step, gains) in steps.iter_mut().zip(&gains).take(self.len).skip(1) {
+                        *step = StepGains::new(gains, dt)?;
+                    }
+                    Ok(steps)
+                })
+        });
         if formed == Err(FilterError::Saturated) {
             self.saturations = self.saturations.saturating_add(1);
         }
@@ -465,7 +512,10 @@ impl<N: Numeric, const K: usize, const D: usize> CartesianBank<N, K, D> {
                 Err(e) => Err(*e),
             };
             match result {
-                Ok(r) => *o = r,
+                Ok(r) => {
+                    axis.record_intervals(&r, dt);
+                    *o = r;
+                }
                 Err(e) => {
                     // Keep the saturation counts of the refused update.
                     for (mine, tried) in self.axes.iter_mut().zip(&next) {

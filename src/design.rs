@@ -507,9 +507,10 @@ pub fn least_squares_gains(n: u32) -> Result<Gains<f64>, DesignError> {
 /// on the stability boundary 2α + β = 4, which [`Gains`] rejects.
 ///
 /// β is exactly twice the monotone critically damped β
-/// ([`critically_damped_betas`]), so these gains are underdamped: a complex
-/// pole pair of modulus √(1 − α). Computed as 2α²/(1 + √(1−α))² to avoid
-/// cancellation at small α.
+/// ([`critically_damped_betas`]). For α < 12√2 − 16 ≈ 0.9706 (√(1 − α) >
+/// 3 − 2√2) the gains are underdamped, a complex pole pair of modulus
+/// √(1 − α); above it the two poles are real. Computed as
+/// 2α²/(1 + √(1−α))² to avoid cancellation at small α.
 ///
 /// Errors: [`DesignError::AlphaOutOfRange`] outside 0 < α ≤ 1.
 pub fn kalata_beta(alpha: f64) -> Result<f64, DesignError> {

@@ -16,7 +16,9 @@
 //!   update to the next. [`Gains`] can only be constructed inside the
 //!   stability region of the filter it is meant for.
 //! * The interval `dt` is the time since the previous call (update or coast)
-//!   and may differ on every call; β is divided by the actual interval
+//!   that the filter took, and may differ on every call (a skipped
+//!   measurement, [`UpdateOutcome::Skipped`], changes nothing: the next
+//!   interval counts from before it); β is divided by the actual interval
 //!   (Al-Wagih eq. 8, Tenne & Singh eq. 4). The gains that depend on the
 //!   interval (β/T, γ/(2T²)) are formed once per interval in a [`StepGains`]
 //!   (a tracker's interval is the same for all its tracks), so the
@@ -115,6 +117,22 @@ impl IntervalSpan {
             IntervalSpan::TooLong
         } else {
             IntervalSpan::InRange
+        })
+    }
+
+    /// The span of an update `dt` after the previous call, the first point
+    /// of a two-point start having been taken `since_first` before that
+    /// call: as [`Self::of`], and too long also when the time since the
+    /// first point, over which eq. (9) takes the velocity, is longer than
+    /// [`MAX_INTERVAL_S`] or left the number format (a first point coasted
+    /// past the filters' range).
+    pub fn of_second_point<Q: Quantity>(since_first: Q, dt: Q) -> Result<Self, FilterError> {
+        let span = Self::of(dt)?;
+        let elapsed = since_first + dt;
+        let within = elapsed.is_valid() && elapsed <= Q::seconds_from_ms(MAX_INTERVAL_MS);
+        Ok(match span {
+            IntervalSpan::InRange if !within => IntervalSpan::TooLong,
+            other => other,
         })
     }
 }
@@ -432,6 +450,19 @@ impl<N: Numeric, const ORDER: usize> KinematicFilter<N, ORDER> {
         self.saturations = self.saturations.saturating_add(1);
     }
 
+    /// The span of an update `dt` from now under the interval policy
+    /// ([`IntervalSpan::of`]; while one point is known,
+    /// [`IntervalSpan::of_second_point`]). Out of line: the policy's
+    /// holders call it off their tracking path.
+    #[inline(never)]
+    pub fn interval_span(&self, dt: N::Interval) -> Result<IntervalSpan, FilterError> {
+        if self.phase == Phase::OnePoint {
+            IntervalSpan::of_second_point(self.since_first, dt)
+        } else {
+            IntervalSpan::of(dt)
+        }
+    }
+
     /// Back to [`Phase::Empty`], keeping the saturation count (an interval
     /// policy's restart).
     pub(crate) fn restart(&mut self) {
@@ -581,13 +612,19 @@ fn step_gains<N: Numeric, const ORDER: usize, const D: usize>(
     if z.iter().any(|v| !v.is_valid()) {
         return Err(FilterError::InvalidMeasurement);
     }
-    StepGains::new(gains, dt).inspect_err(|e| {
-        if *e == FilterError::Saturated {
-            if let Some(first) = axes.first_mut() {
-                first.count_saturation();
-            }
+    StepGains::new(gains, dt).inspect_err(|e| count_if_saturated(axes, e))
+}
+
+/// Counts `e` on the first axis if it is a saturation.
+fn count_if_saturated<N: Numeric, const ORDER: usize, const D: usize>(
+    axes: &mut [KinematicFilter<N, ORDER>; D],
+    e: &FilterError,
+) {
+    if *e == FilterError::Saturated {
+        if let Some(first) = axes.first_mut() {
+            first.count_saturation();
         }
-    })
+    }
 }
 
 /// The [`UpdateOutcome`] of an update of `kind` that left the innovation
@@ -724,13 +761,7 @@ fn coast_axes<N: Numeric, const ORDER: usize, const D: usize>(
     axes: &mut [KinematicFilter<N, ORDER>; D],
     dt: N::Interval,
 ) -> Result<(), FilterError> {
-    let terms = IntervalTerms::<N>::new(dt).inspect_err(|e| {
-        if *e == FilterError::Saturated {
-            if let Some(first) = axes.first_mut() {
-                first.count_saturation();
-            }
-        }
-    })?;
+    let terms = IntervalTerms::<N>::new(dt).inspect_err(|e| count_if_saturated(axes, e))?;
     match axes.first().map_or(Phase::Empty, |a| a.phase) {
         Phase::Empty => Ok(()),
         Phase::OnePoint => {
@@ -834,6 +865,14 @@ impl<N: Numeric, const ORDER: usize, const D: usize> Cartesian<N, ORDER, D> {
         self.axes.first().map_or(Phase::Empty, |a| a.phase())
     }
 
+    /// [`KinematicFilter::interval_span`] (the axes share their phase and
+    /// times).
+    pub fn interval_span(&self, dt: N::Interval) -> Result<IntervalSpan, FilterError> {
+        self.axes
+            .first()
+            .map_or_else(|| IntervalSpan::of(dt), |a| a.interval_span(dt))
+    }
+
     /// Smoothed position per axis, m.
     pub fn position(&self) -> [N::Length; D] {
         self.axes.map(|a| a.position())
@@ -849,6 +888,14 @@ impl<N: Numeric, const ORDER: usize, const D: usize> Cartesian<N, ORDER, D> {
         self.axes
             .iter()
             .fold(0u32, |n, a| n.saturating_add(a.saturations()))
+    }
+
+    /// Every axis back to [`Phase::Empty`], keeping the saturation counts
+    /// (an interval policy's restart).
+    pub(crate) fn restart(&mut self) {
+        for axis in self.axes.iter_mut() {
+            axis.restart();
+        }
     }
 
     /// Updates every axis with the same gains (forms the [`StepGains`] and
@@ -885,7 +932,9 @@ impl<N: Numeric, const ORDER: usize, const D: usize> Cartesian<N, ORDER, D> {
         if z.iter().any(|v| !v.is_valid()) {
             return Err(FilterError::InvalidMeasurement);
         }
-        IntervalTerms::<N>::new(dt).and_then(|terms| self.update_per_axis_terms(z, &terms, gains))
+        IntervalTerms::<N>::new(dt)
+            .inspect_err(|e| count_if_saturated(&mut self.axes, e))
+            .and_then(|terms| self.update_per_axis_terms(z, &terms, gains))
     }
 
     /// [`Self::update_per_axis`] with the interval's terms formed already

@@ -220,9 +220,11 @@ impl<N: Numeric, const D: usize> AutoFilter<N, D> {
         }
     }
 
-    /// Incorporates measurement `z`, taken `dt` after the previous call,
-    /// under the interval policy of [`crate::filter`] (skipped when too
-    /// short, restarted when too long). An `Err` changes nothing.
+    /// Incorporates measurement `z`, taken `dt` after the previous call
+    /// that the filter took, under the interval policy of
+    /// [`crate::filter`] (skipped when too short, changing nothing;
+    /// restarted when too long, or, while one point is known, when the time
+    /// since it is). An `Err` changes nothing.
     pub fn update(
         &mut self,
         noise: &SharedNoise<N>,
@@ -268,11 +270,10 @@ impl<N: Numeric, const D: usize> AutoFilter<N, D> {
         uncoasted: Option<&CovarianceTerms<N::Ratio>>,
         predicted: Option<&AutoPrediction<N>>,
     ) -> Result<AutoUpdate, FilterError> {
-        let mut guard = N::Guard::default();
-        for v in &z {
-            v.check_input(&mut guard);
-        }
-        if !N::passed(&guard) {
+        // Every number system's invalid values (a float's NaN and ∞, which
+        // `check_input` lets through), refused before the interval is
+        // looked at, as by the other filters.
+        if z.iter().any(|v| !v.is_valid()) {
             return Err(FilterError::InvalidMeasurement);
         }
         if self.phase == Phase::Empty {
@@ -288,9 +289,15 @@ impl<N: Numeric, const D: usize> AutoFilter<N, D> {
                 return Ok(AutoUpdate::Restarted);
             }
         }
+        let mut guard = N::Guard::default();
         let tau = self.coasted + dt;
         if self.phase == Phase::OnePoint {
-            // Al-Wagih eq. 9 over the time since the first point.
+            // Al-Wagih eq. 9 over the time since the first point, within
+            // the filters' range.
+            if IntervalSpan::of_second_point(self.coasted, dt) == Ok(IntervalSpan::TooLong) {
+                self.start(z);
+                return Ok(AutoUpdate::Restarted);
+            }
             let mut velocity = self.velocity;
             for ((v, z), x) in velocity.iter_mut().zip(&z).zip(&self.position) {
                 let difference = z.sub_guarded(*x, &mut guard);

@@ -442,7 +442,8 @@ where
         self.measurements
     }
 
-    /// Incorporates measurement `z`, taken `dt` after the previous call.
+    /// Incorporates measurement `z`, taken `dt` after the previous call
+    /// that the track took (a skipped one changed nothing).
     ///
     /// If the interval is longer than [`MAX_INTERVAL_S`] (after the first
     /// measurement) or the schedule requires a restart, the filter is
@@ -500,11 +501,15 @@ where
                 None => self.filtered_update(z, dt, n),
             };
         }
-        let mut filter = if restarted {
-            Cartesian::new()
-        } else {
-            self.filter
-        };
+        // A first point held beyond the filters' range restarts too: the
+        // second point's interval is the time since it.
+        let restarted = restarted
+            || (self.filter.phase() == Phase::OnePoint
+                && self.filter.interval_span(dt) == Ok(IntervalSpan::TooLong));
+        let mut filter = self.filter;
+        if restarted {
+            filter.restart();
+        }
         let n = if restarted {
             1
         } else {

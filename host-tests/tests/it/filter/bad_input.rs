@@ -160,3 +160,28 @@ fn cartesian_update_is_all_or_nothing() {
     assert_eq!(t.phase(), Phase::OnePoint);
     assert_eq!(t.position(), [c(0.0), c(2.0e9)]);
 }
+
+/// An interval whose square leaves Q32.32 (T = 7·10⁴ s, T²/2 > 2³¹) refuses
+/// the per-axis update as saturated and counts it, as the shared-gains
+/// update and the coast do.
+#[test]
+fn a_saturated_interval_is_counted_by_every_update() {
+    let c = |v: f64| Fix::try_from_f64(v).unwrap();
+    let g = Gains::<Fix>::alpha_beta_f64(0.5, 0.3).unwrap();
+    let mut f = Cartesian::<Fix, 2, 2>::new();
+    f.update([c(0.0), c(0.0)], c(1.0), &g).unwrap();
+    f.update([c(10.0), c(0.0)], c(1.0), &g).unwrap();
+    let long = c(7.0e4);
+    assert_eq!(
+        f.update([c(20.0), c(0.0)], long, &g),
+        Err(FilterError::Saturated)
+    );
+    assert_eq!(f.saturations(), 1);
+    assert_eq!(
+        f.update_per_axis([c(20.0), c(0.0)], long, &[g, g]),
+        Err(FilterError::Saturated)
+    );
+    assert_eq!(f.saturations(), 2);
+    assert_eq!(f.coast(long), Err(FilterError::Saturated));
+    assert_eq!(f.saturations(), 3);
+}

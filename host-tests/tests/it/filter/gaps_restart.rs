@@ -6,10 +6,13 @@
 
 use abtrack::bank::{BankConfig, BankOutcome, CartesianBank};
 use abtrack::filter::altitude::{AltitudeQuantum, AltitudeTrackerConfig};
+use abtrack::filter::auto::{AutoFilter, AutoUpdate};
 use abtrack::filter::{
     Cartesian, FilterError, IntervalSpan, Phase, UpdateOutcome, MAX_INTERVAL_S, MIN_INTERVAL_S,
 };
-use abtrack::gain::{FixedGains, LeastSquaresGains, ScheduledError, ScheduledFilter};
+use abtrack::gain::{
+    AutoConfig, AutoGains, FixedGains, LeastSquaresGains, ScheduledError, ScheduledFilter,
+};
 use abtrack::num::fixed32::Fixed32;
 use abtrack::num::{Numeric, Quantity};
 use abtrack::scan::{ClockConfig, MeasurementQueue, ScanConfig, ScanLoop};
@@ -151,6 +154,123 @@ fn the_m5_bank_restarts_and_skips_the_same_way() {
     );
     assert_eq!(bank.phase(), Phase::OnePoint);
     assert_eq!(bank.position(), [900.0, 0.0]);
+}
+
+/// A track holding one point, coasted past the filters' longest interval
+/// (and, in the fast fixed point, past its interval type's 128 s), restarts
+/// from its next report, which becomes the new first point, in each layer
+/// that holds a track: the scheduled filter (its saturation count kept
+/// through the restart), the fused default filter and the M5 bank.
+fn one_point_coasted_past_the_range<N: Numeric>() {
+    let z = |x: f64| [q::<N::Length>(x), q::<N::Length>(0.0)];
+    let ten: N::Interval = q(10.0);
+    let one: N::Interval = q(1.0);
+    for coasts in [3, 13] {
+        let gains = Gains::<N>::alpha_beta_f64(0.5, 0.2).unwrap();
+        let mut scheduled = ScheduledFilter::<N, _, 2, 2>::new(FixedGains::new(gains));
+        let mut auto = AutoFilter::<N, 2>::new();
+        let noise = AutoGains::<N, 2>::new(&AutoConfig::cartesian(50.0)).unwrap();
+        let noise = noise.shared_noise();
+        let mut bank = CartesianBank::<N, 8, 2>::from_config(&BankConfig::DEFAULT).unwrap();
+        scheduled.update(z(0.0), one).unwrap();
+        auto.update(noise, z(0.0), one).unwrap();
+        bank.update(z(0.0), one).unwrap();
+        for _ in 0..coasts {
+            // The fast fixed point refuses a coast beyond its 128 s (counted).
+            let _ = scheduled.coast(ten);
+            auto.coast(ten).unwrap();
+            let _ = bank.coast(ten);
+        }
+        let saturations = scheduled.filter().saturations();
+        let out = scheduled.update(z(5000.0), one).unwrap();
+        assert_eq!(
+            out.outcome,
+            [UpdateOutcome::Restarted; 2],
+            "{} {coasts}",
+            N::NAME
+        );
+        assert_eq!(scheduled.filter().phase(), Phase::OnePoint);
+        assert_eq!(scheduled.filter().saturations(), saturations, "{}", N::NAME);
+        assert_eq!(
+            auto.update(noise, z(5000.0), one),
+            Ok(AutoUpdate::Restarted),
+            "{} {coasts}",
+            N::NAME
+        );
+        assert_eq!(auto.phase(), Phase::OnePoint);
+        assert_eq!(
+            bank.update(z(5000.0), one).unwrap(),
+            [BankOutcome::Restarted; 2]
+        );
+        // The next report is the second point: velocity over its own 2 s.
+        scheduled.update(z(5020.0), q(2.0)).unwrap();
+        auto.update(noise, z(5020.0), q(2.0)).unwrap();
+        bank.update(z(5020.0), q(2.0)).unwrap();
+        let velocities = [
+            scheduled.filter().velocity()[0].to_f64(),
+            auto.velocity()[0].to_f64(),
+            bank.velocity()[0].to_f64(),
+        ];
+        for v in velocities {
+            assert!(
+                (v - 10.0).abs() < 1e-3,
+                "{} {coasts}: {velocities:?}",
+                N::NAME
+            );
+        }
+    }
+}
+
+#[test]
+fn a_first_point_coasted_past_the_range_restarts() {
+    one_point_coasted_past_the_range::<f64>();
+    one_point_coasted_past_the_range::<f32>();
+    one_point_coasted_past_the_range::<Fix>();
+    one_point_coasted_past_the_range::<Fixed32>();
+}
+
+/// The fused default filter refuses a measurement that is not a valid
+/// number (NaN, or a value that left the fixed formats) on every path, its
+/// state unchanged: the first point, the second, a report too soon or
+/// after a gap, and a filtered update.
+fn invalid_measurement_refused<N: Numeric>() {
+    let noise = AutoGains::<N, 2>::new(&AutoConfig::cartesian(50.0)).unwrap();
+    let noise = noise.shared_noise();
+    let z = |x: f64| [q::<N::Length>(x), q::<N::Length>(0.0)];
+    let invalid = [f64::NAN, 1.0e30]
+        .map(N::Length::from_f64_lossy)
+        .into_iter()
+        .find(|v| !v.is_valid())
+        .expect("an invalid length");
+    let bad = [invalid, q::<N::Length>(0.0)];
+    let one: N::Interval = q(1.0);
+    let mut auto = AutoFilter::<N, 2>::new();
+    let check = |auto: &mut AutoFilter<N, 2>, dt: N::Interval, what: &str| {
+        let before = *auto;
+        assert_eq!(
+            auto.update(noise, bad, dt),
+            Err(FilterError::InvalidMeasurement),
+            "{} {what}",
+            N::NAME
+        );
+        assert_eq!(*auto, before, "{} {what}", N::NAME);
+    };
+    check(&mut auto, one, "first point");
+    auto.update(noise, z(0.0), one).unwrap();
+    check(&mut auto, one, "second point");
+    check(&mut auto, q(0.01), "too soon");
+    check(&mut auto, q(30.0), "after a gap");
+    auto.update(noise, z(10.0), one).unwrap();
+    auto.update(noise, z(20.0), one).unwrap();
+    check(&mut auto, one, "filtered");
+}
+
+#[test]
+fn the_default_filter_refuses_an_invalid_measurement_on_every_path() {
+    invalid_measurement_refused::<f64>();
+    invalid_measurement_refused::<f32>();
+    invalid_measurement_refused::<Fix>();
+    invalid_measurement_refused::<Fixed32>();
 }
 
 // ------------------------------------------------------------ track table

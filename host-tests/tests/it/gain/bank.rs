@@ -6,7 +6,7 @@ use abtrack::num::{Quantity, Real};
 
 use abtrack::bank::{BankConfig, BankOutcome, CartesianBank, ParallelBank};
 use abtrack::filter::{AlphaBeta, FilterError, Phase, UpdateOutcome};
-use abtrack::gain::ConfigError;
+use abtrack::gain::{next_reference, robust_gains, ConfigError};
 use abtrack::{Fix, Gains, Scalar};
 use proptest::prelude::*;
 use support::assert_close;
@@ -150,8 +150,10 @@ fn refused_update_changes_nothing() {
 
 proptest! {
     /// The selected member is the one whose own αβ filter, run alone on the
-    /// same data, has the least |innovation| (first on ties); the bank's
-    /// estimate and causal prediction are that member's.
+    /// same data with its gains bounded for the irregular intervals as a
+    /// schedule's are (`robust_gains`, after the previous interval and the
+    /// reference `next_reference` keeps), has the least |innovation| (first
+    /// on ties); the bank's estimate and causal prediction are that member's.
     #[test]
     fn selects_least_absolute_innovation(
         zs in prop::collection::vec(-1.0e4f64..1.0e4, 3..40),
@@ -164,16 +166,25 @@ proptest! {
             .collect();
         let mut bank = ParallelBank::<f64, 8>::new(&gains).unwrap();
         let mut alone: Vec<AlphaBeta<f64>> = vec![AlphaBeta::new(); gains.len()];
+        let (mut previous, mut reference) = (0.0, 0.0);
         for (z, dt) in zs.iter().zip(&dts) {
             let out = bank.update(*z, *dt).unwrap();
             let residuals: Vec<Option<f64>> = alone
                 .iter_mut()
                 .zip(&gains)
-                .map(|(f, g)| match f.update(*z, *dt, g).unwrap() {
-                    UpdateOutcome::Filtered(i) => Some(i.residual),
-                    _ => None,
+                .map(|(f, g)| {
+                    let [bounded] = robust_gains([*g], *dt, previous, reference).unwrap();
+                    match f.update(*z, *dt, &bounded).unwrap() {
+                        UpdateOutcome::Filtered(i) => Some(i.residual),
+                        _ => None,
+                    }
                 })
                 .collect();
+            (previous, reference) = match alone[0].phase() {
+                Phase::Tracking if residuals[0].is_some() => (*dt, next_reference(reference, *dt)),
+                Phase::Tracking => (*dt, *dt),
+                _ => (0.0, 0.0),
+            };
             if let BankOutcome::Filtered(sel) = out {
                 let sizes: Vec<f64> = residuals.iter().map(|r| r.unwrap().abs()).collect();
                 let least = sizes.iter().cloned().fold(f64::INFINITY, f64::min);
@@ -265,4 +276,49 @@ fn cartesian_bank_equals_its_axes_updated_alone() {
     // where β/T saturated, is now skipped before β/T is formed.)
     let saturations = run::<Fix>(&[([0.0, 5.0], 1.0), ([1.5e9, 3.0], 1.0), ([2.0e9, 4.0], 1.0)]);
     assert_eq!(saturations, 1);
+}
+
+/// A report 0.1 s after one at regular 1 s intervals, 150 m off (3σ at
+/// σ 50 m): every member's gains are bounded as a schedule's are
+/// (`robust_gains`: β scaled by 2·0.1/1), so the α = 1 member's velocity
+/// moves by (0.2·β/0.1 s)·150 m = 300 m/s, not β·150/0.1 = 1,500 m/s; at
+/// the regular interval the members keep their own gains.
+#[test]
+fn an_irregular_interval_bounds_every_members_gains() {
+    fn run<S: Scalar>() {
+        let mut bank = ParallelBank::<S, 8>::from_config(&BankConfig::DEFAULT).unwrap();
+        let mut regular = [AlphaBeta::<S>::new(); 8];
+        let one = S::ONE;
+        for k in 0..10 {
+            let z = S::from_f64_lossy(100.0 * k as f64);
+            bank.update(z, one).unwrap();
+            for (i, member) in regular.iter_mut().enumerate() {
+                member
+                    .update(z, one, bank.member_gains(i).unwrap())
+                    .unwrap();
+            }
+        }
+        for (i, member) in regular.iter().enumerate() {
+            assert_eq!(bank.member(i), Some(member), "{} member {i}", S::NAME);
+        }
+        let z = S::from_f64_lossy(900.0 + 10.0 + 150.0);
+        bank.update(z, S::from_f64_lossy(0.1)).unwrap();
+        for i in 0..bank.len() {
+            let v = bank.member(i).unwrap().velocity().to_f64();
+            assert!(
+                (v - 100.0).abs() <= 300.0 * 1.001,
+                "{} member {i}: v = {v} m/s",
+                S::NAME
+            );
+        }
+        let last = bank.member(bank.len() - 1).unwrap().velocity().to_f64();
+        assert!(
+            last > 100.0 + 250.0,
+            "{}: the α = 1 member moved {last}",
+            S::NAME
+        );
+    }
+    run::<f64>();
+    run::<f32>();
+    run::<Fix>();
 }
