@@ -209,6 +209,11 @@ fn run<S: Numeric, F: TrackFilter<S> + core::fmt::Debug>(
                         count(&|c| matches!(c, Association::OutsideGates)),
                     ),
                     (
+                        "outside_volume",
+                        report.outside_volume,
+                        count(&|c| matches!(c, Association::OutsideVolume)),
+                    ),
+                    (
                         "dropped_overflow",
                         report.dropped_overflow,
                         count(&|c| matches!(c, Association::Dropped(DropReason::ScanOverflow))),

@@ -451,12 +451,12 @@ impl Unused {
             + self.out_of_order.count
     }
 
-    fn record(&mut self, code: Association, line: usize, outside_region: bool) {
+    fn record(&mut self, code: Association, line: usize) {
         match code {
             Association::Updated(_) => self.updated += 1,
             Association::Started(_) => self.started += 1,
             Association::NotAssigned => self.not_assigned.add(line),
-            Association::OutsideGates if outside_region => self.outside_region.add(line),
+            Association::OutsideVolume => self.outside_region.add(line),
             Association::OutsideGates => self.outside_gates.add(line),
             Association::Rejected(RejectReason::NotFinite) => self.not_finite.add(line),
             Association::Rejected(RejectReason::NegativeRange) => self.negative_range.add(line),
@@ -1123,12 +1123,14 @@ fn log_scan(log: &mut String, t_text: &str, codes: &[Association], report: &Scan
     let _ = writeln!(
         log,
         "t={t_text} measurements={} updated={} started={} not-assigned={} outside-gates={} \
-         rejected={} dropped={} | confirmed={} deleted={} displaced={} restarted={} tracks={}",
+         outside-volume={} rejected={} dropped={} | confirmed={} deleted={} displaced={} \
+         restarted={} tracks={}",
         codes.len(),
         count(|c| matches!(c, Association::Updated(_))),
         count(|c| matches!(c, Association::Started(_))),
         count(|c| matches!(c, Association::NotAssigned)),
         count(|c| matches!(c, Association::OutsideGates)),
+        count(|c| matches!(c, Association::OutsideVolume)),
         count(|c| matches!(c, Association::Rejected(_))),
         count(|c| matches!(c, Association::Dropped(_))),
         report.confirmed,
@@ -1185,12 +1187,9 @@ fn run_scans<
                 error,
             })?;
         log_scan(&mut scan_log, &scan.t_text, &codes, &report);
-        for ((&code, m), &line) in codes.iter().zip(&scan.measurements).zip(&scan.lines) {
-            let outside = config
-                .volume()
-                .is_some_and(|v| Observation::new(*m).is_ok_and(|o| !v.contains(o.xy())));
+        for (&code, &line) in codes.iter().zip(&scan.lines) {
             unused.measurements += 1;
-            unused.record(code, line, outside);
+            unused.record(code, line);
         }
         unused.tracks_restarted += report.restarted as usize;
         unused.tracks_displaced += report.deleted_displaced as usize;

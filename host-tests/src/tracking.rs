@@ -166,6 +166,7 @@ pub fn code_kind(c: &Association) -> &'static str {
         Association::Started(_) => "started",
         Association::NotAssigned => "not-assigned",
         Association::OutsideGates => "outside-gates",
+        Association::OutsideVolume => "outside-volume",
         Association::Rejected(_) => "rejected",
         Association::Dropped(_) => "dropped",
     }

@@ -471,6 +471,7 @@ impl<
                 Association::Started(_) => &mut counts.started,
                 Association::NotAssigned => &mut counts.not_assigned,
                 Association::OutsideGates => &mut counts.outside_gates,
+                Association::OutsideVolume => &mut counts.outside_volume,
                 Association::Rejected(_) => &mut counts.rejected,
                 Association::Dropped(DropReason::TableFull) => &mut counts.refused_table_full,
                 Association::Dropped(DropReason::ScanOverflow) => &mut counts.over_capacity,

@@ -262,13 +262,17 @@ pub enum DropReason {
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 #[cfg_attr(feature = "defmt", derive(defmt::Format))]
 pub enum Association {
-    /// Inside no gate and paired with nothing; kept (if inside the
-    /// surveillance volume) as a first point for initiation in the next scan
+    /// Inside no gate and paired with nothing, inside the surveillance
+    /// volume; kept as a first point for initiation in the next scan
     /// (and, unpaired there, the one after:
     /// [`TrackerConfig::keep_first_points_through_a_miss`]).
     /// (First: the code of a table's workspace before its first scan is zero
     /// bytes.)
     OutsideGates,
+    /// Inside no gate and outside the surveillance volume
+    /// ([`TrackerConfig::with_volume`]): not used (a track there would be
+    /// deleted as having left it).
+    OutsideVolume,
     /// Updated this track.
     Updated(TrackId),
     /// Paired with a first point (a measurement of the previous scan, or of
@@ -380,8 +384,12 @@ pub struct ScanReport {
     /// Tracks that would have started, but the table was full and held no
     /// tentative track to displace.
     pub refused_table_full: u32,
-    /// Measurements left outside every gate and unpaired.
+    /// Measurements left outside every gate and unpaired, inside the
+    /// surveillance volume (kept as first points).
     pub outside_gates: u32,
+    /// Measurements outside every gate and outside the surveillance volume
+    /// (not used).
+    pub outside_volume: u32,
     /// Tracks confirmed in this scan.
     pub confirmed: u32,
     /// Tracks deleted in this scan (sum of the five reasons below).
@@ -437,6 +445,14 @@ counter_list! {
         /// Measurements rejected as bad input (not finite, a negative
         /// range).
         rejected => "rejected as bad input",
+        /// Measurements the filter refused ([`ScanReport::filter_refused`]).
+        filter_refused => "refused by the filter",
+        /// Measurements outside every gate and outside the surveillance
+        /// volume ([`ScanReport::outside_volume`]).
+        outside_volume => "outside the volume",
+        /// Measurements of the scans skipped for coming too close to the
+        /// previous one ([`ScanReport::too_close`]).
+        too_close => "in scans too close",
         /// Tracks restarted (ended by a scan interval beyond the filters'
         /// range, [`ScanReport::restarted`]).
         tracks_restarted => "tracks restarted",
@@ -839,6 +855,8 @@ impl<S: Numeric, F: TrackFilter<S>, const N: usize, const M: usize> TrackTable<S
             *code = Association::Rejected(RejectReason::TooClose);
         }
         increment(&mut self.stats.scans_skipped);
+        let s = &mut self.stats;
+        s.too_close = s.too_close.saturating_add(report.too_close);
         report
     }
 
@@ -1318,21 +1336,23 @@ impl<S: Numeric, F: TrackFilter<S>, const N: usize, const M: usize> TrackTable<S
             .iter_mut()
             .zip(self.pending_earlier.iter_mut())
             .zip(self.observations.iter())
-            .zip(self.codes.iter())
+            .zip(self.codes.iter_mut())
             .take(used)
         {
             *pending = None;
             *earlier = false;
             match code {
-                Association::OutsideGates => {
-                    increment(&mut report.outside_gates);
-                    if let Some(o) = obs {
-                        if config.in_volume(o.xy()) {
-                            *pending = Some(*o);
-                            count = count.saturating_add(1);
-                        }
+                Association::OutsideGates => match obs {
+                    Some(o) if config.in_volume(o.xy()) => {
+                        increment(&mut report.outside_gates);
+                        *pending = Some(*o);
+                        count = count.saturating_add(1);
                     }
-                }
+                    _ => {
+                        increment(&mut report.outside_volume);
+                        *code = Association::OutsideVolume;
+                    }
+                },
                 Association::NotAssigned => increment(&mut report.not_assigned),
                 _ => {}
             }
@@ -1432,6 +1452,8 @@ impl<S: Numeric, F: TrackFilter<S>, const N: usize, const M: usize> TrackTable<S
         s.tracks_displaced = s.tracks_displaced.saturating_add(report.deleted_displaced);
         s.dropped_overflow = s.dropped_overflow.saturating_add(report.dropped_overflow);
         s.rejected = s.rejected.saturating_add(report.rejected);
+        s.filter_refused = s.filter_refused.saturating_add(report.filter_refused);
+        s.outside_volume = s.outside_volume.saturating_add(report.outside_volume);
         s.tracks_restarted = s.tracks_restarted.saturating_add(report.restarted);
     }
 }

@@ -116,7 +116,7 @@ counter_list! {
     /// The measurements taken for the scan: `used + late + out_of_window +
     /// over_capacity + invalid`; the used ones, by what the tracker did with
     /// them: `used = updated + started + not_assigned + outside_gates +
-    /// rejected + refused_table_full` (a start that displaced a tentative
+    /// outside_volume + rejected + refused_table_full` (a start that displaced a tentative
     /// track is in `started`; the track it ended in `displaced`).
     pub struct ScanCounts: u16 {
         /// Entered the tracker scan.
@@ -137,6 +137,8 @@ counter_list! {
         not_assigned => "not assigned",
         /// Inside no gate, and not paired (kept as a first point).
         outside_gates => "outside gates",
+        /// Inside no gate, and outside the surveillance volume (not used).
+        outside_volume => "outside the volume",
         /// Refused by the tracker (not finite, a negative range, the filter
         /// refused it, or the scan came too soon after the previous one).
         rejected => "rejected",

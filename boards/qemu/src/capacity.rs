@@ -8,7 +8,7 @@
 pub mod mps2 {
     pub const TRACKS: usize = 256;
     pub const MEASUREMENTS_PER_SCAN: usize = 256;
-    /// heapless queues hold one item less than their length.
+    /// The measurement queue holds `QUEUE_LEN` measurements.
     pub const QUEUE_LEN: usize = 128;
 }
 

@@ -56,7 +56,11 @@ pub fn demo_config<N: Numeric<Wide = S>, S: Scalar>(
 ) -> Result<ScanConfig<N, RangeAzimuthNoise<S>>, &'static str> {
     let s = |v: f64| S::try_from_f64(v).map_err(|_| "a constant is not representable");
     Ok(ScanConfig {
-        tracker: default_polar().map_err(|_| "tracker configuration refused")?,
+        // The scan loop keeps the previous scan's replies only, so its
+        // identity rule starts no track from an earlier scan's first point.
+        tracker: default_polar()
+            .map_err(|_| "tracker configuration refused")?
+            .keep_first_points_through_a_miss(false),
         own: OwnAircraft::over_sea_level(s(OWN_ALTITUDE_FT)?, S::ZERO),
         altitude: altitude_config(AltitudeQuantum::ModeC)?,
         altitude_25ft: altitude_config(AltitudeQuantum::ModeS25)?,

@@ -365,7 +365,7 @@ fn log_track(t: &TrackReport) {
             sec, ms, id, status, mode, address, x, y, vx, vy, alt, rate, advisory, ra, tau
         ),
         (Some((alt, rate)), None) => defmt::println!(
-            "t={=u32}.{=u32:03} s   track {=u32} {=str} {=str} {=u32:06x} ({=f32}, {=f32}) m ({=f32}, {=f32}) m/s {=i32} ft {=i16} ft/min | {=str} {=str} | diverging",
+            "t={=u32}.{=u32:03} s   track {=u32} {=str} {=str} {=u32:06x} ({=f32}, {=f32}) m ({=f32}, {=f32}) m/s {=i32} ft {=i16} ft/min | {=str} {=str} | no tau",
             sec, ms, id, status, mode, address, x, y, vx, vy, alt, rate, advisory, ra
         ),
         (None, Some(tau)) => defmt::println!(
@@ -373,7 +373,7 @@ fn log_track(t: &TrackReport) {
             sec, ms, id, status, mode, address, x, y, vx, vy, advisory, ra, tau
         ),
         (None, None) => defmt::println!(
-            "t={=u32}.{=u32:03} s   track {=u32} {=str} {=str} {=u32:06x} ({=f32}, {=f32}) m ({=f32}, {=f32}) m/s no altitude | {=str} {=str} | diverging",
+            "t={=u32}.{=u32:03} s   track {=u32} {=str} {=str} {=u32:06x} ({=f32}, {=f32}) m ({=f32}, {=f32}) m/s no altitude | {=str} {=str} | no tau",
             sec, ms, id, status, mode, address, x, y, vx, vy, advisory, ra
         ),
     }
