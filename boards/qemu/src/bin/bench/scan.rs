@@ -26,8 +26,8 @@ use crate::numeric::BenchNumber;
 /// with its own code). The micro:bit's 16 KiB of RAM hold the table (on
 /// the stack) up to 32 × 32 in the fast fixed point, and 64 tracks with 32
 /// measurements a scan (11,472 bytes; 64 × 64 is 15,472, the whole RAM);
-/// with the default filter up to 32 × 32 (9,328 bytes; `docs/track-table.md`
-/// gives the formulas): its 64 × 32 table is 14,544 bytes (64 slots of 92
+/// with the default filter up to 32 × 32 (9,336 bytes; `docs/track-table.md`
+/// gives the formulas): its 64 × 32 table is 14,552 bytes (64 slots of 92
 /// bytes where the fixed-gain one has 60, and what each track's gate keeps
 /// for its update), and with the scan's own
 /// frames it overflows the 16,224-byte stack (measured: the benchmark's
