@@ -446,7 +446,9 @@ where
     /// that the track took (a skipped one changed nothing).
     ///
     /// If the interval is longer than [`MAX_INTERVAL_S`] (after the first
-    /// measurement) or the schedule requires a restart, the filter is
+    /// measurement; while one point is held, the time since it:
+    /// [`IntervalSpan::of_second_point`]) or the schedule requires a
+    /// restart, the filter is
     /// emptied and the schedule [reset](GainSchedule::reset) first, and `z`
     /// becomes the first point of the restarted track
     /// ([`UpdateOutcome::Restarted`]). The first two
