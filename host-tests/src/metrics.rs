@@ -256,28 +256,65 @@ pub fn rmse_against_time(runs: &[Vec<StateError>]) -> Vec<Rmse> {
 // Optimal assignment
 // ---------------------------------------------------------------------------
 
+/// A cost [`assignment`] refuses: not a finite number (a NaN or an
+/// infinity orders no assignment, and the augmenting-path search would
+/// never end on it).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct NonFiniteCost {
+    pub row: usize,
+    pub column: usize,
+    pub value: f64,
+}
+
+impl std::fmt::Display for NonFiniteCost {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        write!(
+            f,
+            "assignment cost (row {}, column {}) is {}, not a finite number (a position that \
+             is not finite?)",
+            self.row, self.column, self.value
+        )
+    }
+}
+
+impl std::error::Error for NonFiniteCost {}
+
+/// `Ok` if every cost is finite, else the first that is not (in row
+/// order). The callers that clip their distances (min(d, c)) check them
+/// before clipping: min(NaN, c) is c.
+pub fn finite_costs(cost: &[Vec<f64>]) -> Result<(), NonFiniteCost> {
+    for (row, costs) in cost.iter().enumerate() {
+        if let Some((column, &value)) = costs.iter().enumerate().find(|(_, c)| !c.is_finite()) {
+            return Err(NonFiniteCost { row, column, value });
+        }
+    }
+    Ok(())
+}
+
 /// Minimum-cost assignment of rows to columns (Hungarian method, the
 /// O(n²m) shortest-augmenting-path form with potentials). Any shape: every
 /// row is assigned when rows ≤ columns, otherwise every column. Returns, per
-/// row, its column. Costs must be finite.
-pub fn assignment(cost: &[Vec<f64>]) -> Vec<Option<usize>> {
+/// row, its column; a cost that is not finite is refused (the first one, in
+/// row order).
+pub fn assignment(cost: &[Vec<f64>]) -> Result<Vec<Option<usize>>, NonFiniteCost> {
+    finite_costs(cost)?;
     let rows = cost.len();
     let cols = cost.first().map_or(0, Vec::len);
     if rows == 0 || cols == 0 {
-        return vec![None; rows];
+        return Ok(vec![None; rows]);
     }
     if rows > cols {
         let t: Vec<Vec<f64>> = (0..cols)
             .map(|j| (0..rows).map(|i| cost[i][j]).collect())
             .collect();
-        let by_col = assignment(&t);
+        let by_col = assignment(&t)?;
         let mut out = vec![None; rows];
         for (j, i) in by_col.iter().enumerate() {
             if let Some(i) = *i {
                 out[i] = Some(j);
             }
         }
-        return out;
+        return Ok(out);
     }
     // 1-based arrays as in the classical formulation; row 0 / column 0 are
     // the virtual start.
@@ -337,7 +374,7 @@ pub fn assignment(cost: &[Vec<f64>]) -> Vec<Option<usize>> {
             out[p[j] - 1] = Some(j - 1);
         }
     }
-    out
+    Ok(out)
 }
 
 // ---------------------------------------------------------------------------
@@ -365,26 +402,38 @@ pub struct Ospa {
 /// with d^(c)(x, y) = min(c, ‖x − y‖), cut-off c > 0, order p ≥ 1; the
 /// minimum over assignments is found with [`assignment`]. Both sets empty:
 /// 0; exactly one empty: c. Distance^p = localisation^p + cardinality^p.
-pub fn ospa(x: &[[f64; 2]], y: &[[f64; 2]], cutoff: f64, order: f64) -> Ospa {
+/// A distance that is not finite (a position that is not), or a cost
+/// d^(c)^p that is not (a cut-off or order that is not), is refused.
+pub fn ospa(
+    x: &[[f64; 2]],
+    y: &[[f64; 2]],
+    cutoff: f64,
+    order: f64,
+) -> Result<Ospa, NonFiniteCost> {
     let (small, large) = if x.len() <= y.len() { (x, y) } else { (y, x) };
     let (m, n) = (small.len(), large.len());
     if n == 0 {
-        return Ospa {
+        return Ok(Ospa {
             distance: 0.0,
             localisation: 0.0,
             cardinality: 0.0,
-        };
+        });
     }
-    let cost: Vec<Vec<f64>> = small
+    let distance: Vec<Vec<f64>> = small
         .iter()
         .map(|a| {
             large
                 .iter()
-                .map(|b| ((a[0] - b[0]).hypot(a[1] - b[1])).min(cutoff).powf(order))
+                .map(|b| (a[0] - b[0]).hypot(a[1] - b[1]))
                 .collect()
         })
         .collect();
-    let assigned = assignment(&cost);
+    finite_costs(&distance)?;
+    let cost: Vec<Vec<f64>> = distance
+        .iter()
+        .map(|row| row.iter().map(|d| d.min(cutoff).powf(order)).collect())
+        .collect();
+    let assigned = assignment(&cost)?;
     let loc_sum: f64 = assigned
         .iter()
         .enumerate()
@@ -392,11 +441,11 @@ pub fn ospa(x: &[[f64; 2]], y: &[[f64; 2]], cutoff: f64, order: f64) -> Ospa {
         .sum();
     let card_sum = cutoff.powf(order) * (n - m) as f64;
     let nf = n as f64;
-    Ospa {
+    Ok(Ospa {
         distance: ((loc_sum + card_sum) / nf).powf(1.0 / order),
         localisation: (loc_sum / nf).powf(1.0 / order),
         cardinality: (card_sum / nf).powf(1.0 / order),
-    }
+    })
 }
 
 // ---------------------------------------------------------------------------
@@ -459,7 +508,11 @@ pub struct ScanReport {
 }
 
 /// OSPA between the truth and the established tracks at every scan.
-pub fn ospa_against_time(scans: &[ScanReport], cutoff: f64, order: f64) -> Vec<(f64, Ospa)> {
+pub fn ospa_against_time(
+    scans: &[ScanReport],
+    cutoff: f64,
+    order: f64,
+) -> Result<Vec<(f64, Ospa)>, NonFiniteCost> {
     scans
         .iter()
         .map(|s| {
@@ -470,7 +523,7 @@ pub fn ospa_against_time(scans: &[ScanReport], cutoff: f64, order: f64) -> Vec<(
                 .filter(|t| t.status.is_established())
                 .map(|t| [t.x, t.y])
                 .collect();
-            (s.t, ospa(&truth, &tracks, cutoff, order))
+            Ok((s.t, ospa(&truth, &tracks, cutoff, order)?))
         })
         .collect()
 }
@@ -647,7 +700,7 @@ impl TrackMetrics {
 /// The minimised cost is clipped at the gate, so a pair beyond it costs the
 /// same whichever it is and never displaces a pair inside it
 /// ([`PairingCost::ClippedAtGate`]; [`track_metrics_with`] takes the other).
-pub fn track_metrics(scans: &[ScanReport], gate: f64) -> TrackMetrics {
+pub fn track_metrics(scans: &[ScanReport], gate: f64) -> Result<TrackMetrics, NonFiniteCost> {
     track_metrics_with(scans, gate, PairingCost::ClippedAtGate)
 }
 
@@ -662,8 +715,14 @@ pub enum PairingCost {
     Distance,
 }
 
-/// [`track_metrics`] with the assignment minimising `cost`.
-pub fn track_metrics_with(scans: &[ScanReport], gate: f64, cost: PairingCost) -> TrackMetrics {
+/// [`track_metrics`] with the assignment minimising `cost`. A distance
+/// that is not finite (a position that is not) is refused, under either
+/// cost.
+pub fn track_metrics_with(
+    scans: &[ScanReport],
+    gate: f64,
+    cost: PairingCost,
+) -> Result<TrackMetrics, NonFiniteCost> {
     let pairing_cost = cost;
     #[derive(Default)]
     struct TargetAcc {
@@ -698,14 +757,15 @@ pub fn track_metrics_with(scans: &[ScanReport], gate: f64, cost: PairingCost) ->
             .iter()
             .map(|p| est.iter().map(|t| (t.x - p.x).hypot(t.y - p.y)).collect())
             .collect();
+        finite_costs(&distance)?;
         let assigned = match pairing_cost {
-            PairingCost::Distance => assignment(&distance),
+            PairingCost::Distance => assignment(&distance)?,
             PairingCost::ClippedAtGate => assignment(
                 &distance
                     .iter()
                     .map(|row| row.iter().map(|d| d.min(gate)).collect())
                     .collect::<Vec<Vec<f64>>>(),
-            ),
+            )?,
         };
         let mut track_used = vec![false; est.len()];
         for (i, p) in scan.truth.iter().enumerate() {
@@ -783,7 +843,7 @@ pub fn track_metrics_with(scans: &[ScanReport], gate: f64, cost: PairingCost) ->
             scans_present_since_first_assignment: a.present_since_first_tracked,
         })
         .collect();
-    TrackMetrics {
+    Ok(TrackMetrics {
         id_changes: target_metrics.iter().map(|t| t.id_changes).sum(),
         targets: target_metrics,
         false_tracks: tracks
@@ -809,11 +869,11 @@ pub fn track_metrics_with(scans: &[ScanReport], gate: f64, cost: PairingCost) ->
             .map(|(&id, _)| id)
             .collect(),
         pairs: paired,
-    }
+    })
 }
 
 /// The mean over scans of [`ospa_against_time`].
-pub fn mean_ospa(scans: &[ScanReport], cutoff: f64, order: f64) -> f64 {
-    let per_scan = ospa_against_time(scans, cutoff, order);
-    per_scan.iter().map(|(_, o)| o.distance).sum::<f64>() / per_scan.len() as f64
+pub fn mean_ospa(scans: &[ScanReport], cutoff: f64, order: f64) -> Result<f64, NonFiniteCost> {
+    let per_scan = ospa_against_time(scans, cutoff, order)?;
+    Ok(per_scan.iter().map(|(_, o)| o.distance).sum::<f64>() / per_scan.len() as f64)
 }

@@ -197,12 +197,13 @@ pub struct RunFigures {
 }
 
 /// Computes [`RunFigures`] from a run's output.
-pub fn figures(plan: &Plan, out: &TrackerRun) -> RunFigures {
+pub fn figures(plan: &Plan, out: &TrackerRun) -> Result<RunFigures, String> {
     let c = plan.ospa_cutoff;
-    let ospa = ospa_against_time(&out.scans, c, OSPA_ORDER);
+    let refused = |e: crate::metrics::NonFiniteCost| format!("{}: {e}", plan.label);
+    let ospa = ospa_against_time(&out.scans, c, OSPA_ORDER).map_err(refused)?;
     let n = ospa.len().max(1) as f64;
-    let m = track_metrics(&out.scans, c);
-    let switches = identity_switches(&out.scans, c);
+    let m = track_metrics(&out.scans, c).map_err(refused)?;
+    let switches = identity_switches(&out.scans, c).map_err(refused)?;
     let window = plan
         .crossing_window
         .map(|(t0, t1)| switches.count_between(t0, t1) == 0);
@@ -211,7 +212,7 @@ pub fn figures(plan: &Plan, out: &TrackerRun) -> RunFigures {
         .iter()
         .filter_map(|t| t.latency_to_confirm_s)
         .collect();
-    RunFigures {
+    Ok(RunFigures {
         ospa: ospa.iter().map(|(_, o)| o.distance).sum::<f64>() / n,
         ospa_localisation: ospa.iter().map(|(_, o)| o.localisation).sum::<f64>() / n,
         ospa_cardinality: ospa.iter().map(|(_, o)| o.cardinality).sum::<f64>() / n,
@@ -230,7 +231,7 @@ pub fn figures(plan: &Plan, out: &TrackerRun) -> RunFigures {
         dropped_overflow: out.stats.dropped_overflow,
         scans: out.scans.len(),
         scan_seconds: out.scan_time.as_secs_f64(),
-    }
+    })
 }
 
 /// One Monte Carlo run: figures per number type, decision comparisons with
@@ -265,9 +266,9 @@ pub fn one_run(
     let dfx = compare_decisions(&r64, &rfx);
     let result = RunResult {
         figures: [
-            figures(plan, &r64),
-            figures(plan, &r32),
-            figures(plan, &rfx),
+            figures(plan, &r64)?,
+            figures(plan, &r32)?,
+            figures(plan, &rfx)?,
         ],
         first_diff: [
             first_diff_label(&r64, &r32, &d32),
@@ -275,6 +276,7 @@ pub fn one_run(
         ],
         diffs: [d32, dfx],
         ospa_series: ospa_against_time(&r64.scans, plan.ospa_cutoff, OSPA_ORDER)
+            .map_err(|e| format!("{}: {e}", plan.label))?
             .into_iter()
             .map(|(t, o)| (t, o.distance, o.localisation, o.cardinality))
             .collect(),

@@ -662,6 +662,7 @@ pub fn run_scene(
     };
     score_tracks(
         label,
+        &format!("replay --tracker output on {}", path.display()),
         &run.csv,
         truth,
         scene.scan_period_ms,
@@ -674,9 +675,12 @@ pub fn run_scene(
 /// Scores a tracker's output in `replay --tracker`'s layout (`t,track_id,
 /// status,x,y`, other columns ignored) against the points of `truth` at
 /// the scans (every `scan_period_ms`); `label`, `seconds` and `design` are
-/// carried into the result.
+/// carried into the result. `source` names where the output came from (a
+/// file's path) in the errors: a row that cannot be read, or whose `t`,
+/// `x` or `y` is not finite, is refused with its line.
 pub fn score_tracks(
     label: &str,
+    source: &str,
     csv_text: &str,
     truth: &BTreeMap<i64, Vec<TruthPoint>>,
     scan_period_ms: i64,
@@ -685,9 +689,23 @@ pub fn score_tracks(
 ) -> Result<SceneRun, String> {
     let mut tracks: BTreeMap<i64, Vec<TrackPoint>> = BTreeMap::new();
     let mut reader = csv::Reader::from_reader(csv_text.as_bytes());
-    for row in reader.deserialize::<TrackRow>() {
-        let r = row.map_err(|e| format!("{label}: tracker output: {e}"))?;
-        let status: TrackStatus = r.status.parse()?;
+    let headers = reader
+        .headers()
+        .map_err(|e| format!("{source}: {e}"))?
+        .clone();
+    for record in reader.records() {
+        let record = record.map_err(|e| format!("{source}: {e}"))?;
+        let line = record.position().map_or(0, csv::Position::line);
+        let refused = |why: String| format!("{source}, line {line}: {why}");
+        let r: TrackRow = record
+            .deserialize(Some(&headers))
+            .map_err(|e| refused(e.to_string()))?;
+        for (column, v) in [("t", r.t), ("x", r.x), ("y", r.y)] {
+            if !v.is_finite() {
+                return Err(refused(format!("{column} = {v} is not a finite number")));
+            }
+        }
+        let status: TrackStatus = r.status.parse().map_err(refused)?;
         tracks.entry(ms(r.t)).or_default().push(TrackPoint {
             id: r.track_id,
             status,
@@ -712,7 +730,8 @@ pub fn score_tracks(
             tracks: tracks.get(&k).cloned().unwrap_or_default(),
         })
         .collect();
-    let m = track_metrics_with(&scans, PAIR_LIMIT_M, PairingCost::Distance);
+    let m = track_metrics_with(&scans, PAIR_LIMIT_M, PairingCost::Distance)
+        .map_err(|e| format!("{source}: {e}"))?;
     let (unpaired_before_first, unpaired_after_first) =
         m.targets.iter().fold((0, 0), |(before, after), t| {
             (
@@ -726,7 +745,7 @@ pub fn score_tracks(
         continuity: m.continuity,
         id_changes: m.id_changes,
         rmse: m.assigned_rmse,
-        ospa: mean_ospa(&scans, OSPA_CUTOFF_M, OSPA_ORDER),
+        ospa: mean_ospa(&scans, OSPA_CUTOFF_M, OSPA_ORDER).map_err(|e| format!("{source}: {e}"))?,
         false_tracks: m.mostly_unassigned_tracks.len(),
         never_paired: m.false_tracks.len(),
         reported_tracks: m.established_tracks,
@@ -739,23 +758,26 @@ pub fn score_tracks(
     })
 }
 
-/// Stone Soup's tracks and whole-process time for `scene`, if
-/// `scripts/stonesoup_scene.py` has written them into `group_dir`.
-fn stonesoup_output(group_dir: &Path, scene: &Scene) -> Option<(String, f64)> {
+/// Stone Soup's tracks (with their file's path) and whole-process time
+/// for `scene`, if `scripts/stonesoup_scene.py` has written them into
+/// `group_dir`.
+fn stonesoup_output(group_dir: &Path, scene: &Scene) -> Option<(String, String, f64)> {
     let base = group_dir.join(STONESOUP_DIR);
-    let csv_text = stonesoup_tracks(&base, scene.name)?;
+    let (path, csv_text) = stonesoup_tracks(&base, scene.name)?;
     let seconds = fs::read_to_string(base.join(format!("{}.time", scene.name)))
         .ok()?
         .trim()
         .parse()
         .ok()?;
-    Some((csv_text, seconds))
+    Some((path, csv_text, seconds))
 }
 
 /// The tracks `scripts/stonesoup_scene.py` wrote into `dir` for the
-/// measurement file `name`, if it did.
-pub fn stonesoup_tracks(dir: &Path, name: &str) -> Option<String> {
-    fs::read_to_string(dir.join(format!("{name}.csv"))).ok()
+/// measurement file `name`, if it did: the file's path and its text.
+pub fn stonesoup_tracks(dir: &Path, name: &str) -> Option<(String, String)> {
+    let path = dir.join(format!("{name}.csv"));
+    let text = fs::read_to_string(&path).ok()?;
+    Some((path.display().to_string(), text))
 }
 
 /// Where `scripts/stonesoup_scene.py` writes, under the group's folder.
@@ -1069,9 +1091,10 @@ pub fn run(ctx: &Context) -> Result<(), String> {
                 f64_pairs = r.pairs.clone();
             }
         }
-        if let Some((csv_text, seconds)) = stonesoup_output(&dir, scene) {
+        if let Some((path, csv_text, seconds)) = stonesoup_output(&dir, scene) {
             let r = score_tracks(
                 STONESOUP_LABEL,
+                &path,
                 &csv_text,
                 &truth,
                 scene.scan_period_ms,

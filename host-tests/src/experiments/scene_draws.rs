@@ -154,6 +154,7 @@ pub fn track(
         .map_err(|e| format!("{} {label}: {e}", condition.name))?;
     score_tracks(
         label,
+        &format!("replay --tracker output on the {} draw", condition.name),
         &replay.csv,
         truth,
         condition.scan_period_ms,
@@ -216,7 +217,7 @@ pub fn stonesoup_draw(
     seed: u64,
     truth: &BTreeMap<i64, Vec<TruthPoint>>,
 ) -> Result<Option<SceneRun>, String> {
-    let Some(csv_text) = stonesoup_tracks(
+    let Some((path, csv_text)) = stonesoup_tracks(
         &dir.join(STONESOUP_DIR).join(DRAWS_DIR),
         &draw_name(condition, seed),
     ) else {
@@ -224,6 +225,7 @@ pub fn stonesoup_draw(
     };
     score_tracks(
         STONESOUP_LABEL,
+        &path,
         &csv_text,
         truth,
         condition.scan_period_ms,

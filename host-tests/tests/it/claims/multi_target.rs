@@ -407,11 +407,16 @@ fn rates<S: Scalar>(name: &str, window: Option<(f64, f64)>) -> Rates {
     };
     for run in 0..RUNS {
         let out = run_cartesian::<S>(name, run);
-        let switches = identity_switches(&out.scans, c);
+        let switches = identity_switches(&out.scans, c).unwrap();
         r.kept_whole_run += usize::from(switches.count() == 0);
         let (t0, t1) = window.unwrap_or((0.0, f64::INFINITY));
         r.kept_through_crossing += usize::from(switches.count_between(t0, t1) == 0);
-        r.no_false_track += usize::from(track_metrics(&out.scans, c).false_tracks.is_empty());
+        r.no_false_track += usize::from(
+            track_metrics(&out.scans, c)
+                .unwrap()
+                .false_tracks
+                .is_empty(),
+        );
     }
     println!(
         "{name} {}: ids kept in {window:?} s {}/{RUNS}, over the whole run {}/{RUNS}; \

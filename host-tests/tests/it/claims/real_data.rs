@@ -227,6 +227,7 @@ fn first_points_kept_through_a_miss_start_real_flights_sooner() {
                 let replay = replay_tracker_reader(&options, text.as_bytes()).unwrap();
                 let run = score_tracks(
                     "",
+                    "",
                     &replay.csv,
                     &truth,
                     condition.scan_period_ms,
@@ -442,22 +443,22 @@ fn scene_metrics_of_known_configurations() {
             .collect()
     };
     let on = scans(0.0, None);
-    let m = track_metrics_with(&on, 500.0, PairingCost::Distance);
+    let m = track_metrics_with(&on, 500.0, PairingCost::Distance).unwrap();
     assert_eq!((m.completeness, m.continuity, m.id_changes), (1.0, 1.0, 0));
     assert_eq!(m.assigned_rmse, 0.0);
-    assert_eq!(mean_ospa(&on, 1000.0, 2.0), 0.0);
+    assert_eq!(mean_ospa(&on, 1000.0, 2.0).unwrap(), 0.0);
     let off = scans(30.0, Some(4));
-    let m = track_metrics_with(&off, 500.0, PairingCost::Distance);
+    let m = track_metrics_with(&off, 500.0, PairingCost::Distance).unwrap();
     assert!((m.assigned_rmse - 30.0).abs() < 1e-9);
-    assert!((mean_ospa(&off, 1000.0, 2.0) - 30.0).abs() < 1e-9);
+    assert!((mean_ospa(&off, 1000.0, 2.0).unwrap() - 30.0).abs() < 1e-9);
     // New ids from scan 4 on: one change per flight.
     assert_eq!(m.id_changes, 2);
     assert!(m.mostly_unassigned_tracks.is_empty());
     let far = scans(600.0, None);
-    let m = track_metrics_with(&far, 500.0, PairingCost::Distance);
+    let m = track_metrics_with(&far, 500.0, PairingCost::Distance).unwrap();
     assert_eq!(m.completeness, 0.0);
     assert_eq!(m.mostly_unassigned_tracks, vec![1, 2]);
-    assert!((mean_ospa(&far, 1000.0, 2.0) - 600.0).abs() < 1e-9);
+    assert!((mean_ospa(&far, 1000.0, 2.0).unwrap() - 600.0).abs() < 1e-9);
 }
 
 /// `--numeric fixed32` runs what the Cortex-M3 firmware runs: the x/y
@@ -525,4 +526,42 @@ fn fixed32_runs_what_the_cortex_m3_firmware_runs() {
         replay_reader(&single, cartesian.as_bytes()).unwrap_err(),
         Failure::Replay(ReplayError::Fixed32SingleFilter)
     );
+}
+
+/// A tracker output with a position or time that is not finite (`nan`, as
+/// an exporter writes a missing value) is refused with the file and the
+/// line, instead of scored (an unclipped NaN distance never ended the
+/// assignment's search).
+#[test]
+fn a_tracker_output_that_is_not_finite_is_refused_with_its_line() {
+    let truth = std::collections::BTreeMap::from([(
+        0,
+        vec![TruthPoint {
+            id: 1,
+            x: 0.0,
+            y: 0.0,
+        }],
+    )]);
+    for (row, column) in [
+        ("0,1,confirmed,nan,0", "x = NaN"),
+        ("0,1,confirmed,0,-inf", "y = -inf"),
+        ("NaN,1,confirmed,0,0", "t = NaN"),
+    ] {
+        let text = format!("t,track_id,status,x,y\n0,2,confirmed,10,0\n{row}\n");
+        let e = score_tracks(
+            "label",
+            "tracks.csv",
+            &text,
+            &truth,
+            SCENE_PERIOD_MS,
+            f64::NAN,
+            String::new(),
+        )
+        .unwrap_err();
+        assert_eq!(
+            e,
+            format!("tracks.csv, line 3: {column} is not a finite number"),
+            "{row}"
+        );
+    }
 }
