@@ -592,7 +592,8 @@ fn ms(t: f64) -> i64 {
     (t * 1000.0).round() as i64
 }
 
-/// The scene's truth per scan time (flights numbered by first appearance).
+/// The scene's truth per scan time, ms: the file's times are the scans
+/// (flights numbered by first appearance).
 pub fn read_scene_truth(
     dir: &Path,
     scene: &Scene,
@@ -665,25 +666,30 @@ pub fn run_scene(
         &format!("replay --tracker output on {}", path.display()),
         &run.csv,
         truth,
-        scene.scan_period_ms,
         best,
         run.design.to_string(),
     )
     .map_err(|e| format!("{}: {e}", scene.name))
 }
 
+/// How far (ms) the time of a tracker output's row may be from the truth's
+/// scan it is scored at.
+pub const SCAN_TIME_TOLERANCE_MS: i64 = 1;
+
 /// Scores a tracker's output in `replay --tracker`'s layout (`t,track_id,
-/// status,x,y`, other columns ignored) against the points of `truth` at
-/// the scans (every `scan_period_ms`); `label`, `seconds` and `design` are
-/// carried into the result. `source` names where the output came from (a
-/// file's path) in the errors: a row that cannot be read, or whose `t`,
-/// `x` or `y` is not finite, is refused with its line.
+/// status,x,y`, other columns ignored) against `truth`: the truth's points
+/// of every scan, keyed by the scan's time in ms (a scan without a target
+/// is a key with no points). The scans are the truth's times; each row of
+/// the output joins the scan within [`SCAN_TIME_TOLERANCE_MS`] of its `t`,
+/// and a row with none is refused with its line, as is a row that cannot
+/// be read or whose `t`, `x` or `y` is not finite. `source` names where the
+/// output came from (a file's path) in the errors; `label`, `seconds` and
+/// `design` are carried into the result.
 pub fn score_tracks(
     label: &str,
     source: &str,
     csv_text: &str,
     truth: &BTreeMap<i64, Vec<TruthPoint>>,
-    scan_period_ms: i64,
     seconds: f64,
     design: String,
 ) -> Result<SceneRun, String> {
@@ -706,28 +712,33 @@ pub fn score_tracks(
             }
         }
         let status: TrackStatus = r.status.parse().map_err(refused)?;
-        tracks.entry(ms(r.t)).or_default().push(TrackPoint {
+        let t = ms(r.t);
+        let scan = truth
+            .range(
+                t.saturating_sub(SCAN_TIME_TOLERANCE_MS)..=t.saturating_add(SCAN_TIME_TOLERANCE_MS),
+            )
+            .map(|(&scan, _)| scan)
+            .min_by_key(|scan| scan.abs_diff(t))
+            .ok_or_else(|| {
+                refused(format!(
+                    "t = {} s is at no scan of the truth (none within {SCAN_TIME_TOLERANCE_MS} \
+                     ms)",
+                    r.t
+                ))
+            })?;
+        tracks.entry(scan).or_default().push(TrackPoint {
             id: r.track_id,
             status,
             x: r.x,
             y: r.y,
         });
     }
-    // Every scan (every period to the last truth time) with the truth at
-    // it, and any other time of the output.
-    let period = scan_period_ms.max(1);
-    let last = truth.keys().next_back().copied().unwrap_or(0);
-    let grid = (0..=last / period).map(|k| k * period);
-    let times: std::collections::BTreeSet<i64> = tracks.keys().copied().chain(grid).collect();
-    let scans: Vec<ScanReport> = times
+    let scans: Vec<ScanReport> = truth
         .iter()
-        .map(|&k| ScanReport {
+        .map(|(&k, points)| ScanReport {
             t: k as f64 / 1000.0,
-            truth: (k % period == 0)
-                .then(|| truth.get(&k).cloned())
-                .flatten()
-                .unwrap_or_default(),
-            tracks: tracks.get(&k).cloned().unwrap_or_default(),
+            truth: points.clone(),
+            tracks: tracks.remove(&k).unwrap_or_default(),
         })
         .collect();
     let m = track_metrics_with(&scans, PAIR_LIMIT_M, PairingCost::Distance)
@@ -1097,7 +1108,6 @@ pub fn run(ctx: &Context) -> Result<(), String> {
                 &path,
                 &csv_text,
                 &truth,
-                scene.scan_period_ms,
                 seconds,
                 String::new(),
             )?;

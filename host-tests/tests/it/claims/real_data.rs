@@ -229,8 +229,7 @@ fn first_points_kept_through_a_miss_start_real_flights_sooner() {
                     "",
                     "",
                     &replay.csv,
-                    &truth,
-                    condition.scan_period_ms,
+                    &scene_draws::truth_at_scans(&truth, condition),
                     f64::NAN,
                     String::new(),
                 )
@@ -553,7 +552,6 @@ fn a_tracker_output_that_is_not_finite_is_refused_with_its_line() {
             "tracks.csv",
             &text,
             &truth,
-            SCENE_PERIOD_MS,
             f64::NAN,
             String::new(),
         )
@@ -564,4 +562,56 @@ fn a_tracker_output_that_is_not_finite_is_refused_with_its_line() {
             "{row}"
         );
     }
+}
+
+/// The scans are the truth's own times, wherever they start: a truth and a
+/// tracker on one flight at 2, 6, 10 … s are scored (coverage 1), a scan of
+/// the truth without a flight keeps its tracks (unpaired there), a row a
+/// millisecond off joins its scan, and a row at no scan of the truth (0.3 s
+/// late) is refused with its line instead of scored as a scan of its own.
+#[test]
+fn the_scans_scored_are_the_truths_times() {
+    let point = |t_ms: i64| TruthPoint {
+        id: 1,
+        x: t_ms as f64,
+        y: 0.0,
+    };
+    let mut truth: std::collections::BTreeMap<i64, Vec<TruthPoint>> = (0..5)
+        .map(|k| 2000 + 4000 * k)
+        .map(|t| (t, vec![point(t)]))
+        .collect();
+    let rows = |late_s: f64| {
+        let mut text = String::from("t,track_id,status,x,y\n");
+        for k in 0..5 {
+            let t_ms = 2000 + 4000 * k;
+            let t = t_ms as f64 / 1000.0 + late_s;
+            text.push_str(&format!("{t},1,confirmed,{},0\n", t_ms + 10));
+        }
+        text
+    };
+    let score = |truth: &std::collections::BTreeMap<i64, Vec<TruthPoint>>, text: &str| {
+        score_tracks("", "out.csv", text, truth, f64::NAN, String::new())
+    };
+    let run = score(&truth, &rows(0.0)).unwrap();
+    assert_eq!(run.scans.len(), 5);
+    assert_eq!(
+        (run.coverage, run.continuity, run.id_changes),
+        (1.0, 1.0, 0)
+    );
+    assert!((run.rmse - 10.0).abs() < 1e-9, "{}", run.rmse);
+    // Within the tolerance.
+    assert_eq!(score(&truth, &rows(0.001)).unwrap().coverage, 1.0);
+    let e = score(&truth, &rows(0.3)).unwrap_err();
+    assert_eq!(
+        e,
+        "out.csv, line 2: t = 2.3 s is at no scan of the truth (none within 1 ms)"
+    );
+    // The flight absent from the last two scans, which stay scans: the
+    // track there is unpaired, so it is paired in 3 of its 5 scans.
+    truth.insert(14_000, Vec::new());
+    truth.insert(18_000, Vec::new());
+    let run = score(&truth, &rows(0.0)).unwrap();
+    assert_eq!(run.scans.len(), 5);
+    assert_eq!(run.pairs.len(), 3);
+    assert_eq!((run.false_tracks, run.never_paired), (0, 0));
 }
