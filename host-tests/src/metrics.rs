@@ -554,7 +554,7 @@ pub struct TargetMetrics {
 
 /// An established track never assigned to any target.
 #[derive(Debug, Clone, Copy, PartialEq)]
-pub struct FalseTrack {
+pub struct NeverPairedTrack {
     pub id: u32,
     /// First and last scan times at which it was established.
     pub first_t: f64,
@@ -563,7 +563,7 @@ pub struct FalseTrack {
     pub scans: usize,
 }
 
-impl FalseTrack {
+impl NeverPairedTrack {
     /// last_t − first_t (0 for a track established in one scan only).
     pub fn duration_s(&self) -> f64 {
         self.last_t - self.first_t
@@ -575,15 +575,17 @@ impl FalseTrack {
 pub struct TrackMetrics {
     /// Sorted by target id.
     pub targets: Vec<TargetMetrics>,
-    /// Sorted by track id.
-    pub false_tracks: Vec<FalseTrack>,
+    /// The established tracks never assigned to a target, sorted by track
+    /// id.
+    pub never_paired: Vec<NeverPairedTrack>,
     /// Σ scans_tracked / Σ scans_present over all targets (time-averaged
     /// completeness); NaN with no truth.
     pub completeness: f64,
     /// Σ id_changes over targets.
     pub id_changes: usize,
-    /// Established (track, scan) pairs not assigned to any target: false
-    /// tracks plus true tracks momentarily outside the assignment gate.
+    /// Established (track, scan) pairs not assigned to any target: tracks
+    /// on no target plus true tracks momentarily outside the assignment
+    /// gate.
     pub unassigned_track_scans: usize,
     /// Distinct track ids that were established at some scan.
     pub established_tracks: usize,
@@ -596,7 +598,7 @@ pub struct TrackMetrics {
     pub assigned_rmse: f64,
     /// Established track ids assigned to a target in fewer than half of the
     /// scans in which they were established (a superset of
-    /// [`Self::false_tracks`]' ids), ascending.
+    /// [`Self::never_paired`]' ids), ascending.
     pub mostly_unassigned_tracks: Vec<u32>,
     /// Every assigned (target, track) pair: its scan time, the target and
     /// their distance (m), in scan order (what [`Self::assigned_rmse`] is
@@ -669,31 +671,31 @@ pub fn common_rmse(a: &[PairedPoint], b: &[PairedPoint]) -> Option<(f64, f64, us
 }
 
 impl TrackMetrics {
-    /// Total scans of false tracks and the mean false-track duration (s).
-    pub fn false_track_time(&self) -> (usize, Option<f64>) {
-        let scans = self.false_tracks.iter().map(|f| f.scans).sum();
-        let mean = (!self.false_tracks.is_empty()).then(|| {
-            self.false_tracks
+    /// Total scans of the tracks never paired and their mean duration (s).
+    pub fn never_paired_time(&self) -> (usize, Option<f64>) {
+        let scans = self.never_paired.iter().map(|f| f.scans).sum();
+        let mean = (!self.never_paired.is_empty()).then(|| {
+            self.never_paired
                 .iter()
-                .map(FalseTrack::duration_s)
+                .map(NeverPairedTrack::duration_s)
                 .sum::<f64>()
-                / self.false_tracks.len() as f64
+                / self.never_paired.len() as f64
         });
         (scans, mean)
     }
 }
 
 /// Track-to-truth assignment at each scan, then the per-target and
-/// false-track statistics of one run.
+/// never-paired-track statistics of one run.
 ///
 /// At every scan the established tracks are assigned to the present targets
 /// by the assignment minimising Σ min(‖track − truth‖, gate) (optimal, via
 /// [`assignment`]); a pair at distance ≥ `gate` (m) is not an assignment.
 /// With that:
 /// * completeness, id changes and latency to confirm: see [`TargetMetrics`];
-/// * a false track is an established track id that is assigned to no target
-///   in any scan where it is established; its duration is from its first to
-///   its last established scan ([`FalseTrack`]);
+/// * a track never paired is an established track id that is assigned to
+///   no target in any scan where it is established; its duration is from
+///   its first to its last established scan ([`NeverPairedTrack`]);
 /// * continuity, the RMSE of the assigned pairs, and the tracks assigned in
 ///   under half of their established scans: see [`TrackMetrics`].
 ///
@@ -846,10 +848,10 @@ pub fn track_metrics_with(
     Ok(TrackMetrics {
         id_changes: target_metrics.iter().map(|t| t.id_changes).sum(),
         targets: target_metrics,
-        false_tracks: tracks
+        never_paired: tracks
             .iter()
             .filter(|(_, a)| a.assigned == 0)
-            .map(|(&id, a)| FalseTrack {
+            .map(|(&id, a)| NeverPairedTrack {
                 id,
                 first_t: a.first_t,
                 last_t: a.last_t,

@@ -758,7 +758,7 @@ pub fn score_tracks(
         rmse: m.assigned_rmse,
         ospa: mean_ospa(&scans, OSPA_CUTOFF_M, OSPA_ORDER).map_err(|e| format!("{source}: {e}"))?,
         false_tracks: m.mostly_unassigned_tracks.len(),
-        never_paired: m.false_tracks.len(),
+        never_paired: m.never_paired.len(),
         reported_tracks: m.established_tracks,
         unpaired_before_first,
         unpaired_after_first,

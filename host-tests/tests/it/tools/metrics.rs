@@ -246,11 +246,12 @@ fn track_metrics_by_hand() {
     // Gate 50 m.
     // t=0: only tentative tracks → nothing tracked.
     // t=1: track 7 (confirmed) on A; nothing on B.
-    // t=2: 7 on A, 8 on B; track 9 (confirmed) at (500, 500): false.
+    // t=2: 7 on A, 8 on B; track 9 (confirmed) at (500, 500): never
+    //      paired.
     // t=3: ids swap: 8 on A, 7 on B; 9 coasting at (510, 500).
     // t=4: 8 on A; B's track 7 is 80 m off (outside the gate): B not
-    //      tracked, track 7 unassigned this scan (but not a false track:
-    //      it was assigned before).
+    //      tracked, track 7 unassigned this scan (but paired: it was
+    //      assigned before).
     // t=5: 8 on A, 7 back on B; 9 gone.
     let truth = |t: f64| {
         vec![
@@ -324,17 +325,17 @@ fn track_metrics_by_hand() {
     // Overall completeness (5 + 3)/12; 2 id changes.
     assert!(close(m.completeness, 8.0 / 12.0, 1e-15));
     assert_eq!(m.id_changes, 2);
-    // One false track: 9, established at t = 2 and 3 → 2 scans, 1 s.
+    // One track never paired: 9, established at t = 2 and 3 → 2 scans, 1 s.
     assert_eq!(
-        m.false_tracks,
-        vec![FalseTrack {
+        m.never_paired,
+        vec![NeverPairedTrack {
             id: 9,
             first_t: 2.0,
             last_t: 3.0,
             scans: 2
         }]
     );
-    assert_eq!(m.false_track_time(), (2, Some(1.0)));
+    assert_eq!(m.never_paired_time(), (2, Some(1.0)));
     // Unassigned established track-scans: 9 at t=2,3 and 7 at t=4.
     assert_eq!(m.unassigned_track_scans, 3);
     assert_eq!(m.established_tracks, 3);
@@ -368,7 +369,7 @@ fn a_track_assigned_in_under_half_its_scans_is_counted_not_at_half() {
     use TrackStatus::*;
     // One target at the origin. Track 5 is on it at t = 0, then 600 m
     // away (beyond the 500 m gate) at t = 1 and 2: assigned in 1 of 3
-    // scans, so mostly unassigned but not a false track. Track 6 appears
+    // scans, so mostly unassigned but not never paired. Track 6 appears
     // at t = 1 on the target (assigned) and is 600 m off at t = 2: 1 of
     // 2, exactly half, not counted. The target: id 5, then 6 → 1 change;
     // tracked at t = 0, 1, not 2 → continuity 2/3.
@@ -395,7 +396,7 @@ fn a_track_assigned_in_under_half_its_scans_is_counted_not_at_half() {
     ];
     let m = track_metrics(&scans, 500.0).unwrap();
     assert_eq!(m.mostly_unassigned_tracks, vec![5]);
-    assert!(m.false_tracks.is_empty());
+    assert!(m.never_paired.is_empty());
     assert_eq!(m.id_changes, 1);
     assert!(close(m.completeness, 2.0 / 3.0, 1e-15));
     assert!(close(m.continuity, 2.0 / 3.0, 1e-15));
@@ -487,7 +488,7 @@ fn a_target_never_tracked_has_no_latency() {
     let m = track_metrics(&scans, 10.0).unwrap();
     assert_eq!(m.targets[0].latency_to_confirm_s, None);
     assert_eq!(m.completeness, 0.0);
-    assert!(m.false_tracks.is_empty());
+    assert!(m.never_paired.is_empty());
     assert!(track_metrics(&[], 10.0).unwrap().completeness.is_nan());
     assert_eq!("coasting".parse::<TrackStatus>(), Ok(TrackStatus::Coasting));
     assert!("lost".parse::<TrackStatus>().is_err());
