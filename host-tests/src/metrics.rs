@@ -690,7 +690,7 @@ impl TrackMetrics {
 ///
 /// At every scan the established tracks are assigned to the present targets
 /// by the assignment minimising Σ min(‖track − truth‖, gate) (optimal, via
-/// [`assignment`]); a pair at distance ≥ `gate` (m) is not an assignment.
+/// [`assignment`]); a pair farther apart than `gate` (m) is not an assignment.
 /// With that:
 /// * completeness, id changes and latency to confirm: see [`TargetMetrics`];
 /// * a track never paired is an established track id that is assigned to
@@ -711,7 +711,7 @@ pub fn track_metrics(scans: &[ScanReport], gate: f64) -> Result<TrackMetrics, No
 pub enum PairingCost {
     /// Σ min(‖track − truth‖, gate).
     ClippedAtGate,
-    /// Σ ‖track − truth‖ (pairs at or beyond the gate dropped afterwards):
+    /// Σ ‖track − truth‖ (pairs beyond the gate dropped afterwards):
     /// the real-data evaluation's definition, under which a far pair can
     /// displace a near one.
     Distance,
@@ -774,7 +774,7 @@ pub fn track_metrics_with(
             let acc = targets.entry(p.id).or_default();
             acc.first_t.get_or_insert(scan.t);
             acc.present += 1;
-            let Some(j) = assigned[i].filter(|&j| distance[i][j] < gate) else {
+            let Some(j) = assigned[i].filter(|&j| distance[i][j] <= gate) else {
                 if acc.first_tracked_t.is_some() {
                     acc.present_since_first_tracked += 1;
                 }

@@ -235,6 +235,31 @@ fn costs_and_positions_that_are_not_finite_are_refused() {
     assert!(mean_ospa(&scans, 1000.0, 2.0).is_err());
 }
 
+/// The gate drops only the pairs farther apart than it: a track exactly
+/// 500 m from its target is paired under either cost, one a metre farther
+/// is not.
+#[test]
+fn a_pair_exactly_at_the_gate_is_paired() {
+    let scan = |x: f64| ScanReport {
+        t: 0.0,
+        truth: vec![TruthPoint {
+            id: 1,
+            x: 0.0,
+            y: 0.0,
+        }],
+        tracks: vec![tp(3, TrackStatus::Confirmed, x, 0.0)],
+    };
+    for cost in [PairingCost::Distance, PairingCost::ClippedAtGate] {
+        let at = track_metrics_with(&[scan(500.0)], 500.0, cost).unwrap();
+        assert_eq!(at.completeness, 1.0, "{cost:?}");
+        assert_eq!(at.assigned_rmse, 500.0, "{cost:?}");
+        assert!(at.never_paired.is_empty(), "{cost:?}");
+        let beyond = track_metrics_with(&[scan(501.0)], 500.0, cost).unwrap();
+        assert_eq!(beyond.completeness, 0.0, "{cost:?}");
+        assert_eq!(beyond.never_paired.len(), 1, "{cost:?}");
+    }
+}
+
 fn tp(id: u32, status: TrackStatus, x: f64, y: f64) -> TrackPoint {
     TrackPoint { id, status, x, y }
 }
