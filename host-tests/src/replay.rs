@@ -557,6 +557,9 @@ fn times_text(times: &[String]) -> String {
 
 impl fmt::Display for TimingEvents {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        if self.rows == 0 {
+            writeln!(f, "replay: no data rows (the input has its header only)")?;
+        }
         if !self.restarted.is_empty() {
             writeln!(
                 f,
