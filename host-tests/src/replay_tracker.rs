@@ -819,22 +819,28 @@ pub fn design_for(
     };
     let derived = design.derive().map_err(|e| {
         // Rule 4 weighs the clutter (its density in a new track's gates,
-        // its count over the area) against P_D: say what the clutter was.
-        let clutter = if e == ConfigError::NoConfirmationRule {
+        // its count over the area) against P_D: the fix comes first (the
+        // default density over a file's whole extent is what usually
+        // fails), then what the clutter was.
+        let (fix, clutter) = if e == ConfigError::NoConfirmationRule {
             let area = design.clutter_area();
-            format!(
-                "; the clutter: {} false measurements a scan expected over the {} km² \
-                 counted; the sensor's own density (--clutter-per-km2; the default is the \
-                 nominal sensor's), the region watched (--region-m) or P_D (--pd) change it",
-                three_significant(design.clutter_density * area),
-                three_significant(area * 1e-6)
+            (
+                "pass --clutter-per-km2 0 for a recording without clutter, or the sensor's \
+                 own density (--clutter-per-km2; the default is the nominal sensor's), a \
+                 smaller region watched (--region-m) or a higher P_D (--pd); ",
+                format!(
+                    "; the clutter: {} false measurements a scan expected over the {} km² \
+                     counted",
+                    three_significant(design.clutter_density * area),
+                    three_significant(area * 1e-6)
+                ),
             )
         } else {
-            String::new()
+            ("", String::new())
         };
         ReplayError::Design(format!(
-            "no configuration meets the design rules for these figures ({}): {e}{clutter} \
-             (the figures come from --sigma-m or --range-sigma-m/--bearing-sigma-deg, \
+            "no configuration meets the design rules for these figures: {fix}{e}{clutter} \
+             ({}; the figures come from --sigma-m or --range-sigma-m/--bearing-sigma-deg, \
              --scan-period-s, --pd, --clutter-per-km2, --region-m, --max-speed-mps and \
              --max-accel-mps2)",
             design_figures(&design, period)

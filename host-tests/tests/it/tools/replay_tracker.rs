@@ -675,6 +675,41 @@ fn tracker_options_are_checked() {
 
 // -------------------------------------------------------------- end to end
 
+/// A recorded single flight with the default clutter density (the nominal
+/// radar's, counted over the disc to its farthest report) expects too many
+/// false plots a scan: the refusal leads with the fix, and with
+/// `--clutter-per-km2 0` every flight of host-tests/data/real/single runs.
+#[test]
+fn a_single_flight_refused_for_clutter_is_told_the_fix_first() {
+    let dir = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("data/real/single");
+    let mut flights: Vec<_> = std::fs::read_dir(&dir)
+        .unwrap()
+        .map(|e| e.unwrap().path())
+        .filter(|p| p.extension().is_some_and(|x| x == "csv"))
+        .collect();
+    flights.sort();
+    assert_eq!(flights.len(), 16);
+    let refused = |path: &std::path::Path| {
+        let text = std::fs::read_to_string(path).unwrap();
+        tracker("--tracker --sigma-m 50", &text).err()
+    };
+    let e = refused(&flights[0]).expect("the default clutter refuses it");
+    let text = e.to_string();
+    assert!(
+        text.starts_with(
+            "tracker design: no configuration meets the design rules for these figures: pass \
+             --clutter-per-km2 0 for a recording without clutter, or"
+        ),
+        "{text}"
+    );
+    assert!(text.contains("(design rule 4)"), "{text}");
+    for path in &flights {
+        let text = std::fs::read_to_string(path).unwrap();
+        let run = tracker("--tracker --sigma-m 50 --clutter-per-km2 0", &text);
+        assert!(run.is_ok(), "{}: {:?}", path.display(), run.err());
+    }
+}
+
 /// A bad sensor figure is a usage error (status 2) reported before the
 /// input is read: the empty file is not what the message is about.
 #[test]
