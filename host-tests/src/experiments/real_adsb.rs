@@ -20,7 +20,9 @@
 //!   figures, in f64, f32 and the fast fixed point, scored by
 //!   [`crate::metrics::track_metrics_with`] (assignment on the distance,
 //!   pairs beyond [`PAIR_LIMIT_M`] dropped) and OSPA ([`OSPA_CUTOFF_M`], order 2) averaged over the scans;
-//!   the whole replay (read, track, write the CSV) is timed in-process.
+//!   the whole replay (read, track, write the CSV) is timed in-process,
+//!   into a file of its own (`scene_times.md`), so that the accuracy
+//!   tables are the same on every run.
 //! * The scene drawn again ([`super::scene_draws`]): its truth measured
 //!   with new seeds, also at the held-out scene's clutter density.
 //!
@@ -1058,15 +1060,14 @@ pub fn run(ctx: &Context) -> Result<(), String> {
          (not clipped), pairs beyond {PAIR_LIMIT_M} m dropped; coverage = paired \
          truth points / truth points; continuity = paired points / truth points from the flight's \
          first pairing; id changes: changes of the paired track id between consecutive paired \
-         scans of a flight; false tracks: paired in under half of their reported scans (never \
-         paired in brackets); OSPA c = {OSPA_CUTOFF_M} m, p = 2, averaged over the scans; RMSE \
+         scans of a flight; false tracks: paired in under half of their reported scans; never \
+         paired: paired in none; OSPA c = {OSPA_CUTOFF_M} m, p = 2, averaged over the scans; RMSE \
          over the paired points; the truth points not paired, split at the flight's first \
          pairing (before it: the track's start and its M-of-N confirmation; after it: losses). \
-         Time: the whole replay (read the file, track, write the CSV) \
-         in-process on this host, the least of {TIMING_REPEATS} runs; it varies between runs and \
-         hosts. The Stone Soup rows, when present, score the tracks `scripts/stonesoup_scene.py` \
+         The Stone Soup rows, when present, score the tracks `scripts/stonesoup_scene.py` \
          wrote into `{STONESOUP_DIR}/` (Stone Soup 1.9.1's GNN tracker configured from the same \
-         design; its time is a whole Python process).\n"
+         design). The replay times, and Stone Soup's against abtrack's, are in `{TIMES}.md`, \
+         apart from these tables, which are the same on every run.\n"
     );
     let mut scene_table = Table::new([
         "scene",
@@ -1081,8 +1082,8 @@ pub fn run(ctx: &Context) -> Result<(), String> {
         "reported tracks",
         "truth unpaired before its first pairing",
         "truth unpaired after it",
-        "replay time (ms)",
     ]);
+    let mut times = Table::new(["scene", "tracker", "replay time (ms)"]);
     let mut speed: Vec<String> = Vec::new();
     let mut common: Vec<String> = Vec::new();
     for scene in &SCENES {
@@ -1096,6 +1097,7 @@ pub fn run(ctx: &Context) -> Result<(), String> {
                 design = r.design.clone();
             }
             scene_table.push(scene_row(scene, &r));
+            times.push(time_row(scene, &r));
             if label == "f64" {
                 scene_plot(&dir, scene, &r)?;
                 f64_seconds = r.seconds;
@@ -1112,6 +1114,7 @@ pub fn run(ctx: &Context) -> Result<(), String> {
                 String::new(),
             )?;
             scene_table.push(scene_row(scene, &r));
+            times.push(time_row(scene, &r));
             if let Some((ours, theirs, n)) = common_rmse(&f64_pairs, &r.pairs) {
                 common.push(format!(
                     "{}: {n} points (of {} and {} paired), abtrack (f64) {:.1} m, Stone Soup {:.1} m",
@@ -1138,14 +1141,7 @@ pub fn run(ctx: &Context) -> Result<(), String> {
     }
     scene_table.write(&dir, "scene")?;
     summary.push_str(&scene_table.to_markdown());
-    if !speed.is_empty() {
-        let _ = writeln!(
-            summary,
-            "\nWhole-process time of Stone Soup (Python, imports included, one process per scene) \
-             against abtrack's whole replay in f64: {}.",
-            speed.join("; ")
-        );
-    }
+    write_scene_times(&dir, &times, &speed)?;
     if !common.is_empty() {
         let _ = writeln!(
             summary,
@@ -1176,8 +1172,44 @@ fn scene_row(scene: &Scene, r: &SceneRun) -> Vec<String> {
         r.reported_tracks.to_string(),
         r.unpaired_before_first.to_string(),
         r.unpaired_after_first.to_string(),
+    ]
+}
+
+/// The file of the scene's wall-clock times (`<TIMES>.csv`, `.md`).
+const TIMES: &str = "scene_times";
+
+/// One row of the times table.
+fn time_row(scene: &Scene, r: &SceneRun) -> Vec<String> {
+    vec![
+        scene.name.to_string(),
+        r.label.clone(),
         format!("{:.0}", r.seconds * 1000.0),
     ]
+}
+
+/// Writes the scene's replay times and, when Stone Soup's are there, the
+/// comparison `speed` ([`TIMES`]): wall-clock times change on every run,
+/// so they are kept out of the accuracy tables.
+fn write_scene_times(dir: &Path, times: &Table, speed: &[String]) -> Result<(), String> {
+    write_file(&dir.join(format!("{TIMES}.csv")), &times.to_csv())?;
+    let mut text = format!(
+        "# Real scene: replay times\n\n\
+         Written by `cd host-tests && cargo run --release --bin experiments -- --only {NAME}` \
+         with the scene's accuracy figures (`scene.md`, `summary.md`), apart from them: these \
+         vary between runs and hosts. abtrack: the whole replay (read the file, track, write the \
+         CSV) in-process on this host, the least of {TIMING_REPEATS} runs. Stone Soup: the whole \
+         Python process (imports included, one process per scene) that \
+         `scripts/stonesoup_scene.py` timed into `{STONESOUP_DIR}/<scene>.time`.\n\n{}",
+        times.to_markdown()
+    );
+    if !speed.is_empty() {
+        let _ = writeln!(
+            text,
+            "\nWhole-process time of Stone Soup against abtrack's whole replay in f64: {}.",
+            speed.join("; ")
+        );
+    }
+    write_file(&dir.join(format!("{TIMES}.md")), &text)
 }
 
 /// The truth and the reported tracks' positions of every scan.

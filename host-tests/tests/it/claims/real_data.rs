@@ -615,3 +615,65 @@ fn the_scans_scored_are_the_truths_times() {
     assert_eq!(run.pairs.len(), 3);
     assert_eq!((run.false_tracks, run.never_paired), (0, 0));
 }
+
+/// The group's accuracy tables are the same on every run: the wall-clock
+/// times (abtrack's replays, Stone Soup's processes and their ratio) are
+/// written apart, into `scene_times.*`. Two runs of the group into scratch
+/// folders, each with the committed Stone Soup tracks and times.
+#[test]
+fn the_scene_tables_are_the_same_on_every_run_and_the_times_are_apart() {
+    use abtrack_host_tests::experiments::{common::Context, real_adsb};
+    fn copy_dir(from: &std::path::Path, to: &std::path::Path) {
+        std::fs::create_dir_all(to).unwrap();
+        for entry in std::fs::read_dir(from).unwrap() {
+            let path = entry.unwrap().path();
+            let target = to.join(path.file_name().unwrap());
+            if path.is_dir() {
+                copy_dir(&path, &target);
+            } else {
+                std::fs::copy(&path, &target).unwrap();
+            }
+        }
+    }
+    let committed = std::path::Path::new(env!("CARGO_MANIFEST_DIR"))
+        .join("../results/real-adsb")
+        .join(real_adsb::STONESOUP_DIR);
+    let read = |dir: &std::path::Path, file: &str| {
+        std::fs::read_to_string(dir.join(real_adsb::NAME).join(file)).unwrap()
+    };
+    let runs: Vec<std::path::PathBuf> = (0..2)
+        .map(|k| {
+            let out =
+                std::env::temp_dir().join(format!("abtrack-real-adsb-{}-{k}", std::process::id()));
+            let _ = std::fs::remove_dir_all(&out);
+            copy_dir(
+                &committed,
+                &out.join(real_adsb::NAME).join(real_adsb::STONESOUP_DIR),
+            );
+            let ctx = Context {
+                out_dir: out.clone(),
+                runs_override: None,
+            };
+            real_adsb::run(&ctx).unwrap();
+            out
+        })
+        .collect();
+    for file in ["scene.csv", "scene.md", "summary.md"] {
+        assert_eq!(read(&runs[0], file), read(&runs[1], file), "{file}");
+        assert!(!read(&runs[0], file).contains("time (ms)"), "{file}");
+    }
+    let times = read(&runs[0], "scene_times.csv");
+    let mut lines = times.lines();
+    assert_eq!(lines.next(), Some("scene,tracker,replay time (ms)"));
+    // Per scene: the four configurations of abtrack and Stone Soup.
+    assert_eq!(lines.count(), 2 * 5, "{times}");
+    let text = read(&runs[0], "scene_times.md");
+    assert!(
+        text.contains("Whole-process time of Stone Soup against abtrack's whole replay in f64"),
+        "{text}"
+    );
+    assert!(text.contains("×"), "{text}");
+    for out in runs {
+        let _ = std::fs::remove_dir_all(out);
+    }
+}
