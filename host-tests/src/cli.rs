@@ -548,6 +548,17 @@ impl ReplayArgs {
                 ));
             }
         }
+        let periods = abtrack::envelope::INTERVAL_S;
+        if !periods.contains(scale.period) {
+            return Err(usage_error(
+                ErrorKind::ValueValidation,
+                format!(
+                    "--scan-period-s: {} is out of range (must be {}–{} s, the filters' \
+                     intervals)",
+                    scale.period, periods.min, periods.max
+                ),
+            ));
+        }
         Ok(Some(scale))
     }
 
@@ -628,7 +639,7 @@ impl ReplayArgs {
                     )
                 })?,
         };
-        Ok(TrackerOptions {
+        let options = TrackerOptions {
             numeric: self.numeric,
             schedule,
             capacity,
@@ -648,7 +659,14 @@ impl ReplayArgs {
                 max_acceleration_m_per_s2: self.max_accel_mps2,
             },
             azimuth_unit: self.azimuth_unit,
-        })
+        };
+        // The sensor's figures are arguments: refused here, before the
+        // input is read (the file gives only the defaults' context).
+        options
+            .sensor
+            .check()
+            .map_err(|why| usage_error(ErrorKind::ValueValidation, why))?;
+        Ok(options)
     }
 }
 

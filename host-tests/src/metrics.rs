@@ -256,28 +256,65 @@ pub fn rmse_against_time(runs: &[Vec<StateError>]) -> Vec<Rmse> {
 // Optimal assignment
 // ---------------------------------------------------------------------------
 
+/// A cost [`assignment`] refuses: not a finite number (a NaN or an
+/// infinity orders no assignment, and the augmenting-path search would
+/// never end on it).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct NonFiniteCost {
+    pub row: usize,
+    pub column: usize,
+    pub value: f64,
+}
+
+impl std::fmt::Display for NonFiniteCost {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        write!(
+            f,
+            "assignment cost (row {}, column {}) is {}, not a finite number (a position that \
+             is not finite?)",
+            self.row, self.column, self.value
+        )
+    }
+}
+
+impl std::error::Error for NonFiniteCost {}
+
+/// `Ok` if every cost is finite, else the first that is not (in row
+/// order). The callers that clip their distances (min(d, c)) check them
+/// before clipping: min(NaN, c) is c.
+pub fn finite_costs(cost: &[Vec<f64>]) -> Result<(), NonFiniteCost> {
+    for (row, costs) in cost.iter().enumerate() {
+        if let Some((column, &value)) = costs.iter().enumerate().find(|(_, c)| !c.is_finite()) {
+            return Err(NonFiniteCost { row, column, value });
+        }
+    }
+    Ok(())
+}
+
 /// Minimum-cost assignment of rows to columns (Hungarian method, the
 /// O(n²m) shortest-augmenting-path form with potentials). Any shape: every
 /// row is assigned when rows ≤ columns, otherwise every column. Returns, per
-/// row, its column. Costs must be finite.
-pub fn assignment(cost: &[Vec<f64>]) -> Vec<Option<usize>> {
+/// row, its column; a cost that is not finite is refused (the first one, in
+/// row order).
+pub fn assignment(cost: &[Vec<f64>]) -> Result<Vec<Option<usize>>, NonFiniteCost> {
+    finite_costs(cost)?;
     let rows = cost.len();
     let cols = cost.first().map_or(0, Vec::len);
     if rows == 0 || cols == 0 {
-        return vec![None; rows];
+        return Ok(vec![None; rows]);
     }
     if rows > cols {
         let t: Vec<Vec<f64>> = (0..cols)
             .map(|j| (0..rows).map(|i| cost[i][j]).collect())
             .collect();
-        let by_col = assignment(&t);
+        let by_col = assignment(&t)?;
         let mut out = vec![None; rows];
         for (j, i) in by_col.iter().enumerate() {
             if let Some(i) = *i {
                 out[i] = Some(j);
             }
         }
-        return out;
+        return Ok(out);
     }
     // 1-based arrays as in the classical formulation; row 0 / column 0 are
     // the virtual start.
@@ -337,7 +374,7 @@ pub fn assignment(cost: &[Vec<f64>]) -> Vec<Option<usize>> {
             out[p[j] - 1] = Some(j - 1);
         }
     }
-    out
+    Ok(out)
 }
 
 // ---------------------------------------------------------------------------
@@ -365,26 +402,38 @@ pub struct Ospa {
 /// with d^(c)(x, y) = min(c, ‖x − y‖), cut-off c > 0, order p ≥ 1; the
 /// minimum over assignments is found with [`assignment`]. Both sets empty:
 /// 0; exactly one empty: c. Distance^p = localisation^p + cardinality^p.
-pub fn ospa(x: &[[f64; 2]], y: &[[f64; 2]], cutoff: f64, order: f64) -> Ospa {
+/// A distance that is not finite (a position that is not), or a cost
+/// d^(c)^p that is not (a cut-off or order that is not), is refused.
+pub fn ospa(
+    x: &[[f64; 2]],
+    y: &[[f64; 2]],
+    cutoff: f64,
+    order: f64,
+) -> Result<Ospa, NonFiniteCost> {
     let (small, large) = if x.len() <= y.len() { (x, y) } else { (y, x) };
     let (m, n) = (small.len(), large.len());
     if n == 0 {
-        return Ospa {
+        return Ok(Ospa {
             distance: 0.0,
             localisation: 0.0,
             cardinality: 0.0,
-        };
+        });
     }
-    let cost: Vec<Vec<f64>> = small
+    let distance: Vec<Vec<f64>> = small
         .iter()
         .map(|a| {
             large
                 .iter()
-                .map(|b| ((a[0] - b[0]).hypot(a[1] - b[1])).min(cutoff).powf(order))
+                .map(|b| (a[0] - b[0]).hypot(a[1] - b[1]))
                 .collect()
         })
         .collect();
-    let assigned = assignment(&cost);
+    finite_costs(&distance)?;
+    let cost: Vec<Vec<f64>> = distance
+        .iter()
+        .map(|row| row.iter().map(|d| d.min(cutoff).powf(order)).collect())
+        .collect();
+    let assigned = assignment(&cost)?;
     let loc_sum: f64 = assigned
         .iter()
         .enumerate()
@@ -392,11 +441,11 @@ pub fn ospa(x: &[[f64; 2]], y: &[[f64; 2]], cutoff: f64, order: f64) -> Ospa {
         .sum();
     let card_sum = cutoff.powf(order) * (n - m) as f64;
     let nf = n as f64;
-    Ospa {
+    Ok(Ospa {
         distance: ((loc_sum + card_sum) / nf).powf(1.0 / order),
         localisation: (loc_sum / nf).powf(1.0 / order),
         cardinality: (card_sum / nf).powf(1.0 / order),
-    }
+    })
 }
 
 // ---------------------------------------------------------------------------
@@ -459,7 +508,11 @@ pub struct ScanReport {
 }
 
 /// OSPA between the truth and the established tracks at every scan.
-pub fn ospa_against_time(scans: &[ScanReport], cutoff: f64, order: f64) -> Vec<(f64, Ospa)> {
+pub fn ospa_against_time(
+    scans: &[ScanReport],
+    cutoff: f64,
+    order: f64,
+) -> Result<Vec<(f64, Ospa)>, NonFiniteCost> {
     scans
         .iter()
         .map(|s| {
@@ -470,7 +523,7 @@ pub fn ospa_against_time(scans: &[ScanReport], cutoff: f64, order: f64) -> Vec<(
                 .filter(|t| t.status.is_established())
                 .map(|t| [t.x, t.y])
                 .collect();
-            (s.t, ospa(&truth, &tracks, cutoff, order))
+            Ok((s.t, ospa(&truth, &tracks, cutoff, order)?))
         })
         .collect()
 }
@@ -501,7 +554,7 @@ pub struct TargetMetrics {
 
 /// An established track never assigned to any target.
 #[derive(Debug, Clone, Copy, PartialEq)]
-pub struct FalseTrack {
+pub struct NeverPairedTrack {
     pub id: u32,
     /// First and last scan times at which it was established.
     pub first_t: f64,
@@ -510,7 +563,7 @@ pub struct FalseTrack {
     pub scans: usize,
 }
 
-impl FalseTrack {
+impl NeverPairedTrack {
     /// last_t − first_t (0 for a track established in one scan only).
     pub fn duration_s(&self) -> f64 {
         self.last_t - self.first_t
@@ -522,15 +575,17 @@ impl FalseTrack {
 pub struct TrackMetrics {
     /// Sorted by target id.
     pub targets: Vec<TargetMetrics>,
-    /// Sorted by track id.
-    pub false_tracks: Vec<FalseTrack>,
+    /// The established tracks never assigned to a target, sorted by track
+    /// id.
+    pub never_paired: Vec<NeverPairedTrack>,
     /// Σ scans_tracked / Σ scans_present over all targets (time-averaged
     /// completeness); NaN with no truth.
     pub completeness: f64,
     /// Σ id_changes over targets.
     pub id_changes: usize,
-    /// Established (track, scan) pairs not assigned to any target: false
-    /// tracks plus true tracks momentarily outside the assignment gate.
+    /// Established (track, scan) pairs not assigned to any target: tracks
+    /// on no target plus true tracks momentarily outside the assignment
+    /// gate.
     pub unassigned_track_scans: usize,
     /// Distinct track ids that were established at some scan.
     pub established_tracks: usize,
@@ -543,7 +598,7 @@ pub struct TrackMetrics {
     pub assigned_rmse: f64,
     /// Established track ids assigned to a target in fewer than half of the
     /// scans in which they were established (a superset of
-    /// [`Self::false_tracks`]' ids), ascending.
+    /// [`Self::never_paired`]' ids), ascending.
     pub mostly_unassigned_tracks: Vec<u32>,
     /// Every assigned (target, track) pair: its scan time, the target and
     /// their distance (m), in scan order (what [`Self::assigned_rmse`] is
@@ -616,38 +671,38 @@ pub fn common_rmse(a: &[PairedPoint], b: &[PairedPoint]) -> Option<(f64, f64, us
 }
 
 impl TrackMetrics {
-    /// Total scans of false tracks and the mean false-track duration (s).
-    pub fn false_track_time(&self) -> (usize, Option<f64>) {
-        let scans = self.false_tracks.iter().map(|f| f.scans).sum();
-        let mean = (!self.false_tracks.is_empty()).then(|| {
-            self.false_tracks
+    /// Total scans of the tracks never paired and their mean duration (s).
+    pub fn never_paired_time(&self) -> (usize, Option<f64>) {
+        let scans = self.never_paired.iter().map(|f| f.scans).sum();
+        let mean = (!self.never_paired.is_empty()).then(|| {
+            self.never_paired
                 .iter()
-                .map(FalseTrack::duration_s)
+                .map(NeverPairedTrack::duration_s)
                 .sum::<f64>()
-                / self.false_tracks.len() as f64
+                / self.never_paired.len() as f64
         });
         (scans, mean)
     }
 }
 
 /// Track-to-truth assignment at each scan, then the per-target and
-/// false-track statistics of one run.
+/// never-paired-track statistics of one run.
 ///
 /// At every scan the established tracks are assigned to the present targets
 /// by the assignment minimising Σ min(‖track − truth‖, gate) (optimal, via
-/// [`assignment`]); a pair at distance ≥ `gate` (m) is not an assignment.
+/// [`assignment`]); a pair farther apart than `gate` (m) is not an assignment.
 /// With that:
 /// * completeness, id changes and latency to confirm: see [`TargetMetrics`];
-/// * a false track is an established track id that is assigned to no target
-///   in any scan where it is established; its duration is from its first to
-///   its last established scan ([`FalseTrack`]);
+/// * a track never paired is an established track id that is assigned to
+///   no target in any scan where it is established; its duration is from
+///   its first to its last established scan ([`NeverPairedTrack`]);
 /// * continuity, the RMSE of the assigned pairs, and the tracks assigned in
 ///   under half of their established scans: see [`TrackMetrics`].
 ///
 /// The minimised cost is clipped at the gate, so a pair beyond it costs the
 /// same whichever it is and never displaces a pair inside it
 /// ([`PairingCost::ClippedAtGate`]; [`track_metrics_with`] takes the other).
-pub fn track_metrics(scans: &[ScanReport], gate: f64) -> TrackMetrics {
+pub fn track_metrics(scans: &[ScanReport], gate: f64) -> Result<TrackMetrics, NonFiniteCost> {
     track_metrics_with(scans, gate, PairingCost::ClippedAtGate)
 }
 
@@ -656,14 +711,20 @@ pub fn track_metrics(scans: &[ScanReport], gate: f64) -> TrackMetrics {
 pub enum PairingCost {
     /// Σ min(‖track − truth‖, gate).
     ClippedAtGate,
-    /// Σ ‖track − truth‖ (pairs at or beyond the gate dropped afterwards):
+    /// Σ ‖track − truth‖ (pairs beyond the gate dropped afterwards):
     /// the real-data evaluation's definition, under which a far pair can
     /// displace a near one.
     Distance,
 }
 
-/// [`track_metrics`] with the assignment minimising `cost`.
-pub fn track_metrics_with(scans: &[ScanReport], gate: f64, cost: PairingCost) -> TrackMetrics {
+/// [`track_metrics`] with the assignment minimising `cost`. A distance
+/// that is not finite (a position that is not) is refused, under either
+/// cost.
+pub fn track_metrics_with(
+    scans: &[ScanReport],
+    gate: f64,
+    cost: PairingCost,
+) -> Result<TrackMetrics, NonFiniteCost> {
     let pairing_cost = cost;
     #[derive(Default)]
     struct TargetAcc {
@@ -698,21 +759,22 @@ pub fn track_metrics_with(scans: &[ScanReport], gate: f64, cost: PairingCost) ->
             .iter()
             .map(|p| est.iter().map(|t| (t.x - p.x).hypot(t.y - p.y)).collect())
             .collect();
+        finite_costs(&distance)?;
         let assigned = match pairing_cost {
-            PairingCost::Distance => assignment(&distance),
+            PairingCost::Distance => assignment(&distance)?,
             PairingCost::ClippedAtGate => assignment(
                 &distance
                     .iter()
                     .map(|row| row.iter().map(|d| d.min(gate)).collect())
                     .collect::<Vec<Vec<f64>>>(),
-            ),
+            )?,
         };
         let mut track_used = vec![false; est.len()];
         for (i, p) in scan.truth.iter().enumerate() {
             let acc = targets.entry(p.id).or_default();
             acc.first_t.get_or_insert(scan.t);
             acc.present += 1;
-            let Some(j) = assigned[i].filter(|&j| distance[i][j] < gate) else {
+            let Some(j) = assigned[i].filter(|&j| distance[i][j] <= gate) else {
                 if acc.first_tracked_t.is_some() {
                     acc.present_since_first_tracked += 1;
                 }
@@ -783,13 +845,13 @@ pub fn track_metrics_with(scans: &[ScanReport], gate: f64, cost: PairingCost) ->
             scans_present_since_first_assignment: a.present_since_first_tracked,
         })
         .collect();
-    TrackMetrics {
+    Ok(TrackMetrics {
         id_changes: target_metrics.iter().map(|t| t.id_changes).sum(),
         targets: target_metrics,
-        false_tracks: tracks
+        never_paired: tracks
             .iter()
             .filter(|(_, a)| a.assigned == 0)
-            .map(|(&id, a)| FalseTrack {
+            .map(|(&id, a)| NeverPairedTrack {
                 id,
                 first_t: a.first_t,
                 last_t: a.last_t,
@@ -809,11 +871,11 @@ pub fn track_metrics_with(scans: &[ScanReport], gate: f64, cost: PairingCost) ->
             .map(|(&id, _)| id)
             .collect(),
         pairs: paired,
-    }
+    })
 }
 
 /// The mean over scans of [`ospa_against_time`].
-pub fn mean_ospa(scans: &[ScanReport], cutoff: f64, order: f64) -> f64 {
-    let per_scan = ospa_against_time(scans, cutoff, order);
-    per_scan.iter().map(|(_, o)| o.distance).sum::<f64>() / per_scan.len() as f64
+pub fn mean_ospa(scans: &[ScanReport], cutoff: f64, order: f64) -> Result<f64, NonFiniteCost> {
+    let per_scan = ospa_against_time(scans, cutoff, order)?;
+    Ok(per_scan.iter().map(|(_, o)| o.distance).sum::<f64>() / per_scan.len() as f64)
 }

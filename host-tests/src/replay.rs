@@ -500,10 +500,13 @@ pub struct TimingEvents {
     /// Rows whose altitude report the altitude tracker found not credible
     /// (DO-185B; it coasted instead): the range–azimuth replay's.
     pub altitude_not_credible: Vec<String>,
+    /// Data rows run (every row of the file, used or not).
+    pub rows: usize,
 }
 
 impl TimingEvents {
     fn record(&mut self, event: RowEvent, t_text: &str) {
+        self.rows += 1;
         match event {
             RowEvent::Used => {}
             RowEvent::Restarted => self.restarted.push(t_text.to_string()),
@@ -518,6 +521,12 @@ impl TimingEvents {
                 self.late += 1;
             }
         }
+    }
+
+    /// Of the skipped, rows less than [`abtrack::filter::MIN_INTERVAL_S`]
+    /// after the last used report (neither at its time nor before it).
+    pub fn too_close(&self) -> usize {
+        self.skipped.len() - self.duplicates - self.late
     }
 
     /// No row restarted or skipped, and every altitude report taken.
@@ -548,6 +557,9 @@ fn times_text(times: &[String]) -> String {
 
 impl fmt::Display for TimingEvents {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        if self.rows == 0 {
+            writeln!(f, "replay: no data rows (the input has its header only)")?;
+        }
         if !self.restarted.is_empty() {
             writeln!(
                 f,
@@ -571,14 +583,28 @@ impl fmt::Display for TimingEvents {
         if !self.skipped.is_empty() {
             writeln!(
                 f,
-                "replay: {} skipped: less than {} s after the last report used, {} of them at \
-                 the same time, {} before it (out of order) ({})",
+                "replay: {} skipped ({}): {} less than {} s after the last report used, {} at \
+                 its time (duplicates), {} before it (out of order)",
                 self.skipped.len(),
+                times_text(&self.skipped),
+                self.too_close(),
                 abtrack::filter::MIN_INTERVAL_S,
                 self.duplicates,
                 self.late,
-                times_text(&self.skipped)
             )?;
+            if 2 * self.skipped.len() > self.rows {
+                writeln!(
+                    f,
+                    "replay: warning: {} of the {} rows were skipped, most of the file{}",
+                    self.skipped.len(),
+                    self.rows,
+                    if self.late > 0 {
+                        " (rows out of time order are skipped: sort the file by t)"
+                    } else {
+                        ""
+                    }
+                )?;
+            }
         }
         if !self.altitude_not_credible.is_empty() {
             writeln!(

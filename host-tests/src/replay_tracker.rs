@@ -659,43 +659,109 @@ pub fn median_scan_interval(times: &[f64]) -> Option<f64> {
     Some(intervals[intervals.len() / 2])
 }
 
-/// A figure given on the command line, checked against `limit`.
-fn figure(name: &str, v: Option<f64>, default: f64, limit: Limit) -> Result<f64, ReplayError> {
-    let v = v.unwrap_or(default);
-    if v.is_finite() && limit.contains(v) {
-        Ok(v)
-    } else {
-        Err(ReplayError::Design(format!(
-            "{name} {v} is outside {} ..= {}",
-            limit.min, limit.max
-        )))
+/// A positive length, m (σ, σ_R, `--region-m`).
+const POSITIVE_LENGTH_M: Limit = Limit {
+    min: f64::MIN_POSITIVE,
+    max: envelope::MAX_POSITION_M,
+};
+
+impl SensorOptions {
+    /// Each figure that can be given, by option, with the values it takes.
+    fn figures(&self) -> [(&'static str, Option<f64>, Limit); 9] {
+        [
+            ("--region-m", self.region_m, POSITIVE_LENGTH_M),
+            ("--sigma-m", self.sigma_m, POSITIVE_LENGTH_M),
+            ("--range-sigma-m", self.range_sigma_m, POSITIVE_LENGTH_M),
+            (
+                "--bearing-sigma-deg",
+                self.bearing_sigma_deg,
+                Limit {
+                    min: f64::MIN_POSITIVE,
+                    max: 180.0,
+                },
+            ),
+            ("--scan-period-s", self.scan_period_s, envelope::INTERVAL_S),
+            (
+                "--pd",
+                self.detection_probability,
+                Limit {
+                    min: 1e-3,
+                    max: 1.0,
+                },
+            ),
+            (
+                "--clutter-per-km2",
+                self.clutter_per_km2,
+                Limit { min: 0.0, max: 1e6 },
+            ),
+            (
+                "--max-speed-mps",
+                self.max_speed_m_per_s,
+                Limit {
+                    min: f64::MIN_POSITIVE,
+                    max: envelope::VELOCITY_M_PER_S.max,
+                },
+            ),
+            (
+                "--max-accel-mps2",
+                self.max_acceleration_m_per_s2,
+                Limit {
+                    min: f64::MIN_POSITIVE,
+                    max: envelope::ACCELERATION_M_PER_S2.max,
+                },
+            ),
+        ]
+    }
+
+    /// Every figure given inside the values it takes, and `--sigma-m` (a
+    /// Cartesian sensor) not with the polar figures: all that can be
+    /// checked before the file is read (the command line checks it when it
+    /// is parsed; [`design_for`] again, for callers that build the options
+    /// themselves).
+    pub fn check(&self) -> Result<(), String> {
+        for (name, value, limit) in self.figures() {
+            if let Some(v) = value.filter(|&v| !(v.is_finite() && limit.contains(v))) {
+                return Err(format!(
+                    "{name} {v} is outside {} ..= {}",
+                    limit.min, limit.max
+                ));
+            }
+        }
+        if self.sigma_m.is_some()
+            && (self.range_sigma_m.is_some() || self.bearing_sigma_deg.is_some())
+        {
+            return Err(
+                "--sigma-m (a Cartesian sensor) cannot be combined with --range-sigma-m \
+                        or --bearing-sigma-deg (a polar one)"
+                    .into(),
+            );
+        }
+        Ok(())
     }
 }
 
-/// The design for `scans` of a file in the given layout (module docs).
+/// The design for `scans` of a file in the given layout (module docs):
+/// the figures given ([`SensorOptions::check`]), the others the nominal
+/// sensor's.
 pub fn design_for(
     sensor: &SensorOptions,
     polar: bool,
     scan_times: &[f64],
     farthest_m: f64,
 ) -> Result<DesignUsed, ReplayError> {
+    sensor.check().map_err(ReplayError::Design)?;
     let nominal = if polar {
         TrackerDesign::NOMINAL_TCAS
     } else {
         TrackerDesign::NOMINAL_RADAR
-    };
-    let positive = Limit {
-        min: f64::MIN_POSITIVE,
-        max: envelope::MAX_POSITION_M,
     };
     let accuracy = match (
         sensor.sigma_m,
         sensor.range_sigma_m,
         sensor.bearing_sigma_deg,
     ) {
-        (Some(s), None, None) => SensorAccuracy::Cartesian {
-            sigma: figure("--sigma-m", Some(s), 0.0, positive)?,
-        },
+        // Alone: `check` refuses it with the polar figures.
+        (Some(sigma), _, _) => SensorAccuracy::Cartesian { sigma },
         (None, None, None) => nominal.accuracy,
         (None, r, b) => {
             let (r0, b0) = match TrackerDesign::NOMINAL_TCAS.accuracy {
@@ -706,35 +772,16 @@ pub fn design_for(
                 SensorAccuracy::Cartesian { sigma } => (sigma, 5.0),
             };
             SensorAccuracy::Polar {
-                range_sigma: figure("--range-sigma-m", r, r0, positive)?,
-                bearing_sigma: figure(
-                    "--bearing-sigma-deg",
-                    b,
-                    b0,
-                    Limit {
-                        min: f64::MIN_POSITIVE,
-                        max: 180.0,
-                    },
-                )?
-                .to_radians(),
+                range_sigma: r.unwrap_or(r0),
+                bearing_sigma: b.unwrap_or(b0).to_radians(),
             }
-        }
-        (Some(_), _, _) => {
-            return Err(ReplayError::Design(
-                "--sigma-m (a Cartesian sensor) cannot be combined with --range-sigma-m or \
-                 --bearing-sigma-deg (a polar one)"
-                    .into(),
-            ))
         }
     };
     let median = median_scan_interval(scan_times);
     // A period given is checked; one taken from the file is brought into
     // the filters' range (a sparse or irregular file is run, not refused).
     let (scan_period, period) = match (sensor.scan_period_s, median) {
-        (Some(given), _) => (
-            figure("--scan-period-s", Some(given), 0.0, envelope::INTERVAL_S)?,
-            PeriodSource::Given,
-        ),
+        (Some(given), _) => (given, PeriodSource::Given),
         (None, Some(m)) if envelope::INTERVAL_S.contains(m) => (m, PeriodSource::FileMedian),
         (None, Some(m)) => (
             m.clamp(envelope::INTERVAL_S.min, envelope::INTERVAL_S.max),
@@ -745,7 +792,6 @@ pub fn design_for(
     let coverage = match sensor.region_m {
         None => Coverage::None,
         Some(r) => {
-            let r = figure("--region-m", Some(r), 0.0, positive)?;
             if polar {
                 Coverage::Disc { radius: r }
             } else {
@@ -755,62 +801,46 @@ pub fn design_for(
     };
     let design = TrackerDesign {
         accuracy,
-        detection_probability: figure(
-            "--pd",
-            sensor.detection_probability,
-            nominal.detection_probability,
-            Limit {
-                min: 1e-3,
-                max: 1.0,
-            },
-        )?,
-        clutter_density: figure(
-            "--clutter-per-km2",
-            sensor.clutter_per_km2,
-            nominal.clutter_density * 1e6,
-            Limit { min: 0.0, max: 1e6 },
-        )? * 1e-6,
+        detection_probability: sensor
+            .detection_probability
+            .unwrap_or(nominal.detection_probability),
+        clutter_density: sensor
+            .clutter_per_km2
+            .unwrap_or(nominal.clutter_density * 1e6)
+            * 1e-6,
         coverage,
         // At least 1 m, so one measurement at the origin still has a disc.
         max_range: farthest_m.max(1.0),
-        max_speed: figure(
-            "--max-speed-mps",
-            sensor.max_speed_m_per_s,
-            nominal.max_speed,
-            Limit {
-                min: f64::MIN_POSITIVE,
-                max: envelope::VELOCITY_M_PER_S.max,
-            },
-        )?,
-        max_acceleration: figure(
-            "--max-accel-mps2",
-            sensor.max_acceleration_m_per_s2,
-            nominal.max_acceleration,
-            Limit {
-                min: f64::MIN_POSITIVE,
-                max: envelope::ACCELERATION_M_PER_S2.max,
-            },
-        )?,
+        max_speed: sensor.max_speed_m_per_s.unwrap_or(nominal.max_speed),
+        max_acceleration: sensor
+            .max_acceleration_m_per_s2
+            .unwrap_or(nominal.max_acceleration),
         scan_period,
     };
     let derived = design.derive().map_err(|e| {
         // Rule 4 weighs the clutter (its density in a new track's gates,
-        // its count over the area) against P_D: say what the clutter was.
-        let clutter = if e == ConfigError::NoConfirmationRule {
+        // its count over the area) against P_D: the fix comes first (the
+        // default density over a file's whole extent is what usually
+        // fails), then what the clutter was.
+        let (fix, clutter) = if e == ConfigError::NoConfirmationRule {
             let area = design.clutter_area();
-            format!(
-                "; the clutter: {} false measurements a scan expected over the {} km² \
-                 counted; the sensor's own density (--clutter-per-km2; the default is the \
-                 nominal sensor's), the region watched (--region-m) or P_D (--pd) change it",
-                three_significant(design.clutter_density * area),
-                three_significant(area * 1e-6)
+            (
+                "pass --clutter-per-km2 0 for a recording without clutter, or the sensor's \
+                 own density (--clutter-per-km2; the default is the nominal sensor's), a \
+                 smaller region watched (--region-m) or a higher P_D (--pd); ",
+                format!(
+                    "; the clutter: {} false measurements a scan expected over the {} km² \
+                     counted",
+                    three_significant(design.clutter_density * area),
+                    three_significant(area * 1e-6)
+                ),
             )
         } else {
-            String::new()
+            ("", String::new())
         };
         ReplayError::Design(format!(
-            "no configuration meets the design rules for these figures ({}): {e}{clutter} \
-             (the figures come from --sigma-m or --range-sigma-m/--bearing-sigma-deg, \
+            "no configuration meets the design rules for these figures: {fix}{e}{clutter} \
+             ({}; the figures come from --sigma-m or --range-sigma-m/--bearing-sigma-deg, \
              --scan-period-s, --pd, --clutter-per-km2, --region-m, --max-speed-mps and \
              --max-accel-mps2)",
             design_figures(&design, period)

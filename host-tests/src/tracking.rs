@@ -256,8 +256,12 @@ impl IdentitySwitches {
     }
 }
 
-/// See [`IdentitySwitches`].
-pub fn identity_switches(scans: &[ScanReport], gate: f64) -> IdentitySwitches {
+/// See [`IdentitySwitches`]. A distance that is not finite (a position
+/// that is not) is refused.
+pub fn identity_switches(
+    scans: &[ScanReport],
+    gate: f64,
+) -> Result<IdentitySwitches, crate::metrics::NonFiniteCost> {
     use std::collections::BTreeMap;
     let mut current: BTreeMap<u32, u32> = BTreeMap::new();
     let mut out = IdentitySwitches::default();
@@ -286,15 +290,16 @@ pub fn identity_switches(scans: &[ScanReport], gate: f64) -> IdentitySwitches {
         if rows.is_empty() || cols.is_empty() {
             continue;
         }
-        let cost: Vec<Vec<f64>> = rows
+        let distance: Vec<Vec<f64>> = rows
             .iter()
-            .map(|&i| {
-                cols.iter()
-                    .map(|&j| dist(&scan.truth[i], est[j]).min(gate))
-                    .collect()
-            })
+            .map(|&i| cols.iter().map(|&j| dist(&scan.truth[i], est[j])).collect())
             .collect();
-        for (r, c) in crate::metrics::assignment(&cost).into_iter().enumerate() {
+        crate::metrics::finite_costs(&distance)?;
+        let cost: Vec<Vec<f64>> = distance
+            .iter()
+            .map(|row| row.iter().map(|d| d.min(gate)).collect())
+            .collect();
+        for (r, c) in crate::metrics::assignment(&cost)?.into_iter().enumerate() {
             let Some(c) = c else { continue };
             if cost[r][c] >= gate {
                 continue;
@@ -306,5 +311,5 @@ pub fn identity_switches(scans: &[ScanReport], gate: f64) -> IdentitySwitches {
             }
         }
     }
-    out
+    Ok(out)
 }

@@ -594,8 +594,8 @@ fn scene_run(info: &ScenarioInfo, methods: &[Method], run: usize) -> Result<Vec<
     let data = scenario::generate(info.name, monte_carlo_seed(MULTI_TARGET_SEED, run as u64))
         .map_err(|e| e.to_string())?;
     // Per target: (t, z, truth x, y) of every detection.
-    let mut tracks: std::collections::BTreeMap<u32, Vec<(f64, [f64; 2], [f64; 2])>> =
-        Default::default();
+    type Detection = (f64, [f64; 2], [f64; 2]);
+    let mut tracks: std::collections::BTreeMap<u32, Vec<Detection>> = Default::default();
     for scan in &data.scans {
         for (m, origin) in scan.measurements.iter().zip(&scan.origins) {
             let Some(id) = origin else { continue };

@@ -3,8 +3,8 @@
 //! Carlo runs, in f64, f32 and Q32.32.
 //!
 //! Per scenario: OSPA (cut-off c, order p = 2), id changes per true target,
-//! runs in which every target kept one track id, false tracks (count and
-//! duration), completeness, latency to confirm, table refusals; the tracks
+//! runs in which every target kept one track id, tracks never paired with
+//! a target (count and duration), completeness, latency to confirm, table refusals; the tracks
 //! over the truth of run 0 and the mean OSPA against time; and the number of
 //! association decisions of the f32 and fixed-point trackers that differ
 //! from f64 on the same measurements.
@@ -182,9 +182,10 @@ pub struct RunFigures {
     pub ids_kept: bool,
     /// No identity switch inside the crossing window.
     pub ids_kept_in_window: Option<bool>,
-    pub false_tracks: usize,
-    /// Durations (s) of the false tracks.
-    pub false_track_durations: Vec<f64>,
+    /// Established tracks never paired with a target.
+    pub never_paired: usize,
+    /// Durations (s) of the tracks never paired.
+    pub never_paired_durations: Vec<f64>,
     pub completeness: f64,
     /// Mean latency to confirm over the targets that were tracked (s).
     pub latency: Option<f64>,
@@ -197,12 +198,13 @@ pub struct RunFigures {
 }
 
 /// Computes [`RunFigures`] from a run's output.
-pub fn figures(plan: &Plan, out: &TrackerRun) -> RunFigures {
+pub fn figures(plan: &Plan, out: &TrackerRun) -> Result<RunFigures, String> {
     let c = plan.ospa_cutoff;
-    let ospa = ospa_against_time(&out.scans, c, OSPA_ORDER);
+    let refused = |e: crate::metrics::NonFiniteCost| format!("{}: {e}", plan.label);
+    let ospa = ospa_against_time(&out.scans, c, OSPA_ORDER).map_err(refused)?;
     let n = ospa.len().max(1) as f64;
-    let m = track_metrics(&out.scans, c);
-    let switches = identity_switches(&out.scans, c);
+    let m = track_metrics(&out.scans, c).map_err(refused)?;
+    let switches = identity_switches(&out.scans, c).map_err(refused)?;
     let window = plan
         .crossing_window
         .map(|(t0, t1)| switches.count_between(t0, t1) == 0);
@@ -211,7 +213,7 @@ pub fn figures(plan: &Plan, out: &TrackerRun) -> RunFigures {
         .iter()
         .filter_map(|t| t.latency_to_confirm_s)
         .collect();
-    RunFigures {
+    Ok(RunFigures {
         ospa: ospa.iter().map(|(_, o)| o.distance).sum::<f64>() / n,
         ospa_localisation: ospa.iter().map(|(_, o)| o.localisation).sum::<f64>() / n,
         ospa_cardinality: ospa.iter().map(|(_, o)| o.cardinality).sum::<f64>() / n,
@@ -220,8 +222,8 @@ pub fn figures(plan: &Plan, out: &TrackerRun) -> RunFigures {
         targets: m.targets.len(),
         ids_kept: switches.count() == 0,
         ids_kept_in_window: window,
-        false_tracks: m.false_tracks.len(),
-        false_track_durations: m.false_tracks.iter().map(|f| f.duration_s()).collect(),
+        never_paired: m.never_paired.len(),
+        never_paired_durations: m.never_paired.iter().map(|f| f.duration_s()).collect(),
         completeness: m.completeness,
         latency: (!latencies.is_empty())
             .then(|| latencies.iter().sum::<f64>() / latencies.len() as f64),
@@ -230,7 +232,7 @@ pub fn figures(plan: &Plan, out: &TrackerRun) -> RunFigures {
         dropped_overflow: out.stats.dropped_overflow,
         scans: out.scans.len(),
         scan_seconds: out.scan_time.as_secs_f64(),
-    }
+    })
 }
 
 /// One Monte Carlo run: figures per number type, decision comparisons with
@@ -265,9 +267,9 @@ pub fn one_run(
     let dfx = compare_decisions(&r64, &rfx);
     let result = RunResult {
         figures: [
-            figures(plan, &r64),
-            figures(plan, &r32),
-            figures(plan, &rfx),
+            figures(plan, &r64)?,
+            figures(plan, &r32)?,
+            figures(plan, &rfx)?,
         ],
         first_diff: [
             first_diff_label(&r64, &r32, &d32),
@@ -275,6 +277,7 @@ pub fn one_run(
         ],
         diffs: [d32, dfx],
         ospa_series: ospa_against_time(&r64.scans, plan.ospa_cutoff, OSPA_ORDER)
+            .map_err(|e| format!("{}: {e}", plan.label))?
             .into_iter()
             .map(|(t, o)| (t, o.distance, o.localisation, o.cardinality))
             .collect(),
@@ -355,14 +358,14 @@ fn aggregate(plan: &Plan, results: &[RunResult], t: usize) -> Aggregate {
             .filter(|r| r.figures[t].ids_kept_in_window == Some(true))
             .count()
     });
-    let false_tracks = ci_of(results, t, |f| f.false_tracks as f64);
-    let no_false = results
+    let never_paired = ci_of(results, t, |f| f.never_paired as f64);
+    let none_never_paired = results
         .iter()
-        .filter(|r| r.figures[t].false_tracks == 0)
+        .filter(|r| r.figures[t].never_paired == 0)
         .count();
     let durations: Vec<f64> = results
         .iter()
-        .flat_map(|r| r.figures[t].false_track_durations.iter().copied())
+        .flat_map(|r| r.figures[t].never_paired_durations.iter().copied())
         .collect();
     let completeness = ci_of(results, t, |f| f.completeness);
     let latencies: Vec<f64> = results
@@ -399,8 +402,8 @@ fn aggregate(plan: &Plan, results: &[RunResult], t: usize) -> Aggregate {
             fmt_ci(&idc, 3),
             proportion(kept, n),
             window.map_or("–".into(), |w| proportion(w, n)),
-            fmt_ci(&false_tracks, 2),
-            proportion(no_false, n),
+            fmt_ci(&never_paired, 2),
+            proportion(none_never_paired, n),
             duration,
             fmt_ci(&completeness, 3),
             if latencies.is_empty() {
@@ -426,9 +429,9 @@ const METRIC_HEADERS: [&str; 18] = [
     "id changes / target (per-scan assignment)",
     "runs without id switch (95 % CI)",
     "runs without id switch in the crossing window",
-    "false tracks / run",
-    "runs without false track",
-    "false-track duration (s, pooled)",
+    "tracks never paired / run",
+    "runs without a track never paired",
+    "duration of tracks never paired (s, pooled)",
     "completeness",
     "latency to confirm (s)",
     "targets never tracked (all runs)",
@@ -642,16 +645,16 @@ fn scenario_summary(plan: &Plan, results: &[RunResult]) -> String {
     }
     let ospa = mean_ci95(&results.iter().map(|r| f(r).ospa).collect::<Vec<_>>());
     let kept = results.iter().filter(|r| f(r).ids_kept).count();
-    let no_false = results.iter().filter(|r| f(r).false_tracks == 0).count();
+    let none_never_paired = results.iter().filter(|r| f(r).never_paired == 0).count();
     format!(
         "- **{}** (c = {} m, {} runs, f64): OSPA {} m; no identity switch in {} of the runs; \
-         no false track in {}.",
+         no track never paired with a target in {}.",
         plan.label,
         plan.ospa_cutoff,
         n,
         fmt_ci(&ospa, 1),
         proportion(kept, n),
-        proportion(no_false, n)
+        proportion(none_never_paired, n)
     )
 }
 

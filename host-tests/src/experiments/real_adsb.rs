@@ -20,7 +20,9 @@
 //!   figures, in f64, f32 and the fast fixed point, scored by
 //!   [`crate::metrics::track_metrics_with`] (assignment on the distance,
 //!   pairs beyond [`PAIR_LIMIT_M`] dropped) and OSPA ([`OSPA_CUTOFF_M`], order 2) averaged over the scans;
-//!   the whole replay (read, track, write the CSV) is timed in-process.
+//!   the whole replay (read, track, write the CSV) is timed in-process,
+//!   into a file of its own (`scene_times.md`), so that the accuracy
+//!   tables are the same on every run.
 //! * The scene drawn again ([`super::scene_draws`]): its truth measured
 //!   with new seeds, also at the held-out scene's clutter density.
 //!
@@ -592,7 +594,8 @@ fn ms(t: f64) -> i64 {
     (t * 1000.0).round() as i64
 }
 
-/// The scene's truth per scan time (flights numbered by first appearance).
+/// The scene's truth per scan time, ms: the file's times are the scans
+/// (flights numbered by first appearance).
 pub fn read_scene_truth(
     dir: &Path,
     scene: &Scene,
@@ -662,57 +665,86 @@ pub fn run_scene(
     };
     score_tracks(
         label,
+        &format!("replay --tracker output on {}", path.display()),
         &run.csv,
         truth,
-        scene.scan_period_ms,
         best,
         run.design.to_string(),
     )
     .map_err(|e| format!("{}: {e}", scene.name))
 }
 
+/// How far (ms) the time of a tracker output's row may be from the truth's
+/// scan it is scored at.
+pub const SCAN_TIME_TOLERANCE_MS: i64 = 1;
+
 /// Scores a tracker's output in `replay --tracker`'s layout (`t,track_id,
-/// status,x,y`, other columns ignored) against the points of `truth` at
-/// the scans (every `scan_period_ms`); `label`, `seconds` and `design` are
-/// carried into the result.
+/// status,x,y`, other columns ignored) against `truth`: the truth's points
+/// of every scan, keyed by the scan's time in ms (a scan without a target
+/// is a key with no points). The scans are the truth's times; each row of
+/// the output joins the scan within [`SCAN_TIME_TOLERANCE_MS`] of its `t`,
+/// and a row with none is refused with its line, as is a row that cannot
+/// be read or whose `t`, `x` or `y` is not finite. `source` names where the
+/// output came from (a file's path) in the errors; `label`, `seconds` and
+/// `design` are carried into the result.
 pub fn score_tracks(
     label: &str,
+    source: &str,
     csv_text: &str,
     truth: &BTreeMap<i64, Vec<TruthPoint>>,
-    scan_period_ms: i64,
     seconds: f64,
     design: String,
 ) -> Result<SceneRun, String> {
     let mut tracks: BTreeMap<i64, Vec<TrackPoint>> = BTreeMap::new();
     let mut reader = csv::Reader::from_reader(csv_text.as_bytes());
-    for row in reader.deserialize::<TrackRow>() {
-        let r = row.map_err(|e| format!("{label}: tracker output: {e}"))?;
-        let status: TrackStatus = r.status.parse()?;
-        tracks.entry(ms(r.t)).or_default().push(TrackPoint {
+    let headers = reader
+        .headers()
+        .map_err(|e| format!("{source}: {e}"))?
+        .clone();
+    for record in reader.records() {
+        let record = record.map_err(|e| format!("{source}: {e}"))?;
+        let line = record.position().map_or(0, csv::Position::line);
+        let refused = |why: String| format!("{source}, line {line}: {why}");
+        let r: TrackRow = record
+            .deserialize(Some(&headers))
+            .map_err(|e| refused(e.to_string()))?;
+        for (column, v) in [("t", r.t), ("x", r.x), ("y", r.y)] {
+            if !v.is_finite() {
+                return Err(refused(format!("{column} = {v} is not a finite number")));
+            }
+        }
+        let status: TrackStatus = r.status.parse().map_err(refused)?;
+        let t = ms(r.t);
+        let scan = truth
+            .range(
+                t.saturating_sub(SCAN_TIME_TOLERANCE_MS)..=t.saturating_add(SCAN_TIME_TOLERANCE_MS),
+            )
+            .map(|(&scan, _)| scan)
+            .min_by_key(|scan| scan.abs_diff(t))
+            .ok_or_else(|| {
+                refused(format!(
+                    "t = {} s is at no scan of the truth (none within {SCAN_TIME_TOLERANCE_MS} \
+                     ms)",
+                    r.t
+                ))
+            })?;
+        tracks.entry(scan).or_default().push(TrackPoint {
             id: r.track_id,
             status,
             x: r.x,
             y: r.y,
         });
     }
-    // Every scan (every period to the last truth time) with the truth at
-    // it, and any other time of the output.
-    let period = scan_period_ms.max(1);
-    let last = truth.keys().next_back().copied().unwrap_or(0);
-    let grid = (0..=last / period).map(|k| k * period);
-    let times: std::collections::BTreeSet<i64> = tracks.keys().copied().chain(grid).collect();
-    let scans: Vec<ScanReport> = times
+    let scans: Vec<ScanReport> = truth
         .iter()
-        .map(|&k| ScanReport {
+        .map(|(&k, points)| ScanReport {
             t: k as f64 / 1000.0,
-            truth: (k % period == 0)
-                .then(|| truth.get(&k).cloned())
-                .flatten()
-                .unwrap_or_default(),
-            tracks: tracks.get(&k).cloned().unwrap_or_default(),
+            truth: points.clone(),
+            tracks: tracks.remove(&k).unwrap_or_default(),
         })
         .collect();
-    let m = track_metrics_with(&scans, PAIR_LIMIT_M, PairingCost::Distance);
+    let m = track_metrics_with(&scans, PAIR_LIMIT_M, PairingCost::Distance)
+        .map_err(|e| format!("{source}: {e}"))?;
     let (unpaired_before_first, unpaired_after_first) =
         m.targets.iter().fold((0, 0), |(before, after), t| {
             (
@@ -726,9 +758,9 @@ pub fn score_tracks(
         continuity: m.continuity,
         id_changes: m.id_changes,
         rmse: m.assigned_rmse,
-        ospa: mean_ospa(&scans, OSPA_CUTOFF_M, OSPA_ORDER),
+        ospa: mean_ospa(&scans, OSPA_CUTOFF_M, OSPA_ORDER).map_err(|e| format!("{source}: {e}"))?,
         false_tracks: m.mostly_unassigned_tracks.len(),
-        never_paired: m.false_tracks.len(),
+        never_paired: m.never_paired.len(),
         reported_tracks: m.established_tracks,
         unpaired_before_first,
         unpaired_after_first,
@@ -739,23 +771,26 @@ pub fn score_tracks(
     })
 }
 
-/// Stone Soup's tracks and whole-process time for `scene`, if
-/// `scripts/stonesoup_scene.py` has written them into `group_dir`.
-fn stonesoup_output(group_dir: &Path, scene: &Scene) -> Option<(String, f64)> {
+/// Stone Soup's tracks (with their file's path) and whole-process time
+/// for `scene`, if `scripts/stonesoup_scene.py` has written them into
+/// `group_dir`.
+fn stonesoup_output(group_dir: &Path, scene: &Scene) -> Option<(String, String, f64)> {
     let base = group_dir.join(STONESOUP_DIR);
-    let csv_text = stonesoup_tracks(&base, scene.name)?;
+    let (path, csv_text) = stonesoup_tracks(&base, scene.name)?;
     let seconds = fs::read_to_string(base.join(format!("{}.time", scene.name)))
         .ok()?
         .trim()
         .parse()
         .ok()?;
-    Some((csv_text, seconds))
+    Some((path, csv_text, seconds))
 }
 
 /// The tracks `scripts/stonesoup_scene.py` wrote into `dir` for the
-/// measurement file `name`, if it did.
-pub fn stonesoup_tracks(dir: &Path, name: &str) -> Option<String> {
-    fs::read_to_string(dir.join(format!("{name}.csv"))).ok()
+/// measurement file `name`, if it did: the file's path and its text.
+pub fn stonesoup_tracks(dir: &Path, name: &str) -> Option<(String, String)> {
+    let path = dir.join(format!("{name}.csv"));
+    let text = fs::read_to_string(&path).ok()?;
+    Some((path.display().to_string(), text))
 }
 
 /// Where `scripts/stonesoup_scene.py` writes, under the group's folder.
@@ -1025,15 +1060,14 @@ pub fn run(ctx: &Context) -> Result<(), String> {
          (not clipped), pairs beyond {PAIR_LIMIT_M} m dropped; coverage = paired \
          truth points / truth points; continuity = paired points / truth points from the flight's \
          first pairing; id changes: changes of the paired track id between consecutive paired \
-         scans of a flight; false tracks: paired in under half of their reported scans (never \
-         paired in brackets); OSPA c = {OSPA_CUTOFF_M} m, p = 2, averaged over the scans; RMSE \
+         scans of a flight; false tracks: paired in under half of their reported scans; never \
+         paired: paired in none; OSPA c = {OSPA_CUTOFF_M} m, p = 2, averaged over the scans; RMSE \
          over the paired points; the truth points not paired, split at the flight's first \
          pairing (before it: the track's start and its M-of-N confirmation; after it: losses). \
-         Time: the whole replay (read the file, track, write the CSV) \
-         in-process on this host, the least of {TIMING_REPEATS} runs; it varies between runs and \
-         hosts. The Stone Soup rows, when present, score the tracks `scripts/stonesoup_scene.py` \
+         The Stone Soup rows, when present, score the tracks `scripts/stonesoup_scene.py` \
          wrote into `{STONESOUP_DIR}/` (Stone Soup 1.9.1's GNN tracker configured from the same \
-         design; its time is a whole Python process).\n"
+         design). The replay times, and Stone Soup's against abtrack's, are in `{TIMES}.md`, \
+         apart from these tables, which are the same on every run.\n"
     );
     let mut scene_table = Table::new([
         "scene",
@@ -1048,8 +1082,8 @@ pub fn run(ctx: &Context) -> Result<(), String> {
         "reported tracks",
         "truth unpaired before its first pairing",
         "truth unpaired after it",
-        "replay time (ms)",
     ]);
+    let mut times = Table::new(["scene", "tracker", "replay time (ms)"]);
     let mut speed: Vec<String> = Vec::new();
     let mut common: Vec<String> = Vec::new();
     for scene in &SCENES {
@@ -1063,22 +1097,24 @@ pub fn run(ctx: &Context) -> Result<(), String> {
                 design = r.design.clone();
             }
             scene_table.push(scene_row(scene, &r));
+            times.push(time_row(scene, &r));
             if label == "f64" {
                 scene_plot(&dir, scene, &r)?;
                 f64_seconds = r.seconds;
                 f64_pairs = r.pairs.clone();
             }
         }
-        if let Some((csv_text, seconds)) = stonesoup_output(&dir, scene) {
+        if let Some((path, csv_text, seconds)) = stonesoup_output(&dir, scene) {
             let r = score_tracks(
                 STONESOUP_LABEL,
+                &path,
                 &csv_text,
                 &truth,
-                scene.scan_period_ms,
                 seconds,
                 String::new(),
             )?;
             scene_table.push(scene_row(scene, &r));
+            times.push(time_row(scene, &r));
             if let Some((ours, theirs, n)) = common_rmse(&f64_pairs, &r.pairs) {
                 common.push(format!(
                     "{}: {n} points (of {} and {} paired), abtrack (f64) {:.1} m, Stone Soup {:.1} m",
@@ -1105,14 +1141,7 @@ pub fn run(ctx: &Context) -> Result<(), String> {
     }
     scene_table.write(&dir, "scene")?;
     summary.push_str(&scene_table.to_markdown());
-    if !speed.is_empty() {
-        let _ = writeln!(
-            summary,
-            "\nWhole-process time of Stone Soup (Python, imports included, one process per scene) \
-             against abtrack's whole replay in f64: {}.",
-            speed.join("; ")
-        );
-    }
+    write_scene_times(&dir, &times, &speed)?;
     if !common.is_empty() {
         let _ = writeln!(
             summary,
@@ -1143,8 +1172,44 @@ fn scene_row(scene: &Scene, r: &SceneRun) -> Vec<String> {
         r.reported_tracks.to_string(),
         r.unpaired_before_first.to_string(),
         r.unpaired_after_first.to_string(),
+    ]
+}
+
+/// The file of the scene's wall-clock times (`<TIMES>.csv`, `.md`).
+const TIMES: &str = "scene_times";
+
+/// One row of the times table.
+fn time_row(scene: &Scene, r: &SceneRun) -> Vec<String> {
+    vec![
+        scene.name.to_string(),
+        r.label.clone(),
         format!("{:.0}", r.seconds * 1000.0),
     ]
+}
+
+/// Writes the scene's replay times and, when Stone Soup's are there, the
+/// comparison `speed` ([`TIMES`]): wall-clock times change on every run,
+/// so they are kept out of the accuracy tables.
+fn write_scene_times(dir: &Path, times: &Table, speed: &[String]) -> Result<(), String> {
+    write_file(&dir.join(format!("{TIMES}.csv")), &times.to_csv())?;
+    let mut text = format!(
+        "# Real scene: replay times\n\n\
+         Written by `cd host-tests && cargo run --release --bin experiments -- --only {NAME}` \
+         with the scene's accuracy figures (`scene.md`, `summary.md`), apart from them: these \
+         vary between runs and hosts. abtrack: the whole replay (read the file, track, write the \
+         CSV) in-process on this host, the least of {TIMING_REPEATS} runs. Stone Soup: the whole \
+         Python process (imports included, one process per scene) that \
+         `scripts/stonesoup_scene.py` timed into `{STONESOUP_DIR}/<scene>.time`.\n\n{}",
+        times.to_markdown()
+    );
+    if !speed.is_empty() {
+        let _ = writeln!(
+            text,
+            "\nWhole-process time of Stone Soup against abtrack's whole replay in f64: {}.",
+            speed.join("; ")
+        );
+    }
+    write_file(&dir.join(format!("{TIMES}.md")), &text)
 }
 
 /// The truth and the reported tracks' positions of every scan.

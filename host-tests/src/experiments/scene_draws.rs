@@ -105,9 +105,8 @@ pub fn clutter_per_scan(condition: &Scene) -> f64 {
 pub fn draw(truth: &BTreeMap<i64, Vec<TruthPoint>>, condition: &Scene, stream: u64) -> String {
     let mut rng = rng_from_seed(stream);
     let mut out = String::from("t,x,y\n");
-    let (period_ms, sigma) = (condition.scan_period_ms.max(1), condition.sigma_m);
-    for scan in 0..=LAST_SCAN_MS / period_ms {
-        let t_ms = scan * period_ms;
+    let sigma = condition.sigma_m;
+    for t_ms in scan_times_ms(condition) {
         let mut plots: Vec<[f64; 2]> = Vec::new();
         for p in truth.get(&t_ms).map(Vec::as_slice).unwrap_or_default() {
             if bernoulli(&mut rng, condition.detection_probability) {
@@ -129,6 +128,25 @@ pub fn draw(truth: &BTreeMap<i64, Vec<TruthPoint>>, condition: &Scene, stream: u
         }
     }
     out
+}
+
+/// The times (ms) of `condition`'s scans: every scan period from 0 to
+/// 1200 s.
+pub fn scan_times_ms(condition: &Scene) -> impl Iterator<Item = i64> {
+    let period_ms = condition.scan_period_ms.max(1);
+    (0..=LAST_SCAN_MS / period_ms).map(move |scan| scan * period_ms)
+}
+
+/// The truth of `condition`'s scans ([`scan_times_ms`]), keyed by their
+/// times (a scan without a flight keeps its key, with no points): what a
+/// draw of `condition` is scored against.
+pub fn truth_at_scans(
+    truth: &BTreeMap<i64, Vec<TruthPoint>>,
+    condition: &Scene,
+) -> BTreeMap<i64, Vec<TruthPoint>> {
+    scan_times_ms(condition)
+        .map(|t| (t, truth.get(&t).cloned().unwrap_or_default()))
+        .collect()
 }
 
 /// The measurement file of condition `CONDITIONS[index]` drawn with `seed`.
@@ -154,9 +172,9 @@ pub fn track(
         .map_err(|e| format!("{} {label}: {e}", condition.name))?;
     score_tracks(
         label,
+        &format!("replay --tracker output on the {} draw", condition.name),
         &replay.csv,
-        truth,
-        condition.scan_period_ms,
+        &truth_at_scans(truth, condition),
         f64::NAN,
         replay.design.to_string(),
     )
@@ -216,7 +234,7 @@ pub fn stonesoup_draw(
     seed: u64,
     truth: &BTreeMap<i64, Vec<TruthPoint>>,
 ) -> Result<Option<SceneRun>, String> {
-    let Some(csv_text) = stonesoup_tracks(
+    let Some((path, csv_text)) = stonesoup_tracks(
         &dir.join(STONESOUP_DIR).join(DRAWS_DIR),
         &draw_name(condition, seed),
     ) else {
@@ -224,9 +242,9 @@ pub fn stonesoup_draw(
     };
     score_tracks(
         STONESOUP_LABEL,
+        &path,
         &csv_text,
-        truth,
-        condition.scan_period_ms,
+        &truth_at_scans(truth, condition),
         f64::NAN,
         String::new(),
     )

@@ -227,9 +227,9 @@ fn first_points_kept_through_a_miss_start_real_flights_sooner() {
                 let replay = replay_tracker_reader(&options, text.as_bytes()).unwrap();
                 let run = score_tracks(
                     "",
+                    "",
                     &replay.csv,
-                    &truth,
-                    condition.scan_period_ms,
+                    &scene_draws::truth_at_scans(&truth, condition),
                     f64::NAN,
                     String::new(),
                 )
@@ -442,22 +442,22 @@ fn scene_metrics_of_known_configurations() {
             .collect()
     };
     let on = scans(0.0, None);
-    let m = track_metrics_with(&on, 500.0, PairingCost::Distance);
+    let m = track_metrics_with(&on, 500.0, PairingCost::Distance).unwrap();
     assert_eq!((m.completeness, m.continuity, m.id_changes), (1.0, 1.0, 0));
     assert_eq!(m.assigned_rmse, 0.0);
-    assert_eq!(mean_ospa(&on, 1000.0, 2.0), 0.0);
+    assert_eq!(mean_ospa(&on, 1000.0, 2.0).unwrap(), 0.0);
     let off = scans(30.0, Some(4));
-    let m = track_metrics_with(&off, 500.0, PairingCost::Distance);
+    let m = track_metrics_with(&off, 500.0, PairingCost::Distance).unwrap();
     assert!((m.assigned_rmse - 30.0).abs() < 1e-9);
-    assert!((mean_ospa(&off, 1000.0, 2.0) - 30.0).abs() < 1e-9);
+    assert!((mean_ospa(&off, 1000.0, 2.0).unwrap() - 30.0).abs() < 1e-9);
     // New ids from scan 4 on: one change per flight.
     assert_eq!(m.id_changes, 2);
     assert!(m.mostly_unassigned_tracks.is_empty());
     let far = scans(600.0, None);
-    let m = track_metrics_with(&far, 500.0, PairingCost::Distance);
+    let m = track_metrics_with(&far, 500.0, PairingCost::Distance).unwrap();
     assert_eq!(m.completeness, 0.0);
     assert_eq!(m.mostly_unassigned_tracks, vec![1, 2]);
-    assert!((mean_ospa(&far, 1000.0, 2.0) - 600.0).abs() < 1e-9);
+    assert!((mean_ospa(&far, 1000.0, 2.0).unwrap() - 600.0).abs() < 1e-9);
 }
 
 /// `--numeric fixed32` runs what the Cortex-M3 firmware runs: the x/y
@@ -525,4 +525,155 @@ fn fixed32_runs_what_the_cortex_m3_firmware_runs() {
         replay_reader(&single, cartesian.as_bytes()).unwrap_err(),
         Failure::Replay(ReplayError::Fixed32SingleFilter)
     );
+}
+
+/// A tracker output with a position or time that is not finite (`nan`, as
+/// an exporter writes a missing value) is refused with the file and the
+/// line, instead of scored (an unclipped NaN distance never ended the
+/// assignment's search).
+#[test]
+fn a_tracker_output_that_is_not_finite_is_refused_with_its_line() {
+    let truth = std::collections::BTreeMap::from([(
+        0,
+        vec![TruthPoint {
+            id: 1,
+            x: 0.0,
+            y: 0.0,
+        }],
+    )]);
+    for (row, column) in [
+        ("0,1,confirmed,nan,0", "x = NaN"),
+        ("0,1,confirmed,0,-inf", "y = -inf"),
+        ("NaN,1,confirmed,0,0", "t = NaN"),
+    ] {
+        let text = format!("t,track_id,status,x,y\n0,2,confirmed,10,0\n{row}\n");
+        let e = score_tracks(
+            "label",
+            "tracks.csv",
+            &text,
+            &truth,
+            f64::NAN,
+            String::new(),
+        )
+        .unwrap_err();
+        assert_eq!(
+            e,
+            format!("tracks.csv, line 3: {column} is not a finite number"),
+            "{row}"
+        );
+    }
+}
+
+/// The scans are the truth's own times, wherever they start: a truth and a
+/// tracker on one flight at 2, 6, 10 … s are scored (coverage 1), a scan of
+/// the truth without a flight keeps its tracks (unpaired there), a row a
+/// millisecond off joins its scan, and a row at no scan of the truth (0.3 s
+/// late) is refused with its line instead of scored as a scan of its own.
+#[test]
+fn the_scans_scored_are_the_truths_times() {
+    let point = |t_ms: i64| TruthPoint {
+        id: 1,
+        x: t_ms as f64,
+        y: 0.0,
+    };
+    let mut truth: std::collections::BTreeMap<i64, Vec<TruthPoint>> = (0..5)
+        .map(|k| 2000 + 4000 * k)
+        .map(|t| (t, vec![point(t)]))
+        .collect();
+    let rows = |late_s: f64| {
+        let mut text = String::from("t,track_id,status,x,y\n");
+        for k in 0..5 {
+            let t_ms = 2000 + 4000 * k;
+            let t = t_ms as f64 / 1000.0 + late_s;
+            text.push_str(&format!("{t},1,confirmed,{},0\n", t_ms + 10));
+        }
+        text
+    };
+    let score = |truth: &std::collections::BTreeMap<i64, Vec<TruthPoint>>, text: &str| {
+        score_tracks("", "out.csv", text, truth, f64::NAN, String::new())
+    };
+    let run = score(&truth, &rows(0.0)).unwrap();
+    assert_eq!(run.scans.len(), 5);
+    assert_eq!(
+        (run.coverage, run.continuity, run.id_changes),
+        (1.0, 1.0, 0)
+    );
+    assert!((run.rmse - 10.0).abs() < 1e-9, "{}", run.rmse);
+    // Within the tolerance.
+    assert_eq!(score(&truth, &rows(0.001)).unwrap().coverage, 1.0);
+    let e = score(&truth, &rows(0.3)).unwrap_err();
+    assert_eq!(
+        e,
+        "out.csv, line 2: t = 2.3 s is at no scan of the truth (none within 1 ms)"
+    );
+    // The flight absent from the last two scans, which stay scans: the
+    // track there is unpaired, so it is paired in 3 of its 5 scans.
+    truth.insert(14_000, Vec::new());
+    truth.insert(18_000, Vec::new());
+    let run = score(&truth, &rows(0.0)).unwrap();
+    assert_eq!(run.scans.len(), 5);
+    assert_eq!(run.pairs.len(), 3);
+    assert_eq!((run.false_tracks, run.never_paired), (0, 0));
+}
+
+/// The group's accuracy tables are the same on every run: the wall-clock
+/// times (abtrack's replays, Stone Soup's processes and their ratio) are
+/// written apart, into `scene_times.*`. Two runs of the group into scratch
+/// folders, each with the committed Stone Soup tracks and times.
+#[test]
+fn the_scene_tables_are_the_same_on_every_run_and_the_times_are_apart() {
+    use abtrack_host_tests::experiments::{common::Context, real_adsb};
+    fn copy_dir(from: &std::path::Path, to: &std::path::Path) {
+        std::fs::create_dir_all(to).unwrap();
+        for entry in std::fs::read_dir(from).unwrap() {
+            let path = entry.unwrap().path();
+            let target = to.join(path.file_name().unwrap());
+            if path.is_dir() {
+                copy_dir(&path, &target);
+            } else {
+                std::fs::copy(&path, &target).unwrap();
+            }
+        }
+    }
+    let committed = std::path::Path::new(env!("CARGO_MANIFEST_DIR"))
+        .join("../results/real-adsb")
+        .join(real_adsb::STONESOUP_DIR);
+    let read = |dir: &std::path::Path, file: &str| {
+        std::fs::read_to_string(dir.join(real_adsb::NAME).join(file)).unwrap()
+    };
+    let runs: Vec<std::path::PathBuf> = (0..2)
+        .map(|k| {
+            let out =
+                std::env::temp_dir().join(format!("abtrack-real-adsb-{}-{k}", std::process::id()));
+            let _ = std::fs::remove_dir_all(&out);
+            copy_dir(
+                &committed,
+                &out.join(real_adsb::NAME).join(real_adsb::STONESOUP_DIR),
+            );
+            let ctx = Context {
+                out_dir: out.clone(),
+                runs_override: None,
+            };
+            real_adsb::run(&ctx).unwrap();
+            out
+        })
+        .collect();
+    for file in ["scene.csv", "scene.md", "summary.md"] {
+        assert_eq!(read(&runs[0], file), read(&runs[1], file), "{file}");
+        assert!(!read(&runs[0], file).contains("time (ms)"), "{file}");
+    }
+    let times = read(&runs[0], "scene_times.csv");
+    let mut lines = times.lines();
+    assert_eq!(lines.next(), Some("scene,tracker,replay time (ms)"));
+    // Per scene: the four configurations of abtrack and Stone Soup.
+    assert_eq!(lines.count(), 2 * 5, "{times}");
+    let text = read(&runs[0], "scene_times.md");
+    assert!(
+        text.contains("Whole-process time of Stone Soup against abtrack's whole replay in f64"),
+        "{text}"
+    );
+    assert!(text.contains("×"), "{text}");
+    for out in runs {
+        let _ = std::fs::remove_dir_all(out);
+    }
 }

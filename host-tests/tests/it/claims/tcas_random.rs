@@ -110,7 +110,7 @@ fn the_suite_spans_the_specified_ranges() {
     let (lo, hi) = s.iter().fold((f64::MAX, f64::MIN), |(lo, hi), e| {
         (lo.min(e.closure_kt), hi.max(e.closure_kt))
     });
-    assert!(lo >= 100.0 && lo < 150.0 && hi <= 1000.0 && hi > 950.0);
+    assert!((100.0..150.0).contains(&lo) && hi <= 1000.0 && hi > 950.0);
     assert!(s
         .iter()
         .all(|e| e.hmd_m <= 1.5 * 1852.0 && e.vmd_ft.abs() <= 1200.0));

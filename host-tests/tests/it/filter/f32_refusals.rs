@@ -56,15 +56,18 @@ fn exponent_sweep() -> Vec<f32> {
     out
 }
 
+/// One form of the guard: its fold and its final test.
+type GuardForm = (fn(f32, f32) -> f32, fn(f32) -> bool);
+
 /// Folds `values` from the guard's zero with one form and says whether it
 /// passed.
-fn passes(form: (fn(f32, f32) -> f32, fn(f32) -> bool), values: &[f32]) -> bool {
+fn passes(form: GuardForm, values: &[f32]) -> bool {
     let (fold, passed) = form;
     passed(values.iter().fold(0.0, |check, &v| fold(check, v)))
 }
 
-const BITS: (fn(f32, f32) -> f32, fn(f32) -> bool) = (f32_check::fold_bits, f32_check::passed_bits);
-const FPU: (fn(f32, f32) -> f32, fn(f32) -> bool) = (f32_check::fold_fpu, f32_check::passed_fpu);
+const BITS: GuardForm = (f32_check::fold_bits, f32_check::passed_bits);
+const FPU: GuardForm = (f32_check::fold_fpu, f32_check::passed_fpu);
 
 /// The guard the filters use (the form selected for this target).
 fn guard_passes(values: &[f32]) -> bool {

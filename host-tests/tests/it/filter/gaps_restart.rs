@@ -765,6 +765,35 @@ fn replay_runs_through_gaps_and_jitter_in_every_number_system() {
     }
 }
 
+/// The skipped rows are counted by reason, one clause each, and a file
+/// whose rows were mostly skipped is warned about: a first row at 500 s
+/// and the rest from 0 s leaves 19 of 20 rows out of time order. With one
+/// row of each reason among many, no warning.
+#[test]
+fn skipped_rows_are_counted_by_reason_and_a_mostly_skipped_file_is_warned_about() {
+    let mut late = String::from("t,x\n500,0\n");
+    for k in 0..19 {
+        late.push_str(&format!("{},{k}\n", 10 * k));
+    }
+    let run = replay("--filter auto --sigma-m 50", "f64", &late);
+    assert_eq!((run.events.rows, run.events.late), (20, 19));
+    assert_eq!(
+        run.events.to_string(),
+        "replay: 19 skipped (t = 0, 10, 20, 30, 40, 50, 60, 70, …): 0 less than 0.05 s after \
+         the last report used, 0 at its time (duplicates), 19 before it (out of order)\n\
+         replay: warning: 19 of the 20 rows were skipped, most of the file (rows out of time \
+         order are skipped: sort the file by t)\n"
+    );
+    let mixed = "t,x\n0,0\n1,10\n1,11\n1.01,12\n0.5,5\n2,20\n3,30\n4,40\n";
+    let run = replay("--filter auto --sigma-m 50", "f64", mixed);
+    assert_eq!(run.events.too_close(), 1);
+    assert_eq!(
+        run.events.to_string(),
+        "replay: 3 skipped (t = 1, 1.01, 0.5): 1 less than 0.05 s after the last report used, \
+         1 at its time (duplicates), 1 before it (out of order)\n"
+    );
+}
+
 /// A range–azimuth report out of time order is skipped and counted too.
 #[test]
 fn range_azimuth_replay_skips_a_report_out_of_order() {

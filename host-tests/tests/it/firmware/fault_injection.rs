@@ -239,10 +239,12 @@ fn baseline(board: &Board) -> usize {
     let reports = frames::scenario_reports(frames::TCAS_DEMO, frames::FAULT_INPUT_SEED, 1).unwrap();
     let encoded = frames::encode(&reports, Faults::default());
     let host = model(board, &encoded.bytes);
-    let mut stream = FaultStream::default();
-    stream.scans = (0..frames::TCAS_DEMO_SCANS as u32)
-        .map(|k| (k * 1000, f64::from(k), 0))
-        .collect();
+    let stream = FaultStream {
+        scans: (0..frames::TCAS_DEMO_SCANS as u32)
+            .map(|k| (k * 1000, f64::from(k), 0))
+            .collect(),
+        ..FaultStream::default()
+    };
     let (scans, _) = scans_of(&host.output);
     let tracked = tracked_scans(&stream, &scans);
     println!(

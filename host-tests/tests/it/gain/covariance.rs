@@ -275,8 +275,8 @@ fn interval_formed_once_is_update<N: Numeric>() {
         match z {
             Some(z) => {
                 let z = z.map(N::Length::from_f64_lossy);
-                let a = per_call.update(&noise, z, dt);
-                let b = once.update_step(&noise, z, &step);
+                let a = per_call.update(noise, z, dt);
+                let b = once.update_step(noise, z, &step);
                 assert_eq!(a, b);
                 outcomes.insert(format!("{a:?}"));
             }

@@ -50,7 +50,8 @@ fn worst_error<G: GainSchedule<f64, 2>>(
         }
         let p = track.filter().position();
         let e = (p[0] - truth[0]).hypot(p[1] - truth[1]);
-        if !(e < 1e12) {
+        // Not below 1e12, or not a number.
+        if e.partial_cmp(&1e12) != Some(std::cmp::Ordering::Less) {
             return f64::INFINITY;
         }
         if k >= from {

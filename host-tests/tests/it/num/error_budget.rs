@@ -51,8 +51,13 @@ fn fast_fixed_point_is_ten_times_closer_than_f32() {
         let fixed = measure_documented::<abtrack::Fixed32>(&run).unwrap();
         assert_eq!(fixed.refused, 0, "{}: updates refused", run.name);
         let components = if run.order == 3 { 3 } else { 2 };
-        for i in 0..components {
-            let ratio = f32_max[i] / fixed.deviation.max[i];
+        for (i, (f32_max, fixed_max)) in f32_max
+            .iter()
+            .zip(&fixed.deviation.max)
+            .take(components)
+            .enumerate()
+        {
+            let ratio = f32_max / fixed_max;
             assert!(
                 ratio >= 10.0,
                 "{} component {i}: only {ratio:.1} times closer than f32",

@@ -90,7 +90,7 @@ fn ospa_by_hand() {
     // p = 1: (1 + 2 + 20)/3 = 7.66667.
     let x = [[0.0, 0.0], [10.0, 0.0]];
     let y = [[1.0, 0.0], [10.0, 2.0], [50.0, 50.0]];
-    let o = ospa(&x, &y, 20.0, 2.0);
+    let o = ospa(&x, &y, 20.0, 2.0).unwrap();
     assert!(close(o.distance, 135f64.sqrt(), 1e-12));
     assert!(close(o.localisation, (5.0f64 / 3.0).sqrt(), 1e-12));
     assert!(close(o.cardinality, (400.0f64 / 3.0).sqrt(), 1e-12));
@@ -99,17 +99,23 @@ fn ospa_by_hand() {
         o.localisation.powi(2) + o.cardinality.powi(2),
         1e-9
     ));
-    assert!(close(ospa(&x, &y, 20.0, 1.0).distance, 23.0 / 3.0, 1e-12));
+    assert!(close(
+        ospa(&x, &y, 20.0, 1.0).unwrap().distance,
+        23.0 / 3.0,
+        1e-12
+    ));
     // Symmetric.
-    assert_eq!(ospa(&y, &x, 20.0, 2.0), o);
+    assert_eq!(ospa(&y, &x, 20.0, 2.0).unwrap(), o);
     // Cut-off per pair: one point each, 100 m apart, c = 20 → 20.
     assert_eq!(
-        ospa(&[[0.0, 0.0]], &[[100.0, 0.0]], 20.0, 1.0).distance,
+        ospa(&[[0.0, 0.0]], &[[100.0, 0.0]], 20.0, 1.0)
+            .unwrap()
+            .distance,
         20.0
     );
     // Empty cases.
-    assert_eq!(ospa(&[], &[], 20.0, 2.0).distance, 0.0);
-    assert_eq!(ospa(&x, &[], 20.0, 2.0).distance, 20.0);
+    assert_eq!(ospa(&[], &[], 20.0, 2.0).unwrap().distance, 0.0);
+    assert_eq!(ospa(&x, &[], 20.0, 2.0).unwrap().distance, 20.0);
 }
 
 #[test]
@@ -123,7 +129,8 @@ fn ospa_uses_the_optimal_not_the_greedy_assignment() {
         &[[1.0, 0.0], [-2.0, 0.0]],
         100.0,
         1.0,
-    );
+    )
+    .unwrap();
     assert!(close(o.distance, 1.55, 1e-12), "{o:?}");
 }
 
@@ -159,7 +166,7 @@ fn hungarian_matches_brute_force() {
                     .collect()
             })
             .collect();
-        let a = assignment(&cost);
+        let a = assignment(&cost).unwrap();
         let total: f64 = a.iter().enumerate().map(|(i, j)| cost[i][j.unwrap()]).sum();
         assert!(close(total, brute(&cost), 1e-9), "trial {trial}: {cost:?}");
         let mut cols_used: Vec<usize> = a.iter().map(|j| j.unwrap()).collect();
@@ -170,7 +177,7 @@ fn hungarian_matches_brute_force() {
         let t: Vec<Vec<f64>> = (0..cols)
             .map(|j| (0..rows).map(|i| cost[i][j]).collect())
             .collect();
-        let at = assignment(&t);
+        let at = assignment(&t).unwrap();
         let tt: f64 = at
             .iter()
             .enumerate()
@@ -179,7 +186,78 @@ fn hungarian_matches_brute_force() {
         assert!(close(tt, total, 1e-9));
         assert_eq!(at.iter().filter(|i| i.is_some()).count(), rows);
     }
-    assert!(assignment(&[]).is_empty());
+    assert!(assignment(&[]).unwrap().is_empty());
+}
+
+/// A cost that is not finite is refused, naming it, in either shape (the
+/// augmenting-path search never ended on a NaN), and so is a position that
+/// is not finite wherever positions are paired, before any clipping at the
+/// gate or cut-off could hide it.
+#[test]
+fn costs_and_positions_that_are_not_finite_are_refused() {
+    let nan = vec![vec![1.0, 2.0], vec![3.0, f64::NAN]];
+    let e = assignment(&nan).unwrap_err();
+    assert_eq!((e.row, e.column), (1, 1));
+    assert!(e.value.is_nan());
+    assert!(e.to_string().contains("(row 1, column 1) is NaN"), "{e}");
+    let tall = vec![vec![1.0], vec![f64::INFINITY], vec![2.0]];
+    assert_eq!(
+        assignment(&tall).unwrap_err(),
+        NonFiniteCost {
+            row: 1,
+            column: 0,
+            value: f64::INFINITY
+        }
+    );
+    assert_eq!(finite_costs(&[vec![0.0, -1.0], vec![f64::MAX]]), Ok(()));
+    // OSPA: a NaN position, and a cut-off whose cost overflows.
+    assert!(ospa(&[[0.0, 0.0]], &[[f64::NAN, 0.0]], 20.0, 2.0).is_err());
+    assert!(ospa(&[[0.0, 0.0]], &[[1.0, 0.0]], f64::INFINITY, 2.0).is_ok());
+    assert!(ospa(&[[0.0, 0.0]], &[[1e300, 0.0]], 1e300, 2.0).is_err());
+    // Track metrics under both costs, and the identity switches.
+    let scans = vec![ScanReport {
+        t: 0.0,
+        truth: vec![TruthPoint {
+            id: 1,
+            x: 0.0,
+            y: 0.0,
+        }],
+        tracks: vec![
+            tp(7, TrackStatus::Confirmed, 5.0, 0.0),
+            tp(8, TrackStatus::Confirmed, f64::NAN, 0.0),
+        ],
+    }];
+    for cost in [PairingCost::Distance, PairingCost::ClippedAtGate] {
+        let e = track_metrics_with(&scans, 500.0, cost).unwrap_err();
+        assert_eq!((e.row, e.column), (0, 1), "{cost:?}");
+    }
+    assert!(abtrack_host_tests::tracking::identity_switches(&scans, 500.0).is_err());
+    assert!(mean_ospa(&scans, 1000.0, 2.0).is_err());
+}
+
+/// The gate drops only the pairs farther apart than it: a track exactly
+/// 500 m from its target is paired under either cost, one a metre farther
+/// is not.
+#[test]
+fn a_pair_exactly_at_the_gate_is_paired() {
+    let scan = |x: f64| ScanReport {
+        t: 0.0,
+        truth: vec![TruthPoint {
+            id: 1,
+            x: 0.0,
+            y: 0.0,
+        }],
+        tracks: vec![tp(3, TrackStatus::Confirmed, x, 0.0)],
+    };
+    for cost in [PairingCost::Distance, PairingCost::ClippedAtGate] {
+        let at = track_metrics_with(&[scan(500.0)], 500.0, cost).unwrap();
+        assert_eq!(at.completeness, 1.0, "{cost:?}");
+        assert_eq!(at.assigned_rmse, 500.0, "{cost:?}");
+        assert!(at.never_paired.is_empty(), "{cost:?}");
+        let beyond = track_metrics_with(&[scan(501.0)], 500.0, cost).unwrap();
+        assert_eq!(beyond.completeness, 0.0, "{cost:?}");
+        assert_eq!(beyond.never_paired.len(), 1, "{cost:?}");
+    }
 }
 
 fn tp(id: u32, status: TrackStatus, x: f64, y: f64) -> TrackPoint {
@@ -193,11 +271,12 @@ fn track_metrics_by_hand() {
     // Gate 50 m.
     // t=0: only tentative tracks → nothing tracked.
     // t=1: track 7 (confirmed) on A; nothing on B.
-    // t=2: 7 on A, 8 on B; track 9 (confirmed) at (500, 500): false.
+    // t=2: 7 on A, 8 on B; track 9 (confirmed) at (500, 500): never
+    //      paired.
     // t=3: ids swap: 8 on A, 7 on B; 9 coasting at (510, 500).
     // t=4: 8 on A; B's track 7 is 80 m off (outside the gate): B not
-    //      tracked, track 7 unassigned this scan (but not a false track:
-    //      it was assigned before).
+    //      tracked, track 7 unassigned this scan (but paired: it was
+    //      assigned before).
     // t=5: 8 on A, 7 back on B; 9 gone.
     let truth = |t: f64| {
         vec![
@@ -253,7 +332,7 @@ fn track_metrics_by_hand() {
             tracks: vec![tp(8, Confirmed, 50.0, 0.0), tp(7, Confirmed, 50.0, 100.0)],
         },
     ];
-    let m = track_metrics(&scans, 50.0);
+    let m = track_metrics(&scans, 50.0).unwrap();
     let a = &m.targets[0];
     let b = &m.targets[1];
     assert_eq!((a.target, b.target), (1, 2));
@@ -271,17 +350,17 @@ fn track_metrics_by_hand() {
     // Overall completeness (5 + 3)/12; 2 id changes.
     assert!(close(m.completeness, 8.0 / 12.0, 1e-15));
     assert_eq!(m.id_changes, 2);
-    // One false track: 9, established at t = 2 and 3 → 2 scans, 1 s.
+    // One track never paired: 9, established at t = 2 and 3 → 2 scans, 1 s.
     assert_eq!(
-        m.false_tracks,
-        vec![FalseTrack {
+        m.never_paired,
+        vec![NeverPairedTrack {
             id: 9,
             first_t: 2.0,
             last_t: 3.0,
             scans: 2
         }]
     );
-    assert_eq!(m.false_track_time(), (2, Some(1.0)));
+    assert_eq!(m.never_paired_time(), (2, Some(1.0)));
     // Unassigned established track-scans: 9 at t=2,3 and 7 at t=4.
     assert_eq!(m.unassigned_track_scans, 3);
     assert_eq!(m.established_tracks, 3);
@@ -305,7 +384,7 @@ fn track_metrics_by_hand() {
     // OSPA at t = 4 (c = 100, p = 1): truth (40,0), (40,100); established
     // tracks (40,0), (40,180): 0 + 80 → 40. At t = 0 no established
     // track: c = 100.
-    let o = ospa_against_time(&scans, 100.0, 1.0);
+    let o = ospa_against_time(&scans, 100.0, 1.0).unwrap();
     assert!(close(o[4].1.distance, 40.0, 1e-12));
     assert_eq!(o[0].1.distance, 100.0);
 }
@@ -315,7 +394,7 @@ fn a_track_assigned_in_under_half_its_scans_is_counted_not_at_half() {
     use TrackStatus::*;
     // One target at the origin. Track 5 is on it at t = 0, then 600 m
     // away (beyond the 500 m gate) at t = 1 and 2: assigned in 1 of 3
-    // scans, so mostly unassigned but not a false track. Track 6 appears
+    // scans, so mostly unassigned but not never paired. Track 6 appears
     // at t = 1 on the target (assigned) and is 600 m off at t = 2: 1 of
     // 2, exactly half, not counted. The target: id 5, then 6 → 1 change;
     // tracked at t = 0, 1, not 2 → continuity 2/3.
@@ -340,16 +419,16 @@ fn a_track_assigned_in_under_half_its_scans_is_counted_not_at_half() {
             vec![tp(5, Coasting, 0.0, 600.0), tp(6, Coasting, -600.0, 0.0)],
         ),
     ];
-    let m = track_metrics(&scans, 500.0);
+    let m = track_metrics(&scans, 500.0).unwrap();
     assert_eq!(m.mostly_unassigned_tracks, vec![5]);
-    assert!(m.false_tracks.is_empty());
+    assert!(m.never_paired.is_empty());
     assert_eq!(m.id_changes, 1);
     assert!(close(m.completeness, 2.0 / 3.0, 1e-15));
     assert!(close(m.continuity, 2.0 / 3.0, 1e-15));
     // Pairs at 5 m and 6 m: √((25 + 36)/2).
     assert!(close(m.assigned_rmse, 30.5f64.sqrt(), 1e-12));
     // No pair at all: NaN, as the continuity.
-    let none = track_metrics(&scans[..1], 1.0);
+    let none = track_metrics(&scans[..1], 1.0).unwrap();
     assert!(none.assigned_rmse.is_nan() && none.continuity.is_nan());
 }
 
@@ -381,10 +460,10 @@ fn the_unclipped_pairing_lets_a_far_pair_displace_a_near_one() {
     }];
     let tracked =
         |m: &TrackMetrics| -> Vec<usize> { m.targets.iter().map(|t| t.scans_tracked).collect() };
-    let distance = track_metrics_with(&scans, 500.0, PairingCost::Distance);
+    let distance = track_metrics_with(&scans, 500.0, PairingCost::Distance).unwrap();
     assert_eq!(tracked(&distance), vec![1, 0]);
     assert!(close(distance.assigned_rmse, 200.0, 1e-12));
-    let clipped = track_metrics(&scans, 500.0);
+    let clipped = track_metrics(&scans, 500.0).unwrap();
     assert_eq!(tracked(&clipped), vec![0, 1]);
     assert!(close(clipped.assigned_rmse, 100.0, 1e-12));
 }
@@ -417,7 +496,7 @@ fn mean_ospa_averages_every_scan() {
             tracks: vec![],
         },
     ];
-    assert!(close(mean_ospa(&scans, 1000.0, 2.0), 350.0, 1e-9));
+    assert!(close(mean_ospa(&scans, 1000.0, 2.0).unwrap(), 350.0, 1e-9));
 }
 
 #[test]
@@ -431,11 +510,11 @@ fn a_target_never_tracked_has_no_latency() {
         }],
         tracks: vec![],
     }];
-    let m = track_metrics(&scans, 10.0);
+    let m = track_metrics(&scans, 10.0).unwrap();
     assert_eq!(m.targets[0].latency_to_confirm_s, None);
     assert_eq!(m.completeness, 0.0);
-    assert!(m.false_tracks.is_empty());
-    assert!(track_metrics(&[], 10.0).completeness.is_nan());
+    assert!(m.never_paired.is_empty());
+    assert!(track_metrics(&[], 10.0).unwrap().completeness.is_nan());
     assert_eq!("coasting".parse::<TrackStatus>(), Ok(TrackStatus::Coasting));
     assert!("lost".parse::<TrackStatus>().is_err());
 }
@@ -498,7 +577,7 @@ fn id_changes_after_far_updates_tells_a_far_update_from_a_coast() {
     };
     for (status, after_far_update) in [(TrackStatus::Confirmed, 1), (TrackStatus::Coasting, 0)] {
         let scans = scans_with(status);
-        let m = track_metrics_with(&scans, 500.0, PairingCost::Distance);
+        let m = track_metrics_with(&scans, 500.0, PairingCost::Distance).unwrap();
         assert_eq!(m.id_changes, 1, "{status:?}");
         assert_eq!(
             id_changes_after_far_updates(&scans, &m.pairs, 500.0),
@@ -531,7 +610,7 @@ fn id_changes_after_far_updates_tells_a_far_update_from_a_coast() {
     comes_back[3].tracks[0] = tp(1, TrackStatus::Confirmed, 310.0, 0.0);
     comes_back[3].tracks.remove(1);
     for (scans, id_changes) in [(other_track_far, 1), (comes_back, 0)] {
-        let m = track_metrics_with(&scans, 500.0, PairingCost::Distance);
+        let m = track_metrics_with(&scans, 500.0, PairingCost::Distance).unwrap();
         assert_eq!(m.id_changes, id_changes);
         assert_eq!(id_changes_after_far_updates(&scans, &m.pairs, 500.0), 0);
     }
@@ -539,7 +618,7 @@ fn id_changes_after_far_updates_tells_a_far_update_from_a_coast() {
     // away at 16 s (having coasted at 12 s) counts.
     let mut at_the_change = scans_with(TrackStatus::Coasting);
     at_the_change[3].tracks[0] = tp(1, TrackStatus::Confirmed, 300.0, 900.0);
-    let m = track_metrics_with(&at_the_change, 500.0, PairingCost::Distance);
+    let m = track_metrics_with(&at_the_change, 500.0, PairingCost::Distance).unwrap();
     assert_eq!(m.id_changes, 1);
     assert_eq!(
         id_changes_after_far_updates(&at_the_change, &m.pairs, 500.0),

@@ -805,6 +805,40 @@ fn binary_runs_a_file() {
     let _ = std::fs::remove_file(path);
 }
 
+/// A file with its header only runs (status 0, the header on stdout) and
+/// says so on stderr, in every single-target layout.
+#[test]
+fn binary_notes_a_file_without_data_rows() {
+    for (header, args, columns) in [
+        (
+            "t,x,y\n",
+            &["--filter", "auto", "--sigma-m", "50"][..],
+            "t,x,vx,res_x,y,vy,res_y,event\n",
+        ),
+        (
+            "t,range,azimuth\n",
+            &["--filter", "range-azimuth"][..],
+            "t,x,vx,res_x,y,vy,res_y,range,azimuth,event\n",
+        ),
+        (
+            "t,x\n",
+            &["--filter", "ab", "--schedule", "bank"][..],
+            "t,x,vx,res_x,member_x,event\n",
+        ),
+    ] {
+        let path = temp_file("header-only.csv", header);
+        let out = replay_binary().args(args).arg(&path).output().unwrap();
+        assert_eq!(out.status.code(), Some(0), "{args:?}");
+        assert_eq!(String::from_utf8(out.stdout).unwrap(), columns, "{args:?}");
+        assert_eq!(
+            String::from_utf8(out.stderr).unwrap(),
+            "replay: no data rows (the input has its header only)\n",
+            "{args:?}"
+        );
+        let _ = std::fs::remove_file(path);
+    }
+}
+
 #[test]
 fn binary_reads_stdin() {
     let mut child = replay_binary()

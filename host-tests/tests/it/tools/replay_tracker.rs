@@ -430,8 +430,9 @@ fn a_median_scan_interval_outside_the_range_is_clamped_not_refused() {
     let dense = "t,x,y\n0,1000,1000\n0.01,1001,1000\n0.02,1002,1000\n";
     let run = tracker("--tracker --sigma-m 50 --clutter-per-km2 0.002", dense).unwrap();
     assert_eq!(run.design.design.scan_period, 0.05);
-    // Given, the period is checked as before.
-    assert!(tracker("--tracker --scan-period-s 30", sparse).is_err());
+    // Given, the period is checked, as an argument.
+    let e = args("--tracker --scan-period-s 30 -").unwrap_err();
+    assert_eq!(e.exit_code(), 2, "{e}");
 }
 
 #[test]
@@ -504,14 +505,8 @@ fn errors_name_the_line() {
         e,
         Failure::Replay(ReplayError::TrackerScheduleNeedsCartesian)
     );
-    // Figures the design rules cannot meet, or outside their envelope.
+    // Figures the design rules cannot meet for this file.
     for (line, message) in [
-        ("--tracker --pd 0 -", "--pd 0 is outside"),
-        (
-            "--tracker --scan-period-s 30 -",
-            "--scan-period-s 30 is outside",
-        ),
-        ("--tracker --sigma-m -1 -", "--sigma-m -1 is outside"),
         (
             "--tracker --clutter-per-km2 100 -",
             "no configuration meets the design rules",
@@ -525,10 +520,6 @@ fn errors_name_the_line() {
         (
             "--tracker --clutter-per-km2 100 -",
             "0.00251 false measurements a scan expected over the 0.0000251 km² counted",
-        ),
-        (
-            "--tracker --sigma-m 20 --range-sigma-m 20 -",
-            "cannot be combined",
         ),
     ] {
         let e = match args(line) {
@@ -576,11 +567,54 @@ fn tracker_options_are_checked() {
             "\"high\" is not a finite number",
         ),
         ("--tracker --azimuth-unit grad x.csv", "'grad'"),
+        // The sensor's figures outside the values they take: argument
+        // errors, found before any input is read.
+        ("--tracker --pd 0 x.csv", "--pd 0 is outside 0.001 ..= 1"),
+        ("--tracker --pd 1.5 x.csv", "--pd 1.5 is outside"),
+        (
+            "--tracker --scan-period-s 30 x.csv",
+            "--scan-period-s 30 is outside 0.05 ..= 20",
+        ),
+        ("--tracker --sigma-m -1 x.csv", "--sigma-m -1 is outside"),
+        ("--tracker --region-m 0 x.csv", "--region-m 0 is outside"),
+        (
+            "--tracker --bearing-sigma-deg 200 x.csv",
+            "--bearing-sigma-deg 200 is outside",
+        ),
+        (
+            "--tracker --clutter-per-km2 -1 x.csv",
+            "--clutter-per-km2 -1 is outside",
+        ),
+        (
+            "--tracker --max-speed-mps 2000 x.csv",
+            "--max-speed-mps 2000 is outside",
+        ),
+        (
+            "--tracker --max-accel-mps2 0 x.csv",
+            "--max-accel-mps2 0 is outside",
+        ),
+        (
+            "--tracker --sigma-m 20 --range-sigma-m 20 x.csv",
+            "cannot be combined",
+        ),
     ] {
         let e = args(line).expect_err(line);
         assert_eq!(e.exit_code(), 2, "{line}");
         assert!(e.to_string().contains(message), "{line}: {e}");
     }
+    // Options built without the command line are checked by the run.
+    let options = abtrack_host_tests::replay_tracker::TrackerOptions {
+        sensor: abtrack_host_tests::replay_tracker::SensorOptions {
+            detection_probability: Some(0.0),
+            ..Default::default()
+        },
+        ..Default::default()
+    };
+    let e = replay_tracker_reader(&options, "t,x,y\n0,1,1\n".as_bytes()).unwrap_err();
+    assert_eq!(
+        e,
+        Failure::Replay(ReplayError::Design("--pd 0 is outside 0.001 ..= 1".into()))
+    );
     match args(
         "--tracker --verbose --numeric q32.32 --capacity=256 --confirm 2/3 --delete 6 \
          --own-alt 8000 --region-m 50000 --sigma-m 30 --scan-period-s 4.8 --pd 0.8 \
@@ -640,6 +674,83 @@ fn tracker_options_are_checked() {
 }
 
 // -------------------------------------------------------------- end to end
+
+/// A recorded single flight with the default clutter density (the nominal
+/// radar's, counted over the disc to its farthest report) expects too many
+/// false plots a scan: the refusal leads with the fix, and with
+/// `--clutter-per-km2 0` every flight of host-tests/data/real/single runs.
+#[test]
+fn a_single_flight_refused_for_clutter_is_told_the_fix_first() {
+    let dir = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("data/real/single");
+    let mut flights: Vec<_> = std::fs::read_dir(&dir)
+        .unwrap()
+        .map(|e| e.unwrap().path())
+        .filter(|p| p.extension().is_some_and(|x| x == "csv"))
+        .collect();
+    flights.sort();
+    assert_eq!(flights.len(), 16);
+    let refused = |path: &std::path::Path| {
+        let text = std::fs::read_to_string(path).unwrap();
+        tracker("--tracker --sigma-m 50", &text).err()
+    };
+    let e = refused(&flights[0]).expect("the default clutter refuses it");
+    let text = e.to_string();
+    assert!(
+        text.starts_with(
+            "tracker design: no configuration meets the design rules for these figures: pass \
+             --clutter-per-km2 0 for a recording without clutter, or"
+        ),
+        "{text}"
+    );
+    assert!(text.contains("(design rule 4)"), "{text}");
+    for path in &flights {
+        let text = std::fs::read_to_string(path).unwrap();
+        let run = tracker("--tracker --sigma-m 50 --clutter-per-km2 0", &text);
+        assert!(run.is_ok(), "{}: {:?}", path.display(), run.err());
+    }
+}
+
+/// A bad sensor figure is a usage error (status 2) reported before the
+/// input is read: the empty file is not what the message is about.
+#[test]
+fn binary_refuses_a_bad_sensor_figure_before_reading_the_input() {
+    let empty = temp_file("tracker-empty.csv", "");
+    for (options, message) in [
+        (
+            &["--tracker", "--pd", "1.5", "--sigma-m", "50"][..],
+            "--pd 1.5 is outside",
+        ),
+        (
+            &["--tracker", "--scan-period-s", "100"][..],
+            "--scan-period-s 100",
+        ),
+        (
+            &["--tracker", "--sigma-m", "50", "--range-sigma-m", "20"][..],
+            "cannot be combined",
+        ),
+        (
+            &[
+                "--filter",
+                "ab",
+                "--schedule",
+                "m1",
+                "--sigma-m",
+                "50",
+                "--scan-period-s",
+                "100",
+            ][..],
+            "--scan-period-s: 100 is out of range",
+        ),
+    ] {
+        let out = replay_binary().args(options).arg(&empty).output().unwrap();
+        let err = String::from_utf8(out.stderr).unwrap();
+        assert_eq!(out.status.code(), Some(2), "{options:?}: {err}");
+        assert!(err.contains(message), "{options:?}: {err}");
+        assert!(!err.contains("empty input"), "{options:?}: {err}");
+        assert!(out.stdout.is_empty());
+    }
+    let _ = std::fs::remove_file(empty);
+}
 
 #[test]
 fn binary_runs_the_tracker_and_names_the_bad_line() {

@@ -233,11 +233,14 @@ fn gated_observations_lie_in_the_bounding_box() {
 
 type Table<S, const N: usize, const M: usize> = TrackTable<S, FixedGainTrack<S>, N, M>;
 
+/// A target's start: position (m) and velocity (m/s).
+type Target = ((f64, f64), (f64, f64));
+
 /// A random scene: `targets` start positions and velocities, crowded (all
 /// within 60 m, so gates overlap) or separated (3 km apart); some targets
 /// duplicated exactly (identical tracks: ties between rows).
-fn scene(rng: &mut Lcg, targets: usize, crowded: bool) -> Vec<((f64, f64), (f64, f64))> {
-    let mut v: Vec<((f64, f64), (f64, f64))> = Vec::new();
+fn scene(rng: &mut Lcg, targets: usize, crowded: bool) -> Vec<Target> {
+    let mut v: Vec<Target> = Vec::new();
     for i in 0..targets {
         if i > 0 && rng.next_signed() > 0.6 {
             let twin = v[(rng.next_signed().abs() * i as f64) as usize % i];
@@ -259,12 +262,7 @@ fn scene(rng: &mut Lcg, targets: usize, crowded: bool) -> Vec<((f64, f64), (f64,
 /// The measurements of scan `k` (1 s apart): each target with probability
 /// 0.9, noisy after the two initiation scans, some duplicated exactly
 /// (ties between columns), plus clutter near the targets.
-fn measurements(
-    rng: &mut Lcg,
-    targets: &[((f64, f64), (f64, f64))],
-    k: u32,
-    max: usize,
-) -> Vec<(f64, f64)> {
+fn measurements(rng: &mut Lcg, targets: &[Target], k: u32, max: usize) -> Vec<(f64, f64)> {
     let t = k as f64;
     let mut m = Vec::new();
     for &((x, y), (vx, vy)) in targets {

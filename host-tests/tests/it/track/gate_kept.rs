@@ -136,9 +136,9 @@ fn scans(seed: u64, count: usize) -> Vec<(u32, Vec<[f64; 2]>)> {
                 t[2] += ax * dt;
                 t[3] += ay * dt;
                 // Back into the square from the other side.
-                for i in 0..2 {
-                    if t[i].abs() > 5000.0 {
-                        t[i] = -t[i].signum() * 4500.0;
+                for c in &mut t[..2] {
+                    if c.abs() > 5000.0 {
+                        *c = -c.signum() * 4500.0;
                     }
                 }
                 if rng.next_signed() < 0.7 {
