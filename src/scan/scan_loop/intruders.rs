@@ -47,9 +47,10 @@ pub const MAX_RA_THREATS: usize = 8;
 
 /// Reply identity: a reply with a Mode S address
 /// updates only the track of that address, and starts a track only if no
-/// track has it; a reply without one (Mode C) updates only a track without
-/// an address whose altitude it correlates with, and starts one only with a
-/// first point without an address whose altitude correlates.
+/// track has it, and only with the first of the previous scan's replies
+/// with that address; a reply without one (Mode C) updates only a track
+/// without an address whose altitude it correlates with, and starts one
+/// only with a first point without an address whose altitude correlates.
 pub(super) struct IdentityRule<'a, S: Scalar> {
     pub(super) intruders: &'a [IntruderSlot<S>],
     pub(super) replies: &'a [ReplyData<S>],
@@ -60,6 +61,20 @@ pub(super) struct IdentityRule<'a, S: Scalar> {
 impl<S: Scalar> IdentityRule<'_, S> {
     fn slot(&self, track: TrackId) -> Option<&IntruderSlot<S>> {
         self.intruders.iter().find(|s| s.track == track)
+    }
+
+    /// Previous-scan reply `p`, which has `address`, may start a track with
+    /// it: no track has the address, and `p` is the first of the previous
+    /// scan's replies with it. A track started in this scan has no slot
+    /// until after the scan, and the table pairs each first point once, so
+    /// that first reply is what keeps a second track from starting with the
+    /// address in the same scan (from a copy of the reply, a reflection).
+    fn may_start_with(&self, address: ModeSAddress, p: usize) -> bool {
+        let first_with_address = self
+            .previous
+            .iter()
+            .position(|r| r.address == Some(address));
+        first_with_address == Some(p) && !self.intruders.iter().any(|s| s.address == Some(address))
     }
 
     /// |a − b| within the altitude correlation window for `dt`: two
@@ -109,10 +124,8 @@ impl<S: Scalar> PairRule for IdentityRule<'_, S> {
         if first.address != second.address {
             return false;
         }
-        if let Some(a) = second.address {
-            if self.intruders.iter().any(|s| s.address == Some(a)) {
-                return false;
-            }
+        if second.address.is_some_and(|a| !self.may_start_with(a, p)) {
+            return false;
         }
         match (first.altitude_ft, second.altitude_ft) {
             (Some(a), Some(b)) => self.altitudes_correlate(a, b, quantum_of(second)),
