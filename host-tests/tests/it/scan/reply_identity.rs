@@ -1,5 +1,7 @@
 //! Reply identity in the scan loop (docs/tcas.md, "The firmware"): a Mode S
-//! address is held by one track at most.
+//! address is held by one track at most, and the capacity ranking
+//! (abtrack::scan, "Capacity") counts a reply in a confirmed track's gate
+//! only if that track may take it.
 
 use abtrack_firmware::demo_config;
 
@@ -18,6 +20,10 @@ type Identity = (Option<u32>, f64);
 
 fn mode_s(address: u32) -> Identity {
     (Some(address), 8300.0)
+}
+
+fn mode_c(altitude_ft: f64) -> Identity {
+    (None, altitude_ft)
 }
 
 /// A reply at scan `k` (1 s apart) from an intruder closing at 100 m/s
@@ -96,6 +102,48 @@ fn a_mode_s_address_is_held_by_one_track() {
             }
             let track = scan_loop.table().tracks().next().unwrap();
             assert!(track.is_confirmed(), "{}: {track:?}", S::NAME);
+        }
+    }
+    check::<f64>();
+    check::<f32>();
+    check::<Fix>();
+}
+
+/// Capacity by identity: a confirmed track, then a scan with room for 2
+/// replies: its own reply 30 m beyond its prediction, then two replies of
+/// another identity nearer its prediction (5 m beyond, 10 m short), which
+/// it may not take. Its own reply is its nearest in the gate that it may
+/// take, so it is kept and updates the track; the two others compete as
+/// unknown replies (one kept, counted outside the gates; one over
+/// capacity).
+#[test]
+fn a_confirmed_tracks_reply_outranks_replies_it_may_not_take() {
+    fn check<S: Scalar>() {
+        let config = demo_config::demo_config::<S, _>().unwrap();
+        for (intruder, stranger) in [
+            (mode_s(0xA00001), mode_c(8300.0)),
+            (mode_s(0xA00001), mode_s(0xA00002)),
+            (mode_c(8300.0), mode_s(0xA00002)),
+            (mode_c(8300.0), mode_c(10300.0)),
+        ] {
+            let mut scan_loop: Box<Loop<S, 2>> = Box::new(ScanLoop::new());
+            for k in 0..10u32 {
+                scan(&mut scan_loop, &config, &[reply(k, 0.0, intruder)]);
+            }
+            let confirmed = scan_loop.table().tracks().filter(|t| t.is_confirmed());
+            assert_eq!(confirmed.count(), 1);
+            let c = scan(
+                &mut scan_loop,
+                &config,
+                &[
+                    reply(10, 30.0, intruder),
+                    reply(10, 5.0, stranger),
+                    reply(10, -10.0, stranger),
+                ],
+            );
+            let case = format!("{}: {intruder:?} among {stranger:?}: {c}", S::NAME);
+            assert_eq!((c.used, c.over_capacity), (2, 1), "{case}");
+            assert_eq!((c.updated, c.coasted, c.outside_gates), (1, 0, 1), "{case}");
         }
     }
     check::<f64>();
