@@ -68,10 +68,12 @@
 //! important ones, in this priority:
 //!
 //! 1. for each confirmed track, the measurement nearest its predicted
-//!    position inside its gate (it is never evicted, so a confirmed track
-//!    is never starved by clutter);
-//! 2. other measurements inside a confirmed track's gate, by normalised
-//!    gate distance;
+//!    position inside its gate among those it may take (reply identity:
+//!    the tracker's own rule, the same Mode S address or a correlating
+//!    Mode C altitude); it is never evicted, so a confirmed track is never
+//!    starved by clutter or by other intruders' replies;
+//! 2. other measurements inside a confirmed track's gate that it may take,
+//!    by normalised gate distance;
 //! 3. all others (tentative tracks' and candidates for new tracks), nearest
 //!    to the own aircraft first: an unknown return's threat grows as it
 //!    closes in;

@@ -148,8 +148,9 @@ pub struct ScanLoop<T: Numeric, F: TrackFilter<T::Wide>, const N: usize, const M
     batch_priorities: heapless::Vec<Priority<T::Wide>, M>,
     /// Per batch entry: of how many confirmed tracks it is the champion.
     batch_champions: heapless::Vec<u8, M>,
-    /// The confirmed tracks' gates (vectors, here and below, so that the
-    /// empty loop is all-zero bytes).
+    /// Per TCAS slot (`intruders`' order), its track's gate if the track is
+    /// confirmed (vectors, here and below, so that the empty loop is
+    /// all-zero bytes).
     gates: heapless::Vec<TrackGate<T::Wide>, N>,
     /// The batch overflowed: `gates` and the priorities are computed.
     ranked: bool,
@@ -368,14 +369,14 @@ impl<
             increment(&mut self.counters.invalid);
             return;
         };
+        let reply = ReplyData {
+            altitude_ft,
+            altitude_25ft: report.altitude_25ft,
+            address: report.address,
+        };
         if self.batch.len() < M {
             // Room: no priority needed (yet). Four pushes on vectors of the
             // same length below M.
-            let reply = ReplyData {
-                altitude_ft,
-                altitude_25ft: report.altitude_25ft,
-                address: report.address,
-            };
             let _ = self.batch.push(measurement);
             let _ = self.batch_replies.push(reply);
             let _ = self.batch_priorities.push(Priority {
@@ -386,12 +387,14 @@ impl<
             let _ = self.batch_champions.push(0);
             return;
         }
+        // The identity rule's interval, as in `on_tick`.
+        let dt = S::seconds_from_ms(config.clock.period_ms);
         if !self.ranked {
-            self.rank_batch(config);
+            self.rank_batch(config, dt);
         }
         let observation = Observation::new(measurement).ok();
-        let priority = self.priority(observation.as_ref());
-        let Some(index) = self.evictable(&priority, observation.as_ref()) else {
+        let priority = self.priority(observation.as_ref(), &reply, dt);
+        let Some(index) = self.evictable(&priority, observation.as_ref(), &reply, dt) else {
             increment16(&mut self.pending_counts.over_capacity);
             increment(&mut self.counters.over_capacity);
             return;
@@ -403,17 +406,13 @@ impl<
             *slot = measurement;
         }
         if let Some(slot) = self.batch_replies.get_mut(index) {
-            *slot = ReplyData {
-                altitude_ft,
-                altitude_25ft: report.altitude_25ft,
-                address: report.address,
-            };
+            *slot = reply;
         }
         if let Some(slot) = self.batch_priorities.get_mut(index) {
             *slot = priority;
         }
         if let Some(o) = observation {
-            self.crown(index, &o);
+            self.crown(index, &o, &reply, dt);
         }
     }
 

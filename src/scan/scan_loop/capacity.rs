@@ -1,6 +1,7 @@
 //! Who gets the scan's `M` slots when it has more measurements (the
 //! [`crate::scan`] docs, "Capacity").
 
+use super::intruders::{may_take, IntruderSlot, ReplyData};
 use super::{BearingTrack, ScanConfig, ScanLoop};
 
 use crate::num::{hypot, Numeric, Scalar};
@@ -28,11 +29,14 @@ impl<S: Scalar> Priority<S> {
     }
 }
 
-/// A confirmed track's gate for the next scan, and its best measurement so
-/// far.
+/// The gate for the next scan of the track of one TCAS slot (the loop's
+/// `intruders`, same order), if the track is confirmed, and its best
+/// measurement so far.
 #[derive(Debug, Clone, Copy)]
 pub(super) struct TrackGate<S: Numeric> {
-    region: GateRegion<S>,
+    /// `None`: the track is tentative (or its gate could not be formed).
+    /// As large as the region alone (the option is in the enum's tag).
+    region: Option<GateRegion<S>>,
     /// The batch index of the nearest measurement in the gate,
     /// [`NO_CHAMPION`] for none, and its gate cost: 4 bytes, where an
     /// `Option<(usize, u16)>` takes 12 (32-bit cores) or 16, in a record kept
@@ -46,13 +50,28 @@ pub(super) struct TrackGate<S: Numeric> {
 /// than 65,535 measurements, the track table's capacity check).
 const NO_CHAMPION: u16 = u16::MAX;
 
-impl<S: Numeric> TrackGate<S> {
-    fn new(region: GateRegion<S>) -> Self {
+impl<S: Scalar> TrackGate<S> {
+    fn new(region: Option<GateRegion<S>>) -> Self {
         TrackGate {
             region,
             champion_index: NO_CHAMPION,
             champion_cost: 0,
         }
+    }
+
+    /// The gate cost of a measurement at `observation` with `reply`, if it
+    /// is inside the gate and the track (of TCAS slot `intruder`) may take
+    /// it: reply identity, the tracker's own rule ([`may_take`]), `dt` after
+    /// the last scan.
+    fn cost(
+        &self,
+        intruder: &IntruderSlot<S>,
+        observation: &Observation<S>,
+        reply: &ReplyData<S>,
+        dt: S,
+    ) -> Option<u16> {
+        let cost = self.region.as_ref()?.cost(observation)?;
+        may_take(Some(intruder), reply, dt).then_some(cost)
     }
 
     /// (batch index, gate cost) of the nearest measurement in the gate.
@@ -82,23 +101,36 @@ impl<
     /// The batch has just overflowed: the gates of the confirmed tracks,
     /// and the priority and champion places of every entry (in arrival
     /// order). Only a scan with more than `M` measurements pays for this.
-    pub(super) fn rank_batch(&mut self, config: &ScanConfig<T, F::Params>) {
+    /// `dt`: the scan period, in seconds.
+    pub(super) fn rank_batch(&mut self, config: &ScanConfig<T, F::Params>, dt: S) {
         self.prepare_gates(config);
         self.ranked = true;
         for i in 0..self.batch.len() {
-            let observation = self.batch.get(i).and_then(|m| Observation::new(*m).ok());
-            let priority = self.priority(observation.as_ref());
+            let (Some(measurement), Some(reply)) = (
+                self.batch.get(i).copied(),
+                self.batch_replies.get(i).copied(),
+            ) else {
+                continue;
+            };
+            let observation = Observation::new(measurement).ok();
+            let priority = self.priority(observation.as_ref(), &reply, dt);
             if let Some(slot) = self.batch_priorities.get_mut(i) {
                 *slot = priority;
             }
             if let Some(o) = observation {
-                self.crown(i, &o);
+                self.crown(i, &o, &reply, dt);
             }
         }
     }
 
-    /// The priority of a measurement against the gates of the next scan.
-    pub(super) fn priority(&self, observation: Option<&Observation<S>>) -> Priority<S> {
+    /// The priority of a measurement against the gates of the next scan
+    /// (`dt` away) whose tracks may take its reply.
+    pub(super) fn priority(
+        &self,
+        observation: Option<&Observation<S>>,
+        reply: &ReplyData<S>,
+        dt: S,
+    ) -> Priority<S> {
         let Some(o) = observation else {
             return Priority {
                 class: CLASS_REFUSED,
@@ -106,7 +138,12 @@ impl<
                 range: S::ZERO,
             };
         };
-        let best = self.gates.iter().filter_map(|g| g.region.cost(o)).min();
+        let best = self
+            .gates
+            .iter()
+            .zip(self.intruders.iter())
+            .filter_map(|(g, intruder)| g.cost(intruder, o, reply, dt))
+            .min();
         // Positions are relative to the own aircraft.
         let [x, y] = o.xy();
         let range = hypot(x, y);
@@ -132,14 +169,16 @@ impl<
         &self,
         priority: &Priority<S>,
         observation: Option<&Observation<S>>,
+        reply: &ReplyData<S>,
+        dt: S,
     ) -> Option<usize> {
         // Champion places the new measurement would take from each entry,
         // and whether it would hold one.
         let mut dethroned = [0u8; M];
         let mut crowned = false;
         if let Some(o) = observation {
-            for gate in self.gates.iter() {
-                let Some(cost) = gate.region.cost(o) else {
+            for (gate, intruder) in self.gates.iter().zip(self.intruders.iter()) {
+                let Some(cost) = gate.cost(intruder, o, reply, dt) else {
                     continue;
                 };
                 match gate.champion() {
@@ -191,10 +230,17 @@ impl<
     }
 
     /// Makes the entry at `index` the champion of every confirmed track
-    /// whose gate it is nearest to so far.
-    pub(super) fn crown(&mut self, index: usize, observation: &Observation<S>) {
-        for gate in self.gates.iter_mut() {
-            let Some(cost) = gate.region.cost(observation) else {
+    /// whose gate it is nearest to so far among the entries the track may
+    /// take.
+    pub(super) fn crown(
+        &mut self,
+        index: usize,
+        observation: &Observation<S>,
+        reply: &ReplyData<S>,
+        dt: S,
+    ) {
+        for (gate, intruder) in self.gates.iter_mut().zip(self.intruders.iter()) {
+            let Some(cost) = gate.cost(intruder, observation, reply, dt) else {
                 continue;
             };
             let previous = match gate.champion() {
@@ -213,8 +259,9 @@ impl<
         }
     }
 
-    /// The gates of the confirmed tracks for the scan being assembled (one
-    /// period after the last).
+    /// A gate per TCAS slot, in the slots' order: its track's for the scan
+    /// being assembled (one period after the last) if the track is
+    /// confirmed. Every live track has a slot between scans.
     fn prepare_gates(&mut self, config: &ScanConfig<T, F::Params>) {
         self.gates.clear();
         let params = config.tracker.params();
@@ -223,17 +270,19 @@ impl<
         else {
             return;
         };
-        let confirmed = self.table.tracks().filter(|t| t.is_confirmed());
-        for track in confirmed {
-            let region = track.filter().predict(params, &step).ok().and_then(|p| {
+        for intruder in self.intruders.iter() {
+            let confirmed = self
+                .table
+                .track(intruder.track)
+                .filter(|t| t.is_confirmed());
+            let region = confirmed.and_then(|track| {
+                let predicted = track.filter().predict(params, &step).ok()?;
                 track
                     .filter()
-                    .gate_region(params, &p, &step, config.tracker.gate())
+                    .gate_region(params, &predicted, &step, config.tracker.gate())
             });
-            if let Some(region) = region {
-                if self.gates.push(TrackGate::new(region)).is_err() {
-                    break;
-                }
+            if self.gates.push(TrackGate::new(region)).is_err() {
+                break;
             }
         }
     }

@@ -47,9 +47,10 @@ pub const MAX_RA_THREATS: usize = 8;
 
 /// Reply identity: a reply with a Mode S address
 /// updates only the track of that address, and starts a track only if no
-/// track has it; a reply without one (Mode C) updates only a track without
-/// an address whose altitude it correlates with, and starts one only with a
-/// first point without an address whose altitude correlates.
+/// track has it, and only with the first of the previous scan's replies
+/// with that address; a reply without one (Mode C) updates only a track
+/// without an address whose altitude it correlates with, and starts one
+/// only with a first point without an address whose altitude correlates.
 pub(super) struct IdentityRule<'a, S: Scalar> {
     pub(super) intruders: &'a [IntruderSlot<S>],
     pub(super) replies: &'a [ReplyData<S>],
@@ -62,39 +63,63 @@ impl<S: Scalar> IdentityRule<'_, S> {
         self.intruders.iter().find(|s| s.track == track)
     }
 
-    /// |a − b| within the altitude correlation window for `dt`: two
-    /// quanta plus the detection logic's 10 000 ft/min intruder-rate limit
-    /// (our choice: the public sources do not give DO-185B's window).
-    fn altitudes_correlate(&self, a: S, b: S, quantum: AltitudeQuantum) -> bool {
-        // Each quantum's constant folds (no runtime `f64`).
-        let two_quanta = match quantum {
-            AltitudeQuantum::ModeC => S::from_f64_lossy(2.0 * AltitudeQuantum::ModeC.feet()),
-            AltitudeQuantum::ModeS25 => S::from_f64_lossy(2.0 * AltitudeQuantum::ModeS25.feet()),
-        };
-        let window = two_quanta + S::from_f64_lossy(MAX_INTRUDER_RATE_FT_PER_S) * self.dt;
-        (a - b).abs() <= window
+    /// Previous-scan reply `p`, which has `address`, may start a track with
+    /// it: no track has the address, and `p` is the first of the previous
+    /// scan's replies with it. A track started in this scan has no slot
+    /// until after the scan, and the table pairs each first point once, so
+    /// that first reply is what keeps a second track from starting with the
+    /// address in the same scan (from a copy of the reply, a reflection).
+    fn may_start_with(&self, address: ModeSAddress, p: usize) -> bool {
+        let first_with_address = self
+            .previous
+            .iter()
+            .position(|r| r.address == Some(address));
+        first_with_address == Some(p) && !self.intruders.iter().any(|s| s.address == Some(address))
     }
+}
+
+/// The update half of reply identity ([`IdentityRule`]): whether the track
+/// whose TCAS slot is `slot` (none: a track without an address or an
+/// altitude) may take `reply`, `dt` after its last scan. One definition for
+/// the tracker's gating and the capacity ranking's gates.
+pub(super) fn may_take<S: Scalar>(
+    slot: Option<&IntruderSlot<S>>,
+    reply: &ReplyData<S>,
+    dt: S,
+) -> bool {
+    match (reply.address, slot.and_then(|s| s.address)) {
+        (Some(a), Some(b)) => a == b,
+        (None, None) => {
+            let predicted = slot
+                .and_then(|s| s.tcas.altitude_state().estimate())
+                .map(|e| e.altitude_ft + e.vertical_rate_ft_per_s * dt);
+            match (reply.altitude_ft, predicted, slot) {
+                (Some(z), Some(p), Some(s)) => altitudes_correlate(z, p, s.quantum, dt),
+                _ => true,
+            }
+        }
+        _ => false,
+    }
+}
+
+/// |a − b| within the altitude correlation window for `dt`: two
+/// quanta plus the detection logic's 10 000 ft/min intruder-rate limit
+/// (our choice: the public sources do not give DO-185B's window).
+fn altitudes_correlate<S: Scalar>(a: S, b: S, quantum: AltitudeQuantum, dt: S) -> bool {
+    // Each quantum's constant folds (no runtime `f64`).
+    let two_quanta = match quantum {
+        AltitudeQuantum::ModeC => S::from_f64_lossy(2.0 * AltitudeQuantum::ModeC.feet()),
+        AltitudeQuantum::ModeS25 => S::from_f64_lossy(2.0 * AltitudeQuantum::ModeS25.feet()),
+    };
+    let window = two_quanta + S::from_f64_lossy(MAX_INTRUDER_RATE_FT_PER_S) * dt;
+    (a - b).abs() <= window
 }
 
 impl<S: Scalar> PairRule for IdentityRule<'_, S> {
     fn may_update(&self, track: TrackId, k: usize) -> bool {
-        let Some(reply) = self.replies.get(k) else {
-            return false;
-        };
-        let slot = self.slot(track);
-        match (reply.address, slot.and_then(|s| s.address)) {
-            (Some(a), Some(b)) => a == b,
-            (None, None) => {
-                let predicted = slot
-                    .and_then(|s| s.tcas.altitude_state().estimate())
-                    .map(|e| e.altitude_ft + e.vertical_rate_ft_per_s * self.dt);
-                match (reply.altitude_ft, predicted, slot) {
-                    (Some(z), Some(p), Some(s)) => self.altitudes_correlate(z, p, s.quantum),
-                    _ => true,
-                }
-            }
-            _ => false,
-        }
+        self.replies
+            .get(k)
+            .is_some_and(|reply| may_take(self.slot(track), reply, self.dt))
     }
 
     /// A first point of an earlier scan has no reply kept with it (the loop
@@ -109,13 +134,11 @@ impl<S: Scalar> PairRule for IdentityRule<'_, S> {
         if first.address != second.address {
             return false;
         }
-        if let Some(a) = second.address {
-            if self.intruders.iter().any(|s| s.address == Some(a)) {
-                return false;
-            }
+        if second.address.is_some_and(|a| !self.may_start_with(a, p)) {
+            return false;
         }
         match (first.altitude_ft, second.altitude_ft) {
-            (Some(a), Some(b)) => self.altitudes_correlate(a, b, quantum_of(second)),
+            (Some(a), Some(b)) => altitudes_correlate(a, b, quantum_of(second), self.dt),
             _ => true,
         }
     }

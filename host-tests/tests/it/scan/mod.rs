@@ -2,5 +2,6 @@
 //! firmware is.
 
 mod loop_on_host;
+mod reply_identity;
 pub(crate) mod support;
 mod zero_state;
