@@ -270,26 +270,33 @@ impl<N: Numeric, const D: usize> AutoFilter<N, D> {
         uncoasted: Option<&CovarianceTerms<N::Ratio>>,
         predicted: Option<&AutoPrediction<N>>,
     ) -> Result<AutoUpdate, FilterError> {
-        // Every number system's invalid values (a float's NaN and ∞, which
-        // `check_input` lets through), refused before the interval is
-        // looked at, as by the other filters.
-        if z.iter().any(|v| !v.is_valid()) {
+        let mut guard = N::Guard::default();
+        for v in &z {
+            v.check_input(&mut guard);
+        }
+        if !N::passed(&guard) {
             return Err(FilterError::InvalidMeasurement);
         }
+        // A float's NaN or ∞ passes `check_input`: it reaches the outputs
+        // of an update, whose refusal then names it (`refusal`); the paths
+        // that store or skip `z` without arithmetic test it here.
         if self.phase == Phase::Empty {
             crate::filter::check_interval(dt)?;
+            if invalid_measurement(&z) {
+                return Err(FilterError::InvalidMeasurement);
+            }
             self.start(z);
             return Ok(AutoUpdate::FirstPoint);
         }
         match IntervalSpan::of(dt)? {
             IntervalSpan::InRange => {}
+            _ if invalid_measurement(&z) => return Err(FilterError::InvalidMeasurement),
             IntervalSpan::TooShort => return Ok(AutoUpdate::Skipped),
             IntervalSpan::TooLong => {
                 self.start(z);
                 return Ok(AutoUpdate::Restarted);
             }
         }
-        let mut guard = N::Guard::default();
         let tau = self.coasted + dt;
         if self.phase == Phase::OnePoint {
             // Al-Wagih eq. 9 over the time since the first point, within
@@ -306,7 +313,7 @@ impl<N: Numeric, const D: usize> AutoFilter<N, D> {
                 v.check_output(&mut guard);
             }
             if !N::passed(&guard) {
-                return Err(FilterError::Saturated);
+                return Err(refusal(&z));
             }
             self.position = z;
             self.velocity = velocity;
@@ -348,7 +355,7 @@ impl<N: Numeric, const D: usize> AutoFilter<N, D> {
             v.check_output(&mut guard);
         }
         if !N::passed(&guard) {
-            return Err(FilterError::Saturated);
+            return Err(refusal(&z));
         }
         let mut covariance = step.next;
         if step.matched {
@@ -402,5 +409,23 @@ impl<N: Numeric, const D: usize> AutoFilter<N, D> {
             ..Self::new()
         };
         self.phase = Phase::OnePoint;
+    }
+}
+
+/// Whether a measurement holds a value that is not a valid number (out of
+/// line: the paths that call it are off the tracking path).
+#[inline(never)]
+fn invalid_measurement<Q: Quantity>(z: &[Q]) -> bool {
+    z.iter().any(|v| !v.is_valid())
+}
+
+/// Why an update whose checked arithmetic failed is refused: an invalid
+/// measurement, else a saturation.
+#[cold]
+fn refusal<Q: Quantity>(z: &[Q]) -> FilterError {
+    if invalid_measurement(z) {
+        FilterError::InvalidMeasurement
+    } else {
+        FilterError::Saturated
     }
 }
