@@ -302,6 +302,9 @@ impl<N: Numeric, const D: usize> AutoFilter<N, D> {
             // Al-Wagih eq. 9 over the time since the first point, within
             // the filters' range.
             if IntervalSpan::of_second_point(self.coasted, dt) == Ok(IntervalSpan::TooLong) {
+                if invalid_measurement(&z) {
+                    return Err(FilterError::InvalidMeasurement);
+                }
                 self.start(z);
                 return Ok(AutoUpdate::Restarted);
             }

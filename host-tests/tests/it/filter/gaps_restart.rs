@@ -231,8 +231,8 @@ fn a_first_point_coasted_past_the_range_restarts() {
 
 /// The fused default filter refuses a measurement that is not a valid
 /// number (NaN, or a value that left the fixed formats) on every path, its
-/// state unchanged: the first point, the second, a report too soon or
-/// after a gap, and a filtered update.
+/// state unchanged: the first point, the second, a report too soon, after a
+/// gap or after a first point coasted past the range, and a filtered update.
 fn invalid_measurement_refused<N: Numeric>() {
     let noise = AutoGains::<N, 2>::new(&AutoConfig::cartesian(50.0)).unwrap();
     let noise = noise.shared_noise();
@@ -260,6 +260,15 @@ fn invalid_measurement_refused<N: Numeric>() {
     check(&mut auto, one, "second point");
     check(&mut auto, q(0.01), "too soon");
     check(&mut auto, q(30.0), "after a gap");
+    let mut coasted = auto;
+    for _ in 0..3 {
+        coasted.coast(q(10.0)).unwrap();
+    }
+    check(
+        &mut coasted,
+        one,
+        "after a first point coasted past the range",
+    );
     auto.update(noise, z(10.0), one).unwrap();
     auto.update(noise, z(20.0), one).unwrap();
     check(&mut auto, one, "filtered");
