@@ -45,7 +45,7 @@ use crate::filter::{
     outcome as outcome_of, AlphaBeta, FilterError, Gains, IntervalSpan, Phase, Prediction,
     StepGains, UpdateOutcome,
 };
-use crate::gain::{next_reference, robust_gains};
+use crate::gain::RecentIntervals;
 use crate::gains::{
     beta_from_alpha, check_capacity, check_range, config_quantity, grid_point, ConfigError,
 };
@@ -144,11 +144,9 @@ pub struct ParallelBank<N: Numeric, const K: usize> {
     selected: usize,
     last: Option<BankSelection<N>>,
     saturations: u32,
-    /// T of the last update that left the members tracking (zero before):
-    /// the previous interval of [`robust_gains`].
-    previous_interval: N::Interval,
-    /// The reference interval of [`robust_gains`] ([`next_reference`]).
-    reference_interval: N::Interval,
+    /// The intervals that bound the members' gains, as
+    /// [`crate::gain::ScheduledFilter`] keeps them.
+    intervals: RecentIntervals<N::Interval>,
 }
 
 impl<N: Numeric, const K: usize> ParallelBank<N, K> {
@@ -169,8 +167,7 @@ impl<N: Numeric, const K: usize> ParallelBank<N, K> {
             selected: 0,
             last: None,
             saturations: 0,
-            previous_interval: N::Interval::ZERO,
-            reference_interval: N::Interval::ZERO,
+            intervals: RecentIntervals::NONE,
         })
     }
 
@@ -309,43 +306,29 @@ impl<N: Numeric, const K: usize> ParallelBank<N, K> {
         }
         self.selected = 0;
         self.last = None;
-        self.previous_interval = N::Interval::ZERO;
-        self.reference_interval = N::Interval::ZERO;
+        self.intervals = RecentIntervals::NONE;
     }
 
-    /// The intervals [`robust_gains`] reads, after an update `dt` after
-    /// the previous one that gave `outcome` (as [`crate::gain::ScheduledFilter`]
-    /// keeps them).
+    /// The intervals after an update `dt` after the previous one that gave
+    /// `outcome`.
     fn record_intervals(&mut self, outcome: &BankOutcome<N>, dt: N::Interval) {
         match outcome {
-            BankOutcome::FirstPoint | BankOutcome::Restarted => {
-                self.previous_interval = N::Interval::ZERO;
-                self.reference_interval = N::Interval::ZERO;
-            }
-            BankOutcome::SecondPoint => {
-                self.previous_interval = dt;
-                self.reference_interval = dt;
-            }
-            BankOutcome::Filtered(_) => {
-                self.previous_interval = dt;
-                self.reference_interval = next_reference(self.reference_interval, dt);
-            }
+            BankOutcome::FirstPoint | BankOutcome::Restarted => self.intervals.started(false, dt),
+            BankOutcome::SecondPoint => self.intervals.started(true, dt),
+            BankOutcome::Filtered(_) => self.intervals.filtered(dt),
             BankOutcome::Skipped => {}
         }
     }
 
     /// Every member's [`StepGains`] at `dt`, its gains bounded for an
-    /// irregular interval ([`robust_gains`]), formed once per interval (a
+    /// irregular interval ([`crate::gain::robust_gains`]), formed once per interval (a
     /// [`CartesianBank`] shares them between its axes); a saturated or
     /// unrepresentable gain is counted and refuses the update.
     fn step_gains(&mut self, dt: N::Interval) -> Result<[StepGains<N>; K], FilterError> {
-        let bounded = robust_gains(
-            self.gains,
-            dt,
-            self.previous_interval,
-            self.reference_interval,
-        )
-        .map_err(|_| FilterError::Saturated);
+        let bounded = self
+            .intervals
+            .bound(self.gains, dt)
+            .map_err(|_| FilterError::Saturated);
         let formed = bounded.and_then(|gains| {
             gains
                 .first()

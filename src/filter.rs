@@ -708,13 +708,27 @@ fn refuse<N: Numeric, const ORDER: usize, const D: usize>(
     axes: &mut [KinematicFilter<N, ORDER>; D],
     z: &[N::Length; D],
 ) -> FilterError {
-    if z.iter().any(|v| !v.is_valid()) {
-        return FilterError::InvalidMeasurement;
+    let e = refusal(z);
+    count_if_saturated(axes, &e);
+    e
+}
+
+/// Whether a measurement holds a value that is not a valid number (out of
+/// line: the paths that call it are off the tracking path).
+#[inline(never)]
+pub(crate) fn invalid_measurement<Q: Quantity>(z: &[Q]) -> bool {
+    z.iter().any(|v| !v.is_valid())
+}
+
+/// Why an update whose checked arithmetic failed is refused: an invalid
+/// measurement, else a saturation.
+#[cold]
+pub(crate) fn refusal<Q: Quantity>(z: &[Q]) -> FilterError {
+    if invalid_measurement(z) {
+        FilterError::InvalidMeasurement
+    } else {
+        FilterError::Saturated
     }
-    if let Some(first) = axes.first_mut() {
-        first.count_saturation();
-    }
-    FilterError::Saturated
 }
 
 /// Two-point initialisation (Al-Wagih eqs. 9–10) of `D` axes sharing one

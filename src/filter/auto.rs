@@ -14,7 +14,7 @@
 //! [`crate::gain::AutoGains`] (one covariance per axis) with
 //! [`crate::gain::ScheduledFilter`].
 
-use crate::filter::{FilterError, IntervalSpan, Phase};
+use crate::filter::{invalid_measurement, refusal, FilterError, IntervalSpan, Phase};
 use crate::gain::auto::{
     capped_nis, covariance_step_or_restart, match_manoeuvre, mean_over_axes, predicted_part,
     two_point, AutoAxis, AutoPrediction, CovarianceTerms, SharedNoise,
@@ -412,23 +412,5 @@ impl<N: Numeric, const D: usize> AutoFilter<N, D> {
             ..Self::new()
         };
         self.phase = Phase::OnePoint;
-    }
-}
-
-/// Whether a measurement holds a value that is not a valid number (out of
-/// line: the paths that call it are off the tracking path).
-#[inline(never)]
-fn invalid_measurement<Q: Quantity>(z: &[Q]) -> bool {
-    z.iter().any(|v| !v.is_valid())
-}
-
-/// Why an update whose checked arithmetic failed is refused: an invalid
-/// measurement, else a saturation.
-#[cold]
-fn refusal<Q: Quantity>(z: &[Q]) -> FilterError {
-    if invalid_measurement(z) {
-        FilterError::InvalidMeasurement
-    } else {
-        FilterError::Saturated
     }
 }

@@ -386,12 +386,8 @@ pub struct ScheduledFilter<N: Numeric, G, const ORDER: usize, const D: usize> {
     filter: Cartesian<N, ORDER, D>,
     schedule: G,
     measurements: u32,
-    /// T of the last update that left the filter tracking (zero before).
-    previous_interval: N::Interval,
-    /// The reference interval of [`robust_gains`]: the longest recent
-    /// interval, relaxing toward shorter ones by a quarter of the gap per
-    /// update.
-    reference_interval: N::Interval,
+    /// The intervals [`robust_gains`] reads.
+    intervals: RecentIntervals<N::Interval>,
 }
 
 impl<N, G, const ORDER: usize, const D: usize> ScheduledFilter<N, G, ORDER, D>
@@ -405,8 +401,7 @@ where
             filter: Cartesian::new(),
             schedule,
             measurements: 0,
-            previous_interval: N::Interval::ZERO,
-            reference_interval: N::Interval::ZERO,
+            intervals: RecentIntervals::NONE,
         }
     }
 
@@ -422,8 +417,7 @@ where
             filter,
             schedule,
             measurements,
-            previous_interval: N::Interval::ZERO,
-            reference_interval: N::Interval::ZERO,
+            intervals: RecentIntervals::NONE,
         }
     }
 
@@ -525,12 +519,8 @@ where
             Ok(outcome) => {
                 self.filter = filter;
                 self.measurements = n;
-                self.previous_interval = if filter.phase() == Phase::Tracking {
-                    dt
-                } else {
-                    N::Interval::ZERO
-                };
-                self.reference_interval = self.previous_interval;
+                self.intervals
+                    .started(filter.phase() == Phase::Tracking, dt);
                 if restarted {
                     self.schedule.reset();
                 }
@@ -643,17 +633,10 @@ where
         scheduled: [Gains<N>; K],
         dt: N::Interval,
     ) -> Result<[Gains<N>; K], ScheduleError> {
-        if self.schedule.gains_follow_interval()
-            || intervals_regular(dt, self.previous_interval, self.reference_interval)
-        {
+        if self.schedule.gains_follow_interval() || self.intervals.regular(dt) {
             return Ok(scheduled);
         }
-        robust_gains(
-            scheduled,
-            dt,
-            self.previous_interval,
-            self.reference_interval,
-        )
+        self.intervals.bound(scheduled, dt)
     }
 
     /// Measurement `n`, `dt` after the previous one, was filtered: the
@@ -661,8 +644,7 @@ where
     #[inline(always)]
     fn record_filtered(&mut self, n: u32, dt: N::Interval) {
         self.measurements = n;
-        self.previous_interval = dt;
-        self.reference_interval = next_reference(self.reference_interval, dt);
+        self.intervals.filtered(dt);
     }
 
     /// The prediction or innovation of this update overflowed: let the
@@ -771,6 +753,60 @@ pub fn robust_gains<N: Numeric, const D: usize>(
 #[inline(always)]
 fn intervals_regular<Q: Quantity>(dt: Q, previous: Q, reference: Q) -> bool {
     previous <= Q::ZERO || (dt == previous && dt == reference)
+}
+
+/// The intervals [`robust_gains`] reads, as a track's updates leave them:
+/// T of the last update that left the filter tracking (zero before), and
+/// the reference interval, the longest recent one relaxing toward shorter
+/// ones by a quarter of the gap per update ([`next_reference`]). Kept by
+/// [`ScheduledFilter`] and the M5 bank ([`crate::bank`]).
+#[derive(Debug, Clone, Copy, PartialEq)]
+#[cfg_attr(feature = "defmt", derive(defmt::Format))]
+pub(crate) struct RecentIntervals<Q> {
+    previous: Q,
+    reference: Q,
+}
+
+impl<Q: Quantity> RecentIntervals<Q> {
+    /// Before the second point (and after a restart).
+    pub(crate) const NONE: Self = RecentIntervals {
+        previous: Q::ZERO,
+        reference: Q::ZERO,
+    };
+
+    /// Whether gains for an update at `dt` need no bound
+    /// ([`intervals_regular`]).
+    #[inline(always)]
+    pub(crate) fn regular(&self, dt: Q) -> bool {
+        intervals_regular(dt, self.previous, self.reference)
+    }
+
+    /// [`robust_gains`] of `gains` for an update at `dt`.
+    #[inline(always)]
+    pub(crate) fn bound<N: Numeric<Interval = Q>, const D: usize>(
+        &self,
+        gains: [Gains<N>; D],
+        dt: Q,
+    ) -> Result<[Gains<N>; D], ScheduleError> {
+        robust_gains(gains, dt, self.previous, self.reference)
+    }
+
+    /// After a first or second point taken `dt` after the previous one:
+    /// `dt` once the filter is tracking (the second point), else none.
+    pub(crate) fn started(&mut self, tracking: bool, dt: Q) {
+        let previous = if tracking { dt } else { Q::ZERO };
+        *self = RecentIntervals {
+            previous,
+            reference: previous,
+        };
+    }
+
+    /// After a filtered update `dt` after the previous one.
+    #[inline(always)]
+    pub(crate) fn filtered(&mut self, dt: Q) {
+        self.previous = dt;
+        self.reference = next_reference(self.reference, dt);
+    }
 }
 
 /// The reference interval after an update at `dt`: `dt` if it is not
