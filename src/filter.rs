@@ -708,9 +708,13 @@ fn refuse<N: Numeric, const ORDER: usize, const D: usize>(
     axes: &mut [KinematicFilter<N, ORDER>; D],
     z: &[N::Length; D],
 ) -> FilterError {
-    let e = refusal(z);
-    count_if_saturated(axes, &e);
-    e
+    if z.iter().any(|v| !v.is_valid()) {
+        return FilterError::InvalidMeasurement;
+    }
+    if let Some(first) = axes.first_mut() {
+        first.count_saturation();
+    }
+    FilterError::Saturated
 }
 
 /// Whether a measurement holds a value that is not a valid number (out of
