@@ -646,11 +646,19 @@ pub const OPERATIONS: &[(&str, &str)] = &[
         HAND_WRITTEN_SCAN,
         "anchor: a hand-written scan of the separated scene, each track in turn (the hand-written Kalman filter) taking the nearest measurement inside its gate, every measurement not yet taken tested",
     ),
+    (
+        INTEGER_SCAN,
+        "anchor: the hand-written scan in integers, each track in turn (a fixed-gain αβ filter, the scan rows' gains in Q16) taking the nearest measurement inside a constant gate radius, every measurement not yet taken tested",
+    ),
 ];
 
 /// The hand-written scan anchor, and the table's scan it is set beside.
 const HAND_WRITTEN_SCAN: &str = "axis_kalman_nn_scan_separated";
 const DEFAULT_SCAN: &str = "scan_default_separated";
+/// The hand-written integer scan anchor, and the table's fixed-gain scan it
+/// is set beside (with `DEFAULT_SCAN`).
+const INTEGER_SCAN: &str = "integer_ab_nn_scan_separated";
+const FIXED_GAIN_SCAN: &str = "scan_separated";
 
 /// Why a row is not measured (the `reason` of a `bench-omitted` line), with
 /// what it means. An unknown reason is shown as not described.
@@ -1155,11 +1163,7 @@ fn hand_written_scan(s: &mut String, report: &Report) {
     ]));
     for run in &report.runs {
         let numerics = numerics(run);
-        let own = if numerics.iter().any(|n| n == "f32") {
-            "f32"
-        } else {
-            "fixed"
-        };
+        let own = own_type(&numerics);
         for n in &numerics {
             let mut sizes: Vec<ScanSize> = run
                 .figures
@@ -1189,6 +1193,78 @@ fn hand_written_scan(s: &mut String, report: &Report) {
             }
         }
     }
+    s.push('\n');
+    integer_scan(s, report);
+}
+
+/// The type a core's table runs in: f32 on a core with an FPU, else the
+/// fast fixed point.
+fn own_type(numerics: &[String]) -> &'static str {
+    if numerics.iter().any(|n| n == "f32") {
+        "f32"
+    } else {
+        "fixed"
+    }
+}
+
+/// The table's scans in the core's own type beside the hand-written
+/// integer scan, per core and size.
+fn integer_scan(s: &mut String, report: &Report) {
+    let mut rows = String::new();
+    for run in &report.runs {
+        let own = own_type(&numerics(run));
+        let mut sizes: Vec<ScanSize> = run
+            .figures
+            .iter()
+            .filter(|f| f.operation == INTEGER_SCAN)
+            .filter_map(|f| f.size)
+            .collect();
+        sizes.sort();
+        for size in sizes {
+            let Some(anchor) = run.figures.iter().find_map(|f| {
+                (f.operation == INTEGER_SCAN && f.size == Some(size)).then_some(f.instructions)
+            }) else {
+                continue;
+            };
+            let table = |operation: &str| run.figure(own, operation, Some(size));
+            let cell = |t: Option<Tenths>| t.map_or("—".into(), instructions);
+            let over = |t: Option<Tenths>| t.map_or("—".into(), |t| ratio(t, anchor));
+            let (fixed_gains, default) = (table(FIXED_GAIN_SCAN), table(DEFAULT_SCAN));
+            rows.push_str(&row(&[
+                format!("`{}`", run.core),
+                format!("{} × {}", size.n, size.m),
+                instructions(anchor),
+                format!("`{own}`"),
+                cell(fixed_gains),
+                over(fixed_gains),
+                cell(default),
+                over(default),
+            ]));
+        }
+    }
+    if rows.is_empty() {
+        return;
+    }
+    s.push_str(&format!(
+        "`{INTEGER_SCAN}` is that loop as it is written for a core without an FPU and a \
+         sensor with a fixed scan period: coordinates in integers (1/16 m in an `i32`), \
+         velocity per scan, the fixed-gain rows' α and β in Q16, a constant gate radius \
+         (the table's fixed-gain gate in steady state) tested as a box and then on \
+         dx² + dy², every product in a 32-bit word. Beside it, the table's scans in the \
+         core's own type: with fixed gains (`{FIXED_GAIN_SCAN}`, the same gains) and with \
+         its default filter (`{DEFAULT_SCAN}`). A ratio above 1: the table costs more.\n\n"
+    ));
+    s.push_str(&header(&[
+        "core",
+        "N × M",
+        "hand-written, integer",
+        "table's type",
+        "table, fixed gains",
+        "÷ integer",
+        "table, default filter",
+        "÷ integer",
+    ]));
+    s.push_str(&rows);
     s.push('\n');
 }
 

@@ -36,7 +36,7 @@
 use super::gate::{hypot, Gate, GateRegion};
 use super::model::{
     one_second, uncertainty_region, wave_radius, Measurement, Observation, PredictedState,
-    ScanInterval, TrackFilter, Uncertainty,
+    ScanInterval, TrackFilter, Uncertainty, UpdateTerms,
 };
 use crate::filter::range_azimuth::{
     azimuth_of, CovarianceFactor, RangeAzimuthNoise, RangeAzimuthState,
@@ -225,8 +225,7 @@ impl<S: Numeric, G: GainSchedule<S, 2>> TrackFilter<S> for ScheduledTrack<S, G> 
             *u = u
                 .after_update(
                     kind_of(outcome).ok_or(FilterError::InvalidInterval)?,
-                    S::to_variance(alpha),
-                    velocity_gain,
+                    &UpdateTerms::new(S::to_variance(alpha), velocity_gain),
                     seconds,
                 )
                 .ok_or(FilterError::Saturated)?;

@@ -138,7 +138,7 @@ pub use config::{TrackerConfig, Volume};
 pub use gate::{hypot, BoundingBox, ConfigError, Gate, GateRegion, PolarWindow};
 pub use model::{
     ErrorVariance, FixedGainStep, FixedGainTrack, Measurement, Observation, PredictedState,
-    RejectReason, ScanInterval, TrackFilter, Uncertainty,
+    RejectReason, ScanInterval, TrackFilter, Uncertainty, UpdateTerms,
 };
 pub use numeric::{FixedGridScale, FixedVariance};
 pub use table::{

@@ -413,23 +413,56 @@ impl<R: Real> ErrorVariance<R> {
         self.updated_with(alpha, beta / dt)
     }
 
-    /// [`Self::updated`] with the velocity gain k₂ = β/T formed already
-    /// (once per interval, for fixed gains).
+    /// [`Self::updated`] with the velocity gain k₂ = β/T formed already.
     pub fn updated_with(&self, alpha: R, velocity_gain: R) -> Self {
-        let k1 = alpha;
-        let k2 = velocity_gain;
-        let one_minus = R::ONE - k1;
-        let two = R::TWO;
+        self.updated_by(&UpdateTerms::new(alpha, velocity_gain))
+    }
+
+    /// [`Self::updated`] with the gains' terms formed already (once per
+    /// interval, for fixed gains): the same results.
+    pub fn updated_by(&self, t: &UpdateTerms<R>) -> Self {
         ErrorVariance {
-            p11: one_minus * one_minus * self.p11 + k1 * k1,
-            p12: one_minus * (self.p12 - k2 * self.p11) + k1 * k2,
-            p22: self.p22 - two * k2 * self.p12 + k2 * k2 * (self.p11 + R::ONE),
+            p11: t.one_minus_alpha_squared * self.p11 + t.alpha_squared,
+            p12: t.one_minus_alpha * (self.p12 - t.velocity_gain * self.p11) + t.alpha_velocity,
+            p22: self.p22 - t.twice_velocity_gain * self.p12
+                + t.velocity_gain_squared * (self.p11 + R::ONE),
         }
     }
 
     /// False if any entry is NaN, ±∞ or saturated.
     pub fn is_valid(&self) -> bool {
         self.p11.is_valid() && self.p12.is_valid() && self.p22.is_valid()
+    }
+}
+
+/// The terms of [`ErrorVariance::updated`] that depend on the gains alone,
+/// α and k₂ = β/T: 1 − α, (1 − α)², α², k₂, α·k₂, 2·k₂ and k₂², each
+/// rounded as the update formed it.
+#[derive(Debug, Clone, Copy, PartialEq)]
+#[cfg_attr(feature = "defmt", derive(defmt::Format))]
+pub struct UpdateTerms<R> {
+    one_minus_alpha: R,
+    one_minus_alpha_squared: R,
+    alpha_squared: R,
+    velocity_gain: R,
+    alpha_velocity: R,
+    twice_velocity_gain: R,
+    velocity_gain_squared: R,
+}
+
+impl<R: Real> UpdateTerms<R> {
+    /// The terms for gains `alpha` and `velocity_gain` (k₂ = β/T).
+    pub fn new(alpha: R, velocity_gain: R) -> Self {
+        let one_minus_alpha = R::ONE - alpha;
+        UpdateTerms {
+            one_minus_alpha,
+            one_minus_alpha_squared: one_minus_alpha * one_minus_alpha,
+            alpha_squared: alpha * alpha,
+            velocity_gain,
+            alpha_velocity: alpha * velocity_gain,
+            twice_velocity_gain: R::TWO * velocity_gain,
+            velocity_gain_squared: velocity_gain * velocity_gain,
+        }
     }
 }
 
@@ -450,16 +483,10 @@ pub enum Uncertainty<R> {
 }
 
 impl<R: Real> Uncertainty<R> {
-    /// The bookkeeping after an update of kind `kind` with gains α and
-    /// k₂ = β/T over `dt` seconds; `None` if it left the representable
-    /// range.
-    pub fn after_update(
-        &self,
-        kind: UpdateKind,
-        alpha: R,
-        velocity_gain: R,
-        dt: R,
-    ) -> Option<Self> {
+    /// The bookkeeping after an update of kind `kind` with the gains'
+    /// terms `gains` over `dt` seconds; `None` if it left the
+    /// representable range.
+    pub fn after_update(&self, kind: UpdateKind, gains: &UpdateTerms<R>, dt: R) -> Option<Self> {
         let next = match (kind, self) {
             (UpdateKind::FirstPoint, _) => Uncertainty::OnePoint { elapsed: R::ZERO },
             (UpdateKind::SecondPoint, Uncertainty::OnePoint { elapsed }) => {
@@ -469,14 +496,14 @@ impl<R: Real> Uncertainty<R> {
                 Uncertainty::Tracking(ErrorVariance::after_two_points(dt))
             }
             (UpdateKind::Filtered, Uncertainty::Tracking(p)) => {
-                Uncertainty::Tracking(p.predicted(dt).updated_with(alpha, velocity_gain))
+                Uncertainty::Tracking(p.predicted(dt).updated_by(gains))
             }
             // A filtered update without a covariance (a filter started with
             // `from_state`): start from the two-point covariance.
             (UpdateKind::Filtered, _) => Uncertainty::Tracking(
                 ErrorVariance::after_two_points(dt)
                     .predicted(dt)
-                    .updated_with(alpha, velocity_gain),
+                    .updated_by(gains),
             ),
         };
         next.is_valid().then_some(next)
@@ -552,13 +579,12 @@ enum FixedGainState<S: Numeric> {
 }
 
 /// [`FixedGainTrack`]'s per-scan step: the interval, the step gains of both
-/// axes, and α and β/T for the covariance.
+/// axes, and the covariance update's terms of α and β/T.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct FixedGainStep<S: Numeric> {
     interval: ScanInterval<S>,
     gains: StepGains<S>,
-    alpha: S::Variance,
-    velocity_gain: S::Variance,
+    covariance: UpdateTerms<S::Variance>,
 }
 
 impl<S: Numeric> FixedGainStep<S> {
@@ -569,12 +595,7 @@ impl<S: Numeric> FixedGainStep<S> {
         uncertainty: Uncertainty<S::Variance>,
         kind: UpdateKind,
     ) -> Option<Uncertainty<S::Variance>> {
-        uncertainty.after_update(
-            kind,
-            self.alpha,
-            self.velocity_gain,
-            self.interval.seconds(),
-        )
+        uncertainty.after_update(kind, &self.covariance, self.interval.seconds())
     }
 }
 
@@ -666,14 +687,14 @@ impl<S: Numeric> TrackFilter<S> for FixedGainTrack<S> {
     fn step(gains: &Gains<S>, interval: &ScanInterval<S>) -> Result<FixedGainStep<S>, FilterError> {
         let alpha = S::to_variance(gains.alpha());
         let velocity_gain = S::to_variance(gains.beta()) / interval.seconds();
+        let covariance = UpdateTerms::new(alpha, velocity_gain);
         if !(alpha.is_valid() && velocity_gain.is_valid()) {
             return Err(FilterError::Saturated);
         }
         Ok(FixedGainStep {
             interval: *interval,
             gains: StepGains::new(gains, interval.interval())?,
-            alpha,
-            velocity_gain,
+            covariance,
         })
     }
 

@@ -162,16 +162,17 @@ impl FixedVariance {
         (self.0 as u32).wrapping_sub(i32::MAX as u32) < 2
     }
 
-    /// `wide` as a word, or the sentinel of its sign.
+    /// `wide` as a word, or the sentinel of its sign: a value within a
+    /// word (its high word the sign of its low one) is that word, the
+    /// sentinels' own values included; one beyond, the sentinel of its
+    /// sign.
     #[inline(always)]
     fn saturate(wide: i64) -> Self {
-        if wide >= i64::from(i32::MAX) {
-            Self::MAX
-        } else if wide <= i64::from(i32::MIN) {
-            Self::MIN
+        let low = wide as i32;
+        if (wide >> 32) as i32 == low >> 31 {
+            FixedVariance(low)
         } else {
-            // Strictly between the sentinels: exact.
-            FixedVariance(wide as i32)
+            Self::sentinel(wide < 0)
         }
     }
 

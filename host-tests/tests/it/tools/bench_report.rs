@@ -381,3 +381,34 @@ fn the_hand_written_scan_is_set_beside_the_table_in_its_type_and_the_cores_own()
         "| `m0` | 16 × 16 | `f32soft` | 40,000 | — | — | `fixed` 100,000 | 2.50 |"
     );
 }
+
+#[test]
+fn the_integer_scan_is_set_beside_the_tables_scans_in_the_cores_own_type() {
+    let m3 = parse_log(&log(&[
+        "bench-figure,m3,fixed,scan_separated,16,16,60000.0",
+        "bench-figure,m3,fixed,scan_default_separated,16,16,80000.0",
+        "bench-figure,m3,f32soft,scan_separated,16,16,150000.0",
+        "bench-figure,m3,int,integer_ab_nn_scan_separated,16,16,10000.0",
+        "bench-figure,m3,int,integer_ab_nn_scan_separated,32,32,30000.0",
+        "bench-end,m3,5,0",
+    ]))
+    .unwrap();
+    let md = benchmarks_md(&Report::new(vec![m3]).unwrap(), QEMU, RUSTC);
+    let start = md
+        .find("`integer_ab_nn_scan_separated` is that loop")
+        .expect("the integer scan's table");
+    let rows: Vec<&str> = md[start..]
+        .lines()
+        .filter(|l| l.starts_with("| `m3`"))
+        .collect();
+    // The M3's own type is the fast fixed point (no f32 row): its fixed-gain
+    // and default scans, not the soft-f32 one; a size the table lacks shows
+    // a dash.
+    assert_eq!(
+        rows,
+        [
+            "| `m3` | 16 × 16 | 10,000 | `fixed` | 60,000 | 6.00 | 80,000 | 8.00 |",
+            "| `m3` | 32 × 32 | 30,000 | `fixed` | — | — | — | — |",
+        ]
+    );
+}

@@ -278,43 +278,203 @@ where
 }
 
 // ---------------------------------------------------------------------------
-// A hand-written nearest-neighbour scan
+// Hand-written nearest-neighbour scans
 // ---------------------------------------------------------------------------
 
-/// The hand-written scan's row.
+/// The hand-written scan around the hand-written Kalman filter.
 pub const NEAREST_NEIGHBOUR_SCAN: &str = "axis_kalman_nn_scan_separated";
+/// The hand-written scan in integers around a fixed-gain αβ filter.
+pub const INTEGER_SCAN: &str = "integer_ab_nn_scan_separated";
 
-/// `axis_kalman_nn_scan_separated`: the scan a user would write around the
-/// hand-written Kalman filter above, on the track table's separated scene
-/// (`scan_default_separated`'s measurements, gate σ and G): for each track
-/// in turn, predict both axes, test every measurement not yet taken
-/// (brute force) on the normalised distance squared dx²/S_x + dy²/S_y ≤ G
-/// and update with the nearest, or coast. No measurement checks, no
-/// assignment (the first track to reach a measurement takes it), no track
-/// starts or deletions, no counts: what the table does beyond this is
-/// what its figure costs beyond this row's.
+/// A scan a user would write instead of the track table, on the table's
+/// separated scene: for each track in turn, predict, test every measurement
+/// not yet taken (brute force) and update with the nearest inside the gate,
+/// or coast. No measurement checks, no assignment (the first track to reach
+/// a measurement takes it), no track starts or deletions, no counts: what
+/// the table does beyond this is what its figure costs beyond this row's.
+trait HandWrittenScan {
+    /// The row.
+    const OPERATION: &'static str;
+    /// One measurement, as the scan takes it.
+    type Measurement: Copy;
+    /// One track.
+    type Track: Copy;
+    /// The scene's measurement at (`x`, `y`), m.
+    fn measurement(&self, x: f64, y: f64) -> Self::Measurement;
+    /// A track started from two noise-free measurements one scan apart.
+    fn start(&self, first: Self::Measurement, second: Self::Measurement) -> Self::Track;
+    /// One scan (the timed call): returns the number of tracks updated.
+    fn scan(
+        &self,
+        tracks: &mut [Self::Track],
+        z: &[Self::Measurement],
+        taken: &mut [bool],
+    ) -> usize;
+    /// A track's position, m.
+    fn position(&self, track: &Self::Track) -> [f64; 2];
+    /// A measurement's position, m.
+    fn measured(&self, z: &Self::Measurement) -> [f64; 2];
+}
+
+/// The most tracks (and measurements) of [`hand_written_scene`].
+const HAND_WRITTEN_CAPACITY: usize = 64;
+
+/// `scan` at 16, 32 and 64 tracks and measurements (the test command's
+/// smoke image: 16).
+fn hand_written_sizes<H: HandWrittenScan>(bench: &mut Bench, numeric: &'static str, scan: &H) {
+    hand_written_scene(bench, numeric, scan, 16);
+    #[cfg(not(feature = "bench-smoke"))]
+    hand_written_scene(bench, numeric, scan, 32);
+    #[cfg(not(feature = "bench-smoke"))]
+    hand_written_scene(bench, numeric, scan, 64);
+}
+
+/// The scene at `targets` tracks and measurements (at most
+/// [`HAND_WRITTEN_CAPACITY`]): the tracks started from the scene's two
+/// noise-free first scans, the next scans run as the table's warm-up
+/// (timed, their times not counted), then [`crate::scan::TIMED_SCANS`]
+/// scans timed one by one. Each scan must update every track, and each
+/// track must end within [`DIVERGED_M`] of its own target's last
+/// measurement (the targets are 2 km apart: a track led to another
+/// target's measurements fails it).
+#[inline(never)]
+fn hand_written_scene<H: HandWrittenScan>(
+    bench: &mut Bench,
+    numeric: &'static str,
+    h: &H,
+    targets: usize,
+) {
+    use crate::scan::{Scene, TIMED_SCANS, WARM_UP_SCANS};
+    const CAPACITY: usize = HAND_WRITTEN_CAPACITY;
+    // At most CAPACITY: in bounds (and the row says what was measured).
+    let targets = targets.min(CAPACITY);
+    let size = crate::counter::Size {
+        n: targets,
+        m: targets,
+    };
+    let mut rng = crate::synth::Lcg::new(5);
+    let origin = h.measurement(0.0, 0.0);
+    let mut z = [origin; CAPACITY];
+    let mut scan = |k: u32, z: &mut [H::Measurement; CAPACITY]| {
+        for (i, zi) in z.iter_mut().take(targets).enumerate() {
+            let (x, y) = Scene::Separated.position(k, i, targets, &mut rng);
+            *zi = h.measurement(x, y);
+        }
+    };
+    let mut first = [origin; CAPACITY];
+    scan(0, &mut first);
+    scan(1, &mut z);
+    let mut tracks = [h.start(origin, origin); CAPACITY];
+    for ((track, a), b) in tracks.iter_mut().zip(&first).zip(&z) {
+        *track = h.start(*a, *b);
+    }
+    let mut taken = [false; CAPACITY];
+    let (tracks, taken) = (&mut tracks[..targets], &mut taken[..targets]);
+    let (mut scan_ticks, mut empty_ticks) = (0u32, 0u32);
+    // The warm-up's times are not counted; every scan after the start must
+    // time and update every track.
+    let mut every_track_updated = true;
+    for k in 2..WARM_UP_SCANS + TIMED_SCANS {
+        scan(k, &mut z);
+        let measured = &z[..targets];
+        let mut updated = 0;
+        let ticks = bench.time(|| {
+            updated = black_box(h.scan(tracks, black_box(measured), taken));
+        });
+        let empty = bench.time(|| {
+            black_box(black_box(measured));
+        });
+        every_track_updated &= updated == targets && ticks.is_some() && empty.is_some();
+        if k >= WARM_UP_SCANS {
+            scan_ticks += ticks.unwrap_or(0);
+            empty_ticks += empty.unwrap_or(0);
+        }
+    }
+    // Each track on its own target: within DIVERGED_M of the target's last
+    // measurement.
+    let on_own_target = tracks.iter().zip(&z).all(|(track, zi)| {
+        let ([x, y], [zx, zy]) = (h.position(track), h.measured(zi));
+        near(x, zx) && near(y, zy)
+    });
+    if !(every_track_updated && on_own_target) {
+        bench.fail(
+            numeric,
+            H::OPERATION,
+            "a scan missed a track or its time, or a track left its target",
+        );
+        return;
+    }
+    let net = scan_ticks.saturating_sub(empty_ticks);
+    let per_scan = bench.instructions(net) / TIMED_SCANS as f64;
+    bench.figure(numeric, H::OPERATION, Some(size), per_scan);
+}
+
+#[cfg(not(abtrack_board = "microbit"))]
+/// The hand-written Kalman filter's scan ([`HandWrittenScan`]) in `S`, on
+/// the table's gate σ and G: the normalised distance squared
+/// dx²/S_x + dy²/S_y ≤ G.
+struct KalmanScan<S> {
+    model: AxisKalmanModel<S>,
+    gate: S,
+}
+
+#[cfg(not(abtrack_board = "microbit"))]
+/// One track of [`KalmanScan`]: its x and y filters.
+type AxisTrack<S> = [AxisKalman<S>; 2];
+
+#[cfg(not(abtrack_board = "microbit"))]
+impl<S: Scalar> HandWrittenScan for KalmanScan<S> {
+    const OPERATION: &'static str = NEAREST_NEIGHBOUR_SCAN;
+    type Measurement = [S; 2];
+    type Track = AxisTrack<S>;
+    fn measurement(&self, x: f64, y: f64) -> [S; 2] {
+        [S::from_f64_lossy(x), S::from_f64_lossy(y)]
+    }
+    /// The two-point start: P = R·[1, 1/T; 1/T, 2/T²].
+    fn start(&self, first: [S; 2], second: [S; 2]) -> AxisTrack<S> {
+        let m = &self.model;
+        let (t, r) = (m.interval, m.measurement_variance);
+        let axis = |a: S, b: S| AxisKalman {
+            position: b,
+            velocity: (b - a) / t,
+            p_xx: r,
+            p_xv: r / t,
+            p_vv: (r + r) / m.interval_squared,
+        };
+        [axis(first[0], second[0]), axis(first[1], second[1])]
+    }
+    fn scan(&self, tracks: &mut [AxisTrack<S>], z: &[[S; 2]], taken: &mut [bool]) -> usize {
+        kalman_scan(tracks, z, taken, &self.model, self.gate)
+    }
+    fn position(&self, track: &AxisTrack<S>) -> [f64; 2] {
+        [track[0].position.to_f64(), track[1].position.to_f64()]
+    }
+    fn measured(&self, z: &[S; 2]) -> [f64; 2] {
+        [z[0].to_f64(), z[1].to_f64()]
+    }
+}
+
+/// `axis_kalman_nn_scan_separated`: [`KalmanScan`] in `S` (σ and G of
+/// the table's separated scene, q = 1 m²/s³, T = 1 s).
 #[cfg(not(abtrack_board = "microbit"))]
 #[inline(never)]
 pub fn nearest_neighbour_scan<S>(bench: &mut Bench)
 where
     S: Scalar + crate::numeric::BenchNumber,
 {
-    nearest_neighbour_scene::<S>(bench, 16);
-    #[cfg(not(feature = "bench-smoke"))]
-    nearest_neighbour_scene::<S>(bench, 32);
-    #[cfg(not(feature = "bench-smoke"))]
-    nearest_neighbour_scene::<S>(bench, 64);
+    use crate::scan::{GATE_SIGMA_M, GATE_THRESHOLD};
+    let scan = KalmanScan {
+        model: black_box(AxisKalmanModel::new(1.0, 1.0, GATE_SIGMA_M)),
+        gate: black_box(S::from_f64_lossy(GATE_THRESHOLD)),
+    };
+    hand_written_sizes(bench, S::LABEL, &scan);
 }
 
 #[cfg(not(abtrack_board = "microbit"))]
-/// One track of the hand-written scan: its x and y filters.
-type AxisTrack<S> = [AxisKalman<S>; 2];
-
-/// One scan of [`nearest_neighbour_scan`], on slices (one copy of the code for
-/// every size): returns the number of tracks updated.
-#[cfg(not(abtrack_board = "microbit"))]
+/// One scan of [`KalmanScan`], on slices (one copy of the code for every
+/// size): returns the number of tracks updated.
 #[inline(never)]
-fn nearest_neighbour_step<S: Scalar>(
+fn kalman_scan<S: Scalar>(
     tracks: &mut [AxisTrack<S>],
     z: &[[S; 2]],
     taken: &mut [bool],
@@ -362,111 +522,158 @@ fn nearest_neighbour_step<S: Scalar>(
     updated
 }
 
-/// The most tracks (and measurements) of [`nearest_neighbour_scene`].
-#[cfg(not(abtrack_board = "microbit"))]
-const NEAREST_NEIGHBOUR_CAPACITY: usize = 64;
+/// Units of the integer scan's coordinates per metre: 1/16 m in an `i32`
+/// (±134,000 km).
+const INTEGER_UNITS_PER_M: f64 = 16.0;
+/// Fraction bits of the integer scan's gains (Q16).
+const GAIN_FRACTION_BITS: u32 = 16;
 
-/// The scene at `targets` tracks and measurements (at most
-/// [`NEAREST_NEIGHBOUR_CAPACITY`]; one copy of the code for every size):
-/// the tracks started from the scene's two noise-free first scans (the
-/// two-point start: P = R·[1, 1/T; 1/T, 2/T²]), the next scans run as the
-/// table's warm-up (timed, their times not counted), then
-/// [`crate::scan::TIMED_SCANS`] scans timed one by one. Each scan must update
-/// every track, and each track must end within [`DIVERGED_M`] of its own
-/// target's last measurement (the targets are 2 km apart: a track led to
-/// another target's measurements fails it).
-#[cfg(not(abtrack_board = "microbit"))]
+/// The scan a firmware engineer writes for a core without an FPU and a
+/// sensor with a fixed scan period ([`HandWrittenScan`]): coordinates in
+/// integer units, velocity in units per scan, the table's fixed gains α and
+/// β in Q16, a constant gate radius r (the table's fixed-gain gate in steady
+/// state) tested as a box |dx|, |dy| ≤ r, then dx² + dy² ≤ r², all in 32-bit
+/// words.
+struct IntegerScan {
+    alpha: i32,
+    beta: i32,
+    radius: u32,
+    radius_squared: u32,
+}
+
+/// One track of [`IntegerScan`]: position in units, velocity in units per
+/// scan.
+#[derive(Clone, Copy)]
+struct IntegerTrack {
+    x: i32,
+    y: i32,
+    vx: i32,
+    vy: i32,
+}
+
+impl IntegerScan {
+    /// For gains α, β, the sensor's σ (m), the gate's G and a_max (m/s²)
+    /// and the scan period T (s): r = σ·√(G·(1 + p⁻)) + ½·a_max·T², the
+    /// track table's fixed-gain radius, with p⁻ the αβ filter's steady-state
+    /// predicted variance over σ², (2α² + 2β + αβ)/(α(4 − 2α − β)) (Kalata,
+    /// "The Tracking Index", IEEE Trans. AES 20(2), 1984).
+    fn new(alpha: f64, beta: f64, sigma: f64, threshold: f64, a_max: f64, t: f64) -> Self {
+        let predicted = (2.0 * alpha * alpha + 2.0 * beta + alpha * beta)
+            / (alpha * (4.0 - 2.0 * alpha - beta));
+        let radius_m = sigma * libm::sqrt(threshold * (1.0 + predicted)) + 0.5 * a_max * t * t;
+        let radius = libm::ceil(radius_m * INTEGER_UNITS_PER_M) as u32;
+        let q16 = |g: f64| libm::round(g * f64::from(1u32 << GAIN_FRACTION_BITS)) as i32;
+        IntegerScan {
+            alpha: q16(alpha),
+            beta: q16(beta),
+            radius,
+            radius_squared: radius.saturating_mul(radius),
+        }
+    }
+}
+
+impl HandWrittenScan for IntegerScan {
+    const OPERATION: &'static str = INTEGER_SCAN;
+    type Measurement = [i32; 2];
+    type Track = IntegerTrack;
+    fn measurement(&self, x: f64, y: f64) -> [i32; 2] {
+        let unit = |v: f64| libm::round(v * INTEGER_UNITS_PER_M) as i32;
+        [unit(x), unit(y)]
+    }
+    fn start(&self, first: [i32; 2], second: [i32; 2]) -> IntegerTrack {
+        IntegerTrack {
+            x: second[0],
+            y: second[1],
+            vx: second[0].wrapping_sub(first[0]),
+            vy: second[1].wrapping_sub(first[1]),
+        }
+    }
+    fn scan(&self, tracks: &mut [IntegerTrack], z: &[[i32; 2]], taken: &mut [bool]) -> usize {
+        integer_nearest_neighbour(tracks, z, taken, self)
+    }
+    fn position(&self, track: &IntegerTrack) -> [f64; 2] {
+        [
+            f64::from(track.x) / INTEGER_UNITS_PER_M,
+            f64::from(track.y) / INTEGER_UNITS_PER_M,
+        ]
+    }
+    fn measured(&self, z: &[i32; 2]) -> [f64; 2] {
+        [
+            f64::from(z[0]) / INTEGER_UNITS_PER_M,
+            f64::from(z[1]) / INTEGER_UNITS_PER_M,
+        ]
+    }
+}
+
+/// `integer_ab_nn_scan_separated`: [`IntegerScan`] with the table's
+/// fixed-gain rows' gains and gate (`scan_separated`), T = 1 s, on every
+/// board.
 #[inline(never)]
-fn nearest_neighbour_scene<S>(bench: &mut Bench, targets: usize)
-where
-    S: Scalar + crate::numeric::BenchNumber,
-{
-    use crate::scan::{Scene, GATE_SIGMA_M, GATE_THRESHOLD, TIMED_SCANS, WARM_UP_SCANS};
-    const CAPACITY: usize = NEAREST_NEIGHBOUR_CAPACITY;
-    let numeric = S::LABEL;
-    // At most CAPACITY: in bounds (and the row says what was measured).
-    let targets = targets.min(CAPACITY);
-    let size = crate::counter::Size {
-        n: targets,
-        m: targets,
-    };
-    let c = |v: f64| <S as abtrack::Quantity>::from_f64_lossy(v);
-    let zero = <S as abtrack::Quantity>::ZERO;
-    let (t, r) = (1.0, GATE_SIGMA_M * GATE_SIGMA_M);
-    let model = black_box(AxisKalmanModel::new(t, 1.0, GATE_SIGMA_M));
-    let gate = black_box(c(GATE_THRESHOLD));
-    let mut rng = crate::synth::Lcg::new(5);
-    let mut z = [[zero; 2]; CAPACITY];
-    let mut scan = |k: u32, z: &mut [[S; 2]; CAPACITY]| {
-        for (i, zi) in z.iter_mut().take(targets).enumerate() {
-            let (x, y) = Scene::Separated.position(k, i, targets, &mut rng);
-            *zi = [c(x), c(y)];
-        }
-    };
-    let axis = AxisKalman {
-        position: zero,
-        velocity: zero,
-        p_xx: c(r),
-        p_xv: c(r / t),
-        p_vv: c(2.0 * r / (t * t)),
-    };
-    let mut tracks = [[axis; 2]; CAPACITY];
-    let mut taken = [false; CAPACITY];
-    let (tracks, taken) = (&mut tracks[..targets], &mut taken[..targets]);
-    let (mut scan_ticks, mut empty_ticks) = (0u32, 0u32);
-    // Scans 0 and 1 start the tracks (the velocity from their difference),
-    // the warm-up's scans follow, then the timed ones (the warm-up's times
-    // not counted); every scan after the start must time and update every
-    // track.
-    let mut every_track_updated = true;
-    for k in 0..WARM_UP_SCANS + TIMED_SCANS {
-        scan(k, &mut z);
-        let measured = &z[..targets];
-        if k < 2 {
-            for (track, zi) in tracks.iter_mut().zip(measured) {
-                for (a, zi) in track.iter_mut().zip(zi) {
-                    a.velocity = (*zi - a.position) / c(t);
-                    a.position = *zi;
-                }
-            }
-            continue;
-        }
-        let mut updated = 0;
-        let ticks = bench.time(|| {
-            updated = black_box(nearest_neighbour_step(
-                tracks,
-                black_box(measured),
-                taken,
-                &model,
-                gate,
-            ));
-        });
-        let empty = bench.time(|| {
-            black_box(black_box(measured));
-        });
-        every_track_updated &= updated == targets && ticks.is_some() && empty.is_some();
-        if k >= WARM_UP_SCANS {
-            scan_ticks += ticks.unwrap_or(0);
-            empty_ticks += empty.unwrap_or(0);
-        }
-    }
-    // Each track on its own target: within DIVERGED_M of the target's last
-    // measurement.
-    let on_own_target = tracks.iter().zip(&z).all(|(track, zi)| {
-        track
-            .iter()
-            .zip(zi)
-            .all(|(a, z)| near(a.position.to_f64(), z.to_f64()))
-    });
-    if !(every_track_updated && on_own_target) {
-        bench.fail(
-            numeric,
-            NEAREST_NEIGHBOUR_SCAN,
-            "a scan missed a track or its time, or a track left its target",
+pub fn integer_scan(bench: &mut Bench) {
+    use crate::scan::{FIXED_GAINS, GATE_MAX_ACCELERATION_M_PER_S2, GATE_SIGMA_M, GATE_THRESHOLD};
+    let scan = black_box(IntegerScan::new(
+        FIXED_GAINS.0,
+        FIXED_GAINS.1,
+        GATE_SIGMA_M,
+        GATE_THRESHOLD,
+        GATE_MAX_ACCELERATION_M_PER_S2,
+        1.0,
+    ));
+    hand_written_sizes(bench, crate::numeric::INTEGER, &scan);
+}
+
+/// The correction g·e in units, rounded (half up), for a gain `g` in Q16
+/// (≤ 1) and a residual inside the gate (|e| ≤ r < 2¹⁵ units): the
+/// product stays below 2³¹.
+#[inline(always)]
+fn q16_times(g: i32, e: i32) -> i32 {
+    g.wrapping_mul(e)
+        .wrapping_add(1 << (GAIN_FRACTION_BITS - 1))
+        >> GAIN_FRACTION_BITS
+}
+
+/// One scan of [`IntegerScan`], on slices (one copy of the code for every
+/// size): returns the number of tracks updated.
+#[inline(never)]
+fn integer_nearest_neighbour(
+    tracks: &mut [IntegerTrack],
+    z: &[[i32; 2]],
+    taken: &mut [bool],
+    s: &IntegerScan,
+) -> usize {
+    taken.fill(false);
+    let mut updated = 0;
+    for track in tracks.iter_mut() {
+        let (px, py) = (
+            track.x.wrapping_add(track.vx),
+            track.y.wrapping_add(track.vy),
         );
-        return;
+        let (mut nearest, mut least) = (None, s.radius_squared);
+        for (k, ([zx, zy], used)) in z.iter().zip(taken.iter()).enumerate() {
+            if *used {
+                continue;
+            }
+            let (dx, dy) = (zx.wrapping_sub(px), zy.wrapping_sub(py));
+            if dx.unsigned_abs() > s.radius || dy.unsigned_abs() > s.radius {
+                continue;
+            }
+            // |dx|, |dy| ≤ r < 2¹⁵: no overflow.
+            let d2 = (dx.wrapping_mul(dx) as u32).wrapping_add(dy.wrapping_mul(dy) as u32);
+            if d2 <= least {
+                (nearest, least) = (Some((k, dx, dy)), d2);
+            }
+        }
+        (track.x, track.y) = (px, py);
+        if let Some((k, ex, ey)) = nearest {
+            if let Some(used) = taken.get_mut(k) {
+                *used = true;
+                track.x = px.wrapping_add(q16_times(s.alpha, ex));
+                track.y = py.wrapping_add(q16_times(s.alpha, ey));
+                track.vx = track.vx.wrapping_add(q16_times(s.beta, ex));
+                track.vy = track.vy.wrapping_add(q16_times(s.beta, ey));
+                updated += 1;
+            }
+        }
     }
-    let net = scan_ticks.saturating_sub(empty_ticks);
-    let per_scan = bench.instructions(net) / TIMED_SCANS as f64;
-    bench.figure(numeric, NEAREST_NEIGHBOUR_SCAN, Some(size), per_scan);
+    updated
 }

@@ -10,7 +10,7 @@ use crate::counter::Bench;
 use crate::synth::Lcg;
 
 const OPERATION: &str = "parse_byte";
-const NUMERIC: &str = "int";
+use crate::numeric::INTEGER as NUMERIC;
 /// Frames in the stream the calls cycle through.
 const FRAMES: usize = 16;
 

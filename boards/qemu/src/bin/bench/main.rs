@@ -85,6 +85,7 @@ fn run(bench: &mut Bench) {
     // point, and minikalman (f32, with its I16F16 build).
     anchors::axis_kalman::<f32>(bench);
     anchors::axis_kalman::<ScaledScalar>(bench);
+    anchors::integer_scan(bench);
     // The scan a user would write around that filter, where the flash
     // holds it (not the micro:bit's): in f32 (software f32 on the M3) and
     // in the fast fixed point's wide format.

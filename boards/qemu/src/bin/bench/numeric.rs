@@ -3,6 +3,10 @@
 
 use abtrack::{Fix, Fixed32, ScaledScalar};
 
+/// The label of integer-only code (the wire decoder, the hand-written
+/// integer scan): the same in every numeric type.
+pub const INTEGER: &str = "int";
+
 /// A number system the abtrack operations run in ([`abtrack::Numeric`]),
 /// with its label in the benchmark's output (the `numeric` column of
 /// bench/results.csv).

@@ -99,11 +99,14 @@ macro_rules! rows {
     };
 }
 
-/// Fixed gains α = 0.5, β = 0.2.
+/// The fixed-gain rows' gains, α and β.
+pub const FIXED_GAINS: (f64, f64) = (0.5, 0.2);
+
+/// Fixed gains [`FIXED_GAINS`].
 impl<S: Numeric> BenchFilter<S> for FixedGainTrack<S> {
     const ROWS: [Rows; 2] = [rows!("scan_separated"), rows!("scan_crowded")];
     fn params() -> Option<Gains<S>> {
-        Gains::<S>::alpha_beta_f64(0.5, 0.2).ok()
+        Gains::<S>::alpha_beta_f64(FIXED_GAINS.0, FIXED_GAINS.1).ok()
     }
 }
 
@@ -135,6 +138,9 @@ const CROWDED_SPACING_M: f64 = 12.0;
 pub const GATE_SIGMA_M: f64 = 5.0;
 /// The gate's threshold G on the normalised distance squared.
 pub const GATE_THRESHOLD: f64 = 13.8;
+/// The gate's manoeuvre allowance a_max, m/s² (½·a_max·T² added to a
+/// fixed-gain track's radius).
+pub const GATE_MAX_ACCELERATION_M_PER_S2: f64 = 5.0;
 /// Measurement noise: uniform in ± this, m.
 const NOISE_M: f64 = 2.0;
 /// Ground speed of every target, m/s (along x).
@@ -331,7 +337,7 @@ fn scene<S: BenchNumber, F: BenchFilter<S>, const N: usize, const M: usize>(
         Gate::uncertainty(
             S::Length::from_f64_lossy(GATE_SIGMA_M),
             S::Ratio::from_f64_lossy(GATE_THRESHOLD),
-            S::Acceleration::from_f64_lossy(5.0),
+            S::Acceleration::from_f64_lossy(GATE_MAX_ACCELERATION_M_PER_S2),
         ),
     ) else {
         bench.fail(numeric, operation, "tracker configuration refused");
