@@ -555,11 +555,11 @@ impl IntegerScan {
     /// For gains α, β, the sensor's σ (m), the gate's G and a_max (m/s²)
     /// and the scan period T (s): r = σ·√(G·(1 + p⁻)) + ½·a_max·T², the
     /// track table's fixed-gain radius, with p⁻ the αβ filter's steady-state
-    /// predicted variance over σ², (2α² + 2β + αβ)/(α(4 − 2α − β)) (Kalata,
-    /// "The Tracking Index", IEEE Trans. AES 20(2), 1984).
+    /// predicted variance over σ², (2α² + αβ + 2β)/(α(4 − β − 2α)) (Tenne &
+    /// Singh eq. 13).
     fn new(alpha: f64, beta: f64, sigma: f64, threshold: f64, a_max: f64, t: f64) -> Self {
-        let predicted = (2.0 * alpha * alpha + 2.0 * beta + alpha * beta)
-            / (alpha * (4.0 - 2.0 * alpha - beta));
+        let predicted = (2.0 * alpha * alpha + alpha * beta + 2.0 * beta)
+            / (alpha * (4.0 - beta - 2.0 * alpha));
         let radius_m = sigma * libm::sqrt(threshold * (1.0 + predicted)) + 0.5 * a_max * t * t;
         let radius = libm::ceil(radius_m * INTEGER_UNITS_PER_M) as u32;
         let q16 = |g: f64| libm::round(g * f64::from(1u32 << GAIN_FRACTION_BITS)) as i32;
