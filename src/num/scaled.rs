@@ -28,7 +28,9 @@ use core::num::NonZeroU32;
 use core::ops::{Add, Div, Mul, Neg, Sub};
 
 use super::numeric::{Quantity, Real};
-use super::wide::{div_wide, wide_mul_unsigned};
+use super::wide::{
+    div_wide, reciprocal_estimate, wide_mul_signed_unsigned, wide_mul_unsigned, ARMV6M,
+};
 use super::NumError;
 
 /// Largest exponent: values up to 2^(100 + 31).
@@ -132,10 +134,95 @@ const SQRT_SEED: [u16; 192] = [
     64309, 64439, 64569, 64699, 64828, 64957, 65086, 65215, 65344, 65472,
 ];
 
-/// ⌊√n⌋ for n in [2⁶², 2⁶⁴): the seed of [`SQRT_SEED`], a Newton step on
-/// the high word (32-bit divisions), a Newton step on n ([`div_wide`]) and
-/// at most two corrections checked with exact products.
+/// ⌊√n⌋ for n in [2⁶², 2⁶⁴): by divisions where the core divides
+/// ([`isqrt_floor_by_divisions`]), by products alone on the Cortex-M0,
+/// which has no divide ([`isqrt_floor_by_products`]); the same result.
+#[inline]
 fn isqrt_floor_normalized(n: u64) -> u32 {
+    if ARMV6M {
+        isqrt_floor_by_products(n)
+    } else {
+        isqrt_floor_by_divisions(n)
+    }
+}
+
+/// `2³¹/s` for each `s` of [`SQRT_SEED`], rounded (`s` ≥ 2¹⁵: below 2¹⁶).
+const SQRT_SEED_RECIPROCAL: [u16; 192] = sqrt_seed_reciprocal();
+
+// Evaluated at compile time only: an index out of range or an overflow
+// would fail the build, not the firmware.
+#[allow(clippy::indexing_slicing, clippy::arithmetic_side_effects)]
+const fn sqrt_seed_reciprocal() -> [u16; 192] {
+    let mut table = [0u16; 192];
+    let mut i = 0;
+    while i < 192 {
+        let s = SQRT_SEED[i] as u32;
+        table[i] = (((1u32 << 31) + s / 2) / s) as u16;
+        i += 1;
+    }
+    table
+}
+
+/// [`isqrt_floor_normalized`] with multiplications alone (public so that
+/// the host tests compare it with exact arithmetic): the seed s of
+/// [`SQRT_SEED`] for the high word h; a Newton step s + (h − s²)/(2s)
+/// with 1/s from [`SQRT_SEED_RECIPROCAL`] (within 2⁻¹⁵ of √n relative:
+/// the seed's 0.4 % squared, plus the table's rounding); a Newton step
+/// x − (x² − n)/(2x) on n with 1/x from [`reciprocal_estimate`] (within 3
+/// of √n); then the floor found by stepping x² by 2x ± 1, checked with
+/// exact products (at most 64 steps either way, a few in practice).
+pub fn isqrt_floor_by_products(n: u64) -> u32 {
+    let high = (n >> 32) as u32;
+    let index = usize::try_from(high >> 24).unwrap_or(0).wrapping_sub(64);
+    let seed = u32::from(SQRT_SEED.get(index).copied().unwrap_or(u16::MAX));
+    let inverse = u32::from(SQRT_SEED_RECIPROCAL.get(index).copied().unwrap_or(1));
+    // h − s²: within ±2²⁵ (the seed is within 0.4 % of √h < 2¹⁶), a word.
+    let offset = high.wrapping_sub(seed.wrapping_mul(seed)) as i32;
+    // (h − s²)/(2s) in units of 2⁻¹⁶: offset·(2³¹/s)/2¹⁶.
+    let correction = wide_mul_signed_unsigned(offset, inverse) >> 16;
+    let first = (i64::from(seed) << 16)
+        .wrapping_add(correction)
+        .clamp(1 << 31, i64::from(u32::MAX)) as u32;
+    // e = x² − n, |e| < 2⁴⁹ (x within 2⁻¹⁵ of √n < 2³²): an i64 as the
+    // wrapping difference.
+    let excess = wide_mul_unsigned(first, first).wrapping_sub(n) as i64;
+    // |e|/(2x) = |e|·(2⁶³/x)/2⁶⁴, e shifted to a word first (|e|/2¹⁸ <
+    // 2³¹; what it drops moves the step by under 2⁻¹³).
+    let magnitude = (excess.unsigned_abs() >> 18) as u32;
+    let step = (wide_mul_unsigned(magnitude, reciprocal_estimate(first)) >> 46) as u32;
+    let mut root = if excess < 0 {
+        first.saturating_add(step)
+    } else {
+        first.saturating_sub(step)
+    };
+    // The floor: root² ≤ n < (root + 1)², root² updated by 2·root ∓ 1.
+    let mut square = wide_mul_unsigned(root, root);
+    for _ in 0..64 {
+        if square <= n {
+            break;
+        }
+        square = square.wrapping_sub(u64::from(root) << 1).wrapping_add(1);
+        root = root.wrapping_sub(1);
+    }
+    for _ in 0..64 {
+        // (root + 1)² = root² + 2·root + 1, below 2⁶⁴ for root < 2³² − 1.
+        if root == u32::MAX {
+            break;
+        }
+        let next = square.wrapping_add(u64::from(root) << 1).wrapping_add(1);
+        if next > n {
+            break;
+        }
+        (square, root) = (next, root.wrapping_add(1));
+    }
+    root
+}
+
+/// [`isqrt_floor_normalized`] where the core divides: the seed of
+/// [`SQRT_SEED`], a Newton step on the high word (32-bit divisions), a
+/// Newton step on n ([`div_wide`]) and at most two corrections checked
+/// with exact products.
+fn isqrt_floor_by_divisions(n: u64) -> u32 {
     let (high, low) = ((n >> 32) as u32, n as u32);
     let index = usize::try_from(high >> 24).unwrap_or(0).wrapping_sub(64);
     let seed = u32::from(SQRT_SEED.get(index).copied().unwrap_or(u16::MAX));

@@ -18,7 +18,7 @@
 use core::num::NonZeroU32;
 
 /// Whether this target lacks a 32×32→64 multiply and a divide (ARMv6-M).
-const ARMV6M: bool = cfg!(all(target_arch = "arm", not(target_has_atomic = "32")));
+pub(crate) const ARMV6M: bool = cfg!(all(target_arch = "arm", not(target_has_atomic = "32")));
 
 /// The exact product of two signed words.
 #[inline(always)]
@@ -144,18 +144,7 @@ const fn reciprocal_seed() -> [u16; 256] {
 /// exceeds the reciprocal.
 #[inline(always)]
 fn reciprocal(v: u32) -> u32 {
-    let seed = u32::from(
-        RECIPROCAL_SEED
-            .get(((v >> 23) & 0xFF) as usize)
-            .copied()
-            .unwrap_or(0),
-    );
-    // a′·z0 in units of 2⁻³¹, a′ = (v >> 16)/2¹⁶ ≤ a: at most 2³¹ (the seed
-    // is below 1/a′), at least 2³¹(1 − 2⁻⁷); e = 1 − a′·z0 below 2²⁴.
-    let product = (v >> 16).wrapping_mul(seed);
-    let error = (1u32 << 31).wrapping_sub(product);
-    // z1 = z0·(1 + e) in units of 2⁻³¹ (below 2³²: z1 ≤ 1/a′ ≤ 2).
-    let first = (seed << 16).wrapping_add(seed.wrapping_mul(error >> 8) >> 7);
+    let first = reciprocal_estimate(v);
     // e = 1 − a·z1 in units of 2⁻⁶³, |e| < 2⁴⁹ (z1 is within 2⁻¹⁵ of 1/a,
     // from either side: 1/a′ ≥ 1/a).
     let error = (1u64 << 63).wrapping_sub(wide_mul_unsigned(v, first)) as i64;
@@ -173,6 +162,25 @@ fn reciprocal(v: u32) -> u32 {
         .wrapping_add(correction)
         .saturating_sub(1 << 32)
         .min(u64::from(u32::MAX)) as u32
+}
+
+/// The first Newton step of [`reciprocal`]: 1/a for a = v/2³² (v ≥ 2³¹)
+/// in units of 2⁻³¹, about 2⁶³/v, within 2⁻¹⁵ of it relative, on 32-bit
+/// words ([`RECIPROCAL_SEED`] and one step on v's top 16 bits).
+#[inline(always)]
+pub(crate) fn reciprocal_estimate(v: u32) -> u32 {
+    let seed = u32::from(
+        RECIPROCAL_SEED
+            .get(((v >> 23) & 0xFF) as usize)
+            .copied()
+            .unwrap_or(0),
+    );
+    // a′·z0 in units of 2⁻³¹, a′ = (v >> 16)/2¹⁶ ≤ a: at most 2³¹ (the seed
+    // is below 1/a′), at least 2³¹(1 − 2⁻⁷); e = 1 − a′·z0 below 2²⁴.
+    let product = (v >> 16).wrapping_mul(seed);
+    let error = (1u32 << 31).wrapping_sub(product);
+    // z1 = z0·(1 + e) in units of 2⁻³¹ (below 2³²: z1 ≤ 1/a′ ≤ 2).
+    (seed << 16).wrapping_add(seed.wrapping_mul(error >> 8) >> 7)
 }
 
 /// [`div_wide`] by multiplications alone (the Cortex-M0 has no divide; in

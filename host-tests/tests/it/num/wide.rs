@@ -172,3 +172,61 @@ proptest! {
         prop_assert_eq!(wide_mul_signed_unsigned_by_halves(sa, b), i64::from(sa) * i64::from(b));
     }
 }
+
+/// The Cortex-M0's square root (by products alone) is the exact floor of
+/// √n over its whole domain [2⁶², 2⁶⁴): at the domain's ends, at every
+/// seed bucket's ends, at squares and beside them, and on random words.
+#[test]
+fn the_square_root_by_products_is_the_exact_floor() {
+    use abtrack::num::scaled::isqrt_floor_by_products;
+    let check = |n: u64| {
+        assert_eq!(u64::from(isqrt_floor_by_products(n)), n.isqrt(), "⌊√{n}⌋");
+    };
+    let mut cases = vec![1u64 << 62, u64::MAX, (1u64 << 62) + 1, u64::MAX - 1];
+    // Each seed bucket (the high word's top 8 bits, 64..=255) at its ends.
+    for top in 64u64..=255 {
+        let start = top << 56;
+        cases.extend([
+            start,
+            start + 1,
+            start.wrapping_sub(1),
+            start | ((1 << 56) - 1),
+        ]);
+    }
+    // Squares, one below and the last value before the next square.
+    for k in [
+        1u64 << 31,
+        (1 << 31) + 1,
+        0xB504_F333,
+        0xFFFF_FFFE,
+        0xFFFF_FFFF,
+    ] {
+        let square = k * k;
+        cases.extend([square, square - 1, square.saturating_add(2 * k)]);
+    }
+    for n in cases.into_iter().filter(|&n| n >= 1 << 62) {
+        check(n);
+    }
+    // Random words, and squares of random roots with small offsets
+    // (a fixed generator: the same cases on every run).
+    let mut state = 0x9E37_79B9_7F4A_7C15u64;
+    let mut next = || {
+        state ^= state << 13;
+        state ^= state >> 7;
+        state ^= state << 17;
+        state
+    };
+    for _ in 0..1_000_000 {
+        check(next() | (1 << 62));
+        let root = (next() >> 32) | (1 << 31);
+        let square = root * root;
+        let offset = next() % (2 * root + 1);
+        check(square + offset);
+        if let Some(below) = square
+            .checked_sub((offset & 0xFF) + 1)
+            .filter(|&n| n >= 1 << 62)
+        {
+            check(below);
+        }
+    }
+}
