@@ -163,14 +163,16 @@ const fn sqrt_seed_reciprocal() -> [u16; 192] {
     table
 }
 
-/// [`isqrt_floor_normalized`] with multiplications alone (public so that
-/// the host tests compare it with exact arithmetic): the seed s of
-/// [`SQRT_SEED`] for the high word h; a Newton step s + (h − s²)/(2s)
-/// with 1/s from [`SQRT_SEED_RECIPROCAL`] (within 2⁻¹⁵ of √n relative:
-/// the seed's 0.4 % squared, plus the table's rounding); a Newton step
-/// x − (x² − n)/(2x) on n with 1/x from [`reciprocal_estimate`] (within 3
-/// of √n); then the floor found by stepping x² by 2x ± 1, checked with
-/// exact products (at most 64 steps either way, a few in practice).
+/// ⌊√n⌋ for n in [2⁶², 2⁶⁴) with multiplications alone, what the
+/// Cortex-M0 runs (public so that the host tests compare it with exact
+/// arithmetic): a seed s ≈ √h from a table on the high word h's top 8
+/// bits; a Newton step s + (h − s²)/(2s) with 1/s from a second table
+/// (within 2⁻¹⁵ of √n relative: the seed's 0.4 % squared, plus the
+/// table's rounding); a Newton step x − (x² − n)/(2x) on n with 1/x from
+/// the wide division's first reciprocal estimate (within 3 of √n); then
+/// the floor found by stepping x² by 2x ± 1, checked with exact products
+/// (at most 64 steps either way, a few in practice). Outside its domain
+/// the result is meaningless, but nothing panics.
 pub fn isqrt_floor_by_products(n: u64) -> u32 {
     let high = (n >> 32) as u32;
     let index = usize::try_from(high >> 24).unwrap_or(0).wrapping_sub(64);
