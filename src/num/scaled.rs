@@ -167,7 +167,7 @@ const fn sqrt_seed_reciprocal() -> [u16; 192] {
 /// Cortex-M0 runs (public so that the host tests compare it with exact
 /// arithmetic): a seed s ≈ √h from a table on the high word h's top 8
 /// bits; a Newton step s + (h − s²)/(2s) with 1/s from a second table
-/// (within 2⁻¹⁵ of √n relative: the seed's 0.4 % squared, plus the
+/// (within 2⁻¹⁶ of √n relative: half the seed's 0.4 % squared, plus the
 /// table's rounding); a Newton step x − (x² − n)/(2x) on n with 1/x from
 /// the wide division's first reciprocal estimate (within 3 of √n); then
 /// the floor found by stepping x² by 2x ± 1, checked with exact products
@@ -185,8 +185,8 @@ pub fn isqrt_floor_by_products(n: u64) -> u32 {
     let first = (i64::from(seed) << 16)
         .wrapping_add(correction)
         .clamp(1 << 31, i64::from(u32::MAX)) as u32;
-    // e = x² − n, |e| < 2⁴⁹ (x within 2⁻¹⁵ of √n < 2³²): an i64 as the
-    // wrapping difference.
+    // e = x² − n = (x − √n)(x + √n), |e| < 2¹⁶·2³³ (x within 2⁻¹⁶ of
+    // √n < 2³²): an i64 as the wrapping difference.
     let excess = wide_mul_unsigned(first, first).wrapping_sub(n) as i64;
     // |e|/(2x) = |e|·(2⁶³/x)/2⁶⁴, e shifted to a word first (|e|/2¹⁸ <
     // 2³¹; what it drops moves the step by under 2⁻¹³).

@@ -435,9 +435,10 @@ impl<R: Real> ErrorVariance<R> {
     }
 }
 
-/// The terms of [`ErrorVariance::updated`] that depend on the gains alone,
-/// α and k₂ = β/T: 1 − α, (1 − α)², α², k₂, α·k₂, 2·k₂ and k₂², each
-/// rounded as the update formed it.
+/// The terms of [`ErrorVariance::updated`] (the Joseph form of Al-Wagih
+/// eqs. 6 and 8) that depend on the gains alone, α and k₂ = β/T: 1 − α,
+/// (1 − α)², α², k₂, α·k₂, 2·k₂ and k₂², each rounded as the update
+/// formed it.
 #[derive(Debug, Clone, Copy, PartialEq)]
 #[cfg_attr(feature = "defmt", derive(defmt::Format))]
 pub struct UpdateTerms<R> {
