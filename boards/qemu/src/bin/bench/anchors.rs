@@ -2,8 +2,9 @@
 //! can cost), in every number system; a hand-written per-axis
 //! constant-velocity Kalman filter in f32 and the fast fixed point's wide
 //! format (in Q32.32 it alone took 18 KiB of the micro:bit's flash); and the
-//! nearest-neighbour scan a user would write around it, beside the track
-//! table's scan. `minikalman` is in [`crate::minikalman`].
+//! nearest-neighbour scans a user would write, around that filter and in
+//! integers around a fixed-gain αβ filter, beside the track table's scans.
+//! `minikalman` is in [`crate::minikalman`].
 
 use core::hint::black_box;
 
