@@ -146,7 +146,8 @@ fn isqrt_floor_normalized(n: u64) -> u32 {
     }
 }
 
-/// `2³¹/s` for each `s` of [`SQRT_SEED`], rounded (`s` ≥ 2¹⁵: below 2¹⁶).
+/// `2³¹/s` for each `s` of [`SQRT_SEED`], rounded (every `s` > 2¹⁵: below
+/// 2¹⁶, which the build checks).
 const SQRT_SEED_RECIPROCAL: [u16; 192] = sqrt_seed_reciprocal();
 
 // Evaluated at compile time only: an index out of range or an overflow
@@ -157,7 +158,9 @@ const fn sqrt_seed_reciprocal() -> [u16; 192] {
     let mut i = 0;
     while i < 192 {
         let s = SQRT_SEED[i] as u32;
-        table[i] = (((1u32 << 31) + s / 2) / s) as u16;
+        let reciprocal = ((1u32 << 31) + s / 2) / s;
+        assert!(reciprocal < 1 << 16);
+        table[i] = reciprocal as u16;
         i += 1;
     }
     table

@@ -82,7 +82,8 @@ fn run(bench: &mut Bench) {
     bench_scalar::<Fix>(bench);
     bench_scalar::<f64>(bench);
     // Anchors: the hand-written Kalman filter in f32 and the fast fixed
-    // point, and minikalman (f32, with its I16F16 build).
+    // point, the hand-written integer scan, and minikalman (f32, with its
+    // I16F16 build).
     anchors::axis_kalman::<f32>(bench);
     anchors::axis_kalman::<ScaledScalar>(bench);
     anchors::integer_scan(bench);
