@@ -146,6 +146,15 @@ fn isqrt_floor_normalized(n: u64) -> u32 {
     }
 }
 
+/// The index in [`SQRT_SEED`] of a high word in [2³⁰, 2³²) (its top 8
+/// bits less 64) and the seed there, about its square root.
+#[inline(always)]
+fn sqrt_seed(high: u32) -> (usize, u32) {
+    let index = usize::try_from(high >> 24).unwrap_or(0).wrapping_sub(64);
+    let seed = u32::from(SQRT_SEED.get(index).copied().unwrap_or(u16::MAX));
+    (index, seed)
+}
+
 /// `2³¹/s` for each `s` of [`SQRT_SEED`], rounded (every `s` > 2¹⁵: below
 /// 2¹⁶, which the build checks).
 const SQRT_SEED_RECIPROCAL: [u16; 192] = sqrt_seed_reciprocal();
@@ -178,8 +187,7 @@ const fn sqrt_seed_reciprocal() -> [u16; 192] {
 /// the result is meaningless, but nothing panics.
 pub fn isqrt_floor_by_products(n: u64) -> u32 {
     let high = (n >> 32) as u32;
-    let index = usize::try_from(high >> 24).unwrap_or(0).wrapping_sub(64);
-    let seed = u32::from(SQRT_SEED.get(index).copied().unwrap_or(u16::MAX));
+    let (index, seed) = sqrt_seed(high);
     let inverse = u32::from(SQRT_SEED_RECIPROCAL.get(index).copied().unwrap_or(1));
     // h − s²: within ±2²⁵ (the seed is within 0.4 % of √h < 2¹⁶), a word.
     let offset = high.wrapping_sub(seed.wrapping_mul(seed)) as i32;
@@ -229,8 +237,7 @@ pub fn isqrt_floor_by_products(n: u64) -> u32 {
 /// with exact products.
 fn isqrt_floor_by_divisions(n: u64) -> u32 {
     let (high, low) = ((n >> 32) as u32, n as u32);
-    let index = usize::try_from(high >> 24).unwrap_or(0).wrapping_sub(64);
-    let seed = u32::from(SQRT_SEED.get(index).copied().unwrap_or(u16::MAX));
+    let (_, seed) = sqrt_seed(high);
     let seed_nz = NonZeroU32::new(seed).unwrap_or(NonZeroU32::MIN);
     // (seed + high/seed)/2 with 16 fractional bits: √n within 8·10⁻⁶
     // relative (the seed's 0.4 % squared), at most 3.5 below the exact
