@@ -6,7 +6,7 @@
 //! and minimum TA time, the intruder-on-ground inhibit and firmness gating.
 //! Each rule's source is on its function; docs/tcas.md has the table.
 
-use super::measures::{all_valid, valid_result};
+use super::measures::{all_valid, floored_closure, valid_result};
 use super::range_tracker::{
     RangeEstimate, ACCELERATION_SIGMA_PER_RESIDUAL_SIGMA, MIN_ALERT_FIRMNESS,
     RATE_ACCELERATION_ERROR_CORRELATION, RATE_ERROR_UNCORRELATED_SHARE,
@@ -14,15 +14,12 @@ use super::range_tracker::{
 };
 use super::sensitivity::{AlertThresholds, OwnAircraft, SensitivityParameters};
 use super::{
-    Advisory, TcasError, METRES_PER_FOOT, METRES_PER_NAUTICAL_MILE, PROXIMATE_ALTITUDE_FT,
-    PROXIMATE_RANGE_NM,
+    Advisory, TcasError, CLOSURE_RATE_FLOOR_M_PER_S, METRES_PER_NAUTICAL_MILE,
+    PROXIMATE_ALTITUDE_FT, PROXIMATE_RANGE_NM,
 };
 use crate::filter::altitude::{AltitudeEstimate, OutOfLine};
 use crate::num::{hypot, Quantity, Scalar};
 
-/// Range rate above which an intruder counts as diverging, and the floor
-/// on the closure speed in the taus, ft/s (DO-185B `RDTHR`, `RDTHRTA`).
-pub const DIVERGING_RATE_FT_PER_S: f64 = 10.0;
 /// Farthest range of an RA range hit, NM (DO-185B `RMAX`).
 pub const MAX_RA_RANGE_NM: f64 = 12.0;
 /// d|h|/dt must be below this for the vertical-tau test, ft/s (DO-185B
@@ -142,7 +139,7 @@ struct ResolutionThresholds<S> {
 #[derive(Debug, Clone, Copy, PartialEq)]
 #[cfg_attr(feature = "defmt", derive(defmt::Format))]
 struct Constants<S> {
-    diverging_rate_m_per_s: S,
+    closure_rate_floor_m_per_s: S,
     max_ra_range_m: S,
     vertical_convergence_ft_per_s: S,
     max_intruder_rate_ft_per_s: S,
@@ -201,7 +198,7 @@ impl<S: Scalar> CycleThresholds<S> {
             ),
             ra,
             constants: Constants {
-                diverging_rate_m_per_s: c(DIVERGING_RATE_FT_PER_S * METRES_PER_FOOT),
+                closure_rate_floor_m_per_s: c(CLOSURE_RATE_FLOOR_M_PER_S),
                 max_ra_range_m: c(MAX_RA_RANGE_NM * METRES_PER_NAUTICAL_MILE),
                 vertical_convergence_ft_per_s: c(VERTICAL_CONVERGENCE_FT_PER_S),
                 max_intruder_rate_ft_per_s: c(MAX_INTRUDER_RATE_FT_PER_S),
@@ -258,12 +255,13 @@ pub(crate) struct RangeGeometry<S> {
 impl<S: Scalar> RangeGeometry<S> {
     /// Range `r` (m, ≥ 0) and range rate `rdot` (m/s) in a cycle.
     pub(crate) fn new(r: S, rdot: S, thresholds: &CycleThresholds<S>) -> Self {
-        let floor = thresholds.constants.diverging_rate_m_per_s;
+        let floor = thresholds.constants.closure_rate_floor_m_per_s;
+        let closure = floored_closure(rdot, floor);
         RangeGeometry {
             r,
             rdot,
-            diverging: rdot > floor,
-            closure: (-rdot).max_of(floor),
+            diverging: closure.is_none(),
+            closure: closure.unwrap_or(floor),
             per_closure: None,
             per_range: None,
             range_tau: None,
@@ -310,6 +308,11 @@ impl<S: Scalar> RangeGeometry<S> {
         } else {
             distance.over(self.closure)
         }
+    }
+
+    /// ṙ > 10 ft/s: no tau (DO-185B `RDTHR`).
+    pub(crate) fn diverging(&self) -> bool {
+        self.diverging
     }
 
     /// The true range tau r/max(−ṙ, 10 ft/s), s.

@@ -6,13 +6,20 @@ use super::{TcasError, CLOSURE_RATE_FLOOR_M_PER_S};
 use crate::filter::altitude::OutOfLine;
 use crate::num::{hypot, Scalar};
 
-/// Closure speed for the taus: max(−ṙ, floor), or `None` when diverging.
-pub(crate) fn floored_closure<S: Scalar>(range_rate: S) -> Option<S> {
-    if range_rate > S::ZERO {
+/// Closure speed for the taus, max(−ṙ, `floor`), or `None` when the
+/// intruder is diverging, ṙ > `floor` (DO-185B `range_test`: one threshold,
+/// `RDTHR`, for both; [`CLOSURE_RATE_FLOOR_M_PER_S`]).
+pub(crate) fn floored_closure<S: Scalar>(range_rate: S, floor: S) -> Option<S> {
+    if range_rate > floor {
         None
     } else {
-        Some((-range_rate).max_of(S::from_f64_lossy(CLOSURE_RATE_FLOOR_M_PER_S)))
+        Some((-range_rate).max_of(floor))
     }
+}
+
+/// [`floored_closure`] at [`CLOSURE_RATE_FLOOR_M_PER_S`].
+fn closure<S: Scalar>(range_rate: S) -> Option<S> {
+    floored_closure(range_rate, S::from_f64_lossy(CLOSURE_RATE_FLOOR_M_PER_S))
 }
 
 pub(crate) fn all_valid<S: Scalar>(values: &[S]) -> Result<(), TcasError> {
@@ -33,20 +40,22 @@ pub(crate) fn valid_result<S: Scalar>(v: S) -> Result<S, TcasError> {
 
 /// Range tau τ = r/max(−ṙ, 10 ft/s), s, for range `range_m` (m, ≥ 0) and
 /// range rate `range_rate_m_per_s` (negative closing); `None` when the
-/// intruder is diverging (ṙ > 0). See the module docs for the floor.
+/// intruder is diverging, ṙ > 10 ft/s (DO-185B `RDTHR`: an opening rate
+/// below it counts as closing at the floor, as in the threat logic).
 pub fn range_tau<S: Scalar>(range_m: S, range_rate_m_per_s: S) -> Result<Option<S>, TcasError> {
     all_valid(&[range_m, range_rate_m_per_s])?;
     if range_m < S::ZERO {
         return Err(TcasError::InvalidInput);
     }
-    match floored_closure(range_rate_m_per_s) {
+    match closure(range_rate_m_per_s) {
         None => Ok(None),
         Some(closure) => valid_result(range_m.over(closure)).map(Some),
     }
 }
 
 /// Modified tau τ_mod = (DMOD² − r²)/(r·ṙ), s, with the closure floor: 0
-/// when r ≤ DMOD (diverging or not), `None` when diverging outside DMOD.
+/// when r ≤ DMOD (diverging or not), `None` when diverging (as
+/// [`range_tau`]) outside DMOD.
 /// `dmod_m` in metres.
 pub fn modified_tau<S: Scalar>(
     range_m: S,
@@ -60,7 +69,7 @@ pub fn modified_tau<S: Scalar>(
     if range_m <= dmod_m {
         return Ok(Some(S::ZERO));
     }
-    match floored_closure(range_rate_m_per_s) {
+    match closure(range_rate_m_per_s) {
         None => Ok(None),
         // r > DMOD ≥ 0, so the division by r is safe and r − DMOD²/r > 0.
         Some(closure) => {

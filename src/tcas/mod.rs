@@ -74,8 +74,9 @@ pub const METRES_PER_NAUTICAL_MILE: f64 = 1852.0;
 pub const METRES_PER_FOOT: f64 = 0.3048;
 /// Metres per second per knot (1 NM/h).
 pub const METRES_PER_SECOND_PER_KNOT: f64 = METRES_PER_NAUTICAL_MILE / 3600.0;
-/// Floor on the closure speed used in range tau and modified tau, ft/s
-/// (DO-185B `RDTHR`).
+/// Floor on the closure speed used in range tau and modified tau, and the
+/// range rate above which an intruder is diverging (no tau), ft/s (DO-185B
+/// `RDTHR`: one threshold for both).
 pub const CLOSURE_RATE_FLOOR_FT_PER_S: f64 = 10.0;
 /// The same floor in m/s.
 pub const CLOSURE_RATE_FLOOR_M_PER_S: f64 = CLOSURE_RATE_FLOOR_FT_PER_S * METRES_PER_FOOT;
@@ -238,13 +239,14 @@ pub fn assess_in<S: Scalar>(
             None,
         )?;
         // The taus of the report from the quotients the tests formed: none
-        // while the range opens, except τ_mod = 0 inside DMOD.
-        let opening = range_rate > S::ZERO;
+        // while the intruder diverges (as [`range_tau`]), except τ_mod = 0
+        // inside DMOD.
+        let diverging = geometry.diverging();
         let (ta_dmod_m, ra_dmod_m) = cycle.thresholds().dmod_m();
         let modified_tau = |g: &mut RangeGeometry<S>, dmod_m: S, ra: bool| {
             if range <= dmod_m {
                 Ok(Some(S::ZERO))
-            } else if opening {
+            } else if diverging {
                 Ok(None)
             } else if ra {
                 measures::valid_result(g.ra_modified_tau(dmod_m)).map(Some)
@@ -256,7 +258,7 @@ pub fn assess_in<S: Scalar>(
             sensitivity: cycle.params().level,
             range_m: range,
             range_rate_m_per_s: range_rate,
-            range_tau_s: if opening {
+            range_tau_s: if diverging {
                 None
             } else {
                 Some(measures::valid_result(geometry.range_tau())?)

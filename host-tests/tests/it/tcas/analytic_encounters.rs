@@ -372,3 +372,40 @@ fn tracks_from_the_filters_alert_on_the_first_scan_inside_the_boundary() {
         );
     }
 }
+
+/// The assessment's taus follow the threat logic's one definition of
+/// diverging (DO-185B `RDTHR`, ṙ > 10 ft/s): an intruder opening slower
+/// than that has the taus of a closure at the floor, as the public
+/// `range_tau` and `modified_tau` give them; a faster one has none. At
+/// 3 NM, 8000 ft (SL 5: TA DMOD 0.75 NM), abeam, opening at `rate`.
+fn taus_of_a_slowly_opening_intruder<S: Scalar>() {
+    let r = 3.0 * NM;
+    for (rate, has_taus) in [(1.0, true), (3.0, true), (3.2, false), (20.0, false)] {
+        let a = assess_at::<S>(8000.0, [r, 0.0], [rate, 0.0], Some((8000.0, 0.0)));
+        let c = |x: f64| S::from_f64_lossy(x);
+        let range_tau = abtrack::tcas::range_tau(c(r), c(rate)).unwrap();
+        let ta_tau = abtrack::tcas::modified_tau(c(r), c(rate), c(0.75 * NM)).unwrap();
+        assert_eq!(range_tau.is_some(), has_taus, "{}: {rate}", S::NAME);
+        assert_eq!(a.range_tau_s.is_some(), has_taus, "{}: {rate}", S::NAME);
+        assert_eq!(
+            a.ta_modified_tau_s.is_some(),
+            has_taus,
+            "{}: {rate}",
+            S::NAME
+        );
+        let near = |got: Option<S>, want: Option<S>| match (got, want) {
+            (Some(g), Some(w)) => (g.to_f64() - w.to_f64()).abs() <= 1e-6 * w.to_f64().abs() + 1e-3,
+            (g, w) => g.is_none() && w.is_none(),
+        };
+        assert!(near(a.range_tau_s, range_tau), "{}: {rate}", S::NAME);
+        assert!(near(a.ta_modified_tau_s, ta_tau), "{}: {rate}", S::NAME);
+    }
+}
+
+#[test]
+fn a_slowly_opening_intruder_has_the_taus_of_the_closure_floor() {
+    taus_of_a_slowly_opening_intruder::<f64>();
+    taus_of_a_slowly_opening_intruder::<f32>();
+    taus_of_a_slowly_opening_intruder::<Fix>();
+    taus_of_a_slowly_opening_intruder::<ScaledScalar>();
+}

@@ -49,8 +49,17 @@ fn range_taus<S: Scalar>() {
         range_tau(s::<S>(1000.0), s(-4.0)).unwrap().unwrap(),
         250.0
     ));
-    // Diverging: no tau, however slowly.
-    assert_eq!(range_tau(s::<S>(1000.0), s(0.1)).unwrap(), None);
+    // Opening slower than the floor counts as closing at it (DO-185B
+    // `range_test`): the same tau; faster, diverging, none.
+    for rate in [0.1, CLOSURE_RATE_FLOOR_M_PER_S] {
+        let t = range_tau(s::<S>(1000.0), s(rate)).unwrap().unwrap();
+        assert!(
+            close(t, 328.083_989_501_312_3),
+            "{}: {rate}: {t:?}",
+            S::NAME
+        );
+    }
+    assert_eq!(range_tau(s::<S>(1000.0), s(3.1)).unwrap(), None);
     assert_eq!(range_tau(s::<S>(0.0), s(-10.0)).unwrap(), Some(S::ZERO));
 
     // Modified tau, head-on at 600 kt with the SL 5 TA DMOD of 0.75 NM, at
@@ -73,8 +82,14 @@ fn range_taus<S: Scalar>() {
             Some(S::ZERO)
         );
     }
-    // Diverging outside DMOD: none.
+    // Diverging outside DMOD: none; opening under the floor: at the floor,
+    // (2 − 0.75²/2)·1852/3.048 = 1.71875·1852/3.048 = 1044.3324 s.
     assert_eq!(modified_tau(s::<S>(2.0 * NM), s(50.0), dmod).unwrap(), None);
+    assert_eq!(modified_tau(s::<S>(2.0 * NM), s(3.1), dmod).unwrap(), None);
+    let t = modified_tau(s::<S>(2.0 * NM), s(1.0), dmod)
+        .unwrap()
+        .unwrap();
+    assert!((t.to_f64() - 1044.3324).abs() < 2e-2, "{}: {t:?}", S::NAME);
     // The floor: 100 m outside DMOD = 1389 m, at rest. r = 1489 m,
     // DMOD²/r = 1 929 321/1489 = 1295.7159, (1489 − 1295.7159)/3.048
     // = 193.2841/3.048 = 63.4134 s.
