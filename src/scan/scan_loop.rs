@@ -444,8 +444,8 @@ impl<
             // measurement of each scan.
             let _ = self.codes.resize(M, Association::NotAssigned);
         }
-        let rule = IdentityRule {
-            intruders: &self.intruders,
+        let mut rule = IdentityRule {
+            intruders: &mut self.intruders,
             replies: &self.batch_replies,
             previous: &self.previous_replies,
             dt,
@@ -455,7 +455,7 @@ impl<
             self.tracker_ms,
             &self.batch,
             &mut self.codes,
-            &rule,
+            &mut rule,
             |_| {},
         )?;
         self.update_intruders(config, &report);

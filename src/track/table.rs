@@ -219,6 +219,10 @@ pub trait PairRule {
     fn may_update(&self, track: TrackId, k: usize) -> bool;
     /// `first` and measurement `k` of this scan may start a track together.
     fn may_start(&self, first: FirstPoint, k: usize) -> bool;
+    /// Track `track` was deleted by its deletion rules in this scan, before
+    /// the scan's starts are decided: a rule that refuses starts for a live
+    /// track's sake (its identity) may allow them from here on.
+    fn track_deleted(&mut self, _track: TrackId) {}
 }
 
 /// Which scan a first point of two-point initiation came from
@@ -744,7 +748,7 @@ impl<S: Numeric, F: TrackFilter<S>, const N: usize, const M: usize> TrackTable<S
         codes: &mut [Association],
         probe: impl FnMut(ScanStage),
     ) -> Result<ScanReport, ScanError> {
-        self.scan_with_rule(config, now_ms, measurements, codes, &AnyPair, probe)
+        self.scan_with_rule(config, now_ms, measurements, codes, &mut AnyPair, probe)
     }
 
     /// [`Self::scan_with_probe`] where only the pairs `rule` allows may
@@ -756,7 +760,7 @@ impl<S: Numeric, F: TrackFilter<S>, const N: usize, const M: usize> TrackTable<S
         now_ms: u32,
         measurements: &[Measurement<S>],
         codes: &mut [Association],
-        rule: &impl PairRule,
+        rule: &mut impl PairRule,
         mut probe: impl FnMut(ScanStage),
     ) -> Result<ScanReport, ScanError> {
         let (interval_ms, timing) = self.interval_to(now_ms, config)?;
@@ -778,11 +782,11 @@ impl<S: Numeric, F: TrackFilter<S>, const N: usize, const M: usize> TrackTable<S
         if let Some(dt) = &dt {
             self.index.build(&self.observations);
             probe(ScanStage::Index);
-            self.gate(config, dt, rule, &mut report);
+            self.gate(config, dt, &*rule, &mut report);
             probe(ScanStage::Gate);
             self.clusters.link();
             probe(ScanStage::Cluster);
-            self.assign(config, dt, rule, &mut report)?;
+            self.assign(config, dt, &*rule, &mut report)?;
             probe(ScanStage::Assign);
         }
         // From here on the table changes: the scan is accepted.
@@ -794,9 +798,9 @@ impl<S: Numeric, F: TrackFilter<S>, const N: usize, const M: usize> TrackTable<S
         if let Some(dt) = &dt {
             self.update(config, dt, &mut report);
             probe(ScanStage::Update);
-            self.manage(config, now_ms, &mut report);
+            self.manage(config, now_ms, rule, &mut report);
             probe(ScanStage::Manage);
-            self.initiate(config, dt, now_ms, rule, &mut report);
+            self.initiate(config, dt, now_ms, &*rule, &mut report);
         }
         self.keep_pending(config, used, &mut report);
         self.previous_interval_ms = interval_ms;
@@ -1092,11 +1096,12 @@ impl<S: Numeric, F: TrackFilter<S>, const N: usize, const M: usize> TrackTable<S
     }
 
     /// Confirm, and delete (misses, M-of-N out of reach, left the volume,
-    /// arithmetic failed).
+    /// arithmetic failed), telling `rule` of each deletion.
     fn manage(
         &mut self,
         config: &TrackerConfig<S, F::Params>,
         now_ms: u32,
+        rule: &mut impl PairRule,
         report: &mut ScanReport,
     ) {
         for (slot, outcome) in self.slots.iter_mut().zip(self.outcomes.iter()) {
@@ -1113,6 +1118,7 @@ impl<S: Numeric, F: TrackFilter<S>, const N: usize, const M: usize> TrackTable<S
                 })
             };
             if let Some(reason) = delete {
+                rule.track_deleted(track.id);
                 slot.clear();
                 increment(&mut report.deleted);
                 match reason {

@@ -51,8 +51,10 @@ pub const MAX_RA_THREATS: usize = 8;
 /// with that address; a reply without one (Mode C) updates only a track
 /// without an address whose altitude it correlates with, and starts one
 /// only with a first point without an address whose altitude correlates.
+/// A track deleted in the scan frees its address for the scan's starts
+/// ([`PairRule::track_deleted`]).
 pub(super) struct IdentityRule<'a, S: Scalar> {
-    pub(super) intruders: &'a [IntruderSlot<S>],
+    pub(super) intruders: &'a mut [IntruderSlot<S>],
     pub(super) replies: &'a [ReplyData<S>],
     pub(super) previous: &'a [ReplyData<S>],
     pub(super) dt: S,
@@ -140,6 +142,14 @@ impl<S: Scalar> PairRule for IdentityRule<'_, S> {
         match (first.altitude_ft, second.altitude_ft) {
             (Some(a), Some(b)) => altitudes_correlate(a, b, quantum_of(second), self.dt),
             _ => true,
+        }
+    }
+
+    /// The deleted track's slot (dropped after the scan) no longer holds
+    /// its address.
+    fn track_deleted(&mut self, track: TrackId) {
+        if let Some(s) = self.intruders.iter_mut().find(|s| s.track == track) {
+            s.address = None;
         }
     }
 }

@@ -150,3 +150,51 @@ fn a_confirmed_tracks_reply_outranks_replies_it_may_not_take() {
     check::<f32>();
     check::<Fix>();
 }
+
+/// A track lost by its intruder (every reply of its address now 5 km beyond
+/// its gate, as after a jump of the range measurement) holds the address
+/// until it is deleted; the replies it cannot take are kept as first points
+/// but start nothing while it lives. In the scan that deletes it, the
+/// address is free: the previous scan's reply and this one start the new
+/// track then, not a scan later.
+#[test]
+fn a_deleted_tracks_address_starts_a_track_in_the_scan_that_deletes_it() {
+    fn check<S: Scalar>() {
+        const ADDRESS: u32 = 0xABC124;
+        let config = demo_config::demo_config::<S, _>().unwrap();
+        let mut scan_loop: Box<Loop<S, 4>> = Box::new(ScanLoop::new());
+        for k in 0..10u32 {
+            scan(&mut scan_loop, &config, &[reply(k, 0.0, mode_s(ADDRESS))]);
+        }
+        assert_eq!(holders(&scan_loop, ADDRESS), 1);
+        let mut deleted_at = None;
+        for k in 10..40u32 {
+            let c = scan(
+                &mut scan_loop,
+                &config,
+                &[reply(k, 5_000.0, mode_s(ADDRESS))],
+            );
+            let case = format!("{} scan {k}: {c}", S::NAME);
+            assert!(holders(&scan_loop, ADDRESS) <= 1, "{case}");
+            if c.deleted > 0 {
+                assert_eq!(deleted_at, None, "{case}");
+                deleted_at = Some(k);
+                assert_eq!(c.started, 1, "{case}");
+                assert_eq!(holders(&scan_loop, ADDRESS), 1, "{case}");
+            } else if deleted_at.is_none() {
+                assert_eq!(c.started, 0, "{case}");
+                if k > 10 {
+                    assert_eq!(c.outside_gates, 1, "{case}");
+                }
+            }
+        }
+        assert!(
+            deleted_at.is_some(),
+            "{}: the lost track was never deleted",
+            S::NAME
+        );
+    }
+    check::<f64>();
+    check::<f32>();
+    check::<Fix>();
+}

@@ -589,7 +589,7 @@ fn pair_rule_holds_for_tracks_outside_the_pair_cache() {
                 now,
                 &m,
                 &mut codes,
-                &LastTracksFirstMeasurement,
+                &mut LastTracksFirstMeasurement,
                 |_| {},
             )
             .unwrap();
