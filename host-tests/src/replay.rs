@@ -1212,9 +1212,9 @@ fn check_range_azimuth<S: Scalar>(
 /// * `tau` (range tau, s), `tau_mod` (modified tau with the TA DMOD, s),
 ///   `t_cpa` (s from now), `d_cpa` (m), `advisory` (none, proximate, ta,
 ///   ra), `tau_mod_ra` (modified tau with the RA DMOD, s) from
-///   [`abtrack::tcas::assess`]. Empty where undefined: `tau` when the range
-///   is opening, `tau_mod` and `tau_mod_ra` when it is opening outside the
-///   DMOD, `tau_mod_ra` at SL 2 (no RAs), `t_cpa`/`d_cpa` when the time is
+///   [`abtrack::tcas::assess`]. Empty where undefined: `tau` when the
+///   intruder is diverging (ṙ > 10 ft/s, DO-185B `RDTHR`), `tau_mod` and
+///   `tau_mod_ra` when it is diverging outside the DMOD, `tau_mod_ra` at SL 2 (no RAs), `t_cpa`/`d_cpa` when the time is
 ///   beyond the representation, and every threat column on the first row
 ///   (no velocity yet).
 /// * `ra_sense` (up, down), `ra_strength` (preventive, level-off,

@@ -369,7 +369,8 @@ fn range_hit<S: Scalar>(g: &mut RangeGeometry<S>, dmod_m: S, t: &Thresholds<S>) 
 /// The vertical miss distance at closest approach, ft (DO-185B
 /// `vertical_miss_distance_calculation`): h + ḣ·τ at the true range tau
 /// and at the modified tau (both capped at TVPCMD); zero if the two
-/// straddle co-altitude, else the smaller; h itself when diverging.
+/// straddle co-altitude, else the smaller; h itself while the range opens
+/// (ṙ > 0, DO-185B `hit_or_miss_test`).
 fn vertical_miss_distance<S: Scalar>(h: S, hdot: S, range_tau: S, modified_tau: S, cap_s: S) -> S {
     let at_true = h + hdot.times(cap_s.min_of(range_tau));
     let at_modified = h + hdot.times(cap_s.min_of(modified_tau));
@@ -419,7 +420,8 @@ fn ra_vertical_tau<S: Scalar>(
 /// * a < ZTHR: a hit when the vertical miss distance is below ZTHR;
 /// * otherwise converging (ȧ < −1 ft/s) with τ_v = a/(−ȧ) below the
 ///   vertical threshold, and either the miss distance below ZTHR or τ_v
-///   below the true range tau (decided as a·closure < r·(−ȧ));
+///   below the true range tau (decided as a·closure < r·(−ȧ); the true
+///   tau of a diverging intruder is `MINTAU` = 0, DO-185B `range_test`);
 /// * never when the intruder's rate exceeds 10 000 ft/min.
 #[allow(clippy::too_many_arguments)]
 fn ra_vertical_hit<S: Scalar>(
@@ -445,7 +447,7 @@ fn ra_vertical_hit<S: Scalar>(
     }
     let closing = -adot;
     a < vertical_tau_threshold.times(closing)
-        && (vmd.abs() < zthr || a.times(g.closure) < g.r.times(closing))
+        && (vmd.abs() < zthr || (!g.diverging && a.times(g.closure) < g.r.times(closing)))
 }
 
 /// The TA vertical test (DAIDALUS `TCAS3D::vertical_RA` with the TA table;
@@ -735,9 +737,10 @@ pub struct IntruderObservation<S> {
 pub struct ThreatGeometry<S> {
     /// Intruder altitude and rate, ft, ft/s.
     pub intruder: AltitudeEstimate<S>,
-    /// True range tau, capped at the level's model limit (TVPE), s.
+    /// True range tau, capped at the level's model limit (TVPE), s; 0 for
+    /// a diverging intruder (DO-185B `MINTAU`).
     pub range_tau_s: S,
-    /// Modified tau, capped likewise, s.
+    /// Modified tau, capped likewise, s; 0 when diverging.
     pub modified_tau_s: S,
 }
 
@@ -1110,11 +1113,21 @@ impl<S: Scalar> ThreatState<S> {
                 };
                 let hit = range_hit && vertical_hit;
                 if hit {
+                    // A diverging intruder's taus are `MINTAU` = 0 (DO-185B
+                    // `range_test`): its separation is modelled now.
                     let cap = limits.model_tau_limit_s;
+                    let (range_tau_s, modified_tau_s) = if g.diverging {
+                        (S::ZERO, S::ZERO)
+                    } else {
+                        (
+                            cap.min_of(g.range_tau()),
+                            cap.min_of(g.ra_modified_tau(ra.dmod_m)),
+                        )
+                    };
                     geometry = Some(ThreatGeometry {
                         intruder: a,
-                        range_tau_s: cap.min_of(g.range_tau()),
-                        modified_tau_s: cap.min_of(g.ra_modified_tau(ra.dmod_m)),
+                        range_tau_s,
+                        modified_tau_s,
                     });
                 }
                 hit

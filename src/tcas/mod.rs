@@ -239,7 +239,7 @@ pub fn assess_in<S: Scalar>(
             None,
         )?;
         // The taus of the report from the quotients the tests formed: none
-        // while the intruder diverges (as [`range_tau`]), except τ_mod = 0
+        // while the intruder diverges (as `range_tau`), except τ_mod = 0
         // inside DMOD.
         let diverging = geometry.diverging();
         let (ta_dmod_m, ra_dmod_m) = cycle.thresholds().dmod_m();

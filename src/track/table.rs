@@ -221,7 +221,9 @@ pub trait PairRule {
     fn may_start(&self, first: FirstPoint, k: usize) -> bool;
     /// Track `track` was deleted by its deletion rules in this scan, before
     /// the scan's starts are decided: a rule that refuses starts for a live
-    /// track's sake (its identity) may allow them from here on.
+    /// track's sake (its identity) may allow them from here on. Not called
+    /// for a tentative track displaced by a start (the table full) nor for
+    /// the tracks a scan after too long a gap restarts.
     fn track_deleted(&mut self, _track: TrackId) {}
 }
 

@@ -173,7 +173,8 @@ impl<
     /// Feeds each reply the tracker used to its track's range and altitude
     /// trackers (a started track gets its slot, its address and the
     /// altitude tracker of its reply's quantum); coasts the others; frees
-    /// the slots of deleted tracks.
+    /// the slots of deleted tracks (a track updated and then deleted in the
+    /// scan gets none).
     pub(super) fn update_intruders(
         &mut self,
         config: &ScanConfig<T, F::Params>,
@@ -201,6 +202,9 @@ impl<
             };
             let index = match self.intruders.iter().position(|s| s.track == id) {
                 Some(i) => Some(i),
+                // Updated, then deleted in the same scan (it left the
+                // volume): no slot for a dead track.
+                None if self.table.track(id).is_none() => continue,
                 None => {
                     // A track per slot at most, and a slot per track: there
                     // is room for every live track.

@@ -198,3 +198,43 @@ fn a_deleted_tracks_address_starts_a_track_in_the_scan_that_deletes_it() {
     check::<f32>();
     check::<Fix>();
 }
+
+/// A track updated and then deleted in the same scan (its update takes it
+/// out of the surveillance volume, the square around the 14 NM disc) gets
+/// no TCAS slot after the scan: its address is not kept for a dead track.
+/// Replies on azimuth 0 from 25.5 km going out at 100 m/s.
+#[test]
+fn a_track_deleted_after_its_update_keeps_no_slot() {
+    fn check<S: Scalar>() {
+        const ADDRESS: u32 = 0xABC125;
+        let config = demo_config::demo_config::<S, _>().unwrap();
+        let mut scan_loop: Box<Loop<S, 4>> = Box::new(ScanLoop::new());
+        let outward = |k: u32| {
+            MeasurementReport::polar_from_metres(
+                k * 1000,
+                1,
+                25_500.0 + 100.0 * f64::from(k),
+                0.0,
+                Some(8300.0),
+            )
+            .unwrap()
+            .with_mode_s(ModeSAddress::new(ADDRESS).unwrap(), false)
+        };
+        let mut left = false;
+        for k in 0..10u32 {
+            let live = scan_loop.table().tracks().next().map(|t| t.id());
+            let c = scan(&mut scan_loop, &config, &[outward(k)]);
+            if c.deleted == 1 && c.updated == 1 {
+                let id = live.unwrap();
+                assert!(scan_loop.table().track(id).is_none(), "{}", S::NAME);
+                assert_eq!(scan_loop.address(id), None, "{} scan {k}: {c}", S::NAME);
+                left = true;
+                break;
+            }
+        }
+        assert!(left, "{}: the track never left the volume", S::NAME);
+    }
+    check::<f64>();
+    check::<f32>();
+    check::<Fix>();
+}

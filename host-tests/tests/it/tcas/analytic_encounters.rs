@@ -279,6 +279,14 @@ fn diverging<S: Scalar>() {
     assert_eq!(opening(250.0).advisory, Advisory::ProximateTraffic);
     assert_eq!(opening(10.0).advisory, Advisory::Resolution);
     assert_eq!(opening(10.5).advisory, Advisory::Traffic);
+    // A diverging intruder's true range tau is MINTAU = 0 (DO-185B
+    // `range_test`): the vertical test's "τ_v below the true tau" never
+    // holds, and its miss distance is h itself. 700 ft above, descending
+    // 40 ft/s toward own (τ_v = 17.5 s, below SL 5's level-own 20 s), the
+    // range a hit (926 m opening at 10 m/s): |h| = 700 ≥ ZTHR 600, so no RA,
+    // a TA.
+    let above = assess_at::<S>(8000.0, [0.0, 0.5 * NM], [0.0, 10.0], Some((8700.0, -40.0)));
+    assert_eq!(above.advisory, Advisory::Traffic, "{}: {above:?}", S::NAME);
 }
 
 #[test]
