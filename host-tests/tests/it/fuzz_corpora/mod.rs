@@ -15,6 +15,8 @@ use std::path::{Path, PathBuf};
 mod csv_recording;
 #[path = "../../../../fuzz/properties/fixed_point.rs"]
 mod fixed_point;
+#[path = "../../../../fuzz/properties/scan_loop.rs"]
+mod scan_loop;
 #[path = "../../../../fuzz/properties/tcas_intruder.rs"]
 mod tcas_intruder;
 #[path = "../../../../fuzz/properties/tracker_scan.rs"]
@@ -80,6 +82,11 @@ fn csv_recording_corpus() {
 #[test]
 fn fixed_point_corpus() {
     replay("fixed_point", fixed_point::check);
+}
+
+#[test]
+fn scan_loop_corpus() {
+    replay("scan_loop", scan_loop::check);
 }
 
 #[test]
