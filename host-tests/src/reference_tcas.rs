@@ -44,7 +44,8 @@ const ABOVNMC_FT: f64 = 15500.0;
 const PROXR_M: f64 = 6.0 * NM;
 const PROXA_FT: f64 = 1200.0;
 const HMDMULT: f64 = 1.05;
-const TMIN_MDF: u32 = 4;
+/// DO-185B `TMIN_MDF` by sensitivity level (9999 at SL 3: never).
+const TMIN_MDF: [u32; 8] = [0, 0, 0, 9999, 4, 4, 4, 4];
 const MDF_TAU_LIMIT_S: f64 = 35.0;
 const TV1_S: f64 = 5.0;
 const VACCEL_FT_S2: f64 = 8.0;
@@ -352,7 +353,9 @@ impl Reference {
                     m.hmd_count = 0;
                 }
                 let filtered = if m.ra {
-                    m.hmd_count > TMIN_MDF
+                    TMIN_MDF
+                        .get(usize::from(level.sl))
+                        .is_some_and(|&n| m.hmd_count > n)
                 } else {
                     m.hmd_count > 0
                 };

@@ -50,7 +50,7 @@ pub const MISS_DISTANCE_TAU_LIMIT_S: f64 = 35.0;
 /// `HMDMULT`) …
 pub const CONTINUING_HMD_DMOD_FACTOR: f64 = 1.05;
 /// … and must be exceeded for more than this many cycles (DO-185B
-/// `TMIN_MDF`).
+/// `TMIN_MDF`, SL 4–7; at SL 3 never: `ResolutionLimits::continuing_hmd_cycles`).
 pub const CONTINUING_HMD_CYCLES: u8 = 4;
 /// Cycles the miss-distance filter stays off after a manoeuvre (DO-185B
 /// `mnvr_shtdwn_tm`).
@@ -132,6 +132,7 @@ struct ResolutionThresholds<S> {
     level_own_vertical_tau_s: S,
     vmd_tau_limit_s: S,
     model_tau_limit_s: S,
+    continuing_hmd_cycles: Option<u8>,
 }
 
 /// The logic's constants that do not depend on the level (this module's
@@ -188,6 +189,7 @@ impl<S: Scalar> CycleThresholds<S> {
                 level_own_vertical_tau_s: c(limits.level_own_vertical_tau_s),
                 vmd_tau_limit_s: c(limits.vmd_tau_limit_s),
                 model_tau_limit_s: c(limits.model_tau_limit_s),
+                continuing_hmd_cycles: limits.continuing_hmd_cycles,
             }),
             _ => None,
         };
@@ -589,15 +591,15 @@ impl MissDistanceFilter {
 
     /// Whether the filter removes the range hit this cycle: for a new
     /// threat when the HMD exceeds the level's HMD threshold; for a
-    /// continuing one when it has exceeded 1.05·DMOD for more than four
-    /// cycles. Applies only while τ_mod < 35 s.
+    /// continuing one when it has exceeded 1.05·DMOD for more than the
+    /// level's `continuing_hmd_cycles` (never at SL 3: DO-185B `TMIN_MDF`).
+    /// Applies only while τ_mod < 35 s.
     fn filters<S: Scalar>(
         &mut self,
         miss_distance: &MissDistances<S>,
         modified_tau_s: S,
         continuing: bool,
-        new_threshold_m: S,
-        dmod_m: S,
+        limits: &ResolutionThresholds<S>,
         k: &Constants<S>,
     ) -> bool {
         if modified_tau_s >= k.miss_distance_tau_limit_s {
@@ -605,18 +607,20 @@ impl MissDistanceFilter {
         }
         let (threshold, miss_distance_m) = if continuing {
             (
-                k.continuing_hmd_dmod_factor.times(dmod_m),
+                k.continuing_hmd_dmod_factor.times(limits.alert.dmod_m),
                 miss_distance.continuing,
             )
         } else {
-            (new_threshold_m, miss_distance.new_threat)
+            (limits.hmd_m, miss_distance.new_threat)
         };
         self.exceed_cycles = match miss_distance_m {
             Some(hmd) if hmd > threshold => self.exceed_cycles.saturating_add(1),
             _ => 0,
         };
         if continuing {
-            self.exceed_cycles > CONTINUING_HMD_CYCLES
+            limits
+                .continuing_hmd_cycles
+                .is_some_and(|n| self.exceed_cycles > n)
         } else {
             self.exceed_cycles > 0
         }
@@ -1070,8 +1074,7 @@ impl<S: Scalar> ThreatState<S> {
                     &inputs.miss_distance,
                     modified_tau,
                     self.ra_threat,
-                    limits.hmd_m,
-                    ra.dmod_m,
+                    limits,
                     k,
                 ) && range_ok;
                 status_filtered = filtered;

@@ -4,6 +4,7 @@
 //! hysteresis of DO-185B (transcribed in ledieuke/tcas_simulator
 //! `tcasConstant.py`: `ZSL*`, `BOT`, `TOP`). See docs/tcas.md.
 
+use super::detection::CONTINUING_HMD_CYCLES;
 use super::{TcasError, METRES_PER_NAUTICAL_MILE};
 use crate::num::Scalar;
 
@@ -149,6 +150,10 @@ pub struct ResolutionLimits {
     pub vmd_tau_limit_s: f64,
     /// Longest tau used to model the RA manoeuvre (DO-185B `TVPETBL`), s.
     pub model_tau_limit_s: f64,
+    /// Cycles a continuing threat's HMD must exceed 1.05·DMOD, more than
+    /// this, before the miss-distance filter ends its RA (DO-185B
+    /// `TMIN_MDF`): 4 from SL 4 up; `None` at SL 3 (9999: never).
+    pub continuing_hmd_cycles: Option<u8>,
 }
 
 impl ResolutionLimits {
@@ -191,18 +196,20 @@ const fn ta_columns(level: SensitivityLevel) -> (f64, f64, f64) {
 }
 
 /// One level's RA columns: tau (s), DMOD (NM), H1 (NM²/s), HMD (ft),
-/// level-own vertical tau (s), VMD tau limit (s), model tau limit (s).
-type RaColumns = (f64, f64, f64, f64, f64, f64, f64);
+/// level-own vertical tau (s), VMD tau limit (s), model tau limit (s), the
+/// continuing threat's HMD-filter cycles ([`ResolutionLimits`]).
+type RaColumns = (f64, f64, f64, f64, f64, f64, f64, Option<u8>);
 
 /// SL 2 has no RAs.
 const fn ra_columns(level: SensitivityLevel) -> Option<RaColumns> {
+    const MDF: Option<u8> = Some(CONTINUING_HMD_CYCLES);
     match level {
         SensitivityLevel::Sl2 => None,
-        SensitivityLevel::Sl3 => Some((15.0, 0.20, 0.002, 1215.0, 15.0, 35.0, 25.0)),
-        SensitivityLevel::Sl4 => Some((20.0, 0.35, 0.00278, 2126.0, 18.0, 40.0, 30.0)),
-        SensitivityLevel::Sl5 => Some((25.0, 0.55, 0.00278, 3342.0, 20.0, 40.0, 30.0)),
-        SensitivityLevel::Sl6 => Some((30.0, 0.80, 0.00278, 4861.0, 22.0, 45.0, 35.0)),
-        SensitivityLevel::Sl7 => Some((35.0, 1.10, 0.004, 6683.0, 25.0, 48.0, 40.0)),
+        SensitivityLevel::Sl3 => Some((15.0, 0.20, 0.002, 1215.0, 15.0, 35.0, 25.0, None)),
+        SensitivityLevel::Sl4 => Some((20.0, 0.35, 0.00278, 2126.0, 18.0, 40.0, 30.0, MDF)),
+        SensitivityLevel::Sl5 => Some((25.0, 0.55, 0.00278, 3342.0, 20.0, 40.0, 30.0, MDF)),
+        SensitivityLevel::Sl6 => Some((30.0, 0.80, 0.00278, 4861.0, 22.0, 45.0, 35.0, MDF)),
+        SensitivityLevel::Sl7 => Some((35.0, 1.10, 0.004, 6683.0, 25.0, 48.0, 40.0, MDF)),
     }
 }
 
@@ -237,24 +244,27 @@ pub const fn parameters(level: SensitivityLevel, layer: AltitudeLayer) -> Sensit
             alim_ft: None,
             resolution: None,
         },
-        Some((tau, dmod, h1, hmd, level_tau, vmd_limit, model_limit)) => SensitivityParameters {
-            level,
-            layer,
-            ta,
-            ra: Some(AlertThresholds {
-                tau_s: tau,
-                dmod_nm: dmod,
-                zthr_ft: ra_zthr,
-                h1_nm2_per_s: h1,
-            }),
-            alim_ft: Some(alim),
-            resolution: Some(ResolutionLimits {
-                hmd_ft: hmd,
-                level_own_vertical_tau_s: level_tau,
-                vmd_tau_limit_s: vmd_limit,
-                model_tau_limit_s: model_limit,
-            }),
-        },
+        Some((tau, dmod, h1, hmd, level_tau, vmd_limit, model_limit, continuing_hmd_cycles)) => {
+            SensitivityParameters {
+                level,
+                layer,
+                ta,
+                ra: Some(AlertThresholds {
+                    tau_s: tau,
+                    dmod_nm: dmod,
+                    zthr_ft: ra_zthr,
+                    h1_nm2_per_s: h1,
+                }),
+                alim_ft: Some(alim),
+                resolution: Some(ResolutionLimits {
+                    hmd_ft: hmd,
+                    level_own_vertical_tau_s: level_tau,
+                    vmd_tau_limit_s: vmd_limit,
+                    model_tau_limit_s: model_limit,
+                    continuing_hmd_cycles,
+                }),
+            }
+        }
     }
 }
 

@@ -365,6 +365,37 @@ fn with_hmd(bearing_hmd: f64, bearing_sigma: f64, residual_sigma: f64) -> Intrud
     o
 }
 
+/// DO-185B `TMIN_MDF`: the HMD filter ends a continuing RA after more than
+/// 4 cycles over 1.05·DMOD from SL 4 up, never at SL 3 (9999). The
+/// intruder of [`with_hmd`], 100 ft above a level own aircraft at 2000 ft
+/// (SL 3: TAU 15 s, τ_mod 14.8 s) and at 8000 ft (SL 5): a bearing miss of
+/// 100 ± 50 m against the range's 1500 m is a manoeuvre (the filter off for
+/// 10 cycles), so the RA starts; then 1400 ± 50 m, well over 1.05·DMOD
+/// (389 m at SL 3, 1069.5 m at SL 5) for 30 cycles.
+#[test]
+fn the_miss_distance_filter_never_ends_an_ra_at_sl3() {
+    for (own_ft, ends) in [(2000.0, false), (8000.0, true)] {
+        let cycle = cycle_at::<f64>(own_ft);
+        let obs = |b: f64| {
+            let mut o = with_hmd(b, 50.0, RESIDUAL_FOR_200_M);
+            o.altitude = Some(AltitudeEstimate {
+                altitude_ft: own_ft + 100.0,
+                vertical_rate_ft_per_s: 0.0,
+            });
+            o
+        };
+        let mut s = ThreatState::new();
+        let a = s.assess(&cycle, &obs(100.0), 1.0).unwrap();
+        assert_eq!(a.advisory, Advisory::Resolution, "{own_ft} ft: {a:?}");
+        let kept = (0..30)
+            .take_while(|_| {
+                s.assess(&cycle, &obs(1400.0), 1.0).unwrap().advisory == Advisory::Resolution
+            })
+            .count();
+        assert_eq!(kept < 30, ends, "{own_ft} ft: the RA held {kept} cycles");
+    }
+}
+
 /// σ_resid giving the range statistic σ 200 m at the new-threat threshold.
 const RESIDUAL_FOR_200_M: f64 = 200.0 / 3.082_54;
 
