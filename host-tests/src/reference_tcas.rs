@@ -9,6 +9,11 @@
 //!   DAIDALUS `TCAS2D::tau_mod`, `horizontal_RA`; the 10 ft/s closure
 //!   floor (`RDTHR`), the diverging test r·ṙ ≤ H1, `RMAX`: DO-185B
 //!   `range_test` (ledieuke/tcas_simulator `detect.py`);
+//! * the tau cap (`TAUCAP`: neither τ_mod nor the true tau rises while
+//!   the intruder does not diverge, `MINTAU` = 0 when it does) and
+//!   `TAURISE`: DO-185B `tau_calculation`, `range_test`;
+//! * threats kept through one missed cycle and ended at the next after
+//!   `TMIN` (4.5 s): DO-185B `set_up_working_list`;
 //! * HMD filter: DAIDALUS `TCAS3D::cd2d_TCAS` (the straight path comes
 //!   within HMD) for a new threat; DO-185B's 1.05·DMOD for more than four
 //!   cycles for a continuing one;
@@ -47,6 +52,11 @@ const HMDMULT: f64 = 1.05;
 /// DO-185B `TMIN_MDF` by sensitivity level (9999 at SL 3: never).
 const TMIN_MDF: [u32; 8] = [0, 0, 0, 9999, 4, 4, 4, 4];
 const MDF_TAU_LIMIT_S: f64 = 35.0;
+/// DO-185B `TMIN`: a threat's second missed cycle ends it only after this.
+const TMIN_S: f64 = 4.5;
+/// DO-185B `taurise_thr` and `NAFRANGE`.
+const TAURISE_CYCLES: u32 = 3;
+const NAFRANGE_M: f64 = 1.7 * NM;
 const TV1_S: f64 = 5.0;
 const VACCEL_FT_S2: f64 = 8.0;
 const CLMRT_FT_S: f64 = 1500.0 / 60.0;
@@ -227,7 +237,14 @@ pub fn line_miss(s: [f64; 2], v: [f64; 2]) -> f64 {
 #[derive(Debug, Clone, Copy, Default)]
 struct Memory {
     ta_since: Option<f64>,
-    ra: bool,
+    /// An RA threat: whether it missed the hit tests last cycle (DO-185B
+    /// `KHIT` 1, else 3) and the time since it became one (`TCUR − TCMD`).
+    threat: Option<(bool, f64)>,
+    /// The capped τ_mod and true tau (`TAUR`, `TRTRU`), the last uncapped
+    /// true tau (`TRTUN`) and the cycles it has not fallen (`TAURISE`).
+    tau_cap: Option<(f64, f64)>,
+    last_true_tau: f64,
+    tau_rise: u32,
     hmd_count: u32,
 }
 
@@ -337,12 +354,51 @@ impl Reference {
             let ta_test = ta_range && ta_vertical;
 
             // RA.
+            let continuing = m.threat.is_some();
             let mut ra_test = false;
+            let mut threat = None;
             if let (Some(ra), Some((z, zdot, h, hdot))) = (level.ra, vertical) {
-                let range_ok = range_test(r, rdot, ra.dmod_m, ra.tau, ra.h1, RMAX_M);
-                let taumod = mod_tau(r, rdot, ra.dmod_m);
+                // DO-185B `tau_calculation`, `range_test`: both taus never
+                // rise while the intruder does not diverge (true states
+                // are firm from the start), `MINTAU` = 0 when it does; a
+                // new threat outside DMOD is no range hit once its true
+                // tau has not fallen for `taurise_thr` cycles beyond
+                // `NAFRANGE`.
+                let diverging = rdot > RDTHR_M_S;
+                let (taumod, tau_true) = if diverging {
+                    m.tau_cap = None;
+                    m.tau_rise = 0;
+                    (0.0, 0.0)
+                } else {
+                    let t1 = mod_tau(r, rdot, ra.dmod_m);
+                    let t3 = true_tau(r, rdot);
+                    let capped = match m.tau_cap {
+                        Some((c1, c3)) => {
+                            if t3 < m.last_true_tau {
+                                m.tau_rise = 0;
+                            } else if r > NAFRANGE_M {
+                                m.tau_rise += 1;
+                            }
+                            (t1.min(c1), t3.min(c3))
+                        }
+                        None => {
+                            m.tau_rise = 0;
+                            (t1, t3)
+                        }
+                    };
+                    m.tau_cap = Some(capped);
+                    m.last_true_tau = t3;
+                    capped
+                };
+                let range_ok = if diverging {
+                    range_test(r, rdot, ra.dmod_m, ra.tau, ra.h1, RMAX_M)
+                } else {
+                    r <= RMAX_M
+                        && taumod < ra.tau
+                        && (continuing || m.tau_rise < TAURISE_CYCLES || r < ra.dmod_m)
+                };
                 let hmd = line_miss(x.s, x.v);
-                let exceeds = if m.ra {
+                let exceeds = if continuing {
                     hmd > HMDMULT * ra.dmod_m
                 } else {
                     hmd > ra.hmd_m
@@ -352,15 +408,14 @@ impl Reference {
                 } else {
                     m.hmd_count = 0;
                 }
-                let filtered = if m.ra {
+                let filtered = if continuing {
                     TMIN_MDF
                         .get(usize::from(level.sl))
                         .is_some_and(|&n| m.hmd_count > n)
                 } else {
                     m.hmd_count > 0
                 };
-                let vertical_ok = m.ra || {
-                    let tau_true = true_tau(r, rdot);
+                let vertical_ok = continuing || {
                     let vmd = if rdot > 0.0 {
                         h
                     } else {
@@ -390,17 +445,30 @@ impl Reference {
                             tauv < tvthr && (vmd.abs() < ra.zthr_ft || tauv < tau_true)
                         }
                 };
-                ra_test = range_ok && !filtered && vertical_ok;
-                if ra_test {
-                    threats.push(Threat {
-                        z,
-                        zdot,
-                        t1: true_tau(r, rdot).min(ra.tvpe),
-                        t2: taumod.min(ra.tvpe),
-                    });
-                }
+                let hit = range_ok && !filtered && vertical_ok;
+                let th = Threat {
+                    z,
+                    zdot,
+                    t1: tau_true.min(ra.tvpe),
+                    t2: taumod.min(ra.tvpe),
+                };
+                // DO-185B `set_up_working_list`: a hit makes or keeps a
+                // threat; its first miss keeps it, the next ends it once
+                // TMIN has passed since it became one.
+                let age = m.threat.map_or(0.0, |(_, age)| age + dt);
+                m.threat = match (hit, m.threat) {
+                    (true, _) => Some((false, age)),
+                    (false, Some((false, _))) => Some((true, age)),
+                    (false, Some((true, _))) if age <= TMIN_S => Some((true, age)),
+                    _ => None,
+                };
+                ra_test = m.threat.is_some();
+                threat = m.threat.map(|_| th);
             }
-            m.ra = ra_test;
+            if threat.is_none() {
+                m.threat = None;
+            }
+            threats.extend(threat);
 
             let keep_ta = m.ta_since.is_some_and(|t| t + dt < MINTATIME_S);
             let ta_now = ta_test || ra_test || keep_ta;

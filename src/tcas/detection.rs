@@ -78,6 +78,14 @@ pub const CONTINUING_MISS_DISTANCE_CONFIDENCE: f64 = 2.0;
 /// The largest modified tau kept by the tau cap, s (any value above every
 /// TAU does).
 pub const TAU_CAP_LIMIT_S: f64 = 60.0;
+/// A threat that has missed the hit tests two cycles running ends only
+/// this long after it became a threat, s (DO-185B `TMIN`).
+pub const MIN_THREAT_TIME_S: f64 = 4.5;
+/// A new threat outside DMOD whose true range tau has not fallen for this
+/// many cycles is not a range hit (DO-185B `taurise_thr`) …
+pub const TAU_RISE_CYCLES: u8 = 3;
+/// … counted only beyond this range, NM (DO-185B `NAFRANGE`).
+pub const TAU_RISE_MIN_RANGE_NM: f64 = 1.7;
 /// Least vertical firmness for a new RA (DO-185B `MINFIRM`).
 pub const MIN_RA_VERTICAL_FIRMNESS: u8 = 2;
 
@@ -160,6 +168,8 @@ struct Constants<S> {
     rate_acceleration_correlation: S,
     rate_error_uncorrelated_share: S,
     tau_cap_limit_s: S,
+    min_threat_time_s: S,
+    tau_rise_min_range_m: S,
     proximate_range_m: S,
     proximate_altitude_ft: S,
 }
@@ -219,6 +229,8 @@ impl<S: Scalar> CycleThresholds<S> {
                 rate_acceleration_correlation: c(RATE_ACCELERATION_ERROR_CORRELATION),
                 rate_error_uncorrelated_share: c(RATE_ERROR_UNCORRELATED_SHARE),
                 tau_cap_limit_s: c(TAU_CAP_LIMIT_S),
+                min_threat_time_s: c(MIN_THREAT_TIME_S),
+                tau_rise_min_range_m: c(TAU_RISE_MIN_RANGE_NM * METRES_PER_NAUTICAL_MILE),
                 proximate_range_m: c(PROXIMATE_RANGE_NM * METRES_PER_NAUTICAL_MILE),
                 proximate_altitude_ft: c(PROXIMATE_ALTITUDE_FT),
             },
@@ -370,7 +382,8 @@ fn range_hit<S: Scalar>(g: &mut RangeGeometry<S>, dmod_m: S, t: &Thresholds<S>) 
 
 /// The vertical miss distance at closest approach, ft (DO-185B
 /// `vertical_miss_distance_calculation`): h + ḣ·τ at the true range tau
-/// and at the modified tau (both capped at TVPCMD); zero if the two
+/// and at the modified tau (the tau cap's `TRTRU` and `TAUR`, both capped
+/// at TVPCMD); zero if the two
 /// straddle co-altitude, else the smaller; h itself while the range opens
 /// (ṙ > 0, DO-185B `hit_or_miss_test`).
 fn vertical_miss_distance<S: Scalar>(h: S, hdot: S, range_tau: S, modified_tau: S, cap_s: S) -> S {
@@ -422,8 +435,8 @@ fn ra_vertical_tau<S: Scalar>(
 /// * a < ZTHR: a hit when the vertical miss distance is below ZTHR;
 /// * otherwise converging (ȧ < −1 ft/s) with τ_v = a/(−ȧ) below the
 ///   vertical threshold, and either the miss distance below ZTHR or τ_v
-///   below the true range tau (decided as a·closure < r·(−ȧ); the true
-///   tau of a diverging intruder is `MINTAU` = 0, DO-185B `range_test`);
+///   below the true range tau `true_tau` (the tau cap's `TRTRU`, `MINTAU`
+///   = 0 for a diverging intruder, DO-185B `range_test`);
 /// * never when the intruder's rate exceeds 10 000 ft/min.
 #[allow(clippy::too_many_arguments)]
 fn ra_vertical_hit<S: Scalar>(
@@ -433,7 +446,7 @@ fn ra_vertical_hit<S: Scalar>(
     vmd: S,
     vertical_tau_threshold: S,
     zthr: S,
-    g: &RangeGeometry<S>,
+    true_tau: S,
     k: &Constants<S>,
 ) -> bool {
     if intruder_rate.abs() > k.max_intruder_rate_ft_per_s {
@@ -448,8 +461,7 @@ fn ra_vertical_hit<S: Scalar>(
         return false;
     }
     let closing = -adot;
-    a < vertical_tau_threshold.times(closing)
-        && (vmd.abs() < zthr || (!g.diverging && a.times(g.closure) < g.r.times(closing)))
+    a < vertical_tau_threshold.times(closing) && (vmd.abs() < zthr || a < true_tau.times(closing))
 }
 
 /// The TA vertical test (DAIDALUS `TCAS3D::vertical_RA` with the TA table;
@@ -827,8 +839,22 @@ impl<S: Scalar> Cycle<S> {
     }
 }
 
+/// An intruder's standing as an RA threat (DO-185B `KHIT`).
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+#[cfg_attr(feature = "defmt", derive(defmt::Format))]
+enum ThreatHits {
+    /// Not a threat (`KHIT` 0).
+    None,
+    /// A threat that passed the hit tests this cycle (`KHIT` 3).
+    Hit,
+    /// A threat that missed them this cycle (`KHIT` 1): it stays one, and
+    /// ends at its next miss once [`MIN_THREAT_TIME_S`] has passed.
+    Missed,
+}
+
 /// The threat logic's memory of one intruder: TA hysteresis and minimum
-/// time, whether it is an RA threat, the miss-distance filter.
+/// time, whether it is an RA threat and for how long, the tau cap and the
+/// tau-rise count, the miss-distance filter.
 #[derive(Debug, Clone, Copy, PartialEq)]
 #[cfg_attr(feature = "defmt", derive(defmt::Format))]
 pub struct ThreatState<S> {
@@ -837,15 +863,24 @@ pub struct ThreatState<S> {
     /// share the word of the miss-distance counts (docs/tcas.md, "RAM per
     /// intruder").
     ta_age_s: S,
-    has_ta: bool,
-    /// An RA threat (DO-185B `KHIT` > 0).
-    ra_threat: bool,
-    /// The smallest RA modified tau since the track became firm and
-    /// stopped diverging, s (DO-185B `TAUCAP`: tau may not rise again, so
-    /// range noise cannot flicker the range test); meaningful while
-    /// `has_tau_cap` (zero otherwise).
+    /// Time since the intruder became an RA threat, s (DO-185B
+    /// `TCUR − TCMD`); meaningful while `hits` is not `None`.
+    threat_age_s: S,
+    /// The smallest RA modified tau and true range tau since the track
+    /// became firm and stopped diverging, s (DO-185B `TAUCAP`, `TAUR`,
+    /// `TRTRU`: tau may not rise again, so range noise cannot flicker the
+    /// tests); meaningful while `has_tau_cap` (zero otherwise).
     ra_tau_cap_s: S,
+    true_tau_cap_s: S,
+    /// The true range tau of the last cycle, uncapped (DO-185B `TRTUN`);
+    /// meaningful while `has_tau_cap`.
+    last_true_tau_s: S,
+    has_ta: bool,
+    hits: ThreatHits,
     has_tau_cap: bool,
+    /// Cycles the true range tau has not fallen beyond
+    /// [`TAU_RISE_MIN_RANGE_NM`] (DO-185B `TAURISE`).
+    tau_rise_cycles: u8,
     miss_distance: MissDistanceFilter,
 }
 
@@ -893,10 +928,14 @@ impl<S: Scalar> ThreatState<S> {
     pub const fn new() -> Self {
         ThreatState {
             ta_age_s: S::ZERO,
-            has_ta: false,
-            ra_threat: false,
+            threat_age_s: S::ZERO,
             ra_tau_cap_s: S::ZERO,
+            true_tau_cap_s: S::ZERO,
+            last_true_tau_s: S::ZERO,
+            has_ta: false,
+            hits: ThreatHits::None,
             has_tau_cap: false,
+            tau_rise_cycles: 0,
             miss_distance: MissDistanceFilter {
                 exceed_cycles: 0,
                 shutdown_cycles: 0,
@@ -906,7 +945,7 @@ impl<S: Scalar> ThreatState<S> {
 
     /// The intruder is an RA threat.
     pub fn is_ra_threat(&self) -> bool {
-        self.ra_threat
+        self.hits != ThreatHits::None
     }
 
     /// The intruder has a TA (or an RA).
@@ -924,14 +963,49 @@ impl<S: Scalar> ThreatState<S> {
         self.ta_age_s = age.unwrap_or(S::ZERO);
     }
 
-    /// The RA modified-tau cap, s; `None` before it is set.
-    fn ra_tau_cap(&self) -> Option<S> {
-        self.has_tau_cap.then_some(self.ra_tau_cap_s)
-    }
-
-    fn set_ra_tau_cap(&mut self, cap: Option<S>) {
-        self.has_tau_cap = cap.is_some();
-        self.ra_tau_cap_s = cap.unwrap_or(S::ZERO);
+    /// This cycle's RA modified tau and true range tau under the tau cap
+    /// (DO-185B `tau_calculation`: once the track is firm, each is the
+    /// smallest since, in every cycle until the intruder diverges; capped
+    /// at [`TAU_CAP_LIMIT_S`]), counting the cycles the true tau has not
+    /// fallen (`TAURISE`). `(0, 0)` for a diverging intruder (`MINTAU`),
+    /// which ends the cap.
+    fn capped_taus(
+        &mut self,
+        g: &mut RangeGeometry<S>,
+        dmod_m: S,
+        firm: bool,
+        k: &Constants<S>,
+    ) -> (S, S) {
+        if g.diverging {
+            self.has_tau_cap = false;
+            self.tau_rise_cycles = 0;
+            return (S::ZERO, S::ZERO);
+        }
+        let true_tau = g.range_tau();
+        let now = (
+            k.tau_cap_limit_s.min_of(g.ra_modified_tau(dmod_m)),
+            k.tau_cap_limit_s.min_of(true_tau),
+        );
+        let taus = if self.has_tau_cap {
+            if true_tau < self.last_true_tau_s {
+                self.tau_rise_cycles = 0;
+            } else if g.r > k.tau_rise_min_range_m {
+                self.tau_rise_cycles = self.tau_rise_cycles.saturating_add(1);
+            }
+            (
+                self.ra_tau_cap_s.min_of(now.0),
+                self.true_tau_cap_s.min_of(now.1),
+            )
+        } else {
+            self.tau_rise_cycles = 0;
+            now
+        };
+        if firm || self.has_tau_cap {
+            self.has_tau_cap = true;
+            (self.ra_tau_cap_s, self.true_tau_cap_s) = taus;
+            self.last_true_tau_s = true_tau;
+        }
+        taus
     }
 
     /// One cycle, `dt` s after the previous one, from the trackers.
@@ -1009,7 +1083,7 @@ impl<S: Scalar> ThreatState<S> {
         dt: Option<S>,
     ) -> ThreatStatus<S> {
         let own = &cycle.own;
-        let continuing_threat = self.ra_threat;
+        let continuing_threat = self.hits != ThreatHits::None;
         let thresholds = &cycle.thresholds;
         let k = &thresholds.constants;
         let vertical = inputs.vertical;
@@ -1044,45 +1118,43 @@ impl<S: Scalar> ThreatState<S> {
             None => ta_range && own.pressure_altitude_ft < k.non_reporting_ta_ceiling_ft,
         };
 
-        // Resolution advisory (never against a non-reporting intruder).
+        // Resolution advisory (never against a non-reporting intruder):
+        // whether the hit tests pass, and the geometry the resolution
+        // logic models; `None` when no RA can be evaluated (SL 2, no
+        // altitude), which ends a threat at once (DO-185B
+        // `detect_conflicts`: a threat that loses its altitude ends).
         let mut status_filtered = false;
-        let mut geometry = None;
         let ra_tests = match (&thresholds.ra, &vertical, inputs.altitude) {
             (Some(limits), Some(v), Some(a)) => {
                 let ra = &limits.alert;
-                // τ_mod, never rising once the track is firm (DO-185B
-                // `tau_calculation` with `TAUCAP`), capped at 60 s (TAU ≤
-                // 35 s); both the range test and the miss-distance filter's
-                // 35 s limit use it.
-                let modified_tau = if g.diverging {
-                    self.set_ra_tau_cap(None);
-                    S::ZERO
-                } else {
-                    let now = k.tau_cap_limit_s.min_of(g.ra_modified_tau(ra.dmod_m));
-                    let tau = self.ra_tau_cap().map_or(now, |cap| cap.min_of(now));
-                    if inputs.firm_for_ta {
-                        self.set_ra_tau_cap(Some(tau));
-                    }
-                    tau
-                };
+                // τ_mod and the true tau under the tau cap, capped at 60 s
+                // (TAU ≤ 35 s): the range test, the miss-distance filter's
+                // 35 s limit, the vertical tests and the model use them.
+                let (modified_tau, true_tau) =
+                    self.capped_taus(g, ra.dmod_m, inputs.firm_for_ta, k);
                 let range_ok = if g.diverging {
                     range_hit(g, ra.dmod_m, ra)
                 } else {
-                    g.r <= k.max_ra_range_m && modified_tau < ra.tau_s
+                    g.r <= k.max_ra_range_m
+                        && modified_tau < ra.tau_s
+                        // DO-185B `TAURISE`: not a new threat outside DMOD
+                        // while its true tau keeps rising.
+                        && (continuing_threat
+                            || self.tau_rise_cycles < TAU_RISE_CYCLES
+                            || g.r < ra.dmod_m)
                 };
                 let filtered = self.miss_distance.filters(
                     &inputs.miss_distance,
                     modified_tau,
-                    self.ra_threat,
+                    continuing_threat,
                     limits,
                     k,
                 ) && range_ok;
                 status_filtered = filtered;
                 let range_hit = range_ok && !filtered;
-                // A continuing threat stays one while the range test holds
-                // (DO-185B `hit_or_miss_test` skips the vertical test for
-                // KHIT > 0).
-                let vertical_hit = self.ra_threat || {
+                // A continuing threat skips the vertical test (DO-185B
+                // `hit_or_miss_test`, KHIT > 0).
+                let vertical_hit = continuing_threat || {
                     let (h, hdot) = (v.relative_altitude_ft, v.relative_rate_ft_per_s);
                     // h itself when the range opens.
                     let vmd = if g.rdot > S::ZERO {
@@ -1091,8 +1163,8 @@ impl<S: Scalar> ThreatState<S> {
                         vertical_miss_distance(
                             h,
                             hdot,
-                            g.range_tau(),
-                            g.ra_modified_tau(ra.dmod_m),
+                            true_tau,
+                            modified_tau,
                             limits.vmd_tau_limit_s,
                         )
                     };
@@ -1110,49 +1182,54 @@ impl<S: Scalar> ThreatState<S> {
                         vmd,
                         threshold,
                         ra.zthr_ft,
-                        g,
+                        true_tau,
                         k,
                     )
                 };
-                let hit = range_hit && vertical_hit;
-                if hit {
-                    // A diverging intruder's taus are `MINTAU` = 0 (DO-185B
-                    // `range_test`): its separation is modelled now.
-                    let cap = limits.model_tau_limit_s;
-                    let (range_tau_s, modified_tau_s) = if g.diverging {
-                        (S::ZERO, S::ZERO)
-                    } else {
-                        (
-                            cap.min_of(g.range_tau()),
-                            cap.min_of(g.ra_modified_tau(ra.dmod_m)),
-                        )
-                    };
-                    geometry = Some(ThreatGeometry {
-                        intruder: a,
-                        range_tau_s,
-                        modified_tau_s,
-                    });
-                }
-                hit
+                // The model's taus (DO-185B `model_sep`: `TRTRU` and
+                // `TAUR` capped at TVPE; `MINTAU` = 0 for a diverging
+                // intruder, whose separation is modelled now).
+                let cap = limits.model_tau_limit_s;
+                let geometry = ThreatGeometry {
+                    intruder: a,
+                    range_tau_s: cap.min_of(true_tau),
+                    modified_tau_s: cap.min_of(modified_tau),
+                };
+                Some((range_hit && vertical_hit, geometry))
             }
-            _ => false,
+            _ => None,
         };
 
-        let mut held_by_firmness = false;
-        let ra_now = if on_ground {
-            false
-        } else if self.ra_threat {
-            ra_tests
-        } else if ra_tests && !inputs.firm_for_ra {
-            held_by_firmness = true;
-            false
-        } else {
-            ra_tests
-        };
-        if !ra_now {
-            geometry = None;
+        // DO-185B `set_up_working_list`: a hit makes or keeps a threat
+        // (KHIT 3); a threat's first miss keeps it (KHIT 1), its next ends
+        // it once `TMIN` has passed since it became one.
+        if continuing_threat {
+            if let Some(dt) = dt {
+                self.threat_age_s = self.threat_age_s + dt;
+            }
         }
-        self.ra_threat = ra_now;
+        let mut held_by_firmness = false;
+        let (hits, geometry) = match ra_tests {
+            None => (ThreatHits::None, None),
+            Some(_) if on_ground => (ThreatHits::None, None),
+            Some((true, _)) if !continuing_threat && !inputs.firm_for_ra => {
+                held_by_firmness = true;
+                (ThreatHits::None, None)
+            }
+            Some((true, geometry)) => (ThreatHits::Hit, Some(geometry)),
+            Some((false, geometry)) => match self.hits {
+                ThreatHits::Hit => (ThreatHits::Missed, Some(geometry)),
+                ThreatHits::Missed if self.threat_age_s <= k.min_threat_time_s => {
+                    (ThreatHits::Missed, Some(geometry))
+                }
+                _ => (ThreatHits::None, None),
+            },
+        };
+        if !continuing_threat {
+            self.threat_age_s = S::ZERO;
+        }
+        self.hits = hits;
+        let ra_now = hits != ThreatHits::None;
 
         let ta_start = ta_tests && (had_ta || inputs.firm_for_ta);
         held_by_firmness |= ta_tests && !had_ta && !inputs.firm_for_ta;

@@ -32,7 +32,9 @@ fn encounter(name: &str) -> Encounter {
 /// * clear of conflict: at t = 101 s the range is |14 − 101c| = 0.0278 NM
 ///   = 51 m, opening at 257 m/s: r·ṙ = 13 100 m²/s > H1 = 0.00278 NM²/s =
 ///   9535 m²/s, so the range test fails (at t = 100 s, 206 m closing, it
-///   holds): scan 101.
+///   holds): the threat's first miss, at scan 101, keeps it (DO-185B
+///   `KHIT` 3 → 1), its second, at scan 102, 26 s after the RA (over
+///   `TMIN`, 4.5 s), ends it: scan 102.
 ///
 /// The level intruder 1000 ft above: |h| = 1000 > 850 ft and not
 /// converging: never a TA (nor an RA); proximate (within 6 NM and
@@ -46,9 +48,9 @@ fn reference_matches_the_hand_computations() {
             ta_onset_s: Some(61.0),
             ra_onset_s: Some(76.0),
             sense: Some(Sense::Down),
-            clear_of_conflict_s: Some(101.0),
+            clear_of_conflict_s: Some(102.0),
             ta_scans: head_on.ta_scans,
-            ra_scans: 25,
+            ra_scans: 26,
         }
     );
     let level = run_reference(&encounter("level-1000ft"));

@@ -437,7 +437,9 @@ fn miss_distance_filter_new_and_continuing_threats() {
     // σ (48.4 m) is scaled by 3.99 to 193.2 m and the lower bound
     // m − 2σ = 850.7 − 386.4 = 464.4 m keeps the RA; with b = 1400 ± 50
     // (0.95 σ apart: no scaling) it is 1412.0 − 96.7 = 1315.3 m, over
-    // 1.05·DMOD, and the RA is dropped on the fifth cycle.
+    // 1.05·DMOD: the filter removes the range hit on the fifth cycle, and
+    // the threat, kept through that first miss, ends at the second
+    // (DO-185B `KHIT` 3 → 1 → 0, long after `TMIN`).
     for _ in 0..8 {
         let a = s
             .assess(&cycle, &with_hmd(800.0, 50.0, sigma), 1.0)
@@ -445,7 +447,7 @@ fn miss_distance_filter_new_and_continuing_threats() {
         assert_eq!(a.advisory, Advisory::Resolution);
         assert!((a.miss_distance_m.unwrap() - 464.4).abs() < 0.5, "{a:?}");
     }
-    let levels: Vec<_> = (0..5)
+    let levels: Vec<_> = (0..6)
         .map(|_| {
             let a = s
                 .assess(&cycle, &with_hmd(1400.0, 50.0, sigma), 1.0)
@@ -454,8 +456,8 @@ fn miss_distance_filter_new_and_continuing_threats() {
             a.advisory
         })
         .collect();
-    assert_eq!(levels[..4], [Advisory::Resolution; 4]);
-    assert_eq!(levels[4], Advisory::Traffic);
+    assert_eq!(levels[..5], [Advisory::Resolution; 5]);
+    assert_eq!(levels[5], Advisory::Traffic);
     // A range HMD (1500 m, r̈ over its threshold 0.457·σ_resid/10.67 m)
     // more than twice b + 2σ_b = 400 m is a manoeuvre: the filter is off
     // (10 cycles) and a new threat gets its RA.
