@@ -16,10 +16,10 @@ pub mod mps2 {
 /// per scan (4 intruders, false replies), and a track there costs a
 /// range–azimuth filter and an intruder's TCAS state (range and altitude
 /// trackers, threat state) in software `f32` (`board::Wide`): 30 tracks
-/// and 12 replies per scan leave the stack its 25 % margin
+/// and 10 replies per scan leave the stack its 25 % margin
 /// (scripts/stack.sh m0; the RAM budget is in docs/tcas.md).
 pub mod microbit {
     pub const TRACKS: usize = 30;
-    pub const MEASUREMENTS_PER_SCAN: usize = 12;
+    pub const MEASUREMENTS_PER_SCAN: usize = 10;
     pub const QUEUE_LEN: usize = 32;
 }
