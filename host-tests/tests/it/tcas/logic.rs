@@ -1,7 +1,8 @@
 //! The TCAS II v7.1 pieces one by one, with values worked out by hand: the
 //! range tracker (γ convention, firmness, straight-path prediction), the
 //! detection rules with memory (TA hysteresis, minimum TA time, firmness
-//! gating, the HMD filter for new and continuing threats, the intruder on
+//! gating, threats kept through a missed cycle, the tau cap on both taus,
+//! the tau-rise count, the HMD filter for new and continuing threats, the intruder on
 //! the ground, the 15 500 ft cap), the resolution logic (sense, crossing,
 //! strength, strengthening, weakening, clear of conflict, two threats,
 //! inhibits) and the sensitivity-level hysteresis; f64, f32 and Q32.32
@@ -345,6 +346,134 @@ fn advisories_only_from_firm_tracks() {
         s.assess(&cycle, &o, 1.0).unwrap().advisory,
         Advisory::Resolution
     );
+}
+
+/// DO-185B `KHIT` and `TMIN` at SL 5 (own level at 8000 ft): a co-altitude
+/// intruder 3000 m out closing at 200 m/s (τ_mod 13.3 s < 25 s) is an RA
+/// threat; opening at 200 m/s beyond DMOD it misses the range test. Its
+/// first miss keeps the RA (KHIT 3 → 1); its next ends it only once more
+/// than 4.5 s have passed since it became a threat: misses from the
+/// second cycle on keep the RA until 5 s. A threat older than that, missing
+/// one cycle between hits, keeps its RA through the miss and ends at the
+/// second of two misses in a row (its TA, older than 8 s, ends with it).
+fn threat_kept_through_one_miss<S: Scalar>() {
+    let cycle = cycle_at::<S>(8000.0);
+    let alt = Some((8000.0, 0.0));
+    let (closing, opening) = (
+        observation::<S>(3000.0, -200.0, alt),
+        observation::<S>(3000.0, 200.0, alt),
+    );
+    let one = S::ONE;
+    let mut s = ThreatState::<S>::new();
+    let mut advisories = vec![s.assess(&cycle, &closing, one).unwrap().advisory];
+    for _ in 0..6 {
+        advisories.push(s.assess(&cycle, &opening, one).unwrap().advisory);
+    }
+    let ra = Advisory::Resolution;
+    assert_eq!(advisories[..5], [ra; 5], "{}", S::NAME);
+    assert_eq!(advisories[5..], [Advisory::Traffic; 2], "{}", S::NAME);
+
+    let mut s = ThreatState::<S>::new();
+    for _ in 0..10 {
+        assert_eq!(s.assess(&cycle, &closing, one).unwrap().advisory, ra);
+    }
+    let pattern = [&opening, &closing, &opening, &opening];
+    let advisories: Vec<_> = pattern
+        .iter()
+        .map(|o| s.assess(&cycle, o, one).unwrap())
+        .collect();
+    assert!(advisories[..3]
+        .iter()
+        .all(|a| a.advisory == ra && a.geometry.is_some()));
+    // Its TA is older than 8 s and the opening intruder fails the TA
+    // range test: proximate traffic.
+    assert_eq!(
+        advisories[3].advisory,
+        Advisory::ProximateTraffic,
+        "{}",
+        S::NAME
+    );
+    assert!(!s.is_ra_threat());
+}
+
+#[test]
+fn a_threat_is_kept_through_one_missed_cycle() {
+    threat_kept_through_one_miss::<f64>();
+    threat_kept_through_one_miss::<f32>();
+    threat_kept_through_one_miss::<Fix>();
+    threat_kept_through_one_miss::<ScaledScalar>();
+}
+
+/// DO-185B `TAURISE` at SL 5 (own level at 8000 ft, DMOD 1018.6 m): a
+/// co-altitude intruder at 5000 m whose closure falls 250, 240, 230, 220,
+/// 210 m/s keeps τ_mod under 25 s (22.8 s at the fifth cycle), but its
+/// true tau rises (20.0 → 23.8 s). The RA is held back by vertical
+/// firmness for four cycles (the range track is firm: the tau cap and the
+/// count run); at the fifth the count is 4 ≥ 3 beyond 1.7 NM (3148 m), so a
+/// new threat is no range hit: a TA. With a falling true tau (the range
+/// closing at 250 m/s), or the same rise inside 1.7 NM (3000 m, closure
+/// 150 → 130 m/s: τ_mod 20.4 s), the fifth cycle gives the RA.
+fn tau_rise<S: Scalar>() {
+    let cycle = cycle_at::<S>(8000.0);
+    let alt = Some((8000.0, 0.0));
+    let run = |ranges: [f64; 5], rates: [f64; 5]| {
+        let mut s = ThreatState::<S>::new();
+        let mut last = None;
+        for (k, (r, rdot)) in ranges.iter().zip(rates).enumerate() {
+            let mut o = observation::<S>(*r, rdot, alt);
+            o.altitude_firmness = if k < 4 { 0 } else { 3 };
+            last = Some(s.assess(&cycle, &o, S::ONE).unwrap());
+        }
+        last.unwrap()
+    };
+    let rising = run([5000.0; 5], [-250.0, -240.0, -230.0, -220.0, -210.0]);
+    assert_eq!(rising.advisory, Advisory::Traffic, "{}", S::NAME);
+    assert!(!rising.held_by_firmness);
+    let falling = run([5000.0, 4750.0, 4500.0, 4250.0, 4000.0], [-250.0; 5]);
+    assert_eq!(falling.advisory, Advisory::Resolution, "{}", S::NAME);
+    let near = run([3000.0; 5], [-150.0, -145.0, -140.0, -135.0, -130.0]);
+    assert_eq!(near.advisory, Advisory::Resolution, "{}", S::NAME);
+}
+
+#[test]
+fn a_new_threat_whose_true_tau_keeps_rising_is_no_range_hit() {
+    tau_rise::<f64>();
+    tau_rise::<f32>();
+    tau_rise::<Fix>();
+    tau_rise::<ScaledScalar>();
+}
+
+/// The tau cap holds the true tau too (DO-185B `TRTRU`), and the vertical
+/// miss distance takes it: own level at 8000 ft (SL 5: ZTHR 600 ft, TVPC
+/// 40 s, level-own τ_v threshold 20 s), an intruder 700 ft below climbing
+/// at 40 ft/s (τ_v 17.5 s). Firm at 1100 m closing at 500 m/s (true tau
+/// 2.2 s; far below then, 3000 ft, so no RA), then at 1050 m closing at
+/// 20 m/s: the capped taus (2.2 s and 0.3 s) put the vertical miss at
+/// −612 ft, beyond ZTHR, and τ_v is not under the capped true tau: no RA.
+/// Uncapped (52.5 s, at most TVPC 40 s, and 3.1 s) the two projections
+/// would straddle co-altitude (a miss of 0 ft) and give one.
+fn true_tau_cap<S: Scalar>() {
+    let cycle = cycle_at::<S>(8000.0);
+    let mut s = ThreatState::<S>::new();
+    let far = observation::<S>(1100.0, -500.0, Some((5000.0, 0.0)));
+    assert_ne!(
+        s.assess(&cycle, &far, S::ONE).unwrap().advisory,
+        Advisory::Resolution
+    );
+    let near = observation::<S>(1050.0, -20.0, Some((7300.0, 40.0)));
+    let a = s.assess(&cycle, &near, S::ONE).unwrap();
+    assert_eq!(a.advisory, Advisory::Traffic, "{}", S::NAME);
+    let mut fresh = ThreatState::<S>::new();
+    let a = fresh.assess(&cycle, &near, S::ONE).unwrap();
+    assert_eq!(a.advisory, Advisory::Resolution, "{}", S::NAME);
+}
+
+#[test]
+fn the_vertical_tests_take_the_capped_true_tau() {
+    true_tau_cap::<f64>();
+    true_tau_cap::<f32>();
+    true_tau_cap::<Fix>();
+    true_tau_cap::<ScaledScalar>();
 }
 
 /// The HMD filter (SL 5: HMD 3342 ft = 1018.6 m; continuing threats 1.05·
