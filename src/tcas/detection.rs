@@ -753,10 +753,12 @@ pub struct IntruderObservation<S> {
 pub struct ThreatGeometry<S> {
     /// Intruder altitude and rate, ft, ft/s.
     pub intruder: AltitudeEstimate<S>,
-    /// True range tau, capped at the level's model limit (TVPE), s; 0 for
-    /// a diverging intruder (DO-185B `MINTAU`).
+    /// True range tau as the tau cap holds it (DO-185B `TRTRU`: it never
+    /// rises while the intruder closes), capped at the level's model limit
+    /// (TVPE), s; 0 for a diverging intruder (`MINTAU`).
     pub range_tau_s: S,
-    /// Modified tau, capped likewise, s; 0 when diverging.
+    /// Modified tau as the tau cap holds it (`TAUR`), capped likewise, s;
+    /// 0 when diverging.
     pub modified_tau_s: S,
 }
 

@@ -404,35 +404,136 @@ fn a_threat_is_kept_through_one_missed_cycle() {
     threat_kept_through_one_miss::<ScaledScalar>();
 }
 
+/// `TMIN` is a bound the age must pass (DO-185B `TCUR − TCMD > TMIN`):
+/// at 0.5 s cycles, exact in every type, the intruder of
+/// [`threat_kept_through_one_miss`] missing from the cycle after its RA is
+/// kept through the miss at 4.5 s and ends at 5.0 s. A kept threat also
+/// skips the vertical test when it hits the range test again: the same
+/// intruder, 3000 ft above when it closes again after one miss, keeps its
+/// RA (a new threat there gets no advisory at all).
+fn threat_age_and_kept_threat_tests<S: Scalar>() {
+    let cycle = cycle_at::<S>(8000.0);
+    let alt = Some((8000.0, 0.0));
+    let closing = observation::<S>(3000.0, -200.0, alt);
+    let opening = observation::<S>(3000.0, 200.0, alt);
+    let half = c::<S>(0.5);
+    let mut s = ThreatState::<S>::new();
+    assert_eq!(
+        s.assess(&cycle, &closing, half).unwrap().advisory,
+        Advisory::Resolution
+    );
+    let kept = (1..=12)
+        .take_while(|_| s.assess(&cycle, &opening, half).unwrap().advisory == Advisory::Resolution)
+        .count();
+    assert_eq!(kept, 9, "{}: misses kept", S::NAME);
+
+    let far_above = observation::<S>(3000.0, -200.0, Some((11_000.0, 0.0)));
+    assert_eq!(
+        ThreatState::<S>::new()
+            .assess(&cycle, &far_above, S::ONE)
+            .unwrap()
+            .advisory,
+        Advisory::None,
+        "{}",
+        S::NAME
+    );
+    let mut s = ThreatState::<S>::new();
+    for o in [&closing, &opening] {
+        assert_eq!(
+            s.assess(&cycle, o, S::ONE).unwrap().advisory,
+            Advisory::Resolution
+        );
+    }
+    assert_eq!(
+        s.assess(&cycle, &far_above, S::ONE).unwrap().advisory,
+        Advisory::Resolution,
+        "{}",
+        S::NAME
+    );
+}
+
+#[test]
+fn a_threat_ends_only_after_tmin_and_skips_the_vertical_test_while_kept() {
+    threat_age_and_kept_threat_tests::<f64>();
+    threat_age_and_kept_threat_tests::<f32>();
+    threat_age_and_kept_threat_tests::<Fix>();
+    threat_age_and_kept_threat_tests::<ScaledScalar>();
+}
+
+/// The tau cap keeps lowering while the range track is not firm, once it
+/// was (DO-185B `tau_calculation`: `TAUCAP` stays set), and the resolution
+/// model takes the capped taus. SL 5 (TAU 25 s, TVPE 30 s), co-altitude,
+/// r = 6000 m: firm at τ_mod 30.0 s (ṙ −194.2 m/s, true tau 30.9 s), no
+/// RA; range firmness 2 at τ_mod 20.0 s (ṙ −291.4, 20.6 s): the RA held
+/// back by firmness, the cap at 20.0 s; firm again at τ_mod 28.0 s (ṙ
+/// −208.1, 28.8 s): under the cap τ_mod is 20.0 s, so the RA, with the
+/// model's taus 20.0 s and 20.6 s. A cap kept from firm cycles alone would
+/// hold 30.0 s, and τ_mod 28.0 s gives no RA.
+fn cap_in_non_firm_cycles<S: Scalar>() {
+    let cycle = cycle_at::<S>(8000.0);
+    let alt = Some((8000.0, 0.0));
+    let mut s = ThreatState::<S>::new();
+    let a = s
+        .assess(&cycle, &observation::<S>(6000.0, -194.2, alt), S::ONE)
+        .unwrap();
+    assert_eq!(a.advisory, Advisory::Traffic, "{}", S::NAME);
+    let mut o = observation::<S>(6000.0, -291.4, alt);
+    o.range.firmness = 2;
+    let a = s.assess(&cycle, &o, S::ONE).unwrap();
+    assert!(a.held_by_firmness && a.advisory != Advisory::Resolution);
+    let a = s
+        .assess(&cycle, &observation::<S>(6000.0, -208.1, alt), S::ONE)
+        .unwrap();
+    assert_eq!(a.advisory, Advisory::Resolution, "{}", S::NAME);
+    let g = a.geometry.unwrap();
+    assert!(close(g.modified_tau_s, 20.0, 0.01), "{}", S::NAME);
+    assert!(close(g.range_tau_s, 6000.0 / 291.4, 0.01), "{}", S::NAME);
+}
+
+#[test]
+fn the_tau_cap_runs_in_non_firm_cycles_and_feeds_the_model() {
+    cap_in_non_firm_cycles::<f64>();
+    cap_in_non_firm_cycles::<f32>();
+    cap_in_non_firm_cycles::<Fix>();
+    cap_in_non_firm_cycles::<ScaledScalar>();
+}
+
 /// DO-185B `TAURISE` at SL 5 (own level at 8000 ft, DMOD 1018.6 m): a
 /// co-altitude intruder at 5000 m whose closure falls 250, 240, 230, 220,
 /// 210 m/s keeps τ_mod under 25 s (22.8 s at the fifth cycle), but its
-/// true tau rises (20.0 → 23.8 s). The RA is held back by vertical
-/// firmness for four cycles (the range track is firm: the tau cap and the
-/// count run); at the fifth the count is 4 ≥ 3 beyond 1.7 NM (3148 m), so a
-/// new threat is no range hit: a TA. With a falling true tau (the range
-/// closing at 250 m/s), or the same rise inside 1.7 NM (3000 m, closure
-/// 150 → 130 m/s: τ_mod 20.4 s), the fifth cycle gives the RA.
+/// true tau rises (20.0 → 23.8 s). The range track is firm from the first
+/// cycle (the tau cap and the count run from there), the vertical track
+/// only from cycle `firm_from`, which holds back the RA until then. At
+/// the fourth cycle the count is 3 ≥ 3 beyond 1.7 NM (3148 m): a new
+/// threat is no range hit, a TA; at the third it is 2, and the RA goes
+/// through. With a falling true tau (the range closing at 250 m/s), or the
+/// same rise inside 1.7 NM (3000 m, closure 150 → 130 m/s: τ_mod 20.4 s),
+/// the fifth cycle gives the RA; and a threat since the first cycle keeps
+/// its RA through the rise (the count holds back only new threats).
 fn tau_rise<S: Scalar>() {
     let cycle = cycle_at::<S>(8000.0);
     let alt = Some((8000.0, 0.0));
-    let run = |ranges: [f64; 5], rates: [f64; 5]| {
+    let run = |ranges: [f64; 5], rates: [f64; 5], firm_from: usize| {
         let mut s = ThreatState::<S>::new();
-        let mut last = None;
+        let mut statuses = Vec::new();
         for (k, (r, rdot)) in ranges.iter().zip(rates).enumerate() {
             let mut o = observation::<S>(*r, rdot, alt);
-            o.altitude_firmness = if k < 4 { 0 } else { 3 };
-            last = Some(s.assess(&cycle, &o, S::ONE).unwrap());
+            o.altitude_firmness = if k < firm_from { 0 } else { 3 };
+            statuses.push(s.assess(&cycle, &o, S::ONE).unwrap().advisory);
         }
-        last.unwrap()
+        statuses
     };
-    let rising = run([5000.0; 5], [-250.0, -240.0, -230.0, -220.0, -210.0]);
-    assert_eq!(rising.advisory, Advisory::Traffic, "{}", S::NAME);
-    assert!(!rising.held_by_firmness);
-    let falling = run([5000.0, 4750.0, 4500.0, 4250.0, 4000.0], [-250.0; 5]);
-    assert_eq!(falling.advisory, Advisory::Resolution, "{}", S::NAME);
-    let near = run([3000.0; 5], [-150.0, -145.0, -140.0, -135.0, -130.0]);
-    assert_eq!(near.advisory, Advisory::Resolution, "{}", S::NAME);
+    let closure_falls = [-250.0, -240.0, -230.0, -220.0, -210.0];
+    let rising = run([5000.0; 5], closure_falls, 3);
+    assert_eq!(rising[3], Advisory::Traffic, "{}", S::NAME);
+    let rising = run([5000.0; 5], closure_falls, 2);
+    assert_eq!(rising[2], Advisory::Resolution, "{}", S::NAME);
+    let falling = run([5000.0, 4750.0, 4500.0, 4250.0, 4000.0], [-250.0; 5], 4);
+    assert_eq!(falling[4], Advisory::Resolution, "{}", S::NAME);
+    let near = run([3000.0; 5], [-150.0, -145.0, -140.0, -135.0, -130.0], 4);
+    assert_eq!(near[4], Advisory::Resolution, "{}", S::NAME);
+    let threat = run([5000.0; 5], closure_falls, 0);
+    assert_eq!(threat, [Advisory::Resolution; 5], "{}", S::NAME);
 }
 
 #[test]
