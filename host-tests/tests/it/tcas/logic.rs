@@ -409,8 +409,10 @@ fn a_threat_is_kept_through_one_missed_cycle() {
 /// [`threat_kept_through_one_miss`] missing from the cycle after its RA is
 /// kept through the miss at 4.5 s and ends at 5.0 s. A kept threat also
 /// skips the vertical test when it hits the range test again: the same
-/// intruder, 3000 ft above when it closes again after one miss, keeps its
-/// RA (a new threat there gets no advisory at all).
+/// intruder, a threat for 6 s, 3000 ft above when it closes again after
+/// one miss, keeps its RA (a new threat there gets no advisory at all, and
+/// a second miss would end it), and its miss distance is held to the
+/// continuing threshold.
 fn threat_age_and_kept_threat_tests<S: Scalar>() {
     let cycle = cycle_at::<S>(8000.0);
     let alt = Some((8000.0, 0.0));
@@ -437,8 +439,10 @@ fn threat_age_and_kept_threat_tests<S: Scalar>() {
         "{}",
         S::NAME
     );
+    // A threat for 6 s (past TMIN), then one miss: a second miss would
+    // end it.
     let mut s = ThreatState::<S>::new();
-    for o in [&closing, &opening] {
+    for o in [&closing; 6].into_iter().chain([&opening]) {
         assert_eq!(
             s.assess(&cycle, o, S::ONE).unwrap().advisory,
             Advisory::Resolution
@@ -450,6 +454,24 @@ fn threat_age_and_kept_threat_tests<S: Scalar>() {
         "{}",
         S::NAME
     );
+    // A kept threat's miss distance is held to the continuing threshold
+    // (1.05·DMOD = 1069.5 m), not the new threat's (1018.6 m): r̈ = 1.8213
+    // m/s² makes the range track's miss d = 1040 m, 1040.2 m linearised at
+    // the new threshold (a new threat's RA filtered), 1040.4 m at the
+    // continuing one (kept).
+    let mut between = closing;
+    between.range.range_acceleration_m_per_s2 = c(1.8213);
+    let new = ThreatState::<S>::new()
+        .assess(&cycle, &between, S::ONE)
+        .unwrap();
+    assert!(new.miss_distance_filtered, "{}", S::NAME);
+    let mut s = ThreatState::<S>::new();
+    for o in [&closing; 6].into_iter().chain([&opening]) {
+        s.assess(&cycle, o, S::ONE).unwrap();
+    }
+    let kept = s.assess(&cycle, &between, S::ONE).unwrap();
+    assert!(!kept.miss_distance_filtered, "{}", S::NAME);
+    assert_eq!(kept.advisory, Advisory::Resolution, "{}", S::NAME);
 }
 
 #[test]
@@ -509,31 +531,41 @@ fn the_tau_cap_runs_in_non_firm_cycles_and_feeds_the_model() {
 /// through. With a falling true tau (the range closing at 250 m/s), or the
 /// same rise inside 1.7 NM (3000 m, closure 150 → 130 m/s: τ_mod 20.4 s),
 /// the fifth cycle gives the RA; and a threat since the first cycle keeps
-/// its RA through the rise (the count holds back only new threats).
+/// its RA through a rise (the count holds back only new threats).
 fn tau_rise<S: Scalar>() {
     let cycle = cycle_at::<S>(8000.0);
     let alt = Some((8000.0, 0.0));
-    let run = |ranges: [f64; 5], rates: [f64; 5], firm_from: usize| {
+    let run = |ranges: &[f64], rates: &[f64], firm_from: usize| {
         let mut s = ThreatState::<S>::new();
         let mut statuses = Vec::new();
         for (k, (r, rdot)) in ranges.iter().zip(rates).enumerate() {
-            let mut o = observation::<S>(*r, rdot, alt);
+            let mut o = observation::<S>(*r, *rdot, alt);
             o.altitude_firmness = if k < firm_from { 0 } else { 3 };
             statuses.push(s.assess(&cycle, &o, S::ONE).unwrap().advisory);
         }
         statuses
     };
     let closure_falls = [-250.0, -240.0, -230.0, -220.0, -210.0];
-    let rising = run([5000.0; 5], closure_falls, 3);
+    let rising = run(&[5000.0; 5], &closure_falls, 3);
     assert_eq!(rising[3], Advisory::Traffic, "{}", S::NAME);
-    let rising = run([5000.0; 5], closure_falls, 2);
+    let rising = run(&[5000.0; 5], &closure_falls, 2);
     assert_eq!(rising[2], Advisory::Resolution, "{}", S::NAME);
-    let falling = run([5000.0, 4750.0, 4500.0, 4250.0, 4000.0], [-250.0; 5], 4);
+    let falling = run(&[5000.0, 4750.0, 4500.0, 4250.0, 4000.0], &[-250.0; 5], 4);
     assert_eq!(falling[4], Advisory::Resolution, "{}", S::NAME);
-    let near = run([3000.0; 5], [-150.0, -145.0, -140.0, -135.0, -130.0], 4);
+    let near = run(&[3000.0; 5], &[-150.0, -145.0, -140.0, -135.0, -130.0], 4);
     assert_eq!(near[4], Advisory::Resolution, "{}", S::NAME);
-    let threat = run([5000.0; 5], closure_falls, 0);
-    assert_eq!(threat, [Advisory::Resolution; 5], "{}", S::NAME);
+    // A threat from 6000 m closing at 250 m/s (τ_mod 23.3 s), then held at
+    // 4750 m while its closure falls 240 → 200 m/s for five cycles (the
+    // count reaching 5, τ_mod at most 22.7 s): an RA throughout, where a
+    // count that stopped it too would end it after TMIN.
+    let ranges = [
+        6000.0, 5750.0, 5500.0, 5250.0, 5000.0, 4750.0, 4750.0, 4750.0, 4750.0, 4750.0, 4750.0,
+    ];
+    let rates = [
+        -250.0, -250.0, -250.0, -250.0, -250.0, -250.0, -240.0, -230.0, -220.0, -210.0, -200.0,
+    ];
+    let threat = run(&ranges, &rates, 0);
+    assert_eq!(threat, [Advisory::Resolution; 11], "{}", S::NAME);
 }
 
 #[test]
