@@ -1,5 +1,6 @@
 //! Threat detection per TCAS II v7.1: the range test with DMOD and modified
-//! tau and its rule for diverging intruders, the horizontal miss-distance
+//! tau and its rule for diverging intruders, the tau cap and the tau-rise
+//! count, threats kept through a missed cycle, the horizontal miss-distance
 //! filter, the vertical tests (ZTHR, vertical tau, the vertical miss at
 //! closest approach, the level-own-aircraft threshold), the 10 000 ft/min
 //! limit, the 15 500 ft cap for intruders without altitude, TA hysteresis
