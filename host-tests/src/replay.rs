@@ -41,8 +41,12 @@
 //!
 //! The first row's interval is not used by the filters (two-point
 //! initialisation takes the position only), so it is given as 1 s. Each later
-//! interval is the time since the last report used, computed in `f64` and
-//! then converted to the representation.
+//! interval is the time since the last report used, computed in `f64`,
+//! rounded to whole microseconds ([`interval_s`]) and then
+//! converted to the representation: decimal report times whose difference
+//! is exactly 0.05 s or 20 s are then not put on either side of the
+//! filters' range by binary rounding (0.15 − 0.1 is 0.04999999999999999 in
+//! `f64`); times less than half a microsecond apart are a repeated time.
 //!
 //! Timing never stops a run: the filters' interval policy
 //! ([`abtrack::filter::IntervalSpan`]) restarts the estimate at a report
@@ -447,7 +451,7 @@ pub enum RowEvent {
     RestartedStart,
     /// Less than 0.05 s after the last report used: skipped.
     Skipped,
-    /// The same time as the last report used: skipped.
+    /// The same time as the last report used (to the microsecond): skipped.
     Duplicate,
     /// Before the last report used (out of order): skipped.
     Late,
@@ -907,27 +911,44 @@ pub fn bank_header(dims: usize) -> String {
     h
 }
 
+/// Report times are read to the microsecond (module docs, "Intervals").
+const MICROSECONDS_PER_SECOND: f64 = 1e6;
+
+/// `t − previous`, s, rounded to the microsecond (module docs,
+/// "Intervals"). Both factors are exact, so a whole number of microseconds
+/// over 10⁶ is the `f64` nearest the decimal interval: 0.15 − 0.1 gives the
+/// literal 0.05.
+pub fn interval_s(previous: f64, t: f64) -> f64 {
+    ((t - previous) * MICROSECONDS_PER_SECOND).round() / MICROSECONDS_PER_SECOND
+}
+
 /// The interval since the last report used (1 s for the first row, see the
-/// module docs) in `S`; `Err` with the row's event for a repeated time (a
-/// duplicate report) or an earlier one (late), both skipped.
+/// module docs) in `S` ([`interval_s`]); `Err` with the row's event for a
+/// repeated time (a duplicate report, or one less than half a microsecond
+/// later) or an earlier one (late), both skipped.
 fn interval<S: Scalar>(
     previous_t: Option<f64>,
     t: f64,
     line: usize,
 ) -> Result<Result<S, RowEvent>, ReplayError> {
-    match previous_t {
-        None => Ok(Ok(S::ONE)),
-        Some(p) if t == p => Ok(Err(RowEvent::Duplicate)),
-        Some(p) if t < p => Ok(Err(RowEvent::Late)),
-        Some(p) => S::try_from_f64(t - p)
-            .map(Ok)
-            .map_err(|error| ReplayError::Value {
-                line,
-                column: 1,
-                name: "t",
-                error,
-            }),
+    let Some(p) = previous_t else {
+        return Ok(Ok(S::ONE));
+    };
+    if t < p {
+        return Ok(Err(RowEvent::Late));
     }
+    let dt = interval_s(p, t);
+    if dt == 0.0 {
+        return Ok(Err(RowEvent::Duplicate));
+    }
+    S::try_from_f64(dt)
+        .map(Ok)
+        .map_err(|error| ReplayError::Value {
+            line,
+            column: 1,
+            name: "t",
+            error,
+        })
 }
 
 /// A value of the file in `S`, or an error naming where it is.

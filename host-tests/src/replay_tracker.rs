@@ -468,23 +468,35 @@ impl Unused {
     }
 }
 
+/// `n` and `noun`, plural unless `n` is 1 ("1 scan", "2 scans").
+fn counted(n: usize, noun: &str) -> String {
+    if n == 1 {
+        format!("1 {noun}")
+    } else {
+        format!("{n} {noun}s")
+    }
+}
+
 impl std::fmt::Display for Unused {
     fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
         let p = "replay --tracker:";
         writeln!(
             f,
-            "{p} {} measurements in {} scans{}{}: {} used, {} not used",
-            self.measurements,
-            self.scans,
+            "{p} {} in {}{}{}: {} used, {} not used",
+            counted(self.measurements, "measurement"),
+            counted(self.scans, "scan"),
             if self.empty_scans > 0 {
-                format!(" (and {} empty scans run for gaps)", self.empty_scans)
+                format!(
+                    " (and {} run for gaps)",
+                    counted(self.empty_scans, "empty scan")
+                )
             } else {
                 String::new()
             },
             if self.out_of_order_scans > 0 {
                 format!(
-                    " (and {} scans out of time order, not run)",
-                    self.out_of_order_scans
+                    " (and {} out of time order, not run)",
+                    counted(self.out_of_order_scans, "scan")
                 )
             } else {
                 String::new()

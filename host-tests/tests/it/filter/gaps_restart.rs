@@ -719,6 +719,34 @@ fn events(csv: &str) -> Vec<(String, String)> {
         .collect()
 }
 
+/// Reports exactly 0.05 s apart (a 20 Hz sensor) and exactly 20 s apart,
+/// in decimal times whose `f64` differences fall either side of the range's
+/// ends (0.15 − 0.1 = 0.04999999999999999, 40.7 − 20.7 =
+/// 20.000000000000004): intervals are read to the microsecond, so none is
+/// skipped or restarted; a time less than half a microsecond after the
+/// last is a repeated time.
+const RANGE_ENDS: &str = "t,x,y\n\
+0,0,0\n0.05,1,0\n0.1,2,0\n0.15,3,0\n0.2,4,0\n0.25,5,0\n0.3,6,0\n\
+20.3,406,0\n20.7,414,0\n40.7,814,0\n41.3,826,0\n41.3000004,826,0\n42.3,846,0\n";
+
+#[test]
+fn intervals_at_the_ends_of_the_range_are_inside_it_in_every_number_system() {
+    for filter in CARTESIAN_FILTERS {
+        for numeric in REPLAY_NUMERICS {
+            let run = replay(filter, numeric, RANGE_ENDS);
+            assert_eq!(run.csv.lines().count(), 14, "{filter} {numeric}");
+            assert_eq!(
+                events(&run.csv),
+                [("41.3000004".to_string(), "skipped".to_string())],
+                "{filter} {numeric}"
+            );
+            assert!(run.events.restarted.is_empty(), "{filter} {numeric}");
+            assert_eq!(run.events.skipped, ["41.3000004"], "{filter} {numeric}");
+            assert_eq!(run.events.duplicates, 1, "{filter} {numeric}");
+        }
+    }
+}
+
 #[test]
 fn replay_runs_through_gaps_and_jitter_in_every_number_system() {
     let want: Vec<(String, String)> = [

@@ -28,7 +28,8 @@ use abtrack_host_tests::csv_input::{
     read_measurements, read_range_azimuth, CsvError, InputFormat, ReadOptions, Refusal, TimeOrder,
 };
 use abtrack_host_tests::replay::{
-    replay_reader, Failure, FilterKind, Numeric, Order, RangeAzimuthOptions, ReplayConfig,
+    interval_s, replay_reader, Failure, FilterKind, Numeric, Order, RangeAzimuthOptions,
+    ReplayConfig,
 };
 use abtrack_host_tests::scenario;
 use clap::{CommandFactory, Parser};
@@ -144,7 +145,7 @@ fn optional<S: Display>(out: &mut String, v: Option<S>) {
 }
 
 fn interval<S: Scalar>(previous: Option<f64>, t: f64) -> S {
-    previous.map_or(S::ONE, |p| S::try_from_f64(t - p).unwrap())
+    previous.map_or(S::ONE, |p| S::try_from_f64(interval_s(p, t)).unwrap())
 }
 
 fn kinematic_header(order: usize, dims: usize, bank: bool) -> String {

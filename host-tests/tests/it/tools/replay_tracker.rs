@@ -452,7 +452,7 @@ fn errors_name_the_line() {
     assert!(
         run.unused
             .to_string()
-            .contains("6 measurements in 3 scans (and 1 scans out of time order, not run)"),
+            .contains("6 measurements in 3 scans (and 1 scan out of time order, not run)"),
         "{}",
         run.unused
     );
