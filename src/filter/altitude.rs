@@ -376,9 +376,12 @@ pub struct AltitudeState<N: Numeric> {
     alpha_beta: bool,
     firmness: u8,
     bounds: RateBounds<N::Wide>,
-    /// Saturating counts (u16: the tracker's bytes are per intruder,
-    /// docs/tcas.md "RAM per intruder"; the getters widen them).
-    incredible_reports: u16,
+    /// Saturating counts. The reports refused as not credible are a u32:
+    /// the scan loop's lifetime count sums their increase, which a u16 would
+    /// stop at 65,535 (the micro:bit's state is 52 bytes either way,
+    /// docs/tcas.md "RAM per intruder"); the saturations a u16, widened by
+    /// their getter.
+    incredible_reports: u32,
     saturations: u16,
 }
 
@@ -501,7 +504,7 @@ impl<N: Numeric<Wide = S>, S: Scalar> AltitudeState<N> {
     /// Reports refused as not credible (a jump the track cannot have made);
     /// each was coasted through instead.
     pub fn incredible_reports(&self) -> u32 {
-        u32::from(self.incredible_reports)
+        self.incredible_reports
     }
 
     /// Scans discarded because their arithmetic saturated.

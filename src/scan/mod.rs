@@ -49,8 +49,12 @@
 //!   assembled runs (if it has measurements), and the next scan is at the
 //!   held measurement's time. If not, the held one is dropped and counted
 //!   (`out_of_window`). So one wild time stamp never moves the clock, and a
-//!   step of the sensor's clock (forwards or back, by any amount, past 2³¹
-//!   ms included) costs no measurement.
+//!   step of the sensor's clock forwards by any amount, or back by more
+//!   than `late_window` + one period (past 2³¹ ms included), costs no
+//!   measurement. A step back by one period to `late_window` + one period
+//!   cannot be told from late reports: up to two scans' measurements are
+//!   counted `late` or merged into the scan being assembled (counted there
+//!   if not assigned), without a re-lock.
 //!
 //! Every measurement is taken from the queue once and ends in exactly one
 //! scan's batch or one drop count, so a clock stepping back never makes a
@@ -70,8 +74,10 @@
 //! 1. for each confirmed track, the measurement nearest its predicted
 //!    position inside its gate among those it may take (reply identity:
 //!    the tracker's own rule, the same Mode S address or a correlating
-//!    Mode C altitude); it is never evicted, so a confirmed track is never
-//!    starved by clutter or by other intruders' replies;
+//!    Mode C altitude); it is never evicted, so a confirmed track is not
+//!    starved by clutter or by other intruders' replies (two confirmed
+//!    tracks with the same nearest measurement protect that one only: the
+//!    other's own measurement ranks as in 2, docs/firmware-runtime.md);
 //! 2. other measurements inside a confirmed track's gate that it may take,
 //!    by normalised gate distance;
 //! 3. all others (tentative tracks' and candidates for new tracks), nearest

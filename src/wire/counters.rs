@@ -28,7 +28,9 @@ counter_list! {
         out_of_envelope => "out of envelope",
         /// Cut short: the line went idle, or another frame started inside.
         truncated => "truncated",
-        /// Frames missing from the sender's sequence numbers.
+        /// Frames missing from the sender's sequence numbers, and the
+        /// candidates refused before the first accepted frame, at most its
+        /// number ([`crate::wire::Decoder`]).
         frames_lost => "frames lost",
         /// Accepted frames whose sequence number went back or repeated
         /// (a sender restart or a replayed frame); the count restarts there.

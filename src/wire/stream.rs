@@ -61,7 +61,10 @@ impl Encoder {
 /// after the previous accepted frame; a gap of `d` (less than 2¹⁵) counts
 /// `d` [`frames_lost`](DecoderStats::frames_lost), a step back or a repeat
 /// counts [`out_of_sequence`](DecoderStats::out_of_sequence) and restarts
-/// the count there.
+/// the count there. The candidates refused before the first accepted frame
+/// count as lost too, up to that frame's number (the frames the sender can
+/// have sent before it, a sender numbering from 0): a stream whose first
+/// frames are damaged loses them as one damaged later would be lost.
 #[derive(Debug, Clone)]
 pub struct Decoder {
     buffer: [u8; MAX_FRAME_LEN],
@@ -72,6 +75,8 @@ pub struct Decoder {
     accepted: usize,
     /// The sequence number the next frame should carry.
     expected_sequence: Option<u16>,
+    /// Candidates refused before the first accepted frame (saturating).
+    refused_before_first: u16,
     stats: DecoderStats,
 }
 
@@ -98,6 +103,7 @@ impl Decoder {
             held: 0,
             accepted: 0,
             expected_sequence: None,
+            refused_before_first: 0,
             stats: DecoderStats::new(),
         }
     }
@@ -237,6 +243,9 @@ impl Decoder {
             // own checks; BadField is the remaining one.
             _ => &mut s.bad_field,
         });
+        if self.expected_sequence.is_none() {
+            self.refused_before_first = self.refused_before_first.saturating_add(1);
+        }
         self.discard(1);
         e
     }
@@ -255,6 +264,9 @@ impl Decoder {
             } else {
                 increment(&mut s.out_of_sequence);
             }
+        } else {
+            let before = self.refused_before_first.min(sequence);
+            s.frames_lost = s.frames_lost.saturating_add(u32::from(before));
         }
         self.expected_sequence = Some(sequence.wrapping_add(1));
         self.consume(self.accepted);

@@ -243,7 +243,9 @@ struct TrackSeen {
 struct Reporter {
     encoder: Encoder,
     seen: heapless::Vec<TrackSeen, MAX_TRACKS_SEEN>,
-    not_remembered: u32,
+    /// Reports of confirmed tracks beyond the first [`MAX_TRACKS_SEEN`]
+    /// (not listed: a count of reports, not of tracks).
+    reports_not_listed: u32,
     frames_sent: u32,
     frames_not_sent: u32,
     /// The last health report sent.
@@ -264,7 +266,7 @@ impl Reporter {
         Reporter {
             encoder: Encoder::new(),
             seen: heapless::Vec::new(),
-            not_remembered: 0,
+            reports_not_listed: 0,
             frames_sent: 0,
             frames_not_sent: 0,
             health: Health {
@@ -320,7 +322,7 @@ impl Reporter {
             worst: t.advisory,
         };
         if self.seen.push(new).is_err() {
-            self.not_remembered = self.not_remembered.saturating_add(1);
+            self.reports_not_listed = self.reports_not_listed.saturating_add(1);
         }
     }
 }
@@ -622,10 +624,15 @@ fn summarise(
     defmt::println!("intake: {}", health.intake);
     defmt::println!("scan loop: {}", health.scan);
     defmt::println!("track table: {}", health.table);
-    defmt::println!(
-        "confirmed tracks ({=usize}):",
-        reporter.seen.len() + reporter.not_remembered as usize
-    );
+    if reporter.reports_not_listed == 0 {
+        defmt::println!("confirmed tracks ({=usize}):", reporter.seen.len());
+    } else {
+        defmt::println!(
+            "confirmed tracks (the first {=usize}; {=u32} reports of later ones not listed):",
+            reporter.seen.len(),
+            reporter.reports_not_listed
+        );
+    }
     for s in reporter.seen.iter() {
         let (a, am) = secs(s.first_ms);
         let (b, bm) = secs(s.last_ms);

@@ -238,3 +238,42 @@ fn targets_stay_tracked_in_a_clutter_storm() {
     }
     assert!(microbit.0.iter().all(|&n| n >= 30), "{microbit:?}");
 }
+
+/// "The verdict's `sent = accepted + frames lost` counts no frame before the
+/// first accepted one: a run whose first two thirds of frames are all
+/// corrupted is clean." The damaged frames before the first accepted one
+/// now count as lost (up to its sequence number), so such a run is not
+/// clean; with the same frames intact it is.
+#[test]
+fn damaged_frames_before_the_first_accepted_one_make_a_run_unclean() {
+    use abtrack::wire::{EndOfInput, HEADER_LEN};
+    let run = |damaged: u32| {
+        let mut encoder = Encoder::new();
+        let mut bytes = Vec::new();
+        for k in 0..60u32 {
+            for y in [-1500.0, 1500.0] {
+                let m = at(k * 1000, -3000.0 + 100.0 * f64::from(k), y);
+                let mut buf = [0u8; MAX_FRAME_LEN];
+                let n = encoder.encode(&Message::Measurement(m), &mut buf).unwrap();
+                if k < damaged {
+                    buf[HEADER_LEN] ^= 0x01;
+                }
+                bytes.extend_from_slice(&buf[..n]);
+            }
+        }
+        let end = Message::End(EndOfInput { time_ms: 60_000 });
+        let mut buf = [0u8; MAX_FRAME_LEN];
+        let n = encoder.encode(&end, &mut buf).unwrap();
+        bytes.extend_from_slice(&buf[..n]);
+        let config = demo_config::crossing_config::<f64, _>().unwrap();
+        frames::run_like_the_firmware::<f64, f64, FixedGainTrack<f64>, 8, 8, 16>(&bytes, &config)
+    };
+    let intact = run(0);
+    assert!(intact.verdict.unwrap().is_clean(), "{:?}", intact.verdict);
+    let damaged = run(40);
+    let d = damaged.health.decoder;
+    assert_eq!((d.crc_errors, d.frames_lost), (80, 80));
+    let verdict = damaged.verdict.unwrap();
+    assert_eq!(verdict.sent, 121);
+    assert!(!verdict.is_clean(), "{verdict:?}");
+}

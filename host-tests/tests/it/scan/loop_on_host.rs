@@ -493,6 +493,58 @@ fn the_scan_clock_relocks_on_a_jump_and_keeps_the_track() {
     }
 }
 
+/// A step of the sensor's clock back by one to three periods cannot be told
+/// from late reports until the reports after it arrive: by one to two, the
+/// next sensor scan's times fall in the scan being assembled, whose track
+/// then takes one of its target's two measurements (the other not
+/// assigned); by two to three, one or two sensor scans fall in the late
+/// window, dropped and counted `late`. No re-lock, and every measurement
+/// is counted. A step back by more (and forward by any amount,
+/// [`the_scan_clock_relocks_on_a_jump_and_keeps_the_track`]) re-locks and
+/// loses nothing.
+#[test]
+fn a_clock_step_back_of_one_to_three_periods_is_counted_not_relocked() {
+    // (step, late, not assigned, re-locks): one target and one clutter
+    // point a scan, 20 scans, the step after the tenth.
+    for (step_ms, late, not_assigned, relocks) in [
+        (-1_000i32, 0, 2, 0),
+        (-1_500, 0, 2, 0),
+        (-2_000, 2, 1, 0),
+        (-2_500, 2, 1, 0),
+        (-3_000, 4, 1, 0),
+        (-3_500, 0, 0, 1),
+    ] {
+        let config = demo_config::crossing_config::<Fix, _>().unwrap();
+        let mut scan_loop: Box<Loop<Fix, 4, 8>> = Box::new(Loop::new());
+        let mut out = Output::default();
+        let mut q = Box::new(MeasurementQueue::<64>::new());
+        let mut sent = 0;
+        for k in 0..20u32 {
+            let t = 43_200_000 + k * 1000;
+            let t = if k >= 10 {
+                t.wrapping_add(step_ms as u32)
+            } else {
+                t
+            };
+            q.push(at(t, 50.0 * k as f64)).unwrap();
+            q.push(MeasurementReport::cartesian_from_metres(t, 1, -3000.0, 4000.0, None).unwrap())
+                .unwrap();
+            sent += 2;
+            while scan_loop.collect(&config, q.as_mut()) == abtrack::scan::Collected::ScanDue {
+                scan_loop.on_tick(&config, q.as_mut(), out.sink()).unwrap();
+            }
+        }
+        scan_loop.on_tick(&config, q.as_mut(), out.sink()).unwrap();
+        let c = *scan_loop.counters();
+        assert_eq!(
+            (c.late, c.not_assigned, c.clock_relocks, c.out_of_window),
+            (late, not_assigned, relocks, 0),
+            "{step_ms}: {c:?}"
+        );
+        assert_eq!(c.used + c.late, sent, "{step_ms}: {c:?}");
+    }
+}
+
 #[test]
 fn out_of_range_measurements_are_refused_and_counted() {
     let reports = [
@@ -536,7 +588,8 @@ fn out_of_range_measurements_are_refused_and_counted() {
         },
     ];
     // Through the wire they are refused by the decoder (outside the
-    // envelope) ...
+    // envelope: lost, as the decoder counts refused frames before the first
+    // accepted one) ...
     let mut intake: Intake<16> = Intake::new();
     let mut sensor = Sensor::default();
     for r in reports {
@@ -545,7 +598,7 @@ fn out_of_range_measurements_are_refused_and_counted() {
         }
     }
     let d = intake.decoder().stats();
-    assert_eq!((d.accepted, d.out_of_envelope, d.frames_lost), (1, 3, 0));
+    assert_eq!((d.accepted, d.out_of_envelope, d.frames_lost), (1, 3, 3));
     // ... and if they reach the loop another way, by the conversion.
     let mut q = direct(&reports);
     let mut scan_loop: Box<Loop<Fix, 4, 8>> = Box::new(Loop::new());
@@ -863,6 +916,46 @@ fn print_memory_sizes() {
     // the stack; scripts/stack.sh checks the stack's margin on the board
     // (docs/tcas.md, "RAM per intruder").
     assert!(std::mem::size_of::<MicrobitLoop>() < 12 * 1024);
+}
+
+/// The case the capacity rule does not cover (docs/firmware-runtime.md,
+/// "Capacity"): confirmed tracks X (1000, 0) and Y (1000, 60) whose
+/// nearest measurement is the same one (mX, 28 m from X and 32 m from Y),
+/// and Z far away. With room for three of the four, mX and Z's mZ are
+/// protected, and a clutter return 20 m from Z outranks Y's own mY (35 m
+/// off Y) by gate distance: Y coasts the scan. With room for four, all
+/// three are updated.
+#[test]
+fn two_tracks_sharing_their_nearest_measurement_protect_that_one_only() {
+    fn scan<const M: usize>() -> (u16, u16, u16) {
+        let config = demo_config::crossing_config::<f64, _>().unwrap();
+        let mut scan_loop: Box<Loop<f64, 8, M>> = Box::new(Loop::new());
+        let mut q = Box::new(MeasurementQueue::<64>::new());
+        let point = |t: u32, x: f64, y: f64| {
+            MeasurementReport::cartesian_from_metres(t, 1, x, y, None).unwrap()
+        };
+        for k in 0..4u32 {
+            for [x, y] in [[1000.0, 0.0], [1000.0, 60.0], [3000.0, 0.0]] {
+                q.push(point(k * 1000, x, y)).unwrap();
+            }
+            scan_loop.on_tick(&config, q.as_mut(), |_| {}).unwrap();
+        }
+        let confirmed = scan_loop.table().tracks().filter(|t| t.is_confirmed());
+        assert_eq!(confirmed.count(), 3);
+        for [x, y] in [
+            [1000.0, 28.0],
+            [1000.0, 95.0],
+            [3000.0, 0.0],
+            [3000.0, 20.0],
+        ] {
+            q.push(point(4000, x, y)).unwrap();
+        }
+        let tick = scan_loop.on_tick(&config, q.as_mut(), |_| {}).unwrap();
+        let c = tick.summary.counts;
+        (c.updated, c.over_capacity, tick.scan.coasted as u16)
+    }
+    assert_eq!(scan::<4>(), (3, 0, 0));
+    assert_eq!(scan::<3>(), (2, 1, 1));
 }
 
 /// Capacity under clutter (abtrack::scan, "Capacity"): three confirmed

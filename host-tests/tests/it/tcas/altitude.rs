@@ -278,6 +278,25 @@ fn incredible_jump_is_refused_and_counted() {
     assert_eq!(t.since_last_report(), 1.0);
 }
 
+/// The count of reports refused as not credible does not stop at 65,535
+/// (the scan loop's lifetime `altitude_not_credible` sums its increase): an
+/// intruder with a bad altitude encoder replying at 1 Hz for a day.
+#[test]
+fn incredible_reports_are_counted_past_65535() {
+    let config = AltitudeTrackerConfig::<f32>::default_for(AltitudeQuantum::ModeS25).unwrap();
+    let mut t = AltitudeTracker::<f32>::new(config);
+    let scans = 140_000u32;
+    for k in 0..scans {
+        let z = if k < 6 || k % 2 == 0 {
+            8_000.0
+        } else {
+            30_000.0
+        };
+        t.scan(Some(z), 1.0).unwrap();
+    }
+    assert_eq!(t.incredible_reports(), (scans - 6) / 2);
+}
+
 #[test]
 fn kalata_gains_satisfy_the_tracking_index_identity() {
     // λ² = β²/(1 − α) (Kalata), over four decades of λ, and inside the

@@ -712,6 +712,47 @@ fn decoder_counts_lost_frames_from_the_sequence_numbers() {
     assert_eq!((d.stats().frames_lost, d.stats().out_of_sequence), (1, 0));
 }
 
+/// Frames refused before the first accepted one have no sequence number to
+/// place them: they count as lost up to the first accepted frame's number,
+/// so a stream whose first frames are all damaged is not a clean one. A
+/// receiver that joins a stream late (a first frame numbered 5,000 after
+/// one damaged frame) counts only the refused ones; garbage before a
+/// stream numbered from 0 counts none.
+#[test]
+fn damaged_frames_before_the_first_accepted_one_count_as_lost() {
+    let messages: Vec<Message> = (0..10)
+        .map(|k| Message::Measurement(cartesian(k * 1000, 100 * k as i32, 0, None)))
+        .collect();
+    let frames = numbered(&messages);
+    let mut stream = Vec::new();
+    for (k, f) in frames.iter().enumerate() {
+        let mut f = f.clone();
+        if k < 6 {
+            f[HEADER_LEN] ^= 0x80;
+        }
+        stream.extend(f);
+    }
+    let mut d = Decoder::new();
+    let (results, _) = decode(&mut d, &stream);
+    assert_eq!(oks(&results).len(), 4);
+    assert_eq!((d.stats().crc_errors, d.stats().frames_lost), (6, 6));
+    assert_accounts(&d);
+
+    let mut stream = frames[0].clone();
+    stream[HEADER_LEN] ^= 0x80;
+    stream.extend(emit_numbered(&messages[1], 5_000));
+    let mut d = Decoder::new();
+    decode(&mut d, &stream);
+    assert_eq!((d.stats().crc_errors, d.stats().frames_lost), (1, 1));
+
+    let mut stream = frames[0].clone();
+    stream[HEADER_LEN] ^= 0x80;
+    stream.extend(&frames[0]);
+    let mut d = Decoder::new();
+    decode(&mut d, &stream);
+    assert_eq!((d.stats().crc_errors, d.stats().frames_lost), (1, 0));
+}
+
 /// The finding: "A fuzzer built a CRC-16 collision that made up a polar
 /// measurement at 28,823 km and swallowed the real frame behind it,
 /// counting nothing." Rebuilt with CRC-32C: a polar frame at 28,823 km whose
