@@ -46,7 +46,8 @@
 //! converted to the representation: decimal report times whose difference
 //! is exactly 0.05 s or 20 s are then not put on either side of the
 //! filters' range by binary rounding (0.15 − 0.1 is 0.04999999999999999 in
-//! `f64`); times less than half a microsecond apart are a repeated time.
+//! `f64`; below 2³² s, where an `f64` holds a microsecond); times less
+//! than half a microsecond apart are a repeated time.
 //!
 //! Timing never stops a run: the filters' interval policy
 //! ([`abtrack::filter::IntervalSpan`]) restarts the estimate at a report
@@ -925,7 +926,7 @@ pub fn interval_s(previous: f64, t: f64) -> f64 {
 /// The interval since the last report used (1 s for the first row, see the
 /// module docs) in `S` ([`interval_s`]); `Err` with the row's event for a
 /// repeated time (a duplicate report, or one less than half a microsecond
-/// later) or an earlier one (late), both skipped.
+/// before or after) or an earlier one (late), both skipped.
 fn interval<S: Scalar>(
     previous_t: Option<f64>,
     t: f64,
@@ -934,12 +935,12 @@ fn interval<S: Scalar>(
     let Some(p) = previous_t else {
         return Ok(Ok(S::ONE));
     };
-    if t < p {
-        return Ok(Err(RowEvent::Late));
-    }
     let dt = interval_s(p, t);
     if dt == 0.0 {
         return Ok(Err(RowEvent::Duplicate));
+    }
+    if dt < 0.0 {
+        return Ok(Err(RowEvent::Late));
     }
     S::try_from_f64(dt)
         .map(Ok)
@@ -1452,7 +1453,7 @@ pub fn replay_range_azimuth_in<S: CsvValue>(
         let mut event = match (interval, previous_t) {
             (Err(event), _) => event,
             (Ok(_), None) => RowEvent::Used,
-            (Ok(_), Some(p)) => match IntervalSpan::of(row.t - p) {
+            (Ok(_), Some(p)) => match IntervalSpan::of(interval_s(p, row.t)) {
                 Ok(IntervalSpan::TooShort) => RowEvent::Skipped,
                 Ok(IntervalSpan::TooLong) if filter.phase() != Phase::Empty => RowEvent::Restarted,
                 _ => RowEvent::Used,

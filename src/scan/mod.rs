@@ -52,9 +52,10 @@
 //!   step of the sensor's clock forwards by any amount, or back by more
 //!   than `late_window` + one period (past 2³¹ ms included), costs no
 //!   measurement. A step back by one period to `late_window` + one period
-//!   cannot be told from late reports: up to two scans' measurements are
-//!   counted `late` or merged into the scan being assembled (counted there
-//!   if not assigned), without a re-lock.
+//!   cannot be told from late reports and costs up to three sensor scans,
+//!   all counted, without a re-lock: the scan after the step is merged into
+//!   the scan being assembled (the measurements not assigned counted
+//!   there), and from two periods back the one or two after it are `late`.
 //!
 //! Every measurement is taken from the queue once and ends in exactly one
 //! scan's batch or one drop count, so a clock stepping back never makes a

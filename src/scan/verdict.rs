@@ -6,7 +6,8 @@ use crate::wire::Health;
 /// behind the demo firmware's exit status.
 ///
 /// The sensor sent `sent = accepted frames + frames lost` (from the
-/// sequence numbers); of those, `lost = frames lost + measurements not used`
+/// sequence numbers, and the frames refused before the first accepted one:
+/// [`crate::wire::Decoder`]); of those, `lost = frames lost + measurements not used`
 /// (queue full, late, out of the window, over capacity, not representable,
 /// rejected by the tracker). A run is **clean** when it used at least one
 /// measurement and lost at most one in [`MAX_LOST_FRACTION_INVERSE`] of what
@@ -14,7 +15,7 @@ use crate::wire::Health;
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 #[cfg_attr(feature = "defmt", derive(defmt::Format))]
 pub struct RunVerdict {
-    /// Frames the sensor sent: accepted plus lost (from the sequence numbers).
+    /// Frames the sensor sent: accepted plus lost ([`crate::wire::Decoder`]).
     pub sent: u32,
     /// Frames lost plus measurements not used (queue full, late, out of the
     /// window, over capacity, not representable, rejected by the tracker).

@@ -64,7 +64,11 @@ impl Encoder {
 /// the count there. The candidates refused before the first accepted frame
 /// count as lost too, up to that frame's number (the frames the sender can
 /// have sent before it, a sender numbering from 0): a stream whose first
-/// frames are damaged loses them as one damaged later would be lost.
+/// frames are damaged loses them as one damaged later would be lost. These
+/// are candidates, not frames (one damaged frame can be refused as
+/// several), so before a stream joined late more can be counted than were
+/// lost; after a sender restart, damaged frames before its first accepted
+/// one are not counted (docs/firmware-runtime.md, "Sequence numbers").
 #[derive(Debug, Clone)]
 pub struct Decoder {
     buffer: [u8; MAX_FRAME_LEN],

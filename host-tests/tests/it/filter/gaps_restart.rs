@@ -745,6 +745,32 @@ fn intervals_at_the_ends_of_the_range_are_inside_it_in_every_number_system() {
             assert_eq!(run.events.duplicates, 1, "{filter} {numeric}");
         }
     }
+    // The range–azimuth filter's runner takes the same intervals: the same
+    // positions as range and azimuth from a sensor 20 km south and 10 km
+    // west.
+    let mut polar = String::from("t,range,azimuth\n");
+    for row in RANGE_ENDS.lines().skip(1) {
+        let v: Vec<f64> = row.split(',').map(|c| c.parse().unwrap()).collect();
+        let (x, y) = (10_000.0 + v[1], 20_000.0 + v[2]);
+        let t = row.split(',').next().unwrap();
+        polar.push_str(&format!("{t},{},{}\n", f64::hypot(x, y), f64::atan2(x, y)));
+    }
+    for numeric in ["f64", "f32", "q32.32", "fixed32"] {
+        let run = replay("--filter range-azimuth", numeric, &polar);
+        assert_eq!(
+            events(&run.csv),
+            [("41.3000004".to_string(), "skipped".to_string())],
+            "range-azimuth {numeric}"
+        );
+    }
+    // A time less than half a microsecond before the last is a repeated
+    // time too, not a late one.
+    let run = replay(
+        "--filter ab --alpha 0.5 --beta 0.2",
+        "f64",
+        "t,x\n0,0\n1,10\n0.9999996,10\n2,20\n",
+    );
+    assert_eq!((run.events.duplicates, run.events.late), (1, 0));
 }
 
 #[test]

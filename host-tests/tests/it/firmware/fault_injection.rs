@@ -209,9 +209,9 @@ fn expected(fault: Fault, fits: bool) -> (bool, Floor) {
         // Where every return fits the scan (the mps2 boards' 256) the run
         // is clean and the intruders are tracked as without the storm
         // (measured: the results files' rows equal the baseline). Where
-        // returns are over capacity (the micro:bit's 12) it is not clean,
+        // returns are over capacity (the micro:bit's 10) it is not clean,
         // and the intruders, 14 NM out, lose their places to nearer
-        // returns: no floor (0 to 11 scans in the results file).
+        // returns: no floor (0 to 10 scans in the results file).
         Fault::ClutterStorm if fits => (true, Floor::Baseline(0)),
         Fault::ClutterStorm => (false, Floor::Measured(0)),
         Fault::Reversed | Fault::GarbageOnly => (false, Floor::Measured(0)),

@@ -737,7 +737,7 @@ fn demo_input_is_tracked_in_every_number_type() {
     assert_eq!(demo_input_is_tracked::<f32, N, M, Q>(), f64_ids);
     assert_eq!(demo_input_is_tracked::<Fix, N, M, Q>(), f64_ids);
     // The micro:bit's tracks and queue, with room for the crossing's 20
-    // measurements per scan (its demo takes 12 replies per scan: the TCAS
+    // measurements per scan (its demo takes 10 replies per scan: the TCAS
     // scenario has at most 6; tests/it/firmware/tcas_demo.rs).
     assert_eq!(
         demo_input_is_tracked::<Fix, { microbit::TRACKS }, 24, { microbit::QUEUE_LEN }>(),

@@ -28,8 +28,7 @@ use abtrack_host_tests::csv_input::{
     read_measurements, read_range_azimuth, CsvError, InputFormat, ReadOptions, Refusal, TimeOrder,
 };
 use abtrack_host_tests::replay::{
-    interval_s, replay_reader, Failure, FilterKind, Numeric, Order, RangeAzimuthOptions,
-    ReplayConfig,
+    replay_reader, Failure, FilterKind, Numeric, Order, RangeAzimuthOptions, ReplayConfig,
 };
 use abtrack_host_tests::scenario;
 use clap::{CommandFactory, Parser};
@@ -145,7 +144,10 @@ fn optional<S: Display>(out: &mut String, v: Option<S>) {
 }
 
 fn interval<S: Scalar>(previous: Option<f64>, t: f64) -> S {
-    previous.map_or(S::ONE, |p| S::try_from_f64(interval_s(p, t)).unwrap())
+    // Read to the microsecond, as replay's module docs say.
+    previous.map_or(S::ONE, |p| {
+        S::try_from_f64(((t - p) * 1e6).round() / 1e6).unwrap()
+    })
 }
 
 fn kinematic_header(order: usize, dims: usize, bank: bool) -> String {
