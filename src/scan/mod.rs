@@ -54,8 +54,8 @@
 //!   measurement. A step back by one period to `late_window` + one period
 //!   cannot be told from late reports and costs up to three sensor scans,
 //!   all counted, without a re-lock: the scan after the step is merged into
-//!   the scan being assembled (the measurements not assigned counted
-//!   there), and from two periods back the one or two after it are `late`.
+//!   the scan being assembled (its measurements counted there as in any
+//!   scan), and from two periods back the one or two after it are `late`.
 //!
 //! Every measurement is taken from the queue once and ends in exactly one
 //! scan's batch or one drop count, so a clock stepping back never makes a

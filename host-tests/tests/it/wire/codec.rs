@@ -667,12 +667,19 @@ fn decoder_reports_crc_errors() {
     assert_accounts(&d);
 }
 
-#[test]
-fn decoder_counts_lost_frames_from_the_sequence_numbers() {
+/// Ten measurement messages, a second apart, and their frames numbered
+/// 0 to 9.
+fn ten_numbered_measurements() -> (Vec<Message>, Vec<Vec<u8>>) {
     let messages: Vec<Message> = (0..10)
         .map(|k| Message::Measurement(cartesian(k * 1000, 100 * k as i32, 0, None)))
         .collect();
     let frames = numbered(&messages);
+    (messages, frames)
+}
+
+#[test]
+fn decoder_counts_lost_frames_from_the_sequence_numbers() {
+    let (messages, frames) = ten_numbered_measurements();
     // Frames 3, 4 and 7 never arrive; frame 8 arrives corrupted.
     let mut stream = Vec::new();
     for (k, f) in frames.iter().enumerate() {
@@ -720,10 +727,7 @@ fn decoder_counts_lost_frames_from_the_sequence_numbers() {
 /// stream numbered from 0 counts none.
 #[test]
 fn damaged_frames_before_the_first_accepted_one_count_as_lost() {
-    let messages: Vec<Message> = (0..10)
-        .map(|k| Message::Measurement(cartesian(k * 1000, 100 * k as i32, 0, None)))
-        .collect();
-    let frames = numbered(&messages);
+    let (messages, frames) = ten_numbered_measurements();
     let mut stream = Vec::new();
     for (k, f) in frames.iter().enumerate() {
         let mut f = f.clone();
