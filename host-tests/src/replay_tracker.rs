@@ -66,8 +66,8 @@ use abtrack::track::defaults::{
     TrackerDesign,
 };
 use abtrack::track::{
-    Association, ConfigError, DropReason, Measurement, Observation, RejectReason, ScanReport,
-    ScheduledTrack, TrackFilter, TrackTable, TrackerConfig,
+    Association, DropReason, Measurement, Observation, RejectReason, ScanReport, ScheduledTrack,
+    TrackFilter, TrackTable, TrackerConfig,
 };
 use abtrack::{Fix, Fixed32, ScaledScalar};
 
@@ -332,7 +332,28 @@ impl std::fmt::Display for DesignUsed {
             p.confirmation.1,
             p.deletion.0,
             p.deletion.1
-        )
+        )?;
+        if !p.confirmation_meets_bounds {
+            // The clutter counted over the area watched is what usually
+            // makes the bounds unreachable: the fixes come first.
+            let area = self.design.clutter_area();
+            writeln!(
+                f,
+                "replay --tracker: warning: no M-of-N within 8 scans confirms a target with \
+                 probability 0.95 at no more than one false track per 1000 scans; {} of {} \
+                 confirms one with probability {} at {} false tracks a scan (the clutter: {} \
+                 false measurements a scan expected over the {} km² counted); a recording \
+                 without clutter takes --clutter-per-km2 0, and --region-m, --pd, --confirm \
+                 and --delete set the figures and the rules",
+                p.confirmation.0,
+                p.confirmation.1,
+                three_significant(p.true_confirmation_probability),
+                three_significant(p.false_confirmations_per_scan),
+                three_significant(self.design.clutter_density * area),
+                three_significant(area * 1e-6)
+            )?;
+        }
+        Ok(())
     }
 }
 
@@ -830,28 +851,8 @@ pub fn design_for(
         scan_period,
     };
     let derived = design.derive().map_err(|e| {
-        // Rule 4 weighs the clutter (its density in a new track's gates,
-        // its count over the area) against P_D: the fix comes first (the
-        // default density over a file's whole extent is what usually
-        // fails), then what the clutter was.
-        let (fix, clutter) = if e == ConfigError::NoConfirmationRule {
-            let area = design.clutter_area();
-            (
-                "pass --clutter-per-km2 0 for a recording without clutter, or the sensor's \
-                 own density (--clutter-per-km2; the default is the nominal sensor's), a \
-                 smaller region watched (--region-m) or a higher P_D (--pd); ",
-                format!(
-                    "; the clutter: {} false measurements a scan expected over the {} km² \
-                     counted",
-                    three_significant(design.clutter_density * area),
-                    three_significant(area * 1e-6)
-                ),
-            )
-        } else {
-            ("", String::new())
-        };
         ReplayError::Design(format!(
-            "no configuration meets the design rules for these figures: {fix}{e}{clutter} \
+            "no configuration meets the design rules for these figures: {e} \
              ({}; the figures come from --sigma-m or --range-sigma-m/--bearing-sigma-deg, \
              --scan-period-s, --pd, --clutter-per-km2, --region-m, --max-speed-mps and \
              --max-accel-mps2)",

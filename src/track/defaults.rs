@@ -44,7 +44,7 @@
 //!    (polar: max(σ_R, R_max·σ_B)).
 //! 4. **Confirmation M-of-N** (the scan that starts a track counts as its
 //!    first hit): the rule with the smallest M (fastest confirmation), then
-//!    the smallest N ≤ 8 (none: [`ConfigError::NoConfirmationRule`]), such that
+//!    the smallest N ≤ 8, such that
 //!    * a true target is confirmed with probability ≥
 //!      [`MIN_TRUE_CONFIRMATION`] = 0.95: P(at least M − 1 hits in N − 1
 //!      scans, each hit with probability P_D·P_G), and
@@ -58,6 +58,15 @@
 //!      variance after two points is 5σ² per axis at equal intervals, so
 //!      the radius is σ·√(6G) + ½a_max T²; polar: the range/azimuth window
 //!      with σ_R in range and R_max·σ_B across, area π·h_R·h_C).
+//!
+//!    When no rule up to 8 scans meets both bounds (a low P_D, dense
+//!    clutter), the design does not refuse the sensor: it takes the rule
+//!    that meets the false-track bound with the highest probability of
+//!    confirming a true target (Neyman–Pearson: the false-alarm rate fixed,
+//!    the detection probability made largest), or, when none meets it, the
+//!    rule with the fewest false confirmations; it says so
+//!    ([`DerivedParameters::confirmation_meets_bounds`]) with both
+//!    probabilities.
 //! 5. **Deletion.** A confirmed track is deleted after K consecutive misses,
 //!    K the smallest with p_m^K·(1 − p_m) ≤ [`MAX_SPURIOUS_DELETIONS_PER_SCAN`]
 //!    = 10⁻⁴ (the probability that a run of K misses starts at a given scan,
@@ -123,12 +132,6 @@ pub const MAX_SPURIOUS_DELETIONS_PER_SCAN: f64 = 1e-4;
 pub const MANOEUVRE_SIGMA_FRACTION: f64 = 0.5;
 /// Largest confirmation window considered (rule 4).
 pub const MAX_CONFIRMATION_WINDOW: u8 = 8;
-const _: () = assert!(
-    MAX_CONFIRMATION_WINDOW == 8
-        && MIN_TRUE_CONFIRMATION == 0.95
-        && MAX_FALSE_CONFIRMATIONS_PER_SCAN == 1e-3,
-    "ConfigError::NoConfirmationRule's message states them"
-);
 
 /// g·tan 30° (m/s²): the lateral acceleration of a coordinated turn at 30°
 /// of bank.
@@ -254,6 +257,9 @@ pub struct DerivedParameters {
     pub initiation_margin: f64,
     /// (M, N).
     pub confirmation: (u8, u8),
+    /// Whether (M, N) meets both bounds of rule 4; if not, it is the best
+    /// compromise the module docs describe.
+    pub confirmation_meets_bounds: bool,
     /// Probability a true target is confirmed by (M, N).
     pub true_confirmation_probability: f64,
     /// Expected false starts per scan (F).
@@ -354,8 +360,7 @@ impl TrackerDesign {
             .unwrap_or(core::f64::consts::PI * self.max_range * self.max_range)
     }
 
-    /// The parameters the rules of the module docs give;
-    /// [`ConfigError::NoConfirmationRule`] when rule 4 finds no M-of-N.
+    /// The parameters the rules of the module docs give.
     pub fn derive(&self) -> Result<DerivedParameters, ConfigError> {
         let pd = self.detection_probability;
         if !pd.is_finite() {
@@ -432,7 +437,22 @@ impl TrackerDesign {
         let clutter_per_scan = clutter * area;
         let false_starts = clutter_per_scan * (1.0 - libm::exp(-clutter * init_area));
         let p_hit = pd * gate_probability;
+        // The first rule meeting both bounds, in the order of the module
+        // docs; else the best compromise (rule 4's last paragraph): a key
+        // that orders the rules meeting the false-track bound first, by
+        // their true confirmation, then the others by their false
+        // confirmations.
         let mut chosen = None;
+        let mut compromise: Option<((u8, u8), f64, f64)> = None;
+        let better = |a: (f64, f64), b: (f64, f64)| {
+            let within = |p_false: f64| p_false <= MAX_FALSE_CONFIRMATIONS_PER_SCAN;
+            match (within(a.1), within(b.1)) {
+                (true, false) => true,
+                (false, true) => false,
+                (true, true) => a.0 > b.0,
+                (false, false) => a.1 < b.1 || (a.1 == b.1 && a.0 > b.0),
+            }
+        };
         'search: for m in 2..=MAX_CONFIRMATION_WINDOW {
             for n in m..=MAX_CONFIRMATION_WINDOW {
                 // m ≥ 2 and n ≥ m: no saturation.
@@ -444,10 +464,14 @@ impl TrackerDesign {
                     chosen = Some(((m, n), p_true, p_false));
                     break 'search;
                 }
+                if compromise.is_none_or(|(_, t, f)| better((p_true, p_false), (t, f))) {
+                    compromise = Some(((m, n), p_true, p_false));
+                }
             }
         }
+        let confirmation_meets_bounds = chosen.is_some();
         let (confirmation, true_confirmation_probability, false_confirmations_per_scan) =
-            chosen.ok_or(ConfigError::NoConfirmationRule)?;
+            chosen.or(compromise).ok_or(ConfigError::Confirmation)?;
 
         // Rule 5.
         let p_miss = 1.0 - p_hit;
@@ -481,6 +505,7 @@ impl TrackerDesign {
             max_sigma,
             initiation_margin,
             confirmation,
+            confirmation_meets_bounds,
             true_confirmation_probability,
             false_starts_per_scan: false_starts,
             false_gate_hit_probability: q,

@@ -86,12 +86,6 @@ pub enum ConfigError {
     OutOfRange,
     /// M-of-N confirmation needs 1 ≤ M ≤ N ≤ 32.
     Confirmation,
-    /// No M-of-N confirmation within
-    /// [`MAX_CONFIRMATION_WINDOW`](super::defaults::MAX_CONFIRMATION_WINDOW)
-    /// scans meets both bounds of the design's rule 4 ([`super::defaults`]):
-    /// the clutter, the gate and the initiation area give too many false
-    /// confirmations, or P_D too few true ones.
-    NoConfirmationRule,
     /// Deletion thresholds must be ≥ 1.
     Deletion,
     /// The surveillance volume's minimum is not below its maximum.
@@ -104,10 +98,6 @@ impl core::fmt::Display for ConfigError {
             ConfigError::NotFinite => "configuration value is not a finite number",
             ConfigError::OutOfRange => "configuration value is out of range",
             ConfigError::Confirmation => "M-of-N confirmation needs 1 <= M <= N <= 32",
-            ConfigError::NoConfirmationRule => {
-                "no M-of-N confirmation within 8 scans confirms a target with probability \
-                 0.95 at no more than one false track per 1000 scans (design rule 4)"
-            }
             ConfigError::Deletion => "deletion thresholds must be at least 1 miss",
             ConfigError::EmptyVolume => "surveillance volume minimum must be below its maximum",
         })
