@@ -63,11 +63,12 @@ use abtrack::gain::spec::ScheduleSpec;
 use abtrack::tcas::Intruder;
 use abtrack::track::defaults::{
     Coverage, DefaultCartesianTrack, DefaultPolarTrack, DerivedParameters, SensorAccuracy,
-    TrackerDesign,
+    TrackerDesign, MAX_CONFIRMATION_WINDOW, MAX_FALSE_CONFIRMATIONS_PER_SCAN,
+    MAX_SPURIOUS_DELETIONS_PER_SCAN, MIN_TRUE_CONFIRMATION,
 };
 use abtrack::track::{
-    Association, DropReason, Measurement, Observation, RejectReason, ScanReport, ScheduledTrack,
-    TrackFilter, TrackTable, TrackerConfig,
+    Association, ConfigError, DropReason, Measurement, Observation, RejectReason, ScanReport,
+    ScheduledTrack, TrackFilter, TrackTable, TrackerConfig,
 };
 use abtrack::{Fix, Fixed32, ScaledScalar};
 
@@ -256,6 +257,8 @@ pub struct DesignUsed {
     pub derived: DerivedParameters,
     /// Where the scan period came from.
     pub period: PeriodSource,
+    /// `--confirm M/N` replaced the designed confirmation rule.
+    pub confirmation_given: bool,
 }
 
 /// Where a tracker replay's scan period came from.
@@ -333,18 +336,27 @@ impl std::fmt::Display for DesignUsed {
             p.deletion.0,
             p.deletion.1
         )?;
-        if !p.confirmation_meets_bounds {
-            // The clutter counted over the area watched is what usually
-            // makes the bounds unreachable: the fixes come first.
+        if !p.confirmation_meets_bounds && !self.confirmation_given {
+            // The fixes: with clutter, the clutter counted over the area
+            // watched first (usually the default density over a file's
+            // extent); without, only P_D is left.
             let area = self.design.clutter_area();
+            let fixes = if self.design.clutter_density > 0.0 {
+                "a recording without clutter takes --clutter-per-km2 0, and --region-m, --pd, \
+                 --confirm and --delete set the figures and the rules"
+            } else {
+                "without clutter, P_D (--pd) is too low for it; --confirm and --delete set the \
+                 rules"
+            };
             writeln!(
                 f,
-                "replay --tracker: warning: no M-of-N within 8 scans confirms a target with \
-                 probability 0.95 at no more than one false track per 1000 scans; {} of {} \
+                "replay --tracker: warning: no M-of-N within {} scans confirms a target with \
+                 probability {} at no more than one false track per {} scans; {} of {} \
                  confirms one with probability {} at {} false tracks a scan (the clutter: {} \
-                 false measurements a scan expected over the {} km² counted); a recording \
-                 without clutter takes --clutter-per-km2 0, and --region-m, --pd, --confirm \
-                 and --delete set the figures and the rules",
+                 false measurements a scan expected over the {} km² counted); {fixes}",
+                MAX_CONFIRMATION_WINDOW,
+                MIN_TRUE_CONFIRMATION,
+                (1.0 / MAX_FALSE_CONFIRMATIONS_PER_SCAN).round(),
                 p.confirmation.0,
                 p.confirmation.1,
                 three_significant(p.true_confirmation_probability),
@@ -851,8 +863,21 @@ pub fn design_for(
         scan_period,
     };
     let derived = design.derive().map_err(|e| {
+        // Rule 5 is the one a figure in range can fail: so low a P_D that
+        // no count of misses up to 255 keeps a true track's deletion rare.
+        let reason = if e == ConfigError::Deletion {
+            format!(
+                "P_D {} is too low for design rule 5: no deletion after up to 255 misses keeps \
+                 a true track from being deleted by missed detections more than once in {} \
+                 scans",
+                design.detection_probability,
+                (1.0 / MAX_SPURIOUS_DELETIONS_PER_SCAN).round()
+            )
+        } else {
+            e.to_string()
+        };
         ReplayError::Design(format!(
-            "no configuration meets the design rules for these figures: {e} \
+            "no configuration meets the design rules for these figures: {reason} \
              ({}; the figures come from --sigma-m or --range-sigma-m/--bearing-sigma-deg, \
              --scan-period-s, --pd, --clutter-per-km2, --region-m, --max-speed-mps and \
              --max-accel-mps2)",
@@ -863,6 +888,7 @@ pub fn design_for(
         design,
         derived,
         period,
+        confirmation_given: false,
     })
 }
 
@@ -1021,7 +1047,8 @@ fn prepare<'a, S: abtrack::Numeric>(
         });
     }
     let times: Vec<f64> = scans.iter().map(|s| s.t).collect();
-    let design = design_for(&options.sensor, polar, &times, farthest)?;
+    let mut design = design_for(&options.sensor, polar, &times, farthest)?;
+    design.confirmation_given = options.confirmation.is_some();
     let (inputs, added) = clocked_scans::<S>(scans, design.design.scan_period)?;
     Ok(Prepared {
         one_plot_scans: OnePlotScans::of(scans, &design.design),

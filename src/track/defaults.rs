@@ -64,9 +64,13 @@
 //!    that meets the false-track bound with the highest probability of
 //!    confirming a true target (Neyman–Pearson: the false-alarm rate fixed,
 //!    the detection probability made largest), or, when none meets it, the
-//!    rule with the fewest false confirmations; it says so
-//!    ([`DerivedParameters::confirmation_meets_bounds`]) with both
-//!    probabilities.
+//!    rule with the fewest false confirmations (of equals, the one with the
+//!    higher true confirmation; then the earlier in the order above); it
+//!    says so ([`DerivedParameters::confirmation_meets_bounds`]) with both
+//!    probabilities. The configurations built from the design
+//!    ([`TrackerDesign::cartesian_config`] and the others) take that rule
+//!    too: a caller that must not run on a compromise checks
+//!    [`TrackerDesign::derive`] first.
 //! 5. **Deletion.** A confirmed track is deleted after K consecutive misses,
 //!    K the smallest with p_m^K·(1 − p_m) ≤ [`MAX_SPURIOUS_DELETIONS_PER_SCAN`]
 //!    = 10⁻⁴ (the probability that a run of K misses starts at a given scan,

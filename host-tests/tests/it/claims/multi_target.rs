@@ -153,12 +153,9 @@ fn design_refuses_bad_figures() {
 #[test]
 fn design_takes_its_best_rule_when_none_meets_both_bounds() {
     use abtrack::track::defaults::MAX_FALSE_CONFIRMATIONS_PER_SCAN;
-    assert!(
-        TrackerDesign::NOMINAL_RADAR
-            .derive()
-            .unwrap()
-            .confirmation_meets_bounds
-    );
+    for nominal in [TrackerDesign::NOMINAL_RADAR, TrackerDesign::NOMINAL_TCAS] {
+        assert!(nominal.derive().unwrap().confirmation_meets_bounds);
+    }
     // So low a P_D that no rule confirms a true target with probability
     // 0.95 (at most 7 hits after the first point), without clutter: every
     // rule meets the false-track bound, and 2 of 8 confirms most.

@@ -527,6 +527,28 @@ fn errors_name_the_line() {
             run.report()
         );
     }
+    let report = |line: &str| match args(line) {
+        Ok(Command::Tracker { options, .. }) => {
+            replay_tracker_reader(&options, "t,x,y\n0,1,1\n1,2,2\n".as_bytes()).map(|r| r.report())
+        }
+        other => panic!("{line}: {other:?}"),
+    };
+    // The rule given with --confirm replaces the design's: no warning.
+    let given = report("--tracker --clutter-per-km2 100 --confirm 3/5 -").unwrap();
+    assert!(!given.contains("warning"), "{given}");
+    // Without clutter only P_D is left to blame.
+    let low = report("--tracker --clutter-per-km2 0 --pd 0.3 -").unwrap();
+    assert!(low.contains("confirm 2 of 8"), "{low}");
+    assert!(
+        low.contains("without clutter, P_D (--pd) is too low for it"),
+        "{low}"
+    );
+    // So low a P_D that no deletion count up to 255 misses meets rule 5 is
+    // refused, and the message says so.
+    let e = report("--tracker --clutter-per-km2 0 --pd 0.01 -")
+        .unwrap_err()
+        .to_string();
+    assert!(e.contains("P_D 0.01 is too low for design rule 5"), "{e}");
 }
 
 #[test]
