@@ -180,10 +180,7 @@ fn stays_in_the_bin<S: Scalar>() {
 
 #[test]
 fn estimate_stays_in_the_reported_bin() {
-    stays_in_the_bin::<f64>();
-    stays_in_the_bin::<f32>();
-    stays_in_the_bin::<Fix>();
-    stays_in_the_bin::<ScaledScalar>();
+    in_every_tcas_type!(stays_in_the_bin);
 }
 
 /// f32 and Q32.32 take the same decisions as f64 (class and firmness every
@@ -379,10 +376,7 @@ fn missing_altitude<S: Scalar>() {
 
 #[test]
 fn missing_altitude_is_a_valid_state() {
-    missing_altitude::<f64>();
-    missing_altitude::<f32>();
-    missing_altitude::<Fix>();
-    missing_altitude::<ScaledScalar>();
+    in_every_tcas_type!(missing_altitude);
 }
 
 #[test]

@@ -118,10 +118,7 @@ fn head_on_boundaries<S: Scalar>() {
 
 #[test]
 fn head_on_600_kt_at_8000_ft_alerts_at_6_75_and_4_238_nm() {
-    head_on_boundaries::<f64>();
-    head_on_boundaries::<f32>();
-    head_on_boundaries::<Fix>();
-    head_on_boundaries::<ScaledScalar>();
+    in_every_tcas_type!(head_on_boundaries);
 }
 
 fn non_reporting<S: Scalar>() {
@@ -147,10 +144,7 @@ fn non_reporting<S: Scalar>() {
 
 #[test]
 fn non_reporting_intruder_raises_at_most_a_traffic_advisory() {
-    non_reporting::<f64>();
-    non_reporting::<f32>();
-    non_reporting::<Fix>();
-    non_reporting::<ScaledScalar>();
+    in_every_tcas_type!(non_reporting);
 }
 
 // Crossing 1 NM abeam: from (−6 NM, 1 NM) at 360 kt = 0.1 NM/s east, same
@@ -228,10 +222,7 @@ fn crossing<S: Scalar>() {
 
 #[test]
 fn crossing_with_one_nm_miss_has_the_analytic_timeline() {
-    crossing::<f64>();
-    crossing::<f32>();
-    crossing::<Fix>();
-    crossing::<ScaledScalar>();
+    in_every_tcas_type!(crossing);
 }
 
 fn diverging<S: Scalar>() {
@@ -291,10 +282,7 @@ fn diverging<S: Scalar>() {
 
 #[test]
 fn diverging_intruder_never_alerts() {
-    diverging::<f64>();
-    diverging::<f32>();
-    diverging::<Fix>();
-    diverging::<ScaledScalar>();
+    in_every_tcas_type!(diverging);
 }
 
 fn vertical<S: Scalar>() {
@@ -333,10 +321,7 @@ fn vertical<S: Scalar>() {
 
 #[test]
 fn vertical_test_against_zthr_and_vertical_tau() {
-    vertical::<f64>();
-    vertical::<f32>();
-    vertical::<Fix>();
-    vertical::<ScaledScalar>();
+    in_every_tcas_type!(vertical);
 }
 
 fn through_the_filters<S: Scalar>() -> f64 {
@@ -412,8 +397,5 @@ fn taus_of_a_slowly_opening_intruder<S: Scalar>() {
 
 #[test]
 fn a_slowly_opening_intruder_has_the_taus_of_the_closure_floor() {
-    taus_of_a_slowly_opening_intruder::<f64>();
-    taus_of_a_slowly_opening_intruder::<f32>();
-    taus_of_a_slowly_opening_intruder::<Fix>();
-    taus_of_a_slowly_opening_intruder::<ScaledScalar>();
+    in_every_tcas_type!(taus_of_a_slowly_opening_intruder);
 }

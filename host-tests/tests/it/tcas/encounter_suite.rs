@@ -133,10 +133,7 @@ fn exact<S: Scalar>() {
 
 #[test]
 fn exact_inputs_follow_the_reference() {
-    exact::<f64>();
-    exact::<f32>();
-    exact::<Fix>();
-    exact::<ScaledScalar>();
+    in_every_tcas_type!(exact);
 }
 
 /// Noisy runs per encounter and type.

@@ -15,7 +15,7 @@ use abtrack::tcas::{
     RaSense, RaStrength, RangeEstimate, RangeTracker, ResolutionState, SensitivityLevel,
     SensitivitySelector, ThreatGeometry, ThreatState, METRES_PER_NAUTICAL_MILE,
 };
-use abtrack::{FilterError, Fix, Scalar, ScaledScalar};
+use abtrack::{FilterError, Scalar};
 
 const NM: f64 = METRES_PER_NAUTICAL_MILE;
 
@@ -60,10 +60,7 @@ fn gamma_convention<S: Scalar>() {
 
 #[test]
 fn range_tracker_gamma_is_over_t_squared() {
-    gamma_convention::<f64>();
-    gamma_convention::<f32>();
-    gamma_convention::<Fix>();
-    gamma_convention::<ScaledScalar>();
+    in_every_tcas_type!(gamma_convention);
 }
 
 /// Firmness +1 per reply (from 0 at the first), −1 per missed scan;
@@ -184,10 +181,7 @@ fn straight_pass<S: Scalar>() {
 
 #[test]
 fn range_tracker_follows_a_straight_pass() {
-    straight_pass::<f64>();
-    straight_pass::<f32>();
-    straight_pass::<Fix>();
-    straight_pass::<ScaledScalar>();
+    in_every_tcas_type!(straight_pass);
 }
 
 // ---------------------------------------------------------------------------
@@ -283,10 +277,7 @@ fn ta_hysteresis<S: Scalar>() {
 
 #[test]
 fn traffic_advisory_range_hysteresis() {
-    ta_hysteresis::<f64>();
-    ta_hysteresis::<f32>();
-    ta_hysteresis::<Fix>();
-    ta_hysteresis::<ScaledScalar>();
+    in_every_tcas_type!(ta_hysteresis);
 }
 
 /// Minimum TA time (DO-185B `MINTATIME` 8 s): a TA whose tests fail the
@@ -398,10 +389,7 @@ fn threat_kept_through_one_miss<S: Scalar>() {
 
 #[test]
 fn a_threat_is_kept_through_one_missed_cycle() {
-    threat_kept_through_one_miss::<f64>();
-    threat_kept_through_one_miss::<f32>();
-    threat_kept_through_one_miss::<Fix>();
-    threat_kept_through_one_miss::<ScaledScalar>();
+    in_every_tcas_type!(threat_kept_through_one_miss);
 }
 
 /// `TMIN` is a bound the age must pass (DO-185B `TCUR − TCMD > TMIN`):
@@ -476,10 +464,7 @@ fn threat_age_and_kept_threat_tests<S: Scalar>() {
 
 #[test]
 fn a_threat_ends_only_after_tmin_and_skips_the_vertical_test_while_kept() {
-    threat_age_and_kept_threat_tests::<f64>();
-    threat_age_and_kept_threat_tests::<f32>();
-    threat_age_and_kept_threat_tests::<Fix>();
-    threat_age_and_kept_threat_tests::<ScaledScalar>();
+    in_every_tcas_type!(threat_age_and_kept_threat_tests);
 }
 
 /// The tau cap keeps lowering while the range track is not firm, once it
@@ -514,10 +499,7 @@ fn cap_in_non_firm_cycles<S: Scalar>() {
 
 #[test]
 fn the_tau_cap_runs_in_non_firm_cycles_and_feeds_the_model() {
-    cap_in_non_firm_cycles::<f64>();
-    cap_in_non_firm_cycles::<f32>();
-    cap_in_non_firm_cycles::<Fix>();
-    cap_in_non_firm_cycles::<ScaledScalar>();
+    in_every_tcas_type!(cap_in_non_firm_cycles);
 }
 
 /// DO-185B `TAURISE` at SL 5 (own level at 8000 ft, DMOD 1018.6 m): a
@@ -570,10 +552,7 @@ fn tau_rise<S: Scalar>() {
 
 #[test]
 fn a_new_threat_whose_true_tau_keeps_rising_is_no_range_hit() {
-    tau_rise::<f64>();
-    tau_rise::<f32>();
-    tau_rise::<Fix>();
-    tau_rise::<ScaledScalar>();
+    in_every_tcas_type!(tau_rise);
 }
 
 /// The tau cap holds the true tau too (DO-185B `TRTRU`), and the vertical
@@ -603,10 +582,7 @@ fn true_tau_cap<S: Scalar>() {
 
 #[test]
 fn the_vertical_tests_take_the_capped_true_tau() {
-    true_tau_cap::<f64>();
-    true_tau_cap::<f32>();
-    true_tau_cap::<Fix>();
-    true_tau_cap::<ScaledScalar>();
+    in_every_tcas_type!(true_tau_cap);
 }
 
 /// The HMD filter (SL 5: HMD 3342 ft = 1018.6 m; continuing threats 1.05·
@@ -887,10 +863,7 @@ fn head_on_sense<S: Scalar>() {
 
 #[test]
 fn sense_and_strength_of_the_head_on() {
-    head_on_sense::<f64>();
-    head_on_sense::<f32>();
-    head_on_sense::<Fix>();
-    head_on_sense::<ScaledScalar>();
+    in_every_tcas_type!(head_on_sense);
 }
 
 /// A crossing RA: intruder 150 ft above, level; own climbing 3000 ft/min
@@ -1019,10 +992,7 @@ fn reversal<S: Scalar>() {
 
 #[test]
 fn sense_reverses_once_when_the_intruder_crosses() {
-    reversal::<f64>();
-    reversal::<f32>();
-    reversal::<Fix>();
-    reversal::<ScaledScalar>();
+    in_every_tcas_type!(reversal);
 }
 
 /// No reversal within 4 s of closest approach (`MINRITIME`): the same

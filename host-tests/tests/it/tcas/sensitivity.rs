@@ -2,7 +2,7 @@
 
 use abtrack::num::Quantity;
 use abtrack::tcas::{sensitivity, OwnAircraft, SensitivityLevel, TcasError, SENSITIVITY_TABLE};
-use abtrack::{Fix, Scalar, ScaledScalar};
+use abtrack::{Fix, Scalar};
 
 /// SL, TA tau, RA tau, TA DMOD, RA DMOD, TA ZTHR, RA ZTHR, ALIM.
 type PublishedRow = (
@@ -85,10 +85,7 @@ fn boundaries<S: Scalar>() {
 
 #[test]
 fn level_boundaries_in_all_types() {
-    boundaries::<f64>();
-    boundaries::<f32>();
-    boundaries::<Fix>();
-    boundaries::<ScaledScalar>();
+    in_every_tcas_type!(boundaries);
 }
 
 #[test]

@@ -7,7 +7,7 @@ use abtrack::tcas::{
     closest_approach, modified_tau, range_tau, vertical_tau, TcasError, CLOSURE_RATE_FLOOR_M_PER_S,
     METRES_PER_NAUTICAL_MILE, METRES_PER_SECOND_PER_KNOT,
 };
-use abtrack::{Fix, Scalar, ScaledScalar};
+use abtrack::{Fix, Scalar};
 
 const NM: f64 = METRES_PER_NAUTICAL_MILE;
 const KT: f64 = METRES_PER_SECOND_PER_KNOT;
@@ -101,10 +101,7 @@ fn range_taus<S: Scalar>() {
 
 #[test]
 fn range_and_modified_tau_in_all_types() {
-    range_taus::<f64>();
-    range_taus::<f32>();
-    range_taus::<Fix>();
-    range_taus::<ScaledScalar>();
+    in_every_tcas_type!(range_taus);
 }
 
 fn cpa<S: Scalar>() {
@@ -146,10 +143,7 @@ fn cpa<S: Scalar>() {
 
 #[test]
 fn closest_approach_in_all_types() {
-    cpa::<f64>();
-    cpa::<f32>();
-    cpa::<Fix>();
-    cpa::<ScaledScalar>();
+    in_every_tcas_type!(cpa);
 }
 
 #[test]
@@ -191,10 +185,7 @@ fn vertical<S: Scalar>() {
 
 #[test]
 fn vertical_tau_in_all_types() {
-    vertical::<f64>();
-    vertical::<f32>();
-    vertical::<Fix>();
-    vertical::<ScaledScalar>();
+    in_every_tcas_type!(vertical);
     // 1000 ft closing at 2⁻³² ft/s: 4.3e12 s does not fit Q32.32: none.
     assert_eq!(
         vertical_tau(Fix::from_f64_lossy(1000.0), -Fix::DELTA),
