@@ -211,7 +211,7 @@ pub struct ReplayArgs {
     #[arg(long = "own-alt", value_parser = finite, allow_hyphen_values = true, value_name = "FEET")]
     pub own_alt: Option<f64>,
 
-    /// tracker: track table capacity N (16, 64 or 256; up to 256 measurements per scan).
+    /// tracker: track table capacity N (16, 64 or 256; up to 4096 measurements per scan).
     #[arg(long, value_parser = ["16", "64", "256"], help_heading = "Tracker")]
     pub capacity: Option<String>,
     /// tracker: confirm a tentative track when M of its first N scans had a measurement

@@ -83,7 +83,7 @@ pub const CAPACITIES: [usize; 3] = [16, 64, 256];
 /// N without `--capacity`.
 pub const DEFAULT_CAPACITY: usize = 64;
 /// M, the measurements per scan every table takes.
-pub const MAX_MEASUREMENTS: usize = 256;
+pub const MAX_MEASUREMENTS: usize = 4096;
 /// A gap longer than this many scan periods gets empty scans (module docs).
 pub const GAP_PERIODS: f64 = 1.5;
 

@@ -25,7 +25,9 @@ use abtrack::{Fix, Scalar};
 use abtrack_host_tests::cli::{Command, ReplayArgs};
 use abtrack_host_tests::csv_input::CsvError;
 use abtrack_host_tests::replay::{Failure, ReplayError, ReplaySchedule};
-use abtrack_host_tests::replay_tracker::{replay_tracker_reader, with_large_stack, TrackerReplay};
+use abtrack_host_tests::replay_tracker::{
+    replay_tracker_reader, with_large_stack, TrackerReplay, MAX_MEASUREMENTS,
+};
 use abtrack_host_tests::scenario::{self, ScenarioRun};
 use clap::{CommandFactory, Parser};
 
@@ -912,6 +914,62 @@ fn hundred_km_scene_is_tracked_with_no_region_and_drops_are_reported() {
             u.outside_region.count
         )),
         "{report}"
+    );
+}
+
+/// A scan of a dense-clutter recording (1,000 plots, four times the
+/// firmware boards' 256) is taken whole: the aircraft among them is tracked
+/// and nothing is counted over capacity; only plots beyond
+/// `MAX_MEASUREMENTS` in one scan are, each with its line.
+#[test]
+fn a_scan_of_a_thousand_plots_is_taken_whole() {
+    // A reproducible spread of clutter over ±50 km, new in every scan.
+    let mut state = 0x9E37_79B9_7F4A_7C15u64;
+    let mut uniform = move || {
+        state = state
+            .wrapping_mul(6_364_136_223_846_793_005)
+            .wrapping_add(1_442_695_040_888_963_407);
+        ((state >> 11) as f64 / (1u64 << 53) as f64) * 100_000.0 - 50_000.0
+    };
+    let plots_per_scan = 1000;
+    let scans = 12;
+    let mut csv = String::from("t,x,y\n");
+    for k in 0..scans {
+        let t = 4.0 * k as f64;
+        writeln!(csv, "{t},{},{}", 1000.0 + 200.0 * t, 500.0).unwrap();
+        for _ in 1..plots_per_scan {
+            writeln!(csv, "{t},{},{}", uniform(), uniform()).unwrap();
+        }
+    }
+    let command = "--tracker --sigma-m 50 --region-m 50000 --scan-period-s 4 --capacity 256 \
+                   --clutter-per-km2 0.1";
+    let out = tracker(command, &csv).unwrap();
+    let u = &out.unused;
+    assert_eq!(u.measurements, plots_per_scan * scans, "{}", out.report());
+    assert_eq!(u.over_scan_capacity.count, 0, "{}", out.report());
+    assert_eq!(u.used() + u.not_used(), u.measurements);
+    let last_t = 4.0 * (scans - 1) as f64;
+    let on_aircraft = rows(&out.csv).into_iter().any(|r| {
+        r.0 == last_t
+            && r.2 == "confirmed"
+            && (r.3 - (1000.0 + 200.0 * last_t)).hypot(r.4 - 500.0) < 100.0
+    });
+    assert!(on_aircraft, "{}", out.report());
+
+    // One scan beyond the limit: the surplus, and only it, is counted.
+    let limit = MAX_MEASUREMENTS;
+    let mut csv = String::from("t,x,y\n");
+    for k in 0..limit + 5 {
+        writeln!(csv, "0,{},{}", 10.0 * k as f64, 0.0).unwrap();
+    }
+    let out = tracker(command, &csv).unwrap();
+    assert_eq!(out.unused.over_scan_capacity.count, 5, "{}", out.report());
+    assert!(
+        out.report().contains(&format!(
+            "over capacity: 5 more than {limit} in a scan (line"
+        )),
+        "{}",
+        out.report()
     );
 }
 
