@@ -75,10 +75,10 @@
 //! 1. for each confirmed track, the measurement nearest its predicted
 //!    position inside its gate among those it may take (reply identity:
 //!    the tracker's own rule, the same Mode S address or a correlating
-//!    Mode C altitude); it is never evicted, so a confirmed track is not
-//!    starved by clutter or by other intruders' replies (two confirmed
-//!    tracks with the same nearest measurement protect that one only: the
-//!    other's own measurement ranks as in 2, docs/firmware-runtime.md);
+//!    Mode C altitude), and when that one is also another confirmed
+//!    track's nearest, the second nearest too; these are never evicted, so
+//!    a confirmed track is not starved by clutter, by other intruders'
+//!    replies or by a neighbour a gate away (docs/firmware-runtime.md);
 //! 2. other measurements inside a confirmed track's gate that it may take,
 //!    by normalised gate distance;
 //! 3. all others (tentative tracks' and candidates for new tracks), nearest

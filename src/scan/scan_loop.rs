@@ -146,8 +146,6 @@ pub struct ScanLoop<T: Numeric, F: TrackFilter<T::Wide>, const N: usize, const M
     /// The previous scan's (the first points of new tracks).
     previous_replies: heapless::Vec<ReplyData<T::Wide>, M>,
     batch_priorities: heapless::Vec<Priority<T::Wide>, M>,
-    /// Per batch entry: of how many confirmed tracks it is the champion.
-    batch_champions: heapless::Vec<u8, M>,
     /// Per TCAS slot (`intruders`' order), its track's gate if the track is
     /// confirmed (vectors, here and below, so that the empty loop is
     /// all-zero bytes).
@@ -199,7 +197,6 @@ impl<
             batch_replies: heapless::Vec::new(),
             previous_replies: heapless::Vec::new(),
             batch_priorities: heapless::Vec::new(),
-            batch_champions: heapless::Vec::new(),
             gates: heapless::Vec::new(),
             ranked: false,
             pending_counts: ScanCounts::new(),
@@ -375,7 +372,7 @@ impl<
             address: report.address,
         };
         if self.batch.len() < M {
-            // Room: no priority needed (yet). Four pushes on vectors of the
+            // Room: no priority needed (yet). Three pushes on vectors of the
             // same length below M.
             let _ = self.batch.push(measurement);
             let _ = self.batch_replies.push(reply);
@@ -384,7 +381,6 @@ impl<
                 gate_cost: 0,
                 range: S::ZERO,
             });
-            let _ = self.batch_champions.push(0);
             return;
         }
         // The identity rule's interval, as in `on_tick`.
@@ -509,7 +505,6 @@ impl<
         core::mem::swap(&mut self.previous_replies, &mut self.batch_replies);
         self.batch_replies.clear();
         self.batch_priorities.clear();
-        self.batch_champions.clear();
         self.pending_counts = ScanCounts::new();
         self.tracker_ms = self.tracker_ms.wrapping_add(config.clock.period_ms);
         let time_ms = self.scan_ms;

@@ -5,7 +5,7 @@ use super::intruders::{may_take, IntruderSlot, ReplyData};
 use super::{BearingTrack, ScanConfig, ScanLoop};
 
 use crate::num::{hypot, Numeric, Scalar};
-use crate::track::{GateRegion, Observation, ScanInterval, TrackFilter};
+use crate::track::{GateRegion, Measurement, Observation, ScanInterval, TrackFilter};
 
 /// A batch entry's claim on a slot; smaller is more important ([`crate::scan`],
 /// "Capacity").
@@ -30,32 +30,37 @@ impl<S: Scalar> Priority<S> {
 }
 
 /// The gate for the next scan of the track of one TCAS slot (the loop's
-/// `intruders`, same order), if the track is confirmed, and its best
-/// measurement so far.
+/// `intruders`, same order), if the track is confirmed, and the batch
+/// indices of the two nearest measurements in it so far ([`NO_ENTRY`] for
+/// none): 4 bytes, where an `Option<usize>` takes 8 (32-bit cores) or 16,
+/// in a record kept per track. Their gate costs are formed again when a
+/// measurement in the gate is compared with them, rather than kept.
 #[derive(Debug, Clone, Copy)]
 pub(super) struct TrackGate<S: Numeric> {
     /// `None`: the track is tentative (or its gate could not be formed).
     /// As large as the region alone (the option is in the enum's tag).
     region: Option<GateRegion<S>>,
-    /// The batch index of the nearest measurement in the gate,
-    /// [`NO_CHAMPION`] for none, and its gate cost: 4 bytes, where an
-    /// `Option<(usize, u16)>` takes 12 (32-bit cores) or 16, in a record kept
-    /// per track. A batch index is below the track table's measurement
-    /// capacity, which its capacity check keeps under `NO_CHAMPION`.
-    champion_index: u16,
-    champion_cost: u16,
+    nearest: u16,
+    second: u16,
 }
 
-/// No measurement in the gate yet: not a batch index (a batch holds fewer
-/// than 65,535 measurements, the track table's capacity check).
-const NO_CHAMPION: u16 = u16::MAX;
+/// No measurement: not a batch index (a batch holds fewer than 65,535
+/// measurements, the track table's capacity check).
+const NO_ENTRY: u16 = u16::MAX;
+
+/// `index` as a [`TrackGate`] entry.
+fn entry(index: Option<usize>) -> u16 {
+    index
+        .and_then(|i| u16::try_from(i).ok())
+        .unwrap_or(NO_ENTRY)
+}
 
 impl<S: Scalar> TrackGate<S> {
     fn new(region: Option<GateRegion<S>>) -> Self {
         TrackGate {
             region,
-            champion_index: NO_CHAMPION,
-            champion_cost: 0,
+            nearest: NO_ENTRY,
+            second: NO_ENTRY,
         }
     }
 
@@ -74,20 +79,65 @@ impl<S: Scalar> TrackGate<S> {
         may_take(Some(intruder), reply, dt).then_some(cost)
     }
 
-    /// (batch index, gate cost) of the nearest measurement in the gate.
-    fn champion(&self) -> Option<(usize, u16)> {
-        (self.champion_index != NO_CHAMPION)
-            .then_some((usize::from(self.champion_index), self.champion_cost))
+    /// The batch indices of the nearest measurement and the second nearest.
+    fn nearest_two(&self) -> [Option<usize>; 2] {
+        [self.nearest, self.second].map(|e| (e != NO_ENTRY).then_some(usize::from(e)))
     }
 
-    fn set_champion(&mut self, index: usize, cost: u16) {
-        self.champion_index = u16::try_from(index).unwrap_or(NO_CHAMPION);
-        self.champion_cost = cost;
+    /// [`Self::nearest_two`] once a measurement at batch index `index` and
+    /// gate cost `cost` (if inside) is counted; `cost_of` gives an entry's
+    /// gate cost. Ties keep the entries already there.
+    fn nearest_two_with(
+        &self,
+        index: usize,
+        cost: Option<u16>,
+        cost_of: impl Fn(usize) -> Option<u16>,
+    ) -> [Option<usize>; 2] {
+        let [nearest, second] = self.nearest_two();
+        let Some(cost) = cost else {
+            return [nearest, second];
+        };
+        let beats = |e: Option<usize>| e.is_none_or(|e| cost_of(e).is_none_or(|c| cost < c));
+        if beats(nearest) {
+            [Some(index), nearest]
+        } else if beats(second) {
+            [nearest, Some(index)]
+        } else {
+            [nearest, second]
+        }
     }
 
-    fn clear_champion(&mut self) {
-        self.champion_index = NO_CHAMPION;
+    fn set_nearest_two(&mut self, [nearest, second]: [Option<usize>; 2]) {
+        self.nearest = entry(nearest);
+        self.second = entry(second);
     }
+
+    /// The entry at `index` left the batch. The third nearest is not
+    /// kept: a gate that loses one of its two has one until the next
+    /// measurement in it.
+    fn remove(&mut self, index: usize) {
+        let [nearest, second] = self.nearest_two();
+        if nearest == Some(index) {
+            self.nearest = entry(second);
+            self.second = NO_ENTRY;
+        } else if second == Some(index) {
+            self.second = NO_ENTRY;
+        }
+    }
+}
+
+/// The gate cost in `gate` (of TCAS slot `intruder`) of the batch entry at
+/// `index` ([`TrackGate::cost`]).
+fn entry_cost<S: Scalar>(
+    batch: &[Measurement<S>],
+    replies: &[ReplyData<S>],
+    gate: &TrackGate<S>,
+    intruder: &IntruderSlot<S>,
+    index: usize,
+    dt: S,
+) -> Option<u16> {
+    let observation = Observation::new(*batch.get(index)?).ok()?;
+    gate.cost(intruder, &observation, replies.get(index)?, dt)
 }
 
 impl<
@@ -99,8 +149,8 @@ impl<
     > ScanLoop<T, F, N, M>
 {
     /// The batch has just overflowed: the gates of the confirmed tracks,
-    /// and the priority and champion places of every entry (in arrival
-    /// order). Only a scan with more than `M` measurements pays for this.
+    /// the priority of every entry and the nearest two in each gate (in
+    /// arrival order). Only a scan with more than `M` measurements pays for this.
     /// `dt`: the scan period, in seconds.
     pub(super) fn rank_batch(&mut self, config: &ScanConfig<T, F::Params>, dt: S) {
         self.prepare_gates(config);
@@ -162,9 +212,11 @@ impl<
     }
 
     /// Which batch entry a new measurement replaces, if any: the least
-    /// important one that is no confirmed track's nearest measurement once
-    /// the new one is counted (it may take that place from another), if the
-    /// new one is more important or takes such a place itself.
+    /// important unprotected one, if the new one is more important or is
+    /// protected itself. Protected, once the new one is counted (it may
+    /// take a place from another): each confirmed track's nearest
+    /// measurement, and the second nearest of a track whose nearest is
+    /// also another's ([`crate::scan`], "Capacity").
     pub(super) fn evictable(
         &self,
         priority: &Priority<S>,
@@ -172,36 +224,53 @@ impl<
         reply: &ReplyData<S>,
         dt: S,
     ) -> Option<usize> {
-        // Champion places the new measurement would take from each entry,
-        // and whether it would hold one.
-        let mut dethroned = [0u8; M];
-        let mut crowned = false;
-        if let Some(o) = observation {
+        // The newcomer's index: past every batch entry.
+        let newcomer = M;
+        let (batch, replies) = (&self.batch[..], &self.batch_replies[..]);
+        let nearest_two = |gate: &TrackGate<S>, intruder: &IntruderSlot<S>| {
+            let cost = observation.and_then(|o| gate.cost(intruder, o, reply, dt));
+            gate.nearest_two_with(newcomer, cost, |i| {
+                entry_cost(batch, replies, gate, intruder, i, dt)
+            })
+        };
+        // In how many gates each entry (the newcomer last) is the nearest.
+        let mut nearest_in = [0u8; M];
+        let mut newcomer_nearest_in = 0u8;
+        let mut count = |counts: &mut [u8; M], i: usize| match counts.get_mut(i) {
+            Some(c) => *c = c.saturating_add(1),
+            None => newcomer_nearest_in = newcomer_nearest_in.saturating_add(1),
+        };
+        for (gate, intruder) in self.gates.iter().zip(self.intruders.iter()) {
+            if let [Some(i), _] = nearest_two(gate, intruder) {
+                count(&mut nearest_in, i);
+            }
+        }
+        let shared = |i: usize| nearest_in.get(i).map_or(newcomer_nearest_in, |c| *c) >= 2;
+        // The second nearest of a gate whose nearest is shared: protected
+        // too. Formed only when some nearest is shared.
+        let mut second_kept = [false; M];
+        let mut newcomer_kept = newcomer_nearest_in > 0;
+        if newcomer_nearest_in >= 2 || nearest_in.iter().any(|c| *c >= 2) {
             for (gate, intruder) in self.gates.iter().zip(self.intruders.iter()) {
-                let Some(cost) = gate.cost(intruder, o, reply, dt) else {
-                    continue;
-                };
-                match gate.champion() {
-                    Some((i, c)) if cost < c => {
-                        crowned = true;
-                        if let Some(d) = dethroned.get_mut(i) {
-                            *d = d.saturating_add(1);
+                if let [Some(n), Some(s)] = nearest_two(gate, intruder) {
+                    if shared(n) {
+                        match second_kept.get_mut(s) {
+                            Some(k) => *k = true,
+                            None => newcomer_kept = true,
                         }
                     }
-                    None => crowned = true,
-                    _ => {}
                 }
             }
         }
         // The least important unprotected entry (the last of equals).
         let mut worst: Option<(usize, &Priority<S>)> = None;
-        for (i, (p, (&places, &taken))) in self
+        for (i, (p, (&nearest, &second))) in self
             .batch_priorities
             .iter()
-            .zip(self.batch_champions.iter().zip(dethroned.iter()))
+            .zip(nearest_in.iter().zip(second_kept.iter()))
             .enumerate()
         {
-            if places > taken {
+            if nearest > 0 || second {
                 continue;
             }
             if worst.is_none_or(|(_, w)| !w.is_worse_than(p)) {
@@ -210,28 +279,22 @@ impl<
         }
         let (w, worst_priority) = worst?;
         // Ties keep the measurement already in the batch.
-        if crowned || worst_priority.is_worse_than(priority) {
+        if newcomer_kept || worst_priority.is_worse_than(priority) {
             Some(w)
         } else {
             None
         }
     }
 
-    /// Clears a batch entry's champion places (it is being replaced).
+    /// Takes a batch entry out of the gates (it is being replaced).
     pub(super) fn release(&mut self, index: usize) {
         for gate in self.gates.iter_mut() {
-            if gate.champion().is_some_and(|(i, _)| i == index) {
-                gate.clear_champion();
-            }
-        }
-        if let Some(c) = self.batch_champions.get_mut(index) {
-            *c = 0;
+            gate.remove(index);
         }
     }
 
-    /// Makes the entry at `index` the champion of every confirmed track
-    /// whose gate it is nearest to so far among the entries the track may
-    /// take.
+    /// Counts the entry at `index` in every confirmed track's gate that
+    /// holds it and whose track may take it, among the two nearest so far.
     pub(super) fn crown(
         &mut self,
         index: usize,
@@ -239,23 +302,16 @@ impl<
         reply: &ReplyData<S>,
         dt: S,
     ) {
+        let (batch, replies) = (&self.batch[..], &self.batch_replies[..]);
         for (gate, intruder) in self.gates.iter_mut().zip(self.intruders.iter()) {
             let Some(cost) = gate.cost(intruder, observation, reply, dt) else {
                 continue;
             };
-            let previous = match gate.champion() {
-                Some((_, c)) if cost >= c => continue,
-                previous => previous,
-            };
-            if let Some((p, _)) = previous {
-                if let Some(count) = self.batch_champions.get_mut(p) {
-                    *count = count.saturating_sub(1);
-                }
-            }
-            gate.set_champion(index, cost);
-            if let Some(count) = self.batch_champions.get_mut(index) {
-                *count = count.saturating_add(1);
-            }
+            let seen: &TrackGate<S> = gate;
+            let next = seen.nearest_two_with(index, Some(cost), |i| {
+                entry_cost(batch, replies, seen, intruder, i, dt)
+            });
+            gate.set_nearest_two(next);
         }
     }
 

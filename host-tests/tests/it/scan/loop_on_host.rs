@@ -902,16 +902,18 @@ fn print_memory_sizes() {
     assert!(std::mem::size_of::<MicrobitLoop>() < 12 * 1024);
 }
 
-/// The case the capacity rule does not cover (docs/firmware-runtime.md,
-/// "Capacity"): confirmed tracks X (1000, 0) and Y (1000, 60) whose
-/// nearest measurement is the same one (mX, 28 m from X and 32 m from Y),
-/// and Z far away. With room for three of the four, mX and Z's mZ are
-/// protected, and a clutter return 20 m from Z outranks Y's own mY (35 m
-/// off Y) by gate distance: Y coasts the scan. With room for four, all
-/// three are updated.
+/// Two confirmed tracks with the same nearest measurement (docs/firmware-
+/// runtime.md, "Capacity"): X (1000, 0) and Y (1000, 60), whose nearest is
+/// mX (28 m from X and 32 m from Y), and Z far away. With room for three of
+/// the four, mX, Y's own mY (35 m off Y, its second nearest, protected
+/// because its nearest is shared) and Z's mZ are kept, and a clutter return
+/// 20 m from Z, nearer its track than mY is to Y, is dropped: every track is
+/// updated. When only the nearest was protected, the clutter took mY's
+/// place and Y coasted the scan. With room for four, all four are taken.
+/// The same in every order of arrival.
 #[test]
-fn two_tracks_sharing_their_nearest_measurement_protect_that_one_only() {
-    fn scan<const M: usize>() -> (u16, u16, u16) {
+fn two_tracks_sharing_their_nearest_measurement_each_keep_one() {
+    fn scan<const M: usize>(order: [usize; 4]) -> (u16, u16, u16) {
         let config = demo_config::crossing_config::<f64, _>().unwrap();
         let mut scan_loop: Box<Loop<f64, 8, M>> = Box::new(Loop::new());
         let mut q = Box::new(MeasurementQueue::<64>::new());
@@ -926,20 +928,28 @@ fn two_tracks_sharing_their_nearest_measurement_protect_that_one_only() {
         }
         let confirmed = scan_loop.table().tracks().filter(|t| t.is_confirmed());
         assert_eq!(confirmed.count(), 3);
-        for [x, y] in [
+        let last_scan = [
             [1000.0, 28.0],
             [1000.0, 95.0],
             [3000.0, 0.0],
             [3000.0, 20.0],
-        ] {
+        ];
+        for [x, y] in order.map(|i| last_scan[i]) {
             q.push(point(4000, x, y)).unwrap();
         }
         let tick = scan_loop.on_tick(&config, q.as_mut(), |_| {}).unwrap();
         let c = tick.summary.counts;
         (c.updated, c.over_capacity, tick.scan.coasted as u16)
     }
-    assert_eq!(scan::<4>(), (3, 0, 0));
-    assert_eq!(scan::<3>(), (2, 1, 1));
+    for a in 0..4 {
+        for b in (0..4).filter(|&b| b != a) {
+            for c in (0..4).filter(|&c| c != a && c != b) {
+                let order = [a, b, c, 6 - a - b - c];
+                assert_eq!(scan::<4>(order), (3, 0, 0), "{order:?}");
+                assert_eq!(scan::<3>(order), (3, 1, 0), "{order:?}");
+            }
+        }
+    }
 }
 
 /// Capacity under clutter (abtrack::scan, "Capacity"): three confirmed
