@@ -328,13 +328,16 @@ impl std::fmt::Display for DesignUsed {
         writeln!(
             f,
             "replay --tracker: design: gate G {:.2}, initiation within v_max·T + {:.0} m, \
-             confirm {} of {}, delete after {} misses ({} tentative)",
+             confirm {} of {}, delete after {} misses ({} tentative){}",
             p.gate_threshold,
             p.initiation_margin,
             p.confirmation.0,
             p.confirmation.1,
             p.deletion.0,
-            p.deletion.1
+            p.deletion.1,
+            p.max_gate_radius
+                .map(|r| format!(" or a confirmed track's gate wider than {r:.0} m"))
+                .unwrap_or_default()
         )?;
         if !p.confirmation_meets_bounds && !self.confirmation_given {
             // The fixes: with clutter, the clutter counted over the area
@@ -450,6 +453,10 @@ pub struct Unused {
     /// Tentative tracks ended to make room for a new track (the table
     /// full; `abtrack::track::ScanReport::deleted_displaced`).
     pub tracks_displaced: usize,
+    /// Confirmed tracks ended lost in clutter: their gate wider than the
+    /// design's rule 7 allows
+    /// (`abtrack::track::ScanReport::deleted_gate_too_wide`).
+    pub tracks_lost_in_clutter: usize,
 }
 
 impl Unused {
@@ -597,6 +604,12 @@ impl std::fmt::Display for Unused {
             "{p} tentative tracks displaced: {} (the table full, each ended for a new track; \
              {} candidates refused, no tentative track to displace)",
             self.tracks_displaced, self.table_full.count
+        )?;
+        writeln!(
+            f,
+            "{p} confirmed tracks lost in clutter: {} (each ended when its gate held more \
+             expected clutter than the chance of its target's own: the design's rule 7)",
+            self.tracks_lost_in_clutter
         )
     }
 }
@@ -1263,6 +1276,7 @@ fn run_scans<
         }
         unused.tracks_restarted += report.restarted as usize;
         unused.tracks_displaced += report.deleted_displaced as usize;
+        unused.tracks_lost_in_clutter += report.deleted_gate_too_wide as usize;
         if table.stats().scans_skipped != skipped_before {
             // Skipped: the tracks are as at the previous scan.
             continue;

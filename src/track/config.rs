@@ -73,6 +73,7 @@ pub struct TrackerConfig<S: Numeric, P> {
     delete_tentative_misses: u8,
     first_points_through_a_miss: bool,
     volume: Option<Volume<S>>,
+    max_gate_radius: Option<S::Length>,
 }
 
 impl<S: Numeric, P: Copy> TrackerConfig<S, P> {
@@ -98,6 +99,7 @@ impl<S: Numeric, P: Copy> TrackerConfig<S, P> {
             delete_tentative_misses: 2,
             first_points_through_a_miss: true,
             volume: None,
+            max_gate_radius: None,
         })
     }
 
@@ -152,6 +154,22 @@ impl<S: Numeric, P: Copy> TrackerConfig<S, P> {
         self
     }
 
+    /// Delete a confirmed track whose gate has grown larger than a circle
+    /// of `radius` (m, > 0; for a range/azimuth window, larger in area):
+    /// the design's rule 7 ([`TrackerDesign`](super::defaults::TrackerDesign)),
+    /// past which a measurement in the gate is more likely clutter than the
+    /// target. None by default.
+    pub fn with_max_gate_radius(mut self, radius: S::Length) -> Result<Self, ConfigError> {
+        if !radius.is_valid() {
+            return Err(ConfigError::NotFinite);
+        }
+        if radius <= S::Length::ZERO {
+            return Err(ConfigError::OutOfRange);
+        }
+        self.max_gate_radius = Some(radius);
+        Ok(self)
+    }
+
     /// The filters' parameters (for [`FixedGainTrack`](super::FixedGainTrack): the gains).
     pub fn params(&self) -> &P {
         &self.params
@@ -187,6 +205,11 @@ impl<S: Numeric, P: Copy> TrackerConfig<S, P> {
     /// The surveillance volume, if any.
     pub fn volume(&self) -> Option<&Volume<S>> {
         self.volume.as_ref()
+    }
+    /// The largest gate a confirmed track keeps
+    /// ([`Self::with_max_gate_radius`]), if any.
+    pub fn max_gate_radius(&self) -> Option<S::Length> {
+        self.max_gate_radius
     }
 
     pub(crate) fn in_volume(&self, p: [S::Length; 2]) -> bool {

@@ -83,6 +83,18 @@
 //!    bounding square); tracks leaving it are deleted and measurements
 //!    outside it start none. With no coverage, no volume: nothing is
 //!    dropped for where it is.
+//! 7. **Lost in clutter.** A confirmed track is deleted when its gate
+//!    (for the scan at hand) holds more false measurements on average than
+//!    the chance of its target's own: λ·A_gate > P_D·P_G, a gate wider
+//!    than the circle of radius √(P_D·P_G/(π·λ)) (in area, for a
+//!    range/azimuth window). Past it a measurement in the gate is more
+//!    likely clutter than the target (the track score's increment for a
+//!    measurement, ln(P_D·g(ν)/λ) in Blackman & Popoli 1999, "Design and
+//!    Analysis of Modern Tracking Systems", is then negative for one
+//!    spread over the gate), so a track that coasted or took clutter in a
+//!    manoeuvre, its gate grown, would otherwise be kept alive by the
+//!    clutter it takes.
+//!    No clutter, no bound.
 //!
 //! # The two nominal sensors
 //!
@@ -276,6 +288,9 @@ pub struct DerivedParameters {
     pub deletion: (u8, u8),
     /// p_m^K·(1 − p_m) for the chosen K.
     pub spurious_deletions_per_scan: f64,
+    /// Rule 7: the radius of the largest gate a confirmed track keeps, m
+    /// (`None` without clutter).
+    pub max_gate_radius: Option<f64>,
 }
 
 /// P(at least `need` successes in `trials` Bernoulli(p) trials).
@@ -497,6 +512,10 @@ impl TrackerDesign {
                 .saturating_add(1),
         );
 
+        // Rule 7.
+        let max_gate_radius =
+            (clutter > 0.0).then(|| libm::sqrt(p_hit / (core::f64::consts::PI * clutter)));
+
         Ok(DerivedParameters {
             gate_threshold,
             gate_probability,
@@ -516,6 +535,7 @@ impl TrackerDesign {
             false_confirmations_per_scan,
             deletion,
             spurious_deletions_per_scan: run(k),
+            max_gate_radius,
         })
     }
 
@@ -532,10 +552,14 @@ impl TrackerDesign {
             scalar(d.gate_threshold)?,
             scalar(d.max_acceleration)?,
         )?;
-        let config = TrackerConfig::new(params, gate, scalar(self.max_speed)?)?
+        let mut config = TrackerConfig::new(params, gate, scalar(self.max_speed)?)?
             .with_initiation_margin(scalar(d.initiation_margin)?)?
             .with_confirmation(d.confirmation.0, d.confirmation.1)?
             .with_deletion(d.deletion.0, d.deletion.1)?;
+        // A radius beyond the number format: no gate reaches it.
+        if let Some(radius) = d.max_gate_radius.and_then(|r| scalar::<S::Length>(r).ok()) {
+            config = config.with_max_gate_radius(radius)?;
+        }
         match self.coverage.bounds() {
             None => Ok(config),
             Some((min, max)) => Ok(config.with_volume(Volume::new(

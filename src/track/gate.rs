@@ -273,6 +273,24 @@ impl<S: Numeric> GateRegion<S> {
         })
     }
 
+    /// Whether the region is larger than a circle of `radius` (m): wider
+    /// for a circle (its exact radius formed only when its reach, a bound
+    /// on it, is wider), larger in area for a range/azimuth window
+    /// (half_range·R_p > radius²·inverse_half_azimuth, its area
+    /// π·half_range·half_cross against π·radius²). A product that leaves the
+    /// number format compares as not larger.
+    pub fn is_larger_than_circle(&self, radius: S::Length) -> bool {
+        match self {
+            GateRegion::Circle { reach, scale, .. } => {
+                *reach > radius && S::circle_radius(*reach, *scale) > radius
+            }
+            GateRegion::Polar(w) => {
+                let r = S::length_to_polar(radius);
+                w.half_range * w.range > r * r * w.inverse_half_azimuth
+            }
+        }
+    }
+
     /// A range/azimuth window around the predicted position `center` (from
     /// a sensor at the origin): measurements whose range R and azimuth B
     /// satisfy ((R − R_p)/`half_range`)² + (R_p·ΔB/`half_cross`)² ≤ 1, with

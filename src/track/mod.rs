@@ -35,7 +35,10 @@
 //!    measurement (default 2 of 3, the starting scan counting as the first
 //!    hit); delete a confirmed track after K consecutive misses (default 3), a
 //!    tentative one after fewer (default 2) or once M-of-N is out of reach,
-//!    and any track that leaves the surveillance [`Volume`].
+//!    and any track that leaves the surveillance [`Volume`]. When the
+//!    configuration bounds the gate ([`TrackerConfig::with_max_gate_radius`],
+//!    the design's rule 7), a confirmed track whose gate (step 3) is wider
+//!    gates nothing and is deleted ([`ScanReport::deleted_gate_too_wide`]).
 //! 8. **Initiate** (two-point method, Al-Wagih & Abdulla eqs. 9–10): a
 //!    measurement outside every gate pairs with an unused measurement of the
 //!    previous scan at most `v_max·T` (+ margin) away and starts a tentative
@@ -71,8 +74,9 @@
 //! The filters are specified for intervals of 0.05–20 s
 //! ([`crate::filter::IntervalSpan`]); outside, nothing is refused. Every
 //! track steps by the scan's interval, so a coasting track stays in range
-//! however long it coasts: its deletion rule (K consecutive misses) alone
-//! ends it, and its filter carries the coasted time (the default filter's
+//! however long it coasts: its deletion rules (K consecutive misses; a
+//! bound on its gate, when configured) end it, and its filter carries the
+//! coasted time (the default filter's
 //! covariance grows over it exactly, and so does its gate; in `Fixed32` up
 //! to 128 s, docs/auto.md, "Limits"). A scan more
 //! than 20 s after the previous one restarts every track and drops the

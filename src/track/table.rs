@@ -398,7 +398,7 @@ pub struct ScanReport {
     pub outside_volume: u32,
     /// Tracks confirmed in this scan.
     pub confirmed: u32,
-    /// Tracks deleted in this scan (sum of the five reasons below).
+    /// Tracks deleted in this scan (sum of the six reasons below).
     pub deleted: u32,
     /// ... after too many consecutive misses.
     pub deleted_misses: u32,
@@ -408,6 +408,10 @@ pub struct ScanReport {
     pub deleted_left_volume: u32,
     /// ... whose filter could not advance (arithmetic saturated).
     pub deleted_numeric: u32,
+    /// ... confirmed tracks whose gate grew larger than the
+    /// configuration's largest ([`TrackerConfig::with_max_gate_radius`]):
+    /// lost among false measurements.
+    pub deleted_gate_too_wide: u32,
     /// ... tentative tracks displaced by a new track when the table was
     /// full (the [module docs](super), step 8): their ids end.
     pub deleted_displaced: u32,
@@ -504,6 +508,9 @@ enum Outcome {
     Miss,
     /// Could not advance (arithmetic saturated): to be deleted.
     Failed,
+    /// Confirmed, and its gate larger than the configuration's largest
+    /// ([`TrackerConfig::max_gate_radius`]): gated nothing, to be deleted.
+    GateTooWide,
 }
 
 /// How a scan's time stands to the previous scan's.
@@ -935,6 +942,16 @@ impl<S: Numeric, F: TrackFilter<S>, const N: usize, const M: usize> TrackTable<S
             else {
                 continue;
             };
+            if track.lifecycle == Lifecycle::Confirmed
+                && config
+                    .max_gate_radius()
+                    .is_some_and(|radius| region.is_larger_than_circle(radius))
+            {
+                if let Some(outcome) = self.outcomes.get_mut(t) {
+                    *outcome = Outcome::GateTooWide;
+                }
+                continue;
+            }
             let (observations, codes, clusters) =
                 (&self.observations, &mut self.codes, &mut self.clusters);
             self.index
@@ -1066,6 +1083,9 @@ impl<S: Numeric, F: TrackFilter<S>, const N: usize, const M: usize> TrackTable<S
             let Some(track) = slot.track_mut() else {
                 continue;
             };
+            if *outcome == Outcome::GateTooWide {
+                continue;
+            }
             *outcome = Outcome::Miss;
             // Only a track whose gate gave a region this scan is assigned:
             // what its gate kept is this scan's.
@@ -1098,7 +1118,7 @@ impl<S: Numeric, F: TrackFilter<S>, const N: usize, const M: usize> TrackTable<S
     }
 
     /// Confirm, and delete (misses, M-of-N out of reach, left the volume,
-    /// arithmetic failed), telling `rule` of each deletion.
+    /// arithmetic failed, gate too wide), telling `rule` of each deletion.
     fn manage(
         &mut self,
         config: &TrackerConfig<S, F::Params>,
@@ -1112,12 +1132,12 @@ impl<S: Numeric, F: TrackFilter<S>, const N: usize, const M: usize> TrackTable<S
             };
             let hit = *outcome == Outcome::Hit;
             track.record_scan(hit, now_ms);
-            let delete = if *outcome == Outcome::Failed {
-                Some(Deletion::Numeric)
-            } else {
-                lifecycle(track, config, report).or_else(|| {
+            let delete = match *outcome {
+                Outcome::Failed => Some(Deletion::Numeric),
+                Outcome::GateTooWide => Some(Deletion::GateTooWide),
+                _ => lifecycle(track, config, report).or_else(|| {
                     (!config.in_volume(track.filter.position())).then_some(Deletion::LeftVolume)
-                })
+                }),
             };
             if let Some(reason) = delete {
                 rule.track_deleted(track.id);
@@ -1128,6 +1148,7 @@ impl<S: Numeric, F: TrackFilter<S>, const N: usize, const M: usize> TrackTable<S
                     Deletion::Unconfirmed => increment(&mut report.deleted_unconfirmed),
                     Deletion::LeftVolume => increment(&mut report.deleted_left_volume),
                     Deletion::Numeric => increment(&mut report.deleted_numeric),
+                    Deletion::GateTooWide => increment(&mut report.deleted_gate_too_wide),
                 }
             }
         }
@@ -1524,6 +1545,7 @@ enum Deletion {
     Unconfirmed,
     LeftVolume,
     Numeric,
+    GateTooWide,
 }
 
 /// Confirmation and miss-count deletion after a track's scan was recorded.

@@ -5,11 +5,11 @@
 //! (the folder's, seed 7) says little about a difference of a few metres or
 //! a few thousandths of coverage; the draws give the spread, and the third
 //! condition checks that the design configured from the sensor's figures
-//! holds at a clutter density the dev files do not have. Three more
+//! holds at a clutter density the dev files do not have. Four more
 //! conditions measure the same truth with other sensors' figures (a 12 s
-//! scan; σ 150 m; 8 s, σ 100 m, P_D 0.8 and 50 clutter plots a scan), each
-//! configured from its own figures, as a recording from another sensor
-//! would be.
+//! scan; σ 150 m; 8 s, σ 100 m, P_D 0.8 and 50 clutter plots a scan; a
+//! 12 s scan with 100 clutter plots), each configured from its own
+//! figures, as a recording from another sensor would be.
 
 use std::collections::BTreeMap;
 use std::fmt::Write as _;
@@ -34,7 +34,7 @@ use crate::replay_tracker::replay_tracker_reader;
 /// 100 clutter plots a scan); then other sensors' figures. Each
 /// condition's random stream is derived from its index here, so a
 /// condition added at the end changes no earlier draw.
-pub const CONDITIONS: [Scene; 6] = [
+pub const CONDITIONS: [Scene; 7] = [
     Scene {
         name: "pd0.9_clutter20",
         detection_probability: 0.9,
@@ -76,6 +76,13 @@ pub const CONDITIONS: [Scene; 6] = [
         clutter_per_km2: 0.005,
         sigma_m: 100.0,
         scan_period_ms: 2 * SCENE_PERIOD_MS,
+    },
+    Scene {
+        name: "pd0.9_clutter100_T12s",
+        detection_probability: 0.9,
+        clutter_per_km2: 0.01,
+        sigma_m: SIGMA_M,
+        scan_period_ms: 3 * SCENE_PERIOD_MS,
     },
 ];
 

@@ -90,6 +90,19 @@ fn nominal_designs_give_the_documented_parameters() {
     // TCAS: σ_max = 25 928·0.0872665 = 2262.6 m; margin √27.631·2262.6 = 11 893 m.
     assert!(close(tcas.max_sigma, 2262.65, 0.01));
     assert!(close(tcas.initiation_margin, 11_893.4, 0.5));
+    // Rule 7: √(P_D·P_G/(π·λ)) = √(0.8991/(π·10⁻⁷)) = 1691.7 m; TCAS,
+    // λ = 3/(π·25 928²): 25 928·√(0.8991/3) = 14 194 m. No clutter, none.
+    assert!(close(radar.max_gate_radius.unwrap(), 1691.72, 0.01));
+    assert!(close(tcas.max_gate_radius.unwrap(), 14_194.2, 0.1));
+    let clean = TrackerDesign {
+        clutter_density: 0.0,
+        ..TrackerDesign::NOMINAL_RADAR
+    };
+    assert_eq!(clean.derive().unwrap().max_gate_radius, None);
+    assert_eq!(
+        clean.cartesian_config::<f64>().unwrap().max_gate_radius(),
+        None
+    );
 
     // The scenarios' sensors are the nominal ones.
     for (name, nominal) in [
@@ -129,6 +142,13 @@ fn nominal_designs_give_the_documented_parameters() {
     assert_eq!(c.confirmation(), (3, 4));
     assert_eq!(c.deletion(), (4, 2));
     assert!(c.volume().is_some());
+    assert!(close(c.max_gate_radius().unwrap(), 1691.72, 0.01));
+    let p = default_polar::<f32>().unwrap();
+    assert!(close(
+        f64::from(p.max_gate_radius().unwrap()),
+        14_194.2,
+        0.1
+    ));
 }
 
 #[test]

@@ -207,3 +207,30 @@ fn bad_gates_refused() {
     .validated()
     .is_err());
 }
+
+/// `GateRegion::is_larger_than_circle` (the design's rule 7): a circle by
+/// its radius, formed from it or from its square; a range/azimuth window
+/// by its area π·half_range·half_cross, in each number system.
+#[test]
+fn regions_are_compared_with_a_circle_by_radius_and_by_area() {
+    fn check<S: Numeric>() {
+        let l = |v: f64| S::Length::try_from_f64(v).unwrap();
+        let circle = GateRegion::<S>::circle([l(100.0), l(200.0)], l(800.0)).unwrap();
+        assert!(circle.is_larger_than_circle(l(790.0)));
+        assert!(!circle.is_larger_than_circle(l(810.0)));
+        // σ 100 m, factor 16: radius 400 m.
+        let factor = S::Ratio::try_from_f64(16.0).unwrap();
+        let scaled = GateRegion::<S>::scaled_circle([l(0.0), l(0.0)], l(100.0), factor).unwrap();
+        assert!(scaled.is_larger_than_circle(l(395.0)));
+        assert!(!scaled.is_larger_than_circle(l(405.0)));
+        // 10 km out, 200 m in range and 2 km across: the area of a circle
+        // of radius √(200·2000) = 632.5 m.
+        let window = GateRegion::<S>::polar([l(6000.0), l(8000.0)], l(200.0), l(2000.0)).unwrap();
+        assert!(window.is_larger_than_circle(l(625.0)));
+        assert!(!window.is_larger_than_circle(l(640.0)));
+    }
+    check::<f64>();
+    check::<f32>();
+    check::<Fix>();
+    check::<Fixed32>();
+}

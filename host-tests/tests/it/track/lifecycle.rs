@@ -281,6 +281,31 @@ fn leaving_the_volume_deletes() {
     assert!(out[3].2.is_empty());
 }
 
+/// The design's rule 7 as the table applies it: a confirmed track whose
+/// gate is wider than the configured largest gates nothing and is deleted,
+/// counted; a tentative one is not bounded; a bound no gate reaches
+/// changes nothing.
+#[test]
+fn a_confirmed_track_whose_gate_outgrows_the_bound_is_deleted() {
+    let base = default_config::<f64>();
+    let (_, plain) = run(&base, &[true; 6]);
+    let (_, far) = run(&base.with_max_gate_radius(1e9).unwrap(), &[true; 6]);
+    assert_eq!(plain, far);
+    let (_, out) = run(&base.with_max_gate_radius(1.0).unwrap(), &[true; 4]);
+    // Tentative through scan 2 (its gate then is wider than 1 m), confirmed.
+    assert_eq!(out[2].0, Some(Association::Updated(id(1))));
+    assert_eq!(out[2].2, vec![TrackStatus::Confirmed]);
+    // Scan 3: confirmed, its gate wider than 1 m: it takes nothing and ends.
+    assert_eq!(out[3].0, Some(Association::OutsideGates));
+    assert_eq!(out[3].1.deleted_gate_too_wide, 1);
+    assert_eq!(out[3].1.deleted, 1);
+    assert_eq!(out[3].1.coasted, 0);
+    assert!(out[3].2.is_empty());
+    for bad in [0.0, -1.0, f64::NAN, f64::INFINITY] {
+        assert!(base.with_max_gate_radius(bad).is_err(), "{bad}");
+    }
+}
+
 #[test]
 fn no_initiation_outside_the_volume() {
     let volume = Volume::new([0.0, 0.0], [500.0, 500.0]).unwrap();
