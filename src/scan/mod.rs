@@ -87,7 +87,7 @@
 //! 4. measurements the tracker would refuse (not finite).
 //!
 //! A newcomer replaces the least important unprotected entry only if it is
-//! strictly more important (or takes a confirmed track's first place);
+//! strictly more important (or is itself protected by 1 once counted);
 //! among exact equals the later batch slot goes first. Gates are the
 //! tracker's own ([`TrackFilter::gate_region`](crate::track::TrackFilter::gate_region)) for the next scan. The
 //! others are dropped and counted (`over_capacity`).

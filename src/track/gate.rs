@@ -277,8 +277,12 @@ impl<S: Numeric> GateRegion<S> {
     /// for a circle (its exact radius formed only when its reach, a bound
     /// on it, is wider), larger in area for a range/azimuth window
     /// (half_range·R_p > radius²·inverse_half_azimuth, its area
-    /// π·half_range·half_cross against π·radius²). A product that leaves the
-    /// number format compares as not larger.
+    /// π·half_range·half_cross against π·radius²). In a format of absolute
+    /// precision (Q32.32) both products could leave it at long range: there
+    /// the half-range is divided by the radius first, comparing
+    /// (half_range/radius)·R_p with radius·inverse_half_azimuth, whose left
+    /// side stays small and whose right side, saturated, is rightly not
+    /// exceeded.
     pub fn is_larger_than_circle(&self, radius: S::Length) -> bool {
         match self {
             GateRegion::Circle { reach, scale, .. } => {
@@ -286,7 +290,11 @@ impl<S: Numeric> GateRegion<S> {
             }
             GateRegion::Polar(w) => {
                 let r = S::length_to_polar(radius);
-                w.half_range * w.range > r * r * w.inverse_half_azimuth
+                if <S::Polar as Quantity>::RELATIVE_PRECISION {
+                    w.half_range * w.range > r * r * w.inverse_half_azimuth
+                } else {
+                    w.half_range / r * w.range > r * w.inverse_half_azimuth
+                }
             }
         }
     }

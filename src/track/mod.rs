@@ -37,8 +37,9 @@
 //!    tentative one after fewer (default 2) or once M-of-N is out of reach,
 //!    and any track that leaves the surveillance [`Volume`]. When the
 //!    configuration bounds the gate ([`TrackerConfig::with_max_gate_radius`],
-//!    the design's rule 7), a confirmed track whose gate (step 3) is wider
-//!    gates nothing and is deleted ([`ScanReport::deleted_gate_too_wide`]).
+//!    the design's rule 7), a confirmed track whose gate (step 3) is larger
+//!    (wider; a range/azimuth window, in area) gates nothing and is deleted
+//!    ([`ScanReport::deleted_gate_too_wide`]).
 //! 8. **Initiate** (two-point method, Al-Wagih & Abdulla eqs. 9–10): a
 //!    measurement outside every gate pairs with an unused measurement of the
 //!    previous scan at most `v_max·T` (+ margin) away and starts a tentative

@@ -331,12 +331,21 @@ impl<
                 .table
                 .track(intruder.track)
                 .filter(|t| t.is_confirmed());
-            let region = confirmed.and_then(|track| {
-                let predicted = track.filter().predict(params, &step).ok()?;
-                track
-                    .filter()
-                    .gate_region(params, &predicted, &step, config.tracker.gate())
-            });
+            // A gate the tracker would end the track for (the design's
+            // rule 7) gates nothing there, and none here.
+            let region = confirmed
+                .and_then(|track| {
+                    let predicted = track.filter().predict(params, &step).ok()?;
+                    track
+                        .filter()
+                        .gate_region(params, &predicted, &step, config.tracker.gate())
+                })
+                .filter(|region| {
+                    config
+                        .tracker
+                        .max_gate_radius()
+                        .is_none_or(|radius| !region.is_larger_than_circle(radius))
+                });
             if self.gates.push(TrackGate::new(region)).is_err() {
                 break;
             }

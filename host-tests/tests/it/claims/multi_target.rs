@@ -581,7 +581,10 @@ fn full_table_refuses_and_counts() {
                 .collect();
             let vanished = confirmed_before.difference(&confirmed_now).count() as u32;
             assert!(
-                vanished <= report.deleted_misses + report.deleted_left_volume,
+                vanished
+                    <= report.deleted_misses
+                        + report.deleted_left_volume
+                        + report.deleted_gate_too_wide,
                 "a confirmed track vanished without a counted deletion at t = {}",
                 scan.t
             );

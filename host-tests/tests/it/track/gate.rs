@@ -228,6 +228,11 @@ fn regions_are_compared_with_a_circle_by_radius_and_by_area() {
         let window = GateRegion::<S>::polar([l(6000.0), l(8000.0)], l(200.0), l(2000.0)).unwrap();
         assert!(window.is_larger_than_circle(l(625.0)));
         assert!(!window.is_larger_than_circle(l(640.0)));
+        // 300 km out, 10 km by 3 km (radius √(10⁴·3000) = 5477 m): products
+        // beyond Q32.32's 2³¹ m², which its form avoids.
+        let far = GateRegion::<S>::polar([l(300_000.0), l(0.0)], l(10_000.0), l(3000.0)).unwrap();
+        assert!(far.is_larger_than_circle(l(5300.0)));
+        assert!(!far.is_larger_than_circle(l(5600.0)));
     }
     check::<f64>();
     check::<f32>();
