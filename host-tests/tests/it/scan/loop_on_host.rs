@@ -952,6 +952,40 @@ fn two_tracks_sharing_their_nearest_measurement_each_keep_one() {
     }
 }
 
+/// The capacity ranking forms no gate for a confirmed track the tracker
+/// will end for its width (the design's rule 7): with room for one of two
+/// returns, the confirmed track's own (3 km out) is not protected, and the
+/// return nearer the own aircraft (500 m) takes the place. The track ends
+/// (its gate is wider than the 1 m bound), and the kept return is the first
+/// point the next scan starts a track from.
+#[test]
+fn a_track_ended_for_its_gate_width_protects_nothing() {
+    let config = demo_config::crossing_config::<f64, _>().unwrap();
+    let mut bounded = demo_config::crossing_config::<f64, _>().unwrap();
+    bounded.tracker = bounded.tracker.with_max_gate_radius(1.0).unwrap();
+    let mut scan_loop: Box<Loop<f64, 8, 1>> = Box::new(Loop::new());
+    let mut q = Box::new(MeasurementQueue::<64>::new());
+    let point =
+        |t: u32, x: f64| MeasurementReport::cartesian_from_metres(t, 1, x, 0.0, None).unwrap();
+    for k in 0..4u32 {
+        q.push(point(k * 1000, 3000.0)).unwrap();
+        scan_loop.on_tick(&config, q.as_mut(), |_| {}).unwrap();
+    }
+    let confirmed = scan_loop.table().tracks().filter(|t| t.is_confirmed());
+    assert_eq!(confirmed.count(), 1);
+    q.push(point(4000, 3000.0)).unwrap();
+    q.push(point(4000, 500.0)).unwrap();
+    let tick = scan_loop.on_tick(&bounded, q.as_mut(), |_| {}).unwrap();
+    let c = tick.summary.counts;
+    assert_eq!((c.used, c.over_capacity, c.updated), (1, 1, 0), "{c}");
+    assert_eq!(scan_loop.table().tracks().count(), 0);
+    q.push(point(5000, 510.0)).unwrap();
+    scan_loop.on_tick(&bounded, q.as_mut(), |_| {}).unwrap();
+    let started: Vec<[f64; 2]> = scan_loop.table().tracks().map(|t| t.position()).collect();
+    assert_eq!(started.len(), 1, "{started:?}");
+    assert!((started[0][0] - 510.0).abs() < 1.0, "{started:?}");
+}
+
 /// Capacity under clutter (abtrack::scan, "Capacity"): three confirmed
 /// tracks 4 km out, then a scan with room for 8 of 53 returns: 40 clutter
 /// returns within 500 m of the own aircraft, 10 more clutter returns 20 m
