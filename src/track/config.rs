@@ -1,7 +1,7 @@
 //! Tracker configuration: filter parameters, gate, initiation, confirmation,
 //! deletion and surveillance volume.
 
-use super::gate::{non_negative, ConfigError, Gate};
+use super::gate::{non_negative, ConfigError, Gate, GateRegion};
 use crate::num::{Numeric, Quantity};
 
 /// Axis-aligned surveillance region (m). Tracks whose position leaves it are
@@ -210,6 +210,14 @@ impl<S: Numeric, P: Copy> TrackerConfig<S, P> {
     /// ([`Self::with_max_gate_radius`]), if any.
     pub fn max_gate_radius(&self) -> Option<S::Length> {
         self.max_gate_radius
+    }
+    /// Whether a confirmed track with this gate is ended for it (the
+    /// design's rule 7): its region is larger than the circle of
+    /// [`Self::max_gate_radius`]; never without that bound.
+    #[inline(always)]
+    pub fn gate_too_wide(&self, region: &GateRegion<S>) -> bool {
+        self.max_gate_radius
+            .is_some_and(|radius| region.is_larger_than_circle(radius))
     }
 
     pub(crate) fn in_volume(&self, p: [S::Length; 2]) -> bool {

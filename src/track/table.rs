@@ -942,11 +942,7 @@ impl<S: Numeric, F: TrackFilter<S>, const N: usize, const M: usize> TrackTable<S
             else {
                 continue;
             };
-            if track.lifecycle == Lifecycle::Confirmed
-                && config
-                    .max_gate_radius()
-                    .is_some_and(|radius| region.is_larger_than_circle(radius))
-            {
+            if track.lifecycle == Lifecycle::Confirmed && config.gate_too_wide(&region) {
                 if let Some(outcome) = self.outcomes.get_mut(t) {
                     *outcome = Outcome::GateTooWide;
                 }

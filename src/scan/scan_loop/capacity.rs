@@ -340,12 +340,7 @@ impl<
                         .filter()
                         .gate_region(params, &predicted, &step, config.tracker.gate())
                 })
-                .filter(|region| {
-                    config
-                        .tracker
-                        .max_gate_radius()
-                        .is_none_or(|radius| !region.is_larger_than_circle(radius))
-                });
+                .filter(|region| !config.tracker.gate_too_wide(region));
             if self.gates.push(TrackGate::new(region)).is_err() {
                 break;
             }
