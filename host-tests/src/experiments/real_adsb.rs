@@ -91,6 +91,80 @@ pub const SCHEDULES: [&str; 13] = [
 ];
 /// The schedule compared with the Kalman filter in the summary.
 pub const AUTO: &str = "auto:sigma=50";
+/// The sensors' σ per axis (m) of the table that runs `auto` and the
+/// one-q Kalman filter at other accuracies than [`SIGMA_M`] (beside it).
+pub const SIGMA_SWEEP_M: [f64; 4] = [20.0, SIGMA_M, 100.0, 150.0];
+
+/// `auto` configured from the sensor's σ (m), as `--schedule` takes it.
+pub fn auto_spec(sigma: f64) -> String {
+    format!("auto:sigma={sigma}")
+}
+
+/// `auto` against the one-q Kalman filter (q the best for the set at that
+/// σ) and raw, over one timing's segments at one σ.
+#[derive(Debug, Clone)]
+pub struct SigmaRow {
+    pub sigma: f64,
+    pub timing: Timing,
+    /// The Kalman filter's q, m²/s³, and its median per-segment RMSE.
+    pub kalman_q: f64,
+    pub kalman: f64,
+    pub auto: f64,
+    pub raw: f64,
+    pub refused: usize,
+    pub worse_than_raw: usize,
+    pub over_102_raw: usize,
+    /// Segments where the Kalman filter is more than 2 % worse than raw.
+    pub kalman_over_102_raw: usize,
+    /// The segment where `auto` is worst against raw, and that ratio.
+    pub worst_against_raw: (String, f64),
+    /// The segment where `auto` is worst against the Kalman filter, and
+    /// that ratio.
+    pub worst_against_kalman: (String, f64),
+}
+
+/// [`SigmaRow`] of `segments` at `timing`, measured with σ = `sigma` over
+/// `seeds`.
+pub fn sigma_row(
+    segments: &[Segment],
+    timing: Timing,
+    seeds: &[u64],
+    sigma: f64,
+) -> Result<SigmaRow, String> {
+    let spec = auto_spec(sigma);
+    let results = segments
+        .iter()
+        .map(|s| evaluate_segment(s, timing, seeds, &[spec.as_str()], sigma))
+        .collect::<Result<Vec<_>, _>>()?;
+    let refs: Vec<&SegmentResult> = results.iter().collect();
+    let (kq, kalman) = best_kalman_q(&refs);
+    let rows = summarise(&refs, &[spec.as_str()], kq);
+    let auto = &rows[2];
+    let worst = |of: &dyn Fn(&SegmentResult) -> f64| {
+        results
+            .iter()
+            .filter_map(|r| {
+                let a = r.schedule(&spec).and_then(Figure::rmse)?;
+                Some((r.segment.clone(), a / of(r)))
+            })
+            .max_by(|a, b| a.1.total_cmp(&b.1))
+            .unwrap_or_default()
+    };
+    Ok(SigmaRow {
+        sigma,
+        timing,
+        kalman_q: KALMAN_Q_GRID[kq],
+        kalman,
+        auto: auto.median,
+        raw: rows[0].median,
+        refused: auto.refused,
+        worse_than_raw: auto.worse_than_raw,
+        over_102_raw: auto.over_102_raw,
+        kalman_over_102_raw: rows[1].over_102_raw,
+        worst_against_raw: worst(&|r| r.raw),
+        worst_against_kalman: worst(&|r| r.kalman[kq]),
+    })
+}
 
 /// `host-tests/data/real`.
 pub fn data_dir() -> PathBuf {
@@ -230,14 +304,15 @@ fn noise_stream(name: &str, timing: Timing, seed: u64) -> u64 {
     derive_seed(seed, h)
 }
 
-/// The truth plus N(0, σ²) per axis (x then y at each point).
-pub fn measure(truth: &[(f64, [f64; 2])], stream: u64) -> Vec<(f64, [f64; 2])> {
+/// The truth plus N(0, σ²) per axis (x then y at each point), σ =
+/// `sigma` m: the same draws scaled, whatever σ.
+pub fn measure(truth: &[(f64, [f64; 2])], stream: u64, sigma: f64) -> Vec<(f64, [f64; 2])> {
     let mut rng = rng_from_seed(stream);
     truth
         .iter()
         .map(|&(t, p)| {
-            let ex = SIGMA_M * standard_normal(&mut rng);
-            let ey = SIGMA_M * standard_normal(&mut rng);
+            let ex = sigma * standard_normal(&mut rng);
+            let ey = sigma * standard_normal(&mut rng);
             (t, [p[0] + ex, p[1] + ey])
         })
         .collect()
@@ -265,12 +340,16 @@ pub enum Estimates {
     Refused(String),
 }
 
-/// `replay --filter ab --schedule text --sigma-m σ --scan-period-s T` on
-/// the stream written as a `t,x,y` file (T its median interval): the
+/// `replay --filter ab --schedule text --sigma-m sigma --scan-period-s T`
+/// on the stream written as a `t,x,y` file (T its median interval): the
 /// estimates, or what replay refused (the file or a row).
-pub fn run_schedule(text: &str, stream: &[(f64, [f64; 2])]) -> Result<Estimates, String> {
+pub fn run_schedule(
+    text: &str,
+    stream: &[(f64, [f64; 2])],
+    sigma: f64,
+) -> Result<Estimates, String> {
     let scale = SensorScale {
-        sigma: SIGMA_M,
+        sigma,
         period: median_interval(stream),
         max_acceleration: BANK_30_ACCELERATION,
     };
@@ -312,12 +391,13 @@ pub fn run_schedule(text: &str, stream: &[(f64, [f64; 2])]) -> Result<Estimates,
 }
 
 /// The constant-velocity Kalman filter (white acceleration of density q,
-/// R = σ²I, two-point start as the αβ filters) on the stream.
-pub fn run_kalman(q: f64, stream: &[(f64, [f64; 2])]) -> Result<Vec<[f64; 2]>, String> {
+/// R = σ²I with σ = `sigma` m, two-point start as the αβ filters) on the
+/// stream.
+pub fn run_kalman(q: f64, stream: &[(f64, [f64; 2])], sigma: f64) -> Result<Vec<[f64; 2]>, String> {
     let noise = ProcessNoise::ContinuousWhiteAcceleration {
         spectral_density: q,
     };
-    let mut kf = ConstantVelocityKf::new(noise, isotropic(SIGMA_M)).map_err(|e| e.to_string())?;
+    let mut kf = ConstantVelocityKf::new(noise, isotropic(sigma)).map_err(|e| e.to_string())?;
     let mut previous: Option<f64> = None;
     stream
         .iter()
@@ -385,26 +465,27 @@ fn mean(v: &[f64]) -> f64 {
 }
 
 /// Runs every method on `segment` at `timing` over `seeds`, for the
-/// schedules `specs`.
+/// schedules `specs`, the measurements' σ per axis `sigma` m.
 pub fn evaluate_segment(
     segment: &Segment,
     timing: Timing,
     seeds: &[u64],
     specs: &[&str],
+    sigma: f64,
 ) -> Result<SegmentResult, String> {
     let truth = truth_for(segment, timing);
     let mut raw = Vec::new();
     let mut per_spec: Vec<Vec<Estimates>> = vec![Vec::new(); specs.len()];
     let mut kalman: Vec<Vec<f64>> = vec![Vec::new(); KALMAN_Q_GRID.len()];
     for &seed in seeds {
-        let stream = measure(&truth, noise_stream(&segment.name, timing, seed));
+        let stream = measure(&truth, noise_stream(&segment.name, timing, seed), sigma);
         let z: Vec<[f64; 2]> = stream.iter().map(|p| p.1).collect();
         raw.push(position_rmse(&z, &truth));
         for (i, spec) in specs.iter().enumerate() {
-            per_spec[i].push(run_schedule(spec, &stream)?);
+            per_spec[i].push(run_schedule(spec, &stream, sigma)?);
         }
         for (i, &q) in KALMAN_Q_GRID.iter().enumerate() {
-            kalman[i].push(position_rmse(&run_kalman(q, &stream)?, &truth));
+            kalman[i].push(position_rmse(&run_kalman(q, &stream, sigma)?, &truth));
         }
     }
     let schedules = specs
@@ -843,7 +924,9 @@ pub fn run(ctx: &Context) -> Result<(), String> {
     let mut results: Vec<SegmentResult> = Vec::new();
     for segment in &segments {
         for timing in Timing::ALL {
-            results.push(evaluate_segment(segment, timing, &SEEDS, &SCHEDULES)?);
+            results.push(evaluate_segment(
+                segment, timing, &SEEDS, &SCHEDULES, SIGMA_M,
+            )?);
         }
     }
 
@@ -1009,19 +1092,73 @@ pub fn run(ctx: &Context) -> Result<(), String> {
         refusals.rows.len()
     );
 
+    // Other sensors' σ.
+    let mut sigma_table = Table::new([
+        "σ (m)",
+        "timing",
+        "raw",
+        "Kalman q (m²/s³)",
+        "Kalman",
+        "auto",
+        "auto ÷ Kalman",
+        "refused",
+        "> raw",
+        "> 1.02 raw",
+        "Kalman > 1.02 raw",
+        "worst ÷ raw",
+        "worst ÷ Kalman",
+    ]);
+    for sigma in SIGMA_SWEEP_M {
+        for timing in Timing::ALL {
+            let r = sigma_row(&segments, timing, &SEEDS, sigma)?;
+            sigma_table.push([
+                format!("{sigma}"),
+                timing.short().to_string(),
+                cell(r.raw),
+                format!("{}", r.kalman_q),
+                cell(r.kalman),
+                cell(r.auto),
+                format!("{:.3}", r.auto / r.kalman),
+                r.refused.to_string(),
+                r.worse_than_raw.to_string(),
+                r.over_102_raw.to_string(),
+                r.kalman_over_102_raw.to_string(),
+                format!("{} {:.3}", r.worst_against_raw.0, r.worst_against_raw.1),
+                format!(
+                    "{} {:.3}",
+                    r.worst_against_kalman.0, r.worst_against_kalman.1
+                ),
+            ]);
+        }
+    }
+    sigma_table.write(&dir, "sigma")?;
+    let sigmas: Vec<String> = SIGMA_SWEEP_M.iter().map(|s| format!("{s}")).collect();
+    let _ = writeln!(
+        summary,
+        "### Other sensors' σ\n\n\
+         The same segments, seeds and timings measured with σ = {} m per axis: `auto:sigma=σ` \
+         (configured from that σ alone) against raw and the one-q Kalman filter (R = σ²I) whose q \
+         is the best for the set at that σ; medians over the segments (\"refused\": auto's \
+         refusals; \"> 1.02 raw\": segments where auto is more than 2 % worse than raw, \
+         \"Kalman > 1.02 raw\" the same for the Kalman filter); the segment where auto is worst against raw and against the Kalman filter \
+         (the ratio of their RMSEs). Also `sigma.csv`.\n\n{}",
+        sigmas.join(", "),
+        sigma_table.to_markdown()
+    );
+
     // Flight plots: seed 1 at the real report times.
     for name in PLOTTED {
         let Some(segment) = segments.iter().find(|s| s.name == name) else {
             continue;
         };
         let truth = truth_for(segment, Timing::Real);
-        let stream = measure(&truth, noise_stream(name, Timing::Real, SEEDS[0]));
+        let stream = measure(&truth, noise_stream(name, Timing::Real, SEEDS[0]), SIGMA_M);
         let of_real: Vec<&SegmentResult> = results
             .iter()
             .filter(|r| r.timing == Timing::Real)
             .collect();
         let (kq, _) = best_kalman_q(&of_real);
-        let kf = run_kalman(KALMAN_Q_GRID[kq], &stream)?;
+        let kf = run_kalman(KALMAN_Q_GRID[kq], &stream, SIGMA_M)?;
         let xy = |v: &[(f64, [f64; 2])]| v.iter().map(|p| (p.1[0], p.1[1])).collect::<Vec<_>>();
         let mut series = vec![
             Series::points("measurements", xy(&stream)),
@@ -1031,7 +1168,7 @@ pub fn run(ctx: &Context) -> Result<(), String> {
                 kf.iter().map(|p| (p[0], p[1])).collect(),
             ),
         ];
-        if let Estimates::Positions(p) = run_schedule(AUTO, &stream)? {
+        if let Estimates::Positions(p) = run_schedule(AUTO, &stream, SIGMA_M)? {
             series.push(Series::line(AUTO, p.iter().map(|p| (p[0], p[1])).collect()));
         }
         plot(
