@@ -106,7 +106,8 @@ pub fn auto_spec(sigma: f64) -> String {
 pub struct SigmaRow {
     pub sigma: f64,
     pub timing: Timing,
-    /// The Kalman filter's q, m²/s³, and its median per-segment RMSE.
+    /// The Kalman filter's q, m²/s³, then the median per-segment RMSE of
+    /// the Kalman filter, of `auto` and of raw over the segments `auto` ran.
     pub kalman_q: f64,
     pub kalman: f64,
     pub auto: f64,
@@ -137,7 +138,7 @@ pub fn sigma_row(
         .map(|s| evaluate_segment(s, timing, seeds, &[spec.as_str()], sigma))
         .collect::<Result<Vec<_>, _>>()?;
     let refs: Vec<&SegmentResult> = results.iter().collect();
-    let (kq, kalman) = best_kalman_q(&refs);
+    let (kq, _) = best_kalman_q(&refs);
     let rows = summarise(&refs, &[spec.as_str()], kq);
     let auto = &rows[2];
     let worst = |of: &dyn Fn(&SegmentResult) -> f64| {
@@ -154,9 +155,9 @@ pub fn sigma_row(
         sigma,
         timing,
         kalman_q: KALMAN_Q_GRID[kq],
-        kalman,
-        auto: auto.median,
-        raw: rows[0].median,
+        kalman: rows[1].median_common,
+        auto: auto.median_common,
+        raw: rows[0].median_common,
         refused: auto.refused,
         worse_than_raw: auto.worse_than_raw,
         over_102_raw: auto.over_102_raw,
@@ -1138,7 +1139,7 @@ pub fn run(ctx: &Context) -> Result<(), String> {
         "### Other sensors' σ\n\n\
          The same segments, seeds and timings measured with σ = {} m per axis: `auto:sigma=σ` \
          (configured from that σ alone) against raw and the one-q Kalman filter (R = σ²I) whose q \
-         is the best for the set at that σ; medians over the segments (\"refused\": auto's \
+         is the best for the set at that σ; medians over the segments auto ran (\"refused\": auto's \
          refusals; \"> 1.02 raw\": segments where auto is more than 2 % worse than raw, \
          \"Kalman > 1.02 raw\" the same for the Kalman filter); the segment where auto is worst against raw and against the Kalman filter \
          (the ratio of their RMSEs). Also `sigma.csv`.\n\n{}",
