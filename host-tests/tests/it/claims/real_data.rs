@@ -6,10 +6,10 @@
 use abtrack::gain::spec::{ScheduleSpec, SensorScale};
 use abtrack::track::defaults::BANK_30_ACCELERATION;
 use abtrack_host_tests::experiments::real_adsb::{
-    best_kalman_q, data_dir, evaluate_segment, median, read_scene_truth, read_segments, run_scene,
-    score_tracks, sigma_row, truth_for, Figure, Scene, SceneRun, Segment, Timing, GRID_MAX_GAP_S,
-    KALMAN_Q_GRID, SCENES, SCENE_NUMERICS, SCENE_PERIOD_MS, SCHEDULES, SEEDS, SIGMA_M,
-    SIGMA_SWEEP_M,
+    auto_spec, best_kalman_q, data_dir, evaluate_segment, median, read_scene_truth, read_segments,
+    run_scene, score_tracks, sigma_row, truth_for, Figure, Scene, SceneRun, Segment, Timing, AUTO,
+    GRID_MAX_GAP_S, KALMAN_Q_GRID, SCENES, SCENE_NUMERICS, SCENE_PERIOD_MS, SCHEDULES, SEEDS,
+    SIGMA_M, SIGMA_SWEEP_M,
 };
 use abtrack_host_tests::experiments::scene_draws::{
     self, draw, measurements, CONDITIONS, DEV_SENSOR_CONDITION_COUNT, DRAW_SEEDS,
@@ -20,7 +20,7 @@ use abtrack_host_tests::metrics::{
 use abtrack_host_tests::replay::Numeric;
 
 /// The fixed αβ and `auto`, seed 1: enough for the claims, fast.
-const SPECS: [&str; 2] = ["fixed:alpha=0.5,beta=0.2", "auto:sigma=50"];
+const SPECS: [&str; 2] = ["fixed:alpha=0.5,beta=0.2", AUTO];
 
 #[test]
 fn only_streams_with_an_interval_over_20_s_are_refused() {
@@ -101,6 +101,15 @@ fn every_sensor_scaled_schedule_is_within_a_fifth_of_the_kalman_filter() {
             );
         }
     }
+}
+
+/// The experiment names `auto` at σ 50 m three ways (its schedule list,
+/// its summary's method, the σ table's spec): they are one spec.
+#[test]
+fn the_experiments_auto_is_the_one_configured_from_its_sigma() {
+    assert_eq!(AUTO, auto_spec(SIGMA_M));
+    assert!(SCHEDULES.contains(&AUTO));
+    assert!(SIGMA_SWEEP_M.contains(&SIGMA_M));
 }
 
 /// `auto` configured from the sensor's σ alone stays within 1.05× the
