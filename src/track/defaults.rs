@@ -57,7 +57,9 @@
 //!      A_gate the area of the gate right after initiation (the predicted
 //!      variance after two points is 5σ² per axis at equal intervals, so
 //!      the radius is σ·√(6G) + ½a_max T²; polar: the range/azimuth window
-//!      with σ_R in range and R_max·σ_B across, area π·h_R·h_C).
+//!      with σ_R in range and R_max·σ_B across, area π·h_R·h_C). The table
+//!      holds a tentative track's circle to that gate, grown over the scans
+//!      since its last hit (`two_point_gate_radius`).
 //!
 //!    When no rule up to 8 scans meets both bounds (a low P_D, dense
 //!    clutter), the design does not refuse the sensor: it takes the rule
@@ -119,9 +121,10 @@
 //! # Limits
 //!
 //! Rule 4's false-confirmation estimate counts clutter in a tentative
-//! track's first gate only: it holds for a Cartesian sensor and is
-//! optimistic for a wide bearing window (kilometres across range at 5°),
-//! which also takes in other targets' measurements; the measured rates are
+//! track's first gate only (after a miss the gate it is held to grows): it
+//! holds for a Cartesian sensor and is optimistic for a wide bearing window
+//! (kilometres across range at 5°), which also takes in other targets'
+//! measurements; the measured rates are
 //! in `results/multi-target/` (docs/experiments.md, "Many targets").
 
 use super::adapters::RangeAzimuthTrack;

@@ -41,6 +41,10 @@ pub enum Gate<S: Numeric> {
     /// * a_max: manoeuvre allowance (m/s²). The αβ model has no process
     ///   noise, so an accelerating target drifts from the prediction by up to
     ///   ½·a·T² over the interval T; the gate is widened by that much.
+    ///
+    /// A tentative track's circle is held to the gate a track formed from
+    /// two points would have without process noise (the design's rule 4,
+    /// [`defaults`](super::defaults)).
     Uncertainty {
         /// σ, the measurement noise standard deviation per axis (m).
         measurement_sigma: S::Length,
@@ -296,6 +300,18 @@ impl<S: Numeric> GateRegion<S> {
                     w.half_range / r * w.range > r * w.inverse_half_azimuth
                 }
             }
+        }
+    }
+
+    /// This region held to the circle of `radius` around its centre: a
+    /// wider circle gives that circle (if it can be formed); a
+    /// range/azimuth window is kept as it is.
+    pub fn limited_to(self, radius: S::Length) -> Self {
+        match self {
+            GateRegion::Circle { center, .. } if self.is_larger_than_circle(radius) => {
+                Self::circle(center, radius).unwrap_or(self)
+            }
+            _ => self,
         }
     }
 

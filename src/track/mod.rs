@@ -15,7 +15,9 @@
 //! 3. **Pre-gate and gate.** Each track builds a validation region from its
 //!    prediction ([`TrackFilter::gate_region_keeping`], which keeps what
 //!    the update needs again: [`TrackFilter::GateKept`]): sized from the filter's
-//!    predicted uncertainty, or Li et al.'s wave gate λ = √α ([`Gate`]). The
+//!    predicted uncertainty, or Li et al.'s wave gate λ = √α ([`Gate`]); a
+//!    tentative track's circle under [`Gate::Uncertainty`] is held to the
+//!    gate the design's rule 4 assumes ([`defaults`], rule 4). The
 //!    measurements inside the region's bounding box are found in an index of
 //!    the scan's measurements (a bucket grid built in O(M), the cells the
 //!    box crosses visited per track, [`GateRegion::bounds`]), and only those

@@ -348,6 +348,40 @@ pub(super) fn uncertainty_region<S: Numeric>(
     GateRegion::circle(center, factor.sqrt() * measurement_sigma + allowance)
 }
 
+/// The gate the design's rule 4 counts clutter in, for a track `scans`
+/// scans after its last hit (1: the scan after it) at intervals T, under
+/// [`Gate::Uncertainty`]: two points T apart give position variance σ² and
+/// velocity variance 2σ²/T² (covariance σ²/T), so m·T ahead, without
+/// process noise, the innovation's variance is 2σ²(1 + m + m²) and the
+/// radius σ·√(2G·(1 + m + m²)) + ½·a_max·(mT)². `None` for the wave gate or
+/// if not representable.
+pub(super) fn two_point_gate_radius<S: Numeric>(
+    gate: &Gate<S>,
+    scans: u8,
+    interval: &ScanInterval<S>,
+) -> Option<S::Length> {
+    let Gate::Uncertainty {
+        measurement_sigma,
+        threshold,
+        max_acceleration,
+    } = *gate
+    else {
+        return None;
+    };
+    let m = u64::from(scans);
+    // m ≤ 255: nothing saturates.
+    let squared = m.saturating_mul(m);
+    let spread = 1u64
+        .saturating_add(m)
+        .saturating_add(squared)
+        .saturating_mul(2);
+    let spread = <S::Ratio as Real>::from_ratio(spread, 1);
+    let growth = <S::Ratio as Real>::from_ratio(squared, 1);
+    let allowance = max_acceleration * interval.terms().half_squared();
+    let radius = (threshold * spread).sqrt() * measurement_sigma + growth * allowance;
+    radius.is_valid().then_some(radius)
+}
+
 /// Li et al. eqs. (11)–(12): the wave gate's radius κ·λ·√(Δρ² + ρ²Δθ²),
 /// λ = √α, ρ the range of the predicted `position`.
 pub(super) fn wave_radius<S: Numeric>(

@@ -5,8 +5,10 @@ use core::marker::PhantomData;
 use super::assign::{AssignError, AssignmentSolver, PairCosts};
 use super::cluster::{Clusters, NONE};
 use super::config::TrackerConfig;
-use super::gate::GateRegion;
-use super::model::{Measurement, Observation, RejectReason, ScanInterval, TrackFilter};
+use super::gate::{Gate, GateRegion};
+use super::model::{
+    two_point_gate_radius, Measurement, Observation, RejectReason, ScanInterval, TrackFilter,
+};
 use super::pregate::MeasurementIndex;
 use crate::count::{increment, sat_u32};
 use crate::filter::{MAX_INTERVAL_MS, MIN_INTERVAL_MS};
@@ -197,6 +199,27 @@ impl<S: Numeric, F: TrackFilter<S>> Track<S, F> {
     /// the track coasted or was deleted), saturating at 255.
     pub fn refusals(&self) -> u8 {
         self.refusals
+    }
+
+    /// The region this track gates with: its filter's, a tentative track's
+    /// circle held to the gate the design's rule 4 counts clutter in
+    /// ([`two_point_gate_radius`], m = its misses + 1), so that a track
+    /// started on clutter does not take plots kilometres away before it is
+    /// confirmed.
+    #[inline(always)]
+    fn held_region(
+        &self,
+        region: GateRegion<S>,
+        gate: &Gate<S>,
+        interval: &ScanInterval<S>,
+    ) -> GateRegion<S> {
+        if self.lifecycle != Lifecycle::Tentative {
+            return region;
+        }
+        match two_point_gate_radius(gate, self.misses.saturating_add(1), interval) {
+            Some(radius) => region.limited_to(radius),
+            None => region,
+        }
     }
 
     fn record_scan(&mut self, hit: bool, now_ms: u32) {
@@ -948,6 +971,7 @@ impl<S: Numeric, F: TrackFilter<S>, const N: usize, const M: usize> TrackTable<S
                 }
                 continue;
             }
+            let region = track.held_region(region, config.gate(), F::interval_of(dt));
             let (observations, codes, clusters) =
                 (&self.observations, &mut self.codes, &mut self.clusters);
             self.index
@@ -1513,10 +1537,10 @@ impl<S: Numeric, F: TrackFilter<S>, R: PairRule, const N: usize, const M: usize>
         let Some(track) = self.slots.get(t).and_then(TrackSlot::track) else {
             return;
         };
+        let gate = self.config.gate();
         let region = track.filter.predict(params, self.dt).ok().and_then(|p| {
-            track
-                .filter
-                .gate_region(params, &p, self.dt, self.config.gate())
+            let region = track.filter.gate_region(params, &p, self.dt, gate)?;
+            Some(track.held_region(region, gate, F::interval_of(self.dt)))
         });
         let Some(region) = region else { return };
         for (column, &k) in self.col_measurement.iter().enumerate() {

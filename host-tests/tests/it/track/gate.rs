@@ -239,3 +239,94 @@ fn regions_are_compared_with_a_circle_by_radius_and_by_area() {
     check::<Fix>();
     check::<Fixed32>();
 }
+
+/// A tentative track's gate is held to the gate the design's rule 4 counts
+/// clutter in (σ·√(2G·(1 + m + m²)) + m²·½·a_max·T², m the scans since its
+/// last hit), in every number system; a confirmed track keeps its filter's.
+/// The design's radar with a 12 s scan and no clutter (no rule 7, which
+/// would end the confirmed track): after a miss, the default filter's gate
+/// (its covariance with the starting manoeuvre level over 24 s) is far
+/// wider than that.
+#[test]
+fn a_tentative_tracks_gate_is_held_to_the_two_point_gate() {
+    fn check<S: Numeric>() {
+        use abtrack::track::defaults::{DefaultCartesianTrack, TrackerDesign};
+        use abtrack::track::{Association, TrackTable};
+        let design = TrackerDesign {
+            scan_period: 12.0,
+            clutter_density: 0.0,
+            ..TrackerDesign::NOMINAL_RADAR
+        };
+        let derived = design.derive().unwrap();
+        let (sigma, g, a, t) = (20.0, derived.gate_threshold, 5.66, 12.0);
+        let cap = |m: f64| sigma * (2.0 * g * (1.0 + m + m * m)).sqrt() + m * m * 0.5 * a * t * t;
+        for confirmed in [false, true] {
+            let config = design.cartesian_config::<S>().unwrap();
+            let config = if confirmed {
+                config.with_confirmation(1, 1).unwrap()
+            } else {
+                config
+            };
+            // A target at 100 m/s along x, seen at 0 and 12 s, missed at
+            // 24 s; at 36 s, a plot off its prediction (3600 m, 0) by d.
+            let started = || {
+                let mut table: TrackTable<S, DefaultCartesianTrack<S>, 4, 4> = TrackTable::new();
+                let mut codes = [Association::OutsideGates; 1];
+                for (ms, x) in [(0u32, 0.0), (12_000, 1200.0)] {
+                    table
+                        .scan(&config, ms, &[cart(x, 0.0)], &mut codes)
+                        .unwrap();
+                }
+                assert!(matches!(codes[0], Association::Started(_)), "{codes:?}");
+                table.scan(&config, 24_000, &[], &mut codes).unwrap();
+                table
+            };
+            let table = started();
+            let track = table.tracks().next().unwrap();
+            assert_eq!(track.is_confirmed(), confirmed);
+            let interval = ScanInterval::<S>::from_ms(12_000).unwrap();
+            let step =
+                <DefaultCartesianTrack<S> as TrackFilter<S>>::step(config.params(), &interval)
+                    .unwrap();
+            let predicted = TrackFilter::predict(track.filter(), config.params(), &step).unwrap();
+            let own = TrackFilter::gate_region(
+                track.filter(),
+                config.params(),
+                &predicted,
+                &step,
+                config.gate(),
+            )
+            .unwrap()
+            .radius();
+            let own = Quantity::to_f64(own);
+            println!("{} confirmed {confirmed}: the filter's own gate {own:.0} m, the two-point gate {:.0} m", S::NAME, cap(2.0));
+            // The filter's own gate is the wider by far: the test is of the
+            // cap, not of the filter.
+            assert!(
+                own > 1.2 * cap(2.0),
+                "{} own {own} cap {}",
+                S::NAME,
+                cap(2.0)
+            );
+            let predicted_x = Quantity::to_f64(predicted.position[0]);
+            for (d, inside_cap) in [(0.95 * cap(2.0), true), (1.05 * cap(2.0), false)] {
+                let mut table = started();
+                let mut codes = [Association::OutsideGates; 1];
+                table
+                    .scan(&config, 36_000, &[cart(predicted_x, d)], &mut codes)
+                    .unwrap();
+                let taken = matches!(codes[0], Association::Updated(_));
+                assert_eq!(
+                    taken,
+                    inside_cap || confirmed,
+                    "{} d {d} {codes:?}",
+                    S::NAME
+                );
+            }
+        }
+    }
+    check::<f64>();
+    check::<f32>();
+    check::<Fix>();
+    check::<Fixed32>();
+}
